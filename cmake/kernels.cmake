@@ -1,0 +1,22 @@
+# Kernels are written once as templates over the lane type and compiled once per ISA.
+# Each copy gets its own namespace (ssrt::isa_<name>) through SSRT_ISA_NS, so no symbol
+# compiled with AVX2 flags can be picked by the linker for a baseline caller; core/dispatch.h
+# chooses the copy at run time.
+set(SSRT_ISAS scalar sse2 sse42 avx2 avx512)
+set(SSRT_ISA_FLAGS_scalar "")
+set(SSRT_ISA_FLAGS_sse2 "")
+set(SSRT_ISA_FLAGS_sse42 -msse4.2)
+set(SSRT_ISA_FLAGS_avx2 -mavx2)
+set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl)
+
+function(ssrt_add_isa_kernels target)
+    foreach(isa ${SSRT_ISAS})
+        set(obj ${target}_kernels_${isa})
+        add_library(${obj} OBJECT ${ARGN})
+        target_compile_definitions(${obj} PRIVATE SSRT_ISA_${isa}=1 SSRT_ISA_NS=isa_${isa})
+        target_compile_options(${obj} PRIVATE ${SSRT_ISA_FLAGS_${isa}})
+        target_include_directories(${obj} PRIVATE ${PROJECT_SOURCE_DIR})
+        target_link_libraries(${obj} PRIVATE xsimd)
+        target_sources(${target} PRIVATE $<TARGET_OBJECTS:${obj}>)
+    endforeach()
+endfunction()

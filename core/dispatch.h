@@ -1,0 +1,30 @@
+// Run-time choice among the per-ISA copies of a kernel.
+//
+// A kernel source (listed in SSRT_KERNEL_SOURCES) is compiled once per ISA; each copy lives
+// in namespace ssrt::isa_<name>. A header declares the entry point for every copy with
+// SSRT_DECLARE_KERNEL and the caller picks one with SSRT_DISPATCH:
+//
+//   SSRT_DECLARE_KERNEL(void, shadeTile, (const ShadeArgs& args, int tile))
+//   SSRT_DISPATCH(isa, shadeTile)(args, tile);
+#pragma once
+
+#include "core/isa.h"
+
+#define SSRT_DECLARE_KERNEL(ret, name, params)  \
+    namespace isa_scalar { ret name params; }   \
+    namespace isa_sse2 { ret name params; }     \
+    namespace isa_sse42 { ret name params; }    \
+    namespace isa_avx2 { ret name params; }     \
+    namespace isa_avx512 { ret name params; }
+
+// Evaluates to a pointer to the chosen copy.
+#define SSRT_DISPATCH(isa, name)                              \
+    ([&]() {                                                  \
+        switch (isa) {                                        \
+            case ::ssrt::Isa::SSE2: return &isa_sse2::name;     \
+            case ::ssrt::Isa::SSE42: return &isa_sse42::name;   \
+            case ::ssrt::Isa::AVX2: return &isa_avx2::name;     \
+            case ::ssrt::Isa::AVX512: return &isa_avx512::name; \
+            default: return &isa_scalar::name;                \
+        }                                                     \
+    }())

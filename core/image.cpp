@@ -1,0 +1,60 @@
+#include "core/image.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <stdexcept>
+
+namespace ssrt {
+
+template <class T>
+void Plane<T>::Free::operator()(T* p) const {
+    std::free(p);
+}
+
+template <class T>
+Plane<T>::Plane(int width, int height, T fill) : width_(width), height_(height) {
+    if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
+    constexpr std::size_t perLine = kRowAlignment / sizeof(T);
+    stride_ = (std::size_t(width) + perLine - 1) / perLine * perLine;
+    const std::size_t bytes = std::max<std::size_t>(stride_ * height * sizeof(T), kRowAlignment);
+    void* p = std::aligned_alloc(kRowAlignment, bytes);
+    if (!p) throw std::bad_alloc();
+    data_.reset(static_cast<T*>(p));
+    // Padding is zeroed too, so whole-row copies never read uninitialised memory.
+    std::memset(p, 0, bytes);
+    if (fill != T{}) this->fill(fill);
+}
+
+template <class T>
+void Plane<T>::fill(T value) {
+    for (int y = 0; y < height_; ++y) std::fill_n(row(y), width_, value);
+}
+
+template <class T>
+Plane<T> Plane<T>::clone() const {
+    Plane out(width_, height_);
+    if (!empty()) std::memcpy(out.data_.get(), data_.get(), stride_ * height_ * sizeof(T));
+    return out;
+}
+
+template <class T>
+static uint64_t fnv1a(const Plane<T>& plane, uint64_t h) {
+    for (int y = 0; y < plane.height(); ++y) {
+        const auto* bytes = reinterpret_cast<const unsigned char*>(plane.row(y));
+        for (std::size_t i = 0; i < std::size_t(plane.width()) * sizeof(T); ++i) {
+            h ^= bytes[i];
+            h *= 0x100000001b3ull;
+        }
+    }
+    return h;
+}
+
+uint64_t hashPlane(const PlaneF& plane, uint64_t seed) { return fnv1a(plane, seed); }
+uint64_t hashPlane(const PlaneU32& plane, uint64_t seed) { return fnv1a(plane, seed); }
+
+template class Plane<float>;
+template class Plane<uint32_t>;
+
+}  // namespace ssrt

@@ -1,0 +1,59 @@
+// Image planes: one channel each (structure of arrays), rows aligned to 64 bytes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ssrt {
+
+inline constexpr std::size_t kRowAlignment = 64;  // one cache line, one AVX-512 register
+
+template <class T>
+class Plane {
+public:
+    Plane() = default;
+    Plane(int width, int height, T fill = T{});
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    // Elements between the starts of two rows (>= width, a multiple of 64 bytes).
+    std::size_t stride() const { return stride_; }
+    bool empty() const { return width_ == 0 || height_ == 0; }
+
+    T* row(int y) { return data_.get() + std::size_t(y) * stride_; }
+    const T* row(int y) const { return data_.get() + std::size_t(y) * stride_; }
+    T& at(int x, int y) { return row(y)[x]; }
+    const T& at(int x, int y) const { return row(y)[x]; }
+
+    void fill(T value);
+    Plane clone() const;
+
+private:
+    struct Free {
+        void operator()(T* p) const;
+    };
+    int width_ = 0, height_ = 0;
+    std::size_t stride_ = 0;
+    std::unique_ptr<T[], Free> data_;
+};
+
+using PlaneF = Plane<float>;
+using PlaneU32 = Plane<uint32_t>;
+
+// A float plane with a name ("viewZ", "normal.X", ...), as the renderer hands them out.
+struct NamedPlane {
+    std::string name;
+    PlaneF plane;
+};
+
+// FNV-1a over the visible pixels (padding excluded), for golden hashes.
+uint64_t hashPlane(const PlaneF& plane, uint64_t seed = 0xcbf29ce484222325ull);
+uint64_t hashPlane(const PlaneU32& plane, uint64_t seed = 0xcbf29ce484222325ull);
+
+extern template class Plane<float>;
+extern template class Plane<uint32_t>;
+
+}  // namespace ssrt

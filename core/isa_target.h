@@ -1,0 +1,37 @@
+// Included first by every kernel source (SSRT_KERNEL_SOURCES). It names the lane type of
+// the ISA this copy is compiled for: `Lane` is float for the scalar copy and an
+// xsimd::batch<float, Arch> otherwise. Kernels are written once over `Lane`.
+#pragma once
+
+#include <xsimd/xsimd.hpp>
+
+#if defined(SSRT_ISA_scalar)
+#define SSRT_KERNEL_SCALAR 1
+#elif defined(SSRT_ISA_sse2)
+#define SSRT_ARCH xsimd::sse2
+#elif defined(SSRT_ISA_sse42)
+#define SSRT_ARCH xsimd::sse4_2
+#if !defined(__SSE4_2__)
+#error "the sse42 kernels must be compiled with -msse4.2"
+#endif
+#elif defined(SSRT_ISA_avx2)
+#define SSRT_ARCH xsimd::avx2
+#if !defined(__AVX2__)
+#error "the avx2 kernels must be compiled with -mavx2"
+#endif
+#elif defined(SSRT_ISA_avx512)
+#define SSRT_ARCH xsimd::avx512bw
+#if !defined(__AVX512BW__)
+#error "the avx512 kernels must be compiled with -mavx512bw"
+#endif
+#else
+#error "kernel sources are compiled through ssrt_add_isa_kernels (cmake/kernels.cmake)"
+#endif
+
+namespace ssrt::SSRT_ISA_NS {
+#if defined(SSRT_KERNEL_SCALAR)
+using Lane = float;
+#else
+using Lane = xsimd::batch<float, SSRT_ARCH>;
+#endif
+}  // namespace ssrt::SSRT_ISA_NS

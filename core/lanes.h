@@ -1,0 +1,190 @@
+// Lane-generic primitives: one spelling for `float` and `xsimd::batch<float, A>`.
+//
+// Call them qualified (`lanes::sin(x)`, or through `namespace ln = ssrt::lanes`): an
+// unqualified call on an xsimd batch also finds xsimd's functions of the same name by
+// argument-dependent lookup, and theirs (more specialised) would win and break the
+// scalar == SIMD bit contract. tests/core/lane_math_test.cpp catches a slip.
+//
+// Kernels are written once over a lane type L and use only these functions (plus the
+// arithmetic operators), so the scalar copy and every SIMD width execute the same
+// correctly rounded operations in the same order and give the same bits. Everything here
+// is always_inline: no out-of-line copy compiled with one ISA's flags can be shared by the
+// linker with code compiled for another.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+#include <xsimd/xsimd.hpp>
+
+#define SSRT_INLINE inline __attribute__((always_inline))
+
+namespace ssrt::lanes {
+
+// ---- Lane traits ------------------------------------------------------------------------
+template <class L>
+struct Traits;
+
+template <>
+struct Traits<float> {
+    using Int = int32_t;
+    using Mask = bool;
+    using IntMask = bool;
+    static constexpr std::size_t kWidth = 1;
+};
+
+template <class A>
+struct Traits<xsimd::batch<float, A>> {
+    using Int = xsimd::batch<int32_t, A>;
+    using Mask = xsimd::batch_bool<float, A>;
+    using IntMask = xsimd::batch_bool<int32_t, A>;
+    static constexpr std::size_t kWidth = xsimd::batch<float, A>::size;
+};
+
+template <class L>
+using IntOf = typename Traits<L>::Int;
+template <class L>
+using MaskOf = typename Traits<L>::Mask;
+template <class L>
+using IntMaskOf = typename Traits<L>::IntMask;
+template <class L>
+inline constexpr std::size_t kWidth = Traits<L>::kWidth;
+
+// ---- Select, min, max (NaN behaviour pinned down: min(a, b) = a < b ? a : b) ----------
+SSRT_INLINE float select(bool m, float a, float b) { return m ? a : b; }
+SSRT_INLINE int32_t select(bool m, int32_t a, int32_t b) { return m ? a : b; }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> select(xsimd::batch_bool<float, A> m, xsimd::batch<float, A> a,
+                                          xsimd::batch<float, A> b) {
+    return xsimd::select(m, a, b);
+}
+template <class A>
+SSRT_INLINE xsimd::batch<int32_t, A> select(xsimd::batch_bool<int32_t, A> m,
+                                            xsimd::batch<int32_t, A> a,
+                                            xsimd::batch<int32_t, A> b) {
+    return xsimd::select(m, a, b);
+}
+
+template <class L>
+SSRT_INLINE L min(L a, L b) { return lanes::select(a < b, a, b); }
+template <class L>
+SSRT_INLINE L max(L a, L b) { return lanes::select(a > b, a, b); }
+template <class L>
+SSRT_INLINE L clamp(L x, L lo, L hi) { return lanes::min(lanes::max(x, lo), hi); }
+template <class L>
+SSRT_INLINE L saturate(L x) { return lanes::clamp(x, L(0.0f), L(1.0f)); }
+
+// ---- Correctly rounded unary operations -------------------------------------------------
+SSRT_INLINE float sqrt(float x) { return __builtin_sqrtf(x); }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> sqrt(xsimd::batch<float, A> x) { return xsimd::sqrt(x); }
+
+SSRT_INLINE float abs(float x) { return __builtin_fabsf(x); }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> abs(xsimd::batch<float, A> x) { return xsimd::abs(x); }
+
+// ---- Integer lanes ----------------------------------------------------------------------
+SSRT_INLINE int32_t toIntTrunc(float x) { return static_cast<int32_t>(x); }
+template <class A>
+SSRT_INLINE xsimd::batch<int32_t, A> toIntTrunc(xsimd::batch<float, A> x) {
+    return xsimd::to_int(x);
+}
+SSRT_INLINE float toFloat(int32_t x) { return static_cast<float>(x); }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> toFloat(xsimd::batch<int32_t, A> x) {
+    return xsimd::to_float(x);
+}
+SSRT_INLINE int32_t bitsOf(float x) {
+    int32_t i;
+    std::memcpy(&i, &x, 4);
+    return i;
+}
+template <class A>
+SSRT_INLINE xsimd::batch<int32_t, A> bitsOf(xsimd::batch<float, A> x) {
+    return xsimd::bitwise_cast<xsimd::batch<int32_t, A>>(x);
+}
+SSRT_INLINE float floatFromBits(int32_t i) {
+    float x;
+    std::memcpy(&x, &i, 4);
+    return x;
+}
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> floatFromBits(xsimd::batch<int32_t, A> i) {
+    return xsimd::bitwise_cast<xsimd::batch<float, A>>(i);
+}
+
+// floor through truncation, identical on every ISA (SSE2 has no rounding instruction):
+// |x| >= 2^23 is already integral; otherwise truncate and step down where that rounded up.
+template <class L>
+SSRT_INLINE L floor(L x) {
+    const L big(8388608.0f);
+    const L t = lanes::toFloat(lanes::toIntTrunc(lanes::select(lanes::abs(x) < big, x, L(0.0f))));
+    const L f = lanes::select(t > x, t - L(1.0f), t);
+    return lanes::select(lanes::abs(x) < big, f, x);
+}
+
+// ---- Masks ------------------------------------------------------------------------------
+SSRT_INLINE bool any(bool m) { return m; }
+SSRT_INLINE bool all(bool m) { return m; }
+template <class T, class A>
+SSRT_INLINE bool any(xsimd::batch_bool<T, A> m) { return xsimd::any(m); }
+template <class T, class A>
+SSRT_INLINE bool all(xsimd::batch_bool<T, A> m) { return xsimd::all(m); }
+
+// Float mask -> int mask and back, for selects across types.
+SSRT_INLINE bool toIntMask(bool m) { return m; }
+// (xsimd 8.1 has no batch_bool_cast: select 1 or 0 and compare in the other type.)
+template <class A>
+SSRT_INLINE xsimd::batch_bool<int32_t, A> toIntMask(xsimd::batch_bool<float, A> m) {
+    using F = xsimd::batch<float, A>;
+    return xsimd::to_int(xsimd::select(m, F(1.0f), F(0.0f))) != xsimd::batch<int32_t, A>(0);
+}
+SSRT_INLINE bool toFloatMask(bool m) { return m; }
+template <class A>
+SSRT_INLINE xsimd::batch_bool<float, A> toFloatMask(xsimd::batch_bool<int32_t, A> m) {
+    using I = xsimd::batch<int32_t, A>;
+    return xsimd::to_float(xsimd::select(m, I(1), I(0))) != xsimd::batch<float, A>(0.0f);
+}
+
+// Bit i set when lane i is true (lane order = memory order).
+SSRT_INLINE uint64_t maskBits(bool m) { return m ? 1u : 0u; }
+template <class T, class A>
+SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<T, A> m) { return m.mask(); }
+
+// ---- Memory -----------------------------------------------------------------------------
+template <class L>
+SSRT_INLINE L load(const float* p) {
+    if constexpr (std::is_same_v<L, float>) return *p;
+    else return L::load_unaligned(p);
+}
+template <class L>
+SSRT_INLINE IntOf<L> loadInt(const int32_t* p) {
+    if constexpr (std::is_same_v<L, float>) return *p;
+    else return IntOf<L>::load_unaligned(p);
+}
+SSRT_INLINE void store(float* p, float x) { *p = x; }
+SSRT_INLINE void store(int32_t* p, int32_t x) { *p = x; }
+template <class A>
+SSRT_INLINE void store(float* p, xsimd::batch<float, A> x) { x.store_unaligned(p); }
+template <class A>
+SSRT_INLINE void store(int32_t* p, xsimd::batch<int32_t, A> x) { x.store_unaligned(p); }
+
+// Lane i holds float(i).
+template <class L>
+SSRT_INLINE L laneIndex() {
+    alignas(64) float idx[kWidth<L>];
+    for (std::size_t i = 0; i < kWidth<L>; ++i) idx[i] = static_cast<float>(i);
+    return load<L>(idx);
+}
+
+// Per-lane gather from an array by integer index (a scalar loop: every ISA the same).
+template <class L>
+SSRT_INLINE L gather(const float* base, const int32_t* index) {
+    alignas(64) float v[kWidth<L>];
+    for (std::size_t i = 0; i < kWidth<L>; ++i) v[i] = base[index[i]];
+    return load<L>(v);
+}
+
+}  // namespace ssrt::lanes

@@ -1,0 +1,35 @@
+// The frame cut into tiles, and a parallel loop over them whose result cannot depend on
+// scheduling: each tile writes only its own pixels, and anything reduced across tiles is
+// stored per tile and combined in tile order afterwards.
+#pragma once
+
+#include <functional>
+
+namespace ssrt {
+
+inline constexpr int kTileSize = 64;  // pixels; a multiple of the 8x8 raster block
+
+struct TileRect {
+    int x0, y0, x1, y1;  // half-open pixel rectangle [x0, x1) x [y0, y1)
+};
+
+struct TileGrid {
+    int width = 0, height = 0;  // image size in pixels
+    int tilesX = 0, tilesY = 0;
+
+    TileGrid() = default;
+    TileGrid(int w, int h)
+        : width(w), height(h), tilesX((w + kTileSize - 1) / kTileSize),
+          tilesY((h + kTileSize - 1) / kTileSize) {}
+
+    int count() const { return tilesX * tilesY; }
+    TileRect rect(int tile) const;
+};
+
+// Runs fn(tile) for every tile index on `threads` worker threads (0 = all cores).
+void parallelForTiles(int tileCount, int threads, const std::function<void(int)>& fn);
+
+// Same loop over any index range, for passes cut by something other than tiles.
+void parallelFor(int count, int threads, const std::function<void(int)>& fn);
+
+}  // namespace ssrt

@@ -1,0 +1,69 @@
+#include "scenes/scene.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <stdexcept>
+
+namespace ssrt {
+
+glm::vec3 Sky::radiance(glm::vec3 dir) const {
+    if (kind == Kind::Constant) return zenith * intensity;
+    const float y = dir.y;
+    if (y < 0.0f) return ground * intensity;
+    // Horizon to zenith over the upper hemisphere, smooth at the horizon.
+    const float t = 1.0f - (1.0f - y) * (1.0f - y);
+    return glm::mix(horizon, zenith, t) * intensity;
+}
+
+glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+    return glm::perspective(glm::radians(fovY), aspect, nearZ, farZ);
+}
+
+std::size_t Scene::triangleCount() const {
+    std::size_t n = 0;
+    for (const Instance& inst : instances) n += meshes[inst.mesh].triangleCount();
+    return n;
+}
+
+void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(-std::numeric_limits<float>::max());
+    for (const Instance& inst : instances) {
+        for (const glm::vec3& p : meshes[inst.mesh].positions) {
+            const glm::vec3 w = glm::vec3(inst.transform * glm::vec4(p, 1.0f));
+            if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) continue;
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    }
+    if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+}
+
+void Scene::validate() const {
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+        const Mesh& mesh = meshes[m];
+        if (mesh.indices.size() % 3 != 0)
+            throw std::invalid_argument("mesh " + std::to_string(m) +
+                                        ": index count is not a multiple of 3");
+        if (mesh.normals.size() != mesh.positions.size())
+            throw std::invalid_argument("mesh " + std::to_string(m) +
+                                        ": normal count differs from position count");
+        for (uint32_t i : mesh.indices)
+            if (i >= mesh.positions.size())
+                throw std::invalid_argument("mesh " + std::to_string(m) + ": index " +
+                                            std::to_string(i) + " out of range");
+    }
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        if (instances[i].mesh >= meshes.size())
+            throw std::invalid_argument("instance " + std::to_string(i) + ": no mesh " +
+                                        std::to_string(instances[i].mesh));
+        if (instances[i].material >= materials.size())
+            throw std::invalid_argument("instance " + std::to_string(i) + ": no material " +
+                                        std::to_string(instances[i].material));
+    }
+}
+
+}  // namespace ssrt

@@ -1,0 +1,89 @@
+// The scene model: plain structs, no more than a scene needs (see DESIGN.md).
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace ssrt {
+
+// Indexed triangles; normals per vertex (same count as positions), UVs optional.
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// glTF 2.0 metallic-roughness; roughness is perceptual (alpha = roughness^2).
+struct Material {
+    std::string name;
+    glm::vec3 baseColor{0.8f};
+    float metallic = 0.0f;
+    float roughness = 0.5f;
+    glm::vec3 emissive{0.0f};
+    bool doubleSided = false;  // false: back faces are culled (glTF's default)
+};
+
+// A mesh placed in the world; previousTransform gives rigid motion for motion vectors.
+struct Instance {
+    uint32_t mesh = 0;
+    uint32_t material = 0;
+    glm::mat4 transform{1.0f};
+    glm::mat4 previousTransform{1.0f};
+};
+
+struct DirectionalLight {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (unit)
+    glm::vec3 color{1.0f};
+    float intensity = 3.0f;  // irradiance on a surface facing the light
+};
+
+// Constant sky, or an analytic gradient: ground below the horizon, horizon to zenith above.
+struct Sky {
+    enum class Kind { Constant, Gradient };
+    Kind kind = Kind::Gradient;
+    glm::vec3 zenith{0.25f, 0.45f, 0.85f};
+    glm::vec3 horizon{0.75f, 0.8f, 0.9f};
+    glm::vec3 ground{0.3f, 0.27f, 0.25f};
+    float intensity = 0.5f;
+
+    // Radiance arriving from direction `dir` (unit, world space, y up).
+    glm::vec3 radiance(glm::vec3 dir) const;
+};
+
+// A pinhole camera looking from position to target. fovY in degrees.
+struct Camera {
+    glm::vec3 position{0.0f, 1.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovY = 45.0f;
+    float nearZ = 0.05f;
+    float farZ = 100.0f;
+
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;  // OpenGL clip space: w = -z_view
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Instance> instances;
+    DirectionalLight light;
+    Sky sky;
+    Camera camera;
+    Camera previousCamera;  // the pose one frame earlier (equal to camera for a still frame)
+
+    std::size_t triangleCount() const;
+    // World-space bounds of every instance (finite vertices only).
+    void bounds(glm::vec3& lo, glm::vec3& hi) const;
+    // Throws std::invalid_argument naming the first broken reference (mesh, material, index).
+    void validate() const;
+};
+
+}  // namespace ssrt

@@ -1,0 +1,1 @@
+list(APPEND SSRT_SOURCES scenes/scene.cpp)
