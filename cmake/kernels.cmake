@@ -7,7 +7,9 @@ set(SSRT_ISA_FLAGS_scalar "")
 set(SSRT_ISA_FLAGS_sse2 "")
 set(SSRT_ISA_FLAGS_sse42 -msse4.2)
 set(SSRT_ISA_FLAGS_avx2 -mavx2)
-set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl)
+# (GCC 12 warns inside its own AVX-512 headers under -Wmaybe-uninitialized.)
+set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl
+    -Wno-maybe-uninitialized)
 
 function(ssrt_add_isa_kernels target)
     foreach(isa ${SSRT_ISAS})

@@ -150,8 +150,23 @@ SSRT_INLINE xsimd::batch_bool<float, A> toFloatMask(xsimd::batch_bool<int32_t, A
 
 // Bit i set when lane i is true (lane order = memory order).
 SSRT_INLINE uint64_t maskBits(bool m) { return m ? 1u : 0u; }
-template <class T, class A>
-SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<T, A> m) { return m.mask(); }
+template <class A>
+SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<float, A> m) {
+    // xsimd 8.1 has no batch_bool::mask(): read the register with the ISA's own movemask.
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return uint64_t(__mmask16(m));
+    else
+#endif
+#if defined(__AVX__)
+    if constexpr (std::is_base_of_v<xsimd::avx, A>) return uint64_t(_mm256_movemask_ps(m));
+    else
+#endif
+    return uint64_t(_mm_movemask_ps(m));
+}
+template <class A>
+SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<int32_t, A> m) {
+    return lanes::maskBits(lanes::toFloatMask(m));
+}
 
 // ---- Memory -----------------------------------------------------------------------------
 template <class L>

@@ -1,1 +1,1 @@
-
+list(APPEND SSRT_SOURCES renderer/renderer.cpp)

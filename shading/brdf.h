@@ -4,10 +4,12 @@
 #pragma once
 
 #include "core/lane_math.h"
+#include "core/lane_vec.h"
 
 namespace ssrt::brdf {
 
 namespace ln = ssrt::lanes;
+using ln::V3;
 
 // Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
 // D(m) = alpha^2 / (pi ((n.m)^2 (alpha^2 - 1) + 1)^2)
@@ -51,6 +53,94 @@ template <class L>
 SSRT_INLINE L roughnessToAlpha(L perceptual) {
     const L r = ln::clamp(perceptual, L(0.0f), L(1.0f));
     return ln::max(r * r, L(1.0e-3f));
+}
+
+// ---- Anisotropic GGX and the Smith masking terms ----------------------------------------
+// Local frame: normal on +z, tangent on +x. alpha_x, alpha_y are the GGX roughnesses along
+// the tangent and bitangent; the isotropic functions above are the case alpha_x = alpha_y.
+
+// Burley 2012, "Physically-Based Shading at Disney", appendix B (anisotropic GGX)
+// D(m) = 1 / (pi ax ay ((mx/ax)^2 + (my/ay)^2 + mz^2)^2) for mz > 0, else 0.
+template <class L>
+SSRT_INLINE L D_GGXAniso(L mx, L my, L mz, L ax, L ay) {
+    const L sx = mx / ax, sy = my / ay;
+    const L f = (sx * sx + sy * sy) + mz * mz;
+    const L d = L(1.0f) / (L(ln::kPi) * ax * ay * f * f);
+    return ln::select(mz > L(0.0f), d, L(0.0f));
+}
+
+// Projected roughness term of Smith's Lambda: t = sqrt(wz^2 + ax^2 wx^2 + ay^2 wy^2), so that
+// Lambda(w) = (t / |wz| - 1) / 2 and the division by wz (infinite at the horizon) is avoided.
+template <class L>
+SSRT_INLINE L smithT(L wx, L wy, L wz, L ax, L ay) {
+    const L px = ax * wx, py = ay * wy;
+    return ln::sqrt((px * px + py * py) + wz * wz);
+}
+
+// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", eq. 86
+// Lambda(w) = (-1 + sqrt(1 + (ax^2 wx^2 + ay^2 wy^2) / wz^2)) / 2; huge (not inf) at wz = 0.
+template <class L>
+SSRT_INLINE L Lambda_GGX(L wx, L wy, L wz, L ax, L ay) {
+    const L t = smithT(wx, wy, wz, ax, ay);
+    const L az = ln::max(ln::abs(wz), L(1.0e-30f));
+    return L(0.5f) * (t / az - L(1.0f));
+}
+
+// Smith G1 = 1 / (1 + Lambda) = 2 |wz| / (|wz| + t): exact 0 at the horizon, 1 along +z.
+template <class L>
+SSRT_INLINE L G1_GGX(L wx, L wy, L wz, L ax, L ay) {
+    const L az = ln::abs(wz);
+    const L t = smithT(wx, wy, wz, ax, ay);
+    const L den = az + t;
+    return ln::select(den > L(0.0f), (az + az) / ln::select(den > L(0.0f), den, L(1.0f)),
+                      L(0.0f));
+}
+
+// Heitz 2014, eq. 99: height-correlated G2 = 1 / (1 + Lambda_i + Lambda_o)
+//   = 2 |iz| |oz| / (t_i |oz| + t_o |iz|)   (both on the upper side; 0 otherwise).
+template <class L>
+SSRT_INLINE L G2_GGXCorrelated(V3<L> wi, V3<L> wo, L ax, L ay) {
+    const L iz = wi.z, oz = wo.z;
+    const L ti = smithT(wi.x, wi.y, iz, ax, ay), to = smithT(wo.x, wo.y, oz, ax, ay);
+    const L den = ti * oz + to * iz;
+    const auto ok = (iz > L(0.0f)) & (oz > L(0.0f)) & (den > L(0.0f));
+    return ln::select(ok, L(2.0f) * iz * oz / ln::select(ok, den, L(1.0f)), L(0.0f));
+}
+
+// Visibility V = G2 / (4 iz oz) = 0.5 / (t_i oz + t_o iz), anisotropic form of
+// V_SmithGGXCorrelated above (Heitz 2014; Filament's V_SmithGGXCorrelated_Anisotropic).
+template <class L>
+SSRT_INLINE L V_SmithGGXCorrelatedAniso(V3<L> wi, V3<L> wo, L ax, L ay) {
+    const L iz = wi.z, oz = wo.z;
+    const L ti = smithT(wi.x, wi.y, iz, ax, ay), to = smithT(wo.x, wo.y, oz, ax, ay);
+    const L den = ti * oz + to * iz;
+    const auto ok = (iz > L(0.0f)) & (oz > L(0.0f)) & (den > L(0.0f));
+    return ln::select(ok, L(0.5f) / ln::select(ok, den, L(1.0f)), L(0.0f));
+}
+
+// Single-scattering GGX specular lobe with F = 1, cosine included: f(wi, wo) wo.z.
+template <class L>
+SSRT_INLINE L specularCos(V3<L> wi, V3<L> wo, L ax, L ay) {
+    const V3<L> m = ln::normalize(wi + wo);
+    return D_GGXAniso(m.x, m.y, m.z, ax, ay) * V_SmithGGXCorrelatedAniso(wi, wo, ax, ay) * wo.z;
+}
+
+// Schlick Fresnel with F90 = 1 (the common case of F_Schlick above).
+template <class L>
+SSRT_INLINE L F_Schlick(L VoH, L f0) {
+    return F_Schlick(VoH, f0, L(1.0f));
+}
+
+// HDRP's screen-space reflection weight (Unity HDRP, ScreenSpaceReflections.compute): with
+// o drawn from the VNDF of i and F = 1, f cos / pdf = G2 / G1(i)
+//   = (1 + Lambda_i) / (1 + Lambda_i + Lambda_o) = oz (iz + t_i) / (t_i oz + t_o iz).
+template <class L>
+SSRT_INLINE L ssrSampleWeight(V3<L> wi, V3<L> wo, L ax, L ay) {
+    const L iz = wi.z, oz = wo.z;
+    const L ti = smithT(wi.x, wi.y, iz, ax, ay), to = smithT(wo.x, wo.y, oz, ax, ay);
+    const L den = ti * oz + to * iz;
+    const auto ok = (iz > L(0.0f)) & (oz > L(0.0f)) & (den > L(0.0f));
+    return ln::select(ok, oz * (iz + ti) / ln::select(ok, den, L(1.0f)), L(0.0f));
 }
 
 }  // namespace ssrt::brdf

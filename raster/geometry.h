@@ -1,0 +1,50 @@
+// Front end of a raster pass: vertex transform, triangle assembly, culling, clipping
+// (near plane and guard band), snapping to fixed point and triangle set-up.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "raster/raster_stats.h"
+#include "raster/setup.h"
+#include "scenes/scene.h"
+
+namespace ssrt {
+
+// How the pass sees the scene.
+struct RasterView {
+    glm::mat4 viewProj{1.0f};
+    int width = 0, height = 0;
+    bool perspective = true;  // depth key 1/w (perspective) or 1 - z01 (orthographic)
+    float nearW = 0.05f;      // near plane as clip-space w (perspective only)
+    bool cullBackFaces = true;  // honour Material::doubleSided (false: draw every face)
+};
+
+// Clip-space vertices of every instance, in instance order.
+struct TransformedVertices {
+    std::vector<glm::vec4> clip;
+    std::vector<uint32_t> instanceOffset;  // first vertex of each instance in `clip`
+    std::vector<uint32_t> triangleOffset;  // first global triangle id of each instance
+    uint32_t triangleCount = 0;
+};
+
+TransformedVertices transformVertices(const Scene& scene, const RasterView& view, int threads);
+
+// Set-up triangles in chunks of consecutive global triangle ids; within and across chunks
+// the order is submission order.
+struct SetupChunks {
+    static constexpr uint32_t kChunkSize = 2048;
+    std::vector<std::vector<TriangleSetup>> chunks;
+    std::vector<RasterStats> stats;  // per chunk, combined in chunk order
+};
+
+SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& vertices,
+                           const RasterView& view, int threads);
+
+// Clips one clip-space triangle and appends its screen triangles to `out`; exposed for the
+// tests. Returns false when nothing of it can be seen.
+bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack,
+                   const RasterView& view, std::vector<TriangleSetup>& out, RasterStats& stats);
+
+}  // namespace ssrt

@@ -1,0 +1,144 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "raster/raster.h"
+#include "raster/resolve_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+// Field rows of the structure-of-arrays gather below.
+enum Field {
+    kP0 = 0, kN = 3, kD = 6, kG1 = 7, kG2 = 10,
+    kN0 = 13, kN1 = 16, kN2 = 19,
+    kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27, kInstance = 28, kTri = 29,
+    kFieldCount = 30
+};
+
+// Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
+// same on every ISA).
+struct Gathered {
+    alignas(64) float f[kFieldCount][kW];
+    bool any = false;
+};
+
+
+void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& g, float* m) {
+    const ResolveTriangle& t = a.triangles[id];
+    const ResolveInstance& in = a.instances[t.instance];
+    for (int k = 0; k < 3; ++k) {
+        g.f[kP0 + k][l] = t.p0[k];
+        g.f[kN + k][l] = t.n[k];
+        g.f[kG1 + k][l] = t.g1[k];
+        g.f[kG2 + k][l] = t.g2[k];
+        g.f[kAlbedo + k][l] = in.albedo[k];
+    }
+    g.f[kD][l] = t.d;
+    for (int v = 0; v < 3; ++v) {
+        g.f[kN0 + 3 * v + 0][l] = a.normalX[t.v[v]];
+        g.f[kN0 + 3 * v + 1][l] = a.normalY[t.v[v]];
+        g.f[kN0 + 3 * v + 2][l] = a.normalZ[t.v[v]];
+    }
+    g.f[kMetallic][l] = in.metallic;
+    g.f[kRoughness][l] = in.roughness;
+    g.f[kMaterial][l] = in.materialId;
+    g.f[kInstance][l] = float(t.instance);
+    g.f[kTri][l] = float(t.localTriangle);
+    for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
+}
+
+V3 field3(const Gathered& g, int f) {
+    return {ln::load<Lane>(g.f[f]), ln::load<Lane>(g.f[f + 1]), ln::load<Lane>(g.f[f + 2])};
+}
+
+void resolveChunk(const ResolveArgs& a, int x, int y) {
+    // Which lanes hold a visible triangle.
+    const uint32_t* idRow = a.ids + std::size_t(y) * a.idStride;
+    Gathered g;
+    alignas(64) float m[16 * kW];
+    alignas(64) float visible[kW];
+    for (int l = 0; l < kW; ++l) {
+        const uint32_t id = x + l < a.width ? idRow[x + l] : kNoPrimitive;
+        visible[l] = id != kNoPrimitive ? 1.0f : 0.0f;
+        if (id != kNoPrimitive) {
+            gatherLane(a, id, l, g, m);
+            g.any = true;
+        } else {
+            for (auto& row : g.f) row[l] = 0.0f;
+            for (int k = 0; k < 16; ++k) m[k * kW + l] = k % 5 == 0 ? 1.0f : 0.0f;
+        }
+    }
+    const std::size_t o = std::size_t(y) * a.outStride + x;
+    const Lane zero(0.0f);
+    if (!g.any) {
+        for (int p = 0; p < 14; ++p) ln::store(a.out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
+        return;
+    }
+    const auto vis = ln::load<Lane>(visible) > zero;
+    // View ray through the pixel centre: (ndcX tanHalfX, ndcY tanHalfY, -1).
+    const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
+    const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
+    const Lane ndcY = Lane(1.0f) - Lane((float(y) + 0.5f) * (2.0f / float(a.height)));
+    const V3 dir{ndcX * Lane(a.tanHalfX), ndcY * Lane(a.tanHalfY), Lane(-1.0f)};
+    // Ray-plane: t = d / (n.dir); the hit is dir t and view Z is t (dir.z = -1).
+    const V3 n = field3(g, kN);
+    const Lane nd = ln::dot(n, dir);
+    const Lane ndSafe = ln::select(ln::abs(nd) > Lane(1e-12f), nd, Lane(-1e-12f));
+    const Lane t = ln::clamp(ln::load<Lane>(g.f[kD]) / ndSafe, Lane(a.nearZ), Lane(a.farZ));
+    const V3 h = dir * t;
+    const V3 r = h - field3(g, kP0);
+    const Lane b1 = ln::dot(r, field3(g, kG1)), b2 = ln::dot(r, field3(g, kG2));
+    const Lane b0 = Lane(1.0f) - b1 - b2;
+    V3 normal = ln::normalize((field3(g, kN0) * b0 + field3(g, kN1) * b1) + field3(g, kN2) * b2);
+    // Seen from behind (double-sided material): the shading normal faces the camera.
+    normal = ln::select(nd > zero, V3{zero - normal.x, zero - normal.y, zero - normal.z}, normal);
+    // Motion: the hit point in the previous clip space, to previous pixel coordinates.
+    Lane pc[4];
+    for (int row = 0; row < 4; ++row) {
+        pc[row] = ((ln::load<Lane>(m + (0 * 4 + row) * kW) * h.x +
+                    ln::load<Lane>(m + (1 * 4 + row) * kW) * h.y) +
+                   ln::load<Lane>(m + (2 * 4 + row) * kW) * h.z) +
+                  ln::load<Lane>(m + (3 * 4 + row) * kW);
+    }
+    const auto inFront = pc[3] > Lane(1e-6f);
+    const Lane invW = Lane(1.0f) / ln::select(inFront, pc[3], Lane(1.0f));
+    const Lane prevX = (pc[0] * invW * Lane(0.5f) + Lane(0.5f)) * Lane(float(a.width));
+    const Lane prevY = (Lane(0.5f) - pc[1] * invW * Lane(0.5f)) * Lane(float(a.height));
+    const Lane curY = Lane(float(y) + 0.5f);
+    const Lane motionX = ln::select(inFront, prevX - px, zero);
+    const Lane motionY = ln::select(inFront, prevY - curY, zero);
+
+    const Lane outs[14] = {t, normal.x, normal.y, normal.z,
+                           ln::load<Lane>(g.f[kAlbedo]), ln::load<Lane>(g.f[kAlbedo + 1]),
+                           ln::load<Lane>(g.f[kAlbedo + 2]), ln::load<Lane>(g.f[kMetallic]),
+                           ln::load<Lane>(g.f[kRoughness]), ln::load<Lane>(g.f[kMaterial]),
+                           ln::load<Lane>(g.f[kInstance]), ln::load<Lane>(g.f[kTri]),
+                           motionX, motionY};
+    for (int p = 0; p < 14; ++p) {
+        const Lane background = (p >= 9 && p <= 11) ? Lane(-1.0f) : zero;
+        ln::store(a.out[p] + o, ln::select(vis, outs[p], background));
+    }
+}
+
+}  // namespace
+
+void resolveTile(const ResolveArgs& args, int tile) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    // Rows are padded to 64 bytes and tiles start on multiples of 64 pixels, so a lane group
+    // that runs past the image's right edge stays inside the row's padding.
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,45 @@
+// The G-buffer resolve kernel, one copy per ISA (raster/resolve_kernel.cpp): for each pixel,
+// the visible triangle's attributes from the view ray through the pixel centre.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// Per triangle, in view space: a point p0, the unit plane normal n with d = n.p0, and the
+// gradients g1, g2 with barycentrics b1 = (h - p0).g1, b2 = (h - p0).g2 at a point h.
+struct ResolveTriangle {
+    float p0[3], n[3], d, g1[3], g2[3];
+    uint32_t instance;
+    uint32_t v[3];  // global vertex indices (world normals)
+    uint32_t localTriangle;  // index within its mesh
+};
+
+// Per instance: material and the matrix from current view space to previous clip space.
+struct ResolveInstance {
+    float albedo[3], metallic, roughness, materialId;
+    float viewToPrevClip[16];  // column-major
+};
+
+struct ResolveArgs {
+    const ResolveTriangle* triangles;  // indexed by global triangle id
+    const ResolveInstance* instances;
+    const float* normalX;  // world normals per global vertex
+    const float* normalY;
+    const float* normalZ;
+    const uint32_t* ids;
+    std::size_t idStride;
+    int width, height, tilesX;
+    float tanHalfX, tanHalfY;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
+    float nearZ, farZ;
+    float* out[14];  // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId,
+                     // instanceId, triangleId, motion XY (all with outStride)
+    std::size_t outStride;
+};
+
+SSRT_DECLARE_KERNEL(void, resolveTile, (const ResolveArgs& args, int tile))
+
+}  // namespace ssrt

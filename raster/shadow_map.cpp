@@ -1,0 +1,54 @@
+#include "raster/shadow_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace ssrt {
+
+RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float& texelSize) {
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    const glm::vec3 center = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    glm::vec3 dir = scene.light.direction;
+    dir = glm::length(dir) > 0.0f ? glm::normalize(dir) : glm::vec3(0.0f, -1.0f, 0.0f);
+    const glm::vec3 up = std::fabs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const glm::mat4 view = glm::lookAt(center - dir * (2.0f * radius), center, up);
+    // Bounds of the box corners in light view space.
+    glm::vec3 vlo(1e30f), vhi(-1e30f);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        const glm::vec3 v = glm::vec3(view * glm::vec4(corner, 1.0f));
+        vlo = glm::min(vlo, v);
+        vhi = glm::max(vhi, v);
+    }
+    // A margin so that nothing lands exactly on the far plane (depth key 0 = cleared).
+    const float margin = 0.01f * radius;
+    vlo -= glm::vec3(margin);
+    vhi += glm::vec3(margin);
+    const glm::mat4 proj = glm::ortho(vlo.x, vhi.x, vlo.y, vhi.y, -vhi.z, -vlo.z);
+    depthRange = vhi.z - vlo.z;
+    texelSize = std::max(vhi.x - vlo.x, vhi.y - vlo.y) / float(size);
+    RasterView rv;
+    rv.viewProj = proj * view;
+    rv.width = rv.height = size;
+    rv.perspective = false;
+    rv.cullBackFaces = false;  // every face casts a shadow
+    return rv;
+}
+
+ShadowMap renderShadowMap(const Scene& scene, int size, const RasterOptions& options,
+                          RasterStats& stats, RasterTimes* times) {
+    ShadowMap sm;
+    const RasterView view = fitShadowView(scene, size, sm.depthRange, sm.texelSize);
+    sm.lightViewProj = view.viewProj;
+    const TransformedVertices tv = transformVertices(scene, view, options.threads);
+    RasterOptions o = options;
+    o.writeIds = false;
+    o.clearDepth = 0.0f;
+    sm.depth = rasterize(scene, tv, view, o, stats, times).depth;
+    return sm;
+}
+
+}  // namespace ssrt

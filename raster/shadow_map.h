@@ -1,0 +1,24 @@
+// The shadow map of the directional light: an orthographic depth-only raster pass fitted to
+// the scene's bounds.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "raster/raster.h"
+
+namespace ssrt {
+
+struct ShadowMap {
+    PlaneF depth;                 // depth key 1 - z01: larger is nearer the light
+    glm::mat4 lightViewProj{1.0f};
+    float depthRange = 1.0f;      // world units spanned by the key's [0, 1]
+    float texelSize = 1.0f;       // world units per texel (the larger of x and y)
+};
+
+// Light view and orthographic projection enclosing the scene's bounds (with a margin).
+RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float& texelSize);
+
+ShadowMap renderShadowMap(const Scene& scene, int size, const RasterOptions& options,
+                          RasterStats& stats, RasterTimes* times = nullptr);
+
+}  // namespace ssrt

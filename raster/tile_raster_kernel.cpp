@@ -1,0 +1,171 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+#include <cstring>
+
+#include "core/lanes.h"
+#include "core/tiles.h"
+#include "raster/tile_raster_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using ILane = ln::IntOf<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+constexpr int kBlockPixels = kBlockSize * kBlockSize;
+constexpr int kChunks = kBlockPixels / kW;  // lane groups per 8x8 block
+constexpr int kBlocksPerSide = kTileSize / kBlockSize;
+static_assert(kBlockPixels % kW == 0, "a block must hold whole lane groups");
+
+// Lane l of a group covers block pixel (i0 + laneDI[l], j0 + laneDJ[l]), where group c
+// starts at pixel c * kW in row-major block order (i0 = c*kW mod 8, j0 = c*kW / 8).
+// Built at compile time: a kernel source must run no code before its ISA is chosen (a static
+// initialiser compiled with AVX-512 flags would crash an older CPU at start-up).
+struct LaneLayout {
+    alignas(64) int32_t di[kW] = {};
+    alignas(64) int32_t dj[kW] = {};
+    alignas(64) float fdi[kW] = {};
+    alignas(64) float fdj[kW] = {};
+    constexpr LaneLayout() {
+        for (int l = 0; l < kW; ++l) {
+            di[l] = l % kBlockSize;
+            dj[l] = l / kBlockSize;
+            fdi[l] = float(di[l]);
+            fdj[l] = float(dj[l]);
+        }
+    }
+};
+constexpr LaneLayout kLayout{};
+
+struct TileBuffers {
+    alignas(64) float depth[kTileSize * kTileSize];
+    alignas(64) int32_t ids[kTileSize * kTileSize];
+};
+
+inline int popcount(uint64_t bits) { return __builtin_popcountll(bits); }
+
+struct EdgeLanes {
+    ILane offset[3];  // a * di + b * dj per lane
+};
+
+EdgeLanes edgeLanes(const TriangleSetup& t) {
+    EdgeLanes e;
+    for (int k = 0; k < 3; ++k) {
+        alignas(64) int32_t v[kW];
+        for (int l = 0; l < kW; ++l) v[l] = t.a[k] * kLayout.di[l] + t.b[k] * kLayout.dj[l];
+        e.offset[k] = ln::loadInt<Lane>(v);
+    }
+    return e;
+}
+
+// Block classification against one edge: -1 all outside, 1 all inside, 0 partial.
+// Also returns K0 = floor(E'(first pixel centre) / 256), clamped (see raster/setup.h).
+int classifyEdge(const TriangleSetup& t, int k, int64_t sx, int64_t sy, int32_t& k0) {
+    const int64_t e0 = int64_t(t.a[k]) * sx + int64_t(t.b[k]) * sy + t.c[k];
+    const int64_t ex = int64_t(t.a[k]) * ((kBlockSize - 1) * kSubPixel);
+    const int64_t ey = int64_t(t.b[k]) * ((kBlockSize - 1) * kSubPixel);
+    const int64_t lo = e0 + std::min<int64_t>(ex, 0) + std::min<int64_t>(ey, 0);
+    const int64_t hi = e0 + std::max<int64_t>(ex, 0) + std::max<int64_t>(ey, 0);
+    k0 = int32_t(std::clamp<int64_t>(e0 >> kSubPixelBits, -kMaxK0, kMaxK0));
+    return hi < 0 ? -1 : (lo >= 0 ? 1 : 0);
+}
+
+void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeLanes& edges,
+                 int blockX, int blockY, float* depth, int32_t* ids, RasterStats& stats) {
+    const int64_t sx = int64_t(blockX) * kSubPixel + kSubPixel / 2;
+    const int64_t sy = int64_t(blockY) * kSubPixel + kSubPixel / 2;
+    int32_t k0[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
+        const int c = classifyEdge(t, k, sx, sy, k0[k]);
+        if (c < 0) {
+            ++stats.blocksRejected;
+            return;
+        }
+        inside &= c > 0;
+    }
+    ++(inside ? stats.blocksAccepted : stats.blocksPartial);
+    const bool border = blockX + kBlockSize > args.width || blockY + kBlockSize > args.height;
+    const Lane zBase(t.zBase), zdx(t.zdx), zdy(t.zdy);
+    const Lane fdi = ln::load<Lane>(kLayout.fdi), fdj = ln::load<Lane>(kLayout.fdj);
+    const ILane prim(int32_t(t.primId));
+    for (int c = 0; c < kChunks; ++c) {
+        const int i0 = (c * kW) % kBlockSize, j0 = (c * kW) / kBlockSize;
+        const Lane px = Lane(float(blockX + i0)) + fdi;  // exact: small integers
+        const Lane py = Lane(float(blockY + j0)) + fdj;
+        auto valid = px == px;  // all true
+        if (border) valid = (px < Lane(float(args.width))) & (py < Lane(float(args.height)));
+        auto covered = valid;
+        if (!inside) {
+            ILane kk[3];
+            for (int k = 0; k < 3; ++k)
+                kk[k] = ILane(k0[k] + t.a[k] * i0 + t.b[k] * j0) + edges.offset[k];
+            covered = valid & ln::toFloatMask((kk[0] | kk[1] | kk[2]) >= ILane(0));
+        }
+        const uint64_t coveredBits = ln::maskBits(covered);
+        stats.pixelsTested += popcount(ln::maskBits(valid));
+        if (!coveredBits) continue;
+        stats.pixelsCovered += popcount(coveredBits);
+        // Depth key at each pixel centre, the same expression on every ISA.
+        const Lane z = (zBase + zdx * (px - Lane(float(t.minX)))) + zdy * (py - Lane(float(t.minY)));
+        float* dp = depth + c * kW;
+        const Lane zb = ln::load<Lane>(dp);
+        const auto pass = covered & (z > zb);
+        const uint64_t passBits = ln::maskBits(pass);
+        if (!passBits) continue;
+        stats.pixelsWritten += popcount(passBits);
+        ln::store(dp, ln::select(pass, z, zb));
+        if (ids) {
+            int32_t* ip = ids + c * kW;
+            ln::store(ip, ln::select(ln::toIntMask(pass), prim, ln::loadInt<Lane>(ip)));
+        }
+    }
+}
+
+void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& buf) {
+    for (int y = r.y0; y < r.y1; ++y) {
+        float* drow = args.depth + std::size_t(y) * args.depthStride;
+        uint32_t* irow = args.ids ? args.ids + std::size_t(y) * args.idStride : nullptr;
+        const int ly = y - r.y0;
+        for (int x = r.x0; x < r.x1; ++x) {
+            const int lx = x - r.x0;
+            const int b = (ly / kBlockSize) * kBlocksPerSide + lx / kBlockSize;
+            const int p = b * kBlockPixels + (ly % kBlockSize) * kBlockSize + lx % kBlockSize;
+            drow[x] = buf.depth[p];
+            if (irow) irow[x] = uint32_t(buf.ids[p]);
+        }
+    }
+}
+
+}  // namespace
+
+void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const TileRect r{tx * kTileSize, ty * kTileSize, std::min(args.width, (tx + 1) * kTileSize),
+                     std::min(args.height, (ty + 1) * kTileSize)};
+    static thread_local TileBuffers buf;
+    std::fill_n(buf.depth, kTileSize * kTileSize, args.clearDepth);
+    std::fill_n(buf.ids, kTileSize * kTileSize, int32_t(-1));
+    for (uint32_t n = args.binStart[tile]; n < args.binStart[tile + 1]; ++n) {
+        const TriangleSetup& t = args.triangles[args.binItems[n]];
+        const EdgeLanes edges = edgeLanes(t);
+        // Blocks of this tile that the triangle's pixel bounds touch.
+        const int bx0 = (std::max(t.minX, r.x0) - r.x0) / kBlockSize;
+        const int by0 = (std::max(t.minY, r.y0) - r.y0) / kBlockSize;
+        const int bx1 = (std::min(t.maxX, r.x1 - 1) - r.x0) / kBlockSize;
+        const int by1 = (std::min(t.maxY, r.y1 - 1) - r.y0) / kBlockSize;
+        for (int by = by0; by <= by1; ++by)
+            for (int bx = bx0; bx <= bx1; ++bx) {
+                const int b = by * kBlocksPerSide + bx;
+                rasterBlock(args, t, edges, r.x0 + bx * kBlockSize, r.y0 + by * kBlockSize,
+                            buf.depth + b * kBlockPixels,
+                            args.ids ? buf.ids + b * kBlockPixels : nullptr, stats);
+            }
+    }
+    writeOut(args, r, buf);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,271 @@
+#include "renderer/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+
+#include "core/tiles.h"
+#include "raster/gbuffer.h"
+#include "raster/raster.h"
+#include "raster/resolve_kernel.h"
+#include "raster/shadow_map.h"
+#include "shading/direct_kernel.h"
+
+namespace ssrt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+void requireRange(bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+}
+
+// Per-triangle ray-plane and barycentric set-up in view space, and world-space normals per
+// vertex, for the resolve kernel.
+struct ResolveTables {
+    std::vector<ResolveTriangle> triangles;
+    std::vector<ResolveInstance> instances;
+    std::vector<float> nx, ny, nz;
+};
+
+ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
+                                const glm::mat4& prevViewProj) {
+    const Material& m = scene.materials[inst.material];
+    ResolveInstance r;
+    r.albedo[0] = m.baseColor.r;
+    r.albedo[1] = m.baseColor.g;
+    r.albedo[2] = m.baseColor.b;
+    r.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+    r.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    r.materialId = float(inst.material);
+    // current view -> world -> object (current) -> world (previous) -> previous clip
+    const glm::mat4 toPrev = prevViewProj * inst.previousTransform *
+                             glm::inverse(inst.transform) * glm::inverse(view);
+    std::copy_n(glm::value_ptr(toPrev), 16, r.viewToPrevClip);
+    return r;
+}
+
+ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+                                 const glm::mat4& prevViewProj, int threads) {
+    ResolveTables t;
+    std::vector<uint32_t> vertexOffset, triOffset;
+    uint32_t nv = 0, nt = 0;
+    for (const Instance& inst : scene.instances) {
+        vertexOffset.push_back(nv);
+        triOffset.push_back(nt);
+        nv += uint32_t(scene.meshes[inst.mesh].positions.size());
+        nt += uint32_t(scene.meshes[inst.mesh].triangleCount());
+        t.instances.push_back(resolveInstance(scene, inst, view, prevViewProj));
+    }
+    t.triangles.resize(nt);
+    t.nx.resize(nv);
+    t.ny.resize(nv);
+    t.nz.resize(nv);
+    parallelFor(int(scene.instances.size()), threads, [&](int i) {
+        const Instance& inst = scene.instances[i];
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        const glm::mat4 modelView = view * inst.transform;
+        const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(inst.transform));
+        std::vector<glm::vec3> pv(mesh.positions.size());
+        for (std::size_t v = 0; v < pv.size(); ++v) {
+            pv[v] = glm::vec3(modelView * glm::vec4(mesh.positions[v], 1.0f));
+            glm::vec3 n = normalMatrix * mesh.normals[v];
+            const float len = glm::length(n);
+            n = std::isfinite(len) && len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+            t.nx[vertexOffset[i] + v] = n.x;
+            t.ny[vertexOffset[i] + v] = n.y;
+            t.nz[vertexOffset[i] + v] = n.z;
+        }
+        for (std::size_t k = 0; k < mesh.triangleCount(); ++k) {
+            const uint32_t* idx = &mesh.indices[3 * k];
+            const glm::vec3 p0 = pv[idx[0]], e1 = pv[idx[1]] - p0, e2 = pv[idx[2]] - p0;
+            const glm::vec3 n = glm::cross(e1, e2);
+            const float nn = glm::dot(n, n);
+            ResolveTriangle& r = t.triangles[triOffset[i] + k];
+            r = ResolveTriangle{};
+            r.instance = uint32_t(i);
+            r.localTriangle = uint32_t(k);
+            for (int c = 0; c < 3; ++c) r.v[c] = vertexOffset[i] + idx[c];
+            if (!(nn > 0.0f) || !std::isfinite(nn)) continue;  // never rasterized
+            const glm::vec3 un = n / std::sqrt(nn);
+            const glm::vec3 g1 = glm::cross(e2, n) / nn, g2 = glm::cross(n, e1) / nn;
+            for (int c = 0; c < 3; ++c) {
+                r.p0[c] = p0[c];
+                r.n[c] = un[c];
+                r.g1[c] = g1[c];
+                r.g2[c] = g2[c];
+            }
+            r.d = glm::dot(un, p0);
+        }
+    });
+    return t;
+}
+
+void addPlane(Frame& f, const char* name, PlaneF&& p) { f.planes.push_back({name, std::move(p)}); }
+
+}  // namespace
+
+void RenderSettings::validate() const {
+    requireRange(width >= 1 && width <= kMaxImageSize,
+                 "width must be between 1 and " + std::to_string(kMaxImageSize));
+    requireRange(height >= 1 && height <= kMaxImageSize,
+                 "height must be between 1 and " + std::to_string(kMaxImageSize));
+    requireRange(threads >= 0 && threads <= 1024, "threads must be between 0 and 1024");
+    requireRange(shadowMapSize >= 16 && shadowMapSize <= kMaxImageSize,
+                 "shadow map size must be between 16 and " + std::to_string(kMaxImageSize));
+    requireRange(std::isfinite(shadowBias) && shadowBias >= 0.0f, "shadow bias must be >= 0");
+    requireRange(std::isfinite(shadowSlopeBias) && shadowSlopeBias >= 0.0f,
+                 "shadow slope bias must be >= 0");
+    requireRange(pcfRadius >= 0 && pcfRadius <= 8, "PCF radius must be between 0 and 8");
+    requireRange(std::isfinite(exposure) && exposure > 0.0f, "exposure must be finite and > 0");
+}
+
+const PlaneF& Frame::plane(std::string_view name) const {
+    for (const NamedPlane& p : planes)
+        if (p.name == name) return p.plane;
+    throw std::out_of_range("frame has no plane '" + std::string(name) + "'");
+}
+
+bool Frame::has(std::string_view name) const {
+    for (const NamedPlane& p : planes)
+        if (p.name == name) return true;
+    return false;
+}
+
+Renderer::Renderer(RenderSettings settings) : settings_(settings) { settings_.validate(); }
+
+Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera) const {
+    scene.validate();
+    const RenderSettings& s = settings_;
+    const Isa isa = resolveIsa(s.isa);
+    const int threads = s.threads;
+    const int w = s.width, h = s.height;
+    const float aspect = float(w) / float(h);
+    const glm::mat4 view = camera.view(), proj = camera.projection(aspect);
+    const glm::mat4 prevViewProj = prevCamera.projection(aspect) * prevCamera.view();
+
+    Frame frame;
+    frame.width = w;
+    frame.height = h;
+    frame.stats.isa = isa;
+    frame.stats.threads = threads;
+    auto pass = [&](const char* name, Clock::time_point t0) {
+        frame.stats.passes.push_back({name, msSince(t0)});
+    };
+    RasterOptions ro;
+    ro.isa = isa;
+    ro.threads = threads;
+
+    // Shadow map of the directional light.
+    auto t0 = Clock::now();
+    const ShadowMap shadow = renderShadowMap(scene, s.shadowMapSize, ro, frame.stats.shadow);
+    pass("shadow", t0);
+
+    // Visibility: depth and triangle ids.
+    t0 = Clock::now();
+    RasterView rv;
+    rv.viewProj = proj * view;
+    rv.width = w;
+    rv.height = h;
+    rv.nearW = camera.nearZ;
+    const TransformedVertices tv = transformVertices(scene, rv, threads);
+    ro.clearDepth = 1.0f / camera.farZ;
+    RasterTimes rt;
+    VisibilityBuffer vb = rasterize(scene, tv, rv, ro, frame.stats.visibility, &rt);
+    frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
+    frame.stats.passes.push_back({"visibility", rt.rasterMs});
+
+    // Resolve: the G-buffer for visible pixels.
+    t0 = Clock::now();
+    const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, threads);
+    GBuffer gb;
+    PlaneF* gplanes[14] = {&gb.viewZ,   &gb.normalX,   &gb.normalY,    &gb.normalZ,
+                           &gb.albedoR, &gb.albedoG,   &gb.albedoB,    &gb.metallic,
+                           &gb.roughness, &gb.materialId, &gb.instanceId, &gb.triangleId,
+                           &gb.motionX, &gb.motionY};
+    for (PlaneF* p : gplanes) *p = PlaneF(w, h);
+    const TileGrid grid(w, h);
+    const float tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
+    ResolveArgs ra{};
+    ra.triangles = tables.triangles.data();
+    ra.instances = tables.instances.data();
+    ra.normalX = tables.nx.data();
+    ra.normalY = tables.ny.data();
+    ra.normalZ = tables.nz.data();
+    ra.ids = vb.ids.row(0);
+    ra.idStride = vb.ids.stride();
+    ra.width = w;
+    ra.height = h;
+    ra.tilesX = grid.tilesX;
+    ra.tanHalfX = tanHalfY * aspect;
+    ra.tanHalfY = tanHalfY;
+    ra.nearZ = camera.nearZ;
+    ra.farZ = camera.farZ;
+    for (int i = 0; i < 14; ++i) ra.out[i] = gplanes[i]->row(0);
+    ra.outStride = gb.viewZ.stride();
+    const auto resolve = SSRT_DISPATCH(isa, resolveTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { resolve(ra, tile); });
+    pass("resolve", t0);
+
+    // Direct light, sky and tone map.
+    t0 = Clock::now();
+    PlaneF out[7];
+    for (PlaneF& p : out) p = PlaneF(w, h);
+    DirectArgs da{};
+    for (int i = 0; i < 10; ++i) da.g[i] = gplanes[i]->row(0);
+    da.gStride = gb.viewZ.stride();
+    da.width = w;
+    da.height = h;
+    da.tilesX = grid.tilesX;
+    da.tanHalfX = ra.tanHalfX;
+    da.tanHalfY = ra.tanHalfY;
+    const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
+    std::copy_n(glm::value_ptr(viewToWorld), 9, da.viewToWorld);
+    std::copy_n(glm::value_ptr(camera.position), 3, da.camPos);
+    const glm::vec3 toLight = -glm::normalize(scene.light.direction);
+    const glm::vec3 lightRadiance = scene.light.color * scene.light.intensity;
+    std::copy_n(glm::value_ptr(toLight), 3, da.toLight);
+    std::copy_n(glm::value_ptr(lightRadiance), 3, da.lightRadiance);
+    const Sky& sky = scene.sky;
+    da.skyGradient = sky.kind == Sky::Kind::Gradient;
+    const glm::vec3 zen = sky.zenith * sky.intensity, hor = sky.horizon * sky.intensity,
+                    gnd = sky.ground * sky.intensity;
+    std::copy_n(glm::value_ptr(zen), 3, da.skyZenith);
+    std::copy_n(glm::value_ptr(da.skyGradient ? hor : zen), 3, da.skyHorizon);
+    std::copy_n(glm::value_ptr(da.skyGradient ? gnd : zen), 3, da.skyGround);
+    std::vector<float> emissive;
+    for (const Material& m : scene.materials)
+        emissive.insert(emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});
+    da.emissive = emissive.data();
+    da.shadow = shadow.depth.row(0);
+    da.shadowStride = shadow.depth.stride();
+    da.shadowSize = s.shadowMapSize;
+    std::copy_n(glm::value_ptr(shadow.lightViewProj), 16, da.lightViewProj);
+    da.biasConst = s.shadowBias * shadow.texelSize / shadow.depthRange;
+    da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
+    da.pcfRadius = s.pcfRadius;
+    da.exposure = s.exposure;
+    for (int i = 0; i < 7; ++i) da.out[i] = out[i].row(0);
+    da.outStride = out[0].stride();
+    const auto shade = SSRT_DISPATCH(isa, shadeTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });
+    pass("shading", t0);
+
+    const char* outNames[7] = {"color.R", "color.G", "color.B", "display.R",
+                               "display.G", "display.B", "shadow"};
+    for (int i = 0; i < 7; ++i) addPlane(frame, outNames[i], std::move(out[i]));
+    const char* gNames[14] = {"viewZ",     "normal.X",   "normal.Y",   "normal.Z", "albedo.R",
+                              "albedo.G",  "albedo.B",   "metallic",   "roughness", "materialId",
+                              "instanceId", "triangleId", "motion.X",  "motion.Y"};
+    for (int i = 0; i < 14; ++i) addPlane(frame, gNames[i], std::move(*gplanes[i]));
+    return frame;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,188 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "shading/brdf.h"
+#include "shading/direct_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+V3 splat3(const float* v) { return {Lane(v[0]), Lane(v[1]), Lane(v[2])}; }
+
+V3 mix3(V3 a, V3 b, Lane t) { return a + (b - a) * t; }
+
+// The analytic sky: ground below the horizon, horizon to zenith above (scenes/scene.cpp).
+V3 skyRadiance(const DirectArgs& a, V3 dir) {
+    if (!a.skyGradient) return splat3(a.skyZenith);
+    const Lane y = dir.y;
+    const Lane s = Lane(1.0f) - y;
+    const V3 above = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(1.0f) - s * s);
+    return ln::select(y < Lane(0.0f), splat3(a.skyGround), above);
+}
+
+// Fraction of PCF taps that see the light; a scalar loop per lane (the same on every ISA).
+Lane shadowVisibility(const DirectArgs& a, V3 p, Lane bias) {
+    const float* m = a.lightViewProj;
+    const Lane cx = ((Lane(m[0]) * p.x + Lane(m[4]) * p.y) + Lane(m[8]) * p.z) + Lane(m[12]);
+    const Lane cy = ((Lane(m[1]) * p.x + Lane(m[5]) * p.y) + Lane(m[9]) * p.z) + Lane(m[13]);
+    const Lane cz = ((Lane(m[2]) * p.x + Lane(m[6]) * p.y) + Lane(m[10]) * p.z) + Lane(m[14]);
+    const float s = float(a.shadowSize);
+    const Lane u = ln::floor((cx * Lane(0.5f) + Lane(0.5f)) * Lane(s));
+    const Lane v = ln::floor((Lane(0.5f) - cy * Lane(0.5f)) * Lane(s));
+    const Lane key = (Lane(0.5f) - Lane(0.5f) * cz) + bias;
+    alignas(64) float fu[kW], fv[kW], fk[kW], vis[kW];
+    ln::store(fu, u);
+    ln::store(fv, v);
+    ln::store(fk, key);
+    const int r = a.pcfRadius, n = a.shadowSize;
+    const float taps = float((2 * r + 1) * (2 * r + 1));
+    for (int l = 0; l < kW; ++l) {
+        if (!(fu[l] >= 0.0f && fv[l] >= 0.0f && fu[l] < s && fv[l] < s)) {
+            vis[l] = 1.0f;  // outside the map: nothing there casts a shadow
+            continue;
+        }
+        const int iu = int(fu[l]), iv = int(fv[l]);
+        int lit = 0;
+        for (int dy = -r; dy <= r; ++dy) {
+            const float* row = a.shadow + std::size_t(std::clamp(iv + dy, 0, n - 1)) * a.shadowStride;
+            for (int dx = -r; dx <= r; ++dx) lit += fk[l] >= row[std::clamp(iu + dx, 0, n - 1)];
+        }
+        vis[l] = float(lit) / taps;
+    }
+    return ln::load<Lane>(vis);
+}
+
+// Karis 2014, "Physically Based Shading on Mobile": analytic fit of the split-sum
+// environment BRDF, scale and bias on F0. (Stands in until the DFG table of shading/.)
+void envBrdfApprox(Lane NoV, Lane roughness, Lane& scale, Lane& bias) {
+    const Lane rx = roughness * Lane(-1.0f) + Lane(1.0f);
+    const Lane ry = roughness * Lane(-0.0275f) + Lane(0.0425f);
+    const Lane rz = roughness * Lane(-0.572f) + Lane(1.04f);
+    const Lane rw = roughness * Lane(0.022f) + Lane(-0.04f);
+    const Lane a004 = ln::min(rx * rx, ln::exp2(Lane(-9.28f) * NoV)) * rx + ry;
+    scale = a004 * Lane(-1.04f) + rz;
+    bias = a004 * Lane(1.04f) + rw;
+}
+
+// Narkowicz 2015, "ACES Filmic Tone Mapping Curve"
+Lane tonemapAces(Lane x) {
+    const Lane num = x * (Lane(2.51f) * x + Lane(0.03f));
+    const Lane den = x * (Lane(2.43f) * x + Lane(0.59f)) + Lane(0.14f);
+    return ln::saturate(num / den);
+}
+
+// IEC 61966-2-1 sRGB transfer function.
+Lane srgbEncode(Lane x) {
+    const Lane hi = Lane(1.055f) * ln::pow(x, Lane(1.0f / 2.4f)) - Lane(0.055f);
+    return ln::select(x <= Lane(0.0031308f), x * Lane(12.92f), hi);
+}
+
+struct Surface {
+    V3 p, n, albedo, view;  // view: unit, from the surface towards the camera
+    Lane metallic, roughness;
+};
+
+V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
+    using namespace ssrt::brdf;
+    const Lane zero(0.0f), one(1.0f);
+    const V3 l = splat3(a.toLight);
+    const Lane NoLraw = ln::dot(s.n, l);
+    const Lane NoL = ln::saturate(NoLraw);
+    const Lane NoV = ln::max(ln::dot(s.n, s.view), Lane(1e-4f));
+    const V3 h = ln::normalize(s.view + l);
+    const Lane NoH = ln::saturate(ln::dot(s.n, h));
+    const Lane VoH = ln::saturate(ln::dot(s.view, h));
+    const Lane alpha = roughnessToAlpha(s.roughness);
+    // F0 = mix(0.04, baseColor, metallic)
+    const V3 f0 = mix3(V3{Lane(0.04f), Lane(0.04f), Lane(0.04f)}, s.albedo, s.metallic);
+    const Lane dv = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha);
+    const V3 spec{F_Schlick(VoH, f0.x, one) * dv, F_Schlick(VoH, f0.y, one) * dv,
+                  F_Schlick(VoH, f0.z, one) * dv};
+    const V3 diffuse = s.albedo * ((one - s.metallic) * Fd_Lambert<Lane>());
+    // Slope-scaled bias: grows with tan(angle to the light), capped at grazing angles.
+    const Lane cosL = ln::max(NoLraw, Lane(1e-3f));
+    const Lane tanL = ln::min(ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL, Lane(10.0f));
+    visibility = ln::select(NoLraw > zero,
+                            shadowVisibility(a, s.p, Lane(a.biasConst) + Lane(a.biasSlope) * tanL),
+                            zero);
+    const V3 direct = (diffuse + spec) * splat3(a.lightRadiance) * (NoL * visibility);
+    // Sky: irradiance blended by the normal's elevation, and the reflected sky through the
+    // environment BRDF, blurred towards the sky's average as roughness grows.
+    const V3 skyAvg = mix3(splat3(a.skyGround), mix3(splat3(a.skyHorizon), splat3(a.skyZenith),
+                                                     Lane(0.5f)), Lane(0.5f));
+    const V3 up = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f));
+    const V3 irradiance = mix3(splat3(a.skyGround), up, Lane(0.5f) + Lane(0.5f) * s.n.y);
+    const V3 refl = s.n * (Lane(2.0f) * ln::dot(s.n, s.view)) - s.view;
+    const V3 specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
+    Lane envScale, envBias;
+    envBrdfApprox(NoV, s.roughness, envScale, envBias);
+    const V3 envSpec = (f0 * envScale + V3{envBias, envBias, envBias}) * specSky;
+    return (direct + irradiance * diffuse * Lane(ln::kPi)) + envSpec;
+}
+
+void shadeChunk(const DirectArgs& a, int x, int y) {
+    const std::size_t go = std::size_t(y) * a.gStride + x;
+    const Lane viewZ = ln::load<Lane>(a.g[0] + go);
+    const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
+    const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
+    const Lane ndcY = Lane(1.0f) - Lane((float(y) + 0.5f) * (2.0f / float(a.height)));
+    const V3 dirView{ndcX * Lane(a.tanHalfX), ndcY * Lane(a.tanHalfY), Lane(-1.0f)};
+    const float* r = a.viewToWorld;
+    const V3 dirWorld{(Lane(r[0]) * dirView.x + Lane(r[3]) * dirView.y) + Lane(r[6]) * dirView.z,
+                      (Lane(r[1]) * dirView.x + Lane(r[4]) * dirView.y) + Lane(r[7]) * dirView.z,
+                      (Lane(r[2]) * dirView.x + Lane(r[5]) * dirView.y) + Lane(r[8]) * dirView.z};
+    const auto background = viewZ <= Lane(0.0f);
+    V3 color = skyRadiance(a, ln::normalize(dirWorld));
+    Lane visibility(1.0f);
+    if (!ln::all(background)) {
+        Surface s;
+        s.p = splat3(a.camPos) + dirWorld * viewZ;
+        s.n = {ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go), ln::load<Lane>(a.g[3] + go)};
+        s.albedo = {ln::load<Lane>(a.g[4] + go), ln::load<Lane>(a.g[5] + go),
+                    ln::load<Lane>(a.g[6] + go)};
+        s.metallic = ln::load<Lane>(a.g[7] + go);
+        s.roughness = ln::load<Lane>(a.g[8] + go);
+        const V3 toCam = ln::normalize(dirWorld);
+        s.view = {Lane(0.0f) - toCam.x, Lane(0.0f) - toCam.y, Lane(0.0f) - toCam.z};
+        Lane vis;
+        V3 lit = shadeSurface(a, s, vis);
+        // Emission by material id (a scalar gather).
+        alignas(64) float mat[kW], em[3][kW];
+        ln::store(mat, ln::load<Lane>(a.g[9] + go));
+        for (int l = 0; l < kW; ++l)
+            for (int c = 0; c < 3; ++c) em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
+        lit = lit + V3{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+        color = ln::select(background, color, lit);
+        visibility = ln::select(background, visibility, vis);
+    }
+    const std::size_t o = std::size_t(y) * a.outStride + x;
+    const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
+                         color.z * Lane(a.exposure)};
+    for (int c = 0; c < 3; ++c) {
+        ln::store(a.out[c] + o, rgb[c]);
+        ln::store(a.out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
+    }
+    ln::store(a.out[6] + o, visibility);
+}
+
+}  // namespace
+
+void shadeTile(const DirectArgs& args, int tile) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    // Lane groups past the right edge stay in the rows' 64-byte padding (see resolve).
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,40 @@
+// Direct light, sky and tone map per pixel, one copy per ISA (shading/direct_kernel.cpp).
+#pragma once
+
+#include <cstddef>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+struct DirectArgs {
+    // G-buffer planes, all with gStride: viewZ, normal XYZ, albedo RGB, metallic,
+    // roughness, materialId.
+    const float* g[10];
+    std::size_t gStride;
+    int width, height, tilesX;
+    float tanHalfX, tanHalfY;
+    float camPos[3];
+    float viewToWorld[9];  // rotation, column-major
+    float toLight[3];      // unit, towards the light
+    float lightRadiance[3];
+    bool skyGradient;
+    float skyZenith[3], skyHorizon[3], skyGround[3];  // radiance (intensity folded in)
+    const float* emissive;  // 3 per material id
+    // Shadow map: depth key 1 - z01 (larger = nearer the light)
+    const float* shadow;
+    std::size_t shadowStride;
+    int shadowSize;
+    float lightViewProj[16];  // column-major
+    float biasConst, biasSlope;  // depth-key units; slope term scales tan(angle to light)
+    int pcfRadius;
+    float exposure;
+    // Outputs (outStride): color RGB (linear), display RGB (tone mapped, sRGB), shadow.
+    float* out[7];
+    std::size_t outStride;
+};
+
+SSRT_DECLARE_KERNEL(void, shadeTile, (const DirectArgs& args, int tile))
+
+}  // namespace ssrt
