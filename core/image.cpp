@@ -22,9 +22,12 @@ Plane<T>::Plane(int width, int height, T fill) : width_(width), height_(height) 
     void* p = std::aligned_alloc(kRowAlignment, bytes);
     if (!p) throw std::bad_alloc();
     data_.reset(static_cast<T*>(p));
-    // Padding is zeroed too, so whole-row copies never read uninitialised memory.
-    std::memset(p, 0, bytes);
-    if (fill != T{}) this->fill(fill);
+    // Every element is written once here: the fill value in the image, zeros in the row
+    // padding (kernels read whole lane groups there; they must see defined values).
+    for (int y = 0; y < height; ++y) {
+        std::fill_n(row(y), width, fill);
+        std::fill(row(y) + width, row(y) + stride_, T{});
+    }
 }
 
 template <class T>

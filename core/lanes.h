@@ -194,12 +194,12 @@ SSRT_INLINE L laneIndex() {
     return load<L>(idx);
 }
 
-// Per-lane gather from an array by integer index (a scalar loop: every ISA the same).
-template <class L>
-SSRT_INLINE L gather(const float* base, const int32_t* index) {
-    alignas(64) float v[kWidth<L>];
-    for (std::size_t i = 0; i < kWidth<L>; ++i) v[i] = base[index[i]];
-    return load<L>(v);
+// Per-lane load base[index] (hardware gather where the ISA has one: loads are exact, so
+// every ISA returns the same bits).
+SSRT_INLINE float gather(const float* base, int32_t index) { return base[index]; }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_t, A> index) {
+    return xsimd::batch<float, A>::gather(base, index);
 }
 
 }  // namespace ssrt::lanes

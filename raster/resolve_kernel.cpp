@@ -28,11 +28,10 @@ enum Field {
 // same on every ISA).
 struct Gathered {
     alignas(64) float f[kFieldCount][kW];
-    bool any = false;
 };
 
 
-void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& g, float* m) {
+SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& g, float* m) {
     const ResolveTriangle& t = a.triangles[id];
     const ResolveInstance& in = a.instances[t.instance];
     for (int k = 0; k < 3; ++k) {
@@ -56,32 +55,57 @@ void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& g, float* m)
     for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
 }
 
-V3 field3(const Gathered& g, int f) {
-    return {ln::load<Lane>(g.f[f]), ln::load<Lane>(g.f[f + 1]), ln::load<Lane>(g.f[f + 2])};
+// The fields as lanes: broadcast when every lane sees the same triangle (large triangles,
+// the common case), loaded from the per-lane gather otherwise.
+struct Fields {
+    Lane f[kFieldCount];
+    Lane m[16];
+};
+
+SSRT_INLINE void broadcastFields(const ResolveArgs& a, uint32_t id, Fields& out) {
+    Gathered g;
+    alignas(64) float m[16 * kW];
+    gatherLane(a, id, 0, g, m);
+    for (int k = 0; k < kFieldCount; ++k) out.f[k] = Lane(g.f[k][0]);
+    for (int k = 0; k < 16; ++k) out.m[k] = Lane(m[k * kW]);
 }
+
+SSRT_INLINE V3 field3(const Fields& g, int f) { return {g.f[f], g.f[f + 1], g.f[f + 2]}; }
 
 void resolveChunk(const ResolveArgs& a, int x, int y) {
     // Which lanes hold a visible triangle.
     const uint32_t* idRow = a.ids + std::size_t(y) * a.idStride;
-    Gathered g;
-    alignas(64) float m[16 * kW];
+    alignas(64) uint32_t id[kW];
     alignas(64) float visible[kW];
+    bool any = false, uniform = true;
     for (int l = 0; l < kW; ++l) {
-        const uint32_t id = x + l < a.width ? idRow[x + l] : kNoPrimitive;
-        visible[l] = id != kNoPrimitive ? 1.0f : 0.0f;
-        if (id != kNoPrimitive) {
-            gatherLane(a, id, l, g, m);
-            g.any = true;
-        } else {
-            for (auto& row : g.f) row[l] = 0.0f;
-            for (int k = 0; k < 16; ++k) m[k * kW + l] = k % 5 == 0 ? 1.0f : 0.0f;
-        }
+        id[l] = x + l < a.width ? idRow[x + l] : kNoPrimitive;
+        visible[l] = id[l] != kNoPrimitive ? 1.0f : 0.0f;
+        any |= id[l] != kNoPrimitive;
+        uniform &= id[l] == id[0];
     }
     const std::size_t o = std::size_t(y) * a.outStride + x;
     const Lane zero(0.0f);
-    if (!g.any) {
+    if (!any) {
         for (int p = 0; p < 14; ++p) ln::store(a.out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
         return;
+    }
+    Fields g;
+    if (uniform) {
+        broadcastFields(a, id[0], g);
+    } else {
+        Gathered ga;
+        alignas(64) float m[16 * kW];
+        for (int l = 0; l < kW; ++l) {
+            if (id[l] != kNoPrimitive) {
+                gatherLane(a, id[l], l, ga, m);
+            } else {
+                for (auto& row : ga.f) row[l] = 0.0f;
+                for (int k = 0; k < 16; ++k) m[k * kW + l] = k % 5 == 0 ? 1.0f : 0.0f;
+            }
+        }
+        for (int k = 0; k < kFieldCount; ++k) g.f[k] = ln::load<Lane>(ga.f[k]);
+        for (int k = 0; k < 16; ++k) g.m[k] = ln::load<Lane>(m + k * kW);
     }
     const auto vis = ln::load<Lane>(visible) > zero;
     // View ray through the pixel centre: (ndcX tanHalfX, ndcY tanHalfY, -1).
@@ -93,7 +117,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y) {
     const V3 n = field3(g, kN);
     const Lane nd = ln::dot(n, dir);
     const Lane ndSafe = ln::select(ln::abs(nd) > Lane(1e-12f), nd, Lane(-1e-12f));
-    const Lane t = ln::clamp(ln::load<Lane>(g.f[kD]) / ndSafe, Lane(a.nearZ), Lane(a.farZ));
+    const Lane t = ln::clamp(g.f[kD] / ndSafe, Lane(a.nearZ), Lane(a.farZ));
     const V3 h = dir * t;
     const V3 r = h - field3(g, kP0);
     const Lane b1 = ln::dot(r, field3(g, kG1)), b2 = ln::dot(r, field3(g, kG2));
@@ -103,12 +127,9 @@ void resolveChunk(const ResolveArgs& a, int x, int y) {
     normal = ln::select(nd > zero, V3{zero - normal.x, zero - normal.y, zero - normal.z}, normal);
     // Motion: the hit point in the previous clip space, to previous pixel coordinates.
     Lane pc[4];
-    for (int row = 0; row < 4; ++row) {
-        pc[row] = ((ln::load<Lane>(m + (0 * 4 + row) * kW) * h.x +
-                    ln::load<Lane>(m + (1 * 4 + row) * kW) * h.y) +
-                   ln::load<Lane>(m + (2 * 4 + row) * kW) * h.z) +
-                  ln::load<Lane>(m + (3 * 4 + row) * kW);
-    }
+    for (int row = 0; row < 4; ++row)
+        pc[row] = ((g.m[0 * 4 + row] * h.x + g.m[1 * 4 + row] * h.y) + g.m[2 * 4 + row] * h.z) +
+                  g.m[3 * 4 + row];
     const auto inFront = pc[3] > Lane(1e-6f);
     const Lane invW = Lane(1.0f) / ln::select(inFront, pc[3], Lane(1.0f));
     const Lane prevX = (pc[0] * invW * Lane(0.5f) + Lane(0.5f)) * Lane(float(a.width));
@@ -118,10 +139,10 @@ void resolveChunk(const ResolveArgs& a, int x, int y) {
     const Lane motionY = ln::select(inFront, prevY - curY, zero);
 
     const Lane outs[14] = {t, normal.x, normal.y, normal.z,
-                           ln::load<Lane>(g.f[kAlbedo]), ln::load<Lane>(g.f[kAlbedo + 1]),
-                           ln::load<Lane>(g.f[kAlbedo + 2]), ln::load<Lane>(g.f[kMetallic]),
-                           ln::load<Lane>(g.f[kRoughness]), ln::load<Lane>(g.f[kMaterial]),
-                           ln::load<Lane>(g.f[kInstance]), ln::load<Lane>(g.f[kTri]),
+                           g.f[kAlbedo], g.f[kAlbedo + 1],
+                           g.f[kAlbedo + 2], g.f[kMetallic],
+                           g.f[kRoughness], g.f[kMaterial],
+                           g.f[kInstance], g.f[kTri],
                            motionX, motionY};
     for (int p = 0; p < 14; ++p) {
         const Lane background = (p >= 9 && p <= 11) ? Lane(-1.0f) : zero;

@@ -18,6 +18,8 @@ constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kBlockPixels = kBlockSize * kBlockSize;
 constexpr int kChunks = kBlockPixels / kW;  // lane groups per 8x8 block
 constexpr int kBlocksPerSide = kTileSize / kBlockSize;
+constexpr uint32_t kNoPrimitiveId = 0xffffffffu;  // raster.h's kNoPrimitive
+static_assert(kBlocksPerSide * kBlocksPerSide <= 64, "touched-block mask is 64 bits");
 static_assert(kBlockPixels % kW == 0, "a block must hold whole lane groups");
 
 // Lane l of a group covers block pixel (i0 + laneDI[l], j0 + laneDJ[l]), where group c
@@ -43,6 +45,7 @@ constexpr LaneLayout kLayout{};
 struct TileBuffers {
     alignas(64) float depth[kTileSize * kTileSize];
     alignas(64) int32_t ids[kTileSize * kTileSize];
+    uint64_t touched;  // bit b: block b has been cleared (and maybe written)
 };
 
 inline int popcount(uint64_t bits) { return __builtin_popcountll(bits); }
@@ -125,17 +128,25 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
     }
 }
 
+// Block-linear tile buffers to the planes' rows: one 8-pixel run per block row; blocks no
+// triangle touched are filled with the clear values without reading the buffer.
 void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& buf) {
     for (int y = r.y0; y < r.y1; ++y) {
+        const int ly = y - r.y0;
+        const int rowInBlock = (ly % kBlockSize) * kBlockSize;
         float* drow = args.depth + std::size_t(y) * args.depthStride;
         uint32_t* irow = args.ids ? args.ids + std::size_t(y) * args.idStride : nullptr;
-        const int ly = y - r.y0;
-        for (int x = r.x0; x < r.x1; ++x) {
-            const int lx = x - r.x0;
-            const int b = (ly / kBlockSize) * kBlocksPerSide + lx / kBlockSize;
-            const int p = b * kBlockPixels + (ly % kBlockSize) * kBlockSize + lx % kBlockSize;
-            drow[x] = buf.depth[p];
-            if (irow) irow[x] = uint32_t(buf.ids[p]);
+        for (int x = r.x0; x < r.x1; x += kBlockSize) {
+            const int b = (ly / kBlockSize) * kBlocksPerSide + (x - r.x0) / kBlockSize;
+            const int n = std::min(kBlockSize, r.x1 - x);
+            if (!(buf.touched >> b & 1)) {
+                std::fill_n(drow + x, n, args.clearDepth);
+                if (irow) std::fill_n(irow + x, n, kNoPrimitiveId);
+                continue;
+            }
+            const int p = b * kBlockPixels + rowInBlock;
+            std::memcpy(drow + x, buf.depth + p, n * sizeof(float));
+            if (irow) std::memcpy(irow + x, buf.ids + p, n * sizeof(uint32_t));
         }
     }
 }
@@ -147,8 +158,7 @@ void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
     const TileRect r{tx * kTileSize, ty * kTileSize, std::min(args.width, (tx + 1) * kTileSize),
                      std::min(args.height, (ty + 1) * kTileSize)};
     static thread_local TileBuffers buf;
-    std::fill_n(buf.depth, kTileSize * kTileSize, args.clearDepth);
-    std::fill_n(buf.ids, kTileSize * kTileSize, int32_t(-1));
+    buf.touched = 0;
     for (uint32_t n = args.binStart[tile]; n < args.binStart[tile + 1]; ++n) {
         const TriangleSetup& t = args.triangles[args.binItems[n]];
         const EdgeLanes edges = edgeLanes(t);
@@ -160,6 +170,11 @@ void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
         for (int by = by0; by <= by1; ++by)
             for (int bx = bx0; bx <= bx1; ++bx) {
                 const int b = by * kBlocksPerSide + bx;
+                if (!(buf.touched >> b & 1)) {
+                    buf.touched |= uint64_t(1) << b;
+                    std::fill_n(buf.depth + b * kBlockPixels, kBlockPixels, args.clearDepth);
+                    std::fill_n(buf.ids + b * kBlockPixels, kBlockPixels, int32_t(-1));
+                }
                 rasterBlock(args, t, edges, r.x0 + bx * kBlockSize, r.y0 + by * kBlockSize,
                             buf.depth + b * kBlockPixels,
                             args.ids ? buf.ids + b * kBlockPixels : nullptr, stats);

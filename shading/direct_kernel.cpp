@@ -16,12 +16,12 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 
-V3 splat3(const float* v) { return {Lane(v[0]), Lane(v[1]), Lane(v[2])}; }
+SSRT_INLINE V3 splat3(const float* v) { return {Lane(v[0]), Lane(v[1]), Lane(v[2])}; }
 
-V3 mix3(V3 a, V3 b, Lane t) { return a + (b - a) * t; }
+SSRT_INLINE V3 mix3(V3 a, V3 b, Lane t) { return a + (b - a) * t; }
 
 // The analytic sky: ground below the horizon, horizon to zenith above (scenes/scene.cpp).
-V3 skyRadiance(const DirectArgs& a, V3 dir) {
+SSRT_INLINE V3 skyRadiance(const DirectArgs& a, V3 dir) {
     if (!a.skyGradient) return splat3(a.skyZenith);
     const Lane y = dir.y;
     const Lane s = Lane(1.0f) - y;
@@ -29,41 +29,39 @@ V3 skyRadiance(const DirectArgs& a, V3 dir) {
     return ln::select(y < Lane(0.0f), splat3(a.skyGround), above);
 }
 
-// Fraction of PCF taps that see the light; a scalar loop per lane (the same on every ISA).
-Lane shadowVisibility(const DirectArgs& a, V3 p, Lane bias) {
+// Fraction of PCF taps that see the light. Taps are clamped to the map's edge; points
+// outside the map are lit (nothing there casts a shadow).
+SSRT_INLINE Lane shadowVisibility(const DirectArgs& a, V3 p, Lane bias) {
+    using ILane = ln::IntOf<Lane>;
     const float* m = a.lightViewProj;
     const Lane cx = ((Lane(m[0]) * p.x + Lane(m[4]) * p.y) + Lane(m[8]) * p.z) + Lane(m[12]);
     const Lane cy = ((Lane(m[1]) * p.x + Lane(m[5]) * p.y) + Lane(m[9]) * p.z) + Lane(m[13]);
     const Lane cz = ((Lane(m[2]) * p.x + Lane(m[6]) * p.y) + Lane(m[10]) * p.z) + Lane(m[14]);
-    const float s = float(a.shadowSize);
-    const Lane u = ln::floor((cx * Lane(0.5f) + Lane(0.5f)) * Lane(s));
-    const Lane v = ln::floor((Lane(0.5f) - cy * Lane(0.5f)) * Lane(s));
+    const Lane s(float(a.shadowSize));
+    const Lane u = ln::floor((cx * Lane(0.5f) + Lane(0.5f)) * s);
+    const Lane v = ln::floor((Lane(0.5f) - cy * Lane(0.5f)) * s);
     const Lane key = (Lane(0.5f) - Lane(0.5f) * cz) + bias;
-    alignas(64) float fu[kW], fv[kW], fk[kW], vis[kW];
-    ln::store(fu, u);
-    ln::store(fv, v);
-    ln::store(fk, key);
-    const int r = a.pcfRadius, n = a.shadowSize;
-    const float taps = float((2 * r + 1) * (2 * r + 1));
-    for (int l = 0; l < kW; ++l) {
-        if (!(fu[l] >= 0.0f && fv[l] >= 0.0f && fu[l] < s && fv[l] < s)) {
-            vis[l] = 1.0f;  // outside the map: nothing there casts a shadow
-            continue;
+    const auto inMap = (u >= Lane(0.0f)) & (v >= Lane(0.0f)) & (u < s) & (v < s);
+    if (!ln::any(inMap)) return Lane(1.0f);
+    const Lane last(float(a.shadowSize - 1));
+    const int r = a.pcfRadius;
+    Lane lit(0.0f);
+    for (int dy = -r; dy <= r; ++dy) {
+        const ILane row = ln::toIntTrunc(ln::clamp(v + Lane(float(dy)), Lane(0.0f), last)) *
+                          ILane(int32_t(a.shadowStride));
+        for (int dx = -r; dx <= r; ++dx) {
+            const ILane col = ln::toIntTrunc(ln::clamp(u + Lane(float(dx)), Lane(0.0f), last));
+            const Lane depth = ln::gather(a.shadow, row + col);
+            lit = lit + ln::select(key >= depth, Lane(1.0f), Lane(0.0f));
         }
-        const int iu = int(fu[l]), iv = int(fv[l]);
-        int lit = 0;
-        for (int dy = -r; dy <= r; ++dy) {
-            const float* row = a.shadow + std::size_t(std::clamp(iv + dy, 0, n - 1)) * a.shadowStride;
-            for (int dx = -r; dx <= r; ++dx) lit += fk[l] >= row[std::clamp(iu + dx, 0, n - 1)];
-        }
-        vis[l] = float(lit) / taps;
     }
-    return ln::load<Lane>(vis);
+    const Lane taps(float((2 * r + 1) * (2 * r + 1)));
+    return ln::select(inMap, lit / taps, Lane(1.0f));
 }
 
 // Karis 2014, "Physically Based Shading on Mobile": analytic fit of the split-sum
 // environment BRDF, scale and bias on F0. (Stands in until the DFG table of shading/.)
-void envBrdfApprox(Lane NoV, Lane roughness, Lane& scale, Lane& bias) {
+SSRT_INLINE void envBrdfApprox(Lane NoV, Lane roughness, Lane& scale, Lane& bias) {
     const Lane rx = roughness * Lane(-1.0f) + Lane(1.0f);
     const Lane ry = roughness * Lane(-0.0275f) + Lane(0.0425f);
     const Lane rz = roughness * Lane(-0.572f) + Lane(1.04f);
@@ -74,14 +72,14 @@ void envBrdfApprox(Lane NoV, Lane roughness, Lane& scale, Lane& bias) {
 }
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"
-Lane tonemapAces(Lane x) {
+SSRT_INLINE Lane tonemapAces(Lane x) {
     const Lane num = x * (Lane(2.51f) * x + Lane(0.03f));
     const Lane den = x * (Lane(2.43f) * x + Lane(0.59f)) + Lane(0.14f);
     return ln::saturate(num / den);
 }
 
 // IEC 61966-2-1 sRGB transfer function.
-Lane srgbEncode(Lane x) {
+SSRT_INLINE Lane srgbEncode(Lane x) {
     const Lane hi = Lane(1.055f) * ln::pow(x, Lane(1.0f / 2.4f)) - Lane(0.055f);
     return ln::select(x <= Lane(0.0031308f), x * Lane(12.92f), hi);
 }
@@ -91,7 +89,7 @@ struct Surface {
     Lane metallic, roughness;
 };
 
-V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
+SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
     using namespace ssrt::brdf;
     const Lane zero(0.0f), one(1.0f);
     const V3 l = splat3(a.toLight);
