@@ -1,0 +1,19 @@
+// Renders a built-in scene through the library and prints the mean of the display image.
+#include <cstdio>
+#include <ssrt/renderer/renderer.h>
+#include <ssrt/scenes/builtin_scenes.h>
+
+int main() {
+    ssrt::RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    const ssrt::Renderer renderer(settings);
+    const ssrt::Frame frame = renderer.render(ssrt::makeBuiltinScene("cornell"));
+    const ssrt::PlaneF& red = frame.plane("display.R");
+    double sum = 0.0;
+    for (int y = 0; y < red.height(); ++y)
+        for (int x = 0; x < red.width(); ++x) sum += red.at(x, y);
+    std::printf("mean display.R = %.4f over %zu planes\n", sum / (red.width() * red.height()),
+                frame.planes.size());
+    return sum > 0.0 ? 0 : 1;
+}
