@@ -14,7 +14,17 @@ void Plane<T>::Free::operator()(T* p) const {
 }
 
 template <class T>
-Plane<T>::Plane(int width, int height, T fill) : width_(width), height_(height) {
+Plane<T>::Plane(int width, int height, T fill) : Plane(width, height, kUninitialized) {
+    for (int y = 0; y < height; ++y) std::fill_n(row(y), width, fill);
+}
+
+template <class T>
+void Plane<T>::ensureSize(int width, int height) {
+    if (width != width_ || height != height_ || !data_) *this = Plane(width, height, kUninitialized);
+}
+
+template <class T>
+Plane<T>::Plane(int width, int height, Uninitialized) : width_(width), height_(height) {
     if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
     constexpr std::size_t perLine = kRowAlignment / sizeof(T);
     stride_ = (std::size_t(width) + perLine - 1) / perLine * perLine;
@@ -22,12 +32,8 @@ Plane<T>::Plane(int width, int height, T fill) : width_(width), height_(height) 
     void* p = std::aligned_alloc(kRowAlignment, bytes);
     if (!p) throw std::bad_alloc();
     data_.reset(static_cast<T*>(p));
-    // Every element is written once here: the fill value in the image, zeros in the row
-    // padding (kernels read whole lane groups there; they must see defined values).
-    for (int y = 0; y < height; ++y) {
-        std::fill_n(row(y), width, fill);
-        std::fill(row(y) + width, row(y) + stride_, T{});
-    }
+    // Row padding is zeroed: kernels read whole lane groups there and must see defined values.
+    for (int y = 0; y < height; ++y) std::fill(row(y) + width, row(y) + stride_, T{});
 }
 
 template <class T>

@@ -11,11 +11,21 @@ namespace ssrt {
 
 inline constexpr std::size_t kRowAlignment = 64;  // one cache line, one AVX-512 register
 
+// Tag for planes whose every pixel the caller writes next: only the row padding is zeroed,
+// so no pass over the image (nor its page faults) is spent on a value about to be replaced.
+struct Uninitialized {};
+inline constexpr Uninitialized kUninitialized{};
+
 template <class T>
 class Plane {
 public:
     Plane() = default;
     Plane(int width, int height, T fill = T{});
+    Plane(int width, int height, Uninitialized);
+
+    // Keeps the memory when the size is already right (contents then undefined but
+    // finite: whatever the last frame left), else reallocates uninitialised.
+    void ensureSize(int width, int height);
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -19,6 +19,14 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertices,
                            const RasterView& view, const RasterOptions& options,
                            RasterStats& stats, RasterTimes* times) {
+    VisibilityBuffer vb;
+    rasterize(scene, vertices, view, options, vb, stats, times);
+    return vb;
+}
+
+void rasterize(const Scene& scene, const TransformedVertices& vertices, const RasterView& view,
+               const RasterOptions& options, VisibilityBuffer& vb, RasterStats& stats,
+               RasterTimes* times) {
     const auto t0 = std::chrono::steady_clock::now();
     const TileGrid grid(view.width, view.height);
     SetupChunks chunks = setupTriangles(scene, vertices, view, options.threads);
@@ -28,9 +36,9 @@ VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertic
     if (times) times->geometryMs += msSince(t0);
 
     const auto t1 = std::chrono::steady_clock::now();
-    VisibilityBuffer vb;
-    vb.depth = PlaneF(view.width, view.height);
-    if (options.writeIds) vb.ids = PlaneU32(view.width, view.height);
+    vb.depth.ensureSize(view.width, view.height);
+    if (options.writeIds) vb.ids.ensureSize(view.width, view.height);
+    else vb.ids = PlaneU32();
     const TileRasterArgs args{bins.triangles.data(), bins.start.data(), bins.items.data(),
                               view.width, view.height, grid.tilesX, options.clearDepth,
                               vb.depth.row(0), options.writeIds ? vb.ids.row(0) : nullptr,
@@ -42,7 +50,6 @@ VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertic
                      [&](int tile) { kernel(args, tile, tileStats[tile]); });
     for (const RasterStats& s : tileStats) stats += s;
     if (times) times->rasterMs += msSince(t1);
-    return vb;
 }
 
 }  // namespace ssrt

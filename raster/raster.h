@@ -32,7 +32,13 @@ struct RasterTimes {
     double rasterMs = 0.0;    // tile kernels
 };
 
-// Rasterizes already transformed vertices (see transformVertices).
+// Rasterizes already transformed vertices (see transformVertices) into `out`, reusing its
+// planes when their size is right. Every pixel is written.
+void rasterize(const Scene& scene, const TransformedVertices& vertices, const RasterView& view,
+               const RasterOptions& options, VisibilityBuffer& out, RasterStats& stats,
+               RasterTimes* times = nullptr);
+
+// The same into a new buffer.
 VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertices,
                            const RasterView& view, const RasterOptions& options,
                            RasterStats& stats, RasterTimes* times = nullptr);

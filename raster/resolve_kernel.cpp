@@ -72,7 +72,13 @@ SSRT_INLINE void broadcastFields(const ResolveArgs& a, uint32_t id, Fields& out)
 
 SSRT_INLINE V3 field3(const Fields& g, int f) { return {g.f[f], g.f[f + 1], g.f[f + 2]}; }
 
-void resolveChunk(const ResolveArgs& a, int x, int y) {
+// The last uniform chunk's fields: neighbouring chunks usually see the same triangle.
+struct FieldCache {
+    uint32_t id = kNoPrimitive;
+    Fields fields;
+};
+
+void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache) {
     // Which lanes hold a visible triangle.
     const uint32_t* idRow = a.ids + std::size_t(y) * a.idStride;
     alignas(64) uint32_t id[kW];
@@ -90,10 +96,16 @@ void resolveChunk(const ResolveArgs& a, int x, int y) {
         for (int p = 0; p < 14; ++p) ln::store(a.out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
         return;
     }
-    Fields g;
+    Fields local;
+    const Fields* fields = &local;
     if (uniform) {
-        broadcastFields(a, id[0], g);
+        if (cache.id != id[0]) {
+            broadcastFields(a, id[0], cache.fields);
+            cache.id = id[0];
+        }
+        fields = &cache.fields;
     } else {
+        Fields& g = local;
         Gathered ga;
         alignas(64) float m[16 * kW];
         for (int l = 0; l < kW; ++l) {
@@ -107,6 +119,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y) {
         for (int k = 0; k < kFieldCount; ++k) g.f[k] = ln::load<Lane>(ga.f[k]);
         for (int k = 0; k < 16; ++k) g.m[k] = ln::load<Lane>(m + k * kW);
     }
+    const Fields& g = *fields;
     const auto vis = ln::load<Lane>(visible) > zero;
     // View ray through the pixel centre: (ndcX tanHalfX, ndcY tanHalfY, -1).
     const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
@@ -158,8 +171,9 @@ void resolveTile(const ResolveArgs& args, int tile) {
     const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
     // Rows are padded to 64 bytes and tiles start on multiples of 64 pixels, so a lane group
     // that runs past the image's right edge stays inside the row's padding.
+    FieldCache cache;
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y);
+        for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache);
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -38,17 +38,18 @@ RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float&
     return rv;
 }
 
-ShadowMap renderShadowMap(const Scene& scene, int size, const RasterOptions& options,
-                          RasterStats& stats, RasterTimes* times) {
-    ShadowMap sm;
+void renderShadowMap(const Scene& scene, int size, const RasterOptions& options, ShadowMap& sm,
+                     RasterStats& stats, RasterTimes* times) {
     const RasterView view = fitShadowView(scene, size, sm.depthRange, sm.texelSize);
     sm.lightViewProj = view.viewProj;
     const TransformedVertices tv = transformVertices(scene, view, options.threads);
     RasterOptions o = options;
     o.writeIds = false;
     o.clearDepth = 0.0f;
-    sm.depth = rasterize(scene, tv, view, o, stats, times).depth;
-    return sm;
+    VisibilityBuffer vb;
+    vb.depth = std::move(sm.depth);
+    rasterize(scene, tv, view, o, vb, stats, times);
+    sm.depth = std::move(vb.depth);
 }
 
 }  // namespace ssrt

@@ -18,7 +18,8 @@ struct ShadowMap {
 // Light view and orthographic projection enclosing the scene's bounds (with a margin).
 RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float& texelSize);
 
-ShadowMap renderShadowMap(const Scene& scene, int size, const RasterOptions& options,
-                          RasterStats& stats, RasterTimes* times = nullptr);
+// Renders into `out`, reusing its depth plane when the size is right.
+void renderShadowMap(const Scene& scene, int size, const RasterOptions& options, ShadowMap& out,
+                     RasterStats& stats, RasterTimes* times = nullptr);
 
 }  // namespace ssrt

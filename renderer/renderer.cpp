@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "core/tiles.h"
-#include "raster/gbuffer.h"
 #include "raster/raster.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
@@ -108,7 +107,28 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
     return t;
 }
 
-void addPlane(Frame& f, const char* name, PlaneF&& p) { f.planes.push_back({name, std::move(p)}); }
+// Output planes, in the order the frame lists them.
+enum PlaneIndex {
+    kColorR, kColorG, kColorB, kDisplayR, kDisplayG, kDisplayB, kShadow,
+    kViewZ, kNormalX, kNormalY, kNormalZ, kAlbedoR, kAlbedoG, kAlbedoB, kMetallic, kRoughness,
+    kMaterialId, kInstanceId, kTriangleId, kMotionX, kMotionY, kPlaneCount
+};
+const char* const kPlaneNames[kPlaneCount] = {
+    "color.R", "color.G", "color.B", "display.R", "display.G", "display.B", "shadow",
+    "viewZ", "normal.X", "normal.Y", "normal.Z", "albedo.R", "albedo.G", "albedo.B",
+    "metallic", "roughness", "materialId", "instanceId", "triangleId", "motion.X", "motion.Y"};
+
+// Gives the frame its planes, keeping the existing ones when names and sizes match. Every
+// pixel of every plane is written by a pass, so none is cleared here.
+void ensurePlanes(Frame& f, int w, int h) {
+    bool same = f.planes.size() == kPlaneCount;
+    for (int i = 0; same && i < kPlaneCount; ++i)
+        same = f.planes[i].name == kPlaneNames[i] && f.planes[i].plane.width() == w &&
+               f.planes[i].plane.height() == h;
+    if (same) return;
+    f.planes.clear();
+    for (const char* name : kPlaneNames) f.planes.push_back({name, PlaneF(w, h, kUninitialized)});
+}
 
 }  // namespace
 
@@ -142,6 +162,13 @@ bool Frame::has(std::string_view name) const {
 Renderer::Renderer(RenderSettings settings) : settings_(settings) { settings_.validate(); }
 
 Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera) const {
+    Frame frame;
+    render(scene, camera, prevCamera, frame);
+    return frame;
+}
+
+void Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera,
+                      Frame& frame) const {
     scene.validate();
     const RenderSettings& s = settings_;
     const Isa isa = resolveIsa(s.isa);
@@ -151,9 +178,9 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
     const glm::mat4 view = camera.view(), proj = camera.projection(aspect);
     const glm::mat4 prevViewProj = prevCamera.projection(aspect) * prevCamera.view();
 
-    Frame frame;
     frame.width = w;
     frame.height = h;
+    frame.stats = FrameStats{};
     frame.stats.isa = isa;
     frame.stats.threads = threads;
     auto pass = [&](const char* name, Clock::time_point t0) {
@@ -165,7 +192,8 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
 
     // Shadow map of the directional light.
     auto t0 = Clock::now();
-    const ShadowMap shadow = renderShadowMap(scene, s.shadowMapSize, ro, frame.stats.shadow);
+    ShadowMap& shadow = frame.scratch.shadow;
+    renderShadowMap(scene, s.shadowMapSize, ro, shadow, frame.stats.shadow);
     pass("shadow", t0);
 
     // Visibility: depth and triangle ids.
@@ -178,19 +206,17 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
     const TransformedVertices tv = transformVertices(scene, rv, threads);
     ro.clearDepth = 1.0f / camera.farZ;
     RasterTimes rt;
-    VisibilityBuffer vb = rasterize(scene, tv, rv, ro, frame.stats.visibility, &rt);
+    VisibilityBuffer& vb = frame.scratch.visibility;
+    rasterize(scene, tv, rv, ro, vb, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
     frame.stats.passes.push_back({"visibility", rt.rasterMs});
 
     // Resolve: the G-buffer for visible pixels.
     t0 = Clock::now();
     const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, threads);
-    GBuffer gb;
-    PlaneF* gplanes[14] = {&gb.viewZ,   &gb.normalX,   &gb.normalY,    &gb.normalZ,
-                           &gb.albedoR, &gb.albedoG,   &gb.albedoB,    &gb.metallic,
-                           &gb.roughness, &gb.materialId, &gb.instanceId, &gb.triangleId,
-                           &gb.motionX, &gb.motionY};
-    for (PlaneF* p : gplanes) *p = PlaneF(w, h);
+    ensurePlanes(frame, w, h);
+    PlaneF* gplanes[14];
+    for (int i = 0; i < 14; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
     const TileGrid grid(w, h);
     const float tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
     ResolveArgs ra{};
@@ -209,18 +235,16 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
     ra.nearZ = camera.nearZ;
     ra.farZ = camera.farZ;
     for (int i = 0; i < 14; ++i) ra.out[i] = gplanes[i]->row(0);
-    ra.outStride = gb.viewZ.stride();
+    ra.outStride = gplanes[0]->stride();
     const auto resolve = SSRT_DISPATCH(isa, resolveTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { resolve(ra, tile); });
     pass("resolve", t0);
 
     // Direct light, sky and tone map.
     t0 = Clock::now();
-    PlaneF out[7];
-    for (PlaneF& p : out) p = PlaneF(w, h);
     DirectArgs da{};
     for (int i = 0; i < 10; ++i) da.g[i] = gplanes[i]->row(0);
-    da.gStride = gb.viewZ.stride();
+    da.gStride = gplanes[0]->stride();
     da.width = w;
     da.height = h;
     da.tilesX = grid.tilesX;
@@ -252,20 +276,12 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
     da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
     da.pcfRadius = s.pcfRadius;
     da.exposure = s.exposure;
-    for (int i = 0; i < 7; ++i) da.out[i] = out[i].row(0);
-    da.outStride = out[0].stride();
+    for (int i = 0; i < 7; ++i) da.out[i] = frame.planes[kColorR + i].plane.row(0);
+    da.outStride = frame.planes[kColorR].plane.stride();
     const auto shade = SSRT_DISPATCH(isa, shadeTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });
     pass("shading", t0);
 
-    const char* outNames[7] = {"color.R", "color.G", "color.B", "display.R",
-                               "display.G", "display.B", "shadow"};
-    for (int i = 0; i < 7; ++i) addPlane(frame, outNames[i], std::move(out[i]));
-    const char* gNames[14] = {"viewZ",     "normal.X",   "normal.Y",   "normal.Z", "albedo.R",
-                              "albedo.G",  "albedo.B",   "metallic",   "roughness", "materialId",
-                              "instanceId", "triangleId", "motion.X",  "motion.Y"};
-    for (int i = 0; i < 14; ++i) addPlane(frame, gNames[i], std::move(*gplanes[i]));
-    return frame;
 }
 
 }  // namespace ssrt

@@ -9,7 +9,9 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "raster/raster.h"
 #include "raster/raster_stats.h"
+#include "raster/shadow_map.h"
 #include "scenes/scene.h"
 
 namespace ssrt {
@@ -51,6 +53,13 @@ struct Frame {
     std::vector<NamedPlane> planes;
     FrameStats stats;
 
+    // Buffers the passes need but do not hand out; kept so that rendering into the same
+    // Frame again reuses every allocation (no page faults, no clears).
+    struct Scratch {
+        VisibilityBuffer visibility;
+        ShadowMap shadow;
+    } scratch;
+
     // The plane called `name`; throws std::out_of_range if there is none.
     const PlaneF& plane(std::string_view name) const;
     bool has(std::string_view name) const;
@@ -70,6 +79,12 @@ public:
     Frame render(const Scene& scene) const {
         return render(scene, scene.camera, scene.previousCamera);
     }
+
+    // Renders into `frame`, reusing its planes and scratch buffers when their sizes match
+    // (what a sequence or a benchmark wants). Safe to call from several threads at once
+    // with different frames.
+    void render(const Scene& scene, const Camera& camera, const Camera& previousCamera,
+                Frame& frame) const;
 
 private:
     RenderSettings settings_;

@@ -1,1 +1,1 @@
-list(APPEND SSRT_SOURCES scenes/scene.cpp)
+list(APPEND SSRT_SOURCES scenes/scene.cpp scenes/mesh_builders.cpp scenes/builtin_scenes.cpp)
