@@ -186,6 +186,27 @@ SSRT_INLINE void store(float* p, xsimd::batch<float, A> x) { x.store_unaligned(p
 template <class A>
 SSRT_INLINE void store(int32_t* p, xsimd::batch<int32_t, A> x) { x.store_unaligned(p); }
 
+// Store that bypasses the caches (no read for ownership) for planes written once per frame;
+// `p` must be aligned to the lane group. Call streamFence() before another thread reads.
+SSRT_INLINE void storeStream(float* p, float x) { *p = x; }
+template <class A>
+SSRT_INLINE void storeStream(float* p, xsimd::batch<float, A> x) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) _mm512_stream_ps(p, x);
+    else
+#endif
+#if defined(__AVX__)
+    if constexpr (std::is_base_of_v<xsimd::avx, A>) _mm256_stream_ps(p, x);
+    else
+#endif
+    _mm_stream_ps(p, x);
+}
+SSRT_INLINE void streamFence() {
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
+}
+
 // Lane i holds float(i).
 template <class L>
 SSRT_INLINE L laneIndex() {
@@ -199,6 +220,15 @@ SSRT_INLINE L laneIndex() {
 SSRT_INLINE float gather(const float* base, int32_t index) { return base[index]; }
 template <class A>
 SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_t, A> index) {
+    // xsimd 8.1 gathers floats one lane at a time; use the hardware gather where there is one.
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return _mm512_i32gather_ps(index, base, 4);
+    else
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return _mm256_i32gather_ps(base, index, 4);
+    else
+#endif
     return xsimd::batch<float, A>::gather(base, index);
 }
 

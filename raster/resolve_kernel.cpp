@@ -78,7 +78,9 @@ struct FieldCache {
     Fields fields;
 };
 
-void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache) {
+// Writes lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
+void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* const* out,
+                  int x0) {
     // Which lanes hold a visible triangle.
     const uint32_t* idRow = a.ids + std::size_t(y) * a.idStride;
     alignas(64) uint32_t id[kW];
@@ -90,10 +92,10 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache) {
         any |= id[l] != kNoPrimitive;
         uniform &= id[l] == id[0];
     }
-    const std::size_t o = std::size_t(y) * a.outStride + x;
+    const int o = x - x0;
     const Lane zero(0.0f);
     if (!any) {
-        for (int p = 0; p < 14; ++p) ln::store(a.out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
+        for (int p = 0; p < 14; ++p) ln::store(out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
         return;
     }
     Fields local;
@@ -159,7 +161,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache) {
                            motionX, motionY};
     for (int p = 0; p < 14; ++p) {
         const Lane background = (p >= 9 && p <= 11) ? Lane(-1.0f) : zero;
-        ln::store(a.out[p] + o, ln::select(vis, outs[p], background));
+        ln::store(out[p] + o, ln::select(vis, outs[p], background));
     }
 }
 
@@ -169,11 +171,23 @@ void resolveTile(const ResolveArgs& args, int tile) {
     const int tx = tile % args.tilesX, ty = tile / args.tilesX;
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
-    // Rows are padded to 64 bytes and tiles start on multiples of 64 pixels, so a lane group
-    // that runs past the image's right edge stays inside the row's padding.
+    // Each tile row is resolved into a small buffer, then streamed to the planes in whole
+    // cache lines: fourteen planes written in 32-byte pieces would cost a read for
+    // ownership per line and thrash the write-combining buffers.
+    alignas(64) float rowBuf[14][kTileSize];
+    float* bufPtr[14];
+    for (int p = 0; p < 14; ++p) bufPtr[p] = rowBuf[p];
+    // Lane groups past the right edge land in the rows' 64-byte padding.
+    const int span = (x1 - x0 + kW - 1) / kW * kW;
     FieldCache cache;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache);
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache, bufPtr, x0);
+        for (int p = 0; p < 14; ++p) {
+            float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
+            for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+        }
+    }
+    ln::streamFence();
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -128,27 +128,43 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
     }
 }
 
-// Block-linear tile buffers to the planes' rows: one 8-pixel run per block row; blocks no
-// triangle touched are filled with the clear values without reading the buffer.
+// Copies one row to a plane in whole cache lines (streaming: no read for ownership). Bits
+// are moved, never interpreted, so ids travel through float lanes unchanged.
+void streamRow(float* dst, const float* src, int span) {
+    for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(src + i));
+}
+
+// Block-linear tile buffers to the planes' rows, gathered row by row into a line buffer;
+// blocks no triangle touched give the clear values without reading the buffer. Lane groups
+// past the right edge land in the rows' 64-byte padding.
 void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& buf) {
+    alignas(64) float depthRow[kTileSize];
+    alignas(64) uint32_t idRow[kTileSize];
+    const int span = (r.x1 - r.x0 + kW - 1) / kW * kW;
+    // What lands in the padding is defined too: the clear values.
+    std::fill_n(depthRow, kTileSize, args.clearDepth);
+    std::fill_n(idRow, kTileSize, kNoPrimitiveId);
     for (int y = r.y0; y < r.y1; ++y) {
         const int ly = y - r.y0;
         const int rowInBlock = (ly % kBlockSize) * kBlockSize;
-        float* drow = args.depth + std::size_t(y) * args.depthStride;
-        uint32_t* irow = args.ids ? args.ids + std::size_t(y) * args.idStride : nullptr;
-        for (int x = r.x0; x < r.x1; x += kBlockSize) {
-            const int b = (ly / kBlockSize) * kBlocksPerSide + (x - r.x0) / kBlockSize;
-            const int n = std::min(kBlockSize, r.x1 - x);
+        for (int bx = 0; bx * kBlockSize < r.x1 - r.x0; ++bx) {
+            const int b = (ly / kBlockSize) * kBlocksPerSide + bx;
+            float* d = depthRow + bx * kBlockSize;
+            uint32_t* id = idRow + bx * kBlockSize;
             if (!(buf.touched >> b & 1)) {
-                std::fill_n(drow + x, n, args.clearDepth);
-                if (irow) std::fill_n(irow + x, n, kNoPrimitiveId);
-                continue;
+                std::fill_n(d, kBlockSize, args.clearDepth);
+                std::fill_n(id, kBlockSize, kNoPrimitiveId);
+            } else {
+                std::memcpy(d, buf.depth + b * kBlockPixels + rowInBlock, sizeof(float) * kBlockSize);
+                std::memcpy(id, buf.ids + b * kBlockPixels + rowInBlock, sizeof(float) * kBlockSize);
             }
-            const int p = b * kBlockPixels + rowInBlock;
-            std::memcpy(drow + x, buf.depth + p, n * sizeof(float));
-            if (irow) std::memcpy(irow + x, buf.ids + p, n * sizeof(uint32_t));
         }
+        streamRow(args.depth + std::size_t(y) * args.depthStride + r.x0, depthRow, span);
+        if (args.ids)
+            streamRow(reinterpret_cast<float*>(args.ids + std::size_t(y) * args.idStride + r.x0),
+                      reinterpret_cast<const float*>(idRow), span);
     }
+    ln::streamFence();
 }
 
 }  // namespace

@@ -127,7 +127,8 @@ SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibil
     return (direct + irradiance * diffuse * Lane(ln::kPi)) + envSpec;
 }
 
-void shadeChunk(const DirectArgs& a, int x, int y) {
+// Shades lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
+void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     const std::size_t go = std::size_t(y) * a.gStride + x;
     const Lane viewZ = ln::load<Lane>(a.g[0] + go);
     const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
@@ -162,14 +163,14 @@ void shadeChunk(const DirectArgs& a, int x, int y) {
         color = ln::select(background, color, lit);
         visibility = ln::select(background, visibility, vis);
     }
-    const std::size_t o = std::size_t(y) * a.outStride + x;
+    const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};
     for (int c = 0; c < 3; ++c) {
-        ln::store(a.out[c] + o, rgb[c]);
-        ln::store(a.out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
+        ln::store(out[c] + o, rgb[c]);
+        ln::store(out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
     }
-    ln::store(a.out[6] + o, visibility);
+    ln::store(out[6] + o, visibility);
 }
 
 }  // namespace
@@ -178,9 +179,20 @@ void shadeTile(const DirectArgs& args, int tile) {
     const int tx = tile % args.tilesX, ty = tile / args.tilesX;
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
-    // Lane groups past the right edge stay in the rows' 64-byte padding (see resolve).
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y);
+    // Row buffer, streamed out in whole cache lines (see raster/resolve_kernel.cpp); lane
+    // groups past the right edge land in the rows' 64-byte padding.
+    alignas(64) float rowBuf[7][kTileSize];
+    float* bufPtr[7];
+    for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
+    const int span = (x1 - x0 + kW - 1) / kW * kW;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
+        for (int p = 0; p < 7; ++p) {
+            float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
+            for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+        }
+    }
+    ln::streamFence();
 }
 
 }  // namespace ssrt::SSRT_ISA_NS
