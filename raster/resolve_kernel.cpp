@@ -83,15 +83,14 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
                   int x0) {
     // Which lanes hold a visible triangle.
     const uint32_t* idRow = a.ids + std::size_t(y) * a.idStride;
-    alignas(64) uint32_t id[kW];
-    alignas(64) float visible[kW];
-    bool any = false, uniform = true;
-    for (int l = 0; l < kW; ++l) {
-        id[l] = x + l < a.width ? idRow[x + l] : kNoPrimitive;
-        visible[l] = id[l] != kNoPrimitive ? 1.0f : 0.0f;
-        any |= id[l] != kNoPrimitive;
-        uniform &= id[l] == id[0];
-    }
+    // Lanes past the right edge read the padding, which the raster pass filled with
+    // kNoPrimitive (raster/tile_raster_kernel.cpp): they come out as background.
+    const uint32_t* id = idRow + x;
+    using ILane = ln::IntOf<Lane>;
+    const ILane ids = ln::loadInt<Lane>(reinterpret_cast<const int32_t*>(id));
+    const auto visibleInt = ids != ILane(int32_t(kNoPrimitive));
+    const bool any = ln::any(visibleInt);
+    const bool uniform = ln::all(ids == ILane(int32_t(id[0])));
     const int o = x - x0;
     const Lane zero(0.0f);
     if (!any) {
@@ -122,7 +121,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
         for (int k = 0; k < 16; ++k) g.m[k] = ln::load<Lane>(m + k * kW);
     }
     const Fields& g = *fields;
-    const auto vis = ln::load<Lane>(visible) > zero;
+    const auto vis = ln::toFloatMask(visibleInt);
     // View ray through the pixel centre: (ndcX tanHalfX, ndcY tanHalfY, -1).
     const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
     const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
