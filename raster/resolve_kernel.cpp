@@ -15,13 +15,14 @@ using V3 = ln::V3<Lane>;
 namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
+constexpr int kOutputs = kResolveOutputs;
+constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
 enum Field {
     kP0 = 0, kN = 3, kD = 6, kG1 = 7, kG2 = 10,
     kN0 = 13, kN1 = 16, kN2 = 19,
-    kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27, kInstance = 28, kTri = 29,
-    kFieldCount = 30
+    kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27, kFieldCount = 28
 };
 
 // Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
@@ -50,8 +51,6 @@ SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& 
     g.f[kMetallic][l] = in.metallic;
     g.f[kRoughness][l] = in.roughness;
     g.f[kMaterial][l] = in.materialId;
-    g.f[kInstance][l] = float(t.instance);
-    g.f[kTri][l] = float(t.localTriangle);
     for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
 }
 
@@ -94,7 +93,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
     const int o = x - x0;
     const Lane zero(0.0f);
     if (!any) {
-        for (int p = 0; p < 14; ++p) ln::store(out[p] + o, p >= 9 && p <= 11 ? Lane(-1.0f) : zero);
+        for (int p = 0; p < kOutputs; ++p) ln::store(out[p] + o, p == kMaterialOut ? Lane(-1.0f) : zero);
         return;
     }
     Fields local;
@@ -152,14 +151,13 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
     const Lane motionX = ln::select(inFront, prevX - px, zero);
     const Lane motionY = ln::select(inFront, prevY - curY, zero);
 
-    const Lane outs[14] = {t, normal.x, normal.y, normal.z,
+    const Lane outs[kOutputs] = {t, normal.x, normal.y, normal.z,
                            g.f[kAlbedo], g.f[kAlbedo + 1],
                            g.f[kAlbedo + 2], g.f[kMetallic],
                            g.f[kRoughness], g.f[kMaterial],
-                           g.f[kInstance], g.f[kTri],
                            motionX, motionY};
-    for (int p = 0; p < 14; ++p) {
-        const Lane background = (p >= 9 && p <= 11) ? Lane(-1.0f) : zero;
+    for (int p = 0; p < kOutputs; ++p) {
+        const Lane background = p == kMaterialOut ? Lane(-1.0f) : zero;
         ln::store(out[p] + o, ln::select(vis, outs[p], background));
     }
 }
@@ -173,15 +171,15 @@ void resolveTile(const ResolveArgs& args, int tile) {
     // Each tile row is resolved into a small buffer, then streamed to the planes in whole
     // cache lines: fourteen planes written in 32-byte pieces would cost a read for
     // ownership per line and thrash the write-combining buffers.
-    alignas(64) float rowBuf[14][kTileSize];
-    float* bufPtr[14];
-    for (int p = 0; p < 14; ++p) bufPtr[p] = rowBuf[p];
+    alignas(64) float rowBuf[kOutputs][kTileSize];
+    float* bufPtr[kOutputs];
+    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = rowBuf[p];
     // Lane groups past the right edge land in the rows' 64-byte padding.
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     FieldCache cache;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache, bufPtr, x0);
-        for (int p = 0; p < 14; ++p) {
+        for (int p = 0; p < kOutputs; ++p) {
             float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }

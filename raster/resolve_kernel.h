@@ -24,6 +24,8 @@ struct ResolveInstance {
     float viewToPrevClip[16];  // column-major
 };
 
+inline constexpr int kResolveOutputs = 12;
+
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
     const ResolveInstance* instances;
@@ -35,8 +37,8 @@ struct ResolveArgs {
     int width, height, tilesX;
     float tanHalfX, tanHalfY;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
     float nearZ, farZ;
-    float* out[14];  // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId,
-                     // instanceId, triangleId, motion XY (all with outStride)
+    float* out[12];  // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId,
+                     // motion XY (all with outStride)
     std::size_t outStride;
 };
 

@@ -111,23 +111,38 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
 enum PlaneIndex {
     kColorR, kColorG, kColorB, kDisplayR, kDisplayG, kDisplayB, kShadow,
     kViewZ, kNormalX, kNormalY, kNormalZ, kAlbedoR, kAlbedoG, kAlbedoB, kMetallic, kRoughness,
-    kMaterialId, kInstanceId, kTriangleId, kMotionX, kMotionY, kPlaneCount
+    kMaterialId, kMotionX, kMotionY, kInstanceId, kTriangleId, kPlaneCount
 };
 const char* const kPlaneNames[kPlaneCount] = {
     "color.R", "color.G", "color.B", "display.R", "display.G", "display.B", "shadow",
     "viewZ", "normal.X", "normal.Y", "normal.Z", "albedo.R", "albedo.G", "albedo.B",
-    "metallic", "roughness", "materialId", "instanceId", "triangleId", "motion.X", "motion.Y"};
+    "metallic", "roughness", "materialId", "motion.X", "motion.Y", "instanceId", "triangleId"};
 
 // Gives the frame its planes, keeping the existing ones when names and sizes match. Every
 // pixel of every plane is written by a pass, so none is cleared here.
-void ensurePlanes(Frame& f, int w, int h) {
-    bool same = f.planes.size() == kPlaneCount;
-    for (int i = 0; same && i < kPlaneCount; ++i)
+void ensurePlanes(Frame& f, int w, int h, bool idPlanes) {
+    const int count = idPlanes ? kPlaneCount : kInstanceId;
+    bool same = int(f.planes.size()) == count;
+    for (int i = 0; same && i < count; ++i)
         same = f.planes[i].name == kPlaneNames[i] && f.planes[i].plane.width() == w &&
                f.planes[i].plane.height() == h;
     if (same) return;
     f.planes.clear();
-    for (const char* name : kPlaneNames) f.planes.push_back({name, PlaneF(w, h, kUninitialized)});
+    for (int i = 0; i < count; ++i) f.planes.push_back({kPlaneNames[i], PlaneF(w, h, kUninitialized)});
+}
+
+void writeIdPlanes(const std::vector<ResolveTriangle>& tris, const PlaneU32& ids, PlaneF& instance,
+                   PlaneF& triangle, const TileGrid& grid, int threads) {
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect r = grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const uint32_t id = ids.at(x, y);
+                const bool hit = id != kNoPrimitive;
+                instance.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
+                triangle.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
+            }
+    });
 }
 
 }  // namespace
@@ -214,9 +229,9 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     // Resolve: the G-buffer for visible pixels.
     t0 = Clock::now();
     const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, threads);
-    ensurePlanes(frame, w, h);
-    PlaneF* gplanes[14];
-    for (int i = 0; i < 14; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
+    ensurePlanes(frame, w, h, s.idPlanes);
+    PlaneF* gplanes[kResolveOutputs];
+    for (int i = 0; i < kResolveOutputs; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
     const TileGrid grid(w, h);
     const float tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
     ResolveArgs ra{};
@@ -234,11 +249,19 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     ra.tanHalfY = tanHalfY;
     ra.nearZ = camera.nearZ;
     ra.farZ = camera.farZ;
-    for (int i = 0; i < 14; ++i) ra.out[i] = gplanes[i]->row(0);
+    for (int i = 0; i < kResolveOutputs; ++i) ra.out[i] = gplanes[i]->row(0);
     ra.outStride = gplanes[0]->stride();
     const auto resolve = SSRT_DISPATCH(isa, resolveTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { resolve(ra, tile); });
     pass("resolve", t0);
+
+    // Instance and triangle ids as float planes, from the visibility buffer (optional).
+    if (s.idPlanes) {
+        t0 = Clock::now();
+        writeIdPlanes(tables.triangles, vb.ids, frame.planes[kInstanceId].plane,
+                      frame.planes[kTriangleId].plane, grid, threads);
+        pass("ids", t0);
+    }
 
     // Direct light, sky and tone map.
     t0 = Clock::now();

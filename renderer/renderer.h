@@ -27,6 +27,7 @@ struct RenderSettings {
     int pcfRadius = 1;            // PCF kernel is (2r+1)^2 texels
     float exposure = 1.0f;        // scale on linear radiance before the tone map
     uint32_t frame = 0;           // frame index (feeds the counter-based RNG)
+    bool idPlanes = true;         // also hand out instanceId and triangleId float planes
 
     // Throws std::invalid_argument with a one-line message naming the bad field.
     void validate() const;
@@ -72,9 +73,10 @@ public:
     const RenderSettings& settings() const { return settings_; }
 
     // Renders one frame. Planes: color.{R,G,B} (linear, exposed), display.{R,G,B} (tone
-    // mapped, sRGB encoded, in [0, 1]), viewZ, normal.{X,Y,Z}, albedo.{R,G,B}, metallic,
-    // roughness, materialId, instanceId, triangleId, motion.{X,Y}, shadow (light
-    // visibility, 0..1). Background pixels: viewZ 0, ids -1, motion 0.
+    // mapped, sRGB encoded, in [0, 1]), shadow (light visibility, 0..1), the G-buffer
+    // viewZ, normal.{X,Y,Z}, albedo.{R,G,B}, metallic, roughness, materialId, motion.{X,Y}
+    // (previous minus current position, pixels), and with idPlanes instanceId and
+    // triangleId. Background pixels: viewZ 0, ids -1, motion 0.
     Frame render(const Scene& scene, const Camera& camera, const Camera& previousCamera) const;
     Frame render(const Scene& scene) const {
         return render(scene, scene.camera, scene.previousCamera);
