@@ -1,1 +1,263 @@
-// placeholder replaced by the io helper
+#include "io/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+namespace ssrt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Paths and messages
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+std::string joinedExtensions() {
+    std::string out;
+    for (const std::string& ext : supportedImageExtensions())
+        out += (out.empty() ? "" : ", ") + ext;
+    return out;
+}
+
+// OpenImageIO's messages may span lines; ours are one line each.
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text.empty() ? "unknown error" : text;
+}
+
+[[noreturn]] void failWrite(const std::string& path, const std::string& reason) {
+    throw std::runtime_error("cannot write '" + path + "': " + oneLine(reason));
+}
+
+[[noreturn]] void failRead(const std::string& path, const std::string& reason) {
+    throw std::runtime_error("cannot read '" + path + "': " + oneLine(reason));
+}
+
+// Returns the lower-case extension, or throws if writeImage cannot write it.
+std::string checkedExtension(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    const auto& known = supportedImageExtensions();
+    if (std::find(known.begin(), known.end(), ext) == known.end()) {
+        const std::string shown = ext.empty() ? "no extension" : "extension '" + ext + "'";
+        throw std::invalid_argument("unsupported image " + shown + " in '" + path +
+                                    "' (supported: " + joinedExtensions() + ")");
+    }
+    return ext;
+}
+
+fs::path directoryOf(const std::string& path) {
+    fs::path dir = fs::path(path).parent_path();
+    return dir.empty() ? fs::path(".") : dir;
+}
+
+// The directory must exist and be a directory, and the target must not be a directory.
+void checkDirectory(const std::string& path) {
+    const fs::path dir = directoryOf(path);
+    std::error_code ec;
+    const fs::file_status status = fs::status(dir, ec);
+    if (!fs::exists(status)) failWrite(path, "directory '" + dir.string() + "' does not exist");
+    if (!fs::is_directory(status)) failWrite(path, "'" + dir.string() + "' is not a directory");
+    if (fs::is_directory(fs::status(path, ec))) failWrite(path, "it is a directory");
+}
+
+// A hidden name beside the target that keeps its extension (OpenImageIO picks the format by
+// it) and cannot collide with another writer in this or another process.
+fs::path temporaryPathFor(const std::string& path, const std::string& ext) {
+    static std::atomic<unsigned> counter{0};
+    // Built with append: GCC 12 gives a false -Wrestrict for "." + std::string.
+    std::string name(1, '.');
+    name.append(fs::path(path).filename().string()).append(".tmp-");
+    name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
+    name.append(ext);
+    return directoryOf(path) / name;
+}
+
+// Creates the temporary file exclusively, so the reason a directory refuses us comes from the
+// operating system itself (permissions, read-only file system, ...) rather than a guess.
+fs::path reserveTemporary(const std::string& path, const std::string& ext) {
+    const fs::path tmp = temporaryPathFor(path, ext);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int err = errno;
+        failWrite(path, "directory '" + directoryOf(path).string() + "' is not writable (" +
+                            std::strerror(err) + ")");
+    }
+    ::close(fd);
+    return tmp;
+}
+
+// ---------------------------------------------------------------------------------------
+// Frames
+
+constexpr const char* kDisplayPlanes[] = {"display.R", "display.G", "display.B"};
+
+const PlaneF* findPlane(const Frame& frame, const std::string& name) {
+    for (const NamedPlane& p : frame.planes)
+        if (p.name == name) return &p.plane;
+    return nullptr;
+}
+
+// Every plane must match the frame size and carry a unique, non-empty name; a PNG preview
+// needs the display planes.
+void checkFrame(const std::string& path, const Frame& frame, const std::string& ext) {
+    const auto fail = [&](const std::string& why) {
+        throw std::invalid_argument("cannot write '" + path + "': " + why);
+    };
+    if (frame.width <= 0 || frame.height <= 0) fail("the frame is empty");
+    if (frame.planes.empty()) fail("the frame has no planes");
+    std::set<std::string> seen;
+    for (const NamedPlane& p : frame.planes) {
+        if (p.name.empty()) fail("a plane has no name");
+        if (!seen.insert(p.name).second) fail("two planes are named '" + p.name + "'");
+        if (p.plane.width() != frame.width || p.plane.height() != frame.height)
+            fail("plane '" + p.name + "' is not the size of the frame");
+    }
+    if (ext != ".png") return;
+    for (const char* name : kDisplayPlanes)
+        if (!findPlane(frame, name)) fail(std::string("the frame has no '") + name + "' plane");
+}
+
+// round(clamp(v, 0, 1) * 255); the comparisons are written so that NaN lands on 0.
+uint8_t quantise(float v) {
+    const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    return uint8_t(std::lround(c * 255.0f));
+}
+
+// ---------------------------------------------------------------------------------------
+// Writers (into an already reserved temporary)
+
+void writeScanlines(const std::string& path, const fs::path& tmp, const OIIO::ImageSpec& spec,
+                    const std::vector<const PlaneF*>& planes, bool toBytes) {
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out) failWrite(path, OIIO::geterror());
+    if (!out->open(tmp.string(), spec)) failWrite(path, out->geterror());
+    const std::size_t n = planes.size();
+    std::vector<float> rowF(toBytes ? 0 : std::size_t(spec.width) * n);
+    std::vector<uint8_t> rowB(toBytes ? std::size_t(spec.width) * n : 0);
+    for (int y = 0; y < spec.height; ++y) {
+        // Interleave one row of the planes (each plane is its own array in memory).
+        for (std::size_t c = 0; c < n; ++c) {
+            const float* src = planes[c]->row(y);
+            for (int x = 0; x < spec.width; ++x) {
+                if (toBytes)
+                    rowB[x * n + c] = quantise(src[x]);
+                else
+                    rowF[x * n + c] = src[x];
+            }
+        }
+        const bool ok = toBytes ? out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, rowB.data())
+                                : out->write_scanline(y, 0, OIIO::TypeDesc::FLOAT, rowF.data());
+        if (!ok) failWrite(path, out->geterror());
+    }
+    if (!out->close()) failWrite(path, out->geterror());
+}
+
+void writePng(const std::string& path, const fs::path& tmp, const Frame& frame) {
+    std::vector<const PlaneF*> planes;
+    for (const char* name : kDisplayPlanes) planes.push_back(findPlane(frame, name));
+    OIIO::ImageSpec spec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("Software", "ssrt");
+    writeScanlines(path, tmp, spec, planes, true);
+}
+
+void writeExr(const std::string& path, const fs::path& tmp, const Frame& frame) {
+    std::vector<const PlaneF*> planes;
+    OIIO::ImageSpec spec(frame.width, frame.height, int(frame.planes.size()),
+                         OIIO::TypeDesc::FLOAT);
+    spec.channelnames.clear();
+    for (const NamedPlane& p : frame.planes) {
+        spec.channelnames.push_back(p.name);
+        planes.push_back(&p.plane);
+    }
+    // The constructor guessed RGBA; our fourth plane is not alpha and none is "Z" depth.
+    spec.alpha_channel = -1;
+    spec.z_channel = -1;
+    spec.attribute("compression", "zip");
+    spec.attribute("Software", "ssrt");
+    writeScanlines(path, tmp, spec, planes, false);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Public
+
+const std::vector<std::string>& supportedImageExtensions() {
+    static const std::vector<std::string> kExtensions{".png", ".exr"};
+    return kExtensions;
+}
+
+void checkWritable(const std::string& path) {
+    const std::string ext = checkedExtension(path);
+    checkDirectory(path);
+    const fs::path probe = reserveTemporary(path, ext);
+    std::error_code ec;
+    fs::remove(probe, ec);
+}
+
+void writeImage(const std::string& path, const Frame& frame) {
+    const std::string ext = checkedExtension(path);
+    checkFrame(path, frame, ext);
+    checkDirectory(path);
+    const fs::path tmp = reserveTemporary(path, ext);
+    try {
+        if (ext == ".png")
+            writePng(path, tmp, frame);
+        else
+            writeExr(path, tmp, frame);
+        // rename() within one directory replaces the target atomically: readers see the old
+        // file or the new one, never a half-written one.
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec) failWrite(path, ec.message());
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
+}
+
+std::vector<std::string> readChannelNames(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) failRead(path, OIIO::geterror());
+    return in->spec().channelnames;
+}
+
+std::vector<float> readChannel(const std::string& path, const std::string& channel, int& width,
+                               int& height) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) failRead(path, OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const auto& names = spec.channelnames;
+    const auto it = std::find(names.begin(), names.end(), channel);
+    if (it == names.end()) failRead(path, "it has no channel '" + channel + "'");
+    const int c = int(it - names.begin());
+    std::vector<float> data(std::size_t(spec.width) * spec.height);
+    if (!in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, data.data()))
+        failRead(path, in->geterror());
+    width = spec.width;
+    height = spec.height;
+    return data;
+}
+
+}  // namespace ssrt

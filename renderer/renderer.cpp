@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <oneapi/tbb/task_arena.h>
 #include <stdexcept>
 
 #include "core/tiles.h"
@@ -197,7 +198,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     frame.height = h;
     frame.stats = FrameStats{};
     frame.stats.isa = isa;
-    frame.stats.threads = threads;
+    frame.stats.threads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
     auto pass = [&](const char* name, Clock::time_point t0) {
         frame.stats.passes.push_back({name, msSince(t0)});
     };

@@ -1,0 +1,68 @@
+#include "cli/cli.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <exception>
+#include <ostream>
+#include <stdexcept>
+
+#include "cli/render_command.h"
+#include "cli/scenes_command.h"
+
+namespace ssrt::cli {
+
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+int reportErrors(std::ostream& err, const std::function<int()>& command) {
+    try {
+        return command();
+    } catch (const std::invalid_argument& e) {
+        err << "ssrt: error: " << oneLine(e.what()) << "\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        err << "ssrt: error: " << oneLine(e.what()) << "\n";
+        return kExitFailure;
+    }
+}
+
+int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    CLI::App app{"ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, direct light)",
+                 "ssrt"};
+    app.footer(
+        "Exit status: 0 success, 1 the work failed (file I/O, an ISA this CPU lacks, "
+        "rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for a command's "
+        "options.");
+    app.require_subcommand(1);
+    RenderOptions renderOptions;
+    CLI::App* render = addRenderCommand(app, renderOptions);
+    CLI::App* scenes = addScenesCommand(app);
+    if (argc <= 1) {
+        err << "ssrt: error: no command given (render or scenes; see 'ssrt --help')\n";
+        return kExitUsage;
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help arrives as a "parse error" whose exit code is success.
+        if (e.get_exit_code() == 0) return app.exit(e, out, err);
+        // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
+        const std::string first = argv[1];
+        if (!render->parsed() && !scenes->parsed() && first.rfind('-', 0) != 0) {
+            err << "ssrt: error: unknown command '" << first
+                << "' (expected render or scenes; see 'ssrt --help')\n";
+            return kExitUsage;
+        }
+        err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
+        return kExitUsage;
+    }
+    if (render->parsed())
+        return reportErrors(err, [&] { return runRender(renderOptions, out, err); });
+    if (scenes->parsed()) return reportErrors(err, [&] { return runScenes(out); });
+    return kExitUsage;  // unreachable: require_subcommand(1) holds
+}
+
+}  // namespace ssrt::cli

@@ -1,0 +1,259 @@
+#include "cli/render_command.h"
+
+#include <oneapi/tbb/info.h>
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/cli.h"
+#include "io/image_io.h"
+#include "scenes/builtin_scenes.h"
+
+namespace ssrt::cli {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Numbers from text
+
+inline constexpr long long kMaxThreads = 256;
+inline constexpr long long kMinShadowMap = 16;
+inline constexpr long long kMaxShadowMap = 8192;
+inline constexpr long long kMaxFrame = 4294967295ll;  // RenderSettings::frame is 32 bits
+
+[[noreturn]] void badValue(const std::string& option, const std::string& text,
+                           const std::string& expected) {
+    throw std::invalid_argument(option + ": invalid value '" + text + "' (expected " + expected +
+                                ")");
+}
+
+// The whole text must be a decimal integer in [lo, hi]; no sign tricks, spaces or suffixes.
+long long parseInteger(const std::string& option, const std::string& text, long long lo,
+                       long long hi) {
+    const std::string expected =
+        "an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
+    long long value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    // ec is set for non-numbers and for values beyond long long alike.
+    if (text.empty() || ptr != end || ec != std::errc{} || value < lo || value > hi)
+        badValue(option, text, expected);
+    return value;
+}
+
+// A finite number greater than zero (from_chars reads "nan" and "inf", so check both).
+float parsePositive(const std::string& option, const std::string& text) {
+    float value = 0.0f;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ptr != end || ec != std::errc{} || !std::isfinite(value) || value <= 0)
+        badValue(option, text, "a finite number greater than 0");
+    return value;
+}
+
+std::string defaultSceneName() {
+    const auto& scenes = builtinScenes();
+    return scenes.empty() ? "cornell" : scenes.front().name;
+}
+
+std::string knownScenes() {
+    std::string out;
+    for (const auto& s : builtinScenes()) out += (out.empty() ? "" : ", ") + s.name;
+    return out;
+}
+
+void checkSceneName(const std::string& name) {
+    for (const auto& s : builtinScenes())
+        if (s.name == name) return;
+    throw std::invalid_argument("--scene: unknown scene '" + name + "' (known: " + knownScenes() +
+                                ")");
+}
+
+std::string supportedIsaList() {
+    std::string out;
+    for (Isa isa : supportedIsas()) out += (out.empty() ? "" : ", ") + std::string(isaName(isa));
+    return out;
+}
+
+// The ISA the renderer will run, resolved now so a CPU without it fails before any work.
+// Errors name where the request came from: --isa, or SSRT_ISA under --isa auto.
+Isa resolveIsaFor(std::optional<Isa> requested) {
+    const std::string source = requested ? "--isa" : "SSRT_ISA";
+    try {
+        return resolveIsa(requested);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(source + ": " + e.what());
+    } catch (const std::exception& e) {
+        throw std::runtime_error(source + ": " + e.what() + " (this CPU runs " +
+                                 supportedIsaList() + ")");
+    }
+}
+
+int threadsFor(const RenderSettings& settings) {
+    // 0 means what oneTBB would use: every core this process may run on.
+    return settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+}
+
+std::string plural(int n, const std::string& noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// ---------------------------------------------------------------------------------------
+// The --stats table
+
+struct Counter {
+    const char* label;
+    uint64_t RasterStats::*field;
+};
+
+constexpr Counter kCounters[] = {
+    {"triangles in", &RasterStats::trianglesIn},
+    {"triangles invalid", &RasterStats::trianglesInvalid},
+    {"triangles culled", &RasterStats::trianglesCulled},
+    {"triangles outside", &RasterStats::trianglesOutside},
+    {"triangles clipped", &RasterStats::trianglesClipped},
+    {"triangles set up", &RasterStats::trianglesSetUp},
+    {"bin entries", &RasterStats::binEntries},
+    {"blocks rejected", &RasterStats::blocksRejected},
+    {"blocks accepted", &RasterStats::blocksAccepted},
+    {"blocks partial", &RasterStats::blocksPartial},
+    {"pixels tested", &RasterStats::pixelsTested},
+    {"pixels covered", &RasterStats::pixelsCovered},
+    {"pixels written", &RasterStats::pixelsWritten},
+};
+
+constexpr int kLabelWidth = 20;
+constexpr int kValueWidth = 14;
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Options
+
+RenderOptions::RenderOptions() {
+    const RenderSettings d;
+    scene = defaultSceneName();
+    width = std::to_string(d.width);
+    height = std::to_string(d.height);
+    threads = std::to_string(d.threads);
+    isa = d.isa ? std::string(isaName(*d.isa)) : "auto";
+    shadowMapSize = std::to_string(d.shadowMapSize);
+    std::ostringstream e;
+    e << d.exposure;
+    exposure = e.str();
+    frame = std::to_string(d.frame);
+}
+
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
+    CLI::App* cmd = app.add_subcommand("render", "Render one frame of a built-in scene to a file");
+    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
+                         const std::string& help) {
+        cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
+    };
+    add("-s,--scene", o.scene, "NAME", "Built-in scene to render (list them: ssrt scenes)");
+    add("--width", o.width, "INT", "Image width in pixels, 1 to " + std::to_string(kMaxImageSize));
+    add("--height", o.height, "INT",
+        "Image height in pixels, 1 to " + std::to_string(kMaxImageSize));
+    add("-j,--threads", o.threads, "INT",
+        "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = every core");
+    add("--isa", o.isa, "ISA",
+        "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA if set, "
+        "else the best this CPU runs");
+    add("--shadow-map-size", o.shadowMapSize, "INT",
+        "Shadow map texels per side, " + std::to_string(kMinShadowMap) + " to " +
+            std::to_string(kMaxShadowMap));
+    add("--exposure", o.exposure, "FLOAT", "Scale on linear radiance before the tone map, > 0");
+    add("--frame", o.frame, "INT", "Frame index (seeds the per-pixel random numbers)");
+    add("-o,--output", o.output, "FILE",
+        "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer)");
+    cmd->add_flag("--stats", o.stats, "Print per-pass times and rasterizer counters");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
+    return cmd;
+}
+
+RenderSettings settingsFrom(const RenderOptions& o) {
+    RenderSettings s;
+    s.width = int(parseInteger("--width", o.width, 1, kMaxImageSize));
+    s.height = int(parseInteger("--height", o.height, 1, kMaxImageSize));
+    s.threads = int(parseInteger("--threads", o.threads, 0, kMaxThreads));
+    try {
+        s.isa = parseIsa(o.isa);
+    } catch (const std::exception& e) {
+        throw std::invalid_argument(std::string("--isa: ") + e.what());
+    }
+    s.shadowMapSize =
+        int(parseInteger("--shadow-map-size", o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
+    s.exposure = parsePositive("--exposure", o.exposure);
+    s.frame = uint32_t(parseInteger("--frame", o.frame, 0, kMaxFrame));
+    s.validate();
+    return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// The command
+
+int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
+    // Everything that can be wrong with the request fails here, before any rendering and
+    // before any file exists.
+    const RenderSettings settings = settingsFrom(o);
+    checkSceneName(o.scene);
+    const Isa isa = resolveIsaFor(settings.isa);
+    checkWritable(o.output);
+
+    const Scene scene = makeBuiltinScene(o.scene);
+    if (!o.quiet) {
+        err << "rendering " << o.scene << " " << settings.width << "x" << settings.height << " on "
+            << isaName(isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const Frame frame = Renderer(settings).render(scene);
+    const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - start;
+
+    writeImage(o.output, frame);
+    if (!o.quiet) err << "wrote " << o.output << "\n";
+    if (o.stats) {
+        // The renderer may report the thread setting (0 = every core) rather than the count.
+        FrameStats stats = frame.stats;
+        if (stats.threads <= 0) stats.threads = threadsFor(settings);
+        printStats(out, stats, wall.count());
+    }
+    return kExitOk;
+}
+
+void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
+    std::ios saved(nullptr);  // the caller's stream formatting, restored at the end
+    saved.copyfmt(out);
+    const auto row = [&](const std::string& label) -> std::ostream& {
+        return out << "  " << std::left << std::setw(kLabelWidth) << label << std::right;
+    };
+    out << "isa " << isaName(stats.isa) << ", " << plural(stats.threads, "thread") << "\n\n";
+
+    out << std::left << std::setw(kLabelWidth + 2) << "pass" << std::right << std::setw(kValueWidth)
+        << "ms"
+        << "\n";
+    double sum = 0.0;
+    out << std::fixed << std::setprecision(3);
+    for (const PassTime& p : stats.passes) {
+        row(p.name) << std::setw(kValueWidth) << p.ms << "\n";
+        sum += p.ms;
+    }
+    row("sum of passes") << std::setw(kValueWidth) << sum << "\n";
+    row("render call") << std::setw(kValueWidth) << wallMs << "\n\n";
+
+    out << std::left << std::setw(kLabelWidth + 2) << "raster counter" << std::right
+        << std::setw(kValueWidth) << "visibility" << std::setw(kValueWidth) << "shadow"
+        << "\n";
+    for (const Counter& c : kCounters) {
+        row(c.label) << std::setw(kValueWidth) << stats.visibility.*c.field
+                     << std::setw(kValueWidth) << stats.shadow.*c.field << "\n";
+    }
+    out.copyfmt(saved);
+}
+
+}  // namespace ssrt::cli

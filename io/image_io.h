@@ -1,0 +1,42 @@
+// Image files at the edge of the renderer: EXR with every named plane, PNG previews.
+// OpenImageIO stays behind this header so the core library never sees it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "renderer/renderer.h"
+
+namespace ssrt {
+
+// Writes a frame, the format chosen by the extension (case-insensitive):
+//   .png  8-bit RGB from display.{R,G,B} (already tone mapped and sRGB encoded), each value
+//         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0.
+//   .exr  32-bit float, one channel per named plane, channel name = plane name ("color.R",
+//         "viewZ", ...), so viewers show "color", "normal", ... as layers. Float, not half:
+//         ids and view depth need every bit.
+// The file appears whole or not at all: it is written to a temporary beside the target and
+// renamed over it only on success. Throws std::invalid_argument for an unsupported extension
+// or a frame without the planes the format needs, std::runtime_error (one line, naming the
+// path and the reason) when the file cannot be written.
+void writeImage(const std::string& path, const Frame& frame);
+
+// Fails fast, before minutes of rendering, for a path writeImage would reject: throws
+// std::invalid_argument for an unsupported extension and std::runtime_error when the
+// directory is missing, is not a directory, or is not writable, or the path is a directory.
+// Creates and removes a probe file, so nothing is left behind.
+void checkWritable(const std::string& path);
+
+// Extensions writeImage accepts, with the dot: ".png", ".exr".
+const std::vector<std::string>& supportedImageExtensions();
+
+// Channel names of an image file in the order the reader reports them (OpenEXR stores
+// channels sorted by name, so this need not be the order they were written in).
+std::vector<std::string> readChannelNames(const std::string& path);
+
+// One channel of an image file as floats, row by row without padding; sets width and height.
+// Throws std::runtime_error naming the path if the file or the channel cannot be read.
+std::vector<float> readChannel(const std::string& path, const std::string& channel, int& width,
+                               int& height);
+
+}  // namespace ssrt

@@ -1,0 +1,267 @@
+// The ssrt command, driven in-process through runCli: bad input gives one error line, the
+// right exit status and no file; help tells the truth about defaults; a render writes a file.
+#include <doctest/doctest.h>
+
+// Needs the ssrt_cli_lib target, which defines SSRT_CLI_LIB for those linking it.
+#ifdef SSRT_CLI_LIB
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.h"
+#include "cli/render_command.h"
+#include "io/image_io.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path = fs::temp_directory_path() /
+               ("ssrt-cli-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    std::string file(const std::string& name) const { return (path / name).string(); }
+    bool empty() const { return fs::is_empty(path); }
+};
+
+struct Result {
+    int code = -1;
+    std::string out, err;
+};
+
+Result run(std::vector<std::string> args) {
+    args.insert(args.begin(), "ssrt");
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    Result r;
+    r.code = cli::runCli(int(argv.size()), argv.data(), out, err);
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// Exactly one line, starting "ssrt: error: ".
+bool isOneErrorLine(const std::string& err) {
+    return err.rfind("ssrt: error: ", 0) == 0 && std::count(err.begin(), err.end(), '\n') == 1 &&
+           err.back() == '\n';
+}
+
+// Sets an environment variable for one scope and restores the old value.
+struct ScopedEnv {
+    std::string name;
+    std::optional<std::string> old;
+    ScopedEnv(const std::string& n, const char* value) : name(n) {
+        if (const char* v = std::getenv(n.c_str())) old = v;
+        if (value)
+            ::setenv(n.c_str(), value, 1);
+        else
+            ::unsetenv(n.c_str());
+    }
+    ~ScopedEnv() {
+        if (old)
+            ::setenv(name.c_str(), old->c_str(), 1);
+        else
+            ::unsetenv(name.c_str());
+    }
+};
+
+}  // namespace
+
+TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
+    const Result top = run({"--help"});
+    CHECK(top.code == 0);
+    CHECK(contains(top.out, "render"));
+    CHECK(contains(top.out, "scenes"));
+    CHECK(top.err.empty());
+
+    const Result help = run({"render", "--help"});
+    CHECK(help.code == 0);
+    const RenderSettings d;
+    for (const std::string& part : std::vector<std::string>{
+             "--width INT=" + std::to_string(d.width), "--height INT=" + std::to_string(d.height),
+             "--threads INT=" + std::to_string(d.threads), "--isa ISA=auto",
+             "--shadow-map-size INT=" + std::to_string(d.shadowMapSize), "--exposure FLOAT=1",
+             "--frame INT=" + std::to_string(d.frame), "--output FILE=ssrt.png",
+             "--scene NAME=" + builtinScenes().front().name, "--stats", "--quiet"}) {
+        CAPTURE(part);
+        CHECK(contains(help.out, part));
+    }
+}
+
+TEST_CASE("cli: no command, an unknown command or option is a usage error") {
+    for (const auto& args : std::vector<std::vector<std::string>>{
+             {}, {"draw"}, {"render", "--colour", "red"}, {"render", "--width"}}) {
+        const Result r = run(args);
+        CHECK(r.code == cli::kExitUsage);
+        CHECK(isOneErrorLine(r.err));
+    }
+}
+
+TEST_CASE("cli: a mistyped command is named") {
+    const Result r = run({"rendr", "--width", "64"});
+    CHECK(r.code == cli::kExitUsage);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "'rendr'"));
+}
+
+TEST_CASE("cli: every bad number is one error line naming the option and value, no file") {
+    TempDir dir;
+    const std::string output = dir.file("out.png");
+    const std::vector<std::pair<std::string, std::vector<std::string>>> bad{
+        {"--width", {"0", "-5", "8193", "abc", "12px", "1e3", "99999999999999999999", "", "7.5"}},
+        {"--height", {"nan", "0"}},
+        {"--threads", {"-1", "257"}},
+        {"--exposure", {"nan", "inf", "0", "-1", "bright", "1e39"}},
+        {"--shadow-map-size", {"8", "9000"}},
+        {"--frame", {"-1", "4294967296"}},
+        {"--isa", {"avx9"}},
+        {"--scene", {"nosuch"}}};
+    for (const auto& [option, values] : bad) {
+        for (const std::string& value : values) {
+            CAPTURE(option);
+            CAPTURE(value);
+            const Result r = run({"render", option, value, "-o", output, "--quiet"});
+            CHECK(r.code == cli::kExitUsage);
+            CHECK(isOneErrorLine(r.err));
+            CHECK(contains(r.err, option));
+            CHECK(contains(r.err, "'" + value + "'"));
+        }
+    }
+    CHECK(dir.empty());
+}
+
+TEST_CASE("cli: an unknown scene is named and the known ones listed") {
+    TempDir dir;
+    const Result r = run({"render", "--scene", "teapot", "-o", dir.file("never.png")});
+    CHECK(r.code == cli::kExitUsage);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "teapot"));
+    for (const auto& scene : builtinScenes()) CHECK(contains(r.err, scene.name));
+    CHECK(dir.empty());
+}
+
+TEST_CASE("cli: a bad output path fails before rendering and leaves no file") {
+    TempDir dir;
+    Result r = run({"render", "-o", dir.file("out.jpg")});
+    CHECK(r.code == cli::kExitUsage);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, ".jpg"));
+
+    r = run({"render", "-o", dir.file("missing/out.png")});
+    CHECK(r.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "does not exist"));
+    CHECK_FALSE(contains(r.err, "rendering"));  // no progress: it failed before any work
+    CHECK(dir.empty());
+}
+
+TEST_CASE("cli: a bad SSRT_ISA is named when --isa is auto") {
+    TempDir dir;
+    ScopedEnv env("SSRT_ISA", "mmx");
+    const Result r = run({"render", "-o", dir.file("out.png")});
+    CHECK(r.code == cli::kExitUsage);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "SSRT_ISA"));
+    CHECK(contains(r.err, "mmx"));
+    CHECK(dir.empty());
+}
+
+TEST_CASE("cli: an ISA this CPU lacks is a runtime error that lists what it runs") {
+    std::optional<Isa> missing;
+    for (Isa isa : kAllIsas)
+        if (!isaSupported(isa)) missing = isa;
+    if (!missing) return;  // this machine runs them all
+    TempDir dir;
+    const Result r =
+        run({"render", "--isa", std::string(isaName(*missing)), "-o", dir.file("out.png")});
+    CHECK(r.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "scalar"));
+    CHECK(dir.empty());
+}
+
+TEST_CASE("cli: scenes lists every built-in scene with its description") {
+    const Result r = run({"scenes"});
+    CHECK(r.code == 0);
+    for (const auto& scene : builtinScenes()) {
+        CHECK(contains(r.out, scene.name));
+        CHECK(contains(r.out, scene.description));
+    }
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == long(builtinScenes().size()));
+}
+
+TEST_CASE("cli: --stats prints every pass and every raster counter of both passes") {
+    FrameStats stats;
+    stats.passes = {{"shadow", 1.25}, {"visibility", 2.5}, {"resolve", 0.125}};
+    stats.isa = Isa::SSE2;
+    stats.threads = 3;
+    // Distinct values per counter, so a row missing or printed from the wrong pass shows.
+    uint64_t* vis = &stats.visibility.trianglesIn;
+    uint64_t* sha = &stats.shadow.trianglesIn;
+    constexpr int kCounters = sizeof(RasterStats) / sizeof(uint64_t);
+    for (int i = 0; i < kCounters; ++i) {
+        vis[i] = 1000 + i;
+        sha[i] = 2000 + i;
+    }
+    std::ostringstream out;
+    cli::printStats(out, stats, 4.5);
+    const std::string text = out.str();
+    CHECK(contains(text, "sse2"));
+    CHECK(contains(text, "3 threads"));
+    for (const char* part :
+         {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875", "4.500"})
+        CHECK(contains(text, part));
+    for (int i = 0; i < kCounters; ++i) {
+        CAPTURE(i);
+        CHECK(contains(text, std::to_string(1000 + i) + " "));
+        CHECK(contains(text, std::to_string(2000 + i) + "\n"));
+    }
+}
+
+TEST_CASE("cli: render writes the file, reports progress and stats") {
+    TempDir dir;
+    const std::string path = dir.file("frame.exr");
+    Result r =
+        run({"render", "--width", "24", "--height", "16", "--threads", "1", "-o", path, "--stats"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK(contains(r.err, "rendering " + builtinScenes().front().name + " 24x16 on "));
+    CHECK(contains(r.err, ", 1 thread..."));
+    CHECK(contains(r.err, "wrote " + path));
+    CHECK(contains(r.out, "pixels written"));
+    const auto channels = readChannelNames(path);
+    for (const char* name : {"display.R", "color.R", "viewZ"})
+        CHECK(std::find(channels.begin(), channels.end(), name) != channels.end());
+
+    r = run({"render", "--width", "8", "--height", "8", "-o", dir.file("quiet.png"), "-q"});
+    CHECK(r.code == 0);
+    CHECK(r.err.empty());
+    CHECK(r.out.empty());
+    CHECK(fs::exists(dir.file("quiet.png")));
+}
+
+#else
+#pragma message("tests/cli/cli_test.cpp skipped: link ssrt_cli_lib (defines SSRT_CLI_LIB)")
+#endif

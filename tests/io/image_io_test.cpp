@@ -1,0 +1,263 @@
+// Image files: EXR keeps every plane's name and bits, PNG quantises the display planes, and a
+// write that cannot succeed throws a clear error and leaves the directory as it was.
+#include "io/image_io.h"
+
+#include <doctest/doctest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace ssrt;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh empty directory, removed with everything in it at the end of the test.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path = fs::temp_directory_path() /
+               ("ssrt-io-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::permissions(path, fs::perms::owner_all, fs::perm_options::add, ec);
+        fs::remove_all(path, ec);
+    }
+    std::string file(const std::string& name) const { return (path / name).string(); }
+    // Every entry, hidden ones (our temporaries start with '.') included, sorted.
+    std::vector<std::string> listing() const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+};
+
+// A value per (plane, pixel) that no other (plane, pixel) shares, plus a few that must survive
+// bit for bit: -1 (background ids), a denormal and the largest float.
+float probeValue(int plane, int x, int y, int width) {
+    const int i = y * width + x;
+    if (i == 0) return -1.0f;
+    if (i == 1) return std::numeric_limits<float>::denorm_min() * float(plane + 1);
+    if (i == 2) return std::numeric_limits<float>::max();
+    return float(plane * 1000 + i) + 0.1f;
+}
+
+Frame makeFrame(int width, int height, const std::vector<std::string>& names) {
+    Frame frame;
+    frame.width = width;
+    frame.height = height;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        PlaneF plane(width, height);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) plane.at(x, y) = probeValue(int(c), x, y, width);
+        frame.planes.push_back({names[c], std::move(plane)});
+    }
+    return frame;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("EXR round trip keeps every plane's name and bits") {
+    TempDir dir;
+    const std::vector<std::string> names{"color.R",  "color.G",  "color.B",    "viewZ",
+                                         "normal.X", "normal.Y", "materialId", "shadow"};
+    const Frame frame = makeFrame(5, 3, names);
+    const std::string path = dir.file("frame.exr");
+    writeImage(path, frame);
+    CHECK(dir.listing() == std::vector<std::string>{"frame.exr"});
+
+    // OpenEXR stores channels sorted, so compare as sets.
+    std::vector<std::string> got = readChannelNames(path);
+    std::vector<std::string> want = names;
+    std::sort(got.begin(), got.end());
+    std::sort(want.begin(), want.end());
+    CHECK(got == want);
+
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        CAPTURE(names[c]);
+        int width = 0, height = 0;
+        const std::vector<float> values = readChannel(path, names[c], width, height);
+        REQUIRE(width == 5);
+        REQUIRE(height == 3);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                CHECK(sameBits(values[y * width + x], probeValue(int(c), x, y, width)));
+    }
+}
+
+TEST_CASE("PNG quantises display planes as round(clamp(v, 0, 1) * 255)") {
+    TempDir dir;
+    // Truncating instead of rounding, or not clamping, changes at least one of these.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<float> in{-1.0f,  0.0019f, 0.0021f, 0.2f, 0.998f,
+                                0.999f, 1.0f,    2.0f,    nan,  inf};
+    const std::vector<int> want{0, 0, 1, 51, 254, 255, 255, 255, 0, 255};
+    const int width = int(in.size());
+    Frame frame = makeFrame(width, 1, {"display.R", "display.G", "display.B", "viewZ"});
+    for (int x = 0; x < width; ++x) {
+        frame.planes[0].plane.at(x, 0) = in[x];
+        frame.planes[1].plane.at(x, 0) = in[width - 1 - x];  // channels must not be mixed up
+        frame.planes[2].plane.at(x, 0) = 0.2f;
+    }
+    const std::string path = dir.file("preview.png");
+    writeImage(path, frame);
+    CHECK(readChannelNames(path) == std::vector<std::string>{"R", "G", "B"});
+
+    int w = 0, h = 0;
+    const auto r = readChannel(path, "R", w, h);
+    const auto g = readChannel(path, "G", w, h);
+    const auto b = readChannel(path, "B", w, h);
+    REQUIRE(w == width);
+    REQUIRE(h == 1);
+    for (int x = 0; x < width; ++x) {
+        CAPTURE(x);
+        CHECK(std::lround(r[x] * 255.0f) == want[x]);
+        CHECK(std::lround(g[x] * 255.0f) == want[width - 1 - x]);
+        CHECK(std::lround(b[x] * 255.0f) == 51);
+    }
+}
+
+TEST_CASE("extensions are checked, case-insensitively, before anything is written") {
+    TempDir dir;
+    const Frame frame = makeFrame(2, 2, {"display.R", "display.G", "display.B"});
+    for (const char* name : {"out.jpg", "out", "out.png.bak", "out.tiff"}) {
+        CAPTURE(name);
+        CHECK_THROWS_AS(writeImage(dir.file(name), frame), std::invalid_argument);
+        CHECK_THROWS_AS(checkWritable(dir.file(name)), std::invalid_argument);
+    }
+    CHECK(dir.listing().empty());
+    try {
+        writeImage(dir.file("out.jpg"), frame);
+    } catch (const std::invalid_argument& e) {
+        const std::string message = e.what();
+        CHECK(message.find(".jpg") != std::string::npos);
+        CHECK(message.find(".png") != std::string::npos);
+        CHECK(message.find(".exr") != std::string::npos);
+    }
+    writeImage(dir.file("upper.PNG"), frame);
+    writeImage(dir.file("upper.EXR"), frame);
+    CHECK(dir.listing() == std::vector<std::string>{"upper.EXR", "upper.PNG"});
+}
+
+TEST_CASE("a PNG needs the display planes") {
+    TempDir dir;
+    const Frame frame = makeFrame(2, 2, {"display.R", "display.G", "viewZ"});
+    CHECK_THROWS_WITH_AS(writeImage(dir.file("x.png"), frame), doctest::Contains("display.B"),
+                         std::invalid_argument);
+    CHECK(dir.listing().empty());
+}
+
+TEST_CASE("a frame whose planes disagree with it is refused") {
+    TempDir dir;
+    Frame frame = makeFrame(4, 4, {"viewZ", "shadow"});
+    frame.planes[1].plane = PlaneF(3, 4);
+    CHECK_THROWS_WITH_AS(writeImage(dir.file("x.exr"), frame), doctest::Contains("shadow"),
+                         std::invalid_argument);
+    frame = makeFrame(4, 4, {"viewZ", "viewZ"});
+    CHECK_THROWS_AS(writeImage(dir.file("x.exr"), frame), std::invalid_argument);
+    CHECK(dir.listing().empty());
+}
+
+TEST_CASE("a missing directory fails with one line naming the path, and creates nothing") {
+    TempDir dir;
+    const Frame frame = makeFrame(2, 2, {"display.R", "display.G", "display.B"});
+    const std::string path = dir.file("missing/out.exr");
+    for (int check = 0; check < 2; ++check) {
+        try {
+            if (check)
+                checkWritable(path);
+            else
+                writeImage(path, frame);
+            FAIL("no exception");
+        } catch (const std::runtime_error& e) {
+            const std::string message = e.what();
+            CHECK(message.find(path) != std::string::npos);
+            CHECK(message.find("does not exist") != std::string::npos);
+            CHECK(message.find('\n') == std::string::npos);
+        }
+    }
+    CHECK(dir.listing().empty());
+}
+
+TEST_CASE("unwritable places fail with runtime_error and leave nothing behind") {
+    TempDir dir;
+    const Frame frame = makeFrame(2, 2, {"display.R", "display.G", "display.B"});
+
+    // A "directory" that is a regular file.
+    { std::ofstream(dir.file("plain")) << "x"; }
+    CHECK_THROWS_AS(writeImage(dir.file("plain/out.png"), frame), std::runtime_error);
+    CHECK_THROWS_AS(checkWritable(dir.file("plain/out.png")), std::runtime_error);
+    // The target is a directory.
+    fs::create_directory(dir.path / "sub.png");
+    CHECK_THROWS_AS(writeImage(dir.file("sub.png"), frame), std::runtime_error);
+    CHECK_THROWS_AS(checkWritable(dir.file("sub.png")), std::runtime_error);
+    CHECK(fs::is_directory(dir.path / "sub.png"));
+    CHECK(dir.listing() == std::vector<std::string>{"plain", "sub.png"});
+
+    // /proc refuses new files even to root.
+    CHECK_THROWS_WITH_AS(writeImage("/proc/ssrt-io-test.png", frame),
+                         doctest::Contains("not writable"), std::runtime_error);
+    CHECK_THROWS_AS(checkWritable("/proc/ssrt-io-test.png"), std::runtime_error);
+    CHECK_FALSE(fs::exists("/proc/ssrt-io-test.png"));
+
+    // A read-only directory (root ignores permissions, so only as another user).
+    if (::geteuid() != 0) {
+        fs::create_directory(dir.path / "ro");
+        fs::permissions(dir.path / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+        CHECK_THROWS_AS(writeImage(dir.file("ro/out.png"), frame), std::runtime_error);
+        CHECK_THROWS_AS(checkWritable(dir.file("ro/out.png")), std::runtime_error);
+        fs::permissions(dir.path / "ro", fs::perms::owner_all);
+        CHECK(fs::is_empty(dir.path / "ro"));
+    }
+}
+
+TEST_CASE("checkWritable accepts a good path and leaves no file") {
+    TempDir dir;
+    checkWritable(dir.file("out.png"));
+    checkWritable(dir.file("out.exr"));
+    CHECK(dir.listing().empty());
+
+    // An existing file is fine (it will be replaced) and is left untouched.
+    { std::ofstream(dir.file("old.png")) << "old"; }
+    checkWritable(dir.file("old.png"));
+    CHECK(dir.listing() == std::vector<std::string>{"old.png"});
+    CHECK(fs::file_size(dir.path / "old.png") == 3);
+}
+
+TEST_CASE("writing over an existing file replaces it and leaves no temporary") {
+    TempDir dir;
+    const std::string path = dir.file("frame.exr");
+    { std::ofstream(path) << "not an image"; }
+    writeImage(path, makeFrame(3, 2, {"viewZ"}));
+    writeImage(path, makeFrame(4, 2, {"viewZ", "shadow"}));
+    CHECK(dir.listing() == std::vector<std::string>{"frame.exr"});
+    int w = 0, h = 0;
+    readChannel(path, "shadow", w, h);
+    CHECK(w == 4);
+}
+
+TEST_CASE("reading names the path and the missing channel") {
+    TempDir dir;
+    const std::string path = dir.file("frame.exr");
+    writeImage(path, makeFrame(2, 2, {"viewZ"}));
+    int w = 0, h = 0;
+    CHECK_THROWS_WITH_AS(readChannel(path, "normal.X", w, h), doctest::Contains("normal.X"),
+                         std::runtime_error);
+    CHECK_THROWS_AS(readChannelNames(dir.file("none.exr")), std::runtime_error);
+}
