@@ -75,16 +75,12 @@ bool needsClipping(const RasterView& view, const glm::vec4 clip[3], bool& allOut
     return any;
 }
 
-struct ScreenVertex {
-    int32_t x, y;  // 24.8 fixed point
-    double q;      // depth key
-};
-
 ScreenVertex toScreen(const glm::vec4& c, const RasterView& view) {
     const double invW = 1.0 / double(c.w);
     const double sx = (double(c.x) * invW * 0.5 + 0.5) * view.width;
     const double sy = (0.5 - double(c.y) * invW * 0.5) * view.height;
     ScreenVertex v;
+    v.inside = true;
     v.x = int32_t(std::floor(sx * kSubPixel + 0.5));
     v.y = int32_t(std::floor(sy * kSubPixel + 0.5));
     v.q = view.perspective ? invW : 0.5 - 0.5 * double(c.z) * invW;
@@ -159,6 +155,17 @@ bool setupScreenTriangle(ScreenVertex v0, ScreenVertex v1, ScreenVertex v2, uint
 
 }  // namespace
 
+// True when the vertex needs no clipping (and is finite): its screen position can be
+// computed once and shared by every triangle that uses it.
+static bool insideClipVolume(const glm::vec4& c, const RasterView& view) {
+    if (!finite4(c)) return false;
+    const ClipPlanes planes = clipPlanes(view);
+    for (int k = 0; k < planes.count; ++k)
+        if (planeDistance(planes.p[k], c, view.perspective && k == 0, view.nearW) < 0.0f)
+            return false;
+    return true;
+}
+
 bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack,
                    const RasterView& view, std::vector<TriangleSetup>& out, RasterStats& stats) {
     if (!finite4(clip[0]) || !finite4(clip[1]) || !finite4(clip[2])) {
@@ -217,12 +224,22 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
     }
     tv.triangleCount = triCount;
     tv.clip.resize(vertexCount);
-    parallelFor(int(scene.instances.size()), threads, [&](int i) {
-        const Instance& inst = scene.instances[i];
-        const glm::mat4 m = view.viewProj * inst.transform;
-        const auto& positions = scene.meshes[inst.mesh].positions;
-        glm::vec4* out = tv.clip.data() + tv.instanceOffset[i];
-        for (std::size_t v = 0; v < positions.size(); ++v) out[v] = m * glm::vec4(positions[v], 1.0f);
+    tv.screen.resize(vertexCount);
+    // Chunks of vertices across all instances, so one big mesh still uses every thread.
+    constexpr uint32_t kChunk = 4096;
+    parallelFor(int((vertexCount + kChunk - 1) / kChunk), threads, [&](int c) {
+        const uint32_t begin = uint32_t(c) * kChunk, end = std::min(vertexCount, begin + kChunk);
+        std::size_t i = std::upper_bound(tv.instanceOffset.begin(), tv.instanceOffset.end(), begin) -
+                        tv.instanceOffset.begin() - 1;
+        for (uint32_t v = begin; v < end; ++v) {
+            while (i + 1 < tv.instanceOffset.size() && tv.instanceOffset[i + 1] <= v) ++i;
+            const Instance& inst = scene.instances[i];
+            const glm::mat4 m = view.viewProj * inst.transform;
+            const glm::vec3& p = scene.meshes[inst.mesh].positions[v - tv.instanceOffset[i]];
+            tv.clip[v] = m * glm::vec4(p, 1.0f);
+            tv.screen[v] = insideClipVolume(tv.clip[v], view) ? toScreen(tv.clip[v], view)
+                                                             : ScreenVertex{0, 0, 0.0, false};
+        }
     });
     return tv;
 }
@@ -251,11 +268,18 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
             const bool cull =
                 view.cullBackFaces && !scene.materials[instance.material].doubleSided;
             const uint32_t local = prim - tv.triangleOffset[inst];
-            const glm::vec4* base = tv.clip.data() + tv.instanceOffset[inst];
-            const glm::vec4 clip[3] = {base[mesh.indices[3 * local]],
-                                       base[mesh.indices[3 * local + 1]],
-                                       base[mesh.indices[3 * local + 2]]};
+            const uint32_t i0 = tv.instanceOffset[inst] + mesh.indices[3 * local];
+            const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];
+            const uint32_t i2 = tv.instanceOffset[inst] + mesh.indices[3 * local + 2];
             ++stats.trianglesIn;
+            const ScreenVertex &s0 = tv.screen[i0], &s1 = tv.screen[i1], &s2 = tv.screen[i2];
+            if (s0.inside && s1.inside && s2.inside) {
+                // Common case: no clipping, vertices snapped once and shared.
+                TriangleSetup t;
+                if (setupScreenTriangle(s0, s1, s2, prim, cull, view, t, stats)) out.push_back(t);
+                continue;
+            }
+            const glm::vec4 clip[3] = {tv.clip[i0], tv.clip[i1], tv.clip[i2]};
             setupTriangle(clip, prim, cull, view, out, stats);
         }
     });

@@ -21,9 +21,18 @@ struct RasterView {
     bool cullBackFaces = true;  // honour Material::doubleSided (false: draw every face)
 };
 
-// Clip-space vertices of every instance, in instance order.
+// A vertex snapped to the screen: 24.8 fixed point and the depth key. Only valid when
+// `inside` (within the near plane and the guard band); other vertices go through clipping.
+struct ScreenVertex {
+    int32_t x, y;
+    double q;
+    bool inside;
+};
+
+// Clip-space vertices of every instance, in instance order, and their screen positions.
 struct TransformedVertices {
     std::vector<glm::vec4> clip;
+    std::vector<ScreenVertex> screen;
     std::vector<uint32_t> instanceOffset;  // first vertex of each instance in `clip`
     std::vector<uint32_t> triangleOffset;  // first global triangle id of each instance
     uint32_t triangleCount = 0;
