@@ -2,6 +2,8 @@
 // right exit status and no file; help tells the truth about defaults; a render writes a file.
 #include <doctest/doctest.h>
 
+#include "temp_dir.h"
+
 // Needs the ssrt_cli_lib target, which defines SSRT_CLI_LIB for those linking it.
 #ifdef SSRT_CLI_LIB
 
@@ -26,21 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static std::atomic<int> counter{0};
-        path = fs::temp_directory_path() /
-               ("ssrt-cli-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-    bool empty() const { return fs::is_empty(path); }
-};
+using test::TempDir;
 
 struct Result {
     int code = -1;

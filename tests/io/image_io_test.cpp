@@ -3,6 +3,8 @@
 #include "io/image_io.h"
 
 #include <doctest/doctest.h>
+
+#include "temp_dir.h"
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,29 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh empty directory, removed with everything in it at the end of the test.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static std::atomic<int> counter{0};
-        path = fs::temp_directory_path() /
-               ("ssrt-io-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::permissions(path, fs::perms::owner_all, fs::perm_options::add, ec);
-        fs::remove_all(path, ec);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-    // Every entry, hidden ones (our temporaries start with '.') included, sorted.
-    std::vector<std::string> listing() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-};
+using test::TempDir;
 
 // A value per (plane, pixel) that no other (plane, pixel) shares, plus a few that must survive
 // bit for bit: -1 (background ids), a denormal and the largest float.
