@@ -1,5 +1,6 @@
 #include "renderer/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -320,6 +321,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     for (const Material& m : scene.materials)
         emissive.insert(emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});
     da.emissive = emissive.data();
+    da.anyEmissive = std::any_of(emissive.begin(), emissive.end(), [](float e) { return e != 0.0f; });
     da.shadow = shadow.depth.row(0);
     da.shadowStride = shadow.depth.stride();
     da.shadowSize = s.shadowMapSize;

@@ -154,12 +154,15 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
         s.view = {Lane(0.0f) - toCam.x, Lane(0.0f) - toCam.y, Lane(0.0f) - toCam.z};
         Lane vis;
         V3 lit = shadeSurface(a, s, vis);
-        // Emission by material id (a scalar gather).
-        alignas(64) float mat[kW], em[3][kW];
-        ln::store(mat, ln::load<Lane>(a.g[9] + go));
-        for (int l = 0; l < kW; ++l)
-            for (int c = 0; c < 3; ++c) em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
-        lit = lit + V3{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+        // Emission by material id (a scalar gather), when any material emits.
+        if (a.anyEmissive) {
+            alignas(64) float mat[kW], em[3][kW];
+            ln::store(mat, ln::load<Lane>(a.g[9] + go));
+            for (int l = 0; l < kW; ++l)
+                for (int c = 0; c < 3; ++c)
+                    em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
+            lit = lit + V3{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+        }
         color = ln::select(background, color, lit);
         visibility = ln::select(background, visibility, vis);
     }

@@ -22,6 +22,7 @@ struct DirectArgs {
     bool skyGradient;
     float skyZenith[3], skyHorizon[3], skyGround[3];  // radiance (intensity folded in)
     const float* emissive;  // 3 per material id
+    bool anyEmissive;       // false: skip the emission lookup
     // Shadow map: depth key 1 - z01 (larger = nearer the light)
     const float* shadow;
     std::size_t shadowStride;
