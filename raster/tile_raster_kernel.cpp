@@ -95,8 +95,14 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
     const Lane zBase(t.zBase), zdx(t.zdx), zdy(t.zdy);
     const Lane fdi = ln::load<Lane>(kLayout.fdi), fdj = ln::load<Lane>(kLayout.fdj);
     const ILane prim(int32_t(t.primId));
+    // Only the lane groups that meet the triangle's pixel bounds (small triangles touch a
+    // few rows of a block, not all eight).
+    const int rowLo = std::max(t.minY - blockY, 0), rowHi = std::min(t.maxY - blockY, kBlockSize - 1);
+    const int colLo = std::max(t.minX - blockX, 0), colHi = std::min(t.maxX - blockX, kBlockSize - 1);
     for (int c = 0; c < kChunks; ++c) {
         const int i0 = (c * kW) % kBlockSize, j0 = (c * kW) / kBlockSize;
+        const int j1 = (c * kW + kW - 1) / kBlockSize, i1 = kW >= kBlockSize ? kBlockSize - 1 : i0 + kW - 1;
+        if (j1 < rowLo || j0 > rowHi || i1 < colLo || i0 > colHi) continue;
         const Lane px = Lane(float(blockX + i0)) + fdi;  // exact: small integers
         const Lane py = Lane(float(blockY + j0)) + fdj;
         auto valid = px == px;  // all true
