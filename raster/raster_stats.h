@@ -16,7 +16,8 @@ struct RasterStats {
     uint64_t blocksRejected = 0;       // 8x8 blocks found wholly outside
     uint64_t blocksAccepted = 0;       // 8x8 blocks found wholly inside (no edge tests)
     uint64_t blocksPartial = 0;        // 8x8 blocks tested per pixel
-    uint64_t pixelsTested = 0;         // pixel samples in partial or accepted blocks
+    uint64_t pixelsTested = 0;         // on-screen lanes evaluated (depends on SIMD width;
+                                       // every other counter is the same on every ISA)
     uint64_t pixelsCovered = 0;        // inside the triangle
     uint64_t pixelsWritten = 0;        // passed the depth test
 
