@@ -161,9 +161,13 @@ TEST_CASE("mesh builders reject degenerate input") {
 
 TEST_CASE("built-in scenes: default first, valid, still frames") {
     const auto& infos = builtinScenes();
-    REQUIRE(infos.size() == 2);
+    REQUIRE(infos.size() == 6);
     CHECK(infos[0].name == "cornell");
     CHECK(infos[1].name == "spheres");
+    CHECK(infos[2].name == "thin");
+    CHECK(infos[3].name == "corridor");
+    CHECK(infos[4].name == "offscreen");
+    CHECK(infos[5].name == "occluded");
     for (const BuiltinSceneInfo& info : infos) {
         CAPTURE(info.name);
         CHECK(!info.description.empty());
@@ -255,6 +259,7 @@ TEST_CASE("unknown scene names throw, naming the scene and the known ones") {
         FAIL("no exception for an unknown scene");
     } catch (const std::invalid_argument& e) {
         CHECK(std::string(e.what()) ==
-              "unknown scene 'cornel' (built-in scenes: cornell, spheres)");
+              "unknown scene 'cornel' (built-in scenes: cornell, spheres, thin, corridor, "
+              "offscreen, occluded)");
     }
 }
