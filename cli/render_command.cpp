@@ -3,6 +3,8 @@
 #include <oneapi/tbb/info.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "cli/cli.h"
 #include "io/image_io.h"
 #include "scenes/builtin_scenes.h"
+#include "scenes/gltf_loader.h"
 
 namespace ssrt::cli {
 
@@ -68,7 +71,18 @@ std::string knownScenes() {
     return out;
 }
 
+// A --scene value naming a glTF file rather than a built-in scene.
+bool isSceneFile(const std::string& name) {
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    auto endsWith = [&](const std::string& ext) {
+        return lower.size() > ext.size() && lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
+    };
+    return endsWith(".gltf") || endsWith(".glb");
+}
+
 void checkSceneName(const std::string& name) {
+    if (isSceneFile(name)) return;  // the loader names what is wrong with a file
     for (const auto& s : builtinScenes())
         if (s.name == name) return;
     throw std::invalid_argument("--scene: unknown scene '" + name + "' (known: " + knownScenes() +
@@ -156,7 +170,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                          const std::string& help) {
         cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
     };
-    add("-s,--scene", o.scene, "NAME", "Built-in scene to render (list them: ssrt scenes)");
+    add("-s,--scene", o.scene, "NAME",
+        "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file");
     add("--width", o.width, "INT", "Image width in pixels, 1 to " + std::to_string(kMaxImageSize));
     add("--height", o.height, "INT",
         "Image height in pixels, 1 to " + std::to_string(kMaxImageSize));
@@ -206,7 +221,9 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const Isa isa = resolveIsaFor(settings.isa);
     checkWritable(o.output);
 
-    const Scene scene = makeBuiltinScene(o.scene);
+    // A glTF file that cannot be loaded is a SceneLoadError (a runtime error: exit 1), thrown
+    // before anything is written.
+    const Scene scene = isSceneFile(o.scene) ? loadGltf(o.scene) : makeBuiltinScene(o.scene);
     if (!o.quiet) {
         err << "rendering " << o.scene << " " << settings.width << "x" << settings.height << " on "
             << isaName(isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -149,6 +150,23 @@ TEST_CASE("cli: an unknown scene is named and the known ones listed") {
     CHECK(contains(r.err, "teapot"));
     for (const auto& scene : builtinScenes()) CHECK(contains(r.err, scene.name));
     CHECK(dir.empty());
+}
+
+TEST_CASE("cli: a glTF scene that cannot be loaded is one error line, exit 1, no file") {
+    TempDir dir;
+    const std::string broken = dir.file("broken.gltf");
+    std::FILE* f = std::fopen(broken.c_str(), "w");
+    REQUIRE(f);
+    std::fputs("{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": 5 }", f);
+    std::fclose(f);
+    for (const std::string& scene : {broken, dir.file("missing.glb")}) {
+        CAPTURE(scene);
+        const Result r = run({"render", "--scene", scene, "-o", dir.file("out.png")});
+        CHECK(r.code == cli::kExitFailure);
+        CHECK(isOneErrorLine(r.err));
+        CHECK(contains(r.err, scene));
+        CHECK_FALSE(fs::exists(dir.file("out.png")));
+    }
 }
 
 TEST_CASE("cli: a bad output path fails before rendering and leaves no file") {

@@ -1,0 +1,728 @@
+#include "scenes/gltf_loader.h"
+
+// Debian's tinygltf is a shared library built with its own JSON and image code; we only
+// include the declarations and replace image decoding by a no-op (textures are loaded
+// elsewhere, through OpenImageIO).
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <limits>
+#include <new>
+#include <optional>
+
+namespace ssrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Collapses tinygltf's multi-line reports into one line.
+std::string oneLine(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            if (!out.empty() && out.back() != ' ') out += "; ";
+        } else {
+            out += c;
+        }
+    }
+    while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+    return out;
+}
+
+// Everything the conversion needs to name the file in its errors.
+struct Context {
+    std::string path;
+    const tinygltf::Model& model;
+
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw SceneLoadError(path + ": " + oneLine(problem));
+    }
+};
+
+std::string str(std::size_t n) { return std::to_string(n); }
+
+bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                     const unsigned char*, int, void*) {
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------
+// tinygltf silently skips a top-level member of the wrong JSON type ("meshes": 5 reads as
+// no meshes), so the top level is checked here. The text has already parsed as JSON; this
+// scanner only needs to step over values, and stops at anything unexpected.
+
+std::size_t skipSpace(const std::string& s, std::size_t i) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    return i;
+}
+
+std::size_t skipString(const std::string& s, std::size_t i) {  // i at the opening quote
+    for (++i; i < s.size() && s[i] != '"'; ++i)
+        if (s[i] == '\\') ++i;
+    return i + 1;
+}
+
+std::size_t skipValue(const std::string& s, std::size_t i) {
+    int depth = 0;
+    for (; i < s.size(); ++i) {
+        const char c = s[i];
+        if (c == '"') {
+            i = skipString(s, i) - 1;
+        } else if (c == '[' || c == '{') {
+            ++depth;
+        } else if (c == ']' || c == '}') {
+            if (depth == 0) return i;
+            if (--depth == 0) return i + 1;
+        } else if (c == ',' && depth == 0) {
+            return i;
+        }
+        if (depth == 0 && c == '"') return i + 1;
+    }
+    return i;
+}
+
+// The first problem found, or "" when every known top-level member has its glTF type.
+std::string topLevelTypeProblem(const std::string& json) {
+    static const char* arrays[] = {"accessors", "animations", "buffers", "bufferViews",
+                                   "cameras", "images", "materials", "meshes", "nodes",
+                                   "samplers", "scenes", "skins", "textures"};
+    std::size_t i = skipSpace(json, 0);
+    if (i >= json.size() || json[i] != '{') return "the top level is not a JSON object";
+    for (i = skipSpace(json, i + 1); i < json.size() && json[i] == '"';) {
+        const std::size_t end = skipString(json, i);
+        const std::string key = json.substr(i + 1, end - i - 2);
+        i = skipSpace(json, end);
+        if (i >= json.size() || json[i] != ':') break;
+        i = skipSpace(json, i + 1);
+        const char first = i < json.size() ? json[i] : ' ';
+        for (const char* name : arrays)
+            if (key == name && first != '[') return "\"" + key + "\" must be a JSON array";
+        if (key == "scene" && !(std::isdigit(static_cast<unsigned char>(first)) || first == '-'))
+            return "\"scene\" must be a number";
+        i = skipSpace(json, skipValue(json, i));
+        if (i < json.size() && json[i] == ',') i = skipSpace(json, i + 1);
+    }
+    return "";
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (already validated by tinygltf).
+std::string jsonText(const std::string& path, bool binary) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!binary) return bytes;
+    if (bytes.size() < 20) return "";
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
+}
+
+tinygltf::Model readModel(const std::string& path) {
+    char magic[4] = {};
+    {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw SceneLoadError(path + ": cannot open file");
+        in.read(magic, 4);
+    }
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(noImageDecoding, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    // The container is chosen by content, not by extension: a renamed file still loads.
+    const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok || !err.empty())
+        throw SceneLoadError(path + ": " + oneLine(err.empty() ? "cannot parse glTF" : err));
+    const std::string problem = topLevelTypeProblem(jsonText(path, binary));
+    if (!problem.empty()) throw SceneLoadError(path + ": wrong JSON type: " + problem);
+    return model;
+}
+
+// ---------------------------------------------------------------------------------------
+// Accessors: every byte read is bounds-checked first, and read with memcpy (no alignment
+// assumptions about the buffer).
+
+struct AccessorView {
+    const unsigned char* data = nullptr;
+    std::size_t count = 0;
+    std::size_t stride = 0;
+    int componentType = 0;
+    int components = 0;
+};
+
+std::size_t componentBytes(int type) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+AccessorView viewAccessor(const Context& ctx, int index, const std::string& role, int type) {
+    const tinygltf::Model& m = ctx.model;
+    const std::string name = "accessor " + std::to_string(index) + " (" + role + ")";
+    if (index < 0 || std::size_t(index) >= m.accessors.size())
+        ctx.fail(name + ": no such accessor (" + str(m.accessors.size()) + " accessors)");
+    const tinygltf::Accessor& a = m.accessors[index];
+    if (a.type != type) ctx.fail(name + ": wrong type for " + role);
+    if (a.sparse.isSparse) ctx.fail(name + ": sparse accessors are not supported");
+    const std::size_t compBytes = componentBytes(a.componentType);
+    if (compBytes == 0)
+        ctx.fail(name + ": invalid component type " + std::to_string(a.componentType));
+    if (a.bufferView < 0 || std::size_t(a.bufferView) >= m.bufferViews.size())
+        ctx.fail(name + ": bufferView " + std::to_string(a.bufferView) + " out of range");
+    const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
+    if (bv.buffer < 0 || std::size_t(bv.buffer) >= m.buffers.size())
+        ctx.fail(name + ": buffer " + std::to_string(bv.buffer) + " out of range");
+    const std::vector<unsigned char>& buf = m.buffers[bv.buffer].data;
+    if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
+        ctx.fail(name + ": bufferView " + std::to_string(a.bufferView) +
+                 " overruns its buffer (" + str(buf.size()) + " bytes)");
+
+    const int components = tinygltf::GetNumComponentsInType(a.type);
+    const std::size_t elemBytes = compBytes * std::size_t(components);
+    const std::size_t stride = bv.byteStride == 0 ? elemBytes : bv.byteStride;
+    if (stride < elemBytes) ctx.fail(name + ": byteStride smaller than an element");
+    // count * stride can overflow; compare by division instead.
+    const std::size_t avail = bv.byteLength;
+    const bool fits = a.count == 0 ||
+                      (a.byteOffset <= avail && elemBytes <= avail - a.byteOffset &&
+                       (a.count - 1) <= (avail - a.byteOffset - elemBytes) / stride);
+    if (!fits)
+        ctx.fail(name + ": count " + str(a.count) + " overruns bufferView " +
+                 std::to_string(a.bufferView) + " (" + str(avail) + " bytes)");
+    return {buf.data() + bv.byteOffset + a.byteOffset, a.count, stride, a.componentType,
+            components};
+}
+
+template <class T>
+T load(const unsigned char* p) {
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    return v;
+}
+
+// Float, or normalized unsigned integer components (allowed for TEXCOORD_n).
+float readComponent(const AccessorView& v, std::size_t element, int component) {
+    const unsigned char* p = v.data + element * v.stride;
+    switch (v.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p + 4 * component);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[component]) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return float(load<uint16_t>(p + 2 * component)) / 65535.0f;
+    default: return 0.0f;
+    }
+}
+
+template <int N>
+std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
+                                            bool floatOnly) {
+    const AccessorView v = viewAccessor(ctx, index, role, N == 2 ? TINYGLTF_TYPE_VEC2
+                                                                 : TINYGLTF_TYPE_VEC3);
+    const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (!isFloat && (floatOnly || !isUnorm))
+        ctx.fail("accessor " + std::to_string(index) + " (" + role +
+                 "): unsupported component type " + std::to_string(v.componentType));
+    std::vector<glm::vec<N, float>> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+        for (int c = 0; c < N; ++c) {
+            const float x = readComponent(v, i, c);
+            // One bad vertex poisons bounds, the camera fit and every pass: reject the file.
+            if (!std::isfinite(x))
+                ctx.fail("accessor " + std::to_string(index) + " (" + role +
+                         "): non-finite value (NaN or infinity) at element " + str(i));
+            out[i][c] = x;
+        }
+    }
+    return out;
+}
+
+std::vector<uint32_t> readIndices(const Context& ctx, int index, std::size_t vertexCount) {
+    const AccessorView v = viewAccessor(ctx, index, "indices", TINYGLTF_TYPE_SCALAR);
+    std::vector<uint32_t> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+        const unsigned char* p = v.data + i * v.stride;
+        switch (v.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[i] = load<uint16_t>(p); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[i] = load<uint32_t>(p); break;
+        default:
+            ctx.fail("accessor " + std::to_string(index) +
+                     " (indices): component type must be an unsigned integer");
+        }
+        if (out[i] >= vertexCount)
+            ctx.fail("accessor " + std::to_string(index) + " (indices): index " +
+                     std::to_string(out[i]) + " out of range (" + str(vertexCount) +
+                     " vertices)");
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Primitives
+
+// glTF 2.0 section 3.7.2.1 gives the triangle order of strips and fans; following it keeps
+// the winding (and so front faces) the author meant.
+std::vector<uint32_t> triangulate(const Context& ctx, const std::string& name, int mode,
+                                  const std::vector<uint32_t>& v) {
+    std::vector<uint32_t> out;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (v.size() % 3 != 0)
+            ctx.fail(name + ": " + str(v.size()) + " vertices is not a multiple of 3");
+        return v;
+    }
+    for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const std::size_t odd = i % 2;
+            out.insert(out.end(), {v[i], v[i + 1 + odd], v[i + 2 - odd]});
+        } else {
+            out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+        }
+    }
+    return out;
+}
+
+const char* modeName(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return "unknown";
+    }
+}
+
+// Area-weighted smooth normals: the cross product's length is twice the triangle's area.
+std::vector<glm::vec3> computeNormals(const Mesh& mesh) {
+    std::vector<glm::vec3> sum(mesh.positions.size(), glm::vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a],
+                                       mesh.positions[c] - mesh.positions[a]);
+        sum[a] += n;
+        sum[b] += n;
+        sum[c] += n;
+    }
+    for (glm::vec3& n : sum) {
+        const float len = glm::length(n);
+        // Unreferenced or degenerate-only vertices still need a unit normal.
+        n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return sum;
+}
+
+int attribute(const tinygltf::Primitive& p, const char* key) {
+    const auto it = p.attributes.find(key);
+    return it == p.attributes.end() ? -1 : it->second;
+}
+
+Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinygltf::Primitive& p) {
+    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        ctx.fail(name + ": mode " + modeName(mode) +
+                 " is not supported (only triangles, strips and fans)");
+    const int pos = attribute(p, "POSITION");
+    if (pos < 0) ctx.fail(name + ": no POSITION attribute");
+
+    Mesh mesh;
+    mesh.name = name;
+    mesh.positions = readVectors<3>(ctx, pos, "POSITION", true);
+    std::vector<uint32_t> order;
+    if (p.indices >= 0) {
+        order = readIndices(ctx, p.indices, mesh.positions.size());
+    } else {
+        order.resize(mesh.positions.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
+    }
+    mesh.indices = triangulate(ctx, name, mode, order);
+
+    const int nrm = attribute(p, "NORMAL");
+    if (nrm >= 0) {
+        mesh.normals = readVectors<3>(ctx, nrm, "NORMAL", true);
+        if (mesh.normals.size() != mesh.positions.size())
+            ctx.fail(name + ": NORMAL count differs from POSITION count");
+        for (glm::vec3& n : mesh.normals) {
+            const float len = glm::length(n);
+            n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+        }
+    } else {
+        mesh.normals = computeNormals(mesh);
+    }
+    const int uv = attribute(p, "TEXCOORD_0");
+    if (uv >= 0) {
+        mesh.uvs = readVectors<2>(ctx, uv, "TEXCOORD_0", false);
+        if (mesh.uvs.size() != mesh.positions.size())
+            ctx.fail(name + ": TEXCOORD_0 count differs from POSITION count");
+    }
+    return mesh;
+}
+
+// ---------------------------------------------------------------------------------------
+// Materials and textures
+
+std::string decodeUri(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+            std::isxdigit((unsigned char)uri[i + 2])) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// Textures are decoded elsewhere; here a material whose texture cannot be found refuses the
+// whole file, so that a scene never renders silently without its textures.
+void checkTexture(const Context& ctx, const std::string& name, int textureIndex) {
+    if (textureIndex < 0) return;
+    const tinygltf::Model& m = ctx.model;
+    if (std::size_t(textureIndex) >= m.textures.size())
+        ctx.fail(name + ": texture " + std::to_string(textureIndex) + " does not exist");
+    const int source = m.textures[textureIndex].source;
+    if (source < 0 || std::size_t(source) >= m.images.size())
+        ctx.fail(name + ": texture " + std::to_string(textureIndex) + " has no image (source " +
+                 std::to_string(source) + ")");
+    const tinygltf::Image& img = m.images[source];
+    if (img.bufferView >= 0 || img.uri.empty() || img.uri.rfind("data:", 0) == 0) return;
+    const fs::path file = fs::path(ctx.path).parent_path() / decodeUri(img.uri);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+        ctx.fail(name + ": texture image " + std::to_string(source) + " file not found: " +
+                 file.string());
+}
+
+glm::vec3 finiteColor(const Context& ctx, const std::string& name, const char* what,
+                      const std::vector<double>& v, std::size_t n) {
+    if (v.size() < n) ctx.fail(name + ": " + what + " needs " + str(n) + " numbers");
+    glm::vec3 c(0.0f);
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (!std::isfinite(v[i])) ctx.fail(name + ": " + what + " is not finite");
+        c[i] = float(v[i]);
+    }
+    return c;
+}
+
+float unitFactor(const Context& ctx, const std::string& name, const char* what, double v) {
+    if (!std::isfinite(v)) ctx.fail(name + ": " + what + " is not finite");
+    return float(std::clamp(v, 0.0, 1.0));
+}
+
+Material convertMaterial(const Context& ctx, std::size_t index) {
+    const tinygltf::Material& g = ctx.model.materials[index];
+    const std::string name = "material " + str(index);
+    const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+    Material m;
+    m.name = g.name.empty() ? name : g.name;
+    m.baseColor = finiteColor(ctx, name, "baseColorFactor", pbr.baseColorFactor, 4);
+    m.metallic = unitFactor(ctx, name, "metallicFactor", pbr.metallicFactor);
+    m.roughness = unitFactor(ctx, name, "roughnessFactor", pbr.roughnessFactor);
+    m.emissive = finiteColor(ctx, name, "emissiveFactor", g.emissiveFactor, 3);
+    m.doubleSided = g.doubleSided;
+    checkTexture(ctx, name, pbr.baseColorTexture.index);
+    checkTexture(ctx, name, pbr.metallicRoughnessTexture.index);
+    checkTexture(ctx, name, g.emissiveTexture.index);
+    checkTexture(ctx, name, g.normalTexture.index);
+    checkTexture(ctx, name, g.occlusionTexture.index);
+    return m;
+}
+
+// The material glTF prescribes for primitives without one (spec section 3.9.6).
+Material defaultMaterial() {
+    Material m;
+    m.name = "glTF default";
+    m.baseColor = glm::vec3(1.0f);
+    m.metallic = 1.0f;
+    m.roughness = 1.0f;
+    return m;
+}
+
+// ---------------------------------------------------------------------------------------
+// Meshes: one ssrt Mesh per glTF primitive, converted once however many nodes use it.
+
+struct Part {
+    uint32_t mesh;
+    uint32_t material;
+};
+
+std::vector<std::vector<Part>> convertMeshes(const Context& ctx, Scene& scene) {
+    const tinygltf::Model& m = ctx.model;
+    if (m.meshes.empty()) ctx.fail("no meshes in the file");
+    for (std::size_t i = 0; i < m.materials.size(); ++i)
+        scene.materials.push_back(convertMaterial(ctx, i));
+    std::optional<uint32_t> fallback;
+    std::vector<std::vector<Part>> parts(m.meshes.size());
+    for (std::size_t i = 0; i < m.meshes.size(); ++i) {
+        const std::vector<tinygltf::Primitive>& prims = m.meshes[i].primitives;
+        for (std::size_t k = 0; k < prims.size(); ++k) {
+            const std::string name = "mesh " + str(i) + " primitive " + str(k);
+            const int mat = prims[k].material;
+            if (mat >= int(m.materials.size()))
+                ctx.fail(name + ": material " + std::to_string(mat) + " does not exist");
+            if (mat < 0 && !fallback) {
+                fallback = uint32_t(scene.materials.size());
+                scene.materials.push_back(defaultMaterial());
+            }
+            scene.meshes.push_back(convertPrimitive(ctx, name, prims[k]));
+            parts[i].push_back({uint32_t(scene.meshes.size() - 1),
+                                mat < 0 ? *fallback : uint32_t(mat)});
+        }
+    }
+    return parts;
+}
+
+// ---------------------------------------------------------------------------------------
+// Nodes
+
+glm::mat4 localTransform(const Context& ctx, std::size_t index) {
+    const tinygltf::Node& n = ctx.model.nodes[index];
+    const std::string name = "node " + str(index);
+    auto finite = [&](const std::vector<double>& v, std::size_t size, const char* what) {
+        if (!v.empty() && v.size() != size)
+            ctx.fail(name + ": " + what + " needs " + str(size) + " numbers");
+        for (double x : v)
+            if (!std::isfinite(x)) ctx.fail(name + ": " + what + " is not finite");
+    };
+    finite(n.matrix, 16, "matrix");
+    finite(n.translation, 3, "translation");
+    finite(n.rotation, 4, "rotation");
+    finite(n.scale, 3, "scale");
+    if (!n.matrix.empty()) {
+        glm::mat4 m;  // glTF matrices are column-major, like glm's
+        for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(n.matrix[i]);
+        return m;
+    }
+    glm::mat4 t(1.0f);
+    if (!n.translation.empty())
+        t = glm::translate(t, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
+    if (!n.rotation.empty()) {  // glTF stores (x, y, z, w); glm's constructor takes w first
+        const glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                          float(n.rotation[2]));
+        t = t * glm::mat4_cast(glm::normalize(q));
+    }
+    if (!n.scale.empty()) t = glm::scale(t, glm::vec3(n.scale[0], n.scale[1], n.scale[2]));
+    return t;
+}
+
+struct Walk {
+    const Context& ctx;
+    const std::vector<std::vector<Part>>& parts;
+    Scene& scene;
+    bool haveCamera = false;
+    bool haveLight = false;
+    float cameraFar = 0.0f;  // 0: the file's camera has no zfar (infinite); fitted later
+
+    void visitNode(std::size_t index, const glm::mat4& world);
+    void takeCamera(std::size_t node, int camera, const glm::mat4& world);
+    void takeLight(std::size_t node, const glm::mat4& world);
+};
+
+glm::vec3 worldDirection(const glm::mat4& world, glm::vec3 local) {
+    return glm::normalize(glm::vec3(world * glm::vec4(local, 0.0f)));
+}
+
+void Walk::visitNode(std::size_t index, const glm::mat4& world) {
+    const tinygltf::Node& n = ctx.model.nodes[index];
+    if (n.mesh >= 0)
+        for (const Part& part : parts[n.mesh])
+            scene.instances.push_back({part.mesh, part.material, world, world});
+    if (n.camera >= 0 && !haveCamera) takeCamera(index, n.camera, world);
+    if (!haveLight) takeLight(index, world);
+}
+
+void Walk::takeCamera(std::size_t node, int camera, const glm::mat4& world) {
+    const tinygltf::Camera& c = ctx.model.cameras[camera];
+    if (c.type != "perspective") return;
+    const std::string name = "camera " + std::to_string(camera);
+    const tinygltf::PerspectiveCamera& p = c.perspective;
+    if (!(p.yfov > 0.0 && p.yfov < 3.14159) || !(p.znear > 0.0) || !std::isfinite(p.zfar))
+        ctx.fail(name + ": yfov must lie in (0, pi) and znear must be positive");
+    if (p.zfar > 0.0 && p.zfar <= p.znear) ctx.fail(name + ": zfar must exceed znear");
+    Camera& cam = scene.camera;
+    cam.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    cam.target = cam.position + worldDirection(world, {0.0f, 0.0f, -1.0f});  // glTF looks -Z
+    cam.up = worldDirection(world, {0.0f, 1.0f, 0.0f});
+    cam.fovY = glm::degrees(float(p.yfov));
+    cam.nearZ = float(p.znear);
+    cam.farZ = float(p.zfar);
+    if (!std::isfinite(cam.target.x + cam.target.y + cam.target.z + cam.up.x + cam.up.y +
+                       cam.up.z))
+        ctx.fail("node " + str(node) + ": camera transform is degenerate");
+    haveCamera = true;
+}
+
+void Walk::takeLight(std::size_t node, const glm::mat4& world) {
+    const auto ext = ctx.model.nodes[node].extensions.find("KHR_lights_punctual");
+    if (ext == ctx.model.nodes[node].extensions.end() || !ext->second.Has("light")) return;
+    const tinygltf::Value& v = ext->second.Get("light");
+    const int index = v.IsNumber() ? v.GetNumberAsInt() : -1;
+    if (index < 0 || std::size_t(index) >= ctx.model.lights.size())
+        ctx.fail("node " + str(node) + ": light " + std::to_string(index) + " does not exist");
+    const tinygltf::Light& l = ctx.model.lights[index];
+    if (l.type != "directional") return;
+    const std::string name = "light " + std::to_string(index);
+    DirectionalLight& out = scene.light;
+    out.direction = worldDirection(world, {0.0f, 0.0f, -1.0f});  // lights shine along -Z
+    out.color = l.color.empty() ? glm::vec3(1.0f) : finiteColor(ctx, name, "color", l.color, 3);
+    if (!std::isfinite(l.intensity) || l.intensity < 0.0)
+        ctx.fail(name + ": intensity must be finite and not negative");
+    out.intensity = float(l.intensity);
+    if (!std::isfinite(out.direction.x + out.direction.y + out.direction.z))
+        ctx.fail("node " + str(node) + ": light transform is degenerate");
+    haveLight = true;
+}
+
+// Checks every reference from nodes, and that each node has at most one parent (glTF nodes
+// form strict trees; sharing would also let a small file expand exponentially).
+void checkNodes(const Context& ctx) {
+    const tinygltf::Model& m = ctx.model;
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+        const tinygltf::Node& n = m.nodes[i];
+        const std::string name = "node " + str(i);
+        if (n.mesh >= int(m.meshes.size()))
+            ctx.fail(name + ": mesh " + std::to_string(n.mesh) + " does not exist");
+        if (n.camera >= int(m.cameras.size()))
+            ctx.fail(name + ": camera " + std::to_string(n.camera) + " does not exist");
+        for (int child : n.children) {
+            if (child < 0 || std::size_t(child) >= m.nodes.size())
+                ctx.fail(name + ": child node " + std::to_string(child) + " does not exist");
+            if (parent[child] >= 0)
+                ctx.fail("node " + std::to_string(child) + " has more than one parent");
+            parent[child] = int(i);
+        }
+    }
+}
+
+std::vector<int> rootNodes(const Context& ctx) {
+    const tinygltf::Model& m = ctx.model;
+    if (m.scenes.empty()) {  // no scene: every node that is nobody's child
+        std::vector<bool> isChild(m.nodes.size(), false);
+        for (const tinygltf::Node& n : m.nodes)
+            for (int c : n.children) isChild[c] = true;
+        std::vector<int> roots;
+        for (std::size_t i = 0; i < m.nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(int(i));
+        return roots;
+    }
+    const int s = m.defaultScene < 0 ? 0 : m.defaultScene;
+    if (std::size_t(s) >= m.scenes.size())
+        ctx.fail("scene index " + std::to_string(s) + " out of range (" + str(m.scenes.size()) +
+                 " scenes)");
+    for (int n : m.scenes[s].nodes)
+        if (n < 0 || std::size_t(n) >= m.nodes.size())
+            ctx.fail("scene " + std::to_string(s) + ": node " + std::to_string(n) +
+                     " does not exist");
+    return m.scenes[s].nodes;
+}
+
+// Depth-first, children in file order, with an explicit stack: a deep hierarchy cannot
+// overflow the call stack, and a node met again while still on the path is a cycle.
+void walkNodes(const Context& ctx, Walk& walk) {
+    struct Frame {
+        int node;
+        glm::mat4 world;
+        bool leaving;
+    };
+    const tinygltf::Model& m = ctx.model;
+    std::vector<bool> onPath(m.nodes.size(), false), done(m.nodes.size(), false);
+    std::vector<int> roots = rootNodes(ctx);
+    std::vector<Frame> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+        stack.push_back({*it, glm::mat4(1.0f), false});
+    while (!stack.empty()) {
+        const Frame f = stack.back();
+        stack.pop_back();
+        if (f.leaving) {
+            onPath[f.node] = false;
+            continue;
+        }
+        if (onPath[f.node]) ctx.fail("node " + std::to_string(f.node) + " is its own ancestor");
+        if (done[f.node]) ctx.fail("node " + std::to_string(f.node) + " is listed twice");
+        onPath[f.node] = done[f.node] = true;
+        const glm::mat4 world = f.world * localTransform(ctx, std::size_t(f.node));
+        walk.visitNode(std::size_t(f.node), world);
+        stack.push_back({f.node, world, true});
+        const std::vector<int>& children = m.nodes[f.node].children;
+        for (auto it = children.rbegin(); it != children.rend(); ++it)
+            stack.push_back({*it, world, false});
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Camera fitted to the bounds (see the header): the bounding sphere of radius r seen with a
+// vertical field of view fov fits when the distance is r / sin(fov / 2); 10% margin.
+void fitCamera(Scene& scene, float fileFar, bool haveCamera) {
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    float radius = 0.5f * glm::length(hi - lo);
+    if (!(radius > 0.0f)) radius = 1.0f;
+    Camera& cam = scene.camera;
+    if (!haveCamera) {
+        cam.fovY = 45.0f;
+        const float distance = 1.1f * radius / std::sin(glm::radians(cam.fovY) * 0.5f);
+        cam.position = centre + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
+        cam.target = centre;
+        cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
+        cam.nearZ = 0.5f * (distance - radius);
+        cam.farZ = 2.0f * (distance + radius);
+    } else if (fileFar <= 0.0f) {
+        // An infinite projection in the file: a finite far plane past the whole scene.
+        cam.farZ = std::max(cam.nearZ * 1000.0f,
+                            2.0f * (glm::length(cam.position - centre) + radius));
+    }
+    scene.previousCamera = cam;
+}
+
+Scene convert(const Context& ctx) {
+    Scene scene;
+    scene.name = fs::path(ctx.path).stem().string();
+    const std::vector<std::vector<Part>> parts = convertMeshes(ctx, scene);
+    checkNodes(ctx);
+    Walk walk{ctx, parts, scene};
+    walkNodes(ctx, walk);
+    if (scene.triangleCount() == 0) ctx.fail("the scene has no triangles");
+    fitCamera(scene, scene.camera.farZ, walk.haveCamera);
+    try {
+        scene.validate();
+    } catch (const std::invalid_argument& e) {
+        ctx.fail(e.what());
+    }
+    return scene;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+    try {
+        const tinygltf::Model model = readModel(path);
+        return convert(Context{path, model});
+    } catch (const SceneLoadError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw SceneLoadError(path + ": out of memory while loading");
+    } catch (const std::exception& e) {
+        throw SceneLoadError(path + ": " + oneLine(e.what()));
+    }
+}
+
+}  // namespace ssrt

@@ -1,0 +1,33 @@
+// glTF 2.0 (.gltf with external or embedded buffers, .glb) into the scene model.
+// Lives beside the scene model but in its own library (ssrt_gltf), so that the core
+// library does not depend on tinygltf (see DESIGN.md).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "scenes/scene.h"
+
+namespace ssrt {
+
+// A file that cannot be turned into a scene. what() is one line: "<path>: <problem>".
+class SceneLoadError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Loads every triangle primitive reachable from the file's scene (the default scene, else
+// the first; a file without scenes uses every root node) as one Mesh and one Instance per
+// primitive, with the node's world transform as both transform and previousTransform.
+//
+// Camera: the first perspective camera met in a depth-first walk of the node tree. Without
+// one, a camera fitted to the bounds: it looks at the centre of the bounding sphere from
+// above and in front (+Z, tilted up), with a 45 degree vertical field of view and far enough
+// that the whole sphere fits vertically (and horizontally for aspect ratios of 1 and wider).
+// Light: the first directional KHR_lights_punctual light met in the walk, else the default.
+// Textures are checked (indices in range, image files exist) but not loaded or recorded.
+//
+// Throws SceneLoadError for anything malformed: it never returns a partial scene.
+Scene loadGltf(const std::string& path);
+
+}  // namespace ssrt

@@ -1,0 +1,347 @@
+// The glTF loader: round trips of small files written here, and a corpus of malformed files
+// that must each give one clear SceneLoadError (never a crash, a hang or a partial scene).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <glm/glm.hpp>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scenes/gltf_loader.h"
+#include "temp_dir.h"
+
+using ssrt::loadGltf;
+using ssrt::SceneLoadError;
+using ssrt::test::TempDir;
+
+namespace {
+
+// What a test may change in the one-triangle file that every case starts from.
+struct Knobs {
+    std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::vector<uint16_t> indices = {0, 1, 2};  // empty: a non-indexed primitive
+    int mode = 4;
+    int positionCount = -1;  // -1: the real count
+    std::string bufferUri;   // empty: embedded as a data: URI
+    std::string nodes = R"([{"mesh": 0}])";
+    std::string scenes = R"([{"nodes": [0]}])";
+    std::string meshes;  // empty: the triangle's mesh
+    std::string extra;   // more top-level members, each starting with a comma
+    std::string material = R"(, "material": 0)";
+};
+
+std::vector<unsigned char> binOf(const Knobs& k) {
+    std::vector<unsigned char> bin(k.positions.size() * 4 + k.indices.size() * 2);
+    std::memcpy(bin.data(), k.positions.data(), k.positions.size() * 4);
+    std::memcpy(bin.data() + k.positions.size() * 4, k.indices.data(), k.indices.size() * 2);
+    while (bin.size() % 4) bin.push_back(0);
+    return bin;
+}
+
+std::string base64(const std::vector<unsigned char>& in) {
+    static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < in.size(); i += 3) {
+        const uint32_t n = in[i] << 16 | (i + 1 < in.size() ? in[i + 1] << 8 : 0) |
+                           (i + 2 < in.size() ? in[i + 2] : 0);
+        out += abc[n >> 18 & 63];
+        out += abc[n >> 12 & 63];
+        out += i + 1 < in.size() ? abc[n >> 6 & 63] : '=';
+        out += i + 2 < in.size() ? abc[n & 63] : '=';
+    }
+    return out;
+}
+
+// uri: "" embeds the buffer, "-" leaves it out (GLB), anything else names a file.
+std::string jsonOf(const Knobs& k, const std::string& uri) {
+    const std::size_t posBytes = k.positions.size() * 4, idxBytes = k.indices.size() * 2;
+    const std::size_t vertices = k.positionCount >= 0 ? k.positionCount : k.positions.size() / 3;
+    std::string buffer = R"({"byteLength": )" + std::to_string(binOf(k).size());
+    if (uri.empty()) buffer += R"(, "uri": "data:application/octet-stream;base64,)" +
+                               base64(binOf(k)) + "\"";
+    else if (uri != "-") buffer += R"(, "uri": ")" + uri + "\"";
+    buffer += "}";
+    std::string views = R"([{"buffer": 0, "byteOffset": 0, "byteLength": )" +
+                        std::to_string(posBytes) + "}";
+    std::string accessors = R"([{"bufferView": 0, "componentType": 5126, "type": "VEC3", )"
+                            R"("count": )" + std::to_string(vertices) + "}";
+    std::string indices;
+    if (!k.indices.empty()) {
+        views += R"(, {"buffer": 0, "byteOffset": )" + std::to_string(posBytes) +
+                 R"(, "byteLength": )" + std::to_string(idxBytes) + "}";
+        accessors += R"(, {"bufferView": 1, "componentType": 5123, "type": "SCALAR", )"
+                     R"("count": )" + std::to_string(k.indices.size()) + "}";
+        indices = R"(, "indices": 1)";
+    }
+    const std::string meshes =
+        !k.meshes.empty() ? k.meshes
+                          : R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": )" +
+                                std::to_string(k.mode) + indices + k.material + "}]}]";
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": )" + k.scenes +
+           R"(, "nodes": )" + k.nodes + R"(, "meshes": )" + meshes +
+           R"(, "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1],)"
+           R"( "metallicFactor": 0.3, "roughnessFactor": 0.7}, "emissiveFactor": [1, 0.5, 0],)"
+           R"( "doubleSided": true}], "buffers": [)" + buffer + R"(], "bufferViews": )" + views +
+           R"(], "accessors": )" + accessors + "]" + k.extra + "}";
+}
+
+void writeFile(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string writeGltf(const TempDir& dir, const std::string& name, const Knobs& k) {
+    const std::string path = dir.file(name);
+    if (!k.bufferUri.empty()) {
+        const std::vector<unsigned char> bin = binOf(k);
+        writeFile(dir.file(k.bufferUri), std::string(bin.begin(), bin.end()));
+    }
+    writeFile(path, jsonOf(k, k.bufferUri));
+    return path;
+}
+
+void appendU32(std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
+
+// GLB: 12-byte header, then a JSON chunk padded with spaces and a BIN chunk padded with zeros.
+std::string glbOf(const Knobs& k) {
+    std::string json = jsonOf(k, "-");
+    while (json.size() % 4) json += ' ';
+    const std::vector<unsigned char> bin = binOf(k);
+    std::string out = "glTF";
+    appendU32(out, 2);
+    appendU32(out, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+    appendU32(out, uint32_t(json.size()));
+    appendU32(out, 0x4E4F534A);  // "JSON"
+    out += json;
+    appendU32(out, uint32_t(bin.size()));
+    appendU32(out, 0x004E4942);  // "BIN\0"
+    out.append(bin.begin(), bin.end());
+    return out;
+}
+
+// The hierarchy, material, camera and light that the round trips check.
+Knobs richKnobs() {
+    Knobs k;
+    // Node 0 translates; its child 1 moves by +Z, turns 90 degrees about +Y and scales by 2.
+    k.nodes = R"([{"translation": [1, 2, 3], "children": [1]},)"
+              R"( {"translation": [0, 0, 1], "rotation": [0, 0.70710678, 0, 0.70710678],)"
+              R"(  "scale": [2, 2, 2], "mesh": 0},)"
+              R"( {"translation": [0, 0, 5], "camera": 0},)"
+              R"( {"rotation": [-0.70710678, 0, 0, 0.70710678],)"
+              R"(  "extensions": {"KHR_lights_punctual": {"light": 0}}}])";
+    k.scenes = R"([{"nodes": [0, 2, 3]}])";
+    k.extra = R"(, "cameras": [{"type": "perspective", "perspective": )"
+              R"({"yfov": 0.8, "znear": 0.1, "zfar": 50, "aspectRatio": 1.5}}],)"
+              R"( "extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual":)"
+              R"( {"lights": [{"type": "directional", "color": [1, 0.9, 0.8], "intensity": 4}]}})";
+    return k;
+}
+
+void closeTo(glm::vec3 a, glm::vec3 b) {
+    CHECK(a.x == doctest::Approx(b.x).epsilon(1e-5));
+    CHECK(a.y == doctest::Approx(b.y).epsilon(1e-5));
+    CHECK(a.z == doctest::Approx(b.z).epsilon(1e-5));
+}
+
+void checkRichScene(const ssrt::Scene& s) {
+    REQUIRE(s.meshes.size() == 1);
+    REQUIRE(s.instances.size() == 1);
+    closeTo(s.meshes[0].positions[1], {1, 0, 0});
+    CHECK(s.meshes[0].indices == std::vector<uint32_t>{0, 1, 2});
+    // (1,0,0): scaled to (2,0,0), turned about +Y to (0,0,-2), moved by (0,0,1), then (1,2,3).
+    const ssrt::Instance& inst = s.instances[0];
+    closeTo(glm::vec3(inst.transform * glm::vec4(1, 0, 0, 1)), {1, 2, 2});
+    CHECK(inst.previousTransform == inst.transform);
+    const ssrt::Material& m = s.materials[inst.material];
+    closeTo(m.baseColor, {0.2f, 0.4f, 0.6f});
+    CHECK(m.metallic == doctest::Approx(0.3));
+    CHECK(m.roughness == doctest::Approx(0.7));
+    closeTo(m.emissive, {1, 0.5f, 0});
+    CHECK(m.doubleSided);
+    closeTo(s.camera.position, {0, 0, 5});
+    closeTo(s.camera.target, {0, 0, 4});
+    closeTo(s.camera.up, {0, 1, 0});
+    CHECK(s.camera.fovY == doctest::Approx(0.8 * 180.0 / 3.14159265358979));
+    CHECK(s.camera.nearZ == doctest::Approx(0.1));
+    CHECK(s.camera.farZ == doctest::Approx(50));
+    closeTo(s.previousCamera.position, s.camera.position);
+    // The light node turns -Z (the way glTF lights shine) to straight down.
+    closeTo(s.light.direction, {0, -1, 0});
+    closeTo(s.light.color, {1, 0.9f, 0.8f});
+    CHECK(s.light.intensity == doctest::Approx(4));
+}
+
+// Loads a file that must fail, and returns the one-line message.
+std::string loadError(const std::string& path) {
+    try {
+        loadGltf(path);
+    } catch (const SceneLoadError& e) {
+        return e.what();
+    }
+    FAIL("no SceneLoadError for ", path);
+    return {};
+}
+
+void checkRefused(const std::string& path, const std::string& keyword) {
+    const std::string msg = loadError(path);
+    INFO(msg);
+    CHECK(msg.find(path) != std::string::npos);
+    CHECK(msg.find(keyword) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("gltf: an embedded-buffer .gltf round-trips transforms, material, camera, light") {
+    TempDir dir("gltf");
+    checkRichScene(loadGltf(writeGltf(dir, "rich.gltf", richKnobs())));
+}
+
+TEST_CASE("gltf: an external buffer file loads the same") {
+    TempDir dir("gltf");
+    Knobs k = richKnobs();
+    k.bufferUri = "rich.bin";
+    checkRichScene(loadGltf(writeGltf(dir, "rich.gltf", k)));
+}
+
+TEST_CASE("gltf: a hand-written .glb round-trips the same") {
+    TempDir dir("gltf");
+    writeFile(dir.file("rich.glb"), glbOf(richKnobs()));
+    checkRichScene(loadGltf(dir.file("rich.glb")));
+}
+
+TEST_CASE("gltf: strips and fans become the triangles the spec lists") {
+    TempDir dir("gltf");
+    Knobs k;
+    k.indices.clear();
+    k.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    k.mode = 5;
+    CHECK(loadGltf(writeGltf(dir, "strip.gltf", k)).meshes[0].indices ==
+          std::vector<uint32_t>{0, 1, 2, 1, 3, 2});
+    k.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    k.mode = 6;
+    const ssrt::Scene fan = loadGltf(writeGltf(dir, "fan.gltf", k));
+    CHECK(fan.meshes[0].indices == std::vector<uint32_t>{1, 2, 0, 2, 3, 0});
+    // Both keep the counter-clockwise winding, so computed normals face +Z.
+    for (const glm::vec3& n : fan.meshes[0].normals) closeTo(n, {0, 0, 1});
+}
+
+TEST_CASE("gltf: missing normals are computed, unit length, facing the front side") {
+    TempDir dir("gltf");
+    Knobs k;
+    const ssrt::Scene front = loadGltf(writeGltf(dir, "front.gltf", k));
+    REQUIRE(front.meshes[0].normals.size() == 3);
+    for (const glm::vec3& n : front.meshes[0].normals) closeTo(n, {0, 0, 1});
+    k.indices = {0, 2, 1};  // clockwise seen from +Z: the front faces -Z
+    const ssrt::Scene back = loadGltf(writeGltf(dir, "back.gltf", k));
+    for (const glm::vec3& n : back.meshes[0].normals) closeTo(n, {0, 0, -1});
+}
+
+TEST_CASE("gltf: no material gives glTF's default; no camera gives one fitted to the bounds") {
+    TempDir dir("gltf");
+    Knobs k;
+    k.material.clear();
+    const ssrt::Scene s = loadGltf(writeGltf(dir, "plain.gltf", k));
+    const ssrt::Material& m = s.materials[s.instances[0].material];
+    CHECK(m.metallic == 1.0f);
+    CHECK(m.roughness == 1.0f);
+    closeTo(m.baseColor, {1, 1, 1});
+    // The fitted camera looks at the centre of the bounds from in front.
+    closeTo(s.camera.target, {0.5f, 0.5f, 0});
+    CHECK(s.camera.position.z > 0.0f);
+    CHECK(s.camera.nearZ < glm::length(s.camera.position - s.camera.target) - 0.71f);
+    CHECK(s.camera.farZ > glm::length(s.camera.position - s.camera.target) + 0.71f);
+    closeTo(s.previousCamera.position, s.camera.position);
+}
+
+TEST_CASE("gltf: malformed files each give one clear error naming the file and the problem") {
+    TempDir dir("gltf-bad");
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    Knobs k;
+
+    SUBCASE("index out of range") {
+        k.indices = {0, 1, 7};
+        checkRefused(writeGltf(dir, "index.gltf", k),
+                     "accessor 1 (indices): index 7 out of range");
+    }
+    SUBCASE("accessor count overruns its buffer view") {
+        k.positionCount = 4;
+        checkRefused(writeGltf(dir, "overrun.gltf", k), "overruns");
+    }
+    SUBCASE("NaN position") {
+        k.positions[4] = nan;
+        checkRefused(writeGltf(dir, "nan.gltf", k), "accessor 0 (POSITION): non-finite");
+    }
+    SUBCASE("infinite position") {
+        k.positions[8] = -inf;
+        checkRefused(writeGltf(dir, "inf.gltf", k), "accessor 0 (POSITION): non-finite");
+    }
+    SUBCASE("missing buffer file") {
+        const std::string path = dir.file("nobuffer.gltf");
+        writeFile(path, jsonOf(k, "missing.bin"));
+        checkRefused(path, "missing.bin");
+    }
+    SUBCASE("wrong JSON type") {
+        k.meshes = "5";
+        checkRefused(writeGltf(dir, "type.gltf", k), "\"meshes\" must be a JSON array");
+        writeFile(dir.file("type.glb"), glbOf(k));
+        checkRefused(dir.file("type.glb"), "\"meshes\" must be a JSON array");
+    }
+    SUBCASE("wrong JSON type inside an object (reported by tinygltf)") {
+        std::string json = jsonOf(k, "");
+        json.replace(json.find(R"("count": 3)"), 10, R"("count": "3")");
+        writeFile(dir.file("count.gltf"), json);
+        checkRefused(dir.file("count.gltf"), "count");
+    }
+    SUBCASE("a node that is its own child") {
+        k.nodes = R"([{"mesh": 0, "children": [0]}])";
+        checkRefused(writeGltf(dir, "self.gltf", k), "its own ancestor");
+    }
+    SUBCASE("a node that is its own grandparent") {
+        k.nodes = R"([{"mesh": 0, "children": [1]}, {"children": [0]}])";
+        checkRefused(writeGltf(dir, "cycle.gltf", k), "node 0 is its own ancestor");
+    }
+    SUBCASE("scene index out of range") {
+        k.extra = R"(, "scene": 3)";
+        checkRefused(writeGltf(dir, "scene.gltf", k), "scene");
+    }
+    SUBCASE("zero meshes") {
+        k.meshes = "[]";
+        k.nodes = "[{}]";
+        checkRefused(writeGltf(dir, "empty.gltf", k), "no meshes");
+    }
+    SUBCASE("POINTS") {
+        k.mode = 0;
+        checkRefused(writeGltf(dir, "points.gltf", k), "POINTS is not supported");
+    }
+    SUBCASE("LINES") {
+        k.mode = 1;
+        checkRefused(writeGltf(dir, "lines.gltf", k), "LINES is not supported");
+    }
+    SUBCASE("a texture whose image file does not exist is refused") {
+        k.extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "nope.png"}])";
+        std::string json = jsonOf(k, "");
+        const std::string factor = R"("baseColorFactor")";
+        json.replace(json.find(factor), 0, R"("baseColorTexture": {"index": 0}, )");
+        writeFile(dir.file("texture.gltf"), json);
+        checkRefused(dir.file("texture.gltf"), "nope.png");
+    }
+    SUBCASE("a file that does not exist") {
+        checkRefused(dir.file("absent.gltf"), "cannot open");
+    }
+    SUBCASE("not JSON at all") {
+        writeFile(dir.file("garbage.gltf"), "{\"asset\": [1, 2");
+        loadError(dir.file("garbage.gltf"));
+    }
+    SUBCASE("a truncated .glb") {
+        const std::string glb = glbOf(k);
+        for (std::size_t cut : {4u, 12u, 20u, 40u, unsigned(glb.size() - 3)}) {
+            writeFile(dir.file("cut.glb"), glb.substr(0, cut));
+            loadError(dir.file("cut.glb"));
+        }
+    }
+}
