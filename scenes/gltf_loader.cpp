@@ -19,6 +19,8 @@
 #include <new>
 #include <optional>
 
+#include "scenes/mesh_builders.h"
+
 namespace ssrt {
 namespace {
 
@@ -307,25 +309,6 @@ const char* modeName(int mode) {
     }
 }
 
-// Area-weighted smooth normals: the cross product's length is twice the triangle's area.
-std::vector<glm::vec3> computeNormals(const Mesh& mesh) {
-    std::vector<glm::vec3> sum(mesh.positions.size(), glm::vec3(0.0f));
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
-        const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a],
-                                       mesh.positions[c] - mesh.positions[a]);
-        sum[a] += n;
-        sum[b] += n;
-        sum[c] += n;
-    }
-    for (glm::vec3& n : sum) {
-        const float len = glm::length(n);
-        // Unreferenced or degenerate-only vertices still need a unit normal.
-        n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
-    }
-    return sum;
-}
-
 int attribute(const tinygltf::Primitive& p, const char* key) {
     const auto it = p.attributes.find(key);
     return it == p.attributes.end() ? -1 : it->second;
@@ -362,7 +345,7 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
             n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
         }
     } else {
-        mesh.normals = computeNormals(mesh);
+        mesh.normals = smoothNormals(mesh);
     }
     const int uv = attribute(p, "TEXCOORD_0");
     if (uv >= 0) {

@@ -1,5 +1,6 @@
 #include "scenes/mesh_builders.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -190,6 +191,26 @@ Mesh makeTorusKnot(int p, int q, float radius, float tube, int segments, int sid
     }
     addGridTriangles(mesh, 0, segments, sides, false, false);
     return mesh;
+}
+
+// The cross product's length is twice the triangle's area: summing them unnormalized weights
+// each face by its area.
+std::vector<glm::vec3> smoothNormals(const Mesh& mesh) {
+    std::vector<glm::vec3> sum(mesh.positions.size(), glm::vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a],
+                                       mesh.positions[c] - mesh.positions[a]);
+        sum[a] += n;
+        sum[b] += n;
+        sum[c] += n;
+    }
+    for (glm::vec3& n : sum) {
+        const float len = glm::length(n);
+        // Unreferenced or degenerate-only vertices still need a unit normal.
+        n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return sum;
 }
 
 }  // namespace ssrt

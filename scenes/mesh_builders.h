@@ -4,6 +4,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scenes/scene.h"
 
@@ -26,5 +27,10 @@ Mesh makeUvSphere(float radius, int segments, int rings);
 // the torus core circle; the curve stays within radius / 2 of that circle. segments >= 3
 // along the curve, sides >= 3 around the tube: 2 * segments * sides triangles.
 Mesh makeTorusKnot(int p, int q, float radius, float tube, int segments, int sides);
+
+// Smooth vertex normals for an indexed mesh: each vertex gets the unit sum of its
+// triangles' face normals weighted by area (for meshes that come without normals, such as
+// scans and glTF files). A vertex that no triangle of non-zero area uses gets +Y.
+std::vector<glm::vec3> smoothNormals(const Mesh& mesh);
 
 }  // namespace ssrt
