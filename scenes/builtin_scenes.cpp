@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "scenes/bunny_scene.h"
 #include "scenes/failure_scenes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
@@ -108,6 +109,7 @@ const std::vector<BuiltinSceneInfo>& builtinScenes() {
         {"corridor", kCorridorDescription},
         {"offscreen", kOffscreenDescription},
         {"occluded", kOccludedDescription},
+        {"bunny", kBunnyDescription},
     };
     return scenes;
 }
@@ -119,6 +121,7 @@ Scene makeBuiltinScene(const std::string& name) {
     if (name == "corridor") return makeCorridorScene();
     if (name == "offscreen") return makeOffscreenScene();
     if (name == "occluded") return makeOccludedScene();
+    if (name == "bunny") return makeBunnyScene();
     std::string known;
     for (const BuiltinSceneInfo& info : builtinScenes())
         known += (known.empty() ? "" : ", ") + info.name;

@@ -45,10 +45,11 @@ MeshCheck checkMesh(const Mesh& mesh) {
     return check;
 }
 
-void requireWellFormed(const Mesh& mesh) {
+// UVs are optional in the scene model (the scanned bunny has none); the builders make them.
+void requireWellFormed(const Mesh& mesh, bool needsUvs = true) {
     REQUIRE(mesh.triangleCount() > 0);
     CHECK(mesh.normals.size() == mesh.positions.size());
-    CHECK(mesh.uvs.size() == mesh.positions.size());
+    if (needsUvs || !mesh.uvs.empty()) CHECK(mesh.uvs.size() == mesh.positions.size());
     CHECK(mesh.indices.size() % 3 == 0);
     for (uint32_t i : mesh.indices) REQUIRE(i < mesh.positions.size());
     const MeshCheck check = checkMesh(mesh);
@@ -161,13 +162,14 @@ TEST_CASE("mesh builders reject degenerate input") {
 
 TEST_CASE("built-in scenes: default first, valid, still frames") {
     const auto& infos = builtinScenes();
-    REQUIRE(infos.size() == 6);
+    REQUIRE(infos.size() == 7);
     CHECK(infos[0].name == "cornell");
     CHECK(infos[1].name == "spheres");
     CHECK(infos[2].name == "thin");
     CHECK(infos[3].name == "corridor");
     CHECK(infos[4].name == "offscreen");
     CHECK(infos[5].name == "occluded");
+    CHECK(infos[6].name == "bunny");
     for (const BuiltinSceneInfo& info : infos) {
         CAPTURE(info.name);
         CHECK(!info.description.empty());
@@ -185,7 +187,7 @@ TEST_CASE("built-in scenes: default first, valid, still frames") {
             CHECK(inst.previousTransform == inst.transform);
         for (const Mesh& mesh : scene.meshes) {
             CAPTURE(mesh.name);
-            requireWellFormed(mesh);
+            requireWellFormed(mesh, false);
         }
         // The camera looks at the scene: the target lies within the scene's bounds.
         glm::vec3 lo, hi;
@@ -260,6 +262,6 @@ TEST_CASE("unknown scene names throw, naming the scene and the known ones") {
     } catch (const std::invalid_argument& e) {
         CHECK(std::string(e.what()) ==
               "unknown scene 'cornel' (built-in scenes: cornell, spheres, thin, corridor, "
-              "offscreen, occluded)");
+              "offscreen, occluded, bunny)");
     }
 }
