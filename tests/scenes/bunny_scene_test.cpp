@@ -144,7 +144,8 @@ TEST_CASE("bunny mesh: scaled to its height, resting on y = 0, normals facing ou
     // Smooth normals agree with the winding at every corner of every triangle, so with the
     // positive volume above they point out of the surface.
     int badLength = 0, against = 0;
-    for (const glm::vec3& n : bunny.normals) badLength += std::abs(glm::length(n) - 1.0f) > 1e-5f;
+    for (const glm::vec3& n : bunny.normals)
+        badLength += !(std::abs(glm::length(n) - 1.0f) <= 1e-5f);
     for (std::size_t t = 0; t < bunny.triangleCount(); ++t) {
         const uint32_t* i = &bunny.indices[3 * t];
         const glm::vec3 a = bunny.positions[i[0]];
