@@ -101,7 +101,7 @@ def rows(groups, width=96):
     return "\n".join(lines)
 
 height = max(p[1] for p in positions) - min(p[1] for p in positions)
-winding = ("flipped by this script (the package's faced inward)" if flipped
+winding = ("flipped (the package's faced inward)" if flipped
            else "as in the package")
 with open(output, "w", newline="\n") as out:
     out.write(f"""\
