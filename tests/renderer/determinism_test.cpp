@@ -39,6 +39,7 @@ Frame renderSmall(const std::string& scene, Isa isa, int threads) {
 const std::map<std::string, uint64_t> kGolden = {
     {"cornell", 0x424e70d0d1bc6edbull},
     {"spheres", 0xa66601da9d1babbaull},
+    {"bunny", 0xac96514cff235a0full},
 };
 
 }  // namespace
