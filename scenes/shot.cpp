@@ -115,7 +115,10 @@ public:
         if (!j.is_number_integer()) fail(p, "expected " + expected);
         if (j.is_number_unsigned()) {
             const auto u = j.get<unsigned long long>();
-            if (u > static_cast<unsigned long long>(hi)) fail(p, "expected " + expected);
+            // (nlohmann-json reads every non-negative integer as unsigned)
+            if (u > static_cast<unsigned long long>(hi) ||
+                (lo > 0 && u < static_cast<unsigned long long>(lo)))
+                fail(p, "expected " + expected);
             return static_cast<long long>(u);
         }
         const auto v = j.get<long long>();
@@ -224,6 +227,11 @@ json parseDocument(const std::string& text, const Reader& r) {
     json doc;
     try {
         doc = json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/false);
+    } catch (const json::out_of_range&) {
+        // A number beyond double (1e999): the path is where the parser stopped, the element
+        // being read when inside an array.
+        elementStarts();
+        r.fail(pathOf(), "expected a finite number (it overflows)");
     } catch (const json::exception& e) {
         // "[json.exception.parse_error.101] parse error at line 3, column 7: ..." -> from "line"
         std::string what = e.what();
