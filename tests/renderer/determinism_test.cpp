@@ -78,7 +78,7 @@ const std::map<std::string, uint64_t> kGolden = {
 }  // namespace
 
 TEST_CASE("every ISA and thread count renders the same bits") {
-    for (const char* scene : {"cornell", "spheres", "spheres+sky", "cornell+sky"}) {
+    for (const std::string scene : {"cornell", "spheres", "spheres+sky", "cornell+sky"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())

@@ -143,6 +143,20 @@ TEST_CASE("sky image: SH irradiance is the cosine convolution of the image") {
     }
     MESSAGE("SH irradiance of a linear sky: worst error " << worst);
     CHECK(worst < 2e-3);
+    // Band 2: L = y^2 + 0.5 xz = 1/3 + (3y^2 - 1) / 3 + 0.5 xz, whose band-2 part the cosine
+    // scales by 1/4: E / pi = 1/3 + (3 n.y^2 - 1) / 12 + 0.125 n.x n.z
+    const auto quad = filledSky(128, 64, [](V3f d, int) { return d.y * d.y + 0.5f * d.x * d.z; });
+    const ShIrradiance shQuad = projectIrradianceSh({quad->rgb.data(), 128, 64});
+    double worstQuad = 0.0;
+    for (int k = 0; k < 200; ++k) {
+        const V3f n = lanes::normalize(V3f{randomFloat(k, 4, 0, 0) - 0.5f,
+                                           randomFloat(k, 4, 0, 1) - 0.5f,
+                                           randomFloat(k, 4, 0, 2) - 0.5f});
+        const double expected = 1.0 / 3.0 + (3.0 * n.y * n.y - 1.0) / 12.0 + 0.125 * n.x * n.z;
+        worstQuad = std::max(worstQuad, std::fabs(irradianceSh(shQuad, n).g - expected));
+    }
+    MESSAGE("SH irradiance of a quadratic sky: worst error " << worstQuad);
+    CHECK(worstQuad < 2e-3);
     // A sky lit only from above: normals facing down see nothing, clamped to exactly 0 rather
     // than the ringing of nine terms below it
     const auto upper = filledSky(64, 32, [](V3f d, int) { return d.y > 0.0f ? 1.0f : 0.0f; });
