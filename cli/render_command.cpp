@@ -292,7 +292,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (shot) {
         applyShot(*shot, scene);
         if (shot->environment.file)
-            scene.sky.image = std::make_shared<const SkyImage>(readSkyImage(*shot->environment.file));
+            scene.sky.image =
+                std::make_shared<const SkyImage>(readSkyImage(*shot->environment.file));
         path = shotCameraPath(*shot, scene.camera);
     }
     if (!o.quiet) {

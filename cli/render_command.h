@@ -46,7 +46,8 @@ std::string sequenceFileName(const std::string& output, int index, int count);
 // Validates everything (flags, the shot file, the output path) before any work, then renders
 // each frame into one reused Frame and writes it (whole, through a temporary and a rename)
 // before the next; progress to `err` unless quiet (one line per frame of a sequence), the
-// --stats table of each frame to `out`. Returns the exit status; throws on errors (see reportErrors).
+// --stats table of each frame to `out`. Returns the exit status; throws on errors (see
+// reportErrors).
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass.

@@ -291,7 +291,8 @@ SkyImage readSkyImage(const std::string& path) {
         }
     // Box-filter to half size until the renderer's float texel indices are exact.
     while (std::size_t(img.width) * img.height > (std::size_t(1) << 24)) {
-        EquirectImage half = downsampleBox(EquirectView{img.rgb.data(), img.width, img.height, nullptr, nullptr});
+        EquirectImage half =
+            downsampleBox(EquirectView{img.rgb.data(), img.width, img.height, nullptr, nullptr});
         img.width = half.width;
         img.height = half.height;
         img.rgb = std::move(half.rgb);

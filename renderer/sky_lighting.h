@@ -12,7 +12,7 @@
 
 namespace ssrt {
 
-inline constexpr int kSkyLevels = 7;           // roughness levels 0, 1/6, ..., 1
+inline constexpr int kSkyLevels = 7;            // roughness levels 0, 1/6, ..., 1
 inline constexpr int kSkyPrefilterWidth = 512;  // prefilter and SH from a copy at most this wide
 
 // Level 0 is the image itself (borrowed: the caller keeps the SkyImage alive), level i > 0 the
@@ -23,7 +23,7 @@ inline constexpr int kSkyPrefilterWidth = 512;  // prefilter and SH from a copy 
 // most kSkyPrefilterWidth texels wide (finer than level 1 needs by four times).
 struct SkyLighting {
     std::array<float, 3> poleTop{}, poleBottom{};  // of the image (EquirectView's poles)
-    std::vector<EquirectImage> prefiltered;         // levels 1 .. kSkyLevels - 1
+    std::vector<EquirectImage> prefiltered;        // levels 1 .. kSkyLevels - 1
     ShIrradiance irradiance;
 
     // Level i as a view; level 0 needs the image the lighting was built from.

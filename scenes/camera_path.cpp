@@ -50,8 +50,8 @@ Camera CameraPath::at(double t, const Camera& base) const {
         return c;
     }
     // The segment [t_k, t_k+1) holding t.
-    const auto after = std::upper_bound(keys.begin(), keys.end(), t,
-                                        [](double v, const CameraKey& key) { return v < key.time; });
+    const auto after = std::upper_bound(
+        keys.begin(), keys.end(), t, [](double v, const CameraKey& key) { return v < key.time; });
     const std::size_t k = std::size_t(after - keys.begin()) - 1;
     const double s = (t - keys[k].time) / (keys[k + 1].time - keys[k].time);
     const auto pos = [](const CameraKey& key) { return Vec(key.position); };

@@ -60,8 +60,8 @@ void Scene::validate() const {
         const SkyImage& img = *sky.image;
         if (img.width <= 0 || img.height <= 0 ||
             img.rgb.size() != std::size_t(3) * img.width * img.height)
-            throw std::invalid_argument("sky image '" + img.source + "': " +
-                                        std::to_string(img.width) + "x" +
+            throw std::invalid_argument("sky image '" + img.source +
+                                        "': " + std::to_string(img.width) + "x" +
                                         std::to_string(img.height) + " needs " +
                                         std::to_string(3L * img.width * img.height) +
                                         " floats, has " + std::to_string(img.rgb.size()));

@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return s;
 }
 
@@ -70,12 +71,14 @@ public:
     void object(const json& j, const std::string& path,
                 std::initializer_list<const char*> allowed) const {
         if (!j.is_object())
-            fail(path, path.empty() ? "expected a JSON object at the top level"
-                                    : "expected an object");
+            fail(path,
+                 path.empty() ? "expected a JSON object at the top level" : "expected an object");
         for (const auto& item : j.items()) {
             const bool known = std::any_of(allowed.begin(), allowed.end(),
                                            [&](const char* a) { return item.key() == a; });
-            if (!known) fail(child(path, item.key()), "unknown key (expected one of: " + join(allowed) + ")");
+            if (!known)
+                fail(child(path, item.key()),
+                     "unknown key (expected one of: " + join(allowed) + ")");
         }
     }
 
@@ -99,14 +102,15 @@ public:
         const auto v = number(obj, path, key, 0.0, false, kFloatMax, true, "a finite number > 0");
         return v ? std::optional<float>(float(*v)) : std::nullopt;
     }
-    std::optional<float> nonNegative(const json& obj, const std::string& path, const char* key) const {
+    std::optional<float> nonNegative(const json& obj, const std::string& path,
+                                     const char* key) const {
         const auto v = number(obj, path, key, 0.0, true, kFloatMax, true, "a finite number >= 0");
         return v ? std::optional<float>(float(*v)) : std::nullopt;
     }
 
     // An integer written as one (1280, not 1280.0 or 1.28e3) in [lo, hi].
     std::optional<long long> integer(const json& obj, const std::string& path, const char* key,
-                                      long long lo, long long hi) const {
+                                     long long lo, long long hi) const {
         if (!obj.contains(key)) return std::nullopt;
         const json& j = obj[key];
         const std::string p = child(path, key);
@@ -133,9 +137,10 @@ public:
         if (!obj.contains(key)) return std::nullopt;
         const json& j = obj[key];
         const std::string p = child(path, key);
-        const std::string expected = rule == VecRule::NonNegative ? "an array of 3 finite numbers >= 0"
-                                     : rule == VecRule::NonZero   ? "an array of 3 finite numbers, not all 0"
-                                                                  : "an array of 3 finite numbers";
+        const std::string expected =
+            rule == VecRule::NonNegative ? "an array of 3 finite numbers >= 0"
+            : rule == VecRule::NonZero   ? "an array of 3 finite numbers, not all 0"
+                                         : "an array of 3 finite numbers";
         if (!j.is_array() || j.size() != 3) fail(p, "expected " + expected);
         glm::vec3 v;
         for (int i = 0; i < 3; ++i) {
@@ -150,7 +155,8 @@ public:
         return v;
     }
 
-    std::optional<std::string> string(const json& obj, const std::string& path, const char* key) const {
+    std::optional<std::string> string(const json& obj, const std::string& path,
+                                      const char* key) const {
         if (!obj.contains(key)) return std::nullopt;
         const json& j = obj[key];
         if (!j.is_string() || j.get<std::string>().empty())
@@ -262,7 +268,8 @@ Shot parseShot(const std::string& text, const std::string& file) {
             shot.scene = r.existingFile("scene", *scene);
         } else {
             const auto& known = builtinScenes();
-            if (std::none_of(known.begin(), known.end(), [&](const auto& s) { return s.name == *scene; }))
+            if (std::none_of(known.begin(), known.end(),
+                             [&](const auto& s) { return s.name == *scene; }))
                 r.fail("scene", "unknown scene '" + *scene + "' (known: " + knownScenes() +
                                     "; or a .gltf/.glb file)");
             shot.scene = *scene;
@@ -278,12 +285,14 @@ Shot parseShot(const std::string& text, const std::string& file) {
         c.position = r.vec3(cam, p, "position", VR::Any);
         c.target = r.vec3(cam, p, "target", VR::Any);
         c.up = r.vec3(cam, p, "up", VR::NonZero);
-        if (const auto v = r.number(cam, p, "fovY", 0.0, false, 180.0, false, "a number in (0, 180)"))
+        if (const auto v =
+                r.number(cam, p, "fovY", 0.0, false, 180.0, false, "a number in (0, 180)"))
             c.fovY = float(*v);
         c.nearZ = r.positive(cam, p, "near");
         c.farZ = r.positive(cam, p, "far");
         if (c.nearZ && c.farZ && !(*c.farZ > *c.nearZ))
-            r.fail("camera.far", "expected a number greater than near (" + formatNumber(*c.nearZ) + ")");
+            r.fail("camera.far",
+                   "expected a number greater than near (" + formatNumber(*c.nearZ) + ")");
         if (cam.contains("path")) {
             const json& path = cam["path"];
             const std::string pp = "camera.path";
@@ -303,8 +312,8 @@ Shot parseShot(const std::string& text, const std::string& file) {
                 const std::string kp = pp + ".keys[" + std::to_string(k) + "]";
                 r.object(keys[k], kp, {"time", "position", "target", "fovY"});
                 ShotKey key;
-                key.time = r.number(keys[k], kp, "time", -Reader::kFloatMax, true, Reader::kFloatMax, true,
-                                    "a finite number");
+                key.time = r.number(keys[k], kp, "time", -Reader::kFloatMax, true,
+                                    Reader::kFloatMax, true, "a finite number");
                 if (!key.time) key.time = double(k);
                 if (k > 0 && !(*key.time > *shot.path.back().time))
                     r.fail(kp + ".time", "expected a time greater than the previous key's (" +
@@ -366,8 +375,9 @@ Shot parseShot(const std::string& text, const std::string& file) {
     if (doc.contains("render")) {
         const json& rd = doc["render"];
         const std::string p = "render";
-        r.object(rd, p, {"width", "height", "exposure", "shadowMapSize", "shadowBias",
-                         "shadowSlopeBias", "pcfRadius", "frames", "frame"});
+        r.object(rd, p,
+                 {"width", "height", "exposure", "shadowMapSize", "shadowBias", "shadowSlopeBias",
+                  "pcfRadius", "frames", "frame"});
         auto& s = shot.render;
         const auto asInt = [](std::optional<long long> v) {
             return v ? std::optional<int>(int(*v)) : std::nullopt;

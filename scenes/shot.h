@@ -72,9 +72,9 @@ struct Shot {
 
     struct EnvironmentFields {
         std::optional<Sky::Kind> kind;
-        std::optional<glm::vec3> color;                  // constant
+        std::optional<glm::vec3> color;                    // constant
         std::optional<glm::vec3> zenith, horizon, ground;  // gradient
-        std::optional<std::string> file;                 // image, resolved against the shot
+        std::optional<std::string> file;                   // image, resolved against the shot
         std::optional<float> intensity;
     } environment;
 

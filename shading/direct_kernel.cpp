@@ -42,8 +42,8 @@ SSRT_INLINE V3 envPrefiltered(const DirectArgs& a, V3 r, Lane roughness) {
     V3 sum{Lane(0.0f), Lane(0.0f), Lane(0.0f)};
     for (int k = 0; k < n; ++k) {
         const Lane lk = Lane(float(k));
-        const Lane w = ln::select(i0 == lk, Lane(1.0f) - t,
-                                  ln::select(i0 + Lane(1.0f) == lk, t, Lane(0.0f)));
+        const Lane w =
+            ln::select(i0 == lk, Lane(1.0f) - t, ln::select(i0 + Lane(1.0f) == lk, t, Lane(0.0f)));
         if (!ln::any(w > Lane(0.0f))) continue;
         sum = sum + env::sampleBilinear(a.envLevel[k], u, v) * w;
     }
@@ -155,9 +155,9 @@ SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibil
     } else {
         // Analytic sky: irradiance blended by the normal's elevation, and the reflected sky
         // through the environment BRDF, blurred towards the sky's average as roughness grows.
-        const V3 skyAvg = mix3(splat3(a.skyGround),
-                               mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f)),
-                               Lane(0.5f));
+        const V3 skyAvg =
+            mix3(splat3(a.skyGround), mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f)),
+                 Lane(0.5f));
         const V3 up = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f));
         irradiance = mix3(splat3(a.skyGround), up, Lane(0.5f) + Lane(0.5f) * s.n.y);
         specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);

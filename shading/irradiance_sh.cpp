@@ -17,11 +17,11 @@ struct ShBasis {
 };
 
 ShBasis shBasis() {
-    const double y0 = 0.5 / std::sqrt(kPiD);                  // 1 / (2 sqrt(pi))
-    const double y1 = std::sqrt(3.0 / (4.0 * kPiD));          // sqrt(3 / (4 pi))
-    const double y2 = std::sqrt(15.0 / (4.0 * kPiD));         // sqrt(15 / (4 pi))
-    const double y20 = std::sqrt(5.0 / (16.0 * kPiD));        // sqrt(5 / (16 pi))
-    const double y22 = std::sqrt(15.0 / (16.0 * kPiD));       // sqrt(15 / (16 pi))
+    const double y0 = 0.5 / std::sqrt(kPiD);             // 1 / (2 sqrt(pi))
+    const double y1 = std::sqrt(3.0 / (4.0 * kPiD));     // sqrt(3 / (4 pi))
+    const double y2 = std::sqrt(15.0 / (4.0 * kPiD));    // sqrt(15 / (4 pi))
+    const double y20 = std::sqrt(5.0 / (16.0 * kPiD));   // sqrt(5 / (16 pi))
+    const double y22 = std::sqrt(15.0 / (16.0 * kPiD));  // sqrt(15 / (16 pi))
     return {{y0, y1, y1, y1, y2, y2, y20, y2, y22}, {0, 1, 1, 1, 2, 2, 2, 2, 2}};
 }
 
@@ -51,7 +51,9 @@ ShIrradiance projectIrradianceSh(const EquirectView& img) {
     // Row boundaries: cos(pi y / h), y = 0 .. h (exactly 1 and -1 at the poles).
     std::vector<double> cosEdge(h + 1);
     for (int y = 0; y <= h; ++y)
-        cosEdge[y] = y == 0 ? 1.0 : y == h ? -1.0 : double(lanes::cos(lanes::kPi * float(y) / float(h)));
+        cosEdge[y] = y == 0   ? 1.0
+                     : y == h ? -1.0
+                              : double(lanes::cos(lanes::kPi * float(y) / float(h)));
     double sum[3][kShTerms] = {};
     for (int y = 0; y < h; ++y) {
         float st, ct;

@@ -44,9 +44,8 @@ namespace env {
 template <class L>
 SSRT_INLINE ln::V3<L> irradianceSh(const float* k, ln::V3<L> n) {
     const L x = n.x, y = n.y, z = n.z;
-    const L basis[kShTerms] = {L(1.0f), y,     z,
-                               x,       x * y, y * z,
-                               L(3.0f) * z * z - L(1.0f), x * z, x * x - y * y};
+    const L basis[kShTerms] = {
+        L(1.0f), y, z, x, x * y, y * z, L(3.0f) * z * z - L(1.0f), x * z, x * x - y * y};
     L out[3];
     for (int c = 0; c < 3; ++c) {
         L sum = L(k[c * kShTerms]);

@@ -105,8 +105,8 @@ TEST_CASE("cli shot: flags override the shot, the shot overrides the defaults") 
     CHECK(w == 40);
     CHECK(h == 30);
     // Flags win: width, scene and frame count
-    r = run({"render", "--shot", shot, "--width", "24", "--scene", "cornell", "--frames", "1",
-             "-o", out, "-q"});
+    r = run({"render", "--shot", shot, "--width", "24", "--scene", "cornell", "--frames", "1", "-o",
+             out, "-q"});
     REQUIRE_MESSAGE(r.code == 0, r.err);
     readChannel(out, "viewZ", w, h);
     CHECK(w == 24);
@@ -163,7 +163,8 @@ TEST_CASE("cli shot: a 3-frame sequence writes 3 files whose motion follows the 
     const Result r = run({"render", "--shot", shotFile, "-o", dir.file("seq.exr"), "-j", "2"});
     REQUIRE_MESSAGE(r.code == 0, r.err);
     // Exactly the three files (no temporaries, nothing else), one progress line per frame
-    CHECK(dir.listing() == std::vector<std::string>{"seq_0000.exr", "seq_0001.exr", "seq_0002.exr"});
+    CHECK(dir.listing() ==
+          std::vector<std::string>{"seq_0000.exr", "seq_0001.exr", "seq_0002.exr"});
     CHECK(lines(r.err) == 4);
     for (int i = 1; i <= 3; ++i)
         CHECK(contains(r.err, "frame " + std::to_string(i) + "/3: wrote " +
@@ -191,8 +192,8 @@ TEST_CASE("cli shot: a 3-frame sequence writes 3 files whose motion follows the 
         // visible point, rebuilt from viewZ, through it.
         const Camera& cam = cams[i];
         const Camera& prev = cams[i > 0 ? i - 1 : 0];
-        const glm::dmat4 prevVp = glm::dmat4(prev.projection(float(w) / float(h))) *
-                                  glm::dmat4(prev.view());
+        const glm::dmat4 prevVp =
+            glm::dmat4(prev.projection(float(w) / float(h))) * glm::dmat4(prev.view());
         double worst = 0.0, largest = 0.0;
         int visible = 0;
         for (int y = 0; y < h; ++y)

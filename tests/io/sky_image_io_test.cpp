@@ -62,8 +62,9 @@ TEST_CASE("sky image io: RGB by name, grey from one channel, negatives to zero")
                 exact &= rgb.rgb[(std::size_t(y) * 8 + x) * 3 + c] == value(c + 1, x, y);
     CHECK(exact);
 
-    writeImage(dir.file("grey.exr"),
-               planesFrame(4, 2, {"Y"}, [](int, int x, int y) { return x == 1 ? -3.0f : float(x + y); }));
+    writeImage(dir.file("grey.exr"), planesFrame(4, 2, {"Y"}, [](int, int x, int y) {
+                   return x == 1 ? -3.0f : float(x + y);
+               }));
     const SkyImage grey = readSkyImage(dir.file("grey.exr"));
     REQUIRE(grey.rgb.size() == 3u * 4 * 2);
     CHECK(grey.rgb[3 * 2 + 0] == 2.0f);  // (2, 0)
@@ -75,7 +76,8 @@ TEST_CASE("sky image io: a texel that is not finite, or no file, is one line nam
     TempDir dir;
     const std::string nan = dir.file("nan.exr");
     writeImage(nan, planesFrame(4, 2, {"R", "G", "B"}, [](int c, int x, int y) {
-                   return c == 1 && x == 3 && y == 1 ? std::numeric_limits<float>::infinity() : 1.0f;
+                   return c == 1 && x == 3 && y == 1 ? std::numeric_limits<float>::infinity()
+                                                     : 1.0f;
                }));
     CHECK(errorOf(nan) == "cannot read '" + nan + "': texel (3, 1) is not finite");
     const std::string missing = dir.file("missing.hdr");

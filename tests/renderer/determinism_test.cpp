@@ -103,7 +103,8 @@ TEST_CASE("built-in scenes keep their golden hashes") {
 
 TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky") {
     std::vector<std::string> names;
-    for (const auto& info : builtinScenes()) names.insert(names.end(), {info.name, info.name + "+sky"});
+    for (const auto& info : builtinScenes())
+        names.insert(names.end(), {info.name, info.name + "+sky"});
     for (const std::string& name : names) {
         CAPTURE(name);
         const Frame f = renderSmall(name, defaultIsa(), 2);

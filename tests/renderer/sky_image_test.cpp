@@ -131,13 +131,14 @@ TEST_CASE("sky image: SH irradiance is the cosine convolution of the image") {
     const float b[3][3] = {{0.5f, 0.3f, -0.2f}, {-0.4f, 0.1f, 0.6f}, {0.0f, 0.9f, 0.0f}};
     double worst = 0.0;
     for (int k = 0; k < 200; ++k) {
-        const V3f n = lanes::normalize(V3f{randomFloat(k, 3, 0, 0) - 0.5f,
-                                           randomFloat(k, 3, 0, 1) - 0.5f,
-                                           randomFloat(k, 3, 0, 2) - 0.5f});
+        const V3f n =
+            lanes::normalize(V3f{randomFloat(k, 3, 0, 0) - 0.5f, randomFloat(k, 3, 0, 1) - 0.5f,
+                                 randomFloat(k, 3, 0, 2) - 0.5f});
         const Rgb e = irradianceSh(sh, n);
         const float got[3] = {e.r, e.g, e.b};
         for (int c = 0; c < 3; ++c) {
-            const double expected = 1.0 + (2.0 / 3.0) * (b[c][0] * n.x + b[c][1] * n.y + b[c][2] * n.z);
+            const double expected =
+                1.0 + (2.0 / 3.0) * (b[c][0] * n.x + b[c][1] * n.y + b[c][2] * n.z);
             worst = std::max(worst, std::fabs(got[c] - expected));
         }
     }
@@ -149,9 +150,9 @@ TEST_CASE("sky image: SH irradiance is the cosine convolution of the image") {
     const ShIrradiance shQuad = projectIrradianceSh({quad->rgb.data(), 128, 64});
     double worstQuad = 0.0;
     for (int k = 0; k < 200; ++k) {
-        const V3f n = lanes::normalize(V3f{randomFloat(k, 4, 0, 0) - 0.5f,
-                                           randomFloat(k, 4, 0, 1) - 0.5f,
-                                           randomFloat(k, 4, 0, 2) - 0.5f});
+        const V3f n =
+            lanes::normalize(V3f{randomFloat(k, 4, 0, 0) - 0.5f, randomFloat(k, 4, 0, 1) - 0.5f,
+                                 randomFloat(k, 4, 0, 2) - 0.5f});
         const double expected = 1.0 / 3.0 + (3.0 * n.y * n.y - 1.0) / 12.0 + 0.125 * n.x * n.z;
         worstQuad = std::max(worstQuad, std::fabs(irradianceSh(shQuad, n).g - expected));
     }

@@ -130,7 +130,8 @@ TEST_CASE("shot: the environment type decides the sky") {
     CHECK(scene.sky.kind == Sky::Kind::Constant);
     CHECK(scene.sky.zenith == glm::vec3(0.5f, 1, 2));
     applyShot(parseShot(R"({"environment": {"type": "gradient", "zenith": [1, 2, 3],
-                            "ground": [0, 0, 1], "intensity": 2}})", "g.json"),
+                            "ground": [0, 0, 1], "intensity": 2}})",
+                        "g.json"),
               scene);
     CHECK(scene.sky.kind == Sky::Kind::Gradient);
     CHECK(scene.sky.zenith == glm::vec3(1, 2, 3));
@@ -148,10 +149,12 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
     const std::string missing = dir.file("missing.glb"), missingSky = dir.file("sky.hdr");
     const std::vector<std::pair<std::string, std::string>> cases{
         // Unknown keys (typos), at every level
-        {R"({"camra": {}})", "camra: unknown key (expected one of: scene, camera, light, "
-                             "environment, render)"},
-        {R"({"camera": {"fovy": 40}})", "camera.fovy: unknown key (expected one of: position, "
-                                         "target, up, fovY, near, far, path)"},
+        {R"({"camra": {}})",
+         "camra: unknown key (expected one of: scene, camera, light, "
+         "environment, render)"},
+        {R"({"camera": {"fovy": 40}})",
+         "camera.fovy: unknown key (expected one of: position, "
+         "target, up, fovY, near, far, path)"},
         {R"({"camera": {"path": {"keys": [{"tme": 1}]}}})",
          "camera.path.keys[0].tme: unknown key (expected one of: time, position, target, fovY)"},
         {R"({"environment": {"color": [1, 1, 1]}})",
@@ -165,17 +168,22 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         // Wrong types
         {R"([1, 2])", "expected a JSON object at the top level"},
         {R"({"camera": "front"})", "camera: expected an object"},
-        {R"({"camera": {"position": [1, 2]}})", "camera.position: expected an array of 3 finite numbers"},
-        {R"({"camera": {"position": "here"}})", "camera.position: expected an array of 3 finite numbers"},
-        {R"({"camera": {"target": [1, "2", 3]}})", "camera.target: expected an array of 3 finite numbers"},
+        {R"({"camera": {"position": [1, 2]}})",
+         "camera.position: expected an array of 3 finite numbers"},
+        {R"({"camera": {"position": "here"}})",
+         "camera.position: expected an array of 3 finite numbers"},
+        {R"({"camera": {"target": [1, "2", 3]}})",
+         "camera.target: expected an array of 3 finite numbers"},
         {R"({"camera": {"fovY": "40"}})", "camera.fovY: expected a number in (0, 180)"},
         {R"({"render": {"width": 1280.0}})", "render.width: expected an integer from 1 to 8192"},
         {R"({"render": {"width": true}})", "render.width: expected an integer from 1 to 8192"},
         {R"({"scene": 5})", "scene: expected a non-empty string"},
-        {R"({"camera": {"path": {"keys": {}}}})", "camera.path.keys: expected an array of at least one key"},
+        {R"({"camera": {"path": {"keys": {}}}})",
+         "camera.path.keys: expected an array of at least one key"},
         // NaN and infinity (JSON has no literal for either; overflow is caught)
         {R"({"render": {"exposure": NaN}})", "not valid JSON: line 1, column "},
-        {R"({"render": {"exposure": 1e999}})", "render.exposure: expected a finite number (it overflows)"},
+        {R"({"render": {"exposure": 1e999}})",
+         "render.exposure: expected a finite number (it overflows)"},
         {R"({"camera": {"position": [1, -1e999, 0]}})",
          "camera.position[1]: expected a finite number (it overflows)"},
         {R"({"light": {"intensity": 1e39}})", "light.intensity: expected a finite number >= 0"},
@@ -187,25 +195,32 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         // Out-of-range values
         {R"({"camera": {"fovY": 180}})", "camera.fovY: expected a number in (0, 180)"},
         {R"({"camera": {"fovY": 0}})", "camera.fovY: expected a number in (0, 180)"},
-        {R"({"camera": {"near": 1, "far": 0.5}})", "camera.far: expected a number greater than near (1)"},
+        {R"({"camera": {"near": 1, "far": 0.5}})",
+         "camera.far: expected a number greater than near (1)"},
         {R"({"render": {"width": 0}})", "render.width: expected an integer from 1 to 8192"},
         {R"({"render": {"height": 8193}})", "render.height: expected an integer from 1 to 8192"},
-        {R"({"render": {"width": 99999999999999999999}})", "render.width: expected an integer from 1 to 8192"},
+        {R"({"render": {"width": 99999999999999999999}})",
+         "render.width: expected an integer from 1 to 8192"},
         {R"({"render": {"frames": 0}})", "render.frames: expected an integer from 1 to 100000"},
-        {R"({"render": {"frame": 4294967296}})", "render.frame: expected an integer from 0 to 4294967295"},
-        {R"({"render": {"shadowMapSize": 8}})", "render.shadowMapSize: expected an integer from 16 to 8192"},
+        {R"({"render": {"frame": 4294967296}})",
+         "render.frame: expected an integer from 0 to 4294967295"},
+        {R"({"render": {"shadowMapSize": 8}})",
+         "render.shadowMapSize: expected an integer from 16 to 8192"},
         {R"({"render": {"exposure": 0}})", "render.exposure: expected a finite number > 0"},
-        {R"({"light": {"color": [1, -0.1, 1]}})", "light.color: expected an array of 3 finite numbers >= 0"},
-        {R"({"environment": {"intensity": -1}})", "environment.intensity: expected a finite number >= 0"},
+        {R"({"light": {"color": [1, -0.1, 1]}})",
+         "light.color: expected an array of 3 finite numbers >= 0"},
+        {R"({"environment": {"intensity": -1}})",
+         "environment.intensity: expected a finite number >= 0"},
         {R"({"camera": {"path": {"keys": [{"time": 1}, {"time": 0.5}]}}})",
          "camera.path.keys[1].time: expected a time greater than the previous key's (1)"},
         {R"({"camera": {"path": {"interpolation": "cubic", "keys": [{}]}}})",
          "camera.path.interpolation: expected \"catmull-rom\" or \"linear\""},
         // Names and files
-        {R"({"scene": "teapot"})", "scene: unknown scene 'teapot' (known: " +
-                                       builtinScenes().front().name},
+        {R"({"scene": "teapot"})",
+         "scene: unknown scene 'teapot' (known: " + builtinScenes().front().name},
         {R"({"scene": "missing.glb"})", "scene: no such file '" + missing + "'"},
-        {R"({"environment": {"type": "image"}})", "environment.file: required when type is \"image\""},
+        {R"({"environment": {"type": "image"}})",
+         "environment.file: required when type is \"image\""},
         {R"({"environment": {"type": "image", "file": "sky.hdr"}})",
          "environment.file: no such file '" + missingSky + "'"},
         {R"({"environment": {"type": "sky"}})",
