@@ -54,6 +54,12 @@ std::string formatNumber(double v) {
     return s.str();
 }
 
+// Finite, and finite as a float too (checked before converting: a double beyond the float
+// range has no float value).
+bool fitsFloat(double v) {
+    return std::isfinite(v) && std::fabs(v) <= double(std::numeric_limits<float>::max());
+}
+
 // Reads one document, every error naming the file and the JSON path of the field.
 class Reader {
 public:
@@ -92,7 +98,7 @@ public:
         if (!j.is_number()) fail(p, "expected " + expected);
         const double v = j.get<double>();
         // Finite also as a float: every number here ends up in one.
-        const bool inRange = std::isfinite(v) && std::isfinite(float(v)) &&
+        const bool inRange = fitsFloat(v) &&
                              (loIn ? v >= lo : v > lo) && (hiIn ? v <= hi : v < hi);
         if (!inRange) fail(p, "expected " + expected);
         return v;
@@ -146,7 +152,7 @@ public:
         for (int i = 0; i < 3; ++i) {
             if (!j[i].is_number()) fail(p, "expected " + expected);
             const double d = j[i].get<double>();
-            if (!std::isfinite(d) || !std::isfinite(float(d))) fail(p, "expected " + expected);
+            if (!fitsFloat(d)) fail(p, "expected " + expected);
             if (rule == VecRule::NonNegative && d < 0.0) fail(p, "expected " + expected);
             v[i] = float(d);
         }
