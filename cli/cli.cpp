@@ -33,9 +33,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App app{"ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, direct light)",
                  "ssrt"};
     app.footer(
-        "Exit status: 0 success, 1 the work failed (file I/O, an ISA this CPU lacks, "
-        "rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for a command's "
-        "options.");
+        "Exit status: 0 success, 1 the work failed (a bad shot, scene or image file, file I/O, "
+        "an ISA this CPU lacks, rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for "
+        "a command's options.");
     app.require_subcommand(1);
     RenderOptions renderOptions;
     CLI::App* render = addRenderCommand(app, renderOptions);

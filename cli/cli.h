@@ -9,7 +9,7 @@ namespace ssrt::cli {
 
 // Exit statuses: the command line was wrong, or the work it asked for could not be done.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;  // I/O, a CPU without the ISA asked for, render errors
+inline constexpr int kExitFailure = 1;  // bad shot/scene/image file, I/O, missing ISA, render
 inline constexpr int kExitUsage = 2;    // unknown option, bad value, unknown scene or format
 
 // Parses argv (argv[0] is the program) and runs the chosen command. Help and results go to

@@ -8,7 +8,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -17,8 +19,11 @@
 #include "io/image_io.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/gltf_loader.h"
+#include "scenes/shot.h"
 
 namespace ssrt::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -152,62 +157,103 @@ constexpr int kValueWidth = 14;
 
 RenderOptions::RenderOptions() {
     const RenderSettings d;
-    scene = defaultSceneName();
-    width = std::to_string(d.width);
-    height = std::to_string(d.height);
     threads = std::to_string(d.threads);
     isa = d.isa ? std::string(isaName(*d.isa)) : "auto";
-    shadowMapSize = std::to_string(d.shadowMapSize);
-    std::ostringstream e;
-    e << d.exposure;
-    exposure = e.str();
-    frame = std::to_string(d.frame);
 }
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
-    CLI::App* cmd = app.add_subcommand("render", "Render one frame of a built-in scene to a file");
+    CLI::App* cmd = app.add_subcommand(
+        "render",
+        "Render a frame, or a sequence along a shot's camera path, of a built-in scene or a glTF "
+        "file to PNG or EXR files");
+    const RenderSettings d;
+    // Options that a shot file can also give: remembered only when typed, so that the shot
+    // decides otherwise; help shows the built-in default.
+    const auto addShotOption = [&](const std::string& flags, std::optional<std::string>& value,
+                                   const std::string& type, const std::string& help,
+                                   const std::string& defaultText) {
+        cmd->add_option_function<std::string>(
+               flags, [&value](const std::string& v) { value = v; }, help)
+            ->type_name(type)
+            ->default_str(defaultText);
+    };
     const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
                          const std::string& help) {
         cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
     };
-    add("-s,--scene", o.scene, "NAME",
-        "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file");
-    add("--width", o.width, "INT", "Image width in pixels, 1 to " + std::to_string(kMaxImageSize));
-    add("--height", o.height, "INT",
-        "Image height in pixels, 1 to " + std::to_string(kMaxImageSize));
+    std::ostringstream exposure;
+    exposure << d.exposure;
+    addShotOption("--shot", o.shot, "FILE",
+                  "Shot file (JSON): scene, camera and camera path, light, environment, render "
+                  "settings; every field optional, and the flags below override it",
+                  "");
+    addShotOption("-s,--scene", o.scene, "NAME",
+                  "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file",
+                  defaultSceneName());
+    addShotOption("--width", o.width, "INT",
+                  "Image width in pixels, 1 to " + std::to_string(kMaxImageSize),
+                  std::to_string(d.width));
+    addShotOption("--height", o.height, "INT",
+                  "Image height in pixels, 1 to " + std::to_string(kMaxImageSize),
+                  std::to_string(d.height));
     add("-j,--threads", o.threads, "INT",
         "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = every core");
     add("--isa", o.isa, "ISA",
         "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA if set, "
         "else the best this CPU runs");
-    add("--shadow-map-size", o.shadowMapSize, "INT",
-        "Shadow map texels per side, " + std::to_string(kMinShadowMap) + " to " +
-            std::to_string(kMaxShadowMap));
-    add("--exposure", o.exposure, "FLOAT", "Scale on linear radiance before the tone map, > 0");
-    add("--frame", o.frame, "INT", "Frame index (seeds the per-pixel random numbers)");
+    addShotOption("--shadow-map-size", o.shadowMapSize, "INT",
+                  "Shadow map texels per side, " + std::to_string(kMinShadowMap) + " to " +
+                      std::to_string(kMaxShadowMap),
+                  std::to_string(d.shadowMapSize));
+    addShotOption("--exposure", o.exposure, "FLOAT",
+                  "Scale on linear radiance before the tone map, > 0", exposure.str());
+    addShotOption("--frame", o.frame, "INT",
+                  "Frame index (seeds the per-pixel random numbers); of a sequence's first frame, "
+                  "frame i getting this + i",
+                  std::to_string(d.frame));
+    addShotOption("--frames", o.frames, "INT",
+                  "Frames to render, 1 to " + std::to_string(kMaxShotFrames) +
+                      ": evenly along the shot's camera path from its first key to its last "
+                      "(Catmull-Rom or linear, as the shot says), or N frames of the still "
+                      "camera without a path",
+                  "1");
     add("-o,--output", o.output, "FILE",
-        "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer)");
-    cmd->add_flag("--stats", o.stats, "Print per-pass times and rasterizer counters");
+        "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
+        "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
+        "out_0001.png, ...)");
+    cmd->add_flag("--stats", o.stats, "Print per-pass times and rasterizer counters (per frame)");
     cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
     return cmd;
 }
 
-RenderSettings settingsFrom(const RenderOptions& o) {
-    RenderSettings s;
-    s.width = int(parseInteger("--width", o.width, 1, kMaxImageSize));
-    s.height = int(parseInteger("--height", o.height, 1, kMaxImageSize));
+RenderSettings settingsFrom(const RenderOptions& o, const RenderSettings& base) {
+    RenderSettings s = base;
+    if (o.width) s.width = int(parseInteger("--width", *o.width, 1, kMaxImageSize));
+    if (o.height) s.height = int(parseInteger("--height", *o.height, 1, kMaxImageSize));
     s.threads = int(parseInteger("--threads", o.threads, 0, kMaxThreads));
     try {
         s.isa = parseIsa(o.isa);
     } catch (const std::exception& e) {
         throw std::invalid_argument(std::string("--isa: ") + e.what());
     }
-    s.shadowMapSize =
-        int(parseInteger("--shadow-map-size", o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
-    s.exposure = parsePositive("--exposure", o.exposure);
-    s.frame = uint32_t(parseInteger("--frame", o.frame, 0, kMaxFrame));
+    if (o.shadowMapSize)
+        s.shadowMapSize =
+            int(parseInteger("--shadow-map-size", *o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
+    if (o.exposure) s.exposure = parsePositive("--exposure", *o.exposure);
+    if (o.frame) s.frame = uint32_t(parseInteger("--frame", *o.frame, 0, kMaxFrame));
     s.validate();
     return s;
+}
+
+std::string sequenceFileName(const std::string& output, int index, int count) {
+    if (count <= 1) return output;
+    const fs::path path(output);
+    std::string number = std::to_string(index);
+    const std::size_t digits = std::max<std::size_t>(4, std::to_string(count - 1).size());
+    if (number.size() < digits) number.insert(0, digits - number.size(), '0');
+    std::string name = path.stem().string();
+    name.append("_").append(number).append(path.extension().string());
+    return (path.parent_path() / name).string();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -215,30 +261,80 @@ RenderSettings settingsFrom(const RenderOptions& o) {
 
 int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     // Everything that can be wrong with the request fails here, before any rendering and
-    // before any file exists.
-    const RenderSettings settings = settingsFrom(o);
-    checkSceneName(o.scene);
+    // before any file exists: flags (exit 2), then the shot file (exit 1).
+    RenderSettings base;
+    std::optional<Shot> shot;
+    if (o.shot) {
+        shot = loadShot(*o.shot);
+        applyShot(*shot, base);
+    }
+    const RenderSettings settings = settingsFrom(o, base);
+    int frames = shot && shot->render.frames ? *shot->render.frames : 1;
+    if (o.frames) frames = int(parseInteger("--frames", *o.frames, 1, kMaxShotFrames));
+    if (settings.frame + uint64_t(frames - 1) > uint64_t(kMaxFrame))
+        throw std::invalid_argument("--frame: " + std::to_string(settings.frame) + " + " +
+                                    std::to_string(frames) + " frames passes " +
+                                    std::to_string(kMaxFrame));
+    std::string sceneName = defaultSceneName();
+    if (o.scene) {
+        checkSceneName(*o.scene);
+        sceneName = *o.scene;
+    } else if (shot && shot->scene) {
+        sceneName = *shot->scene;  // checked by the shot's parser
+    }
     const Isa isa = resolveIsaFor(settings.isa);
-    checkWritable(o.output);
+    checkWritable(sequenceFileName(o.output, 0, frames));
 
-    // A glTF file that cannot be loaded is a SceneLoadError (a runtime error: exit 1), thrown
-    // before anything is written.
-    const Scene scene = isSceneFile(o.scene) ? loadGltf(o.scene) : makeBuiltinScene(o.scene);
+    // A glTF file or an environment image that cannot be loaded is a runtime error (exit 1),
+    // thrown before anything is written.
+    Scene scene = isSceneFile(sceneName) ? loadGltf(sceneName) : makeBuiltinScene(sceneName);
+    CameraPath path;
+    if (shot) {
+        applyShot(*shot, scene);
+        if (shot->environment.file)
+            scene.sky.image =
+                std::make_shared<const SkyImage>(readSkyImage(*shot->environment.file));
+        path = shotCameraPath(*shot, scene.camera);
+    }
     if (!o.quiet) {
-        err << "rendering " << o.scene << " " << settings.width << "x" << settings.height << " on "
+        err << "rendering " << sceneName << " " << settings.width << "x" << settings.height
+            << (frames > 1 ? ", " + plural(frames, "frame") : std::string()) << " on "
             << isaName(isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
     }
-    const auto start = std::chrono::steady_clock::now();
-    const Frame frame = Renderer(settings).render(scene);
-    const std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - start;
 
-    writeImage(o.output, frame);
-    if (!o.quiet) err << "wrote " << o.output << "\n";
-    if (o.stats) {
-        // The renderer may report the thread setting (0 = every core) rather than the count.
-        FrameStats stats = frame.stats;
-        if (stats.threads <= 0) stats.threads = threadsFor(settings);
-        printStats(out, stats, wall.count());
+    // One Frame for the whole sequence: its planes and scratch buffers are reused. Frame i
+    // looks from the path at frameTime(i, frames) and its previous camera is frame i - 1's
+    // (frame 0's is itself), so motion vectors follow the path.
+    Frame frame;
+    Camera previous;
+    for (int i = 0; i < frames; ++i) {
+        const Camera camera =
+            path.empty() ? scene.camera : path.at(path.frameTime(i, frames), scene.camera);
+        const Camera& previousCamera =
+            i > 0 ? previous : (path.empty() ? scene.previousCamera : camera);
+        RenderSettings frameSettings = settings;
+        frameSettings.frame = settings.frame + uint32_t(i);
+        const auto start = std::chrono::steady_clock::now();
+        Renderer(frameSettings).render(scene, camera, previousCamera, frame);
+        const std::chrono::duration<double, std::milli> wall =
+            std::chrono::steady_clock::now() - start;
+        previous = camera;
+
+        const std::string file = sequenceFileName(o.output, i, frames);
+        writeImage(file, frame);
+        if (!o.quiet) {
+            if (frames > 1)
+                err << "frame " << (i + 1) << "/" << frames << ": wrote " << file << "\n";
+            else
+                err << "wrote " << file << "\n";
+        }
+        if (o.stats) {
+            if (frames > 1) out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";
+            // The renderer may report the thread setting (0 = every core) rather than the count.
+            FrameStats stats = frame.stats;
+            if (stats.threads <= 0) stats.threads = threadsFor(settings);
+            printStats(out, stats, wall.count());
+        }
     }
     return kExitOk;
 }

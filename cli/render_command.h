@@ -1,7 +1,9 @@
-// `ssrt render`: one frame of a built-in scene to a PNG preview or a multi-layer EXR.
+// `ssrt render`: a frame, or a sequence along a shot's camera path, of a built-in scene or a
+// glTF file, to PNG previews or multi-layer EXRs.
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 #include "renderer/renderer.h"
@@ -13,26 +15,39 @@ class App;
 namespace ssrt::cli {
 
 // The options as typed. Numbers stay text until settingsFrom() so that every bad value
-// (NaN, "12px", 1e99, -3) gets the same one-line message naming the option.
+// (NaN, "12px", 1e99, -3) gets the same one-line message naming the option. Options a shot
+// file can also give are optional: unset means "not on the command line", so the shot (or
+// else the default) decides; a flag that is given overrides the shot.
 struct RenderOptions {
-    std::string scene;  // a built-in scene; defaults to the first ("cornell")
-    std::string width, height, threads, isa, shadowMapSize, exposure, frame;
+    std::optional<std::string> shot;   // a shot file (scenes/shot.h)
+    std::optional<std::string> scene;  // a built-in scene or a .gltf/.glb file
+    std::optional<std::string> width, height, shadowMapSize, exposure, frame, frames;
+    std::string threads, isa;
     std::string output = "ssrt.png";
     bool stats = false;
     bool quiet = false;
 
-    RenderOptions();  // numbers default to RenderSettings{}'s, so help shows the truth
+    RenderOptions();  // threads and isa default to RenderSettings{}'s
 };
 
 // Registers the `render` subcommand on `app`, bound to `options`, and returns it.
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options);
 
-// Parses and range-checks the numbers, then RenderSettings::validate(). Throws
-// std::invalid_argument naming the option and the value.
-RenderSettings settingsFrom(const RenderOptions& options);
+// Parses and range-checks the numbers given, over `base` (the defaults, or a shot's
+// settings), then RenderSettings::validate(). Throws std::invalid_argument naming the option
+// and the value.
+RenderSettings settingsFrom(const RenderOptions& options, const RenderSettings& base = {});
 
-// Validates everything, renders, writes the file; progress to `err` unless quiet, the
-// --stats table to `out`. Returns the exit status; throws on errors (see reportErrors).
+// The file frame `index` of a `count`-frame sequence goes to: `output` itself for a single
+// frame, else the stem, an underscore, the index zero-padded to 4 digits (more if count - 1
+// needs them), and the extension: out.png -> out_0000.png, out_0001.png, ...
+std::string sequenceFileName(const std::string& output, int index, int count);
+
+// Validates everything (flags, the shot file, the output path) before any work, then renders
+// each frame into one reused Frame and writes it (whole, through a temporary and a rename)
+// before the next; progress to `err` unless quiet (one line per frame of a sequence), the
+// --stats table of each frame to `out`. Returns the exit status; throws on errors (see
+// reportErrors).
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass.

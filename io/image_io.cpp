@@ -1,6 +1,7 @@
 #include "io/image_io.h"
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -14,6 +15,9 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+
+#include "core/lane_math.h"
+#include "shading/environment.h"
 
 namespace ssrt {
 
@@ -235,6 +239,65 @@ void writeImage(const std::string& path, const Frame& frame) {
         fs::remove(tmp, ignored);
         throw;
     }
+}
+
+namespace {
+
+// IEC 61966-2-1 sRGB decoding.
+float srgbToLinear(float v) {
+    // The project's own pow (core/lane_math.h), so every machine decodes to the same bits.
+    return v <= 0.04045f ? v / 12.92f : lanes::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+// The channel called `name`, or -1.
+int channelIndex(const OIIO::ImageSpec& spec, const char* name) {
+    const auto& names = spec.channelnames;
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : int(it - names.begin());
+}
+
+}  // namespace
+
+SkyImage readSkyImage(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) failRead(path, OIIO::geterror());
+    const OIIO::ImageSpec spec = in->spec();
+    const int w = spec.width, h = spec.height, n = spec.nchannels;
+    if (w <= 0 || h <= 0 || n <= 0) failRead(path, "the image is empty");
+    std::vector<float> all(std::size_t(w) * h * n);
+    if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, all.data()))
+        failRead(path, in->geterror());
+    // Which file channel feeds R, G and B.
+    int src[3] = {0, 0, 0};
+    const int r = channelIndex(spec, "R"), g = channelIndex(spec, "G"), b = channelIndex(spec, "B");
+    if (r >= 0 && g >= 0 && b >= 0)
+        src[0] = r, src[1] = g, src[2] = b;
+    else if (n >= 3)
+        src[0] = 0, src[1] = 1, src[2] = 2;
+    const bool srgb = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+    SkyImage img;
+    img.source = path;
+    img.width = w;
+    img.height = h;
+    img.rgb.resize(std::size_t(3) * w * h);
+    for (std::size_t i = 0; i < std::size_t(w) * h; ++i)
+        for (int c = 0; c < 3; ++c) {
+            float v = all[i * n + src[c]];
+            if (!std::isfinite(v))
+                failRead(path, "texel (" + std::to_string(i % w) + ", " + std::to_string(i / w) +
+                                   ") is not finite");
+            if (srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));
+            img.rgb[i * 3 + c] = v > 0.0f ? v : 0.0f;
+        }
+    // Box-filter to half size until the renderer's float texel indices are exact.
+    while (std::size_t(img.width) * img.height > (std::size_t(1) << 24)) {
+        EquirectImage half =
+            downsampleBox(EquirectView{img.rgb.data(), img.width, img.height, nullptr, nullptr});
+        img.width = half.width;
+        img.height = half.height;
+        img.rgb = std::move(half.rgb);
+    }
+    return img;
 }
 
 std::vector<std::string> readChannelNames(const std::string& path) {

@@ -30,6 +30,15 @@ void checkWritable(const std::string& path);
 // Extensions writeImage accepts, with the dot: ".png", ".exr".
 const std::vector<std::string>& supportedImageExtensions();
 
+// An equirectangular environment image for Sky::Kind::Image, from any file OpenImageIO reads
+// (.exr, .hdr, ...; subimage 0, level 0). Channels: R, G, B by name when present, else the
+// first three; one channel (or two: grey and alpha) is grey. Values are linear; a file
+// tagged sRGB (8-bit PNG, JPEG) is decoded to linear. Negative values become 0; an image
+// larger than 2^24 texels (above 8192 x 2048) is box-filtered to half size until it fits (the
+// renderer's float texel indices). Throws std::runtime_error, one line naming the path, if
+// the file cannot be read or holds a NaN or an infinity.
+SkyImage readSkyImage(const std::string& path);
+
 // Channel names of an image file in the order the reader reports them (OpenEXR stores
 // channels sorted by name, so this need not be the order they were written in).
 std::vector<std::string> readChannelNames(const std::string& path);

@@ -12,6 +12,7 @@
 #include "raster/raster.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
+#include "renderer/sky_lighting.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
@@ -293,6 +294,16 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
         pass("ids", t0);
     }
 
+    // An equirect sky's prefiltered levels and irradiance: built on its first frame, then
+    // taken from the cache (renderer/sky_lighting.h).
+    const Sky& sky = scene.sky;
+    std::shared_ptr<const SkyLighting> skyLighting;
+    if (sky.kind == Sky::Kind::Image) {
+        t0 = Clock::now();
+        skyLighting = cachedSkyLighting(sky.image, threads);
+        pass("environment", t0);
+    }
+
     // Direct light, sky and tone map.
     t0 = Clock::now();
     DirectArgs da{};
@@ -310,13 +321,19 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     const glm::vec3 lightRadiance = scene.light.color * scene.light.intensity;
     std::copy_n(glm::value_ptr(toLight), 3, da.toLight);
     std::copy_n(glm::value_ptr(lightRadiance), 3, da.lightRadiance);
-    const Sky& sky = scene.sky;
     da.skyGradient = sky.kind == Sky::Kind::Gradient;
     const glm::vec3 zen = sky.zenith * sky.intensity, hor = sky.horizon * sky.intensity,
                     gnd = sky.ground * sky.intensity;
     std::copy_n(glm::value_ptr(zen), 3, da.skyZenith);
     std::copy_n(glm::value_ptr(da.skyGradient ? hor : zen), 3, da.skyHorizon);
     std::copy_n(glm::value_ptr(da.skyGradient ? gnd : zen), 3, da.skyGround);
+    if (skyLighting) {
+        static_assert(kSkyLevels <= DirectArgs::kMaxEnvLevels);
+        da.envLevelCount = kSkyLevels;
+        for (int i = 0; i < kSkyLevels; ++i) da.envLevel[i] = skyLighting->level(*sky.image, i);
+        std::copy_n(skyLighting->irradiance.coeffs, 27, da.envIrradiance);
+        da.envIntensity = sky.intensity;
+    }
     std::vector<float> emissive;
     for (const Material& m : scene.materials)
         emissive.insert(emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});

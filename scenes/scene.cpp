@@ -1,5 +1,6 @@
 #include "scenes/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -9,6 +10,17 @@ namespace ssrt {
 
 glm::vec3 Sky::radiance(glm::vec3 dir) const {
     if (kind == Kind::Constant) return zenith * intensity;
+    if (kind == Kind::Image) {
+        if (!image || image->width <= 0 || image->height <= 0) return glm::vec3(0.0f);
+        // The lat-long mapping of shading/environment.h, nearest texel.
+        const double pi = 3.14159265358979323846;
+        const double u = 0.5 + std::atan2(double(dir.x), -double(dir.z)) / (2.0 * pi);
+        const double v = std::atan2(std::hypot(double(dir.x), double(dir.z)), double(dir.y)) / pi;
+        const int x = std::clamp(int(u * image->width), 0, image->width - 1);
+        const int y = std::clamp(int(v * image->height), 0, image->height - 1);
+        const float* p = image->rgb.data() + (std::size_t(y) * image->width + x) * 3;
+        return glm::vec3(p[0], p[1], p[2]) * intensity;
+    }
     const float y = dir.y;
     if (y < 0.0f) return ground * intensity;
     // Horizon to zenith over the upper hemisphere, smooth at the horizon.
@@ -43,6 +55,21 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
 }
 
 void Scene::validate() const {
+    if (sky.kind == Sky::Kind::Image) {
+        if (!sky.image) throw std::invalid_argument("sky: image kind without an image");
+        const SkyImage& img = *sky.image;
+        if (img.width <= 0 || img.height <= 0 ||
+            img.rgb.size() != std::size_t(3) * img.width * img.height)
+            throw std::invalid_argument("sky image '" + img.source +
+                                        "': " + std::to_string(img.width) + "x" +
+                                        std::to_string(img.height) + " needs " +
+                                        std::to_string(3L * img.width * img.height) +
+                                        " floats, has " + std::to_string(img.rgb.size()));
+        // shading/environment.h indexes texels with floats, exact below 2^24.
+        if (std::size_t(img.width) * img.height > (std::size_t(1) << 24))
+            throw std::invalid_argument("sky image '" + img.source +
+                                        "': more than 2^24 texels (16777216)");
+    }
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         const Mesh& mesh = meshes[m];
         if (mesh.indices.size() % 3 != 0)

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,16 +44,29 @@ struct DirectionalLight {
     float intensity = 3.0f;  // irradiance on a surface facing the light
 };
 
-// Constant sky, or an analytic gradient: ground below the horizon, horizon to zenith above.
+// An equirectangular (latitude-longitude) HDR image: linear RGB, interleaved, row-major,
+// row 0 at +Y, u = 0.5 looking down -Z (the mapping of shading/environment.h). Loaded at the
+// edge (io/image_io.h). Never changed once shared: the renderer caches what it derives from
+// it (prefiltered levels, irradiance) by the image's identity.
+struct SkyImage {
+    std::string source;  // where it came from (a path), for messages
+    int width = 0, height = 0;
+    std::vector<float> rgb;  // 3 * width * height finite values >= 0
+};
+
+// Constant sky (zenith is its colour), an analytic gradient (ground below the horizon,
+// horizon to zenith above), or an equirectangular image; each scaled by intensity.
 struct Sky {
-    enum class Kind { Constant, Gradient };
+    enum class Kind { Constant, Gradient, Image };
     Kind kind = Kind::Gradient;
     glm::vec3 zenith{0.25f, 0.45f, 0.85f};
     glm::vec3 horizon{0.75f, 0.8f, 0.9f};
     glm::vec3 ground{0.3f, 0.27f, 0.25f};
     float intensity = 0.5f;
+    std::shared_ptr<const SkyImage> image;  // Kind::Image only
 
-    // Radiance arriving from direction `dir` (unit, world space, y up).
+    // Radiance arriving from direction `dir` (unit, world space, y up). An image is read at
+    // its nearest texel here (the renderer filters bilinearly).
     glm::vec3 radiance(glm::vec3 dir) const;
 };
 

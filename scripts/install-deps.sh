@@ -9,8 +9,9 @@ packages=(
     g++ cmake ninja-build pkg-config
     # Core library
     libglm-dev libxsimd-dev libtbb-dev
-    # Edges: image files, world-space truth, glTF, command line
-    libopenimageio-dev openimageio-tools libembree-dev libtinygltf-dev libcli11-dev
+    # Edges: image files, world-space truth, glTF, shot files (JSON), command line
+    libopenimageio-dev openimageio-tools libembree-dev libtinygltf-dev nlohmann-json3-dev
+    libcli11-dev
     # Tests and benchmarks
     doctest-dev libbenchmark-dev
     # perf/peers: Mesa llvmpipe through EGL surfaceless

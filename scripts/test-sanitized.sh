@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The glTF loader, image I/O and command-line tests under AddressSanitizer and
+# The glTF loader, shot files, image I/O and command-line tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer (issue 4: the loader must run clean on malformed files).
 # Builds in build-asan/; CI runs it after scripts/test.sh.
 set -euo pipefail
@@ -12,4 +12,4 @@ cmake --build build-asan --target ssrt_tests --parallel "${SSRT_BUILD_JOBS:-$(np
 # container-overflow annotations falsely, so that one check is off.
 export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-./build-asan/tests/ssrt_tests -tc='*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'
+./build-asan/tests/ssrt_tests -tc='shot:*,cli shot:*,sky image io:*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'

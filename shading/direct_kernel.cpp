@@ -6,6 +6,7 @@
 #include "core/tiles.h"
 #include "shading/brdf.h"
 #include "shading/direct_kernel.h"
+#include "shading/irradiance_sh.h"
 
 namespace ssrt::SSRT_ISA_NS {
 
@@ -20,8 +21,39 @@ SSRT_INLINE V3 splat3(const float* v) { return {Lane(v[0]), Lane(v[1]), Lane(v[2
 
 SSRT_INLINE V3 mix3(V3 a, V3 b, Lane t) { return a + (b - a) * t; }
 
-// The analytic sky: ground below the horizon, horizon to zenith above (scenes/scene.cpp).
+// Bilinear lookup of level `level` of the equirect sky at direction d, times its intensity.
+SSRT_INLINE V3 envRadiance(const DirectArgs& a, int level, V3 d) {
+    Lane u, v;
+    env::directionToUv(d, u, v);
+    return env::sampleBilinear(a.envLevel[level], u, v) * Lane(a.envIntensity);
+}
+
+// The prefiltered sky LD(r, roughness): linear between the two levels around roughness *
+// (levels - 1), bilinear in each. Lanes may need different levels, so each level that any
+// lane needs is read for all lanes and weighted by zero where it is not needed (x + 0 * y is
+// x for finite y: the same bits as reading only the two levels, as the scalar copy does).
+SSRT_INLINE V3 envPrefiltered(const DirectArgs& a, V3 r, Lane roughness) {
+    const int n = a.envLevelCount;
+    const Lane f = ln::saturate(roughness) * Lane(float(n - 1));
+    const Lane i0 = ln::min(ln::floor(f), Lane(float(n - 2)));
+    const Lane t = f - i0;
+    Lane u, v;
+    env::directionToUv(r, u, v);
+    V3 sum{Lane(0.0f), Lane(0.0f), Lane(0.0f)};
+    for (int k = 0; k < n; ++k) {
+        const Lane lk = Lane(float(k));
+        const Lane w =
+            ln::select(i0 == lk, Lane(1.0f) - t, ln::select(i0 + Lane(1.0f) == lk, t, Lane(0.0f)));
+        if (!ln::any(w > Lane(0.0f))) continue;
+        sum = sum + env::sampleBilinear(a.envLevel[k], u, v) * w;
+    }
+    return sum * Lane(a.envIntensity);
+}
+
+// The analytic sky: ground below the horizon, horizon to zenith above (scenes/scene.cpp);
+// or the equirect image.
 SSRT_INLINE V3 skyRadiance(const DirectArgs& a, V3 dir) {
+    if (a.envLevelCount > 0) return envRadiance(a, 0, dir);
     if (!a.skyGradient) return splat3(a.skyZenith);
     const Lane y = dir.y;
     const Lane s = Lane(1.0f) - y;
@@ -113,14 +145,23 @@ SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibil
                             shadowVisibility(a, s.p, Lane(a.biasConst) + Lane(a.biasSlope) * tanL),
                             zero);
     const V3 direct = (diffuse + spec) * splat3(a.lightRadiance) * (NoL * visibility);
-    // Sky: irradiance blended by the normal's elevation, and the reflected sky through the
-    // environment BRDF, blurred towards the sky's average as roughness grows.
-    const V3 skyAvg = mix3(splat3(a.skyGround), mix3(splat3(a.skyHorizon), splat3(a.skyZenith),
-                                                     Lane(0.5f)), Lane(0.5f));
-    const V3 up = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f));
-    const V3 irradiance = mix3(splat3(a.skyGround), up, Lane(0.5f) + Lane(0.5f) * s.n.y);
     const V3 refl = s.n * (Lane(2.0f) * ln::dot(s.n, s.view)) - s.view;
-    const V3 specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
+    V3 irradiance, specSky;
+    if (a.envLevelCount > 0) {
+        // Equirect sky: irradiance / pi from the SH polynomial, the reflected sky from the
+        // GGX-prefiltered levels (split sum, Karis 2013).
+        irradiance = env::irradianceSh(a.envIrradiance, s.n) * Lane(a.envIntensity);
+        specSky = envPrefiltered(a, refl, s.roughness);
+    } else {
+        // Analytic sky: irradiance blended by the normal's elevation, and the reflected sky
+        // through the environment BRDF, blurred towards the sky's average as roughness grows.
+        const V3 skyAvg =
+            mix3(splat3(a.skyGround), mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f)),
+                 Lane(0.5f));
+        const V3 up = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(0.5f));
+        irradiance = mix3(splat3(a.skyGround), up, Lane(0.5f) + Lane(0.5f) * s.n.y);
+        specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
+    }
     Lane envScale, envBias;
     envBrdfApprox(NoV, s.roughness, envScale, envBias);
     const V3 envSpec = (f0 * envScale + V3{envBias, envBias, envBias}) * specSky;
@@ -140,7 +181,8 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
                       (Lane(r[1]) * dirView.x + Lane(r[4]) * dirView.y) + Lane(r[7]) * dirView.z,
                       (Lane(r[2]) * dirView.x + Lane(r[5]) * dirView.y) + Lane(r[8]) * dirView.z};
     const auto background = viewZ <= Lane(0.0f);
-    V3 color = skyRadiance(a, ln::normalize(dirWorld));
+    V3 color{Lane(0.0f), Lane(0.0f), Lane(0.0f)};
+    if (ln::any(background)) color = skyRadiance(a, ln::normalize(dirWorld));
     Lane visibility(1.0f);
     if (!ln::all(background)) {
         Surface s;

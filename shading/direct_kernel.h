@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "shading/environment.h"
 
 namespace ssrt {
 
@@ -21,6 +22,15 @@ struct DirectArgs {
     float lightRadiance[3];
     bool skyGradient;
     float skyZenith[3], skyHorizon[3], skyGround[3];  // radiance (intensity folded in)
+    // Equirect sky, used instead of the analytic one when envLevelCount > 0: the background
+    // reads level 0 (the image), specular light the level pair around roughness *
+    // (envLevelCount - 1) (level i prefiltered at roughness i / (envLevelCount - 1)), diffuse
+    // light the irradiance polynomial of shading/irradiance_sh.h; all scaled by envIntensity.
+    static constexpr int kMaxEnvLevels = 8;
+    EquirectView envLevel[kMaxEnvLevels];
+    int envLevelCount;
+    float envIrradiance[27];  // ShIrradiance::coeffs
+    float envIntensity;
     const float* emissive;  // 3 per material id
     bool anyEmissive;       // false: skip the emission lookup
     // Shadow map: depth key 1 - z01 (larger = nearer the light)

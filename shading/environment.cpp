@@ -49,7 +49,9 @@ std::pair<int, int> blockOf(int i, int n, int m) {
 // stays 1. The mean is not weighted by solid angle (adjacent rows differ in solid angle by
 // their ratio of sin(theta), close to 1 away from the poles): a mip is a filter for lookups,
 // not an integral. Summed in float in a fixed order, so the chain is the same on every run.
-EquirectImage downsampleBox(const EquirectImage& src) {
+EquirectImage downsampleBox(const EquirectImage& src) { return downsampleBox(src.view()); }
+
+EquirectImage downsampleBox(const EquirectView& src) {
     const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
     std::vector<float> out(std::size_t(3) * w * h);
     for (int y = 0; y < h; ++y) {

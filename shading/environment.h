@@ -148,6 +148,7 @@ private:
 // One box-filtered level down: width and height halve (odd sizes and 1 handled: each output
 // texel averages the input texels of its own block, the blocks partitioning the input).
 EquirectImage downsampleBox(const EquirectImage& src);
+EquirectImage downsampleBox(const EquirectView& src);  // the same, from borrowed pixels
 
 // Bilinear radiance of one image at direction d.
 Rgb sampleEquirect(const EquirectImage& img, lanes::V3<float> d);

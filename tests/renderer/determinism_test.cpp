@@ -1,12 +1,14 @@
 // The determinism contract: the same bits for every thread count and every ISA the machine
-// runs, and golden hashes for the built-in scenes.
+// runs, with the analytic sky and with an equirect image sky, and golden hashes.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 
+#include "core/rng.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -24,6 +26,37 @@ uint64_t frameHash(const Frame& f) {
     return h;
 }
 
+// A small HDR sky with structure at every scale: a gradient, a bright sun and per-texel noise
+// (made once, so every render shares one image and its prefiltered levels).
+std::shared_ptr<const SkyImage> testSky() {
+    static const std::shared_ptr<const SkyImage> sky = [] {
+        auto img = std::make_shared<SkyImage>();
+        img->width = 64;
+        img->height = 32;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 64; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const bool sun = x >= 40 && x < 43 && y >= 8 && y < 10;
+                    const float n = randomFloat(uint32_t(y * 64 + x), 11, 0, uint32_t(c));
+                    img->rgb.push_back((sun ? 40.0f : 0.2f + 0.03f * float(32 - y)) + 0.3f * n);
+                }
+        return img;
+    }();
+    return sky;
+}
+
+// A built-in scene by name; "NAME+sky" lights it with testSky() instead.
+Scene sceneNamed(const std::string& name) {
+    const std::size_t plus = name.find("+sky");
+    Scene scene = makeBuiltinScene(name.substr(0, plus));
+    if (plus != std::string::npos) {
+        scene.sky.kind = Sky::Kind::Image;
+        scene.sky.image = testSky();
+        scene.sky.intensity = 0.7f;
+    }
+    return scene;
+}
+
 Frame renderSmall(const std::string& scene, Isa isa, int threads) {
     RenderSettings rs;
     rs.width = 240;
@@ -31,7 +64,7 @@ Frame renderSmall(const std::string& scene, Isa isa, int threads) {
     rs.shadowMapSize = 512;
     rs.isa = isa;
     rs.threads = threads;
-    return Renderer(rs).render(makeBuiltinScene(scene));
+    return Renderer(rs).render(sceneNamed(scene));
 }
 
 // Recorded from this build (GCC 12, Debian 12). A change to any pass changes them on
@@ -40,12 +73,13 @@ const std::map<std::string, uint64_t> kGolden = {
     {"cornell", 0x424e70d0d1bc6edbull},
     {"spheres", 0xa66601da9d1babbaull},
     {"bunny", 0xac96514cff235a0full},
+    {"spheres+sky", 0x39b6a686309a9e2eull},
 };
 
 }  // namespace
 
 TEST_CASE("every ISA and thread count renders the same bits") {
-    for (const char* scene : {"cornell", "spheres"}) {
+    for (const std::string scene : {"cornell", "spheres", "spheres+sky", "cornell+sky"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
@@ -68,10 +102,13 @@ TEST_CASE("built-in scenes keep their golden hashes") {
     }
 }
 
-TEST_CASE("no NaN or infinity in any plane of the built-in scenes") {
-    for (const auto& info : builtinScenes()) {
-        CAPTURE(info.name);
-        const Frame f = renderSmall(info.name, defaultIsa(), 2);
+TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky") {
+    std::vector<std::string> names;
+    for (const auto& info : builtinScenes())
+        names.insert(names.end(), {info.name, info.name + "+sky"});
+    for (const std::string& name : names) {
+        CAPTURE(name);
+        const Frame f = renderSmall(name, defaultIsa(), 2);
         for (const NamedPlane& p : f.planes) {
             CAPTURE(p.name);
             bool finite = true;
