@@ -16,7 +16,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/lane_math.h"
+#include "scenes/texture.h"  // srgbToLinear
 #include "shading/environment.h"
 
 namespace ssrt {
@@ -243,12 +243,6 @@ void writeImage(const std::string& path, const Frame& frame) {
 
 namespace {
 
-// IEC 61966-2-1 sRGB decoding.
-float srgbToLinear(float v) {
-    // The project's own pow (core/lane_math.h), so every machine decodes to the same bits.
-    return v <= 0.04045f ? v / 12.92f : lanes::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 // The channel called `name`, or -1.
 int channelIndex(const OIIO::ImageSpec& spec, const char* name) {
     const auto& names = spec.channelnames;
@@ -286,7 +280,7 @@ SkyImage readSkyImage(const std::string& path) {
             if (!std::isfinite(v))
                 failRead(path, "texel (" + std::to_string(i % w) + ", " + std::to_string(i / w) +
                                    ") is not finite");
-            if (srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));
+            if (srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));  // the project's own pow
             img.rgb[i * 3 + c] = v > 0.0f ? v : 0.0f;
         }
     // Box-filter to half size until the renderer's float texel indices are exact.

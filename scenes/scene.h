@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scenes/texture.h"
+
 namespace ssrt {
 
 // Indexed triangles; normals per vertex (same count as positions), UVs optional.
@@ -28,6 +30,13 @@ struct Material {
     float roughness = 0.5f;
     glm::vec3 emissive{0.0f};
     bool doubleSided = false;  // false: back faces are culled (glTF's default)
+    // Indices into Scene::textures, or -1. The texel multiplies the factor: base colour by
+    // RGB, metallic by B and roughness by G (glTF's metallic-roughness texture). UVs are
+    // the mesh's (a mesh without UVs samples at (0, 0)).
+    int32_t baseColorTexture = -1;
+    int32_t metallicRoughnessTexture = -1;
+
+    bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
 };
 
 // A mesh placed in the world; previousTransform gives rigid motion for motion vectors.
@@ -88,6 +97,7 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<Instance> instances;
+    std::vector<Texture> textures;
     DirectionalLight light;
     Sky sky;
     Camera camera;
@@ -96,7 +106,8 @@ struct Scene {
     std::size_t triangleCount() const;
     // World-space bounds of every instance (finite vertices only).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
-    // Throws std::invalid_argument naming the first broken reference (mesh, material, index).
+    // Throws std::invalid_argument naming the first broken reference (mesh, material, index,
+    // texture).
     void validate() const;
 };
 
