@@ -1,0 +1,115 @@
+#include "io/texture_io.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+namespace ssrt {
+
+namespace {
+
+namespace OIIO = OIIO_NAMESPACE;
+
+[[noreturn]] void fail(const std::string& name, const std::string& problem) {
+    std::string line = name + ": " + problem;
+    for (char& c : line)
+        if (c == '\n' || c == '\r') c = ' ';
+    throw std::runtime_error(line);
+}
+
+// RGBA from 1 (grey), 2 (grey, alpha), 3 (RGB) or 4+ (RGBA, extra channels dropped).
+std::vector<glm::vec4> toRgba(const std::vector<float>& pixels, int channels, std::size_t count,
+                              TextureEncoding encoding) {
+    std::vector<glm::vec4> out(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const float* p = pixels.data() + i * std::size_t(channels);
+        glm::vec4 t(1.0f);
+        if (channels <= 2) {
+            t.r = t.g = t.b = p[0];
+            if (channels == 2) t.a = p[1];
+        } else {
+            t.r = p[0];
+            t.g = p[1];
+            t.b = p[2];
+            if (channels >= 4) t.a = p[3];
+        }
+        if (encoding == TextureEncoding::Srgb)
+            for (int c = 0; c < 3; ++c) t[c] = srgbToLinear(t[c]);
+        out[i] = t;
+    }
+    return out;
+}
+
+template <class T>
+bool readNormalized(OIIO::ImageInput* in, int channels, std::vector<float>& out, float maxValue) {
+    std::vector<T> raw(out.size());
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDescFromC<T>::value(), raw.data()))
+        return false;
+    for (std::size_t i = 0; i < raw.size(); ++i) out[i] = float(raw[i]) / maxValue;
+    return true;
+}
+
+Texture readOpened(const std::string& name, OIIO::ImageInput* in, TextureEncoding encoding) {
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) fail(name, "the image is empty");
+    if (spec.depth > 1) fail(name, "volume images are not textures");
+    const std::size_t count = std::size_t(spec.width) * std::size_t(spec.height);
+    if (count > (std::size_t(1) << 28)) fail(name, "the image is too large for a texture");
+    const int channels = spec.nchannels;
+    std::vector<float> pixels(count * std::size_t(channels));
+    // 8- and 16-bit images are normalized here, by one division per value, rather than by
+    // OIIO's conversion, whose SIMD paths need not round alike on every CPU.
+    bool ok = false;
+    if (spec.format == OIIO::TypeDesc::UINT8) {
+        ok = readNormalized<uint8_t>(in, channels, pixels, 255.0f);
+    } else if (spec.format == OIIO::TypeDesc::UINT16) {
+        ok = readNormalized<uint16_t>(in, channels, pixels, 65535.0f);
+    } else {
+        ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data());
+    }
+    if (!ok) fail(name, "cannot decode the image: " + in->geterror());
+    try {
+        return Texture(name, spec.width, spec.height, toRgba(pixels, channels, count, encoding));
+    } catch (const std::invalid_argument&) {
+        fail(name, "the image has texels that are not finite");
+    }
+}
+
+// Texels exactly as stored: glTF's alpha is straight (unassociated), and OIIO would
+// otherwise premultiply colour by it while reading PNG.
+OIIO::ImageSpec readConfig() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+}  // namespace
+
+Texture readTexture(const std::string& path, TextureEncoding encoding) {
+    const OIIO::ImageSpec config = readConfig();
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
+    return readOpened(path, in.get(), encoding);
+}
+
+Texture decodeTexture(const std::string& name, const void* bytes, std::size_t size,
+                      const std::string& formatHint, TextureEncoding encoding) {
+    if (size == 0) fail(name, "the image data is empty");
+    OIIO::Filesystem::IOMemReader reader(bytes, size);
+    // With a configuration, OIIO 2.4 takes the proxy from it, not from open()'s argument.
+    OIIO::ImageSpec config = readConfig();
+    OIIO::Filesystem::IOProxy* proxy = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    // OIIO picks the decoder by the extension of a file name ("x.png"; ".png" alone is read
+    // as a name without one).
+    const std::string ext = std::filesystem::path(formatHint).extension().string();
+    auto in = OIIO::ImageInput::open("memory" + (ext.empty() ? formatHint : ext), &config, &reader);
+    if (!in) fail(name, "cannot decode the image: " + OIIO::geterror());
+    return readOpened(name, in.get(), encoding);
+}
+
+}  // namespace ssrt
