@@ -16,14 +16,18 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kOutputs = kResolveOutputs;
+constexpr int kMaxOutputs = kResolveOutputs + kResolveUvOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
+// clang-format off
 enum Field {
     kP0 = 0, kN = 3, kD = 6, kG1 = 7, kG2 = 10,
     kN0 = 13, kN1 = 16, kN2 = 19,
-    kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27, kFieldCount = 28
+    kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27,
+    kUv0 = 28, kUv1 = 30, kUv2 = 32, kFieldCount = 34
 };
+// clang-format on
 
 // Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
 // same on every ISA).
@@ -51,6 +55,10 @@ SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& 
     g.f[kMetallic][l] = in.metallic;
     g.f[kRoughness][l] = in.roughness;
     g.f[kMaterial][l] = in.materialId;
+    for (int v = 0; v < 3; ++v) {
+        g.f[kUv0 + 2 * v][l] = a.u ? a.u[t.v[v]] : 0.0f;
+        g.f[kUv0 + 2 * v + 1][l] = a.v ? a.v[t.v[v]] : 0.0f;
+    }
     for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
 }
 
@@ -77,6 +85,45 @@ struct FieldCache {
     Fields fields;
 };
 
+// Barycentrics (b1, b2) where the ray `dir` meets the triangle's plane (extended beyond its
+// edges, as the derivatives need).
+SSRT_INLINE void barycentrics(const ResolveArgs& a, const Fields& g, const V3& dir, Lane& b1,
+                              Lane& b2) {
+    const Lane nd = ln::dot(field3(g, kN), dir);
+    const Lane ndSafe = ln::select(ln::abs(nd) > Lane(1e-12f), nd, Lane(-1e-12f));
+    const Lane t = ln::clamp(g.f[kD] / ndSafe, Lane(a.nearZ), Lane(a.farZ));
+    const V3 r = dir * t - field3(g, kP0);
+    b1 = ln::dot(r, field3(g, kG1));
+    b2 = ln::dot(r, field3(g, kG2));
+}
+
+SSRT_INLINE void interpolateUv(const Fields& g, Lane b1, Lane b2, Lane& u, Lane& v) {
+    const Lane b0 = Lane(1.0f) - b1 - b2;
+    u = (g.f[kUv0] * b0 + g.f[kUv1] * b1) + g.f[kUv2] * b2;
+    v = (g.f[kUv0 + 1] * b0 + g.f[kUv1 + 1] * b1) + g.f[kUv2 + 1] * b2;
+}
+
+// UV at the pixel centre and its differences to the rays through the next pixel right and
+// the next pixel down, on the same plane: exact screen-space derivatives for a planar
+// triangle, which the texture pass turns into a level of detail.
+SSRT_INLINE void uvAndDerivatives(const ResolveArgs& a, const Fields& g, const V3& dir, Lane b1,
+                                  Lane b2, Lane* out) {
+    Lane u, v, ux, vx, uy, vy, c1, c2;
+    interpolateUv(g, b1, b2, u, v);
+    const V3 dirX{dir.x + Lane(2.0f / float(a.width) * a.tanHalfX), dir.y, dir.z};
+    barycentrics(a, g, dirX, c1, c2);
+    interpolateUv(g, c1, c2, ux, vx);
+    const V3 dirY{dir.x, dir.y - Lane(2.0f / float(a.height) * a.tanHalfY), dir.z};
+    barycentrics(a, g, dirY, c1, c2);
+    interpolateUv(g, c1, c2, uy, vy);
+    out[0] = u;
+    out[1] = v;
+    out[2] = ux - u;
+    out[3] = vx - v;
+    out[4] = uy - u;
+    out[5] = vy - v;
+}
+
 // Writes lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
 void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* const* out,
                   int x0) {
@@ -92,8 +139,10 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
     const bool uniform = ln::all(ids == ILane(int32_t(id[0])));
     const int o = x - x0;
     const Lane zero(0.0f);
+    const int outputs = a.u ? kMaxOutputs : kOutputs;
     if (!any) {
-        for (int p = 0; p < kOutputs; ++p) ln::store(out[p] + o, p == kMaterialOut ? Lane(-1.0f) : zero);
+        for (int p = 0; p < outputs; ++p)
+            ln::store(out[p] + o, p == kMaterialOut ? Lane(-1.0f) : zero);
         return;
     }
     Fields local;
@@ -151,12 +200,14 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
     const Lane motionX = ln::select(inFront, prevX - px, zero);
     const Lane motionY = ln::select(inFront, prevY - curY, zero);
 
-    const Lane outs[kOutputs] = {t, normal.x, normal.y, normal.z,
-                           g.f[kAlbedo], g.f[kAlbedo + 1],
-                           g.f[kAlbedo + 2], g.f[kMetallic],
-                           g.f[kRoughness], g.f[kMaterial],
-                           motionX, motionY};
-    for (int p = 0; p < kOutputs; ++p) {
+    // clang-format off
+    Lane outs[kMaxOutputs] = {t, normal.x, normal.y, normal.z,
+                              g.f[kAlbedo], g.f[kAlbedo + 1], g.f[kAlbedo + 2],
+                              g.f[kMetallic], g.f[kRoughness], g.f[kMaterial],
+                              motionX, motionY};
+    // clang-format on
+    if (a.u) uvAndDerivatives(a, g, dir, b1, b2, outs + kOutputs);
+    for (int p = 0; p < outputs; ++p) {
         const Lane background = p == kMaterialOut ? Lane(-1.0f) : zero;
         ln::store(out[p] + o, ln::select(vis, outs[p], background));
     }
@@ -171,15 +222,16 @@ void resolveTile(const ResolveArgs& args, int tile) {
     // Each tile row is resolved into a small buffer, then streamed to the planes in whole
     // cache lines: fourteen planes written in 32-byte pieces would cost a read for
     // ownership per line and thrash the write-combining buffers.
-    alignas(64) float rowBuf[kOutputs][kTileSize];
-    float* bufPtr[kOutputs];
-    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = rowBuf[p];
+    alignas(64) float rowBuf[kMaxOutputs][kTileSize];
+    float* bufPtr[kMaxOutputs];
+    for (int p = 0; p < kMaxOutputs; ++p) bufPtr[p] = rowBuf[p];
+    const int outputs = args.u ? kMaxOutputs : kOutputs;
     // Lane groups past the right edge land in the rows' 64-byte padding.
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     FieldCache cache;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache, bufPtr, x0);
-        for (int p = 0; p < kOutputs; ++p) {
+        for (int p = 0; p < outputs; ++p) {
             float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }

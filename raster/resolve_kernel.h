@@ -25,6 +25,9 @@ struct ResolveInstance {
 };
 
 inline constexpr int kResolveOutputs = 12;
+// With texturing on (ResolveArgs::u set): u, v and their screen derivatives du/dx, dv/dx,
+// du/dy, dv/dy (per pixel, x right and y down), for the texture pass.
+inline constexpr int kResolveUvOutputs = 6;
 
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
@@ -37,8 +40,13 @@ struct ResolveArgs {
     int width, height, tilesX;
     float tanHalfX, tanHalfY;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
     float nearZ, farZ;
-    float* out[12];  // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId,
-                     // motion XY (all with outStride)
+    // Texture coordinates per global vertex (zero for meshes without UVs), or null: then
+    // no UV outputs are written.
+    const float* u = nullptr;
+    const float* v = nullptr;
+    float* out[kResolveOutputs + kResolveUvOutputs];  // viewZ, normal XYZ, albedo RGB,
+                                                      // metallic, roughness, materialId, motion XY,
+                                                      // then the UV outputs (all with outStride)
     std::size_t outStride;
 };
 

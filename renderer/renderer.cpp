@@ -1,11 +1,12 @@
 #include "renderer/renderer.h"
 
+#include <oneapi/tbb/task_arena.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <oneapi/tbb/task_arena.h>
 #include <stdexcept>
 
 #include "core/tiles.h"
@@ -13,6 +14,7 @@
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
 #include "renderer/sky_lighting.h"
+#include "renderer/texture_pass.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
@@ -35,7 +37,13 @@ struct ResolveTables {
     std::vector<ResolveTriangle> triangles;
     std::vector<ResolveInstance> instances;
     std::vector<float> nx, ny, nz;
+    std::vector<float> u, v;  // texture coordinates per vertex, only for textured scenes
 };
+
+bool anyTextured(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.textured(); });
+}
 
 ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
                                 const glm::mat4& prevViewProj) {
@@ -69,7 +77,7 @@ void forInstanceChunks(std::size_t instances, int threads, CountFn count, Fn fn)
 }
 
 ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
-                                 const glm::mat4& prevViewProj, int threads) {
+                                 const glm::mat4& prevViewProj, bool textured, int threads) {
     ResolveTables t;
     std::vector<uint32_t> vertexOffset, triOffset;
     uint32_t nv = 0, nt = 0;
@@ -84,6 +92,10 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
     t.nx.resize(nv);
     t.ny.resize(nv);
     t.nz.resize(nv);
+    if (textured) {
+        t.u.resize(nv);
+        t.v.resize(nv);
+    }
     std::vector<glm::vec3> viewPos(nv);
     auto meshOf = [&](uint32_t i) -> const Mesh& { return scene.meshes[scene.instances[i].mesh]; };
     // View-space positions and world-space unit normals per vertex.
@@ -104,6 +116,11 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
                 t.nx[g] = n.x;
                 t.ny[g] = n.y;
                 t.nz[g] = n.z;
+                if (textured) {
+                    const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
+                    t.u[g] = uv.x;
+                    t.v[g] = uv.y;
+                }
             }
         });
     // Ray-plane and barycentric set-up per triangle.
@@ -259,7 +276,8 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
 
     // Resolve: the G-buffer for visible pixels.
     t0 = Clock::now();
-    const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, threads);
+    const bool textured = anyTextured(scene);
+    const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, textured, threads);
     ensurePlanes(frame, w, h, s.idPlanes);
     PlaneF* gplanes[kResolveOutputs];
     for (int i = 0; i < kResolveOutputs; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
@@ -282,9 +300,33 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     ra.farZ = camera.farZ;
     for (int i = 0; i < kResolveOutputs; ++i) ra.out[i] = gplanes[i]->row(0);
     ra.outStride = gplanes[0]->stride();
+    if (textured) {
+        ra.u = tables.u.data();
+        ra.v = tables.v.data();
+        for (int i = 0; i < kResolveUvOutputs; ++i) {
+            PlaneF& p = frame.scratch.uv[i];
+            p.ensureSize(w, h);
+            // The kernel writes every output with one stride.
+            if (p.stride() != ra.outStride) throw std::logic_error("texture UV plane stride");
+            ra.out[kResolveOutputs + i] = p.row(0);
+        }
+    }
     const auto resolve = SSRT_DISPATCH(isa, resolveTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { resolve(ra, tile); });
     pass("resolve", t0);
+
+    // Textures: base colour, metallic and roughness texels into the G-buffer.
+    if (textured) {
+        t0 = Clock::now();
+        TexturePlanes tp;
+        for (int i = 0; i < kResolveUvOutputs; ++i) tp.uv[i] = &frame.scratch.uv[i];
+        tp.materialId = gplanes[kMaterialId - kViewZ];
+        for (int i = 0; i < 3; ++i) tp.albedo[i] = gplanes[kAlbedoR - kViewZ + i];
+        tp.metallic = gplanes[kMetallic - kViewZ];
+        tp.roughness = gplanes[kRoughness - kViewZ];
+        applyTextures(scene, tp, grid, threads);
+        pass("textures", t0);
+    }
 
     // Instance and triangle ids as float planes, from the visibility buffer (optional).
     if (s.idPlanes) {

@@ -59,6 +59,7 @@ struct Frame {
     struct Scratch {
         VisibilityBuffer visibility;
         ShadowMap shadow;
+        PlaneF uv[6];  // UV and its screen derivatives, for textured scenes
     } scratch;
 
     // The plane called `name`; throws std::out_of_range if there is none.

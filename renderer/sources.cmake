@@ -1,1 +1,1 @@
-list(APPEND SSRT_SOURCES renderer/renderer.cpp renderer/sky_lighting.cpp)
+list(APPEND SSRT_SOURCES renderer/renderer.cpp renderer/sky_lighting.cpp renderer/texture_pass.cpp)

@@ -1,5 +1,6 @@
 // The determinism contract: the same bits for every thread count and every ISA the machine
-// runs, with the analytic sky and with an equirect image sky, and golden hashes.
+// runs, with the analytic sky, with an equirect image sky and with textures, and golden
+// hashes.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -7,6 +8,8 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/rng.h"
 #include "renderer/renderer.h"
@@ -45,14 +48,37 @@ std::shared_ptr<const SkyImage> testSky() {
     return sky;
 }
 
-// A built-in scene by name; "NAME+sky" lights it with testSky() instead.
+// Noisy textures for every material: a base-colour checker with per-texel noise and a
+// metallic-roughness texture of noise, so every mip level and lookup shows in the hash.
+void addTestTextures(Scene& scene) {
+    std::vector<glm::vec4> colour, mr;
+    for (uint32_t i = 0; i < 32 * 32; ++i) {
+        const float check = ((i % 32) / 4 + (i / 32) / 4) % 2 ? 1.0f : 0.3f;
+        colour.emplace_back(check * randomFloat(i, 21, 0, 0), check * randomFloat(i, 21, 0, 1),
+                            check * randomFloat(i, 21, 0, 2), 1.0f);
+    }
+    for (uint32_t i = 0; i < 16 * 16; ++i)
+        mr.emplace_back(1.0f, randomFloat(i, 22, 0, 0), randomFloat(i, 22, 0, 1), 1.0f);
+    scene.textures.emplace_back("colour", 32, 32, colour);
+    scene.textures.emplace_back("mr", 16, 16, mr);
+    for (Material& m : scene.materials) {
+        m.baseColorTexture = 0;
+        m.metallicRoughnessTexture = 1;
+    }
+}
+
+// A built-in scene by name; "NAME+sky" lights it with testSky() instead, "NAME+tex" gives
+// every material addTestTextures().
 Scene sceneNamed(const std::string& name) {
-    const std::size_t plus = name.find("+sky");
+    const std::size_t plus = name.find('+');
     Scene scene = makeBuiltinScene(name.substr(0, plus));
-    if (plus != std::string::npos) {
+    const std::string variant = plus == std::string::npos ? "" : name.substr(plus);
+    if (variant == "+sky") {
         scene.sky.kind = Sky::Kind::Image;
         scene.sky.image = testSky();
         scene.sky.intensity = 0.7f;
+    } else if (variant == "+tex") {
+        addTestTextures(scene);
     }
     return scene;
 }
@@ -69,17 +95,25 @@ Frame renderSmall(const std::string& scene, Isa isa, int threads) {
 
 // Recorded from this build (GCC 12, Debian 12). A change to any pass changes them on
 // purpose: re-record with SSRT_PRINT_GOLDEN=1 and say why in the commit.
+// clang-format off
 const std::map<std::string, uint64_t> kGolden = {
     {"cornell", 0x424e70d0d1bc6edbull},
     {"spheres", 0xa66601da9d1babbaull},
     {"bunny", 0xac96514cff235a0full},
     {"spheres+sky", 0x39b6a686309a9e2eull},
+    {"thin", 0x14e2170151d4e12aull},
+    {"corridor", 0x9454a899b6306513ull},
+    {"offscreen", 0x493e5905e1814489ull},
+    {"occluded", 0xc49813c3c3429ad4ull},
+    {"cornell+tex", 0x2f3eaaa925cfbec0ull},
 };
+// clang-format on
 
 }  // namespace
 
 TEST_CASE("every ISA and thread count renders the same bits") {
-    for (const std::string scene : {"cornell", "spheres", "spheres+sky", "cornell+sky"}) {
+    for (const std::string scene :
+         {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
@@ -102,10 +136,10 @@ TEST_CASE("built-in scenes keep their golden hashes") {
     }
 }
 
-TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky") {
+TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky, textured") {
     std::vector<std::string> names;
     for (const auto& info : builtinScenes())
-        names.insert(names.end(), {info.name, info.name + "+sky"});
+        names.insert(names.end(), {info.name, info.name + "+sky", info.name + "+tex"});
     for (const std::string& name : names) {
         CAPTURE(name);
         const Frame f = renderSmall(name, defaultIsa(), 2);

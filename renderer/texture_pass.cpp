@@ -1,0 +1,39 @@
+#include "renderer/texture_pass.h"
+
+#include <algorithm>
+
+namespace ssrt {
+
+namespace {
+
+void texturePixel(const Scene& scene, const TexturePlanes& p, int x, int y) {
+    const float id = p.materialId->at(x, y);
+    if (!(id >= 0.0f)) return;  // background
+    const Material& m = scene.materials[std::size_t(id)];
+    if (!m.textured()) return;
+    const glm::vec2 uv(p.uv[0]->at(x, y), p.uv[1]->at(x, y));
+    const glm::vec2 dx(p.uv[2]->at(x, y), p.uv[3]->at(x, y));
+    const glm::vec2 dy(p.uv[4]->at(x, y), p.uv[5]->at(x, y));
+    if (m.baseColorTexture >= 0) {
+        const glm::vec4 t = scene.textures[m.baseColorTexture].sample(uv, dx, dy);
+        for (int c = 0; c < 3; ++c) p.albedo[c]->at(x, y) *= t[c];
+    }
+    if (m.metallicRoughnessTexture >= 0) {
+        const glm::vec4 t = scene.textures[m.metallicRoughnessTexture].sample(uv, dx, dy);
+        p.metallic->at(x, y) = std::clamp(p.metallic->at(x, y) * t.b, 0.0f, 1.0f);
+        p.roughness->at(x, y) = std::clamp(p.roughness->at(x, y) * t.g, 0.0f, 1.0f);
+    }
+}
+
+}  // namespace
+
+void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
+                   int threads) {
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect r = grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) texturePixel(scene, planes, x, y);
+    });
+}
+
+}  // namespace ssrt

@@ -1,0 +1,27 @@
+// The texture pass: after the resolve, multiplies the G-buffer's material factors by the
+// textures of each pixel's material (base colour into albedo, metallic-roughness into
+// metallic and roughness), sampled trilinearly at the pixel's UV with its screen
+// derivatives (scenes/texture.h has the conventions).
+//
+// Scalar code compiled once (not per ISA): the G-buffer it leaves is the same bits for
+// every ISA and thread count, and pixels of untextured materials are not touched.
+#pragma once
+
+#include "core/image.h"
+#include "core/tiles.h"
+#include "scenes/scene.h"
+
+namespace ssrt {
+
+struct TexturePlanes {
+    const PlaneF* uv[6] = {};  // u, v, du/dx, dv/dx, du/dy, dv/dy (raster/resolve_kernel.h)
+    const PlaneF* materialId = nullptr;
+    PlaneF* albedo[3] = {};
+    PlaneF* metallic = nullptr;
+    PlaneF* roughness = nullptr;
+};
+
+void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
+                   int threads);
+
+}  // namespace ssrt

@@ -1,0 +1,112 @@
+// Textures in the G-buffer: a quad that fills the view shows its texture's texels at the
+// pixels they cover (magnified, level 0), a fine checker seen from afar averages to grey
+// (minified, through the mips), and the metallic-roughness texture lands in its planes.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "renderer/renderer.h"
+
+using namespace ssrt;
+
+namespace {
+
+constexpr int kTexels = 8;          // per side of the magnified texture
+constexpr int kPixelsPerTexel = 9;  // odd, so a pixel centre falls on each texel centre
+constexpr int kSize = kTexels * kPixelsPerTexel;
+
+// A texel value that differs from every neighbour's by at least 1/8 in some channel.
+glm::vec4 texel(int x, int y) {
+    return {0.05f + x / 8.0f, 0.05f + y / 8.0f, 0.05f + float((3 * x + 5 * y) % 8) / 8.0f, 1.0f};
+}
+
+// A camera at the origin looking down -Z with a 90-degree field of view, and a quad at
+// z = -2 that fills it exactly: UV (0, 0) at the top-left of the image, (1, 1) at the
+// bottom-right.
+Scene quadScene() {
+    Scene s;
+    Mesh quad;
+    quad.positions = {{-2, 2, -2}, {-2, -2, -2}, {2, -2, -2}, {2, 2, -2}};
+    quad.normals.assign(4, {0, 0, 1});
+    quad.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    s.meshes.push_back(quad);
+    Material m;
+    m.baseColor = glm::vec3(1.0f);
+    m.metallic = 1.0f;
+    m.roughness = 1.0f;
+    s.materials.push_back(m);
+    s.instances.push_back(Instance{});
+    s.camera.position = {0, 0, 0};
+    s.camera.target = {0, 0, -1};
+    s.camera.fovY = 90.0f;
+    s.previousCamera = s.camera;
+    return s;
+}
+
+Frame render(const Scene& scene, int size, Isa isa = Isa::Scalar) {
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    rs.shadowMapSize = 256;
+    rs.threads = 2;
+    rs.isa = isa;
+    return Renderer(rs).render(scene);
+}
+
+}  // namespace
+
+TEST_CASE("texture render: a magnified texture shows its texels at the pixels they cover") {
+    Scene scene = quadScene();
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) texels.push_back(texel(x, y));
+    scene.textures.emplace_back("colours", kTexels, kTexels, texels);
+    scene.materials[0].baseColorTexture = 0;
+    // Metallic-roughness from the same texels: roughness = G, metallic = B.
+    scene.textures.emplace_back("mr", kTexels, kTexels, texels);
+    scene.materials[0].metallicRoughnessTexture = 1;
+    scene.materials[0].baseColor = glm::vec3(1.0f, 0.5f, 1.0f);  // the factor multiplies
+
+    for (Isa isa : supportedIsas()) {
+        CAPTURE(isaName(isa));
+        const Frame f = render(scene, kSize, isa);
+        for (int ty = 0; ty < kTexels; ++ty)
+            for (int tx = 0; tx < kTexels; ++tx) {
+                CAPTURE(tx);
+                CAPTURE(ty);
+                const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const glm::vec4 t = texel(tx, ty);
+                CHECK(f.plane("albedo.R").at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
+                CHECK(f.plane("albedo.G").at(px, py) == doctest::Approx(0.5 * t.g).epsilon(1e-4));
+                CHECK(f.plane("albedo.B").at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+                CHECK(f.plane("roughness").at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
+                CHECK(f.plane("metallic").at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+            }
+    }
+}
+
+TEST_CASE("texture render: a minified checker averages to grey; without a texture, the factor") {
+    Scene scene = quadScene();
+    // Nine texels per pixel: lod log2(9), between mip levels 3 and 4, both grey. Level 0
+    // alone would read one black or white texel per pixel (centres coincide).
+    constexpr int kChecker = 288, kImage = 32;
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kChecker; ++y)
+        for (int x = 0; x < kChecker; ++x) texels.emplace_back(glm::vec4(float((x + y) % 2)));
+    scene.textures.emplace_back("checker", kChecker, kChecker, texels);
+    scene.materials[0].baseColorTexture = 0;
+    const Frame f = render(scene, kImage);
+    for (int y = 0; y < kImage; ++y)
+        for (int x = 0; x < kImage; ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            REQUIRE(f.plane("albedo.R").at(x, y) == doctest::Approx(0.5).epsilon(1e-4));
+        }
+
+    scene.materials[0].baseColorTexture = -1;
+    const Frame plain = render(scene, kImage);
+    CHECK(plain.plane("albedo.R").at(kImage / 2, kImage / 2) == 1.0f);
+    CHECK(plain.plane("roughness").at(kImage / 2, kImage / 2) == 1.0f);
+}
