@@ -1,8 +1,8 @@
 #include "scenes/gltf_loader.h"
 
 // Debian's tinygltf is a shared library built with its own JSON and image code; we only
-// include the declarations and replace image decoding by a no-op (textures are loaded
-// elsewhere, through OpenImageIO).
+// include the declarations and replace its image decoding: textures are decoded through
+// OpenImageIO (scenes/gltf_textures.h).
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -11,14 +11,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <iterator>
 #include <limits>
 #include <new>
 #include <optional>
 
+#include "scenes/gltf_textures.h"
 #include "scenes/mesh_builders.h"
 
 namespace ssrt {
@@ -44,6 +45,7 @@ std::string oneLine(const std::string& text) {
 struct Context {
     std::string path;
     const tinygltf::Model& model;
+    gltf::TextureTable& textures;
 
     [[noreturn]] void fail(const std::string& problem) const {
         throw SceneLoadError(path + ": " + oneLine(problem));
@@ -51,11 +53,6 @@ struct Context {
 };
 
 std::string str(std::size_t n) { return std::to_string(n); }
-
-bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                     const unsigned char*, int, void*) {
-    return true;
-}
 
 // ---------------------------------------------------------------------------------------
 // tinygltf silently skips a top-level member of the wrong JSON type ("meshes": 5 reads as
@@ -127,7 +124,7 @@ std::string jsonText(const std::string& path, bool binary) {
     return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
 }
 
-tinygltf::Model readModel(const std::string& path) {
+tinygltf::Model readModel(const std::string& path, gltf::DataUriImages& dataUris) {
     char magic[4] = {};
     {
         std::ifstream in(path, std::ios::binary);
@@ -135,7 +132,7 @@ tinygltf::Model readModel(const std::string& path) {
         in.read(magic, 4);
     }
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(noImageDecoding, nullptr);
+    loader.SetImageLoader(gltf::keepDataUriImage, &dataUris);
     tinygltf::Model model;
     std::string err, warn;
     // The container is chosen by content, not by extension: a renamed file still loads.
@@ -359,22 +356,8 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
 // ---------------------------------------------------------------------------------------
 // Materials and textures
 
-std::string decodeUri(const std::string& uri) {
-    std::string out;
-    for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
-            std::isxdigit((unsigned char)uri[i + 2])) {
-            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
-// Textures are decoded elsewhere; here a material whose texture cannot be found refuses the
-// whole file, so that a scene never renders silently without its textures.
+// Every texture a material names must exist, even those ssrt does not use (emissive,
+// normal, occlusion): a scene never renders silently without its textures.
 void checkTexture(const Context& ctx, const std::string& name, int textureIndex) {
     if (textureIndex < 0) return;
     const tinygltf::Model& m = ctx.model;
@@ -386,7 +369,7 @@ void checkTexture(const Context& ctx, const std::string& name, int textureIndex)
                  std::to_string(source) + ")");
     const tinygltf::Image& img = m.images[source];
     if (img.bufferView >= 0 || img.uri.empty() || img.uri.rfind("data:", 0) == 0) return;
-    const fs::path file = fs::path(ctx.path).parent_path() / decodeUri(img.uri);
+    const fs::path file = fs::path(ctx.path).parent_path() / gltf::percentDecoded(img.uri);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec))
         ctx.fail(name + ": texture image " + std::to_string(source) + " file not found: " +
@@ -409,6 +392,17 @@ float unitFactor(const Context& ctx, const std::string& name, const char* what, 
     return float(std::clamp(v, 0.0, 1.0));
 }
 
+// The scene texture for a material's texture slot, or -1 when the slot is empty.
+int32_t texture(const Context& ctx, const std::string& name, const tinygltf::TextureInfo& info,
+                TextureEncoding encoding) {
+    if (info.index < 0) return -1;
+    try {
+        return ctx.textures.get(info.index, info.texCoord, encoding);
+    } catch (const std::runtime_error& e) {
+        ctx.fail(name + ": " + e.what());
+    }
+}
+
 Material convertMaterial(const Context& ctx, std::size_t index) {
     const tinygltf::Material& g = ctx.model.materials[index];
     const std::string name = "material " + str(index);
@@ -425,6 +419,9 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     checkTexture(ctx, name, g.emissiveTexture.index);
     checkTexture(ctx, name, g.normalTexture.index);
     checkTexture(ctx, name, g.occlusionTexture.index);
+    m.baseColorTexture = texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb);
+    m.metallicRoughnessTexture =
+        texture(ctx, name, pbr.metallicRoughnessTexture, TextureEncoding::Linear);
     return m;
 }
 
@@ -676,8 +673,7 @@ void fitCamera(Scene& scene, float fileFar, bool haveCamera) {
     scene.previousCamera = cam;
 }
 
-Scene convert(const Context& ctx) {
-    Scene scene;
+void convert(const Context& ctx, Scene& scene) {
     scene.name = fs::path(ctx.path).stem().string();
     const std::vector<std::vector<Part>> parts = convertMeshes(ctx, scene);
     checkNodes(ctx);
@@ -690,15 +686,18 @@ Scene convert(const Context& ctx) {
     } catch (const std::invalid_argument& e) {
         ctx.fail(e.what());
     }
-    return scene;
 }
 
 }  // namespace
 
 Scene loadGltf(const std::string& path) {
     try {
-        const tinygltf::Model model = readModel(path);
-        return convert(Context{path, model});
+        gltf::DataUriImages dataUris;
+        const tinygltf::Model model = readModel(path, dataUris);
+        Scene scene;
+        gltf::TextureTable textures(model, path, dataUris, scene.textures);
+        convert(Context{path, model, textures}, scene);
+        return scene;
     } catch (const SceneLoadError&) {
         throw;
     } catch (const std::bad_alloc&) {

@@ -25,7 +25,10 @@ public:
 // above and in front (+Z, tilted up), with a 45 degree vertical field of view and far enough
 // that the whole sphere fits vertically (and horizontally for aspect ratios of 1 and wider).
 // Light: the first directional KHR_lights_punctual light met in the walk, else the default.
-// Textures are checked (indices in range, image files exist) but not loaded or recorded.
+// Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
+// OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
+// samplers' wrap modes (scenes/gltf_textures.h); TEXCOORD_0 only. Emissive, normal and
+// occlusion textures are checked (indices in range, image files exist) but not used.
 //
 // Throws SceneLoadError for anything malformed: it never returns a partial scene.
 Scene loadGltf(const std::string& path);

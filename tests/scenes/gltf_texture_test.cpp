@@ -1,0 +1,260 @@
+// glTF textures: a textured quad written here with its image as an external PNG, a data URI
+// and a .glb buffer view; each gives the same texels, the sampler's wrap modes, sRGB decoding
+// for base colour only, and one clear error for what cannot be loaded.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "image_files.h"
+#include "io/texture_io.h"
+#include "scenes/gltf_loader.h"
+#include "temp_dir.h"
+
+using namespace ssrt;
+using test::TempDir;
+
+namespace {
+
+constexpr int kTexW = 4, kTexH = 2;
+
+// Texel bytes that differ in every channel of every texel.
+std::vector<uint8_t> texelBytes() {
+    std::vector<uint8_t> v;
+    for (int i = 0; i < kTexW * kTexH * 4; ++i) v.push_back(uint8_t(17 + i * 7));
+    return v;
+}
+
+const float kUvs[] = {0, 1, 1, 1, 1, 0, 0, 0};
+
+// Positions, TEXCOORD_0 and indices of a unit quad, then `image` (4-byte aligned).
+std::vector<unsigned char> quadBin(const std::vector<unsigned char>& image = {}) {
+    const float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+    std::vector<unsigned char> bin(sizeof pos + sizeof kUvs + sizeof idx);
+    std::memcpy(bin.data(), pos, sizeof pos);
+    std::memcpy(bin.data() + sizeof pos, kUvs, sizeof kUvs);
+    std::memcpy(bin.data() + sizeof pos + sizeof kUvs, idx, sizeof idx);
+    bin.insert(bin.end(), image.begin(), image.end());
+    while (bin.size() % 4) bin.push_back(0);
+    return bin;
+}
+
+std::string base64(const std::vector<unsigned char>& in) {
+    static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < in.size(); i += 3) {
+        const uint32_t n = in[i] << 16 | (i + 1 < in.size() ? in[i + 1] << 8 : 0) |
+                           (i + 2 < in.size() ? in[i + 2] : 0);
+        out += abc[n >> 18 & 63];
+        out += abc[n >> 12 & 63];
+        out += i + 1 < in.size() ? abc[n >> 6 & 63] : '=';
+        out += i + 2 < in.size() ? abc[n & 63] : '=';
+    }
+    return out;
+}
+
+struct Quad {
+    std::string images = R"([{"uri": "tex.png"}])";
+    // Texture 0: image 0 with default sampling; texture 1: image 0 with sampler 0.
+    std::string textures = R"([{"source": 0}, {"source": 0, "sampler": 0}])";
+    std::string samplers = R"([{"wrapS": 33071, "wrapT": 33648}])";
+    std::string pbr =
+        R"("baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1})";
+    std::size_t imageBytes = 0;  // > 0: the image is buffer view 3, after the quad (GLB)
+};
+
+// buffer: "" for GLB (the BIN chunk), else the buffer's URI.
+std::string quadJson(const Quad& q, const std::string& bufferUri, std::size_t binSize) {
+    std::string buffer = R"({"byteLength": )" + std::to_string(binSize);
+    if (!bufferUri.empty()) buffer += R"(, "uri": ")" + bufferUri + "\"";
+    buffer += "}";
+    std::string views = R"([{"buffer": 0, "byteOffset": 0, "byteLength": 48},)"
+                        R"( {"buffer": 0, "byteOffset": 48, "byteLength": 32},)"
+                        R"( {"buffer": 0, "byteOffset": 80, "byteLength": 12})";
+    if (q.imageBytes > 0)
+        views += R"(, {"buffer": 0, "byteOffset": 92, "byteLength": )" +
+                 std::to_string(q.imageBytes) + "}";
+    views += "]";
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],)"
+           R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes":)"
+           R"( {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],)"
+           R"( "materials": [{"pbrMetallicRoughness": {)" +
+           q.pbr +
+           R"(}}],)"
+           R"( "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 4},)"
+           R"( {"bufferView": 1, "componentType": 5126, "type": "VEC2", "count": 4},)"
+           R"( {"bufferView": 2, "componentType": 5123, "type": "SCALAR", "count": 6}],)"
+           R"( "bufferViews": )" +
+           views + R"(, "buffers": [)" + buffer + "]" + R"(, "images": )" + q.images +
+           R"(, "textures": )" + q.textures + R"(, "samplers": )" + q.samplers + "}";
+}
+
+void writeFile(const std::string& path, const std::vector<unsigned char>& bytes) {
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+// A .gltf with the quad's buffer as quad.bin beside it.
+std::string writeGltf(const TempDir& dir, const std::string& name, const Quad& q) {
+    const std::vector<unsigned char> bin = quadBin();
+    writeFile(dir.file("quad.bin"), bin);
+    writeFile(dir.file(name), quadJson(q, "quad.bin", bin.size()));
+    return dir.file(name);
+}
+
+void appendU32(std::vector<unsigned char>& s, uint32_t v) {
+    const auto* p = reinterpret_cast<const unsigned char*>(&v);
+    s.insert(s.end(), p, p + 4);
+}
+
+// A .glb whose BIN chunk holds the quad and `image` (buffer view 3).
+std::string writeGlb(const TempDir& dir, const std::string& name, Quad q,
+                     const std::vector<unsigned char>& image) {
+    q.imageBytes = image.size();
+    const std::vector<unsigned char> bin = quadBin(image);
+    std::string json = quadJson(q, "", bin.size());
+    while (json.size() % 4) json += ' ';
+    std::vector<unsigned char> out = {'g', 'l', 'T', 'F'};
+    appendU32(out, 2);
+    appendU32(out, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+    appendU32(out, uint32_t(json.size()));
+    appendU32(out, 0x4E4F534A);  // "JSON"
+    out.insert(out.end(), json.begin(), json.end());
+    appendU32(out, uint32_t(bin.size()));
+    appendU32(out, 0x004E4942);  // "BIN\0"
+    out.insert(out.end(), bin.begin(), bin.end());
+    writeFile(dir.file(name), out);
+    return dir.file(name);
+}
+
+std::vector<unsigned char> pngBytes(const TempDir& dir) {
+    test::writeImage(dir.file("encode.png"), kTexW, kTexH, 4, texelBytes());
+    return test::fileBytes(dir.file("encode.png"));
+}
+
+// The quad's material: base colour decoded from sRGB, metallic-roughness linear with the
+// sampler's wrap modes, both from the same image.
+void checkTexturedQuad(const Scene& s) {
+    REQUIRE(s.materials.size() == 1);
+    const Material& m = s.materials[0];
+    REQUIRE(m.baseColorTexture >= 0);
+    REQUIRE(m.metallicRoughnessTexture >= 0);
+    CHECK(m.baseColorTexture != m.metallicRoughnessTexture);
+    REQUIRE(s.textures.size() == 2);
+    const Texture& base = s.textures[m.baseColorTexture];
+    const Texture& mr = s.textures[m.metallicRoughnessTexture];
+    REQUIRE(base.width() == kTexW);
+    REQUIRE(base.height() == kTexH);
+    REQUIRE(mr.width() == kTexW);
+    const std::vector<uint8_t> v = texelBytes();
+    for (int i = 0; i < kTexW * kTexH; ++i) {
+        CAPTURE(i);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(base.levels[0].texels[i][c] == srgbToLinear(float(v[i * 4 + c]) / 255.0f));
+            CHECK(mr.levels[0].texels[i][c] == float(v[i * 4 + c]) / 255.0f);
+        }
+        CHECK(base.levels[0].texels[i].a == float(v[i * 4 + 3]) / 255.0f);
+    }
+    CHECK(base.wrapU == TextureWrap::Repeat);
+    CHECK(base.wrapV == TextureWrap::Repeat);
+    CHECK(mr.wrapU == TextureWrap::ClampToEdge);
+    CHECK(mr.wrapV == TextureWrap::MirroredRepeat);
+    REQUIRE(s.meshes.size() == 1);
+    REQUIRE(s.meshes[0].uvs.size() == 4);
+    for (int i = 0; i < 4; ++i)
+        CHECK(s.meshes[0].uvs[i] == glm::vec2(kUvs[2 * i], kUvs[2 * i + 1]));
+}
+
+std::string loadError(const std::string& path) {
+    try {
+        loadGltf(path);
+    } catch (const SceneLoadError& e) {
+        return e.what();
+    }
+    FAIL("no SceneLoadError for ", path);
+    return {};
+}
+
+void checkRefused(const std::string& path, const std::string& keyword) {
+    const std::string msg = loadError(path);
+    INFO(msg);
+    CHECK(msg.find(path) != std::string::npos);
+    CHECK(msg.find(keyword) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("gltf textures: an external PNG round-trips texels, encodings and wrap modes") {
+    TempDir dir("gltf-tex");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    checkTexturedQuad(loadGltf(writeGltf(dir, "quad.gltf", Quad{})));
+
+    SUBCASE("a percent-encoded URI names the file") {
+        writeFile(dir.file("my tex.png"), pngBytes(dir));
+        Quad q;
+        q.images = R"([{"uri": "my%20tex.png"}])";
+        checkTexturedQuad(loadGltf(writeGltf(dir, "spaced.gltf", q)));
+    }
+    SUBCASE("one texture used twice with one encoding is decoded once") {
+        Quad q;
+        q.pbr = R"("baseColorTexture": {"index": 0})";
+        q.textures = R"([{"source": 0}])";
+        const Scene s = loadGltf(writeGltf(dir, "once.gltf", q));
+        CHECK(s.textures.size() == 1);
+        CHECK(s.materials[0].metallicRoughnessTexture == -1);
+    }
+}
+
+TEST_CASE("gltf textures: a data URI and a .glb buffer view give the same texels") {
+    TempDir dir("gltf-tex");
+    const std::vector<unsigned char> png = pngBytes(dir);
+    SUBCASE("data URI") {
+        Quad q;
+        q.images = R"([{"uri": "data:image/png;base64,)" + base64(png) + "\"}]";
+        checkTexturedQuad(loadGltf(writeGltf(dir, "datauri.gltf", q)));
+    }
+    SUBCASE("buffer view in a .glb") {
+        Quad q;
+        q.images = R"([{"bufferView": 3, "mimeType": "image/png"}])";
+        checkTexturedQuad(loadGltf(writeGlb(dir, "quad.glb", q, png)));
+    }
+}
+
+TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
+    TempDir dir("gltf-tex-bad");
+    const std::vector<unsigned char> png = pngBytes(dir);
+    writeFile(dir.file("tex.png"), png);
+    Quad q;
+    SUBCASE("a second texture coordinate set") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_1");
+    }
+    SUBCASE("an image file that is not an image") {
+        writeFile(dir.file("tex.png"), std::string("this is not a PNG"));
+        checkRefused(writeGltf(dir, "garbage.gltf", q), "image 0");
+    }
+    SUBCASE("truncated image bytes in a buffer view") {
+        q.images = R"([{"bufferView": 3, "mimeType": "image/png"}])";
+        const std::vector<unsigned char> half(png.begin(), png.begin() + png.size() / 2);
+        checkRefused(writeGlb(dir, "truncated.glb", q, half), "image 0");
+    }
+    SUBCASE("an image type glTF does not allow") {
+        q.images = R"([{"bufferView": 3, "mimeType": "image/gif"}])";
+        checkRefused(writeGlb(dir, "gif.glb", q, png), "image/gif");
+    }
+    SUBCASE("a sampler that does not exist") {
+        q.textures = R"([{"source": 0}, {"source": 0, "sampler": 4}])";
+        checkRefused(writeGltf(dir, "sampler.gltf", q), "sampler 4");
+    }
+    SUBCASE("a texture index out of range") {
+        q.pbr = R"("metallicRoughnessTexture": {"index": 9})";
+        checkRefused(writeGltf(dir, "index.gltf", q), "texture 9 does not exist");
+    }
+}
