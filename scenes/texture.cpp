@@ -53,6 +53,7 @@ TextureLevel halveY(const TextureLevel& in) {
 
 // A texel index in [0, n) for any integer i, by the wrap mode.
 int wrapIndex(int i, int n, TextureWrap mode) {
+    if (unsigned(i) < unsigned(n)) return i;  // inside: every mode agrees
     switch (mode) {
         case TextureWrap::ClampToEdge:
             return std::clamp(i, 0, n - 1);
@@ -65,6 +66,13 @@ int wrapIndex(int i, int n, TextureWrap mode) {
         default:
             return ((i % n) + n) % n;
     }
+}
+
+// The two texels a bilinear lookup blends along one axis, i and i + 1, wrapped.
+void wrapPair(int i, int n, TextureWrap mode, int& a, int& b) {
+    a = wrapIndex(i, n, mode);
+    // Repeat: the next texel follows a (one modulo, not two).
+    b = mode == TextureWrap::Repeat ? (a + 1 == n ? 0 : a + 1) : wrapIndex(i + 1, n, mode);
 }
 
 // Texel-space coordinate of u on n texels, kept where float still has whole texels
@@ -107,8 +115,9 @@ glm::vec4 Texture::sampleLevel(int level, glm::vec2 uv) const {
     const float fx0 = std::floor(x), fy0 = std::floor(y);
     const float fx = x - fx0, fy = y - fy0;
     const int x0 = int(fx0), y0 = int(fy0);
-    const int xa = wrapIndex(x0, l.width, wrapU), xb = wrapIndex(x0 + 1, l.width, wrapU);
-    const int ya = wrapIndex(y0, l.height, wrapV), yb = wrapIndex(y0 + 1, l.height, wrapV);
+    int xa, xb, ya, yb;
+    wrapPair(x0, l.width, wrapU, xa, xb);
+    wrapPair(y0, l.height, wrapV, ya, yb);
     const glm::vec4 top = l.at(xa, ya) * (1.0f - fx) + l.at(xb, ya) * fx;
     const glm::vec4 bottom = l.at(xa, yb) * (1.0f - fx) + l.at(xb, yb) * fx;
     return top * (1.0f - fy) + bottom * fy;
