@@ -12,4 +12,6 @@ cmake --build build-asan --target ssrt_tests --parallel "${SSRT_BUILD_JOBS:-$(np
 # container-overflow annotations falsely, so that one check is off.
 export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# One known leak inside OpenImageIO on corrupt PNGs (see the file).
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
 ./build-asan/tests/ssrt_tests -tc='shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'
