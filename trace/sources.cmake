@@ -1,0 +1,1 @@
+list(APPEND SSRT_SOURCES trace/trace_types.cpp)

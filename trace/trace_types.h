@@ -1,0 +1,73 @@
+// What the screen-space passes hand each other: the camera as the marchers see it, the rays
+// of one pass (one per pixel) and what the march found for each. Plain planes and values, so
+// the renderer, the EXR writer and the Embree checks (issue 6) read the same data.
+//
+// View space is the camera's: x right, y up, the camera looks down -z. A G-buffer `viewZ`
+// is the positive distance along -z (0 for background), so a point at pixel (px, py) with
+// depth z sits at ((2 (px + 0.5) / width - 1) tanHalfX z, (1 - 2 (py + 0.5) / height)
+// tanHalfY z, -z). Pixel rows run top to bottom.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "core/image.h"
+
+namespace ssrt {
+
+// The pinhole camera of the frame, as plain numbers.
+struct TraceCamera {
+    int width = 0, height = 0;
+    float tanHalfX = 1.0f, tanHalfY = 1.0f;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
+    float nearZ = 0.05f, farZ = 100.0f;      // positive distances
+    float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rotation, column-major
+};
+
+// One ray per pixel, view space, planes of the frame's size. A pixel without a ray
+// (background, or a sample the method rejects) has pdf 0 and direction (0, 0, 0).
+struct RayBatch {
+    PlaneF ox, oy, oz;  // origin: the pixel's surface point (no offset; marchers skip their
+                        // own pixel)
+    PlaneF dx, dy, dz;  // unit direction
+    PlaneF pdf;         // solid-angle PDF of the direction (0: no ray)
+
+    void ensureSize(int width, int height);
+    int width() const { return ox.width(); }
+    int height() const { return ox.height(); }
+};
+
+// Why a ray ended, per pixel (MarchResult::cause, as a float).
+enum class MarchEnd : uint8_t {
+    Hit = 0,
+    NoRay = 1,        // pdf 0: nothing was traced
+    LeftScreen = 2,   // left the frame (or passed the near/far plane) before a hit
+    StepCap = 3,      // ran out of steps or iterations
+    Thickness = 4,    // crossed the depth buffer but behind the surface by more than the thickness
+    BackFace = 5,     // met a surface whose normal faces the ray's direction
+};
+inline constexpr int kMarchEndCount = 6;
+
+inline std::string_view marchEndName(MarchEnd e) {
+    switch (e) {
+        case MarchEnd::Hit: return "hit";
+        case MarchEnd::NoRay: return "no_ray";
+        case MarchEnd::LeftScreen: return "left_screen";
+        case MarchEnd::StepCap: return "step_cap";
+        case MarchEnd::Thickness: return "thickness";
+        case MarchEnd::BackFace: return "back_face";
+    }
+    return "?";
+}
+
+// What the march found for each pixel's ray.
+struct MarchResult {
+    PlaneF hit;           // 1 hit, 0 not
+    PlaneF hitX, hitY;    // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
+    PlaneF hitZ;          // view Z at the hit (positive); 0 on a miss
+    PlaneF steps;         // march steps (or Hi-Z iterations) this ray took
+    PlaneF cause;         // MarchEnd as a float
+
+    void ensureSize(int width, int height);
+};
+
+}  // namespace ssrt
