@@ -98,8 +98,7 @@ SSRT_INLINE void sincos(L x, L& s, L& c) {
     const auto swap = (q == L(1.0f)) | (q == L(3.0f));
     const L sBase = lanes::select(swap, cy, sy);
     const L cBase = lanes::select(swap, sy, cy);
-    // xor, not !=: xsimd 8.1 compares float masks as floats, and all-ones is a NaN.
-    const auto sNeg = (q >= L(2.0f)) ^ (x < L(0.0f));
+    const auto sNeg = lanes::maskXor(q >= L(2.0f), x < L(0.0f));
     const auto cNeg = (q == L(1.0f)) | (q == L(2.0f));
     s = lanes::select(sNeg, L(0.0f) - sBase, sBase);
     c = lanes::select(cNeg, L(0.0f) - cBase, cBase);

@@ -133,6 +133,15 @@ SSRT_INLINE bool any(xsimd::batch_bool<T, A> m) { return xsimd::any(m); }
 template <class T, class A>
 SSRT_INLINE bool all(xsimd::batch_bool<T, A> m) { return xsimd::all(m); }
 
+// Exclusive or of two masks. Not `a ^ b`: xsimd 8.1's AVX-512 batch_bool xor is an or
+// (arch/xsimd_avx512f.hpp returns self.data | other.data), and not `a != b`, which 8.1
+// compares as floats on SSE/AVX (an all-ones mask is a NaN).
+SSRT_INLINE bool maskXor(bool a, bool b) { return a != b; }
+template <class T, class A>
+SSRT_INLINE xsimd::batch_bool<T, A> maskXor(xsimd::batch_bool<T, A> a, xsimd::batch_bool<T, A> b) {
+    return (a | b) & ~(a & b);
+}
+
 // Float mask -> int mask and back, for selects across types.
 SSRT_INLINE bool toIntMask(bool m) { return m; }
 // (xsimd 8.1 has no batch_bool_cast: select 1 or 0 and compare in the other type.)
