@@ -235,12 +235,13 @@ TEST_CASE("ssr resolve: roughness fade is 1 below the start and 0 above the end"
 TEST_CASE("ssr resolve: reuse normalises on a uniform hit field, and uses only valid rays") {
     WallFixture f(0.4f);
     for (int c = 0; c < 3; ++c) f.color[c].fill(0.25f * float(c + 1));
-    // Random hit positions inside the frame, random pdfs, random directions.
+    // Random hit positions anywhere in the frame (edge fades < 1 near its border), random
+    // pdfs, random depths.
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
             const uint32_t i = uint32_t(y * kW + x);
-            f.march.hitX.at(x, y) = 10.0f + 80.0f * randomFloat(i, 1, 0, 0);
-            f.march.hitY.at(x, y) = 7.0f + 56.0f * randomFloat(i, 1, 0, 1);
+            f.march.hitX.at(x, y) = float(kW) * randomFloat(i, 1, 0, 0);
+            f.march.hitY.at(x, y) = float(kH) * randomFloat(i, 1, 0, 1);
             f.march.hitZ.at(x, y) = 1.0f + 3.0f * randomFloat(i, 1, 0, 2);
             f.rays.pdf.at(x, y) = 0.1f + 5.0f * randomFloat(i, 1, 0, 3);
         }
