@@ -27,8 +27,9 @@ SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
 // Trilinear read of the pyramid at level-0 position (x, y) and mip level `mip`: bilinear in
 // the two levels around it, linear between. Lanes may need different levels, so each level
 // some lane needs is read for all and weighted by 0 where it is not needed (x + 0 y = x for
-// finite y: the scalar copy's bits).
-SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip) {
+// finite y: the scalar copy's bits). Lanes not `used` (no hit) read nothing of their own.
+SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip,
+                             ln::MaskOf<Lane> used) {
     const int n = a.levelCount;
     const Lane zero(0.0f);
     if (n == 1) {
@@ -42,8 +43,9 @@ SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip) 
     V3 sum{zero, zero, zero};
     for (int k = 0; k < n; ++k) {
         const Lane lk = Lane(float(k));
-        const Lane w =
-            ln::select(i0 == lk, Lane(1.0f) - t, ln::select(i0 + Lane(1.0f) == lk, t, zero));
+        const Lane w = ln::select(
+            used, ln::select(i0 == lk, Lane(1.0f) - t, ln::select(i0 + Lane(1.0f) == lk, t, zero)),
+            zero);
         if (!ln::any(w > zero)) continue;
         const float sx = float(a.levelWidth[k]) / float(a.width);
         const float sy = float(a.levelHeight[k]) / float(a.height);
@@ -81,7 +83,7 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
         }
         if (a.mip) {
             const Lane rough = ln::saturate(loadAt(a.roughness, o));
-            radiance = pyramidSample(a, px, py, rough * Lane(float(a.levelCount - 1)));
+            radiance = pyramidSample(a, px, py, rough * Lane(float(a.levelCount - 1)), valid);
         } else if (a.bilinear) {
             const auto b = screen::bilinearAt(px, py, a.width, a.height, a.stride);
             radiance = {screen::sample(a.source[0], b), screen::sample(a.source[1], b),
