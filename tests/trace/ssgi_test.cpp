@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
+#include "shading/environment.h"
 #include "trace/ssgi.h"
 
 using namespace ssrt;
@@ -205,5 +206,38 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
             PlaneF out[3];
             for (int k = 0; k < 3; ++k) resolveSsgi(isa, in, rays, march, out, k, 3, threads);
             for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], ref[c]));
+        }
+}
+
+TEST_CASE("ssgi: misses read the equirect sky image when there is one") {
+    Furnace f;
+    f.march.hit.fill(0.0f);
+    // A uniform 8 x 4 image: every direction sees its colour times the intensity.
+    EquirectImage img(8, 4, std::vector<float>(3 * 8 * 4, 0.0f));
+    for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+        img.rgb[i] = 0.25f;
+        img.rgb[i + 1] = 0.5f;
+        img.rgb[i + 2] = 1.0f;
+    }
+    img.updatePoles();
+    f.light.envLevelCount = 1;
+    f.light.envLevel[0] = img.view();
+    f.light.envIntensity = 2.0f;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {  // directions all around
+            const uint32_t i = uint32_t(y * kW + x);
+            const float dx = randomFloat(i, 4, 0, 0) - 0.5f, dy = randomFloat(i, 4, 0, 1) - 0.5f,
+                        dz = randomFloat(i, 4, 0, 2) - 0.5f;
+            const float len = std::sqrt(dx * dx + dy * dy + dz * dz);
+            f.rays.dx.at(x, y) = dx / len;
+            f.rays.dy.at(x, y) = dy / len;
+            f.rays.dz.at(x, y) = dz / len;
+        }
+    PlaneF out[3];
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            CHECK(out[0].at(x, y) == doctest::Approx(0.5f).epsilon(1e-6));
+            CHECK(out[2].at(x, y) == doctest::Approx(2.0f).epsilon(1e-6));
         }
 }

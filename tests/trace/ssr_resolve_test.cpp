@@ -3,6 +3,7 @@
 // bits for every ISA and thread count.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -450,4 +451,92 @@ TEST_CASE("ssr resolve: finite everywhere on a rendered frame, and the same bits
                     CHECK(sameBits(out.opacity, ref.opacity));
                 }
         }
+}
+
+namespace {
+
+// Double-precision oracle of one reuse weight: GGX D V (n.l) / pdf for a pixel at p with
+// normal n (view space), towards l, at perceptual roughness r.
+double reuseWeight(const double p[3], const double n[3], const double l[3], double r, double pdf) {
+    auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    const double lenP = std::sqrt(dot(p, p));
+    const double v[3] = {-p[0] / lenP, -p[1] / lenP, -p[2] / lenP};
+    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    const double lenH = std::sqrt(dot(h, h));
+    for (double& c : h) c /= lenH;
+    const double NoL = dot(n, l), NoV = std::max(dot(n, v), 1e-4), NoH = std::max(dot(n, h), 0.0);
+    if (NoL <= 0.0) return 0.0;
+    const double a = std::max(r * r, 1e-3), a2 = a * a;
+    const double f = NoH * NoH * (a2 - 1.0) + 1.0;
+    const double D = a2 / (M_PI * f * f);
+    const double V = 0.5 / (NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2) +
+                            NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2));
+    return D * V * NoL / pdf;
+}
+
+}  // namespace
+
+TEST_CASE("ssr resolve: reuse is the ratio estimator with GGX D V n.l / pdf weights (double oracle)") {
+    WallFixture f(0.45f);
+    // Neighbour hits scattered in front of the wall, with their own depths, pdfs, fades and
+    // (through the hit pixel) colours; one neighbour misses.
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const uint32_t i = uint32_t(y * kW + x);
+            f.march.hitX.at(x, y) = 2.0f + float(kW - 4) * randomFloat(i, 2, 0, 0);
+            f.march.hitY.at(x, y) = float(kH) * 0.5f + 20.0f * (randomFloat(i, 2, 0, 1) - 0.5f);
+            f.march.hitZ.at(x, y) = 1.0f + 2.0f * randomFloat(i, 2, 0, 2);
+            f.rays.pdf.at(x, y) = 0.2f + 3.0f * randomFloat(i, 2, 0, 3);
+        }
+    const int px = 37, py = 29;
+    f.march.hit.at(px + 1, py - 1) = 0.0f;  // a miss along its own direction, (0, 0.6, 0.8)
+    f.rays.dx.at(px + 1, py - 1) = 0.0f;
+    f.rays.dy.at(px + 1, py - 1) = 0.6f;
+    f.rays.dz.at(px + 1, py - 1) = 0.8f;
+    SsrResolveSettings s = settings(SsrResolveMode::Reuse, HitRadiance::Current, false);
+    s.roughnessFadeStart = 0.9f;  // no roughness fade here
+    s.roughnessFadeEnd = 1.0f;
+    const SsrOutput out = f.resolve(s);
+    // The oracle, in double.
+    const double tx = f.in.camera.tanHalfX, ty = f.in.camera.tanHalfY;
+    auto point = [&](double sx, double sy, double z, double* q) {
+        q[0] = (2.0 * sx / kW - 1.0) * tx * z;
+        q[1] = (1.0 - 2.0 * sy / kH) * ty * z;
+        q[2] = -z;
+    };
+    double p[3];
+    point(px + 0.5, py + 0.5, 5.0, p);
+    const double n[3] = {0.0, 0.0, 1.0};
+    double sumW = 0.0, sumWF = 0.0, sumWFL[3] = {0.0, 0.0, 0.0};
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int x = px + dx, y = py + dy;
+            double l[3];
+            double fade = 0.0;
+            double L[3] = {0.0, 0.0, 0.0};
+            if (f.march.hit.at(x, y) > 0.5f) {
+                const double hx = f.march.hitX.at(x, y), hy = f.march.hitY.at(x, y);
+                double q[3];
+                point(hx, hy, f.march.hitZ.at(x, y), q);
+                const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                for (int c = 0; c < 3; ++c) l[c] = d[c] / len;
+                const double u = hx / kW, v = hy / kH;
+                fade = std::min(1.0, std::min(std::min(u, 1.0 - u), std::min(v, 1.0 - v)) / 0.1);
+                for (int c = 0; c < 3; ++c) L[c] = colourOf(c, int(hx), int(hy));
+            } else {
+                l[0] = f.rays.dx.at(x, y);
+                l[1] = f.rays.dy.at(x, y);
+                l[2] = f.rays.dz.at(x, y);
+            }
+            const double w = reuseWeight(p, n, l, 0.45, f.rays.pdf.at(x, y));
+            sumW += w;
+            sumWF += w * fade;
+            for (int c = 0; c < 3; ++c) sumWFL[c] += w * fade * L[c];
+        }
+    REQUIRE(sumWF > 0.0);
+    for (int c = 0; c < 3; ++c)
+        CHECK(out.color[c].at(px, py) == doctest::Approx(sumWFL[c] / sumWF).epsilon(2e-4));
+    CHECK(out.opacity.at(px, py) == doctest::Approx(sumWF / sumW).epsilon(2e-4));
+    CHECK(out.opacity.at(px, py) < 1.0f);  // the miss counts in sum(w) only
 }
