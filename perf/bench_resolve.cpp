@@ -22,7 +22,8 @@ constexpr int kW = 640, kH = 360;
 PlaneF randomPlane(uint32_t dim, float lo, float hi) {
     PlaneF p(kW, kH);
     for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) p.at(x, y) = lo + (hi - lo) * randomFloat(uint32_t(y * kW + x), 31, 0, dim);
+        for (int x = 0; x < kW; ++x)
+            p.at(x, y) = lo + (hi - lo) * randomFloat(uint32_t(y * kW + x), 31, 0, dim);
     return p;
 }
 
@@ -44,7 +45,8 @@ struct Scene {
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
                 const uint32_t i = uint32_t(y * kW + x);
-                const float dx = randomFloat(i, 32, 0, 0) - 0.5f, dy = randomFloat(i, 32, 0, 1) - 0.5f;
+                const float dx = randomFloat(i, 32, 0, 0) - 0.5f,
+                            dy = randomFloat(i, 32, 0, 1) - 0.5f;
                 const float dz = 0.2f + randomFloat(i, 32, 0, 2);
                 const float len = std::sqrt(dx * dx + dy * dy + dz * dz);
                 rays.dx.at(x, y) = dx / len;
@@ -146,11 +148,14 @@ void benchComposite(benchmark::State& state, Isa isa) {
 [[maybe_unused]] const bool kRegistered = [] {
     for (Isa isa : kAllIsas) {
         const std::string n(isaName(isa));
-        benchmark::RegisterBenchmark(("ssr_resolve_mip/" + n).c_str(), benchSsr, isa, SsrResolveMode::Mip)
+        benchmark::RegisterBenchmark(("ssr_resolve_mip/" + n).c_str(), benchSsr, isa,
+                                     SsrResolveMode::Mip)
             ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("ssr_resolve_reuse/" + n).c_str(), benchSsr, isa, SsrResolveMode::Reuse)
+        benchmark::RegisterBenchmark(("ssr_resolve_reuse/" + n).c_str(), benchSsr, isa,
+                                     SsrResolveMode::Reuse)
             ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("ssgi/" + n).c_str(), benchSsgi, isa)->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("ssgi/" + n).c_str(), benchSsgi, isa)
+            ->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("composite/" + n).c_str(), benchComposite, isa)
             ->Unit(benchmark::kMillisecond);
     }

@@ -30,7 +30,8 @@ void buildColorPyramid(const PlaneF* const rgb[3], ColorPyramid& pyramid, int th
     // Level 0: a copy.
     parallelFor(h0, threads, [&](int y) {
         for (int c = 0; c < 3; ++c)
-            std::memcpy(pyramid.levels[0][c].row(y), rgb[c]->row(y), sizeof(float) * std::size_t(w0));
+            std::memcpy(pyramid.levels[0][c].row(y), rgb[c]->row(y),
+                        sizeof(float) * std::size_t(w0));
     });
     // Each next level: the 2x2 box of the one before, edges clamped.
     for (int l = 1; l < count; ++l) {

@@ -13,7 +13,7 @@
 namespace ssrt {
 
 struct ColorPyramid {
-    static constexpr int kMaxLevels = 16;  // 1 x 1 from 32768 pixels wide
+    static constexpr int kMaxLevels = 16;       // 1 x 1 from 32768 pixels wide
     std::vector<std::array<PlaneF, 3>> levels;  // RGB planes, level 0 at full size
 
     int levelCount() const { return int(levels.size()); }

@@ -26,13 +26,13 @@ namespace ssrt {
 
 // What SSGI reads, all planes of the frame's size, G-buffer names as the Renderer's Frame.
 struct SsgiInputs {
-    TraceCamera camera;                  // width, height, viewToWorld (rays go to world for the sky)
-    const PlaneF* viewZ = nullptr;       // "viewZ"
-    const PlaneF* normal[3] = {};        // "normal.X/Y/Z", world space
-    const PlaneF* albedo[3] = {};        // "albedo.R/G/B"
-    const PlaneF* metallic = nullptr;    // "metallic"
-    const PlaneF* shadow = nullptr;      // the direct pass's "shadow"
-    const PlaneF* emission[3] = {};      // optional: DirectArgs::emission planes (null: none)
+    TraceCamera camera;                // width, height, viewToWorld (rays go to world for the sky)
+    const PlaneF* viewZ = nullptr;     // "viewZ"
+    const PlaneF* normal[3] = {};      // "normal.X/Y/Z", world space
+    const PlaneF* albedo[3] = {};      // "albedo.R/G/B"
+    const PlaneF* metallic = nullptr;  // "metallic"
+    const PlaneF* shadow = nullptr;    // the direct pass's "shadow"
+    const PlaneF* emission[3] = {};    // optional: DirectArgs::emission planes (null: none)
     // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
     // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
     // renderer fills them; their plane pointers are not used.

@@ -25,7 +25,7 @@ struct SsgiArgs {
     const float* hit;
     const float* hitX;
     const float* hitY;
-    DirectArgs lighting;       // sun, sky and viewToWorld
+    DirectArgs lighting;  // sun, sky and viewToWorld
     float* out[3];
     int sample, sampleCount;
 };

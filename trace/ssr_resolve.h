@@ -45,31 +45,31 @@ enum class HitRadiance { Current, Reprojected };
 struct SsrResolveSettings {
     SsrResolveMode mode = SsrResolveMode::Reuse;
     HitRadiance radiance = HitRadiance::Current;
-    bool bilinear = true;            // colour at the hit: bilinear (true) or nearest pixel
-    float edgeFadeLength = 0.1f;     // fraction of the frame (per axis) over which hits fade
-    float roughnessFadeStart = 0.5f; // perceptual roughness where SSR starts to fade out
-    float roughnessFadeEnd = 0.7f;   // ... and where it is gone (<= start: a step at end)
+    bool bilinear = true;             // colour at the hit: bilinear (true) or nearest pixel
+    float edgeFadeLength = 0.1f;      // fraction of the frame (per axis) over which hits fade
+    float roughnessFadeStart = 0.5f;  // perceptual roughness where SSR starts to fade out
+    float roughnessFadeEnd = 0.7f;    // ... and where it is gone (<= start: a step at end)
 };
 
 // The planes the resolve reads, all of the frame's size (null where the settings do not need
 // them). G-buffer planes as the Renderer's Frame names them.
 struct SsrResolveInputs {
-    TraceCamera camera;                       // the frame's camera (width, height, tanHalf*,
-                                              // viewToWorld)
-    const PlaneF* viewZ = nullptr;            // "viewZ" (0 = background)
-    const PlaneF* normal[3] = {};             // "normal.X/Y/Z", world space
-    const PlaneF* roughness = nullptr;        // "roughness", perceptual
-    const PlaneF* color[3] = {};              // HitRadiance::Current: "color.R/G/B" of the
-                                              // direct pass
-    const PlaneF* prevColor[3] = {};          // HitRadiance::Reprojected: last frame's final
-                                              // colour
-    const PlaneF* motion[2] = {};             // Reprojected: "motion.X/Y" (previous pixel
-                                              // position = current + motion)
-    const ColorPyramid* pyramid = nullptr;    // SsrResolveMode::Mip: built from `color`
-                                              // (Current) or `prevColor` (Reprojected)
-    float radianceScale = 1.0f;               // multiplies every radiance read: 1 / exposure
-                                              // turns exposed colour planes back into the
-                                              // scene-linear units of the composite's inputs
+    TraceCamera camera;                     // the frame's camera (width, height, tanHalf*,
+                                            // viewToWorld)
+    const PlaneF* viewZ = nullptr;          // "viewZ" (0 = background)
+    const PlaneF* normal[3] = {};           // "normal.X/Y/Z", world space
+    const PlaneF* roughness = nullptr;      // "roughness", perceptual
+    const PlaneF* color[3] = {};            // HitRadiance::Current: "color.R/G/B" of the
+                                            // direct pass
+    const PlaneF* prevColor[3] = {};        // HitRadiance::Reprojected: last frame's final
+                                            // colour
+    const PlaneF* motion[2] = {};           // Reprojected: "motion.X/Y" (previous pixel
+                                            // position = current + motion)
+    const ColorPyramid* pyramid = nullptr;  // SsrResolveMode::Mip: built from `color`
+                                            // (Current) or `prevColor` (Reprojected)
+    float radianceScale = 1.0f;             // multiplies every radiance read: 1 / exposure
+                                            // turns exposed colour planes back into the
+                                            // scene-linear units of the composite's inputs
 };
 
 struct SsrOutput {

@@ -33,7 +33,8 @@ SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip,
     const int n = a.levelCount;
     const Lane zero(0.0f);
     if (n == 1) {
-        const auto b = screen::bilinearAt(x, y, a.levelWidth[0], a.levelHeight[0], a.levelStride[0]);
+        const auto b =
+            screen::bilinearAt(x, y, a.levelWidth[0], a.levelHeight[0], a.levelStride[0]);
         return {screen::sample(a.level[0][0], b), screen::sample(a.level[0][1], b),
                 screen::sample(a.level[0][2], b)};
     }
@@ -132,9 +133,9 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
             const auto hasRay = inFrame & (pdf > zero);
             if (!ln::any(hasRay)) continue;
             // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
-            const V3 hitP = screen::viewPoint(ln::gather(a.hitPos[0], i), ln::gather(a.hitPos[1], i),
-                                              ln::gather(a.hitPos[2], i), a.width, a.height,
-                                              a.tanHalfX, a.tanHalfY);
+            const V3 hitP = screen::viewPoint(
+                ln::gather(a.hitPos[0], i), ln::gather(a.hitPos[1], i), ln::gather(a.hitPos[2], i),
+                a.width, a.height, a.tanHalfX, a.tanHalfY);
             const V3 toHit = ln::normalize(hitP - p);
             const V3 dir{ln::gather(a.rayDir[0], i), ln::gather(a.rayDir[1], i),
                          ln::gather(a.rayDir[2], i)};
@@ -146,8 +147,8 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
             const Lane NoH = ln::saturate(ln::dot(n, h));
             const Lane brdfCos = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha) * NoL;
             const auto ok = hasRay & (NoLraw > zero);
-            const Lane w = ln::select(
-                ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
+            const Lane w =
+                ln::select(ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
             const Lane wf = w * ln::gather(a.hitFade, i);
             const V3 L{ln::gather(a.hitRadiance[0], i), ln::gather(a.hitRadiance[1], i),
                        ln::gather(a.hitRadiance[2], i)};
@@ -158,8 +159,10 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
     }
     const auto any = sumWF > zero;
     const Lane den = ln::select(any, sumWF, one);
-    color = ln::select(any, V3{sumWFL.x / den, sumWFL.y / den, sumWFL.z / den}, V3{zero, zero, zero});
-    opacity = ln::select(sumW > zero, ln::min(sumWF / ln::select(sumW > zero, sumW, one), one), zero);
+    color =
+        ln::select(any, V3{sumWFL.x / den, sumWFL.y / den, sumWFL.z / den}, V3{zero, zero, zero});
+    opacity =
+        ln::select(sumW > zero, ln::min(sumWF / ln::select(sumW > zero, sumW, one), one), zero);
 }
 
 // One lane group of pass 2: combine, fade by roughness, accumulate the sample.

@@ -36,7 +36,7 @@ struct SsrResolveArgs {
     const float* level[kMaxLevels][3];
     std::size_t levelStride[kMaxLevels];
     int levelWidth[kMaxLevels], levelHeight[kMaxLevels];
-    float edgeFadeScale;                   // 1 / edgeFadeLength
+    float edgeFadeScale;                         // 1 / edgeFadeLength
     float roughnessFadeEnd, roughnessFadeScale;  // fade = saturate((end - r) * scale)
     float radianceScale;
     // Scratch written by ssrHitTile, read by ssrResolveTile.

@@ -1,6 +1,8 @@
 // The composite against the direct pass: with SSR and SSGI off it rebuilds the direct
 // kernel's color and display to the bit (every ISA); the optional parts do not change the
 // direct kernel's own outputs; SSR at opacity 0 or 1 and SSGI blend as the formula says.
+#include "shading/composite.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include "core/tiles.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
-#include "shading/composite.h"
 #include "shading/direct_kernel.h"
 
 using namespace ssrt;
@@ -34,7 +35,7 @@ struct DirectFixture {
     std::vector<float> emissive;
     PlaneF shadowMap;
     DirectArgs args{};
-    PlaneF out[7];                                          // color, display, shadow
+    PlaneF out[7];  // color, display, shadow
     PlaneF direct[3], emission[3], envDiffuse[3], envSpecular[3], specWeight[3];
 
     explicit DirectFixture(const char* scene, float exposure = 1.0f) {
@@ -45,8 +46,8 @@ struct DirectFixture {
         rs.threads = 2;
         frame = Renderer(rs).render(makeBuiltinScene(scene));
         const int w = frame.width, h = frame.height;
-        static const char* const g[10] = {"viewZ",    "normal.X", "normal.Y",  "normal.Z",
-                                          "albedo.R", "albedo.G", "albedo.B",  "metallic",
+        static const char* const g[10] = {"viewZ",     "normal.X",  "normal.Y", "normal.Z",
+                                          "albedo.R",  "albedo.G",  "albedo.B", "metallic",
                                           "roughness", "materialId"};
         for (int i = 0; i < 10; ++i) args.g[i] = frame.plane(g[i]).row(0);
         args.gStride = frame.plane("viewZ").stride();
@@ -64,7 +65,8 @@ struct DirectFixture {
         const float e[3] = {3.0f, 2.5f, 2.0f};
         std::copy_n(e, 3, args.lightRadiance);
         args.skyGradient = true;
-        const float zen[3] = {0.2f, 0.3f, 0.9f}, hor[3] = {0.7f, 0.7f, 0.8f}, gnd[3] = {0.2f, 0.15f, 0.1f};
+        const float zen[3] = {0.2f, 0.3f, 0.9f}, hor[3] = {0.7f, 0.7f, 0.8f},
+                    gnd[3] = {0.2f, 0.15f, 0.1f};
         std::copy_n(zen, 3, args.skyZenith);
         std::copy_n(hor, 3, args.skyHorizon);
         std::copy_n(gnd, 3, args.skyGround);
@@ -78,7 +80,8 @@ struct DirectFixture {
         args.anyEmissive = true;
         shadowMap = PlaneF(16, 16);
         for (int y = 0; y < 16; ++y)
-            for (int x = 0; x < 16; ++x) shadowMap.at(x, y) = randomFloat(uint32_t(y * 16 + x), 3, 0, 0);
+            for (int x = 0; x < 16; ++x)
+                shadowMap.at(x, y) = randomFloat(uint32_t(y * 16 + x), 3, 0, 0);
         args.shadow = shadowMap.row(0);
         args.shadowStride = shadowMap.stride();
         args.shadowSize = 16;
@@ -140,7 +143,9 @@ TEST_CASE("composite: the direct kernel's optional parts leave color, display an
     }
 }
 
-TEST_CASE("composite: with SSR and SSGI off it rebuilds the direct kernel's color and display bit for bit") {
+TEST_CASE(
+    "composite: with SSR and SSGI off it rebuilds the direct kernel's color and display bit for "
+    "bit") {
     for (const char* scene : {"cornell", "spheres"}) {
         for (float exposure : {1.0f, 1.3f}) {
             CAPTURE(scene);
@@ -211,7 +216,8 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
     PlaneF ref[3], refDisplay[3];
     composite(Isa::Scalar, f.inputs(1.0f), ref, refDisplay, 1);
     const float radiance[3] = {0.5f, 1.0f, 2.0f};
-    PlaneF ssgi[3] = {PlaneF(w, h, radiance[0]), PlaneF(w, h, radiance[1]), PlaneF(w, h, radiance[2])};
+    PlaneF ssgi[3] = {PlaneF(w, h, radiance[0]), PlaneF(w, h, radiance[1]),
+                      PlaneF(w, h, radiance[2])};
     CompositeInputs in = f.inputs(1.0f);
     for (int c = 0; c < 3; ++c) {
         in.ssgi[c] = &ssgi[c];
@@ -227,9 +233,9 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) {
                 const bool bg = in.viewZ->at(x, y) <= 0.0f;
-                const float diffuse = bg ? 0.0f
-                                         : in.albedo[c]->at(x, y) *
-                                               (1.0f - in.metallic->at(x, y)) * radiance[c];
+                const float diffuse =
+                    bg ? 0.0f
+                       : in.albedo[c]->at(x, y) * (1.0f - in.metallic->at(x, y)) * radiance[c];
                 const float expect = ref[c].at(x, y) - f.envDiffuse[c].at(x, y) + diffuse;
                 CHECK(color[c].at(x, y) == doctest::Approx(expect).epsilon(1e-4));
                 surfaces += bg ? 0 : 1;

@@ -1,6 +1,8 @@
 // SSGI one bounce against analytic answers (a furnace-like frame where every hit sees the
 // same direct light; all misses in a constant or gradient sky) and its contract on a
 // rendered G-buffer: finite everywhere, the same bits on every ISA and thread count.
+#include "trace/ssgi.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/environment.h"
-#include "trace/ssgi.h"
 
 using namespace ssrt;
 
@@ -33,7 +34,8 @@ DirectArgs lighting(bool gradient) {
     std::copy_n(l, 3, a.toLight);
     std::copy_n(e, 3, a.lightRadiance);
     a.skyGradient = gradient;
-    const float zen[3] = {0.3f, 0.4f, 0.5f}, hor[3] = {0.9f, 0.8f, 0.7f}, gnd[3] = {0.1f, 0.05f, 0.02f};
+    const float zen[3] = {0.3f, 0.4f, 0.5f}, hor[3] = {0.9f, 0.8f, 0.7f},
+                gnd[3] = {0.1f, 0.05f, 0.02f};
     std::copy_n(zen, 3, a.skyZenith);
     std::copy_n(gradient ? hor : zen, 3, a.skyHorizon);
     std::copy_n(gradient ? gnd : zen, 3, a.skyGround);
@@ -87,7 +89,8 @@ struct Furnace {
 
 TEST_CASE("ssgi: every hit on a surface of known direct light gives that radiance") {
     Furnace f;
-    const float albedo[3] = {0.5f, 0.6f, 0.7f}, e[3] = {2.0f, 3.0f, 4.0f}, em[3] = {0.1f, 0.2f, 0.3f};
+    const float albedo[3] = {0.5f, 0.6f, 0.7f}, e[3] = {2.0f, 3.0f, 4.0f},
+                em[3] = {0.1f, 0.2f, 0.3f};
     PlaneF out[3];
     resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
     for (int y = 0; y < kH; ++y)
@@ -136,8 +139,8 @@ TEST_CASE("ssgi: samples average; pixels without a ray add 0") {
     resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 2, 2);  // hits
     const double lit = 0.5 * 0.8 / M_PI * 2.0 * 0.5 + 0.1;
     f.march.hit.fill(0.0f);
-    f.rays.pdf.at(3, 4) = 0.0f;  // no ray on the second sample
-    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 1, 2, 2);   // misses: the sky
+    f.rays.pdf.at(3, 4) = 0.0f;                                     // no ray on the second sample
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 1, 2, 2);  // misses: the sky
     CHECK(out[0].at(5, 5) == doctest::Approx((lit + 0.3) / 2).epsilon(1e-6));
     CHECK(out[0].at(3, 4) == doctest::Approx(lit / 2).epsilon(1e-6));
     CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 2, 2, 2),
@@ -178,8 +181,9 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const uint32_t i = uint32_t(y * w + x);
-            const float u[5] = {randomFloat(i, 9, 0, 0), randomFloat(i, 9, 0, 1), randomFloat(i, 9, 0, 2),
-                                randomFloat(i, 9, 0, 3), randomFloat(i, 9, 0, 4)};
+            const float u[5] = {randomFloat(i, 9, 0, 0), randomFloat(i, 9, 0, 1),
+                                randomFloat(i, 9, 0, 2), randomFloat(i, 9, 0, 3),
+                                randomFloat(i, 9, 0, 4)};
             const bool ray = in.viewZ->at(x, y) > 0.0f && u[0] > 0.1f;
             rays.pdf.at(x, y) = ray ? u[1] : 0.0f;
             const float dx = u[2] - 0.5f, dy = u[3] - 0.5f, dz = u[4] - 0.5f;

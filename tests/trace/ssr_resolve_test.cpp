@@ -1,6 +1,8 @@
 // The SSR resolve against analytic answers on a synthetic frame (a wall facing the camera,
 // hits placed by hand), and its contract on a rendered G-buffer: finite everywhere, the same
 // bits for every ISA and thread count.
+#include "trace/ssr_resolve.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/color_pyramid.h"
-#include "trace/ssr_resolve.h"
 
 using namespace ssrt;
 
@@ -29,7 +30,9 @@ bool sameBits(const PlaneF& a, const PlaneF& b) {
 
 // Colour of pixel (x, y): distinct everywhere.
 float colourOf(int c, int x, int y) {
-    return c == 0 ? 0.01f * float(x) + 0.1f : c == 1 ? 0.02f * float(y) + 0.2f : 0.5f + 0.001f * float(x * y);
+    return c == 0   ? 0.01f * float(x) + 0.1f
+           : c == 1 ? 0.02f * float(y) + 0.2f
+                    : 0.5f + 0.001f * float(x * y);
 }
 
 // A wall at depth 5 facing the camera (identity rotation), every pixel's ray hitting where
@@ -128,10 +131,12 @@ TEST_CASE("ssr resolve: a hit on a pixel's centre gives that pixel's colour (Cur
     for (bool bilinear : {true, false}) {
         CAPTURE(bilinear);
         // Mip at roughness 0: level 0, exact.
-        const SsrOutput out = f.resolve(settings(SsrResolveMode::Mip, HitRadiance::Current, bilinear));
+        const SsrOutput out =
+            f.resolve(settings(SsrResolveMode::Mip, HitRadiance::Current, bilinear));
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
-                for (int c = 0; c < 3; ++c) CHECK(out.color[c].at(x, y) == colourOf(c, kW - 1 - x, y));
+                for (int c = 0; c < 3; ++c)
+                    CHECK(out.color[c].at(x, y) == colourOf(c, kW - 1 - x, y));
     }
     // Reuse: every neighbour hits the same pixel, so the ratio estimator returns its colour.
     f.hitAt([](int, int, float& hx, float& hy) {
@@ -139,19 +144,23 @@ TEST_CASE("ssr resolve: a hit on a pixel's centre gives that pixel's colour (Cur
         hy = 33.5f;
     });
     for (bool bilinear : {true, false}) {
-        const SsrOutput out = f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, bilinear));
+        const SsrOutput out =
+            f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, bilinear));
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
                 for (int c = 0; c < 3; ++c)
-                    CHECK(out.color[c].at(x, y) == doctest::Approx(colourOf(c, 41, 33)).epsilon(1e-6));
+                    CHECK(out.color[c].at(x, y) ==
+                          doctest::Approx(colourOf(c, 41, 33)).epsilon(1e-6));
     }
     // Off the centre, bilinear mixes the neighbours and nearest does not.
     f.hitAt([](int, int, float& hx, float& hy) {
         hx = 41.75f;
         hy = 33.5f;
     });
-    const SsrOutput nearest = f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, false));
-    const SsrOutput bilinear = f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, true));
+    const SsrOutput nearest =
+        f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, false));
+    const SsrOutput bilinear =
+        f.resolve(settings(SsrResolveMode::Reuse, HitRadiance::Current, true));
     CHECK(nearest.color[0].at(5, 5) == doctest::Approx(colourOf(0, 41, 33)).epsilon(1e-6));
     CHECK(bilinear.color[0].at(5, 5) ==
           doctest::Approx(0.75f * colourOf(0, 41, 33) + 0.25f * colourOf(0, 42, 33)).epsilon(1e-5));
@@ -202,7 +211,8 @@ TEST_CASE("ssr resolve: edge-of-screen fade is 0 on the border, 1 inside, linear
     });
     const SsrOutput out = f.resolve(s);
     const float expect[4] = {0.0f, 0.25f, 0.5f, 1.0f};
-    for (int x = 0; x < kW; ++x) CHECK(out.opacity.at(x, 10) == doctest::Approx(expect[x % 4]).epsilon(1e-5));
+    for (int x = 0; x < kW; ++x)
+        CHECK(out.opacity.at(x, 10) == doctest::Approx(expect[x % 4]).epsilon(1e-5));
     // The far border and the top and bottom too.
     f.hitAt([](int x, int, float& hx, float& hy) {
         hx = x % 2 ? float(kW) : 0.5f * kW;
@@ -341,7 +351,8 @@ TEST_CASE("ssr resolve: mip mode at roughness 0 equals level 0, and blurs with r
     for (int y = 1; y < kH; y += 3)
         for (int x = 1; x < kW; x += 3)
             for (int c = 0; c < 3; ++c)
-                CHECK(mip.color[c].at(x, y) == doctest::Approx(reuse.color[c].at(x, y)).epsilon(1e-6));
+                CHECK(mip.color[c].at(x, y) ==
+                      doctest::Approx(reuse.color[c].at(x, y)).epsilon(1e-6));
     // Roughness 1: the coarsest level (1 x 1): the frame's mean everywhere.
     WallFixture rough(1.0f);
     const SsrOutput blurred = rough.resolve(settings(SsrResolveMode::Mip));
@@ -362,13 +373,15 @@ TEST_CASE("colour pyramid: 2x2 box levels down to 1x1, odd sizes clamped") {
     REQUIRE(pyr.levelCount() == 4);  // 5x3, 3x2, 2x1, 1x1
     CHECK(pyr.levels[1][0].width() == 3);
     CHECK(pyr.levels[1][0].height() == 2);
-    CHECK(pyr.levels[1][0].at(0, 0) == 5.5f);                  // (0 + 1 + 10 + 11) / 4
-    CHECK(pyr.levels[1][0].at(2, 1) == 24.0f);                 // x 4 and row 2, both clamped
+    CHECK(pyr.levels[1][0].at(0, 0) == 5.5f);   // (0 + 1 + 10 + 11) / 4
+    CHECK(pyr.levels[1][0].at(2, 1) == 24.0f);  // x 4 and row 2, both clamped
     CHECK(pyr.levels[3][2].width() == 1);
     CHECK(pyr.levels[0][1].at(4, 2) == p[1].at(4, 2));
 }
 
-TEST_CASE("ssr resolve: finite everywhere on a rendered frame, and the same bits on every ISA and thread count") {
+TEST_CASE(
+    "ssr resolve: finite everywhere on a rendered frame, and the same bits on every ISA and thread "
+    "count") {
     RenderSettings rs;
     rs.width = 133;
     rs.height = 77;
@@ -401,8 +414,9 @@ TEST_CASE("ssr resolve: finite everywhere on a rendered frame, and the same bits
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const uint32_t i = uint32_t(y * w + x);
-            const float u[6] = {randomFloat(i, 7, 0, 0), randomFloat(i, 7, 0, 1), randomFloat(i, 7, 0, 2),
-                                randomFloat(i, 7, 0, 3), randomFloat(i, 7, 0, 4), randomFloat(i, 7, 0, 5)};
+            const float u[6] = {randomFloat(i, 7, 0, 0), randomFloat(i, 7, 0, 1),
+                                randomFloat(i, 7, 0, 2), randomFloat(i, 7, 0, 3),
+                                randomFloat(i, 7, 0, 4), randomFloat(i, 7, 0, 5)};
             const bool bg = in.viewZ->at(x, y) <= 0.0f;
             const float pdfs[5] = {0.0f, 1e-30f, 1.0f, 1e30f, 0.3f};
             rays.pdf.at(x, y) = bg ? 0.0f : pdfs[int(u[0] * 5)];
@@ -434,7 +448,8 @@ TEST_CASE("ssr resolve: finite everywhere on a rendered frame, and the same bits
             bool finite = true, inRange = true;
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) {
-                    for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(ref.color[c].at(x, y));
+                    for (int c = 0; c < 3; ++c)
+                        finite = finite && std::isfinite(ref.color[c].at(x, y));
                     const float o = ref.opacity.at(x, y);
                     inRange = inRange && o >= 0.0f && o <= 1.0f;
                     if (in.viewZ->at(x, y) <= 0.0f) inRange = inRange && o == 0.0f;
@@ -446,7 +461,8 @@ TEST_CASE("ssr resolve: finite everywhere on a rendered frame, and the same bits
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     SsrOutput out;
-                    for (int k = 0; k < 2; ++k) resolveSsr(isa, s, in, rays, march, out, k, 2, threads);
+                    for (int k = 0; k < 2; ++k)
+                        resolveSsr(isa, s, in, rays, march, out, k, 2, threads);
                     for (int c = 0; c < 3; ++c) CHECK(sameBits(out.color[c], ref.color[c]));
                     CHECK(sameBits(out.opacity, ref.opacity));
                 }
@@ -458,7 +474,9 @@ namespace {
 // Double-precision oracle of one reuse weight: GGX D V (n.l) / pdf for a pixel at p with
 // normal n (view space), towards l, at perceptual roughness r.
 double reuseWeight(const double p[3], const double n[3], const double l[3], double r, double pdf) {
-    auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    auto dot = [](const double* a, const double* b) {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
     const double lenP = std::sqrt(dot(p, p));
     const double v[3] = {-p[0] / lenP, -p[1] / lenP, -p[2] / lenP};
     double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
@@ -476,7 +494,8 @@ double reuseWeight(const double p[3], const double n[3], const double l[3], doub
 
 }  // namespace
 
-TEST_CASE("ssr resolve: reuse is the ratio estimator with GGX D V n.l / pdf weights (double oracle)") {
+TEST_CASE(
+    "ssr resolve: reuse is the ratio estimator with GGX D V n.l / pdf weights (double oracle)") {
     WallFixture f(0.45f);
     // Neighbour hits scattered in front of the wall, with their own depths, pdfs, fades and
     // (through the hit pixel) colours; one neighbour misses.
