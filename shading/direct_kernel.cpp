@@ -6,6 +6,7 @@
 #include "core/tiles.h"
 #include "shading/brdf.h"
 #include "shading/direct_kernel.h"
+#include "shading/direct_lanes.h"
 #include "shading/irradiance_sh.h"
 
 namespace ssrt::SSRT_ISA_NS {
@@ -17,16 +18,10 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 
-SSRT_INLINE V3 splat3(const float* v) { return {Lane(v[0]), Lane(v[1]), Lane(v[2])}; }
-
-SSRT_INLINE V3 mix3(V3 a, V3 b, Lane t) { return a + (b - a) * t; }
-
-// Bilinear lookup of level `level` of the equirect sky at direction d, times its intensity.
-SSRT_INLINE V3 envRadiance(const DirectArgs& a, int level, V3 d) {
-    Lane u, v;
-    env::directionToUv(d, u, v);
-    return env::sampleBilinear(a.envLevel[level], u, v) * Lane(a.envIntensity);
-}
+using shade::envRadiance;
+using shade::skyRadiance;
+SSRT_INLINE V3 splat3(const float* v) { return shade::splat3<Lane>(v); }
+SSRT_INLINE V3 mix3(V3 a, V3 b, Lane t) { return shade::mix3(a, b, t); }
 
 // The prefiltered sky LD(r, roughness): linear between the two levels around roughness *
 // (levels - 1), bilinear in each. Lanes may need different levels, so each level that any
@@ -48,17 +43,6 @@ SSRT_INLINE V3 envPrefiltered(const DirectArgs& a, V3 r, Lane roughness) {
         sum = sum + env::sampleBilinear(a.envLevel[k], u, v) * w;
     }
     return sum * Lane(a.envIntensity);
-}
-
-// The analytic sky: ground below the horizon, horizon to zenith above (scenes/scene.cpp);
-// or the equirect image.
-SSRT_INLINE V3 skyRadiance(const DirectArgs& a, V3 dir) {
-    if (a.envLevelCount > 0) return envRadiance(a, 0, dir);
-    if (!a.skyGradient) return splat3(a.skyZenith);
-    const Lane y = dir.y;
-    const Lane s = Lane(1.0f) - y;
-    const V3 above = mix3(splat3(a.skyHorizon), splat3(a.skyZenith), Lane(1.0f) - s * s);
-    return ln::select(y < Lane(0.0f), splat3(a.skyGround), above);
 }
 
 // Fraction of PCF taps that see the light. Taps are clamped to the map's edge; points
@@ -103,25 +87,20 @@ SSRT_INLINE void envBrdfApprox(Lane NoV, Lane roughness, Lane& scale, Lane& bias
     bias = a004 * Lane(1.04f) + rw;
 }
 
-// Narkowicz 2015, "ACES Filmic Tone Mapping Curve"
-SSRT_INLINE Lane tonemapAces(Lane x) {
-    const Lane num = x * (Lane(2.51f) * x + Lane(0.03f));
-    const Lane den = x * (Lane(2.43f) * x + Lane(0.59f)) + Lane(0.14f);
-    return ln::saturate(num / den);
-}
-
-// IEC 61966-2-1 sRGB transfer function.
-SSRT_INLINE Lane srgbEncode(Lane x) {
-    const Lane hi = Lane(1.055f) * ln::pow(x, Lane(1.0f / 2.4f)) - Lane(0.055f);
-    return ln::select(x <= Lane(0.0031308f), x * Lane(12.92f), hi);
-}
+using shade::srgbEncode;
+using shade::tonemapAces;
 
 struct Surface {
     V3 p, n, albedo, view;  // view: unit, from the surface towards the camera
     Lane metallic, roughness;
 };
 
-SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
+// The parts of a surface's colour (DirectArgs::direct etc.), emission aside.
+struct Parts {
+    V3 sun, envDiffuse, specWeight, envSpecular;
+};
+
+SSRT_INLINE Parts shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
     using namespace ssrt::brdf;
     const Lane zero(0.0f), one(1.0f);
     const V3 l = splat3(a.toLight);
@@ -164,8 +143,9 @@ SSRT_INLINE V3 shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibil
     }
     Lane envScale, envBias;
     envBrdfApprox(NoV, s.roughness, envScale, envBias);
-    const V3 envSpec = (f0 * envScale + V3{envBias, envBias, envBias}) * specSky;
-    return (direct + irradiance * diffuse * Lane(ln::kPi)) + envSpec;
+    // color = (sun + envDiffuse) + specWeight envSpecular, as shadeChunk sums it.
+    return {direct, irradiance * diffuse * Lane(ln::kPi), f0 * envScale + V3{envBias, envBias, envBias},
+            specSky};
 }
 
 // Shades lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
@@ -184,6 +164,9 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     V3 color{Lane(0.0f), Lane(0.0f), Lane(0.0f)};
     if (ln::any(background)) color = skyRadiance(a, ln::normalize(dirWorld));
     Lane visibility(1.0f);
+    const Lane zero(0.0f);
+    V3 sun = color, emission{zero, zero, zero}, envDiffuse = emission, specWeight = emission,
+       envSpecular = emission;
     if (!ln::all(background)) {
         Surface s;
         s.p = splat3(a.camPos) + dirWorld * viewZ;
@@ -195,7 +178,8 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
         const V3 toCam = ln::normalize(dirWorld);
         s.view = {Lane(0.0f) - toCam.x, Lane(0.0f) - toCam.y, Lane(0.0f) - toCam.z};
         Lane vis;
-        V3 lit = shadeSurface(a, s, vis);
+        const Parts parts = shadeSurface(a, s, vis);
+        V3 lit = (parts.sun + parts.envDiffuse) + parts.specWeight * parts.envSpecular;
         // Emission by material id (a scalar gather), when any material emits.
         if (a.anyEmissive) {
             alignas(64) float mat[kW], em[3][kW];
@@ -203,11 +187,30 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
             for (int l = 0; l < kW; ++l)
                 for (int c = 0; c < 3; ++c)
                     em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
-            lit = lit + V3{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+            const V3 e{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+            lit = lit + e;
+            emission = ln::select(background, emission, e);
         }
         color = ln::select(background, color, lit);
         visibility = ln::select(background, visibility, vis);
+        sun = ln::select(background, sun, parts.sun);
+        envDiffuse = ln::select(background, envDiffuse, parts.envDiffuse);
+        specWeight = ln::select(background, specWeight, parts.specWeight);
+        envSpecular = ln::select(background, envSpecular, parts.envSpecular);
     }
+    // The optional parts, straight into their planes (scene-linear, before the exposure).
+    const std::size_t oo = std::size_t(y) * a.outStride + x;
+    const auto put = [&](float* const* dst, const V3& v) {
+        if (!dst[0]) return;
+        ln::store(dst[0] + oo, v.x);
+        ln::store(dst[1] + oo, v.y);
+        ln::store(dst[2] + oo, v.z);
+    };
+    put(a.direct, sun);
+    put(a.emission, emission);
+    put(a.envDiffuse, envDiffuse);
+    put(a.envSpecular, envSpecular);
+    put(a.specWeight, specWeight);
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};

@@ -44,6 +44,26 @@ struct DirectArgs {
     // Outputs (outStride): color RGB (linear), display RGB (tone mapped, sRGB), shadow.
     float* out[7];
     std::size_t outStride;
+    // Optional parts of `color`, for the composite (shading/composite_kernel.h); each an RGB
+    // triple of planes with outStride, null = not written (the outputs above keep their bits
+    // either way). Scene-linear: BEFORE the exposure, which the composite applies. Per pixel
+    //   color = (((direct + envDiffuse) + specWeight * envSpecular) + emission) * exposure
+    // to the bit, in that order (so the composite can rebuild it exactly).
+    //   direct:      sun light, Lambert + GGX, shadowed; on background pixels the sky seen
+    //                through the pixel (the whole of `color` there, the other parts 0).
+    //                Emission is NOT in it (a separate plane, to keep the order above).
+    //   emission:    the material's emission (0 where none, and on background).
+    //   envDiffuse:  sky irradiance times the diffuse colour albedo (1 - metallic) / pi (the
+    //                term SSGI replaces).
+    //   envSpecular: the prefiltered sky radiance along the reflection, before the BRDF
+    //                factor (the term SSR replaces where it finds a hit).
+    //   specWeight:  the split-sum BRDF factor F0 scale + bias (Karis' analytic fit; no
+    //                Kulla-Conty term: `color` does not apply one today).
+    float* direct[3];
+    float* emission[3];
+    float* envDiffuse[3];
+    float* envSpecular[3];
+    float* specWeight[3];
 };
 
 SSRT_DECLARE_KERNEL(void, shadeTile, (const DirectArgs& args, int tile))

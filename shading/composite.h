@@ -1,0 +1,41 @@
+// The composite: the direct pass's parts (DirectArgs::direct etc., shading/direct_kernel.h)
+// with the screen-space indirect light, then the tone map of `display`. Per pixel
+//   diffuse  = SSGI on:  albedo (1 - metallic) ssgi   (replaces envDiffuse; 0 on background)
+//              SSGI off: envDiffuse
+//   specular = SSR on:   specWeight (ssr opacity + envSpecular (1 - opacity))
+//              SSR off:  specWeight envSpecular
+//   color    = (((direct + diffuse) + specular) + emission) exposure
+//   display  = sRGB(ACES(color))
+// With both off this is the direct pass's own sum, in its order: `color` and `display` equal
+// the direct kernel's to the bit (tests/shading/composite_test.cpp).
+#pragma once
+
+#include "core/image.h"
+#include "core/isa.h"
+
+namespace ssrt {
+
+// All planes of one size; scene-linear (before exposure) like the direct pass's parts.
+struct CompositeInputs {
+    const PlaneF* direct[3] = {};       // DirectArgs::direct
+    const PlaneF* emission[3] = {};     // DirectArgs::emission (null: no emission)
+    const PlaneF* envDiffuse[3] = {};   // DirectArgs::envDiffuse (may be null with SSGI on)
+    const PlaneF* envSpecular[3] = {};  // DirectArgs::envSpecular
+    const PlaneF* specWeight[3] = {};   // DirectArgs::specWeight
+    // SSGI (trace/ssgi.h): null = off. With it on, the G-buffer's viewZ, albedo and metallic.
+    const PlaneF* ssgi[3] = {};
+    const PlaneF* viewZ = nullptr;
+    const PlaneF* albedo[3] = {};
+    const PlaneF* metallic = nullptr;
+    // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): null = off.
+    const PlaneF* ssrColor[3] = {};
+    const PlaneF* ssrOpacity = nullptr;
+    float exposure = 1.0f;  // the renderer's exposure (FrameSettings::exposure)
+};
+
+// Writes color[3] (linear, exposed) and display[3] (tone mapped, sRGB), ensured to the
+// inputs' size. Throws std::invalid_argument on a missing or mis-sized plane.
+void composite(Isa isa, const CompositeInputs& inputs, PlaneF color[3], PlaneF display[3],
+               int threads);
+
+}  // namespace ssrt

@@ -1,0 +1,63 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "shading/composite_kernel.h"
+#include "shading/direct_lanes.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+SSRT_INLINE V3 load3(const float* const* p, std::size_t o) {
+    return {ln::load<Lane>(p[0] + o), ln::load<Lane>(p[1] + o), ln::load<Lane>(p[2] + o)};
+}
+
+void compositeChunk(const CompositeArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f), one(1.0f);
+    // Diffuse: SSGI times the diffuse colour, or the sky's irradiance term.
+    V3 diffuse;
+    if (a.ssgi[0]) {
+        const Lane metallic = ln::load<Lane>(a.metallic + o);
+        const V3 colour = load3(a.albedo, o) * (one - metallic);
+        const auto background = ln::load<Lane>(a.viewZ + o) <= zero;
+        diffuse = ln::select(background, V3{zero, zero, zero}, colour * load3(a.ssgi, o));
+    } else {
+        diffuse = load3(a.envDiffuse, o);
+    }
+    // Specular: the split-sum factor times SSR blended over the prefiltered sky.
+    V3 incoming = load3(a.envSpecular, o);
+    if (a.ssrColor[0]) {
+        const Lane opacity = ln::load<Lane>(a.ssrOpacity + o);
+        incoming = load3(a.ssrColor, o) * opacity + incoming * (one - opacity);
+    }
+    // The direct pass's order: ((direct + diffuse) + specular) + emission.
+    V3 sum = (load3(a.direct, o) + diffuse) + load3(a.specWeight, o) * incoming;
+    if (a.emission[0]) sum = sum + load3(a.emission, o);
+    const Lane e(a.exposure);
+    const Lane rgb[3] = {sum.x * e, sum.y * e, sum.z * e};
+    for (int c = 0; c < 3; ++c) {
+        ln::store(a.color[c] + o, rgb[c]);
+        ln::store(a.display[c] + o, shade::displayEncode(rgb[c]));
+    }
+}
+
+}  // namespace
+
+void compositeTile(const CompositeArgs& args, int tile) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) compositeChunk(args, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,34 @@
+// The composite kernel, one copy per ISA (shading/composite_kernel.cpp); the formula is in
+// shading/composite.h.
+#pragma once
+
+#include <cstddef>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+// Every plane has one size and one stride.
+struct CompositeArgs {
+    int width, height, tilesX;
+    std::size_t stride;
+    const float* direct[3];
+    const float* emission[3];  // null: none
+    const float* envDiffuse[3];
+    const float* envSpecular[3];
+    const float* specWeight[3];
+    const float* ssgi[3];  // null: SSGI off
+    const float* viewZ;
+    const float* albedo[3];
+    const float* metallic;
+    const float* ssrColor[3];  // null: SSR off
+    const float* ssrOpacity;
+    float exposure;
+    float* color[3];
+    float* display[3];
+};
+
+SSRT_DECLARE_KERNEL(void, compositeTile, (const CompositeArgs& args, int tile))
+
+}  // namespace ssrt

@@ -1,0 +1,61 @@
+#include "trace/ssgi.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "core/tiles.h"
+#include "trace/ssgi_kernel.h"
+
+namespace ssrt {
+
+namespace {
+
+const float* need(const PlaneF* p, int w, int h, const char* what) {
+    if (!p || p->width() != w || p->height() != h)
+        throw std::invalid_argument(std::string("resolveSsgi: ") + what +
+                                    " missing or not of the frame's size");
+    return p->row(0);
+}
+
+}  // namespace
+
+void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const MarchResult& march,
+                 PlaneF out[3], int sample, int sampleCount, int threads) {
+    const int w = in.camera.width, h = in.camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsgi: empty camera");
+    if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
+        throw std::invalid_argument("resolveSsgi: sample must be in [0, sampleCount)");
+    if (!in.lighting) throw std::invalid_argument("resolveSsgi: lighting (DirectArgs) missing");
+    for (int c = 0; c < 3; ++c) out[c].ensureSize(w, h);
+    const TileGrid grid(w, h);
+    SsgiArgs a{};
+    a.width = w;
+    a.height = h;
+    a.tilesX = grid.tilesX;
+    a.stride = out[0].stride();
+    a.viewZ = need(in.viewZ, w, h, "viewZ");
+    for (int c = 0; c < 3; ++c) {
+        a.normal[c] = need(in.normal[c], w, h, "normal");
+        a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+    }
+    a.metallic = need(in.metallic, w, h, "metallic");
+    a.shadow = need(in.shadow, w, h, "shadow");
+    if (in.emission[0] || in.emission[1] || in.emission[2])
+        for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], w, h, "emission");
+    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
+    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
+    a.pdf = need(&rays.pdf, w, h, "ray pdf");
+    a.hit = need(&march.hit, w, h, "march hit");
+    a.hitX = need(&march.hitX, w, h, "march hitX");
+    a.hitY = need(&march.hitY, w, h, "march hitY");
+    a.lighting = *in.lighting;
+    // The camera's rotation is the one rays are turned to world with.
+    for (int i = 0; i < 9; ++i) a.lighting.viewToWorld[i] = in.camera.viewToWorld[i];
+    for (int c = 0; c < 3; ++c) a.out[c] = out[c].row(0);
+    a.sample = sample;
+    a.sampleCount = sampleCount;
+    const auto tileFn = SSRT_DISPATCH(isa, ssgiTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+}
+
+}  // namespace ssrt

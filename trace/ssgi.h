@@ -1,0 +1,49 @@
+// Screen-space one-bounce diffuse light (SSGI), as in the GAMES202 screen-space ray tracing
+// assignment (homework 4): with cosine-weighted rays (pdf = cos / pi) a Lambertian x0 has
+//   L_indirect(x0) = 1/N sum_k f_r cos / pdf L(x1_k -> x0) = diffuse(x0) 1/N sum_k L(x1_k -> x0),
+// diffuse(x0) = albedo0 (1 - metallic0). resolveSsgi outputs the average incoming radiance
+// 1/N sum_k L(x1_k -> x0), WITHOUT x0's diffuse colour (the composite multiplies by it).
+//
+// At a hit x1 (the pixel containing (hitX, hitY), nearest: G-buffer attributes do not
+// interpolate across edges), L is the Lambert part of x1's direct light,
+//   L(x1 -> x0) = albedo1 (1 - metallic1) / pi  sunRadiance  max(0, n1.l)  shadow(x1) + emission1,
+// its specular part and its own indirect light left out (one bounce of diffuse light, as in
+// GAMES202). shadow(x1) is the direct pass's `shadow` plane (PCF visibility, 0 facing away).
+// A miss (and a hit that landed on a background pixel) takes the sky's radiance along the
+// ray, in world space: the same sky the direct pass shows (gradient, constant or the equirect
+// image's level 0), unfiltered; a choice for the ray's own direction rather than the
+// prefiltered irradiance, so that N samples converge to the sky's share of the hemisphere
+// (which screen space cannot see beyond the frame, GAMES202 returns black there instead).
+// A pixel without a ray (pdf 0: background, rejected sample) contributes 0 for that sample.
+#pragma once
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "shading/direct_kernel.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+// What SSGI reads, all planes of the frame's size, G-buffer names as the Renderer's Frame.
+struct SsgiInputs {
+    TraceCamera camera;                // width, height, viewToWorld (rays go to world for the sky)
+    const PlaneF* viewZ = nullptr;     // "viewZ"
+    const PlaneF* normal[3] = {};      // "normal.X/Y/Z", world space
+    const PlaneF* albedo[3] = {};      // "albedo.R/G/B"
+    const PlaneF* metallic = nullptr;  // "metallic"
+    const PlaneF* shadow = nullptr;    // the direct pass's "shadow"
+    const PlaneF* emission[3] = {};    // optional: DirectArgs::emission planes (null: none)
+    // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
+    // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
+    // renderer fills them; their plane pointers are not used.
+    const DirectArgs* lighting = nullptr;
+};
+
+// One sample's diffuse rays into out[3] (ensured to the frame's size): sample 0 overwrites,
+// later samples accumulate, and after sample == sampleCount - 1 `out` is the average.
+// Throws std::invalid_argument when a plane is missing or of another size, or sample is not
+// in [0, sampleCount).
+void resolveSsgi(Isa isa, const SsgiInputs& inputs, const RayBatch& rays, const MarchResult& march,
+                 PlaneF out[3], int sample, int sampleCount, int threads);
+
+}  // namespace ssrt

@@ -1,0 +1,83 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "shading/direct_lanes.h"
+#include "trace/screen_lanes.h"
+#include "trace/ssgi_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+using ILane = ln::IntOf<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+void ssgiChunk(const SsgiArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane pdf = ln::load<Lane>(a.pdf + o);
+    const auto hasRay = pdf > zero;
+    V3 radiance{zero, zero, zero};
+    if (ln::any(hasRay)) {
+        const auto hit = hasRay & (ln::load<Lane>(a.hit + o) > Lane(0.5f));
+        // The hit pixel's G-buffer (nearest; clamped, so unused lanes read inside the frame).
+        const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + o), ln::load<Lane>(a.hitY + o),
+                                             a.width, a.height, a.stride);
+        const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
+        if (ln::any(surface)) {
+            // Lambert direct light leaving x1: albedo (1 - metallic) / pi E_sun n.l shadow.
+            const V3 n{ln::gather(a.normal[0], i), ln::gather(a.normal[1], i),
+                       ln::gather(a.normal[2], i)};
+            const V3 albedo{ln::gather(a.albedo[0], i), ln::gather(a.albedo[1], i),
+                            ln::gather(a.albedo[2], i)};
+            const Lane metallic = ln::gather(a.metallic, i);
+            const V3 l = shade::splat3<Lane>(a.lighting.toLight);
+            const Lane NoL = ln::saturate(ln::dot(n, l));
+            const V3 diffuse = albedo * ((one - metallic) * Lane(ln::kInvPi));
+            V3 lit = diffuse * shade::splat3<Lane>(a.lighting.lightRadiance) *
+                     (NoL * ln::gather(a.shadow, i));
+            if (a.emission[0])
+                lit = lit + V3{ln::gather(a.emission[0], i), ln::gather(a.emission[1], i),
+                               ln::gather(a.emission[2], i)};
+            radiance = ln::select(surface, lit, radiance);
+        }
+        // Misses: the sky along the ray, in world space.
+        const auto miss = hasRay & !surface;
+        if (ln::any(miss)) {
+            const V3 d{ln::load<Lane>(a.rayDir[0] + o), ln::load<Lane>(a.rayDir[1] + o),
+                       ln::load<Lane>(a.rayDir[2] + o)};
+            const V3 dw = ln::normalize(screen::viewToWorld(a.lighting.viewToWorld, d));
+            radiance = ln::select(miss, shade::skyRadiance(a.lighting, dw), radiance);
+        }
+    }
+    // Accumulate: the sum over samples, divided by the count after the last.
+    V3 acc = radiance;
+    if (a.sample > 0)
+        acc = acc + V3{ln::load<Lane>(a.out[0] + o), ln::load<Lane>(a.out[1] + o),
+                       ln::load<Lane>(a.out[2] + o)};
+    if (a.sample == a.sampleCount - 1 && a.sampleCount > 1) {
+        const Lane n(float(a.sampleCount));
+        acc = {acc.x / n, acc.y / n, acc.z / n};
+    }
+    ln::store(a.out[0] + o, acc.x);
+    ln::store(a.out[1] + o, acc.y);
+    ln::store(a.out[2] + o, acc.z);
+}
+
+}  // namespace
+
+void ssgiTile(const SsgiArgs& args, int tile) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) ssgiChunk(args, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

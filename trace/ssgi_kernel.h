@@ -1,0 +1,35 @@
+// The SSGI resolve kernel, one copy per ISA (trace/ssgi_kernel.cpp); the method is in
+// trace/ssgi.h.
+#pragma once
+
+#include <cstddef>
+
+#include "core/dispatch.h"
+#include "shading/direct_kernel.h"
+
+namespace ssrt {
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+// Every plane has the frame's size and one stride.
+struct SsgiArgs {
+    int width, height, tilesX;
+    std::size_t stride;
+    const float* viewZ;
+    const float* normal[3];
+    const float* albedo[3];
+    const float* metallic;
+    const float* shadow;
+    const float* emission[3];  // all null: no emission
+    const float* rayDir[3];    // view space
+    const float* pdf;
+    const float* hit;
+    const float* hitX;
+    const float* hitY;
+    DirectArgs lighting;  // sun, sky and viewToWorld
+    float* out[3];
+    int sample, sampleCount;
+};
+
+SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
+
+}  // namespace ssrt

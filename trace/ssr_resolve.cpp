@@ -1,0 +1,111 @@
+#include "trace/ssr_resolve.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "core/tiles.h"
+#include "trace/ssr_resolve_kernel.h"
+
+namespace ssrt {
+
+void SsrOutput::ensureSize(int width, int height) {
+    for (PlaneF& p : color) p.ensureSize(width, height);
+    opacity.ensureSize(width, height);
+    for (PlaneF& p : hitRadiance) p.ensureSize(width, height);
+    hitFade.ensureSize(width, height);
+}
+
+namespace {
+
+// A plane the resolve reads: present, of the frame's size (so of the frame's stride).
+const float* need(const PlaneF* p, int w, int h, const char* what) {
+    if (!p || p->width() != w || p->height() != h)
+        throw std::invalid_argument(std::string("resolveSsr: ") + what +
+                                    " missing or not of the frame's size");
+    return p->row(0);
+}
+
+const float* need(const PlaneF& p, int w, int h, const char* what) { return need(&p, w, h, what); }
+
+}  // namespace
+
+void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
+                const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
+                int sampleCount, int threads) {
+    const int w = in.camera.width, h = in.camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsr: empty camera");
+    if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
+        throw std::invalid_argument("resolveSsr: sample must be in [0, sampleCount)");
+    out.ensureSize(w, h);
+    const TileGrid grid(w, h);
+    SsrResolveArgs a{};
+    a.width = w;
+    a.height = h;
+    a.tilesX = grid.tilesX;
+    a.stride = out.opacity.stride();
+    a.tanHalfX = in.camera.tanHalfX;
+    a.tanHalfY = in.camera.tanHalfY;
+    std::copy_n(in.camera.viewToWorld, 9, a.viewToWorld);
+    a.viewZ = need(in.viewZ, w, h, "viewZ");
+    a.roughness = need(in.roughness, w, h, "roughness");
+    a.reuse = settings.mode == SsrResolveMode::Reuse;
+    a.mip = settings.mode == SsrResolveMode::Mip;
+    if (a.reuse)
+        for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], w, h, "normal");
+    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
+    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
+    a.pdf = need(rays.pdf, w, h, "ray pdf");
+    a.hit = need(march.hit, w, h, "march hit");
+    a.hitPos[0] = need(march.hitX, w, h, "march hitX");
+    a.hitPos[1] = need(march.hitY, w, h, "march hitY");
+    a.hitPos[2] = need(march.hitZ, w, h, "march hitZ");
+    a.reproject = settings.radiance == HitRadiance::Reprojected;
+    if (a.reproject)
+        for (int c = 0; c < 2; ++c) a.motion[c] = need(in.motion[c], w, h, "motion");
+    a.bilinear = settings.bilinear;
+    if (a.mip) {
+        const ColorPyramid* pyr = in.pyramid;
+        if (!pyr || pyr->levelCount() < 1 || pyr->levelCount() > SsrResolveArgs::kMaxLevels)
+            throw std::invalid_argument("resolveSsr: Mip mode needs a colour pyramid");
+        a.levelCount = pyr->levelCount();
+        for (int l = 0; l < a.levelCount; ++l) {
+            const auto& lv = pyr->levels[std::size_t(l)];
+            for (int c = 0; c < 3; ++c) {
+                if (lv[c].empty() || lv[c].width() != lv[0].width() ||
+                    lv[c].height() != lv[0].height())
+                    throw std::invalid_argument("resolveSsr: malformed colour pyramid");
+                a.level[l][c] = lv[c].row(0);
+            }
+            a.levelStride[l] = lv[0].stride();
+            a.levelWidth[l] = lv[0].width();
+            a.levelHeight[l] = lv[0].height();
+        }
+        if (a.levelWidth[0] != w || a.levelHeight[0] != h)
+            throw std::invalid_argument("resolveSsr: colour pyramid not of the frame's size");
+    } else {
+        const PlaneF* const* src = a.reproject ? in.prevColor : in.color;
+        for (int c = 0; c < 3; ++c)
+            a.source[c] = need(src[c], w, h, a.reproject ? "prevColor" : "color");
+    }
+    a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 1.0e30f;
+    a.roughnessFadeEnd = settings.roughnessFadeEnd;
+    const float span = settings.roughnessFadeEnd - settings.roughnessFadeStart;
+    a.roughnessFadeScale = span > 0.0f ? 1.0f / span : 1.0e30f;
+    a.radianceScale = in.radianceScale;
+    for (int c = 0; c < 3; ++c) {
+        a.hitRadiance[c] = out.hitRadiance[c].row(0);
+        a.outColor[c] = out.color[c].row(0);
+    }
+    a.hitFade = out.hitFade.row(0);
+    a.outOpacity = out.opacity.row(0);
+    a.sample = sample;
+    a.sampleCount = sampleCount;
+    // Pass 1 (own hits) over every tile before pass 2 reads the neighbours'.
+    const auto hitTile = SSRT_DISPATCH(isa, ssrHitTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { hitTile(a, tile); });
+    const auto resolveTile = SSRT_DISPATCH(isa, ssrResolveTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { resolveTile(a, tile); });
+}
+
+}  // namespace ssrt

@@ -1,0 +1,93 @@
+// Screen-space reflections, the resolve: from each pixel's ray and what the march found to
+// the reflected radiance and an opacity, after Unity HDRP's SSR (ScreenSpaceReflections.compute)
+// and, for the ray-reuse mode, Stachowiak 2015, "Stochastic Screen-Space Reflections".
+//
+// Per hit: radiance L_hit, read at (hitX, hitY) from the current frame's lit colour (the
+// direct pass's `color`), or from the previous frame's final colour at the reprojected
+// position (hit + motion at the hit pixel; a reprojected position off the frame is a miss).
+// Its fade f_hit is the edge-of-screen fade (0 on the frame border, 1 from edgeFadeLength of
+// the frame inward, linear between: min(u, 1 - u, v, 1 - v) / edgeFadeLength, u = hitX / W,
+// v = hitY / H, clamped to [0, 1]); misses and pixels without a ray have f = 0.
+//
+// Mip mode (approximate, HDRP): the pixel's own hit, its radiance read from a colour
+// pyramid (trace/color_pyramid.h) at mip = roughness * maxMip, trilinear;
+//   color = L_hit, opacity = f_hit * roughnessFade.
+// Reuse mode (Stachowiak 2015): the 3x3 neighbours' rays (the pixel's own included), each
+// weighted for THIS pixel by its GGX lobe over the neighbour ray's pdf,
+//   w_j = D(h) V(v, l_j) (n.l_j) / pdf_j,
+// with l_j the direction from this pixel's point to neighbour j's hit point (or, for a miss,
+// neighbour j's own direction: the sky is as far from every pixel); only neighbours with a
+// ray (pdf > 0) in the frame. Ratio estimator:
+//   color   = sum(w_j f_j L_j) / sum(w_j f_j)
+//   opacity = sum(w_j f_j) / sum(w_j) * roughnessFade
+// so a uniform hit field returns its colour whatever the weights. (Fresnel is left to the
+// composite's split-sum factor, as HDRP does.)
+//
+// roughnessFade = clamp((roughnessFadeEnd - roughness) / (roughnessFadeEnd - roughnessFadeStart),
+// 0, 1) on the pixel's perceptual roughness: 1 below the start, 0 above the end (HDRP's
+// smoothness fade, in roughness).
+//
+// Misses and faded parts are left to the environment: the composite blends
+// SSR x opacity + envSpecular x (1 - opacity). Background pixels: colour 0, opacity 0.
+// Everything is finite whatever the input (pdf 0 rays, roughness 0 and 1, frame edges).
+#pragma once
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "trace/color_pyramid.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+enum class SsrResolveMode { Mip, Reuse };
+enum class HitRadiance { Current, Reprojected };
+
+struct SsrResolveSettings {
+    SsrResolveMode mode = SsrResolveMode::Reuse;
+    HitRadiance radiance = HitRadiance::Current;
+    bool bilinear = true;             // colour at the hit: bilinear (true) or nearest pixel
+    float edgeFadeLength = 0.1f;      // fraction of the frame (per axis) over which hits fade
+    float roughnessFadeStart = 0.5f;  // perceptual roughness where SSR starts to fade out
+    float roughnessFadeEnd = 0.7f;    // ... and where it is gone (<= start: a step at end)
+};
+
+// The planes the resolve reads, all of the frame's size (null where the settings do not need
+// them). G-buffer planes as the Renderer's Frame names them.
+struct SsrResolveInputs {
+    TraceCamera camera;                     // the frame's camera (width, height, tanHalf*,
+                                            // viewToWorld)
+    const PlaneF* viewZ = nullptr;          // "viewZ" (0 = background)
+    const PlaneF* normal[3] = {};           // "normal.X/Y/Z", world space
+    const PlaneF* roughness = nullptr;      // "roughness", perceptual
+    const PlaneF* color[3] = {};            // HitRadiance::Current: "color.R/G/B" of the
+                                            // direct pass
+    const PlaneF* prevColor[3] = {};        // HitRadiance::Reprojected: last frame's final
+                                            // colour
+    const PlaneF* motion[2] = {};           // Reprojected: "motion.X/Y" (previous pixel
+                                            // position = current + motion)
+    const ColorPyramid* pyramid = nullptr;  // SsrResolveMode::Mip: built from `color`
+                                            // (Current) or `prevColor` (Reprojected)
+    float radianceScale = 1.0f;             // multiplies every radiance read: 1 / exposure
+                                            // turns exposed colour planes back into the
+                                            // scene-linear units of the composite's inputs
+};
+
+struct SsrOutput {
+    PlaneF color[3];  // reflected radiance where SSR found something (not premultiplied)
+    PlaneF opacity;   // how much of it to use, [0, 1]
+    // Scratch of the reuse mode (per-pixel hit radiance and fade), kept to reuse memory.
+    PlaneF hitRadiance[3], hitFade;
+
+    void ensureSize(int width, int height);
+};
+
+// Resolves one sample's rays into `out`. sample 0 overwrites, later samples accumulate, and
+// after the call with sample == sampleCount - 1 `out` holds the average: opacity the mean
+// opacity, color the opacity-weighted mean colour (so that color x opacity is the mean of
+// the samples' color x opacity). Throws std::invalid_argument when a plane the settings need
+// is missing or of another size, or sample is not in [0, sampleCount).
+void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& inputs,
+                const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
+                int sampleCount, int threads);
+
+}  // namespace ssrt

@@ -1,0 +1,238 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "shading/brdf.h"
+#include "trace/screen_lanes.h"
+#include "trace/ssr_resolve_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+using ILane = ln::IntOf<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+// Caps one neighbour's weight so that sums of weight x radiance stay finite whatever the pdf.
+constexpr float kMaxWeight = 1.0e20f;
+
+SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
+    return ln::load<Lane>(plane + offset);
+}
+
+// Trilinear read of the pyramid at level-0 position (x, y) and mip level `mip`: bilinear in
+// the two levels around it, linear between. Lanes may need different levels, so each level
+// some lane needs is read for all and weighted by 0 where it is not needed (x + 0 y = x for
+// finite y: the scalar copy's bits). Lanes not `used` (no hit) read nothing of their own.
+SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip,
+                             ln::MaskOf<Lane> used) {
+    const int n = a.levelCount;
+    const Lane zero(0.0f);
+    if (n == 1) {
+        const auto b =
+            screen::bilinearAt(x, y, a.levelWidth[0], a.levelHeight[0], a.levelStride[0]);
+        return {screen::sample(a.level[0][0], b), screen::sample(a.level[0][1], b),
+                screen::sample(a.level[0][2], b)};
+    }
+    const Lane f = ln::clamp(mip, zero, Lane(float(n - 1)));
+    const Lane i0 = ln::min(ln::floor(f), Lane(float(n - 2)));
+    const Lane t = f - i0;
+    V3 sum{zero, zero, zero};
+    for (int k = 0; k < n; ++k) {
+        const Lane lk = Lane(float(k));
+        const Lane w = ln::select(
+            used, ln::select(i0 == lk, Lane(1.0f) - t, ln::select(i0 + Lane(1.0f) == lk, t, zero)),
+            zero);
+        if (!ln::any(w > zero)) continue;
+        const float sx = float(a.levelWidth[k]) / float(a.width);
+        const float sy = float(a.levelHeight[k]) / float(a.height);
+        const auto b = screen::bilinearAt(x * Lane(sx), y * Lane(sy), a.levelWidth[k],
+                                          a.levelHeight[k], a.levelStride[k]);
+        const V3 s{screen::sample(a.level[k][0], b), screen::sample(a.level[k][1], b),
+                   screen::sample(a.level[k][2], b)};
+        sum = sum + s * w;
+    }
+    return sum;
+}
+
+// One lane group of pass 1: the pixel's own hit radiance and fade.
+void hitChunk(const SsrResolveArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane pdf = loadAt(a.pdf, o), hit = loadAt(a.hit, o);
+    const Lane hx = loadAt(a.hitPos[0], o), hy = loadAt(a.hitPos[1], o);
+    auto valid = (pdf > zero) & (hit > Lane(0.5f));
+    V3 radiance{zero, zero, zero};
+    Lane fade = zero;
+    if (ln::any(valid)) {
+        // Edge-of-screen fade on the hit's position in the current frame.
+        const Lane u = hx * Lane(1.0f / float(a.width)), v = hy * Lane(1.0f / float(a.height));
+        const Lane edge = ln::min(ln::min(u, one - u), ln::min(v, one - v));
+        fade = ln::saturate(edge * Lane(a.edgeFadeScale));
+        // Where to read: the hit, or where it was a frame ago.
+        Lane px = hx, py = hy;
+        if (a.reproject) {
+            const ILane i = screen::nearestIndex(hx, hy, a.width, a.height, a.stride);
+            px = hx + ln::gather(a.motion[0], i);
+            py = hy + ln::gather(a.motion[1], i);
+            valid = valid & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
+                    (py < Lane(float(a.height)));
+        }
+        if (a.mip) {
+            const Lane rough = ln::saturate(loadAt(a.roughness, o));
+            radiance = pyramidSample(a, px, py, rough * Lane(float(a.levelCount - 1)), valid);
+        } else if (a.bilinear) {
+            const auto b = screen::bilinearAt(px, py, a.width, a.height, a.stride);
+            radiance = {screen::sample(a.source[0], b), screen::sample(a.source[1], b),
+                        screen::sample(a.source[2], b)};
+        } else {
+            const ILane i = screen::nearestIndex(px, py, a.width, a.height, a.stride);
+            radiance = {ln::gather(a.source[0], i), ln::gather(a.source[1], i),
+                        ln::gather(a.source[2], i)};
+        }
+        radiance = radiance * Lane(a.radianceScale);
+        radiance = ln::select(valid, radiance, V3{zero, zero, zero});
+        fade = ln::select(valid, fade, zero);
+    }
+    ln::store(a.hitRadiance[0] + o, radiance.x);
+    ln::store(a.hitRadiance[1] + o, radiance.y);
+    ln::store(a.hitRadiance[2] + o, radiance.z);
+    ln::store(a.hitFade + o, fade);
+}
+
+// Stachowiak 2015, "Stochastic Screen-Space Reflections": the 3x3 neighbours' hits, each
+// weighted by this pixel's GGX lobe (D V n.l) over the neighbour ray's pdf; ratio estimator.
+SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane rough, V3& color,
+                       Lane& opacity) {
+    using namespace ssrt::brdf;
+    const Lane zero(0.0f), one(1.0f);
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane px = Lane(float(x)) + ln::laneIndex<Lane>();
+    // This pixel: point, normal and view direction in view space.
+    const V3 p = screen::viewPoint(px + Lane(0.5f), Lane(float(y) + 0.5f), viewZ, a.width, a.height,
+                                   a.tanHalfX, a.tanHalfY);
+    const V3 nWorld{loadAt(a.normal[0], o), loadAt(a.normal[1], o), loadAt(a.normal[2], o)};
+    const V3 n = ln::normalize(screen::worldToView(a.viewToWorld, nWorld));
+    const V3 view = ln::normalize(V3{zero - p.x, zero - p.y, zero - p.z});
+    const Lane NoV = ln::max(ln::dot(n, view), Lane(1e-4f));
+    const Lane alpha = roughnessToAlpha(rough);
+    Lane sumW = zero, sumWF = zero;
+    V3 sumWFL{zero, zero, zero};
+    for (int dy = -1; dy <= 1; ++dy) {
+        const int yy = y + dy;
+        if (yy < 0 || yy >= a.height) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+            const Lane nx = px + Lane(float(dx));
+            const auto inFrame = (nx >= zero) & (nx < Lane(float(a.width)));
+            const ILane i = screen::pixelIndex(nx, Lane(float(yy)), a.width, a.height, a.stride);
+            const Lane pdf = ln::gather(a.pdf, i);
+            const auto hasRay = inFrame & (pdf > zero);
+            if (!ln::any(hasRay)) continue;
+            // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
+            const V3 hitP = screen::viewPoint(
+                ln::gather(a.hitPos[0], i), ln::gather(a.hitPos[1], i), ln::gather(a.hitPos[2], i),
+                a.width, a.height, a.tanHalfX, a.tanHalfY);
+            const V3 toHit = ln::normalize(hitP - p);
+            const V3 dir{ln::gather(a.rayDir[0], i), ln::gather(a.rayDir[1], i),
+                         ln::gather(a.rayDir[2], i)};
+            const V3 l = ln::select(ln::gather(a.hit, i) > Lane(0.5f), toHit, dir);
+            // This pixel's lobe towards l.
+            const Lane NoLraw = ln::dot(n, l);
+            const Lane NoL = ln::saturate(NoLraw);
+            const V3 h = ln::normalize(view + l);
+            const Lane NoH = ln::saturate(ln::dot(n, h));
+            const Lane brdfCos = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha) * NoL;
+            const auto ok = hasRay & (NoLraw > zero);
+            const Lane w =
+                ln::select(ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
+            const Lane wf = w * ln::gather(a.hitFade, i);
+            const V3 L{ln::gather(a.hitRadiance[0], i), ln::gather(a.hitRadiance[1], i),
+                       ln::gather(a.hitRadiance[2], i)};
+            sumW = sumW + w;
+            sumWF = sumWF + wf;
+            sumWFL = sumWFL + L * wf;
+        }
+    }
+    const auto any = sumWF > zero;
+    const Lane den = ln::select(any, sumWF, one);
+    color =
+        ln::select(any, V3{sumWFL.x / den, sumWFL.y / den, sumWFL.z / den}, V3{zero, zero, zero});
+    opacity =
+        ln::select(sumW > zero, ln::min(sumWF / ln::select(sumW > zero, sumW, one), one), zero);
+}
+
+// One lane group of pass 2: combine, fade by roughness, accumulate the sample.
+void resolveChunk(const SsrResolveArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f);
+    const Lane viewZ = loadAt(a.viewZ, o);
+    const auto background = viewZ <= zero;
+    const Lane rough = loadAt(a.roughness, o);
+    V3 color{zero, zero, zero};
+    Lane opacity = zero;
+    if (!ln::all(background)) {
+        if (a.reuse) {
+            reuse(a, x, y, viewZ, rough, color, opacity);
+        } else {
+            color = {loadAt(a.hitRadiance[0], o), loadAt(a.hitRadiance[1], o),
+                     loadAt(a.hitRadiance[2], o)};
+            opacity = loadAt(a.hitFade, o);
+        }
+        // HDRP's roughness (smoothness) fade.
+        const Lane fadeR =
+            ln::saturate((Lane(a.roughnessFadeEnd) - rough) * Lane(a.roughnessFadeScale));
+        opacity = ln::select(background, zero, opacity * fadeR);
+        color = ln::select(background, V3{zero, zero, zero}, color);
+    }
+    // Accumulate: one sample is stored as is; several as sums of color x opacity and opacity,
+    // turned into the averages after the last.
+    float* const* oc = a.outColor;
+    if (a.sampleCount == 1) {
+        ln::store(oc[0] + o, color.x);
+        ln::store(oc[1] + o, color.y);
+        ln::store(oc[2] + o, color.z);
+        ln::store(a.outOpacity + o, opacity);
+        return;
+    }
+    V3 sumC = color * opacity;
+    Lane sumO = opacity;
+    if (a.sample > 0) {
+        sumC = sumC + V3{loadAt(oc[0], o), loadAt(oc[1], o), loadAt(oc[2], o)};
+        sumO = sumO + loadAt(a.outOpacity, o);
+    }
+    if (a.sample == a.sampleCount - 1) {
+        const auto any = sumO > zero;
+        const Lane den = ln::select(any, sumO, Lane(1.0f));
+        sumC = ln::select(any, V3{sumC.x / den, sumC.y / den, sumC.z / den}, V3{zero, zero, zero});
+        sumO = sumO / Lane(float(a.sampleCount));
+    }
+    ln::store(oc[0] + o, sumC.x);
+    ln::store(oc[1] + o, sumC.y);
+    ln::store(oc[2] + o, sumC.z);
+    ln::store(a.outOpacity + o, sumO);
+}
+
+template <class F>
+SSRT_INLINE void forTile(const SsrResolveArgs& a, int tile, F&& f) {
+    const int tx = tile % a.tilesX, ty = tile / a.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(a.width, x0 + kTileSize), y1 = std::min(a.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) f(x, y);
+}
+
+}  // namespace
+
+void ssrHitTile(const SsrResolveArgs& args, int tile) {
+    forTile(args, tile, [&](int x, int y) { hitChunk(args, x, y); });
+}
+
+void ssrResolveTile(const SsrResolveArgs& args, int tile) {
+    forTile(args, tile, [&](int x, int y) { resolveChunk(args, x, y); });
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,54 @@
+// The SSR resolve kernels, one copy per ISA (trace/ssr_resolve_kernel.cpp); the method is
+// described in trace/ssr_resolve.h. Two passes over tiles: ssrHitTile turns each pixel's own
+// march result into a hit radiance and fade (scratch planes), ssrResolveTile combines them
+// (own hit for Mip, 3x3 neighbours for Reuse) and accumulates the sample into the output.
+#pragma once
+
+#include <cstddef>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+// Every plane has the frame's size and one stride (`stride`), the pyramid levels aside.
+struct SsrResolveArgs {
+    int width, height, tilesX;
+    std::size_t stride;
+    float tanHalfX, tanHalfY;
+    float viewToWorld[9];  // rotation, column-major (normals go to view space by its transpose)
+    // G-buffer
+    const float* viewZ;
+    const float* normal[3];  // world space
+    const float* roughness;
+    // Rays and march
+    const float* rayDir[3];  // view space
+    const float* pdf;
+    const float* hit;
+    const float* hitPos[3];  // hitX, hitY (pixels), hitZ (view depth)
+    // Where hit radiance comes from: `source` at level 0 (Current: colour; Reprojected: the
+    // previous frame's colour), read at hit + motion when `reproject`.
+    const float* source[3];
+    const float* motion[2];
+    bool reproject, bilinear, mip, reuse;
+    static constexpr int kMaxLevels = 16;
+    int levelCount;  // Mip: pyramid levels (level 0 at the frame's size)
+    const float* level[kMaxLevels][3];
+    std::size_t levelStride[kMaxLevels];
+    int levelWidth[kMaxLevels], levelHeight[kMaxLevels];
+    float edgeFadeScale;                         // 1 / edgeFadeLength
+    float roughnessFadeEnd, roughnessFadeScale;  // fade = saturate((end - r) * scale)
+    float radianceScale;
+    // Scratch written by ssrHitTile, read by ssrResolveTile.
+    float* hitRadiance[3];
+    float* hitFade;
+    // Output, accumulated over samples.
+    float* outColor[3];
+    float* outOpacity;
+    int sample, sampleCount;
+};
+
+SSRT_DECLARE_KERNEL(void, ssrHitTile, (const SsrResolveArgs& args, int tile))
+SSRT_DECLARE_KERNEL(void, ssrResolveTile, (const SsrResolveArgs& args, int tile))
+
+}  // namespace ssrt
