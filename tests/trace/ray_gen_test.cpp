@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/isa.h"
+#include "core/rng.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/brdf.h"
@@ -68,8 +69,9 @@ GBufferFrame renderBuiltin(const std::string& name, int w = 160, int h = 96) {
 }
 
 // A flat floor (y = 0, normal +y) of one roughness, seen from height `eye` looking at a
-// point `dist` ahead: the far pixels see it at grazing angles.
-Scene floorScene(float roughness, float eye, float dist) {
+// point `dist` ahead and `side` to the right (a yaw: the view-to-world rotation is then no
+// rotation about x alone): the far pixels see it at grazing angles.
+Scene floorScene(float roughness, float eye, float dist, float side = 0.0f) {
     Scene s;
     Mesh mesh;
     mesh.positions = {{-500, 0, 500}, {500, 0, 500}, {500, 0, -500}, {-500, 0, -500}};
@@ -82,7 +84,7 @@ Scene floorScene(float roughness, float eye, float dist) {
     s.instances.push_back(Instance{});
     s.light.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
     s.camera.position = {0, eye, 0};
-    s.camera.target = {0, 0, -dist};
+    s.camera.target = {side, 0, -dist};
     s.camera.farZ = 2000.0f;
     s.previousCamera = s.camera;
     return s;
@@ -202,6 +204,8 @@ uint64_t checkBatch(const GBufferFrame& f, const SsrMethod* method, const RayBat
                     const V3f wo = fr.local(dir);
                     float expect;
                     if (method) {
+                        // (specular: only where the shading normal faces the viewer)
+                        ok = ok && dot(n, toViewer(f.camera, x, y)) > 0.0;
                         const V3f wi = fr.local(toViewer(f.camera, x, y));
                         const float alpha = brdf::roughnessToAlpha(rough.at(x, y));
                         expect = methodPdf(*method, wi, wo, alpha);
@@ -253,10 +257,11 @@ TEST_CASE("ray generation: origins, unit directions above the surface, PDFs, no 
         GBufferFrame f;
     };
     std::vector<Case> cases;
-    cases.push_back({"spheres", renderBuiltin("spheres")});
-    cases.push_back({"cornell", renderBuiltin("cornell", 96, 72)});
-    cases.push_back({"floor r0", renderScene(floorScene(0.0f, 0.3f, 20.0f), 96, 64)});
-    cases.push_back({"floor r1", renderScene(floorScene(1.0f, 0.3f, 20.0f), 96, 64)});
+    // (odd sizes: partial tiles and partial lane groups at the right and bottom edges)
+    cases.push_back({"spheres", renderBuiltin("spheres", 157, 91)});
+    cases.push_back({"cornell", renderBuiltin("cornell", 99, 71)});
+    cases.push_back({"floor r0", renderScene(floorScene(0.0f, 0.3f, 20.0f, 8.0f), 96, 64)});
+    cases.push_back({"floor r1", renderScene(floorScene(1.0f, 0.3f, 20.0f, -6.0f), 96, 64)});
     for (const Case& c : cases) {
         CAPTURE(c.name);
         for (Isa isa : {Isa::Scalar, supportedIsas().back()}) {
@@ -289,7 +294,7 @@ TEST_CASE("ray generation: background pixels have no ray") {
 
 TEST_CASE("ray generation: mirror rays are exact reflections") {
     for (const GBufferFrame& f :
-         {renderBuiltin("spheres"), renderScene(floorScene(0.5f, 1.0f, 6.0f), 96, 64)}) {
+         {renderBuiltin("spheres"), renderScene(floorScene(0.5f, 1.0f, 6.0f, 2.0f), 96, 64)}) {
         const SsrMethod m = SsrMethod::Mirror;
         RayBatch rays;
         const RayGenStats s = generate(f, &m, rays, 0, 0, supportedIsas().back(), 2);
@@ -430,9 +435,60 @@ TEST_CASE("ray generation: the lobe of one pixel matches a quadrature of its PDF
     }
 }
 
+TEST_CASE("ray generation: rays are the samplers' maps of randomFloat(pixel, frame, sample, dim)") {
+    // An independent oracle in double (but the sampler itself): the Duff et al. basis around
+    // the view-space normal, the uniforms of the documented dimensions, the cosine map for
+    // diffuse rays and the reflection about sampleGgxNdf's half vector for GgxNdf.
+    const GBufferFrame f = renderBuiltin("spheres", 96, 64);
+    const uint32_t frame = 9, sample = 4;
+    for (const bool diffuse : {true, false}) {
+        CAPTURE(diffuse);
+        const SsrMethod m = SsrMethod::GgxNdf;
+        RayBatch rays;
+        generate(f, diffuse ? nullptr : &m, rays, frame, sample, supportedIsas().back(), 2);
+        const uint32_t dim = diffuse ? kRayGenDiffuseDim : kRayGenSpecularDim;
+        double worst = 0.0;
+        int checked = 0;
+        for (int y = 0; y < f.height(); ++y)
+            for (int x = 0; x < f.width(); ++x) {
+                if (rays.pdf.at(x, y) <= 0.0f) continue;
+                const Vec n = viewNormal(f, x, y);
+                const double sg = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sg + n.z);
+                const double c = n.x * n.y * a;
+                const Vec t{1.0 + sg * n.x * n.x * a, sg * c, -sg * n.x};
+                const Vec b{c, sg + n.y * n.y * a, -n.y};
+                const uint32_t pixel = uint32_t(y * f.width() + x);
+                const float u1 = randomFloat(pixel, frame, sample, dim);
+                const float u2 = randomFloat(pixel, frame, sample, dim + 1);
+                Vec w;
+                if (diffuse) {
+                    const double r = std::sqrt(double(u1)), phi = 2.0 * M_PI * u2;
+                    w = {r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u1)};
+                } else {
+                    const Vec v = toViewer(f.camera, x, y);
+                    const Vec wi{dot(v, t), dot(v, b), dot(v, n)};
+                    const float alpha =
+                        brdf::roughnessToAlpha(f.frame.plane("roughness").at(x, y));
+                    const V3f wmf = sm::sampleGgxNdf(alpha, alpha, u1, u2);
+                    const Vec wm = normalized({wmf.x, wmf.y, wmf.z});
+                    const double d = 2.0 * dot(wi, wm);
+                    w = {d * wm.x - wi.x, d * wm.y - wi.y, d * wm.z - wi.z};
+                }
+                const Vec e{t.x * w.x + b.x * w.y + n.x * w.z, t.y * w.x + b.y * w.y + n.y * w.z,
+                            t.z * w.x + b.z * w.y + n.z * w.z};
+                const Vec got = dirAt(rays, x, y);
+                worst = std::max({worst, std::abs(got.x - e.x), std::abs(got.y - e.y),
+                                  std::abs(got.z - e.z)});
+                ++checked;
+            }
+        CHECK(checked > 1000);
+        CHECK(worst < 1e-4);
+    }
+}
+
 TEST_CASE("ray generation: the same bits for every ISA and thread count") {
     for (const std::string scene : {"cornell", "spheres"}) {
-        const GBufferFrame f = renderBuiltin(scene, 200, 136);
+        const GBufferFrame f = renderBuiltin(scene, 203, 137);
         for (int mi = 0; mi <= 5; ++mi) {
             const SsrMethod m = SsrMethod(std::min(mi, 4));
             const SsrMethod* mp = mi == 5 ? nullptr : &m;
