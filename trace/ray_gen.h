@@ -69,10 +69,11 @@ struct RayGenGBuffer {
 };
 
 struct RayGenStats {
-    uint64_t pixels = 0;        // surface pixels considered (viewZ > 0)
-    uint64_t rays = 0;          // rays written with pdf > 0
-    uint64_t belowSurface = 0;  // samples that fell below the surface (rejected: pdf 0), counted per method
-    uint64_t background = 0;    // background pixels (no ray)
+    uint64_t pixels = 0;  // surface pixels considered (viewZ > 0)
+    uint64_t rays = 0;    // rays written with pdf > 0
+    // samples that fell below the surface (rejected: pdf 0), counted per method (see above)
+    uint64_t belowSurface = 0;
+    uint64_t background = 0;  // background pixels (no ray)
     void add(const RayGenStats&);
 };
 

@@ -105,12 +105,13 @@ SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane 
          (pdf <= Lane(std::numeric_limits<float>::max()));
 }
 
-// One lane group of row y starting at pixel x; `valid` has a bit per lane inside the frame.
+// One lane group of row y starting at pixel x, into out[plane] + o (a row buffer of the
+// tile); `valid` has a bit per lane inside the frame.
 template <RayGenLobe K>
-SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, RayGenCounts& c) {
+SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, float* const* out,
+                          int o, RayGenCounts& c) {
     const std::size_t go = std::size_t(y) * a.gStride + std::size_t(x);
-    float* const* out = a.out;
-    const std::size_t oo = std::size_t(y) * a.outStride + std::size_t(x);
+    const int oo = o;
     const Lane zero(0.0f);
     const Lane viewZ = ln::load<Lane>(a.g[0] + go);
     const Mask surface = viewZ > zero;  // (false for NaN)
@@ -162,13 +163,25 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int x1 = std::min(a.width, x0 + kTileSize), y1 = std::min(a.height, y0 + kTileSize);
     // Lane groups past the right edge read and write the rows' 64-byte padding and are
-    // left out of the counts.
-    for (int y = y0; y < y1; ++y)
+    // left out of the counts. Rows go through a buffer and are streamed out in whole cache
+    // lines (written once per pass; see raster/resolve_kernel.cpp).
+    alignas(64) float rowBuf[7][kTileSize];
+    float* bufPtr[7];
+    for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
+    const int span = (x1 - x0 + kW - 1) / kW * kW;
+    for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) {
             const int n = std::min(kW, x1 - x);
             const uint64_t valid = n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1u;
-            rayChunk<K>(a, x, y, valid, c);
+            rayChunk<K>(a, x, y, valid, bufPtr, x - x0, c);
         }
+        for (int p = 0; p < 7; ++p) {
+            float* dst = a.out[p] + std::size_t(y) * a.outStride + std::size_t(x0);
+            for (int i = 0; i < span; i += kW)
+                ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+        }
+    }
+    ln::streamFence();
 }
 
 }  // namespace
