@@ -354,10 +354,10 @@ TEST_CASE("ray generation: rejections below the surface are counted per method")
     for (const RayGenStats& s : st) CHECK(s.rays + s.belowSurface == s.pixels);
 }
 
-TEST_CASE("ray generation: the lobe of one pixel matches a quadrature of its PDF") {
-    // A floor of roughness 0.5 seen at about 70 degrees from the normal; pixel (24, 20).
-    const GBufferFrame f = renderScene(floorScene(0.5f, 1.0f, 3.0f), 48, 32);
-    const int px = 24, py = 20;
+namespace {
+
+// The lobe of pixel (px, py) for every method but Mirror, and the cosine lobe.
+void checkLobe(const GBufferFrame& f, int px, int py) {
     REQUIRE(f.frame.plane("viewZ").at(px, py) > 0.0f);
     const Vec n = viewNormal(f, px, py);
     const Frame3 fr(n);
@@ -432,6 +432,17 @@ TEST_CASE("ray generation: the lobe of one pixel matches a quadrature of its PDF
             CAPTURE(b);
             CHECK(std::abs(eb - pb) < 5.0 * std::sqrt(pb * (1.0 - pb) / kSamples) + 2e-3);
         }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("ray generation: the lobe of one pixel matches a quadrature of its PDF") {
+    SUBCASE("roughness 0.5, view 66 degrees from the normal") {
+        checkLobe(renderScene(floorScene(0.5f, 1.0f, 3.0f, 1.0f), 48, 32), 24, 20);
+    }
+    SUBCASE("roughness 1, view 80 degrees from the normal: up to half the samples rejected") {
+        checkLobe(renderScene(floorScene(1.0f, 0.3f, 5.0f, -1.0f), 48, 32), 24, 20);
     }
 }
 
