@@ -1,0 +1,96 @@
+// Ray generation (issue 5): one ray per pixel, view space, SIMD across pixels.
+//
+// Specular (SSR) rays reflect the view about a microfacet normal drawn by one of the GGX
+// samplers of shading/sampling.h (or about the shading normal: Mirror); diffuse (SSGI) rays
+// are cosine-weighted around the shading normal. The kernel is trace/ray_gen_kernel.cpp; see
+// trace/README.md ("Ray generation") for the conventions below in prose.
+//
+// Conventions
+// - Everything is in VIEW space: the world normal of the G-buffer is rotated by the
+//   transpose of TraceCamera::viewToWorld. The origin is the pixel's surface point
+//   ((2 (px + 0.5) / W - 1) tanHalfX z, (1 - 2 (py + 0.5) / H) tanHalfY z, -z), z = viewZ.
+// - Random numbers: randomFloat(y * width + x, frame, sample, dim) with dims
+//   kRayGenSpecularDim, kRayGenSpecularDim + 1 (specular) and kRayGenDiffuseDim,
+//   kRayGenDiffuseDim + 1 (diffuse), so the two passes draw independent numbers.
+// - GGX alpha = brdf::roughnessToAlpha(roughness) = max(roughness^2, 1e-3): roughness 0 is
+//   a lobe of alpha 1e-3 (D stays finite in float), not a delta. Mirror is the delta.
+// - A pixel with no ray (background, or a sample rejected below) has pdf 0 and direction
+//   (0, 0, 0); a background pixel also has origin (0, 0, 0).
+// - Rejections (pdf 0, counted in RayGenStats::belowSurface), per method:
+//   * every specular method: the shading normal faces away from the viewer (n.v <= 0, at
+//     silhouettes with interpolated normals): the upper-hemisphere lobe has no view to
+//     reflect, so no ray (not flipped: a flipped normal would reflect into the surface the
+//     pixel shows);
+//   * Mirror: otherwise never (the reflection of v about n has n.r = n.v > 0);
+//   * GgxNdf: the sampled half vector faces away from the viewer (v.m <= 0: a microfacet
+//     the view cannot see), or the reflection is below the horizon (n.r <= 0);
+//   * VndfEllipsoid, VndfSphericalCaps: visible normals only, so only n.r <= 0;
+//   * VndfBounded: the bound cuts away most, not all, of the caps that reflect below the
+//     horizon; the rest (n.r <= 0) is rejected;
+//   * diffuse: the cosine sampler never reaches the horizon (z >= 2^-12 for u < 1), but a
+//     direction with n.r <= 0 after the rotation to view space would be rejected too.
+// - pdf: the solid-angle PDF of the reflected direction, from the sampler's own PDF
+//   function (ggxNdfReflectionPdf, vndfReflectionPdf, vndfBoundedReflectionPdf) evaluated on
+//   the direction drawn; it integrates to 1 - (rejected fraction) over the accepted
+//   directions. Mirror writes pdf 1 for its delta (the weight of a delta sample is the
+//   BRDF's reflectance, not f/pdf). Diffuse: cos(theta) / pi.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+enum class SsrMethod { Mirror, GgxNdf, VndfEllipsoid, VndfSphericalCaps, VndfBounded };
+
+inline constexpr SsrMethod kAllSsrMethods[] = {SsrMethod::Mirror, SsrMethod::GgxNdf,
+                                               SsrMethod::VndfEllipsoid,
+                                               SsrMethod::VndfSphericalCaps,
+                                               SsrMethod::VndfBounded};
+
+// "mirror", "ggx_ndf", "vndf_ellipsoid", "vndf_spherical_caps", "vndf_bounded".
+std::string_view ssrMethodName(SsrMethod);
+// The method named by ssrMethodName; nullopt for anything else.
+std::optional<SsrMethod> parseSsrMethod(std::string_view);
+
+// The random-number dimensions (see the conventions above).
+inline constexpr uint32_t kRayGenSpecularDim = 16;  // and 17
+inline constexpr uint32_t kRayGenDiffuseDim = 18;   // and 19
+
+struct RayGenGBuffer {
+    const PlaneF* viewZ;
+    const PlaneF* normal[3];  // world space
+    const PlaneF* roughness;  // perceptual
+};
+
+struct RayGenStats {
+    uint64_t pixels = 0;  // surface pixels considered (viewZ > 0)
+    uint64_t rays = 0;    // rays written with pdf > 0
+    // samples that fell below the surface (rejected: pdf 0), counted per method (see above)
+    uint64_t belowSurface = 0;
+    uint64_t background = 0;  // background pixels (no ray)
+    void add(const RayGenStats&);
+};
+
+// Specular (SSR) rays: one per pixel for sample index `sample` of frame `frame`; origin = the
+// pixel's view-space surface point, direction = reflection of the view direction about a
+// sampled microfacet normal (Mirror: about the shading normal). The PDF is the solid-angle
+// PDF of the reflected direction (Mirror: 1, a delta). Writes every pixel. `rays` is sized to
+// the camera; the G-buffer planes must have the camera's size (else std::invalid_argument).
+// threads: 0 = every core.
+RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
+                                 const TraceCamera& camera, const RayGenGBuffer& g,
+                                 RayBatch& rays, int threads);
+
+// Diffuse (SSGI) rays: cosine-weighted hemisphere around the shading normal; pdf = cos/pi.
+// (g.roughness is not read and may be null.)
+RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
+                                const TraceCamera& camera, const RayGenGBuffer& g,
+                                RayBatch& rays, int threads);
+
+}  // namespace ssrt

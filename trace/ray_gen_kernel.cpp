@@ -1,0 +1,203 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+#include <limits>
+
+#include "core/lane_vec.h"
+#include "core/rng.h"
+#include "core/tiles.h"
+#include "shading/brdf.h"
+#include "shading/sampling.h"
+#include "trace/ray_gen_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+namespace sm = ssrt::sampling;
+using V3 = ln::V3<Lane>;
+using Mask = ln::MaskOf<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+SSRT_INLINE V3 neg(V3 v) { return {Lane(0.0f) - v.x, Lane(0.0f) - v.y, Lane(0.0f) - v.z}; }
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", listing 3: t, b, n right
+// handed for a unit n, branch-free (the sign is a select), no NaN for any finite n.
+SSRT_INLINE void orthonormalBasis(V3 n, V3& t, V3& b) {
+    const Lane s = ln::select(n.z >= Lane(0.0f), Lane(1.0f), Lane(-1.0f));
+    const Lane a = Lane(-1.0f) / (s + n.z);
+    const Lane c = n.x * n.y * a;
+    t = {Lane(1.0f) + s * n.x * n.x * a, s * c, Lane(0.0f) - s * n.x};
+    b = {c, s + n.y * n.y * a, Lane(0.0f) - n.y};
+}
+
+// Local frame (t, b, n) to view space.
+SSRT_INLINE V3 toView(V3 t, V3 b, V3 n, V3 w) { return (t * w.x + b * w.y) + n * w.z; }
+
+// The lane group's two uniform numbers, lane by lane from the counter hash (integer work:
+// the same bits on every ISA).
+SSRT_INLINE void uniforms(const RayGenArgs& a, int x, int y, Lane& u1, Lane& u2) {
+    alignas(64) float r1[kW], r2[kW];
+    const uint32_t base = uint32_t(y) * uint32_t(a.width) + uint32_t(x);
+    for (int l = 0; l < kW; ++l) {
+        r1[l] = randomFloat(base + uint32_t(l), a.frame, a.sample, a.dim);
+        r2[l] = randomFloat(base + uint32_t(l), a.frame, a.sample, a.dim + 1u);
+    }
+    u1 = ln::load<Lane>(r1);
+    u2 = ln::load<Lane>(r2);
+}
+
+SSRT_INLINE unsigned popcount(Mask m, uint64_t valid) {
+    return unsigned(__builtin_popcountll(ln::maskBits(m) & valid));
+}
+
+// The lobe's direction (view space, unit) and PDF for the surface pixels of one lane
+// group; `ok` is false where the sample is rejected (see trace/ray_gen.h for what each
+// method prescribes).
+template <RayGenLobe K>
+SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane u1, Lane u2,
+                          V3& dir, Lane& pdf, Mask& ok) {
+    const Lane zero(0.0f);
+    const Lane NoV = ln::dot(n, v);
+    if constexpr (K == RayGenLobe::Mirror) {
+        // Reflect the view about the shading normal: r = 2 (n.v) n - v, n.r = n.v
+        dir = ln::normalize(n * (NoV + NoV) - v);
+        pdf = Lane(1.0f);
+        ok = (NoV > zero) & (ln::dot(n, dir) > zero);
+        return;
+    }
+    V3 t, b;
+    orthonormalBasis(n, t, b);
+    V3 wo;
+    if constexpr (K == RayGenLobe::Diffuse) {
+        // Cosine hemisphere around the shading normal (the view plays no part)
+        wo = sm::sampleCosineHemisphere(u1, u2);
+        pdf = sm::cosineHemispherePdf(wo);
+        ok = wo.z > zero;
+    } else {
+        // The view in the local frame; alpha kept >= 1e-3 (brdf::roughnessToAlpha)
+        const V3 wi{ln::dot(v, t), ln::dot(v, b), NoV};
+        const Lane alpha = brdf::roughnessToAlpha(ln::load<Lane>(a.g[4] + go));
+        V3 wm;
+        if constexpr (K == RayGenLobe::GgxNdf) wm = sm::sampleGgxNdf(alpha, alpha, u1, u2);
+        else if constexpr (K == RayGenLobe::VndfEllipsoid)
+            wm = sm::sampleVndfEllipsoid(wi, alpha, alpha, u1, u2);
+        else if constexpr (K == RayGenLobe::VndfSphericalCaps)
+            wm = sm::sampleVndfSphericalCaps(wi, alpha, alpha, u1, u2);
+        else wm = sm::sampleVndfBounded(wi, alpha, alpha, u1, u2);
+        // Reflect about the microfacet normal; its PDF over the reflected direction
+        wo = sm::reflect(wi, wm);
+        if constexpr (K == RayGenLobe::GgxNdf)
+            pdf = sm::ggxNdfReflectionPdf(wi, wo, alpha, alpha);
+        else if constexpr (K == RayGenLobe::VndfBounded)
+            pdf = sm::vndfBoundedReflectionPdf(wi, wo, alpha, alpha);
+        else pdf = sm::vndfReflectionPdf(wi, wo, alpha, alpha);
+        // Rejections: a view below the shading normal's horizon, a reflection below it,
+        // and (NDF sampling only) a microfacet facing away from the viewer
+        ok = (NoV > zero) & (wo.z > zero);
+        if constexpr (K == RayGenLobe::GgxNdf) ok = ok & (ln::dot(wi, wm) > zero);
+    }
+    // To view space; the horizon test again on what is written, and a finite positive PDF
+    dir = ln::normalize(toView(t, b, n, wo));
+    ok = ok & (ln::dot(n, dir) > zero) & (pdf > zero) &
+         (pdf <= Lane(std::numeric_limits<float>::max()));
+}
+
+// One lane group of row y starting at pixel x, into out[plane] + o (a row buffer of the
+// tile); `valid` has a bit per lane inside the frame.
+template <RayGenLobe K>
+SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, float* const* out,
+                          int o, RayGenCounts& c) {
+    const std::size_t go = std::size_t(y) * a.gStride + std::size_t(x);
+    const int oo = o;
+    const Lane zero(0.0f);
+    const Lane viewZ = ln::load<Lane>(a.g[0] + go);
+    const Mask surface = viewZ > zero;  // (false for NaN)
+    const unsigned surfaceCount = popcount(surface, valid);
+    const unsigned validCount = unsigned(__builtin_popcountll(valid));
+    c.pixels += surfaceCount;
+    c.background += validCount - surfaceCount;
+    if (!ln::any(surface)) {
+        for (int p = 0; p < 7; ++p) ln::store(out[p] + oo, zero);
+        return;
+    }
+    // Origin: the view ray through the pixel centre times viewZ (trace/trace_types.h)
+    const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
+    const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
+    const Lane ndcY = Lane(1.0f) - Lane((float(y) + 0.5f) * (2.0f / float(a.height)));
+    const V3 ray{ndcX * Lane(a.tanHalfX), ndcY * Lane(a.tanHalfY), Lane(-1.0f)};
+    const V3 origin{ray.x * viewZ, ray.y * viewZ, Lane(0.0f) - viewZ};
+    // The view direction (towards the camera) and the normal rotated into view space
+    // (the transpose of viewToWorld: its columns dotted with the world normal)
+    const V3 v = ln::normalize(neg(ray));
+    const V3 nw{ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go),
+                ln::load<Lane>(a.g[3] + go)};
+    const float* r = a.viewToWorld;
+    const V3 n = ln::normalize(V3{(Lane(r[0]) * nw.x + Lane(r[1]) * nw.y) + Lane(r[2]) * nw.z,
+                                  (Lane(r[3]) * nw.x + Lane(r[4]) * nw.y) + Lane(r[5]) * nw.z,
+                                  (Lane(r[6]) * nw.x + Lane(r[7]) * nw.y) + Lane(r[8]) * nw.z});
+    Lane u1(0.0f), u2(0.0f);
+    if constexpr (K != RayGenLobe::Mirror) uniforms(a, x, y, u1, u2);
+    V3 dir;
+    Lane pdf;
+    Mask ok;
+    drawLobe<K>(a, go, n, v, u1, u2, dir, pdf, ok);
+    ok = ok & surface;
+    const unsigned rays = popcount(ok, valid);
+    c.rays += rays;
+    c.belowSurface += surfaceCount - rays;
+    ln::store(out[0] + oo, ln::select(surface, origin.x, zero));
+    ln::store(out[1] + oo, ln::select(surface, origin.y, zero));
+    ln::store(out[2] + oo, ln::select(surface, origin.z, zero));
+    ln::store(out[3] + oo, ln::select(ok, dir.x, zero));
+    ln::store(out[4] + oo, ln::select(ok, dir.y, zero));
+    ln::store(out[5] + oo, ln::select(ok, dir.z, zero));
+    ln::store(out[6] + oo, ln::select(ok, pdf, zero));
+}
+
+template <RayGenLobe K>
+void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
+    const int tx = tile % a.tilesX, ty = tile / a.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(a.width, x0 + kTileSize), y1 = std::min(a.height, y0 + kTileSize);
+    // Lane groups past the right edge read and write the rows' 64-byte padding and are
+    // left out of the counts. Rows go through a buffer and are streamed out in whole cache
+    // lines (written once per pass; see raster/resolve_kernel.cpp).
+    alignas(64) float rowBuf[7][kTileSize];
+    float* bufPtr[7];
+    for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
+    const int span = (x1 - x0 + kW - 1) / kW * kW;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; x += kW) {
+            const int n = std::min(kW, x1 - x);
+            const uint64_t valid = n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1u;
+            rayChunk<K>(a, x, y, valid, bufPtr, x - x0, c);
+        }
+        for (int p = 0; p < 7; ++p) {
+            float* dst = a.out[p] + std::size_t(y) * a.outStride + std::size_t(x0);
+            for (int i = 0; i < span; i += kW)
+                ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+        }
+    }
+    ln::streamFence();
+}
+
+}  // namespace
+
+void generateRaysTile(const RayGenArgs& args, int tile, RayGenCounts& counts) {
+    counts = {};
+    switch (args.lobe) {
+        case RayGenLobe::Mirror: return rayTile<RayGenLobe::Mirror>(args, tile, counts);
+        case RayGenLobe::GgxNdf: return rayTile<RayGenLobe::GgxNdf>(args, tile, counts);
+        case RayGenLobe::VndfEllipsoid:
+            return rayTile<RayGenLobe::VndfEllipsoid>(args, tile, counts);
+        case RayGenLobe::VndfSphericalCaps:
+            return rayTile<RayGenLobe::VndfSphericalCaps>(args, tile, counts);
+        case RayGenLobe::VndfBounded: return rayTile<RayGenLobe::VndfBounded>(args, tile, counts);
+        case RayGenLobe::Diffuse: return rayTile<RayGenLobe::Diffuse>(args, tile, counts);
+    }
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

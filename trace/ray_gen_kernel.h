@@ -1,0 +1,45 @@
+// Ray generation per pixel, one copy per ISA (trace/ray_gen_kernel.cpp); the set-up and the
+// conventions are in trace/ray_gen.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// What the kernel draws: the SsrMethod values, then the diffuse lobe.
+enum class RayGenLobe : int {
+    Mirror = 0,
+    GgxNdf = 1,
+    VndfEllipsoid = 2,
+    VndfSphericalCaps = 3,
+    VndfBounded = 4,
+    Diffuse = 5,
+};
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+struct RayGenArgs {
+    RayGenLobe lobe;
+    const float* g[5];  // viewZ, world normal X, Y, Z, perceptual roughness (may be null
+                        // for Diffuse); all with gStride
+    std::size_t gStride;
+    float* out[7];  // RayBatch planes ox, oy, oz, dx, dy, dz, pdf; all with outStride
+    std::size_t outStride;
+    int width, height, tilesX;
+    float tanHalfX, tanHalfY;
+    float viewToWorld[9];  // rotation, column-major
+    uint32_t frame, sample;
+    uint32_t dim;  // first of the two random-number dimensions
+};
+
+// Counters of one tile (RayGenStats, as plain numbers).
+struct RayGenCounts {
+    uint64_t pixels, rays, belowSurface, background;
+};
+
+SSRT_DECLARE_KERNEL(void, generateRaysTile,
+                    (const RayGenArgs& args, int tile, RayGenCounts& counts))
+
+}  // namespace ssrt
