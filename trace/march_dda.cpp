@@ -76,7 +76,13 @@ void marchDdaKernel(MarchKernelArgs& a) {
         LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
                    zero, zero};
         Lane uHit = zero;                 // step parameter of the hit sample
-        Lane prevZ = one / s.k0;          // ray depth at the previous half step
+        // Ray depth half a step before the first sample (interval [u - 1/2, u + 1/2]).
+        Lane prevZ;
+        {
+            Lane px, py, k;
+            at(s, jitter + half, px, py, k);
+            prevZ = one / k;
+        }
         for (;;) {
             const Mask active = e.cause < zero;
             if (!ln::any(active)) break;
@@ -93,7 +99,7 @@ void marchDdaKernel(MarchKernelArgs& a) {
             const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
             const Lane sceneZ = sceneDepth(a, ix, iy);
             const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask cross = (zMax >= sceneZ) & !own;
+            const Mask cross = (zMax > sceneZ) & !own;
             const Mask accept = cross & (zMin <= sceneZ + thickness);
             // Ends, first match wins: end of the segment, off screen, hit, step cap.
             const Mask past = (s.M0 + s.dM * u - s.M1) * s.stepDir > zero;
@@ -122,7 +128,7 @@ void marchDdaKernel(MarchKernelArgs& a) {
                 const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
                 const Lane sceneZ = sceneDepth(a, ix, iy);
                 const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-                const Mask behind = (one / k >= sceneZ) & !own;
+                const Mask behind = (one / k > sceneZ) & !own;
                 hi = ln::select(behind, mid, hi);
                 lo = ln::select(behind, lo, mid);
             }

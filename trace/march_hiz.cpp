@@ -96,7 +96,7 @@ void marchHiZKernel(MarchKernelArgs& a) {
             const Lane tz = ln::select(deeper, (kSurface - s.k0) * invDk, big);
             const Lane tMin = ln::min(ln::min(tx, ty), tz);
             const Lane k = s.k0 + dk * t;
-            const Mask above = k * surface > one;  // ray depth < surface
+            const Mask above = k * surface >= one;  // ray depth <= surface
             const Mask skipped = above & (tMin != tz);
             t = ln::select(active & above, tMin, t);
             px = s.x0 + dPx * t;

@@ -35,7 +35,7 @@ void marchLinearKernel(MarchKernelArgs& a) {
             const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
             const Lane sceneZ = sceneDepth(a, ix, iy);
             const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask behind = (depth >= sceneZ) & !own;
+            const Mask behind = (depth > sceneZ) & !own;
             const Lane diff = depth - sceneZ;
             const Mask accept = behind & (diff <= thresh);
             // Ends, first match wins: distance cap, near plane, off screen, hit, step cap.
