@@ -40,7 +40,7 @@ struct MarchSettings {
     // [z, z + thickness]; Hi-Z validates its hit with it.
     float thickness = 0.1f;
     // DDA: pixels per step along the major axis (>= 1).
-    float ddaStride = 1.0f;
+    float ddaStride = 2.0f;
     // DDA: the first step is offset by ddaJitter * u strides, u = randomFloat(pixel, frame,
     // sample, 0) in [0, 1) (core/rng.h); 0 turns jitter off.
     float ddaJitter = 1.0f;
