@@ -364,3 +364,33 @@ TEST_CASE("march: bit-identical for threads 1/2/8 and every ISA the CPU runs") {
                 }
         }
 }
+
+TEST_CASE("march: a hit on a surface whose normal faces along the ray is BackFace") {
+    // The box scene with the box face's normal turned away from the camera: every reflection
+    // that met the box now meets a back face.
+    GBuf g = makeBoxGBuffer(240, 160);
+    const RayBatch rays = mirrorRays(g);
+    for (int y = 0; y < 160; ++y)
+        for (int x = 0; x < 240; ++x)
+            if (g.viewZ.at(x, y) == BoxScene::kBoxZ) g.nz.at(x, y) = -1.0f;
+    MarchSettings s;
+    s.linearStep = 0.02f;
+    s.maxDistance = 40.0f;
+    for (Marcher m : kMarchers) {
+        CAPTURE(marcherName(m));
+        MarchResult r;
+        march(m, s, g, rays, r);
+        int expected = 0, backFace = 0;
+        for (int y = 0; y < 160; ++y)
+            for (int x = 0; x < 240; ++x) {
+                glm::vec2 p;
+                if (g.ny.at(x, y) != 1.0f || !analyticBoxHit(g, rays, x, y, p)) continue;
+                ++expected;
+                backFace += causeAt(r, x, y) == MarchEnd::BackFace;
+                // (DDA may step over the box's top edge onto the wall: not a box hit.)
+                CHECK_FALSE((r.hit.at(x, y) == 1.0f && r.hitZ.at(x, y) < 7.0f));
+            }
+        REQUIRE(expected > 500);
+        CHECK(backFace >= expected * 97 / 100);
+    }
+}
