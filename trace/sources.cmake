@@ -3,3 +3,5 @@ list(APPEND SSRT_SOURCES trace/color_pyramid.cpp trace/ssr_resolve.cpp trace/ssg
 list(APPEND SSRT_KERNEL_SOURCES trace/ssr_resolve_kernel.cpp trace/ssgi_kernel.cpp)
 list(APPEND SSRT_SOURCES trace/ray_gen.cpp)
 list(APPEND SSRT_KERNEL_SOURCES trace/ray_gen_kernel.cpp)
+list(APPEND SSRT_SOURCES trace/trace_types.cpp trace/march.cpp)
+list(APPEND SSRT_KERNEL_SOURCES trace/march_linear.cpp trace/march_dda.cpp trace/march_hiz.cpp)

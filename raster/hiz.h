@@ -1,0 +1,32 @@
+// The Hi-Z pyramid: min and max view depth over power-of-two footprints, for the Hi-Z
+// marcher (trace/march_hiz.cpp) and anything else that wants conservative depth bounds.
+//
+// Convention: depths are positive view Z as in the G-buffer, and background (viewZ 0, or
+// anything not > 0) is +infinity in both pyramids: a ray is never behind the background.
+// Level 0 is a copy of viewZ with that substitution; level k has size
+// (max(1, ceil(w_{k-1} / 2)), max(1, ceil(h_{k-1} / 2))) and cell (x, y) holds the min (max)
+// of cells (2x..2x+1, 2y..2y+1) of level k-1 that exist (the last column/row of an odd size
+// covers the single leftover texel). So cell (x, y) of level k covers level-0 pixels
+// [x 2^k, min((x + 1) 2^k, w)) x [y 2^k, min((y + 1) 2^k, h)); the last level is 1x1.
+#pragma once
+
+#include <vector>
+
+#include "core/image.h"
+
+namespace ssrt {
+
+struct HiZPyramid {
+    std::vector<PlaneF> minZ, maxZ;  // [level], level 0 = full resolution
+    int levels() const { return int(minZ.size()); }
+};
+
+// Builds every level from the G-buffer's viewZ; reuses the planes when the sizes match.
+// Rows of a level are cut across `threads` workers (0 = every core); min and max are exact,
+// so the result does not depend on the thread count.
+void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads);
+
+// Number of levels for a w x h image: down to 1x1.
+int hiZLevelCount(int width, int height);
+
+}  // namespace ssrt

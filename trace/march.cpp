@@ -1,0 +1,267 @@
+#include "trace/march.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/rng.h"
+#include "core/tiles.h"
+#include "trace/march_kernel.h"
+
+namespace ssrt {
+
+std::string_view marcherName(Marcher marcher) {
+    switch (marcher) {
+        case Marcher::Linear: return "linear";
+        case Marcher::Dda: return "dda";
+        case Marcher::HiZ: return "hiz";
+    }
+    return "?";
+}
+
+std::optional<Marcher> parseMarcher(std::string_view name) {
+    for (Marcher m : {Marcher::Linear, Marcher::Dda, Marcher::HiZ})
+        if (marcherName(m) == name) return m;
+    return std::nullopt;
+}
+
+namespace {
+
+void require(bool ok, const char* field, const std::string& what) {
+    if (!ok) throw std::invalid_argument(std::string("MarchSettings.") + field + ": " + what);
+}
+
+bool finitePositive(float x) { return std::isfinite(x) && x > 0.0f; }
+
+}  // namespace
+
+void MarchSettings::validate() const {
+    require(maxSteps >= 1 && maxSteps <= (1 << 20), "maxSteps", "must be in [1, 2^20]");
+    require(finitePositive(maxDistance), "maxDistance", "must be finite and > 0");
+    require(finitePositive(linearStep), "linearStep", "must be finite and > 0");
+    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness",
+            "must be finite and >= 0");
+    require(std::isfinite(ddaStride) && ddaStride >= 1.0f, "ddaStride",
+            "must be finite and >= 1 (pixels)");
+    require(ddaJitter >= 0.0f && ddaJitter <= 1.0f, "ddaJitter", "must be in [0, 1]");
+    require(refineSteps >= 0 && refineSteps <= 32, "refineSteps", "must be in [0, 32]");
+    require(hizMostDetailedLevel >= 0 && hizMostDetailedLevel < kMaxHiZLevels,
+            "hizMostDetailedLevel", "must be in [0, 15]");
+    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels,
+            "hizStartLevel", "must be in [hizMostDetailedLevel, 15]");
+}
+
+// ---- Statistics -------------------------------------------------------------------------
+
+void MarchStats::add(const MarchStats& o) {
+    rays += o.rays;
+    for (int i = 0; i < kMarchEndCount; ++i) ends[i] += o.ends[i];
+    steps += o.steps;
+    laneSlots += o.laneSlots;
+    laneActive += o.laneActive;
+    if (stepHistogram.size() < o.stepHistogram.size()) stepHistogram.resize(o.stepHistogram.size());
+    for (std::size_t i = 0; i < o.stepHistogram.size(); ++i) stepHistogram[i] += o.stepHistogram[i];
+}
+
+double MarchStats::meanSteps() const { return rays ? double(steps) / double(rays) : 0.0; }
+
+int MarchStats::stepsPercentile(double p) const {
+    uint64_t total = 0;
+    for (uint64_t c : stepHistogram) total += c;
+    if (total == 0) return 0;
+    // The smallest step count s with at least ceil(p total) rays at or below it.
+    const double want = std::clamp(p, 0.0, 1.0) * double(total);
+    uint64_t seen = 0;
+    for (std::size_t s = 0; s < stepHistogram.size(); ++s) {
+        seen += stepHistogram[s];
+        if (double(seen) >= want && seen > 0) return int(s);
+    }
+    return int(stepHistogram.size()) - 1;
+}
+
+int MarchStats::maxStepsTaken() const {
+    for (std::size_t s = stepHistogram.size(); s-- > 0;)
+        if (stepHistogram[s]) return int(s);
+    return 0;
+}
+
+// ---- The pass ---------------------------------------------------------------------------
+
+namespace {
+
+// One tile's packed rays and results (structure of arrays, padded to kMarchPad).
+struct TileScratch {
+    enum { kOx, kOy, kOz, kDx, kDy, kDz, kPx, kPy, kJitter, kHit, kHitX, kHitY, kHitZ, kSteps,
+           kCause, kArrays };
+    std::vector<float> data;
+    std::vector<int> pixel;  // x + y * width of each packed ray
+    std::size_t capacity = 0;
+    float* array(int i) { return data.data() + std::size_t(i) * capacity; }
+};
+
+void checkPlane(const PlaneF* p, int w, int h, const char* name) {
+    if (!p || p->width() != w || p->height() != h)
+        throw std::invalid_argument(std::string("marchRays: ") + name +
+                                    " is missing or does not match the ray batch size");
+}
+
+}  // namespace
+
+MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
+                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
+                     const RayBatch& rays, MarchResult& result, int threads) {
+    settings.validate();
+    const int w = rays.width(), h = rays.height();
+    if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
+    if (camera.width != w || camera.height != h)
+        throw std::invalid_argument("marchRays: camera size does not match the ray batch");
+    if (!(camera.tanHalfX > 0.0f) || !(camera.tanHalfY > 0.0f) || !(camera.nearZ > 0.0f))
+        throw std::invalid_argument("marchRays: camera needs tanHalfX, tanHalfY, nearZ > 0");
+    checkPlane(g.viewZ, w, h, "viewZ");
+    for (const PlaneF* n : g.normal) checkPlane(n, w, h, "normal");
+    if (g.normal[0]->stride() != g.normal[1]->stride() ||
+        g.normal[0]->stride() != g.normal[2]->stride())
+        throw std::invalid_argument("marchRays: the normal planes differ in stride");
+
+    MarchKernelArgs proto{};
+    proto.width = w;
+    proto.height = h;
+    proto.sx = float(w) / (2.0f * camera.tanHalfX);
+    proto.sy = float(h) / (2.0f * camera.tanHalfY);
+    proto.cx = float(w) * 0.5f;
+    proto.cy = float(h) * 0.5f;
+    proto.nearZ = camera.nearZ;
+    std::copy(camera.viewToWorld, camera.viewToWorld + 9, proto.viewToWorld);
+    proto.viewZ = g.viewZ->row(0);
+    proto.zStride = g.viewZ->stride();
+    for (int c = 0; c < 3; ++c) proto.normal[c] = g.normal[c]->row(0);
+    proto.nStride = g.normal[0]->stride();
+    proto.maxSteps = settings.maxSteps;
+    proto.maxDistance = settings.maxDistance;
+    proto.linearStep = settings.linearStep;
+    proto.thickness = settings.thickness;
+    proto.ddaStride = settings.ddaStride;
+    proto.refineSteps = settings.refineSteps;
+    if (marcher == Marcher::HiZ) {
+        if (!hiz || hiz->levels() < 1 || hiz->minZ[0].width() != w || hiz->minZ[0].height() != h)
+            throw std::invalid_argument("marchRays: the hiz marcher needs a pyramid of viewZ");
+        proto.hizLevels = std::min(hiz->levels(), kMaxHiZLevels);
+        for (int L = 0; L < proto.hizLevels; ++L) {
+            const PlaneF& p = hiz->minZ[std::size_t(L)];
+            proto.hizMin[L] = p.row(0);
+            proto.hizStride[L] = p.stride();
+            proto.hizWidth[L] = p.width();
+            proto.hizHeight[L] = p.height();
+        }
+        proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
+        proto.startLevel = std::clamp(settings.hizStartLevel, proto.mostDetailedLevel,
+                                      proto.hizLevels - 1);
+    }
+    auto kernel = marcher == Marcher::Linear ? SSRT_DISPATCH(isa, marchLinearKernel)
+                  : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
+                                             : SSRT_DISPATCH(isa, marchHiZKernel);
+
+    result.ensureSize(w, h);
+    const TileGrid grid(w, h);
+    std::vector<MarchStats> tileStats(std::size_t(grid.count()));
+    const std::size_t histogramSize = std::size_t(settings.maxSteps) + 1;
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect rect = grid.rect(tile);
+        thread_local TileScratch scratch;
+        const std::size_t cap = std::size_t(kTileSize * kTileSize + kMarchPad);
+        if (scratch.capacity != cap) {
+            scratch.capacity = cap;
+            scratch.data.assign(cap * TileScratch::kArrays, 0.0f);
+            scratch.pixel.resize(cap);
+        }
+        // Pack the tile's rays (pdf > 0, finite unit direction), row by row.
+        int n = 0;
+        float* A[TileScratch::kArrays];
+        for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const float* pdf = rays.pdf.row(y);
+            for (int x = rect.x0; x < rect.x1; ++x) {
+                const float dx = rays.dx.at(x, y), dy = rays.dy.at(x, y), dz = rays.dz.at(x, y);
+                const float ox = rays.ox.at(x, y), oy = rays.oy.at(x, y), oz = rays.oz.at(x, y);
+                const bool finite = std::isfinite(dx) && std::isfinite(dy) && std::isfinite(dz) &&
+                                    std::isfinite(ox) && std::isfinite(oy) && std::isfinite(oz);
+                if (!(pdf[x] > 0.0f) || !finite || dx * dx + dy * dy + dz * dz == 0.0f ||
+                    !(-oz > 0.0f))
+                    continue;
+                A[TileScratch::kOx][n] = ox;
+                A[TileScratch::kOy][n] = oy;
+                A[TileScratch::kOz][n] = oz;
+                A[TileScratch::kDx][n] = dx;
+                A[TileScratch::kDy][n] = dy;
+                A[TileScratch::kDz][n] = dz;
+                A[TileScratch::kPx][n] = float(x);
+                A[TileScratch::kPy][n] = float(y);
+                const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
+                A[TileScratch::kJitter][n] =
+                    settings.ddaJitter * randomFloat(pixel, settings.frame, settings.sample, 0);
+                scratch.pixel[std::size_t(n)] = x + y * w;
+                ++n;
+            }
+        }
+        // Pad the last lane group with copies of the first ray (their results are dropped).
+        const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
+        for (int i = n; i < padded; ++i)
+            for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
+        // Everything defaults to "no ray".
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ,
+                              &result.steps})
+                std::fill(p->row(y) + rect.x0, p->row(y) + rect.x1, 0.0f);
+            std::fill(result.cause.row(y) + rect.x0, result.cause.row(y) + rect.x1,
+                      float(int(MarchEnd::NoRay)));
+        }
+        MarchStats& st = tileStats[std::size_t(tile)];
+        st.stepHistogram.assign(histogramSize, 0);
+        if (n == 0) return;
+        MarchKernelArgs args = proto;
+        args.count = n;
+        args.ox = A[TileScratch::kOx];
+        args.oy = A[TileScratch::kOy];
+        args.oz = A[TileScratch::kOz];
+        args.dx = A[TileScratch::kDx];
+        args.dy = A[TileScratch::kDy];
+        args.dz = A[TileScratch::kDz];
+        args.pixelX = A[TileScratch::kPx];
+        args.pixelY = A[TileScratch::kPy];
+        args.jitter = A[TileScratch::kJitter];
+        args.hit = A[TileScratch::kHit];
+        args.hitX = A[TileScratch::kHitX];
+        args.hitY = A[TileScratch::kHitY];
+        args.hitZ = A[TileScratch::kHitZ];
+        args.steps = A[TileScratch::kSteps];
+        args.cause = A[TileScratch::kCause];
+        args.laneSlots = args.laneActive = 0;
+        kernel(args);
+        // Scatter the results and count.
+        st.rays = uint64_t(n);
+        st.laneSlots = args.laneSlots;
+        st.laneActive = args.laneActive;
+        for (int i = 0; i < n; ++i) {
+            const int p = scratch.pixel[std::size_t(i)];
+            const int x = p % w, y = p / w;
+            result.hit.at(x, y) = args.hit[i];
+            result.hitX.at(x, y) = args.hitX[i];
+            result.hitY.at(x, y) = args.hitY[i];
+            result.hitZ.at(x, y) = args.hitZ[i];
+            result.steps.at(x, y) = args.steps[i];
+            result.cause.at(x, y) = args.cause[i];
+            const int cause = int(args.cause[i]);
+            if (cause >= 0 && cause < kMarchEndCount) ++st.ends[cause];
+            const uint64_t s = uint64_t(args.steps[i]);
+            st.steps += s;
+            ++st.stepHistogram[std::min<std::size_t>(std::size_t(s), histogramSize - 1)];
+        }
+    });
+    MarchStats total;
+    total.stepHistogram.assign(histogramSize, 0);
+    for (const MarchStats& s : tileStats) total.add(s);
+    return total;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,86 @@
+// The three screen-space marchers (issue 5): linear (fixed view-space step), DDA
+// (perspective-correct, McGuire & Mara 2014) and Hi-Z traversal (Uludag 2014; AMD FidelityFX
+// SSSR). One entry point marches one ray per pixel of a RayBatch against the G-buffer and
+// writes a MarchResult per pixel plus per-pass statistics. See trace/README.md, "Marchers".
+//
+// Every marcher works per 64x64 tile, packs the tile's rays (pdf > 0) and marches them
+// kWidth at a time (SIMD across rays); a lane's path depends only on its own ray, so the
+// results are the same bits for every ISA and thread count.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "raster/hiz.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+enum class Marcher { Linear, Dda, HiZ };
+
+// "linear", "dda", "hiz".
+std::string_view marcherName(Marcher marcher);
+// The marcher with that name, or nullopt.
+std::optional<Marcher> parseMarcher(std::string_view name);
+
+struct MarchSettings {
+    // Linear and DDA: most steps per ray; Hi-Z: most traversal iterations per ray.
+    int maxSteps = 512;
+    // View-space length (scene units) after which a ray ends (MarchEnd::StepCap).
+    float maxDistance = 30.0f;
+    // Linear: view-space step length (scene units).
+    float linearStep = 0.05f;
+    // Depth (view Z, scene units) a ray may be behind the depth buffer and still hit it. The
+    // linear marcher adds the ray's depth change over one step (linearStep |dir.z|), so the
+    // threshold grows with the step; DDA tests the ray's depth interval of one step against
+    // [z, z + thickness]; Hi-Z validates its hit with it.
+    float thickness = 0.1f;
+    // DDA: pixels per step along the major axis (>= 1).
+    float ddaStride = 2.0f;
+    // DDA: the first step is offset by ddaJitter * u strides, u = randomFloat(pixel, frame,
+    // sample, 0) in [0, 1) (core/rng.h); 0 turns jitter off.
+    float ddaJitter = 1.0f;
+    // DDA: binary search steps between the last two samples once a hit is found.
+    int refineSteps = 4;
+    // Hi-Z: finest level the traversal descends to (0 = full resolution).
+    int hizMostDetailedLevel = 0;
+    // Hi-Z: level the traversal starts at (>= hizMostDetailedLevel; clamped to the pyramid).
+    int hizStartLevel = 0;
+    uint32_t frame = 0, sample = 0;  // for the DDA jitter
+
+    // Throws std::invalid_argument naming the first bad field.
+    void validate() const;
+};
+
+struct MarchStats {
+    uint64_t rays = 0;                       // rays traced (pdf > 0)
+    uint64_t ends[kMarchEndCount] = {};      // per MarchEnd (ends[Hit] = hits); NoRay not counted
+    uint64_t steps = 0;                      // sum of steps over rays
+    uint64_t laneSlots = 0, laneActive = 0;  // lanes issued per step vs lanes still marching
+    std::vector<uint64_t> stepHistogram;     // rays by steps taken (index = steps, clamped to
+                                             // maxSteps)
+
+    void add(const MarchStats& other);  // combine (tile order)
+    double meanSteps() const;
+    int stepsPercentile(double p) const;  // p in [0, 1], from the histogram
+    int maxStepsTaken() const;
+    double laneUtilisation() const { return laneSlots ? double(laneActive) / double(laneSlots) : 0; }
+};
+
+struct MarchGBuffer {
+    const PlaneF* viewZ = nullptr;
+    const PlaneF* normal[3] = {nullptr, nullptr, nullptr};  // world-space normals
+};
+
+// Marches every pixel's ray of `rays`; writes every pixel of `result` (ensureSize'd here).
+// `hiz` must be built from g.viewZ when marcher == HiZ (may be null otherwise). Throws
+// std::invalid_argument on bad settings or mismatched sizes.
+MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
+                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
+                     const RayBatch& rays, MarchResult& result, int threads);
+
+}  // namespace ssrt

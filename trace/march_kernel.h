@@ -1,0 +1,53 @@
+// The marcher kernels, one copy per ISA (trace/march_linear.cpp, march_dda.cpp,
+// march_hiz.cpp): each marches a packed list of rays (one tile's) kWidth at a time and
+// writes one result per ray. Plain pointers and values only (no GLM, no xsimd).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+inline constexpr int kMaxHiZLevels = 16;
+// Packed ray arrays are padded to a multiple of this (the widest lane group).
+inline constexpr int kMarchPad = 16;
+
+struct MarchKernelArgs {
+    // Frame and camera: a view point (x, y, -z) projects to pixel
+    // (cx + x sx / z, cy - y sy / z); sx = width / (2 tanHalfX), cx = width / 2.
+    int width, height;
+    float sx, sy, cx, cy;
+    float nearZ;
+    float viewToWorld[9];  // column-major rotation
+    // G-buffer.
+    const float* viewZ;
+    std::size_t zStride;
+    const float* normal[3];
+    std::size_t nStride;
+    // Hi-Z min pyramid (levels of minZ, background +inf).
+    int hizLevels;
+    const float* hizMin[kMaxHiZLevels];
+    std::size_t hizStride[kMaxHiZLevels];
+    int hizWidth[kMaxHiZLevels], hizHeight[kMaxHiZLevels];
+    // Settings.
+    int maxSteps;
+    float maxDistance, linearStep, thickness, ddaStride;
+    int refineSteps, mostDetailedLevel, startLevel;
+    // Packed rays: count, then arrays of at least count rounded up to kMarchPad.
+    int count;
+    const float *ox, *oy, *oz, *dx, *dy, *dz;
+    const float *pixelX, *pixelY;  // the ray's own pixel (integers as floats)
+    const float* jitter;           // DDA first-step offset in strides, [0, 1)
+    // Outputs per packed ray (same padding).
+    float *hit, *hitX, *hitY, *hitZ, *steps, *cause;
+    // Outputs: lane slots issued and lanes active, summed over the steps.
+    uint64_t laneSlots, laneActive;
+};
+
+SSRT_DECLARE_KERNEL(void, marchLinearKernel, (MarchKernelArgs & args))
+SSRT_DECLARE_KERNEL(void, marchDdaKernel, (MarchKernelArgs & args))
+SSRT_DECLARE_KERNEL(void, marchHiZKernel, (MarchKernelArgs & args))
+
+}  // namespace ssrt
