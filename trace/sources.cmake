@@ -1,7 +1,4 @@
-list(APPEND SSRT_SOURCES trace/trace_types.cpp)
-list(APPEND SSRT_SOURCES trace/color_pyramid.cpp trace/ssr_resolve.cpp trace/ssgi.cpp)
-list(APPEND SSRT_KERNEL_SOURCES trace/ssr_resolve_kernel.cpp trace/ssgi_kernel.cpp)
-list(APPEND SSRT_SOURCES trace/ray_gen.cpp)
-list(APPEND SSRT_KERNEL_SOURCES trace/ray_gen_kernel.cpp)
-list(APPEND SSRT_SOURCES trace/trace_types.cpp trace/march.cpp)
-list(APPEND SSRT_KERNEL_SOURCES trace/march_linear.cpp trace/march_dda.cpp trace/march_hiz.cpp)
+list(APPEND SSRT_SOURCES trace/trace_types.cpp trace/ray_gen.cpp trace/march.cpp
+     trace/color_pyramid.cpp trace/ssr_resolve.cpp trace/ssgi.cpp)
+list(APPEND SSRT_KERNEL_SOURCES trace/ray_gen_kernel.cpp trace/march_linear.cpp
+     trace/march_dda.cpp trace/march_hiz.cpp trace/ssr_resolve_kernel.cpp trace/ssgi_kernel.cpp)
