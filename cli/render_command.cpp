@@ -65,6 +65,15 @@ float parsePositive(const std::string& option, const std::string& text) {
     return value;
 }
 
+// One of a fixed set of names, through the enum's own parser.
+template <class Parse>
+auto parseChoice(const std::string& option, const std::string& text, Parse parse,
+                 const std::string& choices) {
+    const auto value = parse(text);
+    if (!value) badValue(option, text, "one of " + choices);
+    return *value;
+}
+
 std::string defaultSceneName() {
     const auto& scenes = builtinScenes();
     return scenes.empty() ? "cornell" : scenes.front().name;
@@ -155,6 +164,88 @@ constexpr int kValueWidth = 14;
 // ---------------------------------------------------------------------------------------
 // Options
 
+namespace {
+
+const std::string kSsrMethods = "mirror, ggx_ndf, vndf_ellipsoid, vndf_spherical_caps, vndf_bounded";
+const std::string kMarchers = "linear, dda, hiz";
+inline constexpr long long kMaxMarchSteps = 65536;
+
+std::optional<SsrResolveMode> parseResolveMode(std::string_view s) {
+    if (s == "mip") return SsrResolveMode::Mip;
+    if (s == "reuse") return SsrResolveMode::Reuse;
+    return std::nullopt;
+}
+std::optional<HitRadiance> parseHitRadiance(std::string_view s) {
+    if (s == "current") return HitRadiance::Current;
+    if (s == "reprojected") return HitRadiance::Reprojected;
+    return std::nullopt;
+}
+
+void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
+    const TraceSettings d;
+    const auto add = [&](const std::string& flags, std::optional<std::string>& value,
+                         const std::string& type, const std::string& help,
+                         const std::string& defaultText) {
+        cmd.add_option_function<std::string>(
+               flags, [&value](const std::string& v) { value = v; }, help)
+            ->type_name(type)
+            ->default_str(defaultText)
+            ->group("Screen-space tracing");
+    };
+    cmd.add_flag("--no-ssr", o.noSsr, "Skip screen-space reflections (the environment's split-sum "
+                                      "light stands in)")
+        ->group("Screen-space tracing");
+    cmd.add_flag("--no-ssgi", o.noSsgi,
+                 "Skip screen-space one-bounce diffuse (the environment's irradiance stands in)")
+        ->group("Screen-space tracing");
+    add("--ssr-method", o.ssrMethod, "NAME", "How SSR rays sample the GGX lobe: " + kSsrMethods,
+        std::string(ssrMethodName(d.ssrMethod)));
+    add("--marcher", o.marcher, "NAME", "Depth-buffer marcher for SSR and SSGI rays: " + kMarchers,
+        std::string(marcherName(d.marcher)));
+    add("--ssr-spp", o.ssrSpp, "INT",
+        "SSR rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
+        std::to_string(d.ssrSpp));
+    add("--ssgi-spp", o.ssgiSpp, "INT",
+        "SSGI rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
+        std::to_string(d.ssgiSpp));
+    add("--max-steps", o.maxSteps, "INT",
+        "March steps per ray (Hi-Z: iterations), 1 to " + std::to_string(kMaxMarchSteps),
+        std::to_string(d.march.maxSteps));
+    std::ostringstream thickness;
+    thickness << d.march.thickness;
+    add("--thickness", o.thickness, "FLOAT",
+        "Depth a surface is assumed to have behind the depth buffer (view-space units), > 0",
+        thickness.str());
+    add("--ssr-resolve", o.ssrResolve, "MODE",
+        "SSR resolve: reuse (3x3 neighbours' hits, ratio estimator) or mip (colour pyramid at "
+        "mip = roughness x max mip)",
+        d.resolve.mode == SsrResolveMode::Mip ? "mip" : "reuse");
+    add("--hit-radiance", o.hitRadiance, "SOURCE",
+        "Radiance at a hit: current (this frame's direct light) or reprojected (the previous "
+        "frame's final colour through the motion vectors; a sequence's first frame uses current)",
+        d.resolve.radiance == HitRadiance::Current ? "current" : "reprojected");
+}
+
+void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
+    if (o.noSsr) t.ssr = false;
+    if (o.noSsgi) t.ssgi = false;
+    if (o.ssrMethod)
+        t.ssrMethod = parseChoice("--ssr-method", *o.ssrMethod, parseSsrMethod, kSsrMethods);
+    if (o.marcher) t.marcher = parseChoice("--marcher", *o.marcher, parseMarcher, kMarchers);
+    if (o.ssrSpp) t.ssrSpp = int(parseInteger("--ssr-spp", *o.ssrSpp, 1, TraceSettings::kMaxSpp));
+    if (o.ssgiSpp)
+        t.ssgiSpp = int(parseInteger("--ssgi-spp", *o.ssgiSpp, 1, TraceSettings::kMaxSpp));
+    if (o.maxSteps) t.march.maxSteps = int(parseInteger("--max-steps", *o.maxSteps, 1, kMaxMarchSteps));
+    if (o.thickness) t.march.thickness = parsePositive("--thickness", *o.thickness);
+    if (o.ssrResolve)
+        t.resolve.mode = parseChoice("--ssr-resolve", *o.ssrResolve, parseResolveMode, "mip, reuse");
+    if (o.hitRadiance)
+        t.resolve.radiance =
+            parseChoice("--hit-radiance", *o.hitRadiance, parseHitRadiance, "current, reprojected");
+}
+
+}  // namespace
+
 RenderOptions::RenderOptions() {
     const RenderSettings d;
     threads = std::to_string(d.threads);
@@ -221,7 +312,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
         "out_0001.png, ...)");
-    cmd->add_flag("--stats", o.stats, "Print per-pass times and rasterizer counters (per frame)");
+    addTraceOptions(*cmd, o);
+    cmd->add_flag("--stats", o.stats,
+                  "Print per-pass times, rasterizer counters and the screen-space march's "
+                  "counters (per frame)");
     cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
     return cmd;
 }
@@ -241,6 +335,7 @@ RenderSettings settingsFrom(const RenderOptions& o, const RenderSettings& base) 
             int(parseInteger("--shadow-map-size", *o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
     if (o.exposure) s.exposure = parsePositive("--exposure", *o.exposure);
     if (o.frame) s.frame = uint32_t(parseInteger("--frame", *o.frame, 0, kMaxFrame));
+    traceSettingsFrom(o, s.trace);
     s.validate();
     return s;
 }
@@ -339,6 +434,49 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     return kExitOk;
 }
 
+namespace {
+
+// The screen-space passes side by side: rays, how they ended, steps per ray, lane use.
+void printTraceStats(std::ostream& out, const FrameStats& stats) {
+    const TraceStats* passes[2] = {&stats.ssr, &stats.ssgi};
+    const auto row = [&](const std::string& label, auto value) {
+        out << "  " << std::left << std::setw(kLabelWidth) << label << std::right;
+        for (const TraceStats* t : passes) {
+            out << std::setw(kValueWidth);
+            if (t->ran) out << value(*t);
+            else out << "-";
+        }
+        out << "\n";
+    };
+    const auto share = [](uint64_t part, uint64_t whole) {
+        return whole ? 100.0 * double(part) / double(whole) : 0.0;
+    };
+    out << "\n" << std::left << std::setw(kLabelWidth + 2) << "trace counter" << std::right
+        << std::setw(kValueWidth) << "ssr" << std::setw(kValueWidth) << "ssgi" << "\n";
+    row("rays per pixel", [](const TraceStats& t) { return t.spp; });
+    row("surface pixels", [](const TraceStats& t) { return t.rays.pixels; });
+    row("rays traced", [](const TraceStats& t) { return t.march.rays; });
+    row("below surface", [](const TraceStats& t) { return t.rays.belowSurface; });
+    for (int e = 0; e < kMarchEndCount; ++e) {
+        if (MarchEnd(e) == MarchEnd::NoRay) continue;
+        const std::string label = MarchEnd(e) == MarchEnd::Hit
+                                      ? std::string("hits")
+                                      : "miss: " + std::string(marchEndName(MarchEnd(e)));
+        row(label, [e](const TraceStats& t) { return t.march.ends[e]; });
+    }
+    out << std::fixed << std::setprecision(2);
+    row("steps per ray, mean", [](const TraceStats& t) { return t.march.meanSteps(); });
+    row("steps per ray, p50", [](const TraceStats& t) { return t.march.stepsPercentile(0.5); });
+    row("steps per ray, p95", [](const TraceStats& t) { return t.march.stepsPercentile(0.95); });
+    row("steps per ray, max", [](const TraceStats& t) { return t.march.maxStepsTaken(); });
+    row("steps in all", [](const TraceStats& t) { return t.march.steps; });
+    row("lanes active %", [&](const TraceStats& t) {
+        return share(t.march.laneActive, t.march.laneSlots);
+    });
+}
+
+}  // namespace
+
 void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
     std::ios saved(nullptr);  // the caller's stream formatting, restored at the end
     saved.copyfmt(out);
@@ -366,6 +504,7 @@ void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
         row(c.label) << std::setw(kValueWidth) << stats.visibility.*c.field
                      << std::setw(kValueWidth) << stats.shadow.*c.field << "\n";
     }
+    if (stats.ssr.ran || stats.ssgi.ran) printTraceStats(out, stats);
     out.copyfmt(saved);
 }
 

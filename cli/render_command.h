@@ -23,6 +23,10 @@ struct RenderOptions {
     std::optional<std::string> scene;  // a built-in scene or a .gltf/.glb file
     std::optional<std::string> width, height, shadowMapSize, exposure, frame, frames;
     std::string threads, isa;
+    // The screen-space passes (RenderSettings::trace); unset = the default.
+    std::optional<std::string> ssrMethod, marcher, ssrSpp, ssgiSpp, maxSteps, thickness,
+        ssrResolve, hitRadiance;
+    bool noSsr = false, noSsgi = false;
     std::string output = "ssrt.png";
     bool stats = false;
     bool quiet = false;
@@ -50,7 +54,8 @@ std::string sequenceFileName(const std::string& output, int index, int count);
 // reportErrors).
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
-// The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass.
+// The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for
+// the screen-space passes rays, misses by cause, steps per ray and SIMD lane utilisation.
 // `wallMs` is the whole render call as the CLI timed it.
 void printStats(std::ostream& out, const FrameStats& stats, double wallMs);
 

@@ -15,6 +15,7 @@
 #include "raster/shadow_map.h"
 #include "renderer/sky_lighting.h"
 #include "renderer/texture_pass.h"
+#include "renderer/trace_pass.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
@@ -168,15 +169,16 @@ const char* const kPlaneNames[kPlaneCount] = {
 
 // Gives the frame its planes, keeping the existing ones when names and sizes match. Every
 // pixel of every plane is written by a pass, so none is cleared here.
-void ensurePlanes(Frame& f, int w, int h, bool idPlanes) {
-    const int count = idPlanes ? kPlaneCount : kInstanceId;
-    bool same = int(f.planes.size()) == count;
-    for (int i = 0; same && i < count; ++i)
-        same = f.planes[i].name == kPlaneNames[i] && f.planes[i].plane.width() == w &&
+void ensurePlanes(Frame& f, int w, int h, bool idPlanes, const TraceSettings& trace) {
+    std::vector<const char*> names(kPlaneNames, kPlaneNames + (idPlanes ? kPlaneCount : kInstanceId));
+    for (const char* n : tracePlaneNames(trace)) names.push_back(n);
+    bool same = f.planes.size() == names.size();
+    for (std::size_t i = 0; same && i < names.size(); ++i)
+        same = f.planes[i].name == names[i] && f.planes[i].plane.width() == w &&
                f.planes[i].plane.height() == h;
     if (same) return;
     f.planes.clear();
-    for (int i = 0; i < count; ++i) f.planes.push_back({kPlaneNames[i], PlaneF(w, h, kUninitialized)});
+    for (const char* n : names) f.planes.push_back({n, PlaneF(w, h, kUninitialized)});
 }
 
 void writeIdPlanes(const std::vector<ResolveTriangle>& tris, const PlaneU32& ids, PlaneF& instance,
@@ -208,6 +210,21 @@ void RenderSettings::validate() const {
                  "shadow slope bias must be >= 0");
     requireRange(pcfRadius >= 0 && pcfRadius <= 8, "PCF radius must be between 0 and 8");
     requireRange(std::isfinite(exposure) && exposure > 0.0f, "exposure must be finite and > 0");
+    trace.validate();
+}
+
+void TraceSettings::validate() const {
+    requireRange(ssrSpp >= 1 && ssrSpp <= kMaxSpp,
+                 "SSR samples per pixel must be between 1 and " + std::to_string(kMaxSpp));
+    requireRange(ssgiSpp >= 1 && ssgiSpp <= kMaxSpp,
+                 "SSGI samples per pixel must be between 1 and " + std::to_string(kMaxSpp));
+    march.validate();
+    requireRange(std::isfinite(resolve.edgeFadeLength) && resolve.edgeFadeLength > 0.0f &&
+                     resolve.edgeFadeLength <= 0.5f,
+                 "SSR edge fade length must be in (0, 0.5]");
+    requireRange(std::isfinite(resolve.roughnessFadeStart) && std::isfinite(resolve.roughnessFadeEnd) &&
+                     resolve.roughnessFadeStart >= 0.0f && resolve.roughnessFadeEnd <= 1.0f,
+                 "SSR roughness fade must lie in [0, 1]");
 }
 
 const PlaneF& Frame::plane(std::string_view name) const {
@@ -278,7 +295,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     t0 = Clock::now();
     const bool textured = anyTextured(scene);
     const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, textured, threads);
-    ensurePlanes(frame, w, h, s.idPlanes);
+    ensurePlanes(frame, w, h, s.idPlanes, s.trace);
     PlaneF* gplanes[kResolveOutputs];
     for (int i = 0; i < kResolveOutputs; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
     const TileGrid grid(w, h);
@@ -391,9 +408,32 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     da.exposure = s.exposure;
     for (int i = 0; i < 7; ++i) da.out[i] = frame.planes[kColorR + i].plane.row(0);
     da.outStride = frame.planes[kColorR].plane.stride();
+    // With the screen-space passes on, the direct pass also hands out its parts for the
+    // composite (shading/direct_kernel.h).
+    if (s.trace.any()) {
+        float** parts[5] = {da.direct, da.emission, da.envDiffuse, da.envSpecular, da.specWeight};
+        for (int i = 0; i < 15; ++i) {
+            PlaneF& p = frame.scratch.directParts[i];
+            p.ensureSize(w, h);
+            if (p.stride() != da.outStride) throw std::logic_error("direct part plane stride");
+            parts[i / 3][i % 3] = p.row(0);
+        }
+    }
     const auto shade = SSRT_DISPATCH(isa, shadeTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });
     pass("shading", t0);
+
+    if (s.trace.any()) {
+        TraceCamera tc;
+        tc.width = w;
+        tc.height = h;
+        tc.tanHalfX = ra.tanHalfX;
+        tc.tanHalfY = ra.tanHalfY;
+        tc.nearZ = camera.nearZ;
+        tc.farZ = camera.farZ;
+        std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
+        runTracePasses(s, isa, tc, da, frame);
+    }
 
 }
 

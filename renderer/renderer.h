@@ -13,8 +13,32 @@
 #include "raster/raster_stats.h"
 #include "raster/shadow_map.h"
 #include "scenes/scene.h"
+#include "raster/hiz.h"
+#include "trace/color_pyramid.h"
+#include "trace/march.h"
+#include "trace/ray_gen.h"
+#include "trace/ssr_resolve.h"
+#include "trace/trace_types.h"
 
 namespace ssrt {
+
+// The screen-space passes: specular reflections (SSR) and one-bounce diffuse (SSGI), each
+// `spp` rays per pixel marched through the depth buffer, resolved, and composited over the
+// direct light. With both off the frame is the direct pass alone (as before issue 5).
+struct TraceSettings {
+    bool ssr = true;
+    bool ssgi = true;
+    SsrMethod ssrMethod = SsrMethod::VndfBounded;  // how SSR rays sample the GGX lobe
+    Marcher marcher = Marcher::HiZ;                // used by both passes
+    int ssrSpp = 1;                                // rays per pixel, 1 to kMaxSpp
+    int ssgiSpp = 1;
+    MarchSettings march;          // its frame and sample are set per pass by the renderer
+    SsrResolveSettings resolve;   // hit radiance source, fades, mip or ray-reuse mode
+
+    static constexpr int kMaxSpp = 64;
+    bool any() const { return ssr || ssgi; }
+    void validate() const;  // throws std::invalid_argument naming the field
+};
 
 struct RenderSettings {
     int width = 1280;
@@ -28,6 +52,7 @@ struct RenderSettings {
     float exposure = 1.0f;        // scale on linear radiance before the tone map
     uint32_t frame = 0;           // frame index (feeds the counter-based RNG)
     bool idPlanes = true;         // also hand out instanceId and triangleId float planes
+    TraceSettings trace;          // SSR and SSGI (on by default)
 
     // Throws std::invalid_argument with a one-line message naming the bad field.
     void validate() const;
@@ -41,8 +66,17 @@ struct PassTime {
     double ms = 0.0;
 };
 
+// What one screen-space pass did, over all its samples.
+struct TraceStats {
+    bool ran = false;
+    int spp = 0;
+    RayGenStats rays;
+    MarchStats march;
+};
+
 struct FrameStats {
     std::vector<PassTime> passes;
+    TraceStats ssr, ssgi;
     RasterStats visibility;  // camera pass
     RasterStats shadow;      // light pass
     Isa isa = Isa::Scalar;
@@ -60,6 +94,14 @@ struct Frame {
         VisibilityBuffer visibility;
         ShadowMap shadow;
         PlaneF uv[6];  // UV and its screen derivatives, for textured scenes
+        // The screen-space passes (issue 5).
+        HiZPyramid hiz;
+        RayBatch rays;
+        MarchResult march;
+        ColorPyramid colorPyramid;
+        PlaneF directParts[15];   // direct, emission, envDiffuse, envSpecular, specWeight (RGB each)
+        PlaneF previousColor[3];  // last frame's final colour, for reprojected SSR hits
+        bool hasPrevious = false;
     } scratch;
 
     // The plane called `name`; throws std::out_of_range if there is none.
@@ -77,7 +119,12 @@ public:
     // mapped, sRGB encoded, in [0, 1]), shadow (light visibility, 0..1), the G-buffer
     // viewZ, normal.{X,Y,Z}, albedo.{R,G,B}, metallic, roughness, materialId, motion.{X,Y}
     // (previous minus current position, pixels), and with idPlanes instanceId and
-    // triangleId. Background pixels: viewZ 0, ids -1, motion 0.
+    // triangleId. Background pixels: viewZ 0, ids -1, motion 0. With trace.ssr: ssr.{R,G,B}
+    // (reflected radiance, before the BRDF factor), ssrOpacity (0..1: the share of SSR over
+    // the environment), ssrHit (share of the pixel's rays that hit), ssrHitDistance (view-space
+    // distance to the hit, mean over hits, 0 without one), ssrSteps (mean march steps: the
+    // heat map); with trace.ssgi: ssgi.{R,G,B} (incoming diffuse radiance), ssgiHit,
+    // ssgiSteps. color and display then hold the composite.
     Frame render(const Scene& scene, const Camera& camera, const Camera& previousCamera) const;
     Frame render(const Scene& scene) const {
         return render(scene, scene.camera, scene.previousCamera);

@@ -94,7 +94,13 @@ TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
              "--threads INT=" + std::to_string(d.threads), "--isa ISA=auto",
              "--shadow-map-size INT=" + std::to_string(d.shadowMapSize), "--exposure FLOAT=1",
              "--frame INT=" + std::to_string(d.frame), "--output FILE=ssrt.png",
-             "--scene NAME=" + builtinScenes().front().name, "--stats", "--quiet"}) {
+             "--scene NAME=" + builtinScenes().front().name, "--stats", "--quiet",
+             "--marcher NAME=" + std::string(marcherName(d.trace.marcher)),
+             "--ssr-method NAME=" + std::string(ssrMethodName(d.trace.ssrMethod)),
+             "--ssr-spp INT=" + std::to_string(d.trace.ssrSpp),
+             "--ssgi-spp INT=" + std::to_string(d.trace.ssgiSpp),
+             "--max-steps INT=" + std::to_string(d.trace.march.maxSteps), "--no-ssr",
+             "--no-ssgi", "--ssr-resolve MODE=reuse", "--hit-radiance SOURCE=current"}) {
         CAPTURE(part);
         CHECK(contains(help.out, part));
     }
@@ -127,7 +133,15 @@ TEST_CASE("cli: every bad number is one error line naming the option and value, 
         {"--shadow-map-size", {"8", "9000"}},
         {"--frame", {"-1", "4294967296"}},
         {"--isa", {"avx9"}},
-        {"--scene", {"nosuch"}}};
+        {"--scene", {"nosuch"}},
+        {"--marcher", {"bvh", "HIZ"}},
+        {"--ssr-method", {"phong"}},
+        {"--ssr-spp", {"0", "65"}},
+        {"--ssgi-spp", {"-1", "x"}},
+        {"--max-steps", {"0", "65537"}},
+        {"--thickness", {"0", "nan", "-0.1"}},
+        {"--ssr-resolve", {"blur"}},
+        {"--hit-radiance", {"previous"}}};
     for (const auto& [option, values] : bad) {
         for (const std::string& value : values) {
             CAPTURE(option);
@@ -266,6 +280,30 @@ TEST_CASE("cli: render writes the file, reports progress and stats") {
     CHECK(r.err.empty());
     CHECK(r.out.empty());
     CHECK(fs::exists(dir.file("quiet.png")));
+}
+
+TEST_CASE("cli: the screen-space passes write their layers and counters, and can be turned off") {
+    TempDir dir;
+    const std::string path = dir.file("trace.exr");
+    Result r = run({"render", "--width", "48", "--height", "32", "--threads", "1", "--marcher",
+                    "dda", "--ssr-method", "ggx_ndf", "--ssr-spp", "2", "--ssr-resolve", "mip",
+                    "-o", path, "--stats", "-q"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    for (const char* part : {"ssr march", "ssgi march", "composite", "trace counter",
+                             "miss: left_screen", "steps per ray, p95", "lanes active %"})
+        CHECK(contains(r.out, part));
+    auto channels = readChannelNames(path);
+    for (const char* name : {"ssr.R", "ssrOpacity", "ssrHit", "ssrHitDistance", "ssrSteps",
+                             "ssgi.G", "ssgiHit", "ssgiSteps"})
+        CHECK(std::find(channels.begin(), channels.end(), name) != channels.end());
+
+    r = run({"render", "--width", "48", "--height", "32", "--no-ssr", "--no-ssgi", "-o", path,
+             "--stats", "-q"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_FALSE(contains(r.out, "trace counter"));
+    channels = readChannelNames(path);
+    CHECK(std::find(channels.begin(), channels.end(), "ssr.R") == channels.end());
+    CHECK(std::find(channels.begin(), channels.end(), "ssgi.R") == channels.end());
 }
 
 #else

@@ -223,14 +223,24 @@ TEST_CASE("cli shot: a 3-frame sequence writes 3 files whose motion follows the 
 
 TEST_CASE("cli shot: frames without a path repeat the still camera") {
     TempDir dir;
-    const Result r = run({"render", "--frames", "2", "--width", "16", "--height", "16",
-                          "--shadow-map-size", "64", "-o", dir.file("still.exr"), "-q"});
+    // Without the screen-space passes a frame has no random numbers: the frames are equal.
+    Result r = run({"render", "--frames", "2", "--width", "16", "--height", "16",
+                    "--shadow-map-size", "64", "--no-ssr", "--no-ssgi", "-o",
+                    dir.file("still.exr"), "-q"});
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK(r.err.empty());
     CHECK(dir.listing() == std::vector<std::string>{"still_0000.exr", "still_0001.exr"});
     int w = 0, h = 0;
     CHECK(readChannel(dir.file("still_0000.exr"), "color.R", w, h) ==
           readChannel(dir.file("still_0001.exr"), "color.R", w, h));
+    // With them, each frame index draws its own rays: the G-buffer repeats, the colour not.
+    r = run({"render", "--frames", "2", "--width", "16", "--height", "16", "--shadow-map-size",
+             "64", "-o", dir.file("traced.exr"), "-q"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK(readChannel(dir.file("traced_0000.exr"), "viewZ", w, h) ==
+          readChannel(dir.file("traced_0001.exr"), "viewZ", w, h));
+    CHECK(readChannel(dir.file("traced_0000.exr"), "ssgi.R", w, h) !=
+          readChannel(dir.file("traced_0001.exr"), "ssgi.R", w, h));
     const std::vector<float> motion = readChannel(dir.file("still_0001.exr"), "motion.X", w, h);
     CHECK(std::all_of(motion.begin(), motion.end(), [](float m) { return std::fabs(m) < 1e-3f; }));
 }

@@ -1,0 +1,49 @@
+// The whole frame at 1920x1080 on 2 threads: raster, direct light, one SSR and one SSGI ray
+// per pixel (Hi-Z marcher by default), resolve and composite; each pass's mean time is a
+// counter beside the total, so one run gives the breakdown.
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <string>
+
+#include "renderer/renderer.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+
+namespace {
+
+const char* const kScenes[] = {"cornell", "corridor", "spheres"};
+const Marcher kMarchers[] = {Marcher::HiZ, Marcher::Dda, Marcher::Linear};
+
+// Args: scene index, marcher index, threads.
+void BM_Frame(benchmark::State& state) {
+    const Scene scene = makeBuiltinScene(kScenes[state.range(0)]);
+    RenderSettings rs;
+    rs.width = 1920;
+    rs.height = 1080;
+    rs.threads = int(state.range(2));
+    rs.trace.marcher = kMarchers[state.range(1)];
+    const Renderer r(rs);
+    Frame f;  // reused: no allocation after the first frame
+    r.render(scene, scene.camera, scene.previousCamera, f);
+    std::map<std::string, double> passMs;
+    for (auto _ : state) {
+        r.render(scene, scene.camera, scene.previousCamera, f);
+        for (const PassTime& p : f.stats.passes) passMs[p.name] += p.ms;
+    }
+    for (const auto& [name, ms] : passMs)
+        state.counters[name + "_ms"] = ms / double(state.iterations());
+    state.counters["ssr_steps_per_ray"] = f.stats.ssr.march.meanSteps();
+    state.counters["ssgi_steps_per_ray"] = f.stats.ssgi.march.meanSteps();
+    state.SetLabel(std::string(kScenes[state.range(0)]) + " " +
+                   std::string(marcherName(rs.trace.marcher)));
+}
+
+}  // namespace
+
+BENCHMARK(BM_Frame)
+    ->ArgsProduct({{0, 1, 2}, {0, 1, 2}, {2}})
+    ->ArgNames({"scene", "marcher", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

@@ -1,0 +1,282 @@
+#include "renderer/trace_pass.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "core/tiles.h"
+#include "shading/composite.h"
+#include "trace/ssgi.h"
+
+namespace ssrt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+PlaneF& planeOf(Frame& f, std::string_view name) {
+    for (NamedPlane& p : f.planes)
+        if (p.name == name) return p.plane;
+    throw std::logic_error("frame has no plane '" + std::string(name) + "'");
+}
+
+// Per-pixel statistics of one pass over its samples: rays that hit, mean steps and (SSR) the
+// mean view-space distance to the hits. Sums are kept in the output planes while samples
+// run (in sample order, per pixel: no dependence on tiles or threads) and divided at the end.
+struct HitPlanes {
+    PlaneF* hit = nullptr;
+    PlaneF* steps = nullptr;
+    PlaneF* distance = nullptr;  // optional
+};
+
+void accumulateHits(const TraceCamera& cam, const RayBatch& rays, const MarchResult& m,
+                    const HitPlanes& out, bool first, int threads) {
+    const TileGrid grid(cam.width, cam.height);
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect r = grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const float hit = m.hit.at(x, y);
+                float d = 0.0f;
+                if (out.distance && hit > 0.0f) {
+                    // Hit point in view space from its pixel position and depth.
+                    const float z = m.hitZ.at(x, y);
+                    const float px = (2.0f * m.hitX.at(x, y) / float(cam.width) - 1.0f) * cam.tanHalfX * z;
+                    const float py = (1.0f - 2.0f * m.hitY.at(x, y) / float(cam.height)) * cam.tanHalfY * z;
+                    const float dx = px - rays.ox.at(x, y), dy = py - rays.oy.at(x, y),
+                                dz = -z - rays.oz.at(x, y);
+                    d = std::sqrt(dx * dx + dy * dy + dz * dz);
+                }
+                const float steps = m.steps.at(x, y);
+                if (first) {
+                    out.hit->at(x, y) = hit;
+                    out.steps->at(x, y) = steps;
+                    if (out.distance) out.distance->at(x, y) = d;
+                } else {
+                    out.hit->at(x, y) += hit;
+                    out.steps->at(x, y) += steps;
+                    if (out.distance) out.distance->at(x, y) += d;
+                }
+            }
+    });
+}
+
+void finishHits(const HitPlanes& out, int spp, int width, int height, int threads) {
+    const TileGrid grid(width, height);
+    const float inv = 1.0f / float(spp);
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect r = grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const float hits = out.hit->at(x, y);
+                if (out.distance)
+                    out.distance->at(x, y) = hits > 0.0f ? out.distance->at(x, y) / hits : 0.0f;
+                out.hit->at(x, y) = hits * inv;
+                out.steps->at(x, y) *= inv;
+            }
+    });
+}
+
+}  // namespace
+
+std::vector<const char*> tracePlaneNames(const TraceSettings& s) {
+    std::vector<const char*> names;
+    if (s.ssr)
+        names.insert(names.end(), {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity", "ssrHit",
+                                   "ssrHitDistance", "ssrSteps"});
+    if (s.ssgi) names.insert(names.end(), {"ssgi.R", "ssgi.G", "ssgi.B", "ssgiHit", "ssgiSteps"});
+    return names;
+}
+
+void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& camera,
+                    const DirectArgs& direct, Frame& frame) {
+    const TraceSettings& ts = settings.trace;
+    const int threads = settings.threads;
+    const int w = camera.width, h = camera.height;
+    auto pass = [&](const char* name, Clock::time_point t0) {
+        frame.stats.passes.push_back({name, msSince(t0)});
+    };
+    Frame::Scratch& sc = frame.scratch;
+    const PlaneF& viewZ = frame.plane("viewZ");
+    const PlaneF* normal[3] = {&frame.plane("normal.X"), &frame.plane("normal.Y"),
+                               &frame.plane("normal.Z")};
+    const PlaneF* albedo[3] = {&frame.plane("albedo.R"), &frame.plane("albedo.G"),
+                               &frame.plane("albedo.B")};
+    const PlaneF* color[3] = {&frame.plane("color.R"), &frame.plane("color.G"),
+                              &frame.plane("color.B")};
+    const PlaneF* parts = sc.directParts;  // direct, emission, envDiffuse, envSpecular, specWeight
+
+    // Hi-Z pyramid of the depth buffer, shared by both passes.
+    const HiZPyramid* hiz = nullptr;
+    if (ts.marcher == Marcher::HiZ) {
+        const auto t0 = Clock::now();
+        buildHiZ(viewZ, sc.hiz, threads);
+        hiz = &sc.hiz;
+        pass("hi-z", t0);
+    }
+    const MarchGBuffer mg{&viewZ, {normal[0], normal[1], normal[2]}};
+    const RayGenGBuffer rg{&viewZ, {normal[0], normal[1], normal[2]}, &frame.plane("roughness")};
+    double pyramidMs = 0.0;
+    auto timed = [](double& ms, auto&& fn) {
+        const auto t0 = Clock::now();
+        fn();
+        ms += msSince(t0);
+    };
+    const auto march = [&](TraceStats& st, uint32_t sample) {
+        MarchSettings m = ts.march;
+        m.frame = settings.frame;
+        m.sample = sample;
+        st.march.add(marchRays(isa, ts.marcher, m, camera, mg, hiz, sc.rays, sc.march, threads));
+    };
+
+    SsrOutput ssrOut;
+    if (ts.ssr) {
+        // The hit radiance: this frame's direct light, or last frame's composite (when there is
+        // one) through the motion vectors.
+        const bool reproject =
+            ts.resolve.radiance == HitRadiance::Reprojected && sc.hasPrevious &&
+            sc.previousColor[0].width() == w && sc.previousColor[0].height() == h;
+        SsrResolveSettings rs = ts.resolve;
+        if (!reproject) rs.radiance = HitRadiance::Current;
+        SsrResolveInputs in;
+        in.camera = camera;
+        in.viewZ = &viewZ;
+        for (int c = 0; c < 3; ++c) {
+            in.normal[c] = normal[c];
+            in.color[c] = color[c];
+            in.prevColor[c] = reproject ? &sc.previousColor[c] : nullptr;
+        }
+        in.motion[0] = &frame.plane("motion.X");
+        in.motion[1] = &frame.plane("motion.Y");
+        in.roughness = &frame.plane("roughness");
+        in.radianceScale = 1.0f / settings.exposure;
+        if (rs.mode == SsrResolveMode::Mip) {
+            timed(pyramidMs, [&] {
+                const PlaneF* src[3] = {in.color[0], in.color[1], in.color[2]};
+                if (reproject)
+                    for (int c = 0; c < 3; ++c) src[c] = in.prevColor[c];
+                buildColorPyramid(src, sc.colorPyramid, threads);
+            });
+            in.pyramid = &sc.colorPyramid;
+        }
+        // The output planes are the frame's own, lent to the resolve.
+        const char* names[4] = {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity"};
+        for (int c = 0; c < 3; ++c) std::swap(ssrOut.color[c], planeOf(frame, names[c]));
+        std::swap(ssrOut.opacity, planeOf(frame, names[3]));
+        const HitPlanes hp{&planeOf(frame, "ssrHit"), &planeOf(frame, "ssrSteps"),
+                           &planeOf(frame, "ssrHitDistance")};
+        TraceStats& st = frame.stats.ssr;
+        st.ran = true;
+        st.spp = ts.ssrSpp;
+        double genMs = 0.0, marchMs = 0.0, resolveMs2 = pyramidMs;
+        for (int s = 0; s < ts.ssrSpp; ++s) {
+            timed(genMs, [&] {
+                st.rays.add(generateSpecularRays(isa, ts.ssrMethod, settings.frame, uint32_t(s),
+                                                 camera, rg, sc.rays, threads));
+            });
+            timed(marchMs, [&] { march(st, uint32_t(s)); });
+            timed(resolveMs2, [&] {
+                resolveSsr(isa, rs, in, sc.rays, sc.march, ssrOut, s, ts.ssrSpp, threads);
+                accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);
+            });
+        }
+        timed(resolveMs2, [&] { finishHits(hp, ts.ssrSpp, w, h, threads); });
+        frame.stats.passes.push_back({"ssr rays", genMs});
+        frame.stats.passes.push_back({"ssr march", marchMs});
+        frame.stats.passes.push_back({"ssr resolve", resolveMs2});
+    }
+
+    PlaneF* ssgi[3] = {};
+    if (ts.ssgi) {
+        SsgiInputs in;
+        in.camera = camera;
+        in.viewZ = &viewZ;
+        for (int c = 0; c < 3; ++c) {
+            in.normal[c] = normal[c];
+            in.albedo[c] = albedo[c];
+            in.emission[c] = direct.anyEmissive ? &parts[3 + c] : nullptr;
+            ssgi[c] = &planeOf(frame, c == 0 ? "ssgi.R" : c == 1 ? "ssgi.G" : "ssgi.B");
+        }
+        in.metallic = &frame.plane("metallic");
+        in.shadow = &frame.plane("shadow");
+        in.lighting = &direct;
+        const HitPlanes hp{&planeOf(frame, "ssgiHit"), &planeOf(frame, "ssgiSteps"), nullptr};
+        TraceStats& st = frame.stats.ssgi;
+        st.ran = true;
+        st.spp = ts.ssgiSpp;
+        double genMs = 0.0, marchMs = 0.0, resolveMs2 = 0.0;
+        PlaneF out[3];
+        for (int c = 0; c < 3; ++c) std::swap(out[c], *ssgi[c]);
+        for (int s = 0; s < ts.ssgiSpp; ++s) {
+            timed(genMs, [&] {
+                st.rays.add(generateDiffuseRays(isa, settings.frame, uint32_t(s), camera, rg,
+                                                sc.rays, threads));
+            });
+            timed(marchMs, [&] { march(st, uint32_t(s)); });
+            timed(resolveMs2, [&] {
+                resolveSsgi(isa, in, sc.rays, sc.march, out, s, ts.ssgiSpp, threads);
+                accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);
+            });
+        }
+        for (int c = 0; c < 3; ++c) std::swap(out[c], *ssgi[c]);
+        timed(resolveMs2, [&] { finishHits(hp, ts.ssgiSpp, w, h, threads); });
+        frame.stats.passes.push_back({"ssgi rays", genMs});
+        frame.stats.passes.push_back({"ssgi march", marchMs});
+        frame.stats.passes.push_back({"ssgi resolve", resolveMs2});
+    }
+
+    // Composite: direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the
+    // environment), tone mapped; replaces the direct pass's color and display.
+    const auto t0 = Clock::now();
+    CompositeInputs ci;
+    for (int c = 0; c < 3; ++c) {
+        ci.direct[c] = &parts[c];
+        ci.emission[c] = direct.anyEmissive ? &parts[3 + c] : nullptr;
+        ci.envDiffuse[c] = &parts[6 + c];
+        ci.envSpecular[c] = &parts[9 + c];
+        ci.specWeight[c] = &parts[12 + c];
+        if (ts.ssgi) {
+            ci.ssgi[c] = ssgi[c];
+            ci.albedo[c] = albedo[c];
+        }
+        if (ts.ssr) ci.ssrColor[c] = &ssrOut.color[c];
+    }
+    if (ts.ssgi) {
+        ci.viewZ = &viewZ;
+        ci.metallic = &frame.plane("metallic");
+    }
+    if (ts.ssr) ci.ssrOpacity = &ssrOut.opacity;
+    ci.exposure = settings.exposure;
+    PlaneF outColor[3], outDisplay[3];
+    const char* colorNames[3] = {"color.R", "color.G", "color.B"};
+    const char* displayNames[3] = {"display.R", "display.G", "display.B"};
+    for (int c = 0; c < 3; ++c) {
+        std::swap(outColor[c], planeOf(frame, colorNames[c]));
+        std::swap(outDisplay[c], planeOf(frame, displayNames[c]));
+    }
+    composite(isa, ci, outColor, outDisplay, threads);
+    for (int c = 0; c < 3; ++c) {
+        std::swap(outColor[c], planeOf(frame, colorNames[c]));
+        std::swap(outDisplay[c], planeOf(frame, displayNames[c]));
+    }
+    if (ts.ssr) {
+        const char* names[4] = {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity"};
+        for (int c = 0; c < 3; ++c) std::swap(ssrOut.color[c], planeOf(frame, names[c]));
+        std::swap(ssrOut.opacity, planeOf(frame, names[3]));
+    }
+    pass("composite", t0);
+
+    // Last frame's colour for reprojected hits in the next frame of a sequence.
+    if (ts.ssr && ts.resolve.radiance == HitRadiance::Reprojected) {
+        for (int c = 0; c < 3; ++c) sc.previousColor[c] = frame.plane(colorNames[c]).clone();
+        sc.hasPrevious = true;
+    }
+}
+
+}  // namespace ssrt
