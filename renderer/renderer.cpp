@@ -411,6 +411,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     // With the screen-space passes on, the direct pass also hands out its parts for the
     // composite (shading/direct_kernel.h).
     if (s.trace.any()) {
+        da.compensation = &energyTables();
         float** parts[5] = {da.direct, da.emission, da.envDiffuse, da.envSpecular, da.specWeight};
         for (int i = 0; i < 15; ++i) {
             PlaneF& p = frame.scratch.directParts[i];

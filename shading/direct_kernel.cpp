@@ -8,6 +8,7 @@
 #include "shading/direct_kernel.h"
 #include "shading/direct_lanes.h"
 #include "shading/irradiance_sh.h"
+#include "shading/multiscatter.h"
 
 namespace ssrt::SSRT_ISA_NS {
 
@@ -98,6 +99,7 @@ struct Surface {
 // The parts of a surface's colour (DirectArgs::direct etc.), emission aside.
 struct Parts {
     V3 sun, envDiffuse, specWeight, envSpecular;
+    V3 compensation;  // Kulla-Conty factor of the specWeight part (1 without the tables)
 };
 
 SSRT_INLINE Parts shadeSurface(const DirectArgs& a, const Surface& s, Lane& visibility) {
@@ -144,8 +146,15 @@ SSRT_INLINE Parts shadeSurface(const DirectArgs& a, const Surface& s, Lane& visi
     Lane envScale, envBias;
     envBrdfApprox(NoV, s.roughness, envScale, envBias);
     // color = (sun + envDiffuse) + specWeight envSpecular, as shadeChunk sums it.
+    V3 compensation{one, one, one};
+    if (a.compensation) {
+        // 1 + F0 (1 / E - 1), E the GGX directional albedo with F = 1 (see direct_kernel.h).
+        const Lane e = ln::max(multiscatter::albedo(*a.compensation, NoV, s.roughness), Lane(1e-3f));
+        const Lane lost = one / e - one;
+        compensation = {one + f0.x * lost, one + f0.y * lost, one + f0.z * lost};
+    }
     return {direct, irradiance * diffuse * Lane(ln::kPi), f0 * envScale + V3{envBias, envBias, envBias},
-            specSky};
+            specSky, compensation};
 }
 
 // Shades lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
@@ -195,7 +204,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
         visibility = ln::select(background, visibility, vis);
         sun = ln::select(background, sun, parts.sun);
         envDiffuse = ln::select(background, envDiffuse, parts.envDiffuse);
-        specWeight = ln::select(background, specWeight, parts.specWeight);
+        specWeight = ln::select(background, specWeight, parts.specWeight * parts.compensation);
         envSpecular = ln::select(background, envSpecular, parts.envSpecular);
     }
     // The optional parts, straight into their planes (scene-linear, before the exposure).

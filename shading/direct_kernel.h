@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "shading/energy_tables.h"
 #include "shading/environment.h"
 
 namespace ssrt {
@@ -57,13 +58,22 @@ struct DirectArgs {
     //                term SSGI replaces).
     //   envSpecular: the prefiltered sky radiance along the reflection, before the BRDF
     //                factor (the term SSR replaces where it finds a hit).
-    //   specWeight:  the split-sum BRDF factor F0 scale + bias (Karis' analytic fit; no
-    //                Kulla-Conty term: `color` does not apply one today).
+    //   specWeight:  the split-sum BRDF factor F0 scale + bias (Karis' analytic fit), times
+    //                the Kulla-Conty compensation below when `compensation` is set (`color`
+    //                never applies it, so with it the sum above no longer holds exactly).
     float* direct[3];
     float* emission[3];
     float* envDiffuse[3];
     float* envSpecular[3];
     float* specWeight[3];
+    // Kulla-Conty energy compensation of the specWeight part (null: none, the part is the
+    // single-scattering factor above). With the tables, the part is multiplied by
+    //   1 + F0 (1 / E(n.v, roughness) - 1)
+    // (Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
+    // Lighting": the energy single scattering loses, tinted by F0; E is Kulla and Conty's
+    // directional albedo, shading/multiscatter.h), so the composite's specular light does not
+    // darken as roughness grows. `color` is never compensated (its bits stay as they were).
+    const EnergyTables* compensation;
 };
 
 SSRT_DECLARE_KERNEL(void, shadeTile, (const DirectArgs& args, int tile))

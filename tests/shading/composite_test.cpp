@@ -15,6 +15,7 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/direct_kernel.h"
+#include "shading/multiscatter.h"
 
 using namespace ssrt;
 
@@ -164,6 +165,49 @@ TEST_CASE(
                 }
             }
         }
+    }
+}
+
+TEST_CASE("composite: Kulla-Conty compensation scales specWeight by 1 + F0 (1/E - 1), nothing else") {
+    DirectFixture f("spheres");
+    f.shade(Isa::Scalar, true);
+    PlaneF plain[3], ref[7];
+    for (int c = 0; c < 3; ++c) plain[c] = f.specWeight[c].clone();
+    for (int i = 0; i < 7; ++i) ref[i] = f.out[i].clone();
+    const EnergyTables& tables = energyTables();
+    f.args.compensation = &tables;
+    for (Isa isa : supportedIsas()) {
+        CAPTURE(isaName(isa));
+        f.shade(isa, true);
+        for (int i = 0; i < 7; ++i) CHECK(sameBits(f.out[i], ref[i]));  // color untouched
+        // Every surface pixel: the ratio is 1 + F0 (1/E - 1), E at the kernel's n.v.
+        int checked = 0, raised = 0;
+        const PlaneF& viewZ = f.frame.plane("viewZ");
+        const int w = f.frame.width, h = f.frame.height;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                if (viewZ.at(x, y) <= 0.0f) continue;
+                const float metallic = f.frame.plane("metallic").at(x, y);
+                const float rough = f.frame.plane("roughness").at(x, y);
+                const float albedo = f.frame.plane("albedo.R").at(x, y);
+                const float f0 = 0.04f + (albedo - 0.04f) * metallic;
+                // The fixture's camera: identity rotation, view ray through the pixel centre.
+                const double dx = (2.0 * (x + 0.5) / w - 1.0) * f.args.tanHalfX,
+                             dy = (1.0 - 2.0 * (y + 0.5) / h) * f.args.tanHalfY, dz = -1.0;
+                const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
+                const double nv = -(f.frame.plane("normal.X").at(x, y) * dx +
+                                    f.frame.plane("normal.Y").at(x, y) * dy +
+                                    f.frame.plane("normal.Z").at(x, y) * dz) / len;
+                const float e = std::max(
+                    multiscatter::albedo(tables, std::max(float(nv), 1e-4f), rough), 1e-3f);
+                const double expected = 1.0 + f0 * (1.0 / e - 1.0);
+                const double ratio = double(f.specWeight[0].at(x, y)) / double(plain[0].at(x, y));
+                CHECK(ratio == doctest::Approx(expected).epsilon(2e-3));
+                raised += ratio > 1.05;
+                ++checked;
+            }
+        CHECK(checked > 1000);
+        CHECK(raised > 0);  // rough metals gain energy
     }
 }
 
