@@ -125,6 +125,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         throw std::invalid_argument("marchRays: the normal planes differ in stride");
 
     MarchKernelArgs proto{};
+    std::vector<float> packed;
     proto.width = w;
     proto.height = h;
     proto.sx = float(w) / (2.0f * camera.tanHalfX);
@@ -154,6 +155,29 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             proto.hizWidth[L] = p.width();
             proto.hizHeight[L] = p.height();
         }
+        // The packed reciprocal copy for the hardware gather (rebuilt per call: about 1.33
+        // frames of floats, small next to the march).
+        std::size_t total = 0;
+        for (int L = 0; L < proto.hizLevels; ++L)
+            total += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
+        if (total < (std::size_t(1) << 24)) {
+            packed.resize(total);
+            std::size_t offset = 0;
+            for (int L = 0; L < proto.hizLevels; ++L) {
+                proto.hizOffset[L] = float(offset);
+                proto.hizWidthF[L] = float(proto.hizWidth[L]);
+                offset += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
+            }
+            parallelFor(proto.hizLevels, threads, [&](int L) {
+                const PlaneF& p = hiz->minZ[std::size_t(L)];
+                float* out = packed.data() + std::size_t(proto.hizOffset[L]);
+                for (int y = 0; y < p.height(); ++y)
+                    for (int x = 0; x < p.width(); ++x)
+                        *out++ = 1.0f / p.at(x, y);
+            });
+            proto.hizInvPacked = packed.data();
+            proto.hizPackedLast = float(total - 1);
+        }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
         proto.startLevel = std::clamp(settings.hizStartLevel, proto.mostDetailedLevel,
                                       proto.hizLevels - 1);
@@ -162,6 +186,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                   : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
                                              : SSRT_DISPATCH(isa, marchHiZKernel);
 
+    const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
     result.ensureSize(w, h);
     const TileGrid grid(w, h);
     std::vector<MarchStats> tileStats(std::size_t(grid.count()));
@@ -199,7 +224,9 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                 A[TileScratch::kPy][n] = float(y);
                 const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
                 A[TileScratch::kJitter][n] =
-                    settings.ddaJitter * randomFloat(pixel, settings.frame, settings.sample, 0);
+                    jitter ? settings.ddaJitter *
+                                 randomFloat(pixel, settings.frame, settings.sample, 0)
+                           : 0.0f;
                 scratch.pixel[std::size_t(n)] = x + y * w;
                 ++n;
             }
