@@ -64,22 +64,40 @@ void hizBuild(benchmark::State& state) {
         buildHiZ(w.g.viewZ, hiz, threads);
         benchmark::DoNotOptimize(hiz.minZ.back().row(0));
     }
-    state.counters["pixels/s"] =
-        benchmark::Counter(1920.0 * 1080.0 * double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["pixels/s"] = benchmark::Counter(1920.0 * 1080.0 * double(state.iterations()),
+                                                    benchmark::Counter::kIsRate);
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(marchBench, corridor_linear, "corridor", Marcher::Linear)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, corridor_dda, "corridor", Marcher::Dda)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, corridor_hiz, "corridor", Marcher::HiZ)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_linear, "cornell", Marcher::Linear)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_dda, "cornell", Marcher::Dda)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_hiz, "cornell", Marcher::HiZ)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(hizBuild)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

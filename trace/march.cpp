@@ -13,9 +13,12 @@ namespace ssrt {
 
 std::string_view marcherName(Marcher marcher) {
     switch (marcher) {
-        case Marcher::Linear: return "linear";
-        case Marcher::Dda: return "dda";
-        case Marcher::HiZ: return "hiz";
+        case Marcher::Linear:
+            return "linear";
+        case Marcher::Dda:
+            return "dda";
+        case Marcher::HiZ:
+            return "hiz";
     }
     return "?";
 }
@@ -40,16 +43,15 @@ void MarchSettings::validate() const {
     require(maxSteps >= 1 && maxSteps <= (1 << 20), "maxSteps", "must be in [1, 2^20]");
     require(finitePositive(maxDistance), "maxDistance", "must be finite and > 0");
     require(finitePositive(linearStep), "linearStep", "must be finite and > 0");
-    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness",
-            "must be finite and >= 0");
+    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness", "must be finite and >= 0");
     require(std::isfinite(ddaStride) && ddaStride >= 1.0f, "ddaStride",
             "must be finite and >= 1 (pixels)");
     require(ddaJitter >= 0.0f && ddaJitter <= 1.0f, "ddaJitter", "must be in [0, 1]");
     require(refineSteps >= 0 && refineSteps <= 32, "refineSteps", "must be in [0, 32]");
     require(hizMostDetailedLevel >= 0 && hizMostDetailedLevel < kMaxHiZLevels,
             "hizMostDetailedLevel", "must be in [0, 15]");
-    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels,
-            "hizStartLevel", "must be in [hizMostDetailedLevel, 15]");
+    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels, "hizStartLevel",
+            "must be in [hizMostDetailedLevel, 15]");
 }
 
 // ---- Statistics -------------------------------------------------------------------------
@@ -92,8 +94,24 @@ namespace {
 
 // One tile's packed rays and results (structure of arrays, padded to kMarchPad).
 struct TileScratch {
-    enum { kOx, kOy, kOz, kDx, kDy, kDz, kPx, kPy, kJitter, kHit, kHitX, kHitY, kHitZ, kSteps,
-           kCause, kArrays };
+    enum {
+        kOx,
+        kOy,
+        kOz,
+        kDx,
+        kDy,
+        kDz,
+        kPx,
+        kPy,
+        kJitter,
+        kHit,
+        kHitX,
+        kHitY,
+        kHitZ,
+        kSteps,
+        kCause,
+        kArrays
+    };
     std::vector<float> data;
     std::vector<int> pixel;  // x + y * width of each packed ray
     std::size_t capacity = 0;
@@ -172,15 +190,14 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                 const PlaneF& p = hiz->minZ[std::size_t(L)];
                 float* out = packed.data() + std::size_t(proto.hizOffset[L]);
                 for (int y = 0; y < p.height(); ++y)
-                    for (int x = 0; x < p.width(); ++x)
-                        *out++ = 1.0f / p.at(x, y);
+                    for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
             });
             proto.hizInvPacked = packed.data();
             proto.hizPackedLast = float(total - 1);
         }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
-        proto.startLevel = std::clamp(settings.hizStartLevel, proto.mostDetailedLevel,
-                                      proto.hizLevels - 1);
+        proto.startLevel =
+            std::clamp(settings.hizStartLevel, proto.mostDetailedLevel, proto.hizLevels - 1);
     }
     auto kernel = marcher == Marcher::Linear ? SSRT_DISPATCH(isa, marchLinearKernel)
                   : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
@@ -237,8 +254,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
         // Everything defaults to "no ray".
         for (int y = rect.y0; y < rect.y1; ++y) {
-            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ,
-                              &result.steps})
+            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
                 std::fill(p->row(y) + rect.x0, p->row(y) + rect.x1, 0.0f);
             std::fill(result.cause.row(y) + rect.x0, result.cause.row(y) + rect.x1,
                       float(int(MarchEnd::NoRay)));

@@ -68,7 +68,9 @@ struct MarchStats {
     double meanSteps() const;
     int stepsPercentile(double p) const;  // p in [0, 1], from the histogram
     int maxStepsTaken() const;
-    double laneUtilisation() const { return laneSlots ? double(laneActive) / double(laneSlots) : 0; }
+    double laneUtilisation() const {
+        return laneSlots ? double(laneActive) / double(laneSlots) : 0;
+    }
 };
 
 struct MarchGBuffer {

@@ -95,11 +95,11 @@ SSRT_INLINE ScreenSegment projectSegment(const MarchKernelArgs& a, const RayLane
 
 // A lane group's state once it is done.
 struct LaneEnds {
-    Lane cause;           // MarchEnd code (Hit = candidate, validated by finishRays)
-    Lane hitX, hitY;      // pixel position of the candidate hit
-    Lane hitZ;            // depth buffer there
+    Lane cause;       // MarchEnd code (Hit = candidate, validated by finishRays)
+    Lane hitX, hitY;  // pixel position of the candidate hit
+    Lane hitZ;        // depth buffer there
     Lane steps;
-    Lane thick;           // 1 where a thickness rejection happened on the way
+    Lane thick;  // 1 where a thickness rejection happened on the way
 };
 
 // Scalar validation and write-out of lanes [base, min(base + kW, count)): a candidate hit

@@ -18,12 +18,12 @@ namespace {
 
 // The screen-space segment of one lane group, in permuted coordinates (major axis first).
 struct Segment {
-    Mask permute;               // major axis is y
-    Lane M0, m0, k0;            // start: major, minor, 1/depth
-    Lane dM, dm, dk;            // per step (one stride along the major axis)
-    Lane M1, stepDir;           // end along the major axis, its direction (+-1)
-    Lane kLo, kHi;              // range of k over the segment
-    Mask nearClipped;           // the segment ends on the near plane
+    Mask permute;      // major axis is y
+    Lane M0, m0, k0;   // start: major, minor, 1/depth
+    Lane dM, dm, dk;   // per step (one stride along the major axis)
+    Lane M1, stepDir;  // end along the major axis, its direction (+-1)
+    Lane kLo, kHi;     // range of k over the segment
+    Mask nearClipped;  // the segment ends on the near plane
 };
 
 SSRT_INLINE Segment setUp(const MarchKernelArgs& a, const RayLanes& r) {
@@ -73,9 +73,13 @@ void marchDdaKernel(MarchKernelArgs& a) {
         const Segment s = setUp(a, r);
         const Lane jitter = ln::load<Lane>(a.jitter + base);
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
-                   zero, zero};
-        Lane uHit = zero;                 // step parameter of the hit sample
+        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+                   zero,
+                   zero,
+                   zero,
+                   zero,
+                   zero};
+        Lane uHit = zero;  // step parameter of the hit sample
         // Ray depth half a step before the first sample (interval [u - 1/2, u + 1/2]).
         Lane prevZ;
         {
@@ -136,8 +140,8 @@ void marchDdaKernel(MarchKernelArgs& a) {
             at(s, hi, px, py, k);
             e.hitX = ln::select(hit, px, zero);
             e.hitY = ln::select(hit, py, zero);
-            e.hitZ = ln::select(hit, sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height)),
-                                zero);
+            e.hitZ =
+                ln::select(hit, sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height)), zero);
         }
         finishRays(a, base, e);
     }

@@ -80,7 +80,11 @@ struct Group {
         size = Lane(float(1 << a.startLevel));
         invSize = Lane(1.0f / float(1 << a.startLevel));
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero, zero,
+        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+             zero,
+             zero,
+             zero,
+             zero,
              zero};
         px = s.x0 + dPx * t;
         py = s.y0 + dPy * t;
@@ -94,10 +98,10 @@ struct Group {
         // Off screen, past the end of the segment or out of iterations: a miss.
         const Mask left = !onScreen(a, px, py);
         const Mask past = t > one;
-        Lane c = ln::select(past,
-                            ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen),
-                                       endCode(MarchEnd::StepCap)),
-                            Lane(kMarching));
+        Lane c = ln::select(
+            past,
+            ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen), endCode(MarchEnd::StepCap)),
+            Lane(kMarching));
         c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
         c = ln::select(e.steps >= Lane(float(a.maxSteps)), endCode(MarchEnd::StepCap), c);
         e.cause = ln::select(active, c, e.cause);

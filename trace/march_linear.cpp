@@ -18,8 +18,12 @@ void marchLinearKernel(MarchKernelArgs& a) {
         const Lane depth0 = zero - r.o.z, depthRate = zero - r.d.z;
         const Lane thresh = Lane(a.thickness) + step * ln::abs(r.d.z);
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
-                   zero, zero};
+        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+                   zero,
+                   zero,
+                   zero,
+                   zero,
+                   zero};
         Lane t = zero;
         for (;;) {
             const Mask active = e.cause < zero;

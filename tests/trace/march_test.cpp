@@ -288,9 +288,8 @@ TEST_CASE("march: hi-z takes far fewer steps than linear on the corridor") {
     const MarchStats dda = march(Marcher::Dda, s, g, rays, r);
     const MarchStats hiz = march(Marcher::HiZ, s, g, rays, r);
     std::printf("corridor mean steps: linear %.1f, dda %.1f, hiz %.1f; hits %llu %llu %llu\n",
-                lin.meanSteps(), dda.meanSteps(), hiz.meanSteps(),
-                (unsigned long long)lin.ends[0], (unsigned long long)dda.ends[0],
-                (unsigned long long)hiz.ends[0]);
+                lin.meanSteps(), dda.meanSteps(), hiz.meanSteps(), (unsigned long long)lin.ends[0],
+                (unsigned long long)dda.ends[0], (unsigned long long)hiz.ends[0]);
     REQUIRE(lin.rays > 10000);
     CHECK(hiz.meanSteps() * 4.0 < lin.meanSteps());
     CHECK(hiz.meanSteps() * 2.0 < dda.meanSteps());
