@@ -147,4 +147,25 @@ SSRT_INLINE void countLanes(MarchKernelArgs& a, Mask active) {
     a.laneActive += uint64_t(popcount(ln::maskBits(active)));
 }
 
+// Marches every packed ray with two lane groups in flight, their steps interleaved: each
+// step waits on a gather, and the other group's work hides part of that latency. Lanes never
+// interact, so the pairing does not change a bit. G has init(args, base), step(args) ->
+// bool (false once every lane has ended) and finish(args).
+template <class G>
+inline void marchGroups(MarchKernelArgs& a) {
+    for (int base = 0; base < a.count; base += 2 * kW) {
+        G g[2];
+        g[0].init(a, base);
+        const bool second = base + kW < a.count;
+        if (second) g[1].init(a, base + kW);
+        bool more0 = true, more1 = second;
+        while (more0 || more1) {
+            if (more0) more0 = g[0].step(a);
+            if (more1) more1 = g[1].step(a);
+        }
+        g[0].finish(a);
+        if (second) g[1].finish(a);
+    }
+}
+
 }  // namespace ssrt::SSRT_ISA_NS

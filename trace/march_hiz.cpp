@@ -159,23 +159,6 @@ struct Group {
 
 }  // namespace
 
-// Two lane groups in flight, iterations interleaved: each iteration waits on a gather from
-// the pyramid, and the other group's work hides part of that latency. Lanes never interact,
-// so the pairing does not change a bit.
-void marchHiZKernel(MarchKernelArgs& a) {
-    for (int base = 0; base < a.count; base += 2 * kW) {
-        Group g[2];
-        g[0].init(a, base);
-        const bool second = base + kW < a.count;
-        if (second) g[1].init(a, base + kW);
-        bool more0 = true, more1 = second;
-        while (more0 || more1) {
-            if (more0) more0 = g[0].step(a);
-            if (more1) more1 = g[1].step(a);
-        }
-        g[0].finish(a);
-        if (second) g[1].finish(a);
-    }
-}
+void marchHiZKernel(MarchKernelArgs& a) { marchGroups<Group>(a); }
 
 }  // namespace ssrt::SSRT_ISA_NS
