@@ -53,6 +53,7 @@ void marchBench(benchmark::State& state, std::string scene, Marcher marcher) {
     state.counters["p95steps"] = stats.stepsPercentile(0.95);
     state.counters["lane_util"] = stats.laneUtilisation();
     state.counters["hit_share"] = double(stats.ends[0]) / double(stats.rays);
+    state.counters["cap_share"] = double(stats.ends[int(MarchEnd::StepCap)]) / double(stats.rays);
     state.SetLabel(std::string(isaName(isa)));
 }
 
