@@ -23,6 +23,8 @@ constexpr float kMarching = -1.0f;
 SSRT_INLINE Lane endCode(MarchEnd e) { return Lane(float(int(e))); }
 
 SSRT_INLINE int popcount(uint64_t bits) { return __builtin_popcountll(bits); }
+// (Not std::clamp: an out-of-line copy of it would be a weak symbol shared across ISAs.)
+SSRT_INLINE int clampIndex(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
 // One lane group of packed rays, in view space.
 struct RayLanes {
@@ -119,8 +121,8 @@ inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
         const int i = base + l;
         MarchEnd c = MarchEnd(int(cause[l]));
         if (c == MarchEnd::Hit) {
-            const int ix = std::clamp(int(hx[l]), 0, a.width - 1);
-            const int iy = std::clamp(int(hy[l]), 0, a.height - 1);
+            const int ix = clampIndex(int(hx[l]), 0, a.width - 1);
+            const int iy = clampIndex(int(hy[l]), 0, a.height - 1);
             const std::size_t n = std::size_t(iy) * a.nStride + std::size_t(ix);
             const float dx = a.dx[i], dy = a.dy[i], dz = a.dz[i];
             const float wx = (R[0] * dx + R[3] * dy) + R[6] * dz;

@@ -37,8 +37,8 @@ SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, Lane level, Lane cx, Lane
     ln::store(y, cy);
     for (int l = 0; l < kW; ++l) {
         const int L = int(lv[l]);
-        const int ix = std::clamp(int(x[l]), 0, a.hizWidth[L] - 1);
-        const int iy = std::clamp(int(y[l]), 0, a.hizHeight[L] - 1);
+        const int ix = clampIndex(int(x[l]), 0, a.hizWidth[L] - 1);
+        const int iy = clampIndex(int(y[l]), 0, a.hizHeight[L] - 1);
         out[l] = 1.0f / a.hizMin[L][std::size_t(iy) * a.hizStride[L] + std::size_t(ix)];
     }
     return ln::load<Lane>(out);
