@@ -130,7 +130,27 @@ struct Group {
         invSize = ln::select(up, invSize * half, ln::select(down, invSize * two, invSize));
         // Below the most detailed level: a candidate hit (keep the level loadable).
         const Lane mostDetailed(float(a.mostDetailedLevel));
-        e.cause = ln::select(active & (level < mostDetailed), endCode(MarchEnd::Hit), e.cause);
+        Mask candidate = active & (level < mostDetailed);
+        if (a.mostDetailedLevel > 0 && ln::any(candidate)) {
+            // A coarse cell's minimum may lie in front of the pixel the ray is over: where
+            // the ray is still in front of that pixel's depth, step out of the cell at the
+            // most detailed level and go on instead.
+            const Lane sceneZ = sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height));
+            const Mask inFront = candidate & ((s.k0 + dk * t) * sceneZ > one);
+            const Lane cellSize(float(1 << a.mostDetailedLevel));
+            const Lane invCell(1.0f / float(1 << a.mostDetailedLevel));
+            const Lane planeX = (ln::floor(px * invCell) + floorX) * cellSize + nudgeX;
+            const Lane planeY = (ln::floor(py * invCell) + floorY) * cellSize + nudgeY;
+            const Lane tExit = ln::min((planeX - s.x0) * invDx, (planeY - s.y0) * invDy);
+            t = ln::select(inFront, tExit, t);
+            px = s.x0 + dPx * t;
+            py = s.y0 + dPy * t;
+            level = ln::select(inFront, mostDetailed, level);
+            size = ln::select(inFront, cellSize, size);
+            invSize = ln::select(inFront, invCell, invSize);
+            candidate = candidate & !inFront;
+        }
+        e.cause = ln::select(candidate, endCode(MarchEnd::Hit), e.cause);
         level = ln::max(level, mostDetailed);
         return true;
     }
