@@ -62,15 +62,19 @@ struct Group {
         r = loadRays(a, base);
         s = projectSegment(a, r);
         dPx = s.x1 - s.x0, dPy = s.y1 - s.y0, dk = s.k1 - s.k0;
-        invDx = ln::select(ln::abs(dPx) > Lane(1e-12f), one / dPx, big);
-        invDy = ln::select(ln::abs(dPy) > Lane(1e-12f), one / dPy, big);
+        // A tiny slope counts as +0 (a huge positive reciprocal, boundaries to the right), so
+        // the sign of the reciprocal and the side of the boundary always agree.
+        const Mask flatX = ln::abs(dPx) <= Lane(1e-12f), flatY = ln::abs(dPy) <= Lane(1e-12f);
+        invDx = ln::select(flatX, big, one / ln::select(flatX, one, dPx));
+        invDy = ln::select(flatY, big, one / ln::select(flatY, one, dPy));
         deeper = dk < Lane(-1e-30f);
-        invDk = ln::select(deeper, one / dk, zero);
-        floorX = ln::select(dPx >= zero, one, zero);
-        floorY = ln::select(dPy >= zero, one, zero);
+        invDk = ln::select(deeper, one / ln::select(deeper, dk, one), zero);
+        const Mask posX = (dPx >= zero) | flatX, posY = (dPy >= zero) | flatY;
+        floorX = ln::select(posX, one, zero);
+        floorY = ln::select(posY, one, zero);
         // Nudge past the cell boundary (FidelityFX: 0.005 of a most detailed cell).
-        nudgeX = ln::select(dPx >= zero, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
-        nudgeY = ln::select(dPy >= zero, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
+        nudgeX = ln::select(posX, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
+        nudgeY = ln::select(posY, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
         // Leave the origin's own cell at the most detailed level.
         const Lane invD(1.0f / detailedSize), sizeD(detailedSize);
         const Lane planeX = (ln::floor(s.x0 * invD) + floorX) * sizeD + nudgeX;
