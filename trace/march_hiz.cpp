@@ -170,8 +170,13 @@ struct Group {
             const Lane k = ln::clamp(s.k0 + dk * t, ln::min(s.k0, s.k1), ln::max(s.k0, s.k1));
             const Lane rayZ = one / k;
             const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask valid = (!own) & (rayZ <= sceneZ + Lane(a.thickness));
-            e.cause = ln::select(hit & !valid, endCode(MarchEnd::Thickness), e.cause);
+            // A candidate on a background pixel is a ray that ran out to (near) infinite
+            // depth (k ~ 0, where k * inf is no test): no surface there, it reached the end of
+            // its length (StepCap covers maxDistance).
+            const Mask background = !(sceneZ < Lane(__builtin_inff()));
+            const Mask valid = (!own) & (!background) & (rayZ <= sceneZ + Lane(a.thickness));
+            e.cause = ln::select(hit & background, endCode(MarchEnd::StepCap), e.cause);
+            e.cause = ln::select(hit & !background & !valid, endCode(MarchEnd::Thickness), e.cause);
             const Mask ok = hit & valid;
             e.hitX = ln::select(ok, px, zero);
             e.hitY = ln::select(ok, py, zero);
