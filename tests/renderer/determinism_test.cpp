@@ -118,12 +118,12 @@ const std::map<std::string, uint64_t> kGolden = {
     {"offscreen", 0x493e5905e1814489ull},
     {"occluded", 0xc49813c3c3429ad4ull},
     {"cornell+tex", 0x2f3eaaa925cfbec0ull},
-    {"cornell@hiz", 0x0fd19c256ed70982ull},
-    {"spheres@dda", 0x95070eeb36f1d6d1ull},
-    {"corridor@linear", 0x7c1f1e122bc65b51ull},
-    {"thin@hiz/mip", 0x437da7e8d56839f7ull},
-    {"offscreen@hiz", 0xf99d70d81bab529dull},
-    {"occluded@dda", 0x9ee69bed7862f313ull},
+    {"cornell@hiz", 0xbfc4d5f6d3463a8dull},
+    {"spheres@dda", 0x361014b4b72d8019ull},
+    {"corridor@linear", 0xb762900de106d599ull},
+    {"thin@hiz/mip", 0xff90779d7feebe5cull},
+    {"offscreen@hiz", 0xc548fbd5153b7edbull},
+    {"occluded@dda", 0xf500cfa95ce20d10ull},
 };
 // clang-format on
 
