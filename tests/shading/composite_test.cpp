@@ -16,18 +16,13 @@
 #include "scenes/builtin_scenes.h"
 #include "shading/direct_kernel.h"
 #include "shading/multiscatter.h"
+#include "plane_compare.h"
 
 using namespace ssrt;
 
 namespace {
 
-bool sameBits(const PlaneF& a, const PlaneF& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
-    return true;
-}
+using test::sameBits;
 
 // A rendered G-buffer and the direct pass re-run by hand on it, with a noisy shadow map,
 // emissive materials and a gradient sky, so that every part is non-trivial.

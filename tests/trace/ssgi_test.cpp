@@ -13,6 +13,7 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/environment.h"
+#include "plane_compare.h"
 
 using namespace ssrt;
 
@@ -20,13 +21,7 @@ namespace {
 
 constexpr int kW = 90, kH = 50;
 
-bool sameBits(const PlaneF& a, const PlaneF& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
-    return true;
-}
+using test::sameBits;
 
 DirectArgs lighting(bool gradient) {
     DirectArgs a{};
