@@ -53,6 +53,7 @@ void marchBench(benchmark::State& state, std::string scene, Marcher marcher) {
     state.counters["p95steps"] = stats.stepsPercentile(0.95);
     state.counters["lane_util"] = stats.laneUtilisation();
     state.counters["hit_share"] = double(stats.ends[0]) / double(stats.rays);
+    state.counters["cap_share"] = double(stats.ends[int(MarchEnd::StepCap)]) / double(stats.rays);
     state.SetLabel(std::string(isaName(isa)));
 }
 
@@ -64,22 +65,40 @@ void hizBuild(benchmark::State& state) {
         buildHiZ(w.g.viewZ, hiz, threads);
         benchmark::DoNotOptimize(hiz.minZ.back().row(0));
     }
-    state.counters["pixels/s"] =
-        benchmark::Counter(1920.0 * 1080.0 * double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["pixels/s"] = benchmark::Counter(1920.0 * 1080.0 * double(state.iterations()),
+                                                    benchmark::Counter::kIsRate);
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(marchBench, corridor_linear, "corridor", Marcher::Linear)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, corridor_dda, "corridor", Marcher::Dda)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, corridor_hiz, "corridor", Marcher::HiZ)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_linear, "cornell", Marcher::Linear)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_dda, "cornell", Marcher::Dda)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_hiz, "cornell", Marcher::HiZ)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(hizBuild)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

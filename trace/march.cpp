@@ -13,9 +13,12 @@ namespace ssrt {
 
 std::string_view marcherName(Marcher marcher) {
     switch (marcher) {
-        case Marcher::Linear: return "linear";
-        case Marcher::Dda: return "dda";
-        case Marcher::HiZ: return "hiz";
+        case Marcher::Linear:
+            return "linear";
+        case Marcher::Dda:
+            return "dda";
+        case Marcher::HiZ:
+            return "hiz";
     }
     return "?";
 }
@@ -40,16 +43,15 @@ void MarchSettings::validate() const {
     require(maxSteps >= 1 && maxSteps <= (1 << 20), "maxSteps", "must be in [1, 2^20]");
     require(finitePositive(maxDistance), "maxDistance", "must be finite and > 0");
     require(finitePositive(linearStep), "linearStep", "must be finite and > 0");
-    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness",
-            "must be finite and >= 0");
+    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness", "must be finite and >= 0");
     require(std::isfinite(ddaStride) && ddaStride >= 1.0f, "ddaStride",
             "must be finite and >= 1 (pixels)");
     require(ddaJitter >= 0.0f && ddaJitter <= 1.0f, "ddaJitter", "must be in [0, 1]");
     require(refineSteps >= 0 && refineSteps <= 32, "refineSteps", "must be in [0, 32]");
     require(hizMostDetailedLevel >= 0 && hizMostDetailedLevel < kMaxHiZLevels,
             "hizMostDetailedLevel", "must be in [0, 15]");
-    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels,
-            "hizStartLevel", "must be in [hizMostDetailedLevel, 15]");
+    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels, "hizStartLevel",
+            "must be in [hizMostDetailedLevel, 15]");
 }
 
 // ---- Statistics -------------------------------------------------------------------------
@@ -92,8 +94,24 @@ namespace {
 
 // One tile's packed rays and results (structure of arrays, padded to kMarchPad).
 struct TileScratch {
-    enum { kOx, kOy, kOz, kDx, kDy, kDz, kPx, kPy, kJitter, kHit, kHitX, kHitY, kHitZ, kSteps,
-           kCause, kArrays };
+    enum {
+        kOx,
+        kOy,
+        kOz,
+        kDx,
+        kDy,
+        kDz,
+        kPx,
+        kPy,
+        kJitter,
+        kHit,
+        kHitX,
+        kHitY,
+        kHitZ,
+        kSteps,
+        kCause,
+        kArrays
+    };
     std::vector<float> data;
     std::vector<int> pixel;  // x + y * width of each packed ray
     std::size_t capacity = 0;
@@ -125,6 +143,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         throw std::invalid_argument("marchRays: the normal planes differ in stride");
 
     MarchKernelArgs proto{};
+    std::vector<float> packed;
     proto.width = w;
     proto.height = h;
     proto.sx = float(w) / (2.0f * camera.tanHalfX);
@@ -154,14 +173,37 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             proto.hizWidth[L] = p.width();
             proto.hizHeight[L] = p.height();
         }
+        // The packed reciprocal copy for the hardware gather (rebuilt per call: about 1.33
+        // frames of floats, small next to the march).
+        std::size_t total = 0;
+        for (int L = 0; L < proto.hizLevels; ++L)
+            total += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
+        if (total < (std::size_t(1) << 24)) {
+            packed.resize(total);
+            std::size_t offset = 0;
+            for (int L = 0; L < proto.hizLevels; ++L) {
+                proto.hizOffset[L] = float(offset);
+                proto.hizWidthF[L] = float(proto.hizWidth[L]);
+                offset += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
+            }
+            parallelFor(proto.hizLevels, threads, [&](int L) {
+                const PlaneF& p = hiz->minZ[std::size_t(L)];
+                float* out = packed.data() + std::size_t(proto.hizOffset[L]);
+                for (int y = 0; y < p.height(); ++y)
+                    for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
+            });
+            proto.hizInvPacked = packed.data();
+            proto.hizPackedLast = float(total - 1);
+        }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
-        proto.startLevel = std::clamp(settings.hizStartLevel, proto.mostDetailedLevel,
-                                      proto.hizLevels - 1);
+        proto.startLevel =
+            std::clamp(settings.hizStartLevel, proto.mostDetailedLevel, proto.hizLevels - 1);
     }
     auto kernel = marcher == Marcher::Linear ? SSRT_DISPATCH(isa, marchLinearKernel)
                   : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
                                              : SSRT_DISPATCH(isa, marchHiZKernel);
 
+    const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
     result.ensureSize(w, h);
     const TileGrid grid(w, h);
     std::vector<MarchStats> tileStats(std::size_t(grid.count()));
@@ -199,7 +241,9 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                 A[TileScratch::kPy][n] = float(y);
                 const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
                 A[TileScratch::kJitter][n] =
-                    settings.ddaJitter * randomFloat(pixel, settings.frame, settings.sample, 0);
+                    jitter ? settings.ddaJitter *
+                                 randomFloat(pixel, settings.frame, settings.sample, 0)
+                           : 0.0f;
                 scratch.pixel[std::size_t(n)] = x + y * w;
                 ++n;
             }
@@ -210,8 +254,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
         // Everything defaults to "no ray".
         for (int y = rect.y0; y < rect.y1; ++y) {
-            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ,
-                              &result.steps})
+            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
                 std::fill(p->row(y) + rect.x0, p->row(y) + rect.x1, 0.0f);
             std::fill(result.cause.row(y) + rect.x0, result.cause.row(y) + rect.x1,
                       float(int(MarchEnd::NoRay)));

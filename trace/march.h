@@ -57,7 +57,8 @@ struct MarchSettings {
 };
 
 struct MarchStats {
-    uint64_t rays = 0;                       // rays traced (pdf > 0)
+    uint64_t rays = 0;  // rays traced: pdf > 0, finite non-zero direction, origin in front of
+                        // the camera (other pixels end as NoRay and are not counted)
     uint64_t ends[kMarchEndCount] = {};      // per MarchEnd (ends[Hit] = hits); NoRay not counted
     uint64_t steps = 0;                      // sum of steps over rays
     uint64_t laneSlots = 0, laneActive = 0;  // lanes issued per step vs lanes still marching
@@ -68,7 +69,9 @@ struct MarchStats {
     double meanSteps() const;
     int stepsPercentile(double p) const;  // p in [0, 1], from the histogram
     int maxStepsTaken() const;
-    double laneUtilisation() const { return laneSlots ? double(laneActive) / double(laneSlots) : 0; }
+    double laneUtilisation() const {
+        return laneSlots ? double(laneActive) / double(laneSlots) : 0;
+    }
 };
 
 struct MarchGBuffer {

@@ -23,6 +23,8 @@ constexpr float kMarching = -1.0f;
 SSRT_INLINE Lane endCode(MarchEnd e) { return Lane(float(int(e))); }
 
 SSRT_INLINE int popcount(uint64_t bits) { return __builtin_popcountll(bits); }
+// (Not std::clamp: an out-of-line copy of it would be a weak symbol shared across ISAs.)
+SSRT_INLINE int clampIndex(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
 // One lane group of packed rays, in view space.
 struct RayLanes {
@@ -95,11 +97,11 @@ SSRT_INLINE ScreenSegment projectSegment(const MarchKernelArgs& a, const RayLane
 
 // A lane group's state once it is done.
 struct LaneEnds {
-    Lane cause;           // MarchEnd code (Hit = candidate, validated by finishRays)
-    Lane hitX, hitY;      // pixel position of the candidate hit
-    Lane hitZ;            // depth buffer there
+    Lane cause;       // MarchEnd code (Hit = candidate, validated by finishRays)
+    Lane hitX, hitY;  // pixel position of the candidate hit
+    Lane hitZ;        // depth buffer there
     Lane steps;
-    Lane thick;           // 1 where a thickness rejection happened on the way
+    Lane thick;  // 1 where a thickness rejection happened on the way
 };
 
 // Scalar validation and write-out of lanes [base, min(base + kW, count)): a candidate hit
@@ -119,8 +121,8 @@ inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
         const int i = base + l;
         MarchEnd c = MarchEnd(int(cause[l]));
         if (c == MarchEnd::Hit) {
-            const int ix = std::clamp(int(hx[l]), 0, a.width - 1);
-            const int iy = std::clamp(int(hy[l]), 0, a.height - 1);
+            const int ix = clampIndex(int(hx[l]), 0, a.width - 1);
+            const int iy = clampIndex(int(hy[l]), 0, a.height - 1);
             const std::size_t n = std::size_t(iy) * a.nStride + std::size_t(ix);
             const float dx = a.dx[i], dy = a.dy[i], dz = a.dz[i];
             const float wx = (R[0] * dx + R[3] * dy) + R[6] * dz;
@@ -145,6 +147,27 @@ inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
 SSRT_INLINE void countLanes(MarchKernelArgs& a, Mask active) {
     a.laneSlots += uint64_t(kW);
     a.laneActive += uint64_t(popcount(ln::maskBits(active)));
+}
+
+// Marches every packed ray with two lane groups in flight, their steps interleaved: each
+// step waits on a gather, and the other group's work hides part of that latency. Lanes never
+// interact, so the pairing does not change a bit. G has init(args, base), step(args) ->
+// bool (false once every lane has ended) and finish(args).
+template <class G>
+inline void marchGroups(MarchKernelArgs& a) {
+    for (int base = 0; base < a.count; base += 2 * kW) {
+        G g[2];
+        g[0].init(a, base);
+        const bool second = base + kW < a.count;
+        if (second) g[1].init(a, base + kW);
+        bool more0 = true, more1 = second;
+        while (more0 || more1) {
+            if (more0) more0 = g[0].step(a);
+            if (more1) more1 = g[1].step(a);
+        }
+        g[0].finish(a);
+        if (second) g[1].finish(a);
+    }
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

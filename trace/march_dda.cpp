@@ -18,12 +18,12 @@ namespace {
 
 // The screen-space segment of one lane group, in permuted coordinates (major axis first).
 struct Segment {
-    Mask permute;               // major axis is y
-    Lane M0, m0, k0;            // start: major, minor, 1/depth
-    Lane dM, dm, dk;            // per step (one stride along the major axis)
-    Lane M1, stepDir;           // end along the major axis, its direction (+-1)
-    Lane kLo, kHi;              // range of k over the segment
-    Mask nearClipped;           // the segment ends on the near plane
+    Mask permute;      // major axis is y
+    Lane M0, m0, k0;   // start: major, minor, 1/depth
+    Lane dM, dm, dk;   // per step (one stride along the major axis)
+    Lane M1, stepDir;  // end along the major axis, its direction (+-1)
+    Lane kLo, kHi;     // range of k over the segment
+    Mask nearClipped;  // the segment ends on the near plane
 };
 
 SSRT_INLINE Segment setUp(const MarchKernelArgs& a, const RayLanes& r) {
@@ -63,59 +63,74 @@ SSRT_INLINE void at(const Segment& s, Lane u, Lane& px, Lane& py, Lane& k) {
     k = ln::clamp(s.k0 + s.dk * u, s.kLo, s.kHi);
 }
 
-}  // namespace
+// One lane group of rays in flight.
+struct DdaGroup {
+    RayLanes r;
+    Segment s;
+    Lane jitter, uHit, prevZ;
+    LaneEnds e;
+    int base;
 
-void marchDdaKernel(MarchKernelArgs& a) {
-    const Lane zero(0.0f), one(1.0f), half(0.5f);
-    const Lane thickness(a.thickness), maxSteps(float(a.maxSteps));
-    for (int base = 0; base < a.count; base += kW) {
-        const RayLanes r = loadRays(a, base);
-        const Segment s = setUp(a, r);
-        const Lane jitter = ln::load<Lane>(a.jitter + base);
+    SSRT_INLINE void init(const MarchKernelArgs& a, int groupBase) {
+        const Lane zero(0.0f), one(1.0f), half(0.5f);
+        base = groupBase;
+        r = loadRays(a, base);
+        s = setUp(a, r);
+        jitter = ln::load<Lane>(a.jitter + base);
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
-                   zero, zero};
-        Lane uHit = zero;                 // step parameter of the hit sample
+        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+             zero,
+             zero,
+             zero,
+             zero,
+             zero};
+        uHit = zero;  // step parameter of the hit sample
         // Ray depth half a step before the first sample (interval [u - 1/2, u + 1/2]).
-        Lane prevZ;
-        {
-            Lane px, py, k;
-            at(s, jitter + half, px, py, k);
-            prevZ = one / k;
-        }
-        for (;;) {
-            const Mask active = e.cause < zero;
-            if (!ln::any(active)) break;
-            countLanes(a, active);
-            e.steps = ln::select(active, e.steps + one, e.steps);
-            const Lane u = e.steps + jitter;  // the first sample at 1 + jitter strides
-            Lane px, py, k;
-            at(s, u, px, py, k);
-            // The ray's depth interval over this step.
-            const Lane zA = prevZ;
-            const Lane zB = one / ln::clamp(k + s.dk * half, s.kLo, s.kHi);
-            prevZ = ln::select(active, zB, prevZ);
-            const Lane zMin = ln::min(zA, zB), zMax = ln::max(zA, zB);
-            const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
-            const Lane sceneZ = sceneDepth(a, ix, iy);
-            const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask cross = (zMax > sceneZ) & !own;
-            const Mask accept = cross & (zMin <= sceneZ + thickness);
-            // Ends, first match wins: end of the segment, off screen, hit, step cap.
-            const Mask past = (s.M0 + s.dM * u - s.M1) * s.stepDir > zero;
-            const Mask left = !onScreen(a, px, py);
-            Lane c = ln::select(e.steps >= maxSteps, endCode(MarchEnd::StepCap), Lane(kMarching));
-            c = ln::select(accept, endCode(MarchEnd::Hit), c);
-            c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
-            c = ln::select(past,
-                           ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen),
-                                      endCode(MarchEnd::StepCap)),
-                           c);
-            const Mask sampleUsed = active & !past & !left;
-            uHit = ln::select(sampleUsed & accept, u, uHit);
-            e.thick = ln::select(sampleUsed & cross & !accept, one, e.thick);
-            e.cause = ln::select(active, c, e.cause);
-        }
+        Lane px, py, k;
+        at(s, jitter + half, px, py, k);
+        prevZ = one / k;
+    }
+
+    // One step for the lanes still marching; false when none is.
+    SSRT_INLINE bool step(MarchKernelArgs& a) {
+        const Lane zero(0.0f), one(1.0f), half(0.5f);
+        const Mask active = e.cause < zero;
+        if (!ln::any(active)) return false;
+        countLanes(a, active);
+        e.steps = ln::select(active, e.steps + one, e.steps);
+        const Lane u = e.steps + jitter;  // the first sample at 1 + jitter strides
+        Lane px, py, k;
+        at(s, u, px, py, k);
+        // The ray's depth interval over this step.
+        const Lane zA = prevZ;
+        const Lane zB = one / ln::clamp(k + s.dk * half, s.kLo, s.kHi);
+        prevZ = ln::select(active, zB, prevZ);
+        const Lane zMin = ln::min(zA, zB), zMax = ln::max(zA, zB);
+        const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
+        const Lane sceneZ = sceneDepth(a, ix, iy);
+        const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
+        const Mask cross = (zMax > sceneZ) & !own;
+        const Mask accept = cross & (zMin <= sceneZ + Lane(a.thickness));
+        // Ends, first match wins: end of the segment, off screen, hit, step cap.
+        const Mask past = (s.M0 + s.dM * u - s.M1) * s.stepDir > zero;
+        const Mask left = !onScreen(a, px, py);
+        Lane c = ln::select(e.steps >= Lane(float(a.maxSteps)), endCode(MarchEnd::StepCap),
+                            Lane(kMarching));
+        c = ln::select(accept, endCode(MarchEnd::Hit), c);
+        c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
+        c = ln::select(
+            past,
+            ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen), endCode(MarchEnd::StepCap)),
+            c);
+        const Mask sampleUsed = active & !past & !left;
+        uHit = ln::select(sampleUsed & accept, u, uHit);
+        e.thick = ln::select(sampleUsed & cross & !accept, one, e.thick);
+        e.cause = ln::select(active, c, e.cause);
+        return true;
+    }
+
+    SSRT_INLINE void finish(MarchKernelArgs& a) {
+        const Lane zero(0.0f), one(1.0f), half(0.5f);
         // Binary refinement between the previous sample and the hit sample: keep the
         // nearest parameter found behind the depth buffer.
         const Mask hit = e.cause == endCode(MarchEnd::Hit);
@@ -136,11 +151,15 @@ void marchDdaKernel(MarchKernelArgs& a) {
             at(s, hi, px, py, k);
             e.hitX = ln::select(hit, px, zero);
             e.hitY = ln::select(hit, py, zero);
-            e.hitZ = ln::select(hit, sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height)),
-                                zero);
+            e.hitZ =
+                ln::select(hit, sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height)), zero);
         }
         finishRays(a, base, e);
     }
-}
+};
+
+}  // namespace
+
+void marchDdaKernel(MarchKernelArgs& a) { marchGroups<DdaGroup>(a); }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -18,103 +18,151 @@ namespace ssrt::SSRT_ISA_NS {
 
 namespace {
 
-// minZ of level L at cell (cx, cy), per lane (levels differ between lanes: a scalar gather).
-SSRT_INLINE Lane loadMinZ(const MarchKernelArgs& a, Lane level, Lane cx, Lane cy) {
+// 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
+SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, Lane level, Lane cx, Lane cy) {
+    if (a.hizInvPacked) {
+        // Packed pyramid: one gather for the level tables, one for the depth.
+        const ILane L = ln::toIntTrunc(level);
+        const Lane width = ln::gather(a.hizWidthF, L);
+        const Lane x = ln::clamp(cx, Lane(0.0f), width - Lane(1.0f));
+        const Lane y = ln::max(cy, Lane(0.0f));
+        // (Lanes already done may point anywhere: keep them inside the buffer.)
+        const Lane index =
+            ln::min(ln::gather(a.hizOffset, L) + y * width + x, Lane(a.hizPackedLast));
+        return ln::gather(a.hizInvPacked, ln::toIntTrunc(index));
+    }
     alignas(64) float lv[kW], x[kW], y[kW], out[kW];
     ln::store(lv, level);
     ln::store(x, cx);
     ln::store(y, cy);
     for (int l = 0; l < kW; ++l) {
         const int L = int(lv[l]);
-        const int ix = std::clamp(int(x[l]), 0, a.hizWidth[L] - 1);
-        const int iy = std::clamp(int(y[l]), 0, a.hizHeight[L] - 1);
-        out[l] = a.hizMin[L][std::size_t(iy) * a.hizStride[L] + std::size_t(ix)];
+        const int ix = clampIndex(int(x[l]), 0, a.hizWidth[L] - 1);
+        const int iy = clampIndex(int(y[l]), 0, a.hizHeight[L] - 1);
+        out[l] = 1.0f / a.hizMin[L][std::size_t(iy) * a.hizStride[L] + std::size_t(ix)];
     }
     return ln::load<Lane>(out);
 }
 
-}  // namespace
+// One lane group of rays in flight: set-up, one traversal iteration, validation.
+struct Group {
+    RayLanes r;
+    ScreenSegment s;
+    Lane dPx, dPy, dk, invDx, invDy, invDk, floorX, floorY, nudgeX, nudgeY;
+    Mask deeper;
+    Lane t, px, py, level, size, invSize;
+    LaneEnds e;
+    int base;
 
-void marchHiZKernel(MarchKernelArgs& a) {
-    const Lane zero(0.0f), one(1.0f), two(2.0f), half(0.5f);
-    const Lane big(1e30f);
-    const Lane maxSteps(float(a.maxSteps)), thickness(a.thickness);
-    const float mostDetailed = float(a.mostDetailedLevel), top = float(a.hizLevels - 1);
-    const float detailedSize = float(1 << a.mostDetailedLevel);
-    for (int base = 0; base < a.count; base += kW) {
+    SSRT_INLINE void init(const MarchKernelArgs& a, int groupBase) {
+        const Lane zero(0.0f), one(1.0f), big(1e30f);
+        const float detailedSize = float(1 << a.mostDetailedLevel);
+        base = groupBase;
         // Set-up: the screen-space segment and its reciprocal slopes.
-        const RayLanes r = loadRays(a, base);
-        const ScreenSegment s = projectSegment(a, r);
-        const Lane dPx = s.x1 - s.x0, dPy = s.y1 - s.y0, dk = s.k1 - s.k0;
-        const Lane invDx = ln::select(ln::abs(dPx) > Lane(1e-12f), one / dPx, big);
-        const Lane invDy = ln::select(ln::abs(dPy) > Lane(1e-12f), one / dPy, big);
-        const Mask deeper = dk < Lane(-1e-30f);
-        const Lane invDk = ln::select(deeper, one / dk, zero);
-        const Lane floorX = ln::select(dPx >= zero, one, zero);
-        const Lane floorY = ln::select(dPy >= zero, one, zero);
+        r = loadRays(a, base);
+        s = projectSegment(a, r);
+        dPx = s.x1 - s.x0, dPy = s.y1 - s.y0, dk = s.k1 - s.k0;
+        // A tiny slope counts as +0 (a huge positive reciprocal, boundaries to the right), so
+        // the sign of the reciprocal and the side of the boundary always agree.
+        const Mask flatX = ln::abs(dPx) <= Lane(1e-12f), flatY = ln::abs(dPy) <= Lane(1e-12f);
+        invDx = ln::select(flatX, big, one / ln::select(flatX, one, dPx));
+        invDy = ln::select(flatY, big, one / ln::select(flatY, one, dPy));
+        deeper = dk < Lane(-1e-30f);
+        invDk = ln::select(deeper, one / ln::select(deeper, dk, one), zero);
+        const Mask posX = (dPx >= zero) | flatX, posY = (dPy >= zero) | flatY;
+        floorX = ln::select(posX, one, zero);
+        floorY = ln::select(posY, one, zero);
         // Nudge past the cell boundary (FidelityFX: 0.005 of a most detailed cell).
-        const Lane nudgeX = ln::select(dPx >= zero, Lane(0.005f * detailedSize),
-                                       Lane(-0.005f * detailedSize));
-        const Lane nudgeY = ln::select(dPy >= zero, Lane(0.005f * detailedSize),
-                                       Lane(-0.005f * detailedSize));
-        // t where the ray crosses the next cell boundary of size `size` from (px, py).
-        auto cellExit = [&](Lane px, Lane py, Lane size, Lane invSize) {
-            const Lane planeX = (ln::floor(px * invSize) + floorX) * size + nudgeX;
-            const Lane planeY = (ln::floor(py * invSize) + floorY) * size + nudgeY;
-            return ln::min((planeX - s.x0) * invDx, (planeY - s.y0) * invDy);
-        };
+        nudgeX = ln::select(posX, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
+        nudgeY = ln::select(posY, Lane(0.005f * detailedSize), Lane(-0.005f * detailedSize));
         // Leave the origin's own cell at the most detailed level.
-        Lane t = cellExit(s.x0, s.y0, Lane(detailedSize), Lane(1.0f / detailedSize));
-        Lane level(float(a.startLevel));
-        Lane size(float(1 << a.startLevel)), invSize(1.0f / float(1 << a.startLevel));
+        const Lane invD(1.0f / detailedSize), sizeD(detailedSize);
+        const Lane planeX = (ln::floor(s.x0 * invD) + floorX) * sizeD + nudgeX;
+        const Lane planeY = (ln::floor(s.y0 * invD) + floorY) * sizeD + nudgeY;
+        t = ln::min((planeX - s.x0) * invDx, (planeY - s.y0) * invDy);
+        level = Lane(float(a.startLevel));
+        size = Lane(float(1 << a.startLevel));
+        invSize = Lane(1.0f / float(1 << a.startLevel));
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
-                   zero, zero};
-        Lane px = s.x0 + dPx * t, py = s.y0 + dPy * t;
-        for (;;) {
-            Mask active = e.cause < zero;
-            // Off screen or past the end of the segment: a miss.
-            const Mask left = !onScreen(a, px, py);
-            const Mask past = t > one;
-            Lane c = ln::select(past,
-                                ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen),
-                                           endCode(MarchEnd::StepCap)),
-                                Lane(kMarching));
-            c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
-            c = ln::select(e.steps >= maxSteps, endCode(MarchEnd::StepCap), c);
-            e.cause = ln::select(active, c, e.cause);
-            active = e.cause < zero;
-            if (!ln::any(active)) break;
-            countLanes(a, active);
-            e.steps = ln::select(active, e.steps + one, e.steps);
-            // One iteration: the cell's minimum depth and the three planes.
-            const Lane cellX = ln::floor(px * invSize), cellY = ln::floor(py * invSize);
-            const Lane surface = loadMinZ(a, level, cellX, cellY);
-            const Lane tx = ((cellX + floorX) * size + nudgeX - s.x0) * invDx;
-            const Lane ty = ((cellY + floorY) * size + nudgeY - s.y0) * invDy;
-            const Lane kSurface = one / surface;  // background: 0
-            const Lane tz = ln::select(deeper, (kSurface - s.k0) * invDk, big);
-            const Lane tMin = ln::min(ln::min(tx, ty), tz);
-            const Lane k = s.k0 + dk * t;
-            const Mask above = k * surface >= one;  // ray depth <= surface
-            const Mask skipped = above & (tMin != tz);
-            t = ln::select(active & above, tMin, t);
+        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+             zero,
+             zero,
+             zero,
+             zero,
+             zero};
+        px = s.x0 + dPx * t;
+        py = s.y0 + dPy * t;
+    }
+
+    // One iteration for the lanes still marching; false when none is.
+    SSRT_INLINE bool step(MarchKernelArgs& a) {
+        const Lane zero(0.0f), one(1.0f), two(2.0f), half(0.5f), big(1e30f);
+        Mask active = e.cause < zero;
+        if (!ln::any(active)) return false;
+        // Off screen, past the end of the segment or out of iterations: a miss.
+        const Mask left = !onScreen(a, px, py);
+        const Mask past = t > one;
+        Lane c = ln::select(
+            past,
+            ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen), endCode(MarchEnd::StepCap)),
+            Lane(kMarching));
+        c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
+        c = ln::select(e.steps >= Lane(float(a.maxSteps)), endCode(MarchEnd::StepCap), c);
+        e.cause = ln::select(active, c, e.cause);
+        active = e.cause < zero;
+        if (!ln::any(active)) return false;
+        countLanes(a, active);
+        e.steps = ln::select(active, e.steps + one, e.steps);
+        // The cell's minimum depth and the three planes.
+        const Lane cellX = ln::floor(px * invSize), cellY = ln::floor(py * invSize);
+        const Lane kSurface = loadInvMinZ(a, level, cellX, cellY);  // background: 0
+        const Lane tx = ((cellX + floorX) * size + nudgeX - s.x0) * invDx;
+        const Lane ty = ((cellY + floorY) * size + nudgeY - s.y0) * invDy;
+        const Lane tz = ln::select(deeper, (kSurface - s.k0) * invDk, big);
+        const Lane tMin = ln::min(ln::min(tx, ty), tz);
+        const Lane k = s.k0 + dk * t;
+        const Mask above = k >= kSurface;  // ray depth <= surface
+        const Mask skipped = above & (tMin != tz);
+        t = ln::select(active & above, tMin, t);
+        px = s.x0 + dPx * t;
+        py = s.y0 + dPy * t;
+        // Climb after leaving a cell in front of it, else descend.
+        const Mask up = active & skipped & (level < Lane(float(a.hizLevels - 1)));
+        const Mask down = active & !skipped;
+        level = ln::select(up, level + one, ln::select(down, level - one, level));
+        size = ln::select(up, size * two, ln::select(down, size * half, size));
+        invSize = ln::select(up, invSize * half, ln::select(down, invSize * two, invSize));
+        // Below the most detailed level: a candidate hit (keep the level loadable).
+        const Lane mostDetailed(float(a.mostDetailedLevel));
+        Mask candidate = active & (level < mostDetailed);
+        if (a.mostDetailedLevel > 0 && ln::any(candidate)) {
+            // A coarse cell's minimum may lie in front of the pixel the ray is over: where
+            // the ray is still in front of that pixel's depth, step out of the cell at the
+            // most detailed level and go on instead.
+            const Lane sceneZ = sceneDepth(a, pixelOf(px, a.width), pixelOf(py, a.height));
+            const Mask inFront = candidate & ((s.k0 + dk * t) * sceneZ > one);
+            const Lane cellSize(float(1 << a.mostDetailedLevel));
+            const Lane invCell(1.0f / float(1 << a.mostDetailedLevel));
+            const Lane planeX = (ln::floor(px * invCell) + floorX) * cellSize + nudgeX;
+            const Lane planeY = (ln::floor(py * invCell) + floorY) * cellSize + nudgeY;
+            const Lane tExit = ln::min((planeX - s.x0) * invDx, (planeY - s.y0) * invDy);
+            t = ln::select(inFront, tExit, t);
             px = s.x0 + dPx * t;
             py = s.y0 + dPy * t;
-            // Climb after leaving a cell in front of it, else descend.
-            const Mask up = skipped & (level < Lane(top));
-            const Mask down = !skipped;
-            level = ln::select(active & up, level + one, ln::select(active & down, level - one, level));
-            size = ln::select(active & up, size * two, ln::select(active & down, size * half, size));
-            invSize = ln::select(active & up, invSize * half,
-                                 ln::select(active & down, invSize * two, invSize));
-            const Mask candidate = active & (level < Lane(mostDetailed));
-            // Keep the level loadable for lanes that stop here.
-            level = ln::max(level, Lane(mostDetailed));
-            e.cause = ln::select(candidate, endCode(MarchEnd::Hit), e.cause);
+            level = ln::select(inFront, mostDetailed, level);
+            size = ln::select(inFront, cellSize, size);
+            invSize = ln::select(inFront, invCell, invSize);
+            candidate = candidate & !inFront;
         }
-        // Hit validation at full resolution: not the origin's pixel, not background, within
-        // the thickness behind the surface.
+        e.cause = ln::select(candidate, endCode(MarchEnd::Hit), e.cause);
+        level = ln::max(level, mostDetailed);
+        return true;
+    }
+
+    // Hit validation at full resolution (not the origin's pixel, not background, within the
+    // thickness behind the surface), then the write-out.
+    SSRT_INLINE void finish(MarchKernelArgs& a) {
+        const Lane zero(0.0f), one(1.0f);
         const Mask hit = e.cause == endCode(MarchEnd::Hit);
         if (ln::any(hit)) {
             const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
@@ -122,8 +170,13 @@ void marchHiZKernel(MarchKernelArgs& a) {
             const Lane k = ln::clamp(s.k0 + dk * t, ln::min(s.k0, s.k1), ln::max(s.k0, s.k1));
             const Lane rayZ = one / k;
             const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask valid = (!own) & (rayZ <= sceneZ + thickness);
-            e.cause = ln::select(hit & !valid, endCode(MarchEnd::Thickness), e.cause);
+            // A candidate on a background pixel is a ray that ran out to (near) infinite
+            // depth (k ~ 0, where k * inf is no test): no surface there, it reached the end of
+            // its length (StepCap covers maxDistance).
+            const Mask background = !(sceneZ < Lane(__builtin_inff()));
+            const Mask valid = (!own) & (!background) & (rayZ <= sceneZ + Lane(a.thickness));
+            e.cause = ln::select(hit & background, endCode(MarchEnd::StepCap), e.cause);
+            e.cause = ln::select(hit & !background & !valid, endCode(MarchEnd::Thickness), e.cause);
             const Mask ok = hit & valid;
             e.hitX = ln::select(ok, px, zero);
             e.hitY = ln::select(ok, py, zero);
@@ -131,6 +184,10 @@ void marchHiZKernel(MarchKernelArgs& a) {
         }
         finishRays(a, base, e);
     }
-}
+};
+
+}  // namespace
+
+void marchHiZKernel(MarchKernelArgs& a) { marchGroups<Group>(a); }
 
 }  // namespace ssrt::SSRT_ISA_NS

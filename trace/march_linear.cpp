@@ -8,53 +8,74 @@
 
 namespace ssrt::SSRT_ISA_NS {
 
-void marchLinearKernel(MarchKernelArgs& a) {
-    const Lane zero(0.0f), one(1.0f);
-    const Lane step(a.linearStep), maxDist(a.maxDistance), nearZ(a.nearZ);
-    const Lane maxSteps(float(a.maxSteps));
-    for (int base = 0; base < a.count; base += kW) {
+namespace {
+
+// One lane group of rays in flight.
+struct LinearGroup {
+    RayLanes r;
+    Lane depth0, depthRate, thresh;
+    LaneEnds e;
+    int base;
+
+    SSRT_INLINE void init(const MarchKernelArgs& a, int groupBase) {
+        const Lane zero(0.0f);
+        base = groupBase;
         // Set-up (per ray, outside the loop).
-        const RayLanes r = loadRays(a, base);
-        const Lane depth0 = zero - r.o.z, depthRate = zero - r.d.z;
-        const Lane thresh = Lane(a.thickness) + step * ln::abs(r.d.z);
+        r = loadRays(a, base);
+        depth0 = zero - r.o.z;
+        depthRate = zero - r.d.z;
+        thresh = Lane(a.thickness) + Lane(a.linearStep) * ln::abs(r.d.z);
         const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        LaneEnds e{ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero,
-                   zero, zero};
-        Lane t = zero;
-        for (;;) {
-            const Mask active = e.cause < zero;
-            if (!ln::any(active)) break;
-            countLanes(a, active);
-            t = t + step;
-            e.steps = ln::select(active, e.steps + one, e.steps);
-            // The sample and its pixel.
-            const Lane depth = depth0 + depthRate * t;
-            const Lane k = one / ln::max(depth, nearZ);
-            const Lane px = projectX(a, r.o.x + r.d.x * t, k);
-            const Lane py = projectY(a, r.o.y + r.d.y * t, k);
-            const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
-            const Lane sceneZ = sceneDepth(a, ix, iy);
-            const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
-            const Mask behind = (depth > sceneZ) & !own;
-            const Lane diff = depth - sceneZ;
-            const Mask accept = behind & (diff <= thresh);
-            // Ends, first match wins: distance cap, near plane, off screen, hit, step cap.
-            const Mask past = t > maxDist;
-            const Mask left = (depth < nearZ) | !onScreen(a, px, py);
-            Lane c = ln::select(e.steps >= maxSteps, endCode(MarchEnd::StepCap), Lane(kMarching));
-            c = ln::select(accept, endCode(MarchEnd::Hit), c);
-            c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
-            c = ln::select(past, endCode(MarchEnd::StepCap), c);
-            const Mask sampleUsed = active & !past & !left;
-            const Mask hitNow = sampleUsed & accept;
-            e.hitX = ln::select(hitNow, px, e.hitX);
-            e.hitY = ln::select(hitNow, py, e.hitY);
-            e.hitZ = ln::select(hitNow, sceneZ, e.hitZ);
-            e.thick = ln::select(sampleUsed & behind & (diff > thresh), one, e.thick);
-            e.cause = ln::select(active, c, e.cause);
-        }
-        finishRays(a, base, e);
+        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
+             zero,
+             zero,
+             zero,
+             zero,
+             zero};
     }
-}
+
+    // One step for the lanes still marching; false when none is.
+    SSRT_INLINE bool step(MarchKernelArgs& a) {
+        const Lane zero(0.0f), one(1.0f), nearZ(a.nearZ);
+        const Mask active = e.cause < zero;
+        if (!ln::any(active)) return false;
+        countLanes(a, active);
+        e.steps = ln::select(active, e.steps + one, e.steps);
+        const Lane t = e.steps * Lane(a.linearStep);
+        // The sample and its pixel.
+        const Lane depth = depth0 + depthRate * t;
+        const Lane k = one / ln::max(depth, nearZ);
+        const Lane px = projectX(a, r.o.x + r.d.x * t, k);
+        const Lane py = projectY(a, r.o.y + r.d.y * t, k);
+        const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
+        const Lane sceneZ = sceneDepth(a, ix, iy);
+        const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
+        const Mask behind = (depth > sceneZ) & !own;
+        const Lane diff = depth - sceneZ;
+        const Mask accept = behind & (diff <= thresh);
+        // Ends, first match wins: distance cap, near plane, off screen, hit, step cap.
+        const Mask past = t > Lane(a.maxDistance);
+        const Mask left = (depth < nearZ) | !onScreen(a, px, py);
+        Lane c = ln::select(e.steps >= Lane(float(a.maxSteps)), endCode(MarchEnd::StepCap),
+                            Lane(kMarching));
+        c = ln::select(accept, endCode(MarchEnd::Hit), c);
+        c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
+        c = ln::select(past, endCode(MarchEnd::StepCap), c);
+        const Mask sampleUsed = active & !past & !left;
+        const Mask hitNow = sampleUsed & accept;
+        e.hitX = ln::select(hitNow, px, e.hitX);
+        e.hitY = ln::select(hitNow, py, e.hitY);
+        e.hitZ = ln::select(hitNow, sceneZ, e.hitZ);
+        e.thick = ln::select(sampleUsed & behind & (diff > thresh), one, e.thick);
+        e.cause = ln::select(active, c, e.cause);
+        return true;
+    }
+
+    SSRT_INLINE void finish(MarchKernelArgs& a) { finishRays(a, base, e); }
+};
+
+}  // namespace
+
+void marchLinearKernel(MarchKernelArgs& a) { marchGroups<LinearGroup>(a); }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -3,9 +3,8 @@
 // and mirror rays built from a G-buffer.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cmath>
+#include <glm/glm.hpp>
 #include <string>
 
 #include "core/image.h"
@@ -166,8 +165,8 @@ inline MarchStats march(Marcher m, const MarchSettings& s, const GBuf& g, const 
                         MarchResult& out, Isa isa = Isa::Scalar, int threads = 1) {
     HiZPyramid hiz;
     if (m == Marcher::HiZ) buildHiZ(g.viewZ, hiz, threads);
-    return marchRays(isa, m, s, g.camera, g.view(), m == Marcher::HiZ ? &hiz : nullptr, rays,
-                     out, threads);
+    return marchRays(isa, m, s, g.camera, g.view(), m == Marcher::HiZ ? &hiz : nullptr, rays, out,
+                     threads);
 }
 
 }  // namespace ssrt::test

@@ -288,9 +288,8 @@ TEST_CASE("march: hi-z takes far fewer steps than linear on the corridor") {
     const MarchStats dda = march(Marcher::Dda, s, g, rays, r);
     const MarchStats hiz = march(Marcher::HiZ, s, g, rays, r);
     std::printf("corridor mean steps: linear %.1f, dda %.1f, hiz %.1f; hits %llu %llu %llu\n",
-                lin.meanSteps(), dda.meanSteps(), hiz.meanSteps(),
-                (unsigned long long)lin.ends[0], (unsigned long long)dda.ends[0],
-                (unsigned long long)hiz.ends[0]);
+                lin.meanSteps(), dda.meanSteps(), hiz.meanSteps(), (unsigned long long)lin.ends[0],
+                (unsigned long long)dda.ends[0], (unsigned long long)hiz.ends[0]);
     REQUIRE(lin.rays > 10000);
     CHECK(hiz.meanSteps() * 4.0 < lin.meanSteps());
     CHECK(hiz.meanSteps() * 2.0 < dda.meanSteps());
@@ -393,4 +392,34 @@ TEST_CASE("march: a hit on a surface whose normal faces along the ray is BackFac
         REQUIRE(expected > 500);
         CHECK(backFace >= expected * 97 / 100);
     }
+}
+
+TEST_CASE("march: hi-z with a coarser most detailed level and a higher start level") {
+    const GBuf g = makeBoxGBuffer(240, 160);
+    const RayBatch rays = mirrorRays(g);
+    MarchSettings s;
+    s.maxDistance = 40.0f;
+    MarchResult fine, coarse;
+    const MarchStats a = march(Marcher::HiZ, s, g, rays, fine);
+    s.hizMostDetailedLevel = 1;
+    s.hizStartLevel = 3;
+    const MarchStats b = march(Marcher::HiZ, s, g, rays, coarse);
+    // Box reflections still hit the box, within a cell of the most detailed level (2 px).
+    int expected = 0, close = 0;
+    for (int y = 0; y < 160; ++y)
+        for (int x = 0; x < 240; ++x) {
+            glm::vec2 p;
+            if (g.ny.at(x, y) != 1.0f || !analyticBoxHit(g, rays, x, y, p)) continue;
+            ++expected;
+            close += coarse.hit.at(x, y) == 1.0f &&
+                     std::hypot(coarse.hitX.at(x, y) - p.x, coarse.hitY.at(x, y) - p.y) <= 2.0;
+        }
+    std::printf("hi-z level 1: %d of %d box reflections within 2 px; mean steps %.1f vs %.1f\n",
+                close, expected, b.meanSteps(), a.meanSteps());
+    CHECK(close >= expected * 9 / 10);
+    CHECK(allFinite(coarse));
+    // Lane bookkeeping: every step issues kWidth slots, at least one active.
+    CHECK(b.laneActive <= b.laneSlots);
+    CHECK(b.laneActive == b.steps);
+    CHECK(a.laneActive == a.steps);
 }
