@@ -9,11 +9,11 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "raster/hiz.h"
 #include "raster/raster.h"
 #include "raster/raster_stats.h"
 #include "raster/shadow_map.h"
 #include "scenes/scene.h"
-#include "raster/hiz.h"
 #include "trace/color_pyramid.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
@@ -99,6 +99,7 @@ struct Frame {
         RayBatch rays;
         MarchResult march;
         ColorPyramid colorPyramid;
+        SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent the frame's planes
         PlaneF directParts[15];   // direct, emission, envDiffuse, envSpecular, specWeight (RGB each)
         PlaneF previousColor[3];  // last frame's final colour, for reprojected SSR hits
         bool hasPrevious = false;

@@ -1,5 +1,6 @@
 #include "renderer/trace_pass.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -83,6 +84,14 @@ void finishHits(const HitPlanes& out, int spp, int width, int height, int thread
     });
 }
 
+// The frame's SSR colour and opacity planes, lent to the resolve's output while it runs.
+const char* const kSsrOutputNames[4] = {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity"};
+
+void swapSsrOutput(Frame& frame, SsrOutput& out) {
+    for (int c = 0; c < 3; ++c) std::swap(out.color[c], planeOf(frame, kSsrOutputNames[c]));
+    std::swap(out.opacity, planeOf(frame, kSsrOutputNames[3]));
+}
+
 }  // namespace
 
 std::vector<const char*> tracePlaneNames(const TraceSettings& s) {
@@ -135,7 +144,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         st.march.add(marchRays(isa, ts.marcher, m, camera, mg, hiz, sc.rays, sc.march, threads));
     };
 
-    SsrOutput ssrOut;
+    SsrOutput& ssrOut = sc.ssr;
     if (ts.ssr) {
         // The hit radiance: this frame's direct light, or last frame's composite (when there is
         // one) through the motion vectors.
@@ -166,9 +175,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
             in.pyramid = &sc.colorPyramid;
         }
         // The output planes are the frame's own, lent to the resolve.
-        const char* names[4] = {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity"};
-        for (int c = 0; c < 3; ++c) std::swap(ssrOut.color[c], planeOf(frame, names[c]));
-        std::swap(ssrOut.opacity, planeOf(frame, names[3]));
+        swapSsrOutput(frame, ssrOut);
         const HitPlanes hp{&planeOf(frame, "ssrHit"), &planeOf(frame, "ssrSteps"),
                            &planeOf(frame, "ssrHitDistance")};
         TraceStats& st = frame.stats.ssr;
@@ -266,15 +273,18 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         std::swap(outDisplay[c], planeOf(frame, displayNames[c]));
     }
     if (ts.ssr) {
-        const char* names[4] = {"ssr.R", "ssr.G", "ssr.B", "ssrOpacity"};
-        for (int c = 0; c < 3; ++c) std::swap(ssrOut.color[c], planeOf(frame, names[c]));
-        std::swap(ssrOut.opacity, planeOf(frame, names[3]));
+        swapSsrOutput(frame, ssrOut);
     }
     pass("composite", t0);
 
     // Last frame's colour for reprojected hits in the next frame of a sequence.
     if (ts.ssr && ts.resolve.radiance == HitRadiance::Reprojected) {
-        for (int c = 0; c < 3; ++c) sc.previousColor[c] = frame.plane(colorNames[c]).clone();
+        for (int c = 0; c < 3; ++c) {
+            const PlaneF& src = frame.plane(colorNames[c]);
+            PlaneF& dst = sc.previousColor[c];
+            dst.ensureSize(w, h);  // kept across frames: no allocation once sized
+            for (int y = 0; y < h; ++y) std::copy_n(src.row(y), w, dst.row(y));
+        }
         sc.hasPrevious = true;
     }
 }

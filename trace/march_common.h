@@ -104,6 +104,15 @@ struct LaneEnds {
     Lane thick;  // 1 where a thickness rejection happened on the way
 };
 
+// The ends of a lane group starting at ray `base`: lanes past the tile's last ray are NoRay
+// from the start, the others are marching.
+SSRT_INLINE LaneEnds startEnds(const MarchKernelArgs& a, int base) {
+    const Lane zero(0.0f);
+    const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
+    return {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero, zero,
+            zero};
+}
+
 // Scalar validation and write-out of lanes [base, min(base + kW, count)): a candidate hit
 // whose surface normal faces along the ray (world space) becomes BackFace; a ray that was
 // rejected for thickness on the way and then left the screen or ran out of steps ends as

@@ -77,13 +77,7 @@ struct DdaGroup {
         r = loadRays(a, base);
         s = setUp(a, r);
         jitter = ln::load<Lane>(a.jitter + base);
-        const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
-             zero,
-             zero,
-             zero,
-             zero,
-             zero};
+        e = startEnds(a, base);
         uHit = zero;  // step parameter of the hit sample
         // Ray depth half a step before the first sample (interval [u - 1/2, u + 1/2]).
         Lane px, py, k;

@@ -83,13 +83,7 @@ struct Group {
         level = Lane(float(a.startLevel));
         size = Lane(float(1 << a.startLevel));
         invSize = Lane(1.0f / float(1 << a.startLevel));
-        const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
-             zero,
-             zero,
-             zero,
-             zero,
-             zero};
+        e = startEnds(a, base);
         px = s.x0 + dPx * t;
         py = s.y0 + dPy * t;
     }

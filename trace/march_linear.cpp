@@ -25,13 +25,7 @@ struct LinearGroup {
         depth0 = zero - r.o.z;
         depthRate = zero - r.d.z;
         thresh = Lane(a.thickness) + Lane(a.linearStep) * ln::abs(r.d.z);
-        const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-        e = {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)),
-             zero,
-             zero,
-             zero,
-             zero,
-             zero};
+        e = startEnds(a, base);
     }
 
     // One step for the lanes still marching; false when none is.
