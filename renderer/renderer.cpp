@@ -248,7 +248,7 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& p
 }
 
 void Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera,
-                      Frame& frame) const {
+                      Frame& frame, const TraceObserver* observer) const {
     scene.validate();
     const RenderSettings& s = settings_;
     const Isa isa = resolveIsa(s.isa);
@@ -433,7 +433,8 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
         tc.nearZ = camera.nearZ;
         tc.farZ = camera.farZ;
         std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
-        runTracePasses(s, isa, tc, da, frame);
+        std::copy_n(da.camPos, 3, tc.position);
+        runTracePasses(s, isa, tc, da, frame, observer);
     }
 
 }

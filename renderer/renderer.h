@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -110,6 +111,16 @@ struct Frame {
     bool has(std::string_view name) const;
 };
 
+// The screen-space pass a traced sample belongs to.
+enum class TracePass { Ssr, Ssgi };
+
+// Sees every sample's rays and what the march found, right after the march and before the
+// resolve, on the thread that called render(), in pass then sample order. Its time is not in
+// any pass time. `ssrt compare` hands them to Embree (trace/reference/ray_check.h), so the
+// truth is asked about the very rays that were marched.
+using TraceObserver =
+    std::function<void(TracePass pass, int sample, const RayBatch& rays, const MarchResult& march)>;
+
 class Renderer {
 public:
     explicit Renderer(RenderSettings settings = {});
@@ -133,9 +144,9 @@ public:
 
     // Renders into `frame`, reusing its planes and scratch buffers when their sizes match
     // (what a sequence or a benchmark wants). Safe to call from several threads at once
-    // with different frames.
+    // with different frames. `observer` (optional) sees every traced sample.
     void render(const Scene& scene, const Camera& camera, const Camera& previousCamera,
-                Frame& frame) const;
+                Frame& frame, const TraceObserver* observer = nullptr) const;
 
 private:
     RenderSettings settings_;

@@ -104,7 +104,7 @@ std::vector<const char*> tracePlaneNames(const TraceSettings& s) {
 }
 
 void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& camera,
-                    const DirectArgs& direct, Frame& frame) {
+                    const DirectArgs& direct, Frame& frame, const TraceObserver* observer) {
     const TraceSettings& ts = settings.trace;
     const int threads = settings.threads;
     const int w = camera.width, h = camera.height;
@@ -188,6 +188,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
                                                  camera, rg, sc.rays, threads));
             });
             timed(marchMs, [&] { march(st, uint32_t(s)); });
+            if (observer && *observer) (*observer)(TracePass::Ssr, s, sc.rays, sc.march);
             timed(resolveMs2, [&] {
                 resolveSsr(isa, rs, in, sc.rays, sc.march, ssrOut, s, ts.ssrSpp, threads);
                 accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);
@@ -226,6 +227,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
                                                 sc.rays, threads));
             });
             timed(marchMs, [&] { march(st, uint32_t(s)); });
+            if (observer && *observer) (*observer)(TracePass::Ssgi, s, sc.rays, sc.march);
             timed(resolveMs2, [&] {
                 resolveSsgi(isa, in, sc.rays, sc.march, out, s, ts.ssgiSpp, threads);
                 accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);

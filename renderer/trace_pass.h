@@ -14,7 +14,8 @@ std::vector<const char*> tracePlaneNames(const TraceSettings& settings);
 // `direct` is the direct pass's argument block (sky, light, shadow map), as it ran; its
 // parts outputs pointed into frame.scratch.directParts. Appends pass times and stats to
 // frame.stats.
+// `observer` (optional) sees each sample's rays and march result.
 void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& camera,
-                    const DirectArgs& direct, Frame& frame);
+                    const DirectArgs& direct, Frame& frame, const TraceObserver* observer);
 
 }  // namespace ssrt

@@ -21,6 +21,8 @@ struct TraceCamera {
     float tanHalfX = 1.0f, tanHalfY = 1.0f;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
     float nearZ = 0.05f, farZ = 100.0f;      // positive distances
     float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rotation, column-major
+    float position[3] = {0, 0, 0};  // the camera in world space (world = position +
+                                    // viewToWorld * view); the marchers never read it
 };
 
 // One ray per pixel, view space, planes of the frame's size. A pixel without a ray

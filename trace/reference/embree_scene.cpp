@@ -1,0 +1,212 @@
+#include "trace/reference/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace ssrt {
+
+namespace {
+
+void check(RTCDevice device, const char* what) {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE)
+        throw std::runtime_error(std::string("Embree: ") + what + " failed (error " +
+                                 std::to_string(int(e)) + ")");
+}
+
+RTCScene buildMeshScene(RTCDevice device, const Mesh& mesh) {
+    RTCScene s = rtcNewScene(device);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    // Copies, not shared buffers: Embree may read 4 bytes past the last vertex.
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (const glm::vec3& p : mesh.positions) *v++ = p.x, *v++ = p.y, *v++ = p.z;
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
+    std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(s, g, 0);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    return s;
+}
+
+void initRay(RTCRayHit& rh, glm::vec3 o, glm::vec3 d, float tnear, float tfar) {
+    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+    rh.ray.tnear = tnear;
+    rh.ray.tfar = tfar;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+glm::vec3 texel(const Scene& scene, int32_t texture, glm::vec2 uv, glm::vec3 fallback) {
+    if (texture < 0) return fallback;
+    return glm::vec3(scene.textures[std::size_t(texture)].sampleLevel(0, uv));
+}
+
+// Embree's memory monitor: bytes it holds (ptr: an std::atomic<int64_t>).
+bool countBytes(void* ptr, ssize_t bytes, bool /*post*/) {
+    static_cast<std::atomic<int64_t>*>(ptr)->fetch_add(int64_t(bytes));
+    return true;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+    scene.validate();
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
+    rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
+    const auto t0 = std::chrono::steady_clock::now();
+    meshScenes_.assign(scene.meshes.size(), nullptr);
+    top_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        RTCScene& ms = meshScenes_[inst.mesh];
+        if (!ms) {
+            ms = buildMeshScene(device_, scene.meshes[inst.mesh]);
+            ++stats_.meshes;
+        }
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, ms);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transform[0][0]);
+        rtcCommitGeometry(g);
+        // The instance's geometry id is its index in the scene: hits name it directly.
+        rtcAttachGeometryByID(top_, g, unsigned(i));
+        rtcReleaseGeometry(g);
+        stats_.triangles += scene.meshes[inst.mesh].triangleCount();
+    }
+    rtcCommitScene(top_);
+    stats_.buildMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    check(device_, "the scene build");
+    stats_.bytes = std::size_t(std::max<int64_t>(0, bytes_.load()));
+    stats_.instances = scene.instances.size();
+    scene.bounds(stats_.lo, stats_.hi);
+    stats_.diagonal = glm::length(stats_.hi - stats_.lo);
+    if (!(stats_.diagonal > 0.0f) || !std::isfinite(stats_.diagonal)) stats_.diagonal = 1.0f;
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (top_) rtcReleaseScene(top_);
+    for (RTCScene s : meshScenes_)
+        if (s) rtcReleaseScene(s);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+EmbreeHit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    initRay(rh, o, d, tnear, tfar);
+    rtcIntersect1(top_, &ctx, &rh);
+    EmbreeHit h;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    h.hit = true;
+    h.t = rh.ray.tfar;
+    h.instance = rh.hit.instID[0];
+    h.triangle = rh.hit.primID;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    return h;
+}
+
+void EmbreeScene::intersect16(int n, const glm::vec3* o, const glm::vec3* d, float tnear,
+                              float tfar, EmbreeHit* hits) const {
+    if (n < 1 || n > 16) throw std::invalid_argument("intersect16: n must be in [1, 16]");
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    for (int k = 0; k < 16; ++k) {
+        const int i = k < n ? k : 0;
+        valid[k] = k < n ? -1 : 0;
+        rh.ray.org_x[k] = o[i].x, rh.ray.org_y[k] = o[i].y, rh.ray.org_z[k] = o[i].z;
+        rh.ray.dir_x[k] = d[i].x, rh.ray.dir_y[k] = d[i].y, rh.ray.dir_z[k] = d[i].z;
+        rh.ray.tnear[k] = tnear;
+        rh.ray.tfar[k] = tfar;
+        rh.ray.time[k] = 0.0f;
+        rh.ray.mask[k] = ~0u;
+        rh.ray.id[k] = unsigned(k);
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, top_, &ctx, &rh);
+    for (int k = 0; k < n; ++k) {
+        EmbreeHit& h = hits[k];
+        h = EmbreeHit{};
+        if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+        h.hit = true;
+        h.t = rh.ray.tfar[k];
+        h.instance = rh.hit.instID[0][k];
+        h.triangle = rh.hit.primID[k];
+        h.u = rh.hit.u[k];
+        h.v = rh.hit.v[k];
+    }
+}
+
+bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+    r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+    r.tnear = tnear;
+    r.tfar = tfar;
+    r.time = 0.0f;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(top_, &ctx, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar to -inf when something is in the way
+}
+
+SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) const {
+    const Instance& inst = scene_.instances[h.instance];
+    const Mesh& mesh = scene_.meshes[inst.mesh];
+    const Material& mat = scene_.materials[inst.material];
+    const uint32_t* idx = &mesh.indices[3 * std::size_t(h.triangle)];
+    const float w0 = 1.0f - h.u - h.v;
+    SurfacePoint s;
+    s.position = o + h.t * d;
+    s.instance = h.instance;
+    s.material = inst.material;
+    // The triangle in world space, for its geometric normal (Embree's Ng is in object space
+    // under instancing).
+    glm::vec3 p[3];
+    for (int c = 0; c < 3; ++c) p[c] = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[c]], 1.0f));
+    const glm::vec3 ng = glm::cross(p[1] - p[0], p[2] - p[0]);
+    const float ngl = glm::length(ng);
+    s.geometricNormal = ngl > 0.0f ? ng / ngl : glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
+    const glm::vec3 n = normalMatrix * (w0 * mesh.normals[idx[0]] + h.u * mesh.normals[idx[1]] +
+                                        h.v * mesh.normals[idx[2]]);
+    const float nl = glm::length(n);
+    s.shadingNormal = nl > 0.0f && std::isfinite(nl) ? n / nl : s.geometricNormal;
+    if (!mesh.uvs.empty())
+        s.uv = w0 * mesh.uvs[idx[0]] + h.u * mesh.uvs[idx[1]] + h.v * mesh.uvs[idx[2]];
+    s.baseColor = mat.baseColor * texel(scene_, mat.baseColorTexture, s.uv, glm::vec3(1.0f));
+    const glm::vec3 mr = texel(scene_, mat.metallicRoughnessTexture, s.uv, glm::vec3(1.0f));
+    s.metallic = std::clamp(mat.metallic * mr.b, 0.0f, 1.0f);
+    s.roughness = std::clamp(mat.roughness * mr.g, 0.0f, 1.0f);
+    s.emissive = mat.emissive;
+    s.doubleSided = mat.doubleSided;
+    return s;
+}
+
+}  // namespace ssrt

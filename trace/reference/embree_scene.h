@@ -1,0 +1,95 @@
+// The world-space truth: the scene's instances in an Embree 3 BVH, built once per scene, and
+// what a hit on it means (the surface point, its normals and material). Everything under
+// trace/reference/ links Embree; the core library never does (DESIGN.md: Embree at the edges).
+//
+// Embree answers are a measurement, not part of the determinism contract: Embree picks its
+// own ISA kernels at run time and builds its BVH on its own threads. A hit distance can differ
+// in its last bits between machines; a first hit can differ only where two triangles tie.
+#pragma once
+
+#include <cstddef>
+#include <atomic>
+#include <cstdint>
+#include <vector>
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+// Embree's handles, without its header in ours.
+typedef struct RTCDeviceTy* RTCDevice;
+typedef struct RTCSceneTy* RTCScene;
+
+namespace ssrt {
+
+// What the build made, for `ssrt compare` and the sweep.
+struct BvhStats {
+    double buildMs = 0.0;      // every mesh's BVH and the instance BVH, wall clock
+    std::size_t meshes = 0;    // meshes some instance uses (one bottom-level BVH each)
+    std::size_t instances = 0;
+    std::size_t triangles = 0;  // over instances (what a flattened scene would hold)
+    std::size_t bytes = 0;      // Embree's memory after the build (its memory monitor)
+    glm::vec3 lo{0.0f}, hi{0.0f};  // world bounds
+    float diagonal = 0.0f;
+};
+
+// First hit of a world-space ray.
+struct EmbreeHit {
+    bool hit = false;
+    float t = 0.0f;          // distance along the (unit) direction
+    uint32_t instance = 0;   // Scene::instances index
+    uint32_t triangle = 0;   // triangle of that instance's mesh
+    float u = 0.0f, v = 0.0f;  // Embree's barycentrics: p = (1 - u - v) p0 + u p1 + v p2
+};
+
+// The surface at a hit, in world space.
+struct SurfacePoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f};  // unit, the triangle's front side (CCW)
+    glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};    // unit, interpolated vertex normals
+    glm::vec2 uv{0.0f};                           // (0, 0) for a mesh without UVs
+    uint32_t instance = 0, material = 0;
+    glm::vec3 baseColor{0.0f};  // material factor times its texture (level 0, bilinear)
+    float metallic = 0.0f, roughness = 0.0f;
+    glm::vec3 emissive{0.0f};
+    bool doubleSided = false;
+};
+
+class EmbreeScene {
+public:
+    // Builds the BVHs (RTC_BUILD_QUALITY_HIGH): one per mesh, one over the instances. Keeps a
+    // reference to `scene`, which must outlive this. Throws std::runtime_error when Embree
+    // cannot start or the build fails.
+    explicit EmbreeScene(const Scene& scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    const BvhStats& stats() const { return stats_; }
+    const Scene& scene() const { return scene_; }
+
+    // First hit with t in [tnear, tfar]; direction unit. Both faces of every triangle count
+    // (the caller decides what a back face means). Thread-safe.
+    EmbreeHit intersect(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) const;
+    // The same for up to 16 rays at once (Embree's packets; n in [1, 16]); equal answers to
+    // intersect(), faster on coherent rays.
+    void intersect16(int n, const glm::vec3* origin, const glm::vec3* direction, float tnear,
+                     float tfar, EmbreeHit* hits) const;
+    // Whether anything lies on the ray with t in [tnear, tfar] (shadow rays). Thread-safe.
+    bool occluded(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) const;
+
+    // The surface at a hit (hit.hit must be true), its material with textures applied.
+    SurfacePoint surface(glm::vec3 origin, glm::vec3 direction, const EmbreeHit& hit) const;
+
+    // A small distance for stepping off a surface: 1e-4 of the bounds' diagonal.
+    float epsilon() const { return 1e-4f * stats_.diagonal; }
+
+private:
+    const Scene& scene_;
+    RTCDevice device_ = nullptr;
+    RTCScene top_ = nullptr;
+    std::vector<RTCScene> meshScenes_;  // per mesh (null where no instance uses it)
+    BvhStats stats_;
+    std::atomic<int64_t> bytes_{0};
+};
+
+}  // namespace ssrt

@@ -1,0 +1,86 @@
+// Ray checks: the very rays a screen-space pass marched, traced by Embree in world space,
+// and each ray put in one class by comparing the two answers.
+//
+// For a pixel's ray (view-space origin o and unit direction d from the RayBatch, pdf > 0):
+// the world ray is camera.position + viewToWorld o, viewToWorld d; Embree's first hit with t
+// in [tnear, maxDistance] (tnear = EmbreeScene::epsilon(), off the origin's own surface;
+// maxDistance = MarchSettings::maxDistance, where the marchers give up). Both faces count.
+//
+// The true hit is "visible on screen" when it projects inside the frame, in front of the near
+// plane, onto a pixel whose G-buffer viewZ is the hit's own depth within the depth tolerance
+// (nothing nearer covers it; background pixels never see it).
+//
+// Classes (per ray; a pixel without a ray is NoRay and in no count):
+//   Agreed          march hit, true hit visible, and the march's hit pixel within
+//                   pixelTolerance of the true hit's projection and its view Z within
+//                   depthTolerance (relative) of the true hit's.
+//   FalseHit        march hit, but not Agreed: the true first hit is elsewhere, not visible,
+//                   or there is none within maxDistance (a leak through a gap or behind a thin
+//                   object, a hit on the wrong layer).
+//   MissedOnScreen  march missed, the true hit is visible on screen: screen space could have
+//                   found it.
+//   TrueMiss        march missed and Embree finds nothing within maxDistance.
+//   OffScreenTruth  march missed; the true hit exists but is not visible (off the frame,
+//                   behind the camera, or hidden behind nearer geometry): screen space cannot
+//                   know it.
+// Hit-position error (for rays where both hit, Agreed or FalseHit): the distance in pixels
+// between the march's (hitX, hitY) and the true hit's projection (infinite when the true hit
+// does not project in front of the camera), and |hitZ - trueZ| / trueZ.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/image.h"
+#include "trace/reference/embree_scene.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+enum class RayClass : uint8_t { NoRay, Agreed, FalseHit, MissedOnScreen, TrueMiss, OffScreenTruth };
+inline constexpr int kRayClassCount = 6;
+// "no_ray", "agreed", "false_hit", "missed_on_screen", "true_miss", "offscreen_truth".
+std::string_view rayClassName(RayClass c);
+
+struct RayCheckSettings {
+    float pixelTolerance = 2.0f;   // pixels, for Agreed
+    float depthTolerance = 0.02f;  // relative view Z, for Agreed and for "visible on screen"
+    float maxDistance = 30.0f;     // MarchSettings::maxDistance of the pass checked
+};
+
+// Counts and error distributions over every ray checked (several samples add up).
+struct RayCheckTable {
+    uint64_t rays = 0;                       // rays checked (pdf > 0)
+    std::array<uint64_t, kRayClassCount> count{};  // per RayClass (NoRay stays 0)
+    std::vector<float> pixelError;           // one per ray where both hit (sorted by finish())
+    std::vector<float> depthError;           // relative, same rays
+    double embreeSeconds = 0.0;              // wall clock of Embree's traversal alone
+    uint64_t embreeHits = 0;
+
+    void add(const RayCheckTable& other);  // combine (in a fixed order)
+    void finish();                         // sorts the error lists
+    double share(RayClass c) const;        // count / rays (0 without rays)
+    // Quantile q in [0, 1] of a sorted error list (0 when empty).
+    static float quantile(const std::vector<float>& sorted, double q);
+};
+
+// Per-pixel results of one sample's check, planes of the frame's size.
+struct RayCheckPlanes {
+    PlaneF rayClass;     // RayClass as a float
+    PlaneF pixelError;   // where both hit, else 0 (inf stays inf)
+    PlaneF depthError;   // where both hit, else 0
+    PlaneF trueT;        // Embree's hit distance (0: no true hit)
+    void ensureSize(int width, int height);
+};
+
+// Checks one sample's rays: Embree traces them (16-ray packets over tiles, `threads`
+// workers, 0 = every core), each is classified. Writes `planes` when not null. `viewZ` is the
+// frame's G-buffer depth (for "visible on screen"). Throws std::invalid_argument on planes of
+// the wrong size.
+RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& camera, const PlaneF& viewZ,
+                        const RayBatch& rays, const MarchResult& march,
+                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads);
+
+}  // namespace ssrt

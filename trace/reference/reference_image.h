@@ -1,0 +1,80 @@
+// The reference image: the frame's lighting model with the screen-space guesses replaced by
+// world-space truth traced with Embree, converged with many samples.
+//
+// What stays as the frame has it: primary visibility (the rasterized G-buffer is exact for
+// the camera's rays) and every BRDF and sky term of the direct pass. What changes:
+//   direct  sun visibility by an Embree shadow ray per pixel (Visibility::Embree), or the
+//           frame's own shadow map (Visibility::ShadowMap: isolates the tracing errors from
+//           the shadow map's);
+//   ssr     reflected radiance before the BRDF factor, from `spp` rays per pixel drawn with
+//           the frame's SSR sampler (trace/ray_gen.h, samples 0..spp-1 of the frame's
+//           sequence: the first ones are the rays the screen-space pass marched), traced by
+//           Embree to maxDistance. Each ray's radiance L: at a hit, the hit point's own light
+//           toward the ray's origin in the direct pass's model (sun with true visibility,
+//           sky diffuse and split-sum specular, emission); on a miss, the sky along the ray.
+//           Weighted like the reuse resolve: ssr = sum(w L) / sum(w), w = D V n.l / pdf;
+//           opacity 1 (nothing fades).
+//   ssgi    the average incoming radiance of `spp` cosine rays (the SSGI definition,
+//           trace/ssgi.h): at a hit the Lambert part of the hit's direct light with true
+//           visibility plus emission; on a miss the sky along the ray.
+// The composite (shading/composite.h) then puts them together exactly as the frame does, so
+// reference and frame differ only where screen space guessed.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "core/image.h"
+#include "renderer/renderer.h"
+#include "trace/reference/embree_scene.h"
+
+namespace ssrt {
+
+struct ReferenceSettings {
+    enum class Visibility { Embree, ShadowMap };
+    Visibility visibility = Visibility::Embree;
+    int spp = 64;               // rays per pixel for each of SSR and SSGI
+    float maxDistance = 30.0f;  // as MarchSettings::maxDistance
+    void validate() const;      // throws std::invalid_argument naming the field
+};
+
+// Planes of the frame's size. Scene-linear (before exposure) except color.
+struct ReferenceImage {
+    PlaneF color[3];     // composite, exposed (as the frame's "color")
+    PlaneF direct[3];    // sun light with the chosen visibility (the direct part)
+    PlaneF ssr[3];       // reflected radiance (as the frame's "ssr"), 0 on background
+    PlaneF ssgi[3];      // incoming diffuse radiance (as the frame's "ssgi"), 0 on background
+    PlaneF specular[3];  // specWeight x ssr: the specular part of color before exposure
+    PlaneF diffuse[3];   // albedo (1 - metallic) x ssgi: the diffuse part before exposure
+};
+
+// Progress: fraction done in [0, 1]; called from worker threads, at most a few hundred times.
+using Progress = std::function<void(double fraction)>;
+
+// Renders the reference for `frame` (rendered by `renderer` from `scene` with both trace
+// passes on: its G-buffer, direct parts and shadow map are read). Deterministic for a given
+// Embree build: per-pixel sample sequences from the counter-based RNG.
+ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
+                               const Frame& frame, const ReferenceSettings& settings,
+                               const Progress& progress = {});
+
+// A key over everything the reference depends on: the scene's content (meshes, materials,
+// instances, textures, light, sky, cameras), the render settings that shape it (size,
+// shadow map, exposure, frame index, SSR sampler) and the reference settings. For caching.
+uint64_t referenceKey(const Scene& scene, const Camera& camera, const RenderSettings& render,
+                      const ReferenceSettings& settings);
+
+}  // namespace ssrt
+
+namespace ssrt {
+
+// The same parts of a screen-space frame (rendered with both trace passes on), before
+// exposure, for the per-component error: direct = the direct pass's sun part, specular =
+// specWeight x (ssr x opacity + envSpecular x (1 - opacity)), diffuse = albedo (1 - metallic)
+// x ssgi (0 on background). Throws std::invalid_argument when a pass was off.
+struct FrameParts {
+    PlaneF direct[3], specular[3], diffuse[3];
+};
+FrameParts frameParts(const Frame& frame);
+
+}  // namespace ssrt

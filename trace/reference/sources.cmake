@@ -1,0 +1,6 @@
+# trace/reference/: the Embree truth (BVH, ray checks, reference image, image error). A
+# library of its own so that the core library never links Embree (DESIGN.md).
+find_package(embree 3 REQUIRED)
+add_library(ssrt_reference STATIC
+    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp)
+target_link_libraries(ssrt_reference PUBLIC ssrt PRIVATE embree)
