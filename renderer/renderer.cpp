@@ -424,18 +424,16 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });
     pass("shading", t0);
 
-    if (s.trace.any()) {
-        TraceCamera tc;
-        tc.width = w;
-        tc.height = h;
-        tc.tanHalfX = ra.tanHalfX;
-        tc.tanHalfY = ra.tanHalfY;
-        tc.nearZ = camera.nearZ;
-        tc.farZ = camera.farZ;
-        std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
-        std::copy_n(da.camPos, 3, tc.position);
-        runTracePasses(s, isa, tc, da, frame, observer);
-    }
+    TraceCamera& tc = frame.camera;
+    tc.width = w;
+    tc.height = h;
+    tc.tanHalfX = ra.tanHalfX;
+    tc.tanHalfY = ra.tanHalfY;
+    tc.nearZ = camera.nearZ;
+    tc.farZ = camera.farZ;
+    std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
+    std::copy_n(da.camPos, 3, tc.position);
+    if (s.trace.any()) runTracePasses(s, isa, tc, da, frame, observer);
 
 }
 

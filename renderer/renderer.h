@@ -86,6 +86,7 @@ struct FrameStats {
 
 struct Frame {
     int width = 0, height = 0;
+    TraceCamera camera;  // the camera it was rendered from, as the trace passes see it
     std::vector<NamedPlane> planes;
     FrameStats stats;
 
