@@ -1,11 +1,7 @@
 #include "cli/render_command.h"
 
-#include <oneapi/tbb/info.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -16,9 +12,8 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/options.h"
 #include "io/image_io.h"
-#include "scenes/builtin_scenes.h"
-#include "scenes/gltf_loader.h"
 #include "scenes/shot.h"
 
 namespace ssrt::cli {
@@ -26,111 +21,6 @@ namespace ssrt::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-// ---------------------------------------------------------------------------------------
-// Numbers from text
-
-inline constexpr long long kMaxThreads = 256;
-inline constexpr long long kMinShadowMap = 16;
-inline constexpr long long kMaxShadowMap = 8192;
-inline constexpr long long kMaxFrame = 4294967295ll;  // RenderSettings::frame is 32 bits
-
-[[noreturn]] void badValue(const std::string& option, const std::string& text,
-                           const std::string& expected) {
-    throw std::invalid_argument(option + ": invalid value '" + text + "' (expected " + expected +
-                                ")");
-}
-
-// The whole text must be a decimal integer in [lo, hi]; no sign tricks, spaces or suffixes.
-long long parseInteger(const std::string& option, const std::string& text, long long lo,
-                       long long hi) {
-    const std::string expected =
-        "an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
-    long long value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    // ec is set for non-numbers and for values beyond long long alike.
-    if (text.empty() || ptr != end || ec != std::errc{} || value < lo || value > hi)
-        badValue(option, text, expected);
-    return value;
-}
-
-// A finite number greater than zero (from_chars reads "nan" and "inf", so check both).
-float parsePositive(const std::string& option, const std::string& text) {
-    float value = 0.0f;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ptr != end || ec != std::errc{} || !std::isfinite(value) || value <= 0)
-        badValue(option, text, "a finite number greater than 0");
-    return value;
-}
-
-// One of a fixed set of names, through the enum's own parser.
-template <class Parse>
-auto parseChoice(const std::string& option, const std::string& text, Parse parse,
-                 const std::string& choices) {
-    const auto value = parse(text);
-    if (!value) badValue(option, text, "one of " + choices);
-    return *value;
-}
-
-std::string defaultSceneName() {
-    const auto& scenes = builtinScenes();
-    return scenes.empty() ? "cornell" : scenes.front().name;
-}
-
-std::string knownScenes() {
-    std::string out;
-    for (const auto& s : builtinScenes()) out += (out.empty() ? "" : ", ") + s.name;
-    return out;
-}
-
-// A --scene value naming a glTF file rather than a built-in scene.
-bool isSceneFile(const std::string& name) {
-    std::string lower = name;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-    auto endsWith = [&](const std::string& ext) {
-        return lower.size() > ext.size() && lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
-    };
-    return endsWith(".gltf") || endsWith(".glb");
-}
-
-void checkSceneName(const std::string& name) {
-    if (isSceneFile(name)) return;  // the loader names what is wrong with a file
-    for (const auto& s : builtinScenes())
-        if (s.name == name) return;
-    throw std::invalid_argument("--scene: unknown scene '" + name + "' (known: " + knownScenes() +
-                                ")");
-}
-
-std::string supportedIsaList() {
-    std::string out;
-    for (Isa isa : supportedIsas()) out += (out.empty() ? "" : ", ") + std::string(isaName(isa));
-    return out;
-}
-
-// The ISA the renderer will run, resolved now so a CPU without it fails before any work.
-// Errors name where the request came from: --isa, or SSRT_ISA under --isa auto.
-Isa resolveIsaFor(std::optional<Isa> requested) {
-    const std::string source = requested ? "--isa" : "SSRT_ISA";
-    try {
-        return resolveIsa(requested);
-    } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(source + ": " + e.what());
-    } catch (const std::exception& e) {
-        throw std::runtime_error(source + ": " + e.what() + " (this CPU runs " +
-                                 supportedIsaList() + ")");
-    }
-}
-
-int threadsFor(const RenderSettings& settings) {
-    // 0 means what oneTBB would use: every core this process may run on.
-    return settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-}
-
-std::string plural(int n, const std::string& noun) {
-    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-}
 
 // ---------------------------------------------------------------------------------------
 // The --stats table
@@ -158,91 +48,6 @@ constexpr Counter kCounters[] = {
 
 constexpr int kLabelWidth = 20;
 constexpr int kValueWidth = 14;
-
-}  // namespace
-
-// ---------------------------------------------------------------------------------------
-// Options
-
-namespace {
-
-const std::string kSsrMethods = "mirror, ggx_ndf, vndf_ellipsoid, vndf_spherical_caps, vndf_bounded";
-const std::string kMarchers = "linear, dda, hiz";
-inline constexpr long long kMaxMarchSteps = 65536;
-
-std::optional<SsrResolveMode> parseResolveMode(std::string_view s) {
-    if (s == "mip") return SsrResolveMode::Mip;
-    if (s == "reuse") return SsrResolveMode::Reuse;
-    return std::nullopt;
-}
-std::optional<HitRadiance> parseHitRadiance(std::string_view s) {
-    if (s == "current") return HitRadiance::Current;
-    if (s == "reprojected") return HitRadiance::Reprojected;
-    return std::nullopt;
-}
-
-void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
-    const TraceSettings d;
-    const auto add = [&](const std::string& flags, std::optional<std::string>& value,
-                         const std::string& type, const std::string& help,
-                         const std::string& defaultText) {
-        cmd.add_option_function<std::string>(
-               flags, [&value](const std::string& v) { value = v; }, help)
-            ->type_name(type)
-            ->default_str(defaultText)
-            ->group("Screen-space tracing");
-    };
-    cmd.add_flag("--no-ssr", o.noSsr, "Skip screen-space reflections (the environment's split-sum "
-                                      "light stands in)")
-        ->group("Screen-space tracing");
-    cmd.add_flag("--no-ssgi", o.noSsgi,
-                 "Skip screen-space one-bounce diffuse (the environment's irradiance stands in)")
-        ->group("Screen-space tracing");
-    add("--ssr-method", o.ssrMethod, "NAME", "How SSR rays sample the GGX lobe: " + kSsrMethods,
-        std::string(ssrMethodName(d.ssrMethod)));
-    add("--marcher", o.marcher, "NAME", "Depth-buffer marcher for SSR and SSGI rays: " + kMarchers,
-        std::string(marcherName(d.marcher)));
-    add("--ssr-spp", o.ssrSpp, "INT",
-        "SSR rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
-        std::to_string(d.ssrSpp));
-    add("--ssgi-spp", o.ssgiSpp, "INT",
-        "SSGI rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
-        std::to_string(d.ssgiSpp));
-    add("--max-steps", o.maxSteps, "INT",
-        "March steps per ray (Hi-Z: iterations), 1 to " + std::to_string(kMaxMarchSteps),
-        std::to_string(d.march.maxSteps));
-    std::ostringstream thickness;
-    thickness << d.march.thickness;
-    add("--thickness", o.thickness, "FLOAT",
-        "Depth a surface is assumed to have behind the depth buffer (view-space units), > 0",
-        thickness.str());
-    add("--ssr-resolve", o.ssrResolve, "MODE",
-        "SSR resolve: reuse (3x3 neighbours' hits, ratio estimator) or mip (colour pyramid at "
-        "mip = roughness x max mip)",
-        d.resolve.mode == SsrResolveMode::Mip ? "mip" : "reuse");
-    add("--hit-radiance", o.hitRadiance, "SOURCE",
-        "Radiance at a hit: current (this frame's direct light) or reprojected (the previous "
-        "frame's final colour through the motion vectors; a sequence's first frame uses current)",
-        d.resolve.radiance == HitRadiance::Current ? "current" : "reprojected");
-}
-
-void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
-    if (o.noSsr) t.ssr = false;
-    if (o.noSsgi) t.ssgi = false;
-    if (o.ssrMethod)
-        t.ssrMethod = parseChoice("--ssr-method", *o.ssrMethod, parseSsrMethod, kSsrMethods);
-    if (o.marcher) t.marcher = parseChoice("--marcher", *o.marcher, parseMarcher, kMarchers);
-    if (o.ssrSpp) t.ssrSpp = int(parseInteger("--ssr-spp", *o.ssrSpp, 1, TraceSettings::kMaxSpp));
-    if (o.ssgiSpp)
-        t.ssgiSpp = int(parseInteger("--ssgi-spp", *o.ssgiSpp, 1, TraceSettings::kMaxSpp));
-    if (o.maxSteps) t.march.maxSteps = int(parseInteger("--max-steps", *o.maxSteps, 1, kMaxMarchSteps));
-    if (o.thickness) t.march.thickness = parsePositive("--thickness", *o.thickness);
-    if (o.ssrResolve)
-        t.resolve.mode = parseChoice("--ssr-resolve", *o.ssrResolve, parseResolveMode, "mip, reuse");
-    if (o.hitRadiance)
-        t.resolve.radiance =
-            parseChoice("--hit-radiance", *o.hitRadiance, parseHitRadiance, "current, reprojected");
-}
 
 }  // namespace
 
@@ -355,46 +160,24 @@ std::string sequenceFileName(const std::string& output, int index, int count) {
 // The command
 
 int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
-    // Everything that can be wrong with the request fails here, before any rendering and
-    // before any file exists: flags (exit 2), then the shot file (exit 1).
-    RenderSettings base;
-    std::optional<Shot> shot;
-    if (o.shot) {
-        shot = loadShot(*o.shot);
-        applyShot(*shot, base);
-    }
-    const RenderSettings settings = settingsFrom(o, base);
+    SceneRequest request = loadSceneRequest(o);
+    const RenderSettings& settings = request.settings;
+    const std::optional<Shot>& shot = request.shot;
     int frames = shot && shot->render.frames ? *shot->render.frames : 1;
     if (o.frames) frames = int(parseInteger("--frames", *o.frames, 1, kMaxShotFrames));
     if (settings.frame + uint64_t(frames - 1) > uint64_t(kMaxFrame))
         throw std::invalid_argument("--frame: " + std::to_string(settings.frame) + " + " +
                                     std::to_string(frames) + " frames passes " +
                                     std::to_string(kMaxFrame));
-    std::string sceneName = defaultSceneName();
-    if (o.scene) {
-        checkSceneName(*o.scene);
-        sceneName = *o.scene;
-    } else if (shot && shot->scene) {
-        sceneName = *shot->scene;  // checked by the shot's parser
-    }
-    const Isa isa = resolveIsaFor(settings.isa);
     checkWritable(sequenceFileName(o.output, 0, frames));
-
-    // A glTF file or an environment image that cannot be loaded is a runtime error (exit 1),
-    // thrown before anything is written.
-    Scene scene = isSceneFile(sceneName) ? loadGltf(sceneName) : makeBuiltinScene(sceneName);
-    CameraPath path;
-    if (shot) {
-        applyShot(*shot, scene);
-        if (shot->environment.file)
-            scene.sky.image =
-                std::make_shared<const SkyImage>(readSkyImage(*shot->environment.file));
-        path = shotCameraPath(*shot, scene.camera);
-    }
+    // Loaded before anything is written.
+    loadScene(request);
+    const Scene& scene = request.scene;
+    const CameraPath& path = request.path;
     if (!o.quiet) {
-        err << "rendering " << sceneName << " " << settings.width << "x" << settings.height
+        err << "rendering " << request.name << " " << settings.width << "x" << settings.height
             << (frames > 1 ? ", " + plural(frames, "frame") : std::string()) << " on "
-            << isaName(isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
+            << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
     }
 
     // One Frame for the whole sequence: its planes and scratch buffers are reused. Frame i
