@@ -184,6 +184,54 @@ void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
             parseChoice("--hit-radiance", *o.hitRadiance, parseHitRadiance, "current, reprojected");
 }
 
+void addSceneOptions(CLI::App& command, RenderOptions& o, const RenderSettings& d) {
+    CLI::App* cmd = &command;
+    // Options that a shot file can also give: remembered only when typed, so that the shot
+    // decides otherwise; help shows the built-in default.
+    const auto addShotOption = [&](const std::string& flags, std::optional<std::string>& value,
+                                   const std::string& type, const std::string& help,
+                                   const std::string& defaultText) {
+        cmd->add_option_function<std::string>(
+               flags, [&value](const std::string& v) { value = v; }, help)
+            ->type_name(type)
+            ->default_str(defaultText);
+    };
+    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
+                         const std::string& help) {
+        cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
+    };
+    std::ostringstream exposure;
+    exposure << d.exposure;
+    addShotOption("--shot", o.shot, "FILE",
+                  "Shot file (JSON): scene, camera and camera path, light, environment, render "
+                  "settings; every field optional, and the flags below override it",
+                  "");
+    addShotOption("-s,--scene", o.scene, "NAME",
+                  "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file",
+                  defaultSceneName());
+    addShotOption("--width", o.width, "INT",
+                  "Image width in pixels, 1 to " + std::to_string(kMaxImageSize),
+                  std::to_string(d.width));
+    addShotOption("--height", o.height, "INT",
+                  "Image height in pixels, 1 to " + std::to_string(kMaxImageSize),
+                  std::to_string(d.height));
+    add("-j,--threads", o.threads, "INT",
+        "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = every core");
+    add("--isa", o.isa, "ISA",
+        "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA if set, "
+        "else the best this CPU runs");
+    addShotOption("--shadow-map-size", o.shadowMapSize, "INT",
+                  "Shadow map texels per side, " + std::to_string(kMinShadowMap) + " to " +
+                      std::to_string(kMaxShadowMap),
+                  std::to_string(d.shadowMapSize));
+    addShotOption("--exposure", o.exposure, "FLOAT",
+                  "Scale on linear radiance before the tone map, > 0", exposure.str());
+    addShotOption("--frame", o.frame, "INT",
+                  "Frame index (seeds the per-pixel random numbers); of a sequence's first frame, "
+                  "frame i getting this + i",
+                  std::to_string(d.frame));
+}
+
 std::vector<std::string> splitList(const std::string& option, const std::string& text) {
     std::vector<std::string> items;
     std::string item;

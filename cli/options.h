@@ -59,6 +59,10 @@ Isa resolveIsaFor(std::optional<Isa> requested);
 int threadsFor(const RenderSettings& settings);  // 0 -> every core
 std::string plural(int n, const std::string& noun);
 
+// --shot, --scene, --width, --height, --threads, --isa, --shadow-map-size, --exposure, --frame;
+// help shows `defaults` (the command's own) where neither a shot nor a flag decides.
+void addSceneOptions(CLI::App& cmd, RenderOptions& options, const RenderSettings& defaults);
+
 // The "Screen-space tracing" group: --no-ssr, --no-ssgi, --ssr-method, --marcher, --ssr-spp,
 // --ssgi-spp, --max-steps, --thickness, --ssr-resolve, --hit-radiance.
 void addTraceOptions(CLI::App& cmd, RenderOptions& options);

@@ -1,0 +1,118 @@
+#include "cli/reference_cache.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <ostream>
+#include <stdexcept>
+
+#include "io/image_io.h"
+
+namespace ssrt::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The reference's planes as the cache file names them.
+struct RefPlane {
+    const char* name;
+    PlaneF ReferenceImage::*group;
+};
+constexpr RefPlane kGroups[] = {
+    {"ref.color", &ReferenceImage::color},       {"ref.direct", &ReferenceImage::direct},
+    {"ref.ssr", &ReferenceImage::ssr},           {"ref.ssgi", &ReferenceImage::ssgi},
+    {"ref.specular", &ReferenceImage::specular}, {"ref.diffuse", &ReferenceImage::diffuse},
+};
+constexpr const char* kSuffix[3] = {".R", ".G", ".B"};
+
+std::string cachePath(const std::string& dir, uint64_t key) {
+    char name[40];
+    std::snprintf(name, sizeof name, "ref-%016llx.exr", static_cast<unsigned long long>(key));
+    return (fs::path(dir) / name).string();
+}
+
+bool readCached(const std::string& path, int width, int height, ReferenceImage& ref) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    try {
+        for (const RefPlane& g : kGroups)
+            for (int c = 0; c < 3; ++c) {
+                int w = 0, h = 0;
+                const std::vector<float> v =
+                    readChannel(path, std::string(g.name) + kSuffix[c], w, h);
+                if (w != width || h != height) return false;
+                PlaneF& p = (ref.*g.group)[c];
+                p = PlaneF(w, h);
+                for (int y = 0; y < h; ++y)
+                    std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
+            }
+    } catch (const std::exception&) {
+        return false;  // unreadable or incomplete: render it again
+    }
+    return true;
+}
+
+void writeCached(const std::string& path, const ReferenceImage& ref) {
+    fs::create_directories(fs::path(path).parent_path());
+    Frame f;
+    f.width = ref.color[0].width();
+    f.height = ref.color[0].height();
+    for (const RefPlane& g : kGroups)
+        for (int c = 0; c < 3; ++c)
+            f.planes.push_back({std::string(g.name) + kSuffix[c], (ref.*g.group)[c].clone()});
+    writeImage(path, f);  // whole or not at all (a temporary renamed over the target)
+}
+
+}  // namespace
+
+std::string defaultCacheDir() {
+    if (const char* d = std::getenv("SSRT_CACHE_DIR"); d && *d) return d;
+    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "ssrt").string();
+    if (const char* d = std::getenv("HOME"); d && *d)
+        return (fs::path(d) / ".cache" / "ssrt").string();
+    return {};
+}
+
+ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
+                            const Camera& previousCamera, const RenderSettings& settings,
+                            const ReferenceSettings& reference, const ReferenceSource& source,
+                            bool& fromCache) {
+    fromCache = false;
+    const uint64_t key = referenceKey(scene, camera, settings, reference);
+    const std::string path = source.cacheDir ? cachePath(*source.cacheDir, key) : std::string();
+    ReferenceImage ref;
+    if (!path.empty() && readCached(path, settings.width, settings.height, ref)) {
+        fromCache = true;
+        return ref;
+    }
+    // The frame the reference is rendered over: its G-buffer, direct parts and shadow map.
+    RenderSettings base = settings;
+    base.trace.ssr = base.trace.ssgi = true;
+    const Renderer renderer(base);
+    Frame frame;
+    renderer.render(scene, camera, previousCamera, frame);
+    std::mutex mutex;
+    int lastPercent = -1;
+    const Progress progress = [&](double fraction) {
+        if (!source.progress) return;
+        const int percent = int(fraction * 100.0);
+        std::lock_guard lock(mutex);
+        if (percent / 10 == lastPercent / 10) return;  // a line per 10 %
+        lastPercent = percent;
+        *source.progress << "reference: " << percent << "%\n" << std::flush;
+    };
+    ref = renderReference(embree, renderer, frame, reference, progress);
+    if (!path.empty()) {
+        try {
+            writeCached(path, ref);
+        } catch (const std::exception& e) {
+            // A cache that cannot be written costs time, not the answer.
+            if (source.progress) *source.progress << "reference: not cached (" << e.what() << ")\n";
+        }
+    }
+    return ref;
+}
+
+}  // namespace ssrt::cli

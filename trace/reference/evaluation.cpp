@@ -1,0 +1,128 @@
+#include "trace/reference/evaluation.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace ssrt {
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Median per pass name over the repeats, in the order of the first repeat's passes.
+std::vector<PassTime> medianPasses(const std::vector<std::vector<PassTime>>& runs,
+                                   double& frameMs) {
+    std::vector<PassTime> out;
+    std::vector<double> sums;
+    for (const auto& run : runs) {
+        double sum = 0.0;
+        for (const PassTime& p : run) sum += p.ms;
+        sums.push_back(sum);
+    }
+    frameMs = median(sums);
+    for (const PassTime& p : runs.front()) {
+        std::vector<double> ms;
+        for (const auto& run : runs)
+            for (const PassTime& q : run)
+                if (q.name == p.name) ms.push_back(q.ms);
+        out.push_back({p.name, median(ms)});
+    }
+    return out;
+}
+
+double passMs(const std::vector<PassTime>& passes, const std::string& name) {
+    for (const PassTime& p : passes)
+        if (p.name == name) return p.ms;
+    return 0.0;
+}
+
+void planeTriple(const Frame& f, const char* base, const PlaneF* out[3]) {
+    const char* suffix[3] = {".R", ".G", ".B"};
+    for (int c = 0; c < 3; ++c) out[c] = &f.plane(std::string(base) + suffix[c]);
+}
+
+ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
+    ErrorTable t;
+    const PlaneF* color[3];
+    planeTriple(frame, "color", color);
+    const PlaneF* refColor[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
+    t.color = imageError(color, refColor);
+    const FrameParts parts = frameParts(frame);
+    const auto err = [](const PlaneF (&a)[3], const PlaneF (&b)[3]) {
+        const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
+        const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
+        return imageError(pa, pb);
+    };
+    t.direct = err(parts.direct, ref.direct);
+    t.specular = err(parts.specular, ref.specular);
+    t.diffuse = err(parts.diffuse, ref.diffuse);
+    return t;
+}
+
+}  // namespace
+
+void EvaluationSettings::validate() const {
+    if (repeats < 1 || repeats > 1000)
+        throw std::invalid_argument("repeats must be between 1 and 1000");
+    if (!(check.pixelTolerance > 0.0f) || !(check.pixelTolerance < 1e6f))
+        throw std::invalid_argument("pixel tolerance must be finite and > 0");
+    if (!(check.depthTolerance > 0.0f) || !(check.depthTolerance < 1.0f))
+        throw std::invalid_argument("depth tolerance must be in (0, 1)");
+}
+
+Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
+                    const Camera& previousCamera, const RenderSettings& settings,
+                    const ReferenceImage& reference, const EvaluationSettings& es,
+                    Frame& frame) {
+    es.validate();
+    const Renderer renderer(settings);
+    Evaluation ev;
+    ev.ssr = settings.trace.ssr;
+    ev.ssgi = settings.trace.ssgi;
+
+    // Timed renders: nothing else runs inside them.
+    std::vector<std::vector<PassTime>> runs;
+    for (int i = 0; i < es.repeats; ++i) {
+        renderer.render(scene, camera, previousCamera, frame);
+        runs.push_back(frame.stats.passes);
+    }
+    ev.passes = medianPasses(runs, ev.frameMs);
+
+    // The checked render: Embree sees each sample's rays as they were marched.
+    RayCheckSettings check = es.check;
+    check.maxDistance = settings.trace.march.maxDistance;
+    const PlaneF* viewZ = nullptr;
+    const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
+                                       const MarchResult& march) {
+        const bool ssr = pass == TracePass::Ssr;
+        RayCheckPlanes* planes = es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes)
+                                                          : nullptr;
+        // The G-buffer is complete before the trace passes run; the frame's camera too.
+        if (!viewZ) viewZ = &frame.plane("viewZ");
+        const RayCheckTable t =
+            checkRays(embree, frame.camera, *viewZ, rays, march, check, planes, settings.threads);
+        (ssr ? ev.ssrCheck : ev.ssgiCheck).add(t);
+    };
+    renderer.render(scene, camera, previousCamera, frame, &observer);
+    ev.stats = frame.stats;
+    ev.ssrCheck.finish();
+    ev.ssgiCheck.finish();
+
+    const double marchMs = passMs(ev.passes, "ssr march") + passMs(ev.passes, "ssgi march");
+    const double rays = double(ev.stats.ssr.march.rays + ev.stats.ssgi.march.rays);
+    if (marchMs > 0.0) ev.marchMraysPerSecond = rays * 1e-3 / marchMs;
+    const double embreeSeconds = ev.ssrCheck.embreeSeconds + ev.ssgiCheck.embreeSeconds;
+    const double checked = double(ev.ssrCheck.rays + ev.ssgiCheck.rays);
+    if (embreeSeconds > 0.0) ev.embreeMraysPerSecond = checked * 1e-6 / embreeSeconds;
+
+    ev.error = imageErrors(frame, reference);
+    return ev;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,52 @@
+// One screen-space setting measured on both axes: its time (per pass, median over repeated
+// renders) and its accuracy (every ray it marched checked by Embree, its image against the
+// reference, per component). What `ssrt compare` prints and each row of `ssrt sweep`.
+#pragma once
+
+#include <vector>
+
+#include "renderer/renderer.h"
+#include "trace/reference/embree_scene.h"
+#include "trace/reference/image_error.h"
+#include "trace/reference/ray_check.h"
+#include "trace/reference/reference_image.h"
+
+namespace ssrt {
+
+// Image error of the frame against the reference: the exposed colour, and the parts before
+// exposure (reference_image.h, FrameParts) so a user sees which part is wrong.
+struct ErrorTable {
+    ImageError color, direct, specular, diffuse;
+};
+
+struct EvaluationSettings {
+    int repeats = 3;             // timed renders (the median of each pass is kept), >= 1
+    RayCheckSettings check;      // maxDistance is taken from the render settings
+    bool planes = true;          // keep the per-pixel check planes of sample 0
+    void validate() const;       // throws std::invalid_argument naming the field
+};
+
+struct Evaluation {
+    std::vector<PassTime> passes;  // median ms per pass over the repeats, in frame order
+    double frameMs = 0.0;          // median over the repeats of the sum of the passes
+    FrameStats stats;              // of the checked render (counters)
+    bool ssr = false, ssgi = false;
+    RayCheckTable ssrCheck, ssgiCheck;      // every sample's rays, errors sorted
+    RayCheckPlanes ssrPlanes, ssgiPlanes;   // sample 0, when settings.planes
+    ErrorTable error;
+    double marchMraysPerSecond = 0.0;   // rays marched (both passes) / march time (medians)
+    double embreeMraysPerSecond = 0.0;  // the same rays / Embree's traversal time
+    double marchVsEmbree() const {      // > 1: screen space is the faster per ray
+        return embreeMraysPerSecond > 0.0 ? marchMraysPerSecond / embreeMraysPerSecond : 0.0;
+    }
+};
+
+// Renders `repeats` timed frames (no checks), then one more whose traced samples Embree
+// checks (the same rays: rendering is deterministic); compares its image with `reference`.
+// `frame` receives the checked render. The Embree checks run on settings.threads workers.
+Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
+                    const Camera& previousCamera, const RenderSettings& settings,
+                    const ReferenceImage& reference, const EvaluationSettings& evalSettings,
+                    Frame& frame);
+
+}  // namespace ssrt
