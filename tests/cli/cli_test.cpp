@@ -2,6 +2,7 @@
 // right exit status and no file; help tells the truth about defaults; a render writes a file.
 #include <doctest/doctest.h>
 
+#include "cli/cli_run.h"
 #include "temp_dir.h"
 
 // Needs the ssrt_cli_lib target, which defines SSRT_CLI_LIB for those linking it.
@@ -31,32 +32,11 @@ namespace {
 
 using test::TempDir;
 
-struct Result {
-    int code = -1;
-    std::string out, err;
-};
+using Result = test::CliResult;
+using test::contains;
 
-Result run(std::vector<std::string> args) {
-    args.insert(args.begin(), "ssrt");
-    std::vector<const char*> argv;
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    Result r;
-    r.code = cli::runCli(int(argv.size()), argv.data(), out, err);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-// Exactly one line, starting "ssrt: error: ".
-bool isOneErrorLine(const std::string& err) {
-    return err.rfind("ssrt: error: ", 0) == 0 && std::count(err.begin(), err.end(), '\n') == 1 &&
-           err.back() == '\n';
-}
+Result run(std::vector<std::string> args) { return test::runSsrt(std::move(args)); }
+using test::isOneErrorLine;
 
 // Sets an environment variable for one scope and restores the old value.
 struct ScopedEnv {

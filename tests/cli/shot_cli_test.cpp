@@ -3,6 +3,7 @@
 // its numbered files with motion vectors that follow the camera path.
 #include <doctest/doctest.h>
 
+#include "cli/cli_run.h"
 #include "temp_dir.h"
 
 #ifdef SSRT_CLI_LIB
@@ -26,26 +27,10 @@ using test::TempDir;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out, err;
-};
+using Result = test::CliResult;
+using test::contains;
 
-Result run(std::vector<std::string> args) {
-    args.insert(args.begin(), "ssrt");
-    std::vector<const char*> argv;
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    Result r;
-    r.code = cli::runCli(int(argv.size()), argv.data(), out, err);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+Result run(std::vector<std::string> args) { return test::runSsrt(std::move(args)); }
 
 long lines(const std::string& text) { return std::count(text.begin(), text.end(), '\n'); }
 
