@@ -62,6 +62,7 @@ struct Setup {
     float maxDistance = 0.0f;
     SsrMethod ssrMethod = SsrMethod::VndfBounded;  // the frame's SSR sampler
     uint32_t frameIndex = 0;                       // the frame's RNG frame
+    std::vector<glm::vec3> offset;                 // per pixel: surfaceOffsets
     explicit Setup(const Frame& f) : frame(f) {}
 };
 
@@ -114,13 +115,43 @@ void ensure3(PlaneF p[3], int w, int h) {
     for (int c = 0; c < 3; ++c) p[c].ensureSize(w, h);
 }
 
+// Per surface pixel, the step off its surface that every ray leaving it takes: epsilon
+// along the geometric normal, on the camera's side. The G-buffer's point is the true one
+// only to float rounding (1e-5 below a floor seen at a distance is typical), enough for a
+// grazing ray to hit the pixel's own surface from behind; and the G-buffer has no geometric
+// normal (its shading normal would self-shadow at low-poly terminators), so Embree's primary
+// hit through the pixel gives it. A pixel Embree misses (a silhouette) steps along its
+// shading normal.
+void surfaceOffsets(Setup& s) {
+    const DirectArgs& a = s.lighting.args;
+    const EmbreeScene& embree = *s.ctx.embree;
+    const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
+    s.offset.assign(std::size_t(a.width) * a.height, glm::vec3(0.0f));
+    parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+        const TileRect r = s.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (!(a.g[0][std::size_t(y) * a.gStride + x] > 0.0f)) continue;
+                const PointSurface ps = reference::pixelSurface(a, x, y);
+                const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
+                glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
+                const EmbreeHit h = embree.intersect(cam, -toCam, 0.0f, INFINITY);
+                if (h.hit) {
+                    n = embree.surface(cam, -toCam, h).geometricNormal;
+                    if (glm::dot(n, toCam) < 0.0f) n = -n;
+                }
+                s.offset[std::size_t(y) * a.width + x] = n * embree.epsilon();
+            }
+    });
+}
+
+glm::vec3 pointOf(const PointSurface& ps) { return {ps.p.x, ps.p.y, ps.p.z}; }
+
 // Direct: the sun part of each surface pixel with the chosen visibility; the sky (the frame's
 // own direct part) on background pixels.
 void renderDirect(const Setup& s, PlaneF out[3]) {
     const DirectArgs& a = s.lighting.args;
     const PlaneF* frameDirect = s.frame.scratch.directParts;
-    const EmbreeScene& embree = *s.ctx.embree;
-    const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
     parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
@@ -130,21 +161,7 @@ void renderDirect(const Setup& s, PlaneF out[3]) {
                     continue;
                 }
                 const PointSurface ps = reference::pixelSurface(a, x, y);
-                // The shadow ray leaves the true surface (Embree's primary hit), off it along
-                // the geometric normal on the camera's side: the G-buffer has no geometric
-                // normal, and its shading normal would self-shadow at low-poly terminators.
-                const glm::vec3 n(ps.n.x, ps.n.y, ps.n.z), toCam(ps.view.x, ps.view.y, ps.view.z);
-                glm::vec3 origin = glm::vec3(ps.p.x, ps.p.y, ps.p.z) + n * embree.epsilon();
-                if (s.ctx.visibility == ReferenceSettings::Visibility::Embree) {
-                    const EmbreeHit h = embree.intersect(cam, -toCam, 0.0f, INFINITY);
-                    if (h.hit) {
-                        const SurfacePoint sp = embree.surface(cam, -toCam, h);
-                        const glm::vec3 ng = glm::dot(sp.geometricNormal, toCam) < 0.0f
-                                                 ? -sp.geometricNormal
-                                                 : sp.geometricNormal;
-                        origin = sp.position + ng * embree.epsilon();
-                    }
-                }
+                const glm::vec3 origin = pointOf(ps) + s.offset[std::size_t(y) * a.width + x];
                 const float vis = reference::sunVisibility(s.ctx, ps, origin);
                 const shade::Parts<float> parts = shade::shadeSurface(a, ps, vis);
                 out[0].at(x, y) = parts.sun.x;
@@ -182,7 +199,8 @@ void traceTile(const Setup& s, const RayBatch& rays, int tile, bool full, Use&& 
                     if (!(pdf > 0.0f)) continue;
                     const glm::vec3 o(rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y));
                     const glm::vec3 d(rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y));
-                    org[n] = cam + rotate(a.viewToWorld, o);
+                    // The frame's ray, stepped off its surface (surfaceOffsets).
+                    org[n] = (cam + rotate(a.viewToWorld, o)) + s.offset[std::size_t(y) * a.width + x];
                     dir[n] = glm::normalize(rotate(a.viewToWorld, d));
                     out[n] = {x, y, dir[n], pdf, glm::vec3(0.0f)};
                     ++n;
@@ -301,6 +319,7 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
     for (PlaneF* p : {ref.color, ref.direct, ref.ssr, ref.ssgi, ref.specular, ref.diffuse})
         ensure3(p, w, h);
     ProgressSteps steps(progress, 1 + 2 * settings.spp);
+    surfaceOffsets(s);
     renderDirect(s, ref.direct);
     steps.step();
     renderSsr(s, settings.spp, steps, ref.ssr);
