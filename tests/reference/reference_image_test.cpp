@@ -70,7 +70,7 @@ TEST_CASE("reference: the frame's parts add up to its colour") {
     CHECK_THROWS_AS(frameParts(plain.frame), std::invalid_argument);
 }
 
-TEST_CASE("reference: settings are validated") {
+TEST_CASE("reference: settings are validated, and a frame it cannot use refused") {
     ReferenceSettings s;
     CHECK_NOTHROW(s.validate());
     s.spp = 0;
@@ -80,6 +80,12 @@ TEST_CASE("reference: settings are validated") {
     CHECK_THROWS_AS(s.validate(), std::invalid_argument);
     s.maxDistance = 0.0f;
     CHECK_THROWS_AS(s.validate(), std::invalid_argument);
+    // A frame without the trace passes, or of another size than the settings, is refused.
+    const ReferenceRig plain("cornell", 32, 18, 0, false), traced("cornell", 32, 18);
+    CHECK_THROWS_AS(renderReference(plain.embree, plain.renderer, plain.frame, {}),
+                    std::invalid_argument);
+    const Renderer wider(test::referenceRigSettings(48, 18, 0, true));
+    CHECK_THROWS_AS(renderReference(traced.embree, wider, traced.frame, {}), std::invalid_argument);
 }
 
 TEST_CASE("reference: the key follows the scene, the settings and the spp, nothing else") {

@@ -1,5 +1,6 @@
-// The reference image (trace/reference/reference_image.h): the direct pass's sun with true
-// visibility, and the frame's own SSR and SSGI rays, many samples of them, traced by Embree.
+// The reference image (trace/reference/reference_image.h): the direct pass's sun with Embree's
+// (or the shadow map's) visibility, and the frame's own SSR and SSGI sample sequences, many
+// samples of them, traced by Embree.
 #include "trace/reference/reference_image.h"
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 #include "core/tiles.h"
 #include "renderer/direct_lighting.h"
 #include "shading/brdf.h"
-#include "shading/composite.h"
 #include "trace/reference/parts.h"
 #include "trace/reference/reference_shading.h"
 
@@ -69,7 +69,9 @@ struct Setup {
 const char* const kGBuffer[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z", "albedo.R",
                                   "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
 
-void requireTraced(const Frame& frame) {
+void requireTraced(const Frame& frame, const RenderSettings& rs) {
+    if (frame.width != rs.width || frame.height != rs.height)
+        throw std::invalid_argument("reference: the frame was not rendered with these settings");
     if (!frame.has("ssr.R") || !frame.has("ssgi.R"))
         throw std::invalid_argument("reference: the frame needs both trace passes (SSR and SSGI)");
     if (frame.scratch.directParts[0].width() != frame.width ||
@@ -311,7 +313,7 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
                                const Frame& frame, const ReferenceSettings& settings,
                                const Progress& progress) {
     settings.validate();
-    requireTraced(frame);
+    requireTraced(frame, renderer.settings());
     Setup s(frame);
     fillSetup(s, embree, renderer, settings);
     const int w = frame.width, h = frame.height;
