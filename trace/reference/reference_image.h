@@ -55,7 +55,8 @@ struct ReferenceImage {
     PlaneF diffuse[3];   // albedo (1 - metallic) x ssgi: the diffuse part before exposure
 };
 
-// Progress: fraction done in [0, 1]; called from worker threads, at most a few hundred times.
+// Progress: fraction done in (0, 1], rising, ending at 1; called on the thread that called
+// renderReference, after each sample pass, at most about 200 times.
 using Progress = std::function<void(double fraction)>;
 
 // Renders the reference for `frame` (rendered by `renderer` from `scene` with both trace
