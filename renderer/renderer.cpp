@@ -13,6 +13,7 @@
 #include "raster/raster.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
+#include "renderer/direct_lighting.h"
 #include "renderer/sky_lighting.h"
 #include "renderer/texture_pass.h"
 #include "renderer/trace_pass.h"
@@ -365,7 +366,9 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
 
     // Direct light, sky and tone map.
     t0 = Clock::now();
-    DirectArgs da{};
+    DirectLighting lighting;
+    setDirectLighting(scene, s, shadow, skyLighting, lighting);
+    DirectArgs& da = lighting.args;
     for (int i = 0; i < 10; ++i) da.g[i] = gplanes[i]->row(0);
     da.gStride = gplanes[0]->stride();
     da.width = w;
@@ -376,36 +379,6 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
     std::copy_n(glm::value_ptr(viewToWorld), 9, da.viewToWorld);
     std::copy_n(glm::value_ptr(camera.position), 3, da.camPos);
-    const glm::vec3 toLight = -glm::normalize(scene.light.direction);
-    const glm::vec3 lightRadiance = scene.light.color * scene.light.intensity;
-    std::copy_n(glm::value_ptr(toLight), 3, da.toLight);
-    std::copy_n(glm::value_ptr(lightRadiance), 3, da.lightRadiance);
-    da.skyGradient = sky.kind == Sky::Kind::Gradient;
-    const glm::vec3 zen = sky.zenith * sky.intensity, hor = sky.horizon * sky.intensity,
-                    gnd = sky.ground * sky.intensity;
-    std::copy_n(glm::value_ptr(zen), 3, da.skyZenith);
-    std::copy_n(glm::value_ptr(da.skyGradient ? hor : zen), 3, da.skyHorizon);
-    std::copy_n(glm::value_ptr(da.skyGradient ? gnd : zen), 3, da.skyGround);
-    if (skyLighting) {
-        static_assert(kSkyLevels <= DirectArgs::kMaxEnvLevels);
-        da.envLevelCount = kSkyLevels;
-        for (int i = 0; i < kSkyLevels; ++i) da.envLevel[i] = skyLighting->level(*sky.image, i);
-        std::copy_n(skyLighting->irradiance.coeffs, 27, da.envIrradiance);
-        da.envIntensity = sky.intensity;
-    }
-    std::vector<float> emissive;
-    for (const Material& m : scene.materials)
-        emissive.insert(emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});
-    da.emissive = emissive.data();
-    da.anyEmissive = std::any_of(emissive.begin(), emissive.end(), [](float e) { return e != 0.0f; });
-    da.shadow = shadow.depth.row(0);
-    da.shadowStride = shadow.depth.stride();
-    da.shadowSize = s.shadowMapSize;
-    std::copy_n(glm::value_ptr(shadow.lightViewProj), 16, da.lightViewProj);
-    da.biasConst = s.shadowBias * shadow.texelSize / shadow.depthRange;
-    da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
-    da.pcfRadius = s.pcfRadius;
-    da.exposure = s.exposure;
     for (int i = 0; i < 7; ++i) da.out[i] = frame.planes[kColorR + i].plane.row(0);
     da.outStride = frame.planes[kColorR].plane.stride();
     // With the screen-space passes on, the direct pass also hands out its parts for the

@@ -1,14 +1,18 @@
 // Lane-generic pieces of the direct kernel (shading/direct_kernel.cpp) that other kernels
 // share, written once over the lane type L (float or xsimd::batch<float, A>): the sky
-// radiance along a direction (SSGI misses read it), and the tone map and sRGB encoding of
-// `display` (the composite ends with them). Templates and always_inline only: every ISA copy
+// radiance along a direction (SSGI misses read it), the per-point shading model (the
+// reference image shades its hits with it, L = float), and the tone map and sRGB encoding
+// of `display` (the composite ends with them). Templates and always_inline only: every ISA copy
 // compiles its own (see core/lanes.h), and the direct kernel keeps its bits.
 #pragma once
 
 #include "core/lane_math.h"
 #include "core/lane_vec.h"
+#include "shading/brdf.h"
 #include "shading/direct_kernel.h"
 #include "shading/environment.h"
+#include "shading/irradiance_sh.h"
+#include "shading/multiscatter.h"
 
 namespace ssrt::shade {
 
@@ -44,6 +48,149 @@ SSRT_INLINE V3<L> skyRadiance(const DirectArgs& a, V3<L> dir) {
     const L s = L(1.0f) - y;
     const V3<L> above = mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(1.0f) - s * s);
     return ln::select(y < L(0.0f), splat3<L>(a.skyGround), above);
+}
+
+// The prefiltered sky LD(r, roughness): linear between the two levels around roughness *
+// (levels - 1), bilinear in each. Lanes may need different levels, so each level that any
+// lane needs is read for all lanes and weighted by zero where it is not needed (x + 0 * y is
+// x for finite y: the same bits as reading only the two levels, as the scalar copy does).
+template <class L>
+SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
+    const int n = a.envLevelCount;
+    const L f = ln::saturate(roughness) * L(float(n - 1));
+    const L i0 = ln::min(ln::floor(f), L(float(n - 2)));
+    const L t = f - i0;
+    L u, v;
+    env::directionToUv(r, u, v);
+    V3<L> sum{L(0.0f), L(0.0f), L(0.0f)};
+    for (int k = 0; k < n; ++k) {
+        const L lk = L(float(k));
+        const L w = ln::select(i0 == lk, L(1.0f) - t, ln::select(i0 + L(1.0f) == lk, t, L(0.0f)));
+        if (!ln::any(w > L(0.0f))) continue;
+        sum = sum + env::sampleBilinear(a.envLevel[k], u, v) * w;
+    }
+    return sum * L(a.envIntensity);
+}
+
+// Fraction of PCF taps that see the light. Taps are clamped to the map's edge; points
+// outside the map are lit (nothing there casts a shadow).
+template <class L>
+SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, L bias) {
+    using IL = ln::IntOf<L>;
+    const float* m = a.lightViewProj;
+    const L cx = ((L(m[0]) * p.x + L(m[4]) * p.y) + L(m[8]) * p.z) + L(m[12]);
+    const L cy = ((L(m[1]) * p.x + L(m[5]) * p.y) + L(m[9]) * p.z) + L(m[13]);
+    const L cz = ((L(m[2]) * p.x + L(m[6]) * p.y) + L(m[10]) * p.z) + L(m[14]);
+    const L s(float(a.shadowSize));
+    const L u = ln::floor((cx * L(0.5f) + L(0.5f)) * s);
+    const L v = ln::floor((L(0.5f) - cy * L(0.5f)) * s);
+    const L key = (L(0.5f) - L(0.5f) * cz) + bias;
+    const auto inMap = (u >= L(0.0f)) & (v >= L(0.0f)) & (u < s) & (v < s);
+    if (!ln::any(inMap)) return L(1.0f);
+    const L last(float(a.shadowSize - 1));
+    const int r = a.pcfRadius;
+    L lit(0.0f);
+    for (int dy = -r; dy <= r; ++dy) {
+        const IL row =
+            ln::toIntTrunc(ln::clamp(v + L(float(dy)), L(0.0f), last)) * IL(int32_t(a.shadowStride));
+        for (int dx = -r; dx <= r; ++dx) {
+            const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), L(0.0f), last));
+            const L depth = ln::gather(a.shadow, row + col);
+            lit = lit + ln::select(key >= depth, L(1.0f), L(0.0f));
+        }
+    }
+    const L taps(float((2 * r + 1) * (2 * r + 1)));
+    return ln::select(inMap, lit / taps, L(1.0f));
+}
+
+// Karis 2014, "Physically Based Shading on Mobile": analytic fit of the split-sum
+// environment BRDF, scale and bias on F0. (Stands in until the DFG table of shading/.)
+template <class L>
+SSRT_INLINE void envBrdfApprox(L NoV, L roughness, L& scale, L& bias) {
+    const L rx = roughness * L(-1.0f) + L(1.0f);
+    const L ry = roughness * L(-0.0275f) + L(0.0425f);
+    const L rz = roughness * L(-0.572f) + L(1.04f);
+    const L rw = roughness * L(0.022f) + L(-0.04f);
+    const L a004 = ln::min(rx * rx, ln::exp2(L(-9.28f) * NoV)) * rx + ry;
+    scale = a004 * L(-1.04f) + rz;
+    bias = a004 * L(1.04f) + rw;
+}
+
+// A surface point to shade, world space.
+template <class L>
+struct Surface {
+    V3<L> p, n, albedo, view;  // view: unit, from the surface towards the viewer
+    L metallic, roughness;
+};
+
+// The parts of a surface's colour (DirectArgs::direct etc.), emission aside.
+template <class L>
+struct Parts {
+    V3<L> sun, envDiffuse, specWeight, envSpecular;
+    V3<L> compensation;  // Kulla-Conty factor of the specWeight part (1 without the tables)
+};
+
+// The sun's visibility at s by the shadow map, with the slope-scaled bias: 0 facing away.
+template <class L>
+SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
+    const L zero(0.0f), one(1.0f);
+    const L NoLraw = ln::dot(s.n, splat3<L>(a.toLight));
+    // Slope-scaled bias: grows with tan(angle to the light), capped at grazing angles.
+    const L cosL = ln::max(NoLraw, L(1e-3f));
+    const L tanL = ln::min(ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL, L(10.0f));
+    return ln::select(NoLraw > zero, shadowVisibility(a, s.p, L(a.biasConst) + L(a.biasSlope) * tanL),
+                      zero);
+}
+
+// The direct pass's model at one surface point seen along s.view, with the sun's
+// `visibility` given (the shadow map's above, or a traced one: the reference image).
+template <class L>
+SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L visibility) {
+    using namespace ssrt::brdf;
+    const L one(1.0f);
+    const V3<L> l = splat3<L>(a.toLight);
+    const L NoL = ln::saturate(ln::dot(s.n, l));
+    const L NoV = ln::max(ln::dot(s.n, s.view), L(1e-4f));
+    const V3<L> h = ln::normalize(s.view + l);
+    const L NoH = ln::saturate(ln::dot(s.n, h));
+    const L VoH = ln::saturate(ln::dot(s.view, h));
+    const L alpha = roughnessToAlpha(s.roughness);
+    // F0 = mix(0.04, baseColor, metallic)
+    const V3<L> f0 = mix3(V3<L>{L(0.04f), L(0.04f), L(0.04f)}, s.albedo, s.metallic);
+    const L dv = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha);
+    const V3<L> spec{F_Schlick(VoH, f0.x, one) * dv, F_Schlick(VoH, f0.y, one) * dv,
+                     F_Schlick(VoH, f0.z, one) * dv};
+    const V3<L> diffuse = s.albedo * ((one - s.metallic) * Fd_Lambert<L>());
+    const V3<L> direct = (diffuse + spec) * splat3<L>(a.lightRadiance) * (NoL * visibility);
+    const V3<L> refl = s.n * (L(2.0f) * ln::dot(s.n, s.view)) - s.view;
+    V3<L> irradiance, specSky;
+    if (a.envLevelCount > 0) {
+        // Equirect sky: irradiance / pi from the SH polynomial, the reflected sky from the
+        // GGX-prefiltered levels (split sum, Karis 2013).
+        irradiance = env::irradianceSh(a.envIrradiance, s.n) * L(a.envIntensity);
+        specSky = envPrefiltered(a, refl, s.roughness);
+    } else {
+        // Analytic sky: irradiance blended by the normal's elevation, and the reflected sky
+        // through the environment BRDF, blurred towards the sky's average as roughness grows.
+        const V3<L> skyAvg = mix3(splat3<L>(a.skyGround),
+                                  mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(0.5f)),
+                                  L(0.5f));
+        const V3<L> up = mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(0.5f));
+        irradiance = mix3(splat3<L>(a.skyGround), up, L(0.5f) + L(0.5f) * s.n.y);
+        specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
+    }
+    L envScale, envBias;
+    envBrdfApprox(NoV, s.roughness, envScale, envBias);
+    // color = (sun + envDiffuse) + specWeight envSpecular, as shadeChunk sums it.
+    V3<L> compensation{one, one, one};
+    if (a.compensation) {
+        // 1 + F0 (1 / E - 1), E the GGX directional albedo with F = 1 (see direct_kernel.h).
+        const L e = ln::max(multiscatter::albedo(*a.compensation, NoV, s.roughness), L(1e-3f));
+        const L lost = one / e - one;
+        compensation = {one + f0.x * lost, one + f0.y * lost, one + f0.z * lost};
+    }
+    return {direct, irradiance * diffuse * L(ln::kPi), f0 * envScale + V3<L>{envBias, envBias, envBias},
+            specSky, compensation};
 }
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"

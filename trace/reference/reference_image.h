@@ -10,13 +10,20 @@
 //           the frame's SSR sampler (trace/ray_gen.h, samples 0..spp-1 of the frame's
 //           sequence: the first ones are the rays the screen-space pass marched), traced by
 //           Embree to maxDistance. Each ray's radiance L: at a hit, the hit point's own light
-//           toward the ray's origin in the direct pass's model (sun with true visibility,
-//           sky diffuse and split-sum specular, emission); on a miss, the sky along the ray.
-//           Weighted like the reuse resolve: ssr = sum(w L) / sum(w), w = D V n.l / pdf;
+//           toward the ray's origin in the direct pass's model (sun with the chosen
+//           visibility, sky diffuse and split-sum specular, emission: the direct pass's
+//           `color`, without Kulla-Conty); on a miss, the sky along the ray. A back face of a
+//           single-sided material is black. Weighted like the reuse resolve: ssr = sum(w L) /
+//           sum(w), w = D V n.l / pdf (a pixel none of whose rays weighs keeps envSpecular);
 //           opacity 1 (nothing fades).
 //   ssgi    the average incoming radiance of `spp` cosine rays (the SSGI definition,
-//           trace/ssgi.h): at a hit the Lambert part of the hit's direct light with true
+//           trace/ssgi.h): at a hit the Lambert part of the hit's direct light with the chosen
 //           visibility plus emission; on a miss the sky along the ray.
+// The chosen visibility holds at the hits too, so that ShadowMap differs from the frame only
+// by what was traced. Every ray (and shadow ray) leaves its pixel's point stepped
+// EmbreeScene::epsilon() off the surface along the geometric normal (Embree's primary hit):
+// the G-buffer's point is exact only to float rounding, and grazing rays would hit their own
+// surface from behind.
 // The composite (shading/composite.h) then puts them together exactly as the frame does, so
 // reference and frame differ only where screen space guessed.
 #pragma once
@@ -48,7 +55,8 @@ struct ReferenceImage {
     PlaneF diffuse[3];   // albedo (1 - metallic) x ssgi: the diffuse part before exposure
 };
 
-// Progress: fraction done in [0, 1]; called from worker threads, at most a few hundred times.
+// Progress: fraction done in (0, 1], rising, ending at 1; called on the thread that called
+// renderReference, after each sample pass, at most about 200 times.
 using Progress = std::function<void(double fraction)>;
 
 // Renders the reference for `frame` (rendered by `renderer` from `scene` with both trace

@@ -2,5 +2,10 @@
 # library of its own so that the core library never links Embree (DESIGN.md).
 find_package(embree 3 REQUIRED)
 add_library(ssrt_reference STATIC
-    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp)
+    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/image_error.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/parts.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/reference_image.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/reference_key.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/reference_shading.cpp)
 target_link_libraries(ssrt_reference PUBLIC ssrt PRIVATE embree)

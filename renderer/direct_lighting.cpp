@@ -1,0 +1,50 @@
+#include "renderer/direct_lighting.h"
+
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace ssrt {
+
+void setDirectLighting(const Scene& scene, const RenderSettings& s, const ShadowMap& shadow,
+                       std::shared_ptr<const SkyLighting> skyLighting, DirectLighting& out) {
+    DirectArgs& da = out.args;
+    // Sun.
+    const glm::vec3 toLight = -glm::normalize(scene.light.direction);
+    const glm::vec3 lightRadiance = scene.light.color * scene.light.intensity;
+    std::copy_n(glm::value_ptr(toLight), 3, da.toLight);
+    std::copy_n(glm::value_ptr(lightRadiance), 3, da.lightRadiance);
+    // Sky: analytic colours, or the image's prefiltered levels and irradiance.
+    const Sky& sky = scene.sky;
+    da.skyGradient = sky.kind == Sky::Kind::Gradient;
+    const glm::vec3 zen = sky.zenith * sky.intensity, hor = sky.horizon * sky.intensity,
+                    gnd = sky.ground * sky.intensity;
+    std::copy_n(glm::value_ptr(zen), 3, da.skyZenith);
+    std::copy_n(glm::value_ptr(da.skyGradient ? hor : zen), 3, da.skyHorizon);
+    std::copy_n(glm::value_ptr(da.skyGradient ? gnd : zen), 3, da.skyGround);
+    out.sky = std::move(skyLighting);
+    if (out.sky) {
+        static_assert(kSkyLevels <= DirectArgs::kMaxEnvLevels);
+        da.envLevelCount = kSkyLevels;
+        for (int i = 0; i < kSkyLevels; ++i) da.envLevel[i] = out.sky->level(*sky.image, i);
+        std::copy_n(out.sky->irradiance.coeffs, 27, da.envIrradiance);
+        da.envIntensity = sky.intensity;
+    }
+    // Emission per material.
+    out.emissive.clear();
+    for (const Material& m : scene.materials)
+        out.emissive.insert(out.emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});
+    da.emissive = out.emissive.data();
+    da.anyEmissive =
+        std::any_of(out.emissive.begin(), out.emissive.end(), [](float e) { return e != 0.0f; });
+    // Shadow map.
+    da.shadow = shadow.depth.row(0);
+    da.shadowStride = shadow.depth.stride();
+    da.shadowSize = s.shadowMapSize;
+    std::copy_n(glm::value_ptr(shadow.lightViewProj), 16, da.lightViewProj);
+    da.biasConst = s.shadowBias * shadow.texelSize / shadow.depthRange;
+    da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
+    da.pcfRadius = s.pcfRadius;
+    da.exposure = s.exposure;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,34 @@
+// The direct pass's lighting set-up (sun, sky, prefiltered sky levels, SH irradiance,
+// emission table, shadow map) as DirectArgs, in one place: the renderer's direct pass and the
+// reference image (trace/reference/) shade with the same arguments.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "raster/shadow_map.h"
+#include "renderer/renderer.h"
+#include "renderer/sky_lighting.h"
+#include "shading/direct_kernel.h"
+
+namespace ssrt {
+
+// Owns what DirectArgs points to; neither copied nor moved, so the pointers stay valid.
+struct DirectLighting {
+    DirectArgs args{};             // lighting and shadow fields set; the rest left zero
+    std::vector<float> emissive;   // args.emissive: 3 per material
+    std::shared_ptr<const SkyLighting> sky;  // args.envLevel's pixels (Sky::Kind::Image)
+
+    DirectLighting() = default;
+    DirectLighting(const DirectLighting&) = delete;
+    DirectLighting& operator=(const DirectLighting&) = delete;
+};
+
+// Fills out.args' sun, sky (analytic, or the image's levels and irradiance from `sky`, which
+// must be cachedSkyLighting(scene.sky.image) for an image sky), emission and shadow-map fields
+// from the scene, the render settings and the frame's shadow map (which must outlive `out`).
+// Camera, G-buffer, outputs, parts and compensation are the caller's.
+void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
+                       std::shared_ptr<const SkyLighting> sky, DirectLighting& out);
+
+}  // namespace ssrt

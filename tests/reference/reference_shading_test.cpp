@@ -1,0 +1,122 @@
+// The reference's shading against the direct pass: the same model at the G-buffer's points
+// and at Embree's hits, and what changes with Embree's visibility.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "renderer/direct_lighting.h"
+#include "tests/reference/reference_test_rig.h"
+#include "trace/reference/reference_image.h"
+#include "trace/reference/reference_shading.h"
+
+using namespace ssrt;
+using test::ReferenceRig;
+
+namespace {
+
+float relDiff(float a, float b) { return std::abs(a - b) / std::max(std::abs(b), 1e-6f); }
+
+// The frame's lighting with its G-buffer and camera, as the reference sets it up.
+void frameLighting(const ReferenceRig& rig, DirectLighting& l) {
+    setDirectLighting(rig.scene, rig.renderer.settings(), rig.frame.scratch.shadow, nullptr, l);
+    const char* g[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z", "albedo.R",
+                         "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
+    DirectArgs& a = l.args;
+    for (int i = 0; i < 10; ++i) a.g[i] = rig.frame.plane(g[i]).row(0);
+    a.gStride = rig.frame.plane("viewZ").stride();
+    a.width = rig.frame.width;
+    a.height = rig.frame.height;
+    a.tanHalfX = rig.frame.camera.tanHalfX;
+    a.tanHalfY = rig.frame.camera.tanHalfY;
+    std::copy_n(rig.frame.camera.viewToWorld, 9, a.viewToWorld);
+    std::copy_n(rig.frame.camera.position, 3, a.camPos);
+}
+
+}  // namespace
+
+TEST_CASE("reference: with the shadow map, its direct part is the direct pass's to the bit") {
+    for (const char* name : {"cornell", "spheres"}) {
+        const ReferenceRig rig(name);
+        const ReferenceImage ref = rig.reference(1, ReferenceSettings::Visibility::ShadowMap);
+        int surface = 0, differ = 0;
+        for (int y = 0; y < rig.frame.height; ++y)
+            for (int x = 0; x < rig.frame.width; ++x) {
+                surface += rig.frame.plane("viewZ").at(x, y) > 0.0f;
+                for (int c = 0; c < 3; ++c)
+                    differ += ref.direct[c].at(x, y) != rig.frame.scratch.directParts[c].at(x, y);
+            }
+        MESSAGE(std::string(name) << ": " << surface << " surface pixels, " << differ << " channels differ");
+        CHECK(surface > 1000);
+        CHECK(differ == 0);
+    }
+}
+
+TEST_CASE("reference: a hit seen from the camera shades like the direct pass's pixel") {
+    // Frame without trace passes: its colour is the direct pass's own (exposure 1), the model
+    // hitRadiance evaluates at Embree's hits. The two points differ by the raster's
+    // reconstruction (float rounding), so a few pixels may flip a PCF tap: most pixels agree
+    // tightly, nearly all within 1e-3.
+    const ReferenceRig rig("cornell", 96, 54, 0, false);
+    DirectLighting lighting;
+    frameLighting(rig, lighting);
+    const reference::ShadingContext ctx{&lighting.args, &rig.embree,
+                                        ReferenceSettings::Visibility::ShadowMap};
+    const glm::vec3 cam(rig.frame.camera.position[0], rig.frame.camera.position[1],
+                        rig.frame.camera.position[2]);
+    std::vector<float> errors;
+    for (int y = 0; y < rig.frame.height; ++y)
+        for (int x = 0; x < rig.frame.width; ++x) {
+            if (!(rig.frame.plane("viewZ").at(x, y) > 0.0f)) continue;
+            const reference::PointSurface ps = reference::pixelSurface(lighting.args, x, y);
+            const glm::vec3 dir = -glm::vec3(ps.view.x, ps.view.y, ps.view.z);
+            const EmbreeHit hit = rig.embree.intersect(cam, dir, 0.0f, 1e30f);
+            REQUIRE(hit.hit);
+            const glm::vec3 l = reference::hitRadiance(ctx, cam, dir, hit, true);
+            const char* color[3] = {"color.R", "color.G", "color.B"};
+            float e = 0.0f;
+            for (int c = 0; c < 3; ++c) e = std::max(e, relDiff(l[c], rig.frame.plane(color[c]).at(x, y)));
+            errors.push_back(e);
+        }
+    std::sort(errors.begin(), errors.end());
+    const float median = errors[errors.size() / 2], p99 = errors[errors.size() * 99 / 100];
+    MESSAGE("relative error: median " << median << ", 99th percentile " << p99 << ", max "
+                                      << errors.back() << " over " << errors.size() << " pixels");
+    CHECK(median < 1e-4f);
+    CHECK(p99 < 1e-3f);
+}
+
+TEST_CASE("reference: Embree's visibility differs from the shadow map's only where that errs") {
+    // Sun part = (diffuse + specular) E (n.l visibility): with visibility 1 or 0 from Embree
+    // against the shadow map's PCF fraction v, the Embree part is 0 or at least the shadow
+    // map's (v <= 1, rounding is monotone), and equal to the bit where v = 1 and Embree agrees.
+    // Disagreements outside penumbrae are the shadow map's errors (bias, resolution): few.
+    const ReferenceRig rig("cornell");
+    const ReferenceImage sm = rig.reference(1, ReferenceSettings::Visibility::ShadowMap);
+    const ReferenceImage em = rig.reference(1, ReferenceSettings::Visibility::Embree);
+    const PlaneF& v = rig.frame.plane("shadow");
+    int hard = 0, hardDisagree = 0, bothLit = 0, bothDark = 0;
+    for (int y = 0; y < rig.frame.height; ++y)
+        for (int x = 0; x < rig.frame.width; ++x) {
+            if (!(rig.frame.plane("viewZ").at(x, y) > 0.0f)) continue;
+            bool zero = true, equal = true;
+            for (int c = 0; c < 3; ++c) {
+                const float e = em.direct[c].at(x, y), s = sm.direct[c].at(x, y);
+                zero = zero && e == 0.0f;
+                equal = equal && e == s;
+                CHECK((e == 0.0f || e >= s));
+            }
+            if (v.at(x, y) != 0.0f && v.at(x, y) != 1.0f) continue;
+            ++hard;
+            const bool agree = v.at(x, y) == 1.0f ? equal : zero;
+            hardDisagree += !agree;
+            bothLit += agree && v.at(x, y) == 1.0f && !zero;
+            bothDark += agree && v.at(x, y) == 0.0f;
+        }
+    MESSAGE(hard << " pixels with a hard shadow-map answer: " << bothLit << " lit and " << bothDark
+                 << " dark in both, " << hardDisagree << " where Embree disagrees");
+    CHECK(bothLit > hard / 10);
+    CHECK(bothDark > 0);
+    CHECK(hardDisagree < hard / 20);
+}

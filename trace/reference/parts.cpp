@@ -1,0 +1,90 @@
+#include "trace/reference/parts.h"
+
+#include <stdexcept>
+
+#include "shading/composite.h"
+
+namespace ssrt {
+
+namespace {
+
+const char* const kAlbedo[3] = {"albedo.R", "albedo.G", "albedo.B"};
+
+// The direct pass's parts (Frame::Scratch::directParts): RGB triples in this order.
+enum Part { kDirect = 0, kEmission = 3, kEnvDiffuse = 6, kEnvSpecular = 9, kSpecWeight = 12 };
+
+// 1 where the pixel shows a surface: the reference's SSR replaces the sky's specular there.
+PlaneF surfaceOpacity(const Frame& frame) {
+    const PlaneF& viewZ = frame.plane("viewZ");
+    PlaneF o(frame.width, frame.height);
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) o.at(x, y) = viewZ.at(x, y) > 0.0f ? 1.0f : 0.0f;
+    return o;
+}
+
+}  // namespace
+
+void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const PlaneF& opacity,
+                     const PlaneF* const ssgi[3], PlaneF specular[3], PlaneF diffuse[3]) {
+    const PlaneF* parts = frame.scratch.directParts;
+    const PlaneF& viewZ = frame.plane("viewZ");
+    const PlaneF& metallic = frame.plane("metallic");
+    for (int c = 0; c < 3; ++c) {
+        specular[c].ensureSize(frame.width, frame.height);
+        diffuse[c].ensureSize(frame.width, frame.height);
+        const PlaneF& albedo = frame.plane(kAlbedo[c]);
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                // The composite's operations, in its order.
+                const float o = opacity.at(x, y);
+                const float incoming =
+                    ssr[c]->at(x, y) * o + parts[kEnvSpecular + c].at(x, y) * (1.0f - o);
+                specular[c].at(x, y) = parts[kSpecWeight + c].at(x, y) * incoming;
+                const float colour = albedo.at(x, y) * (1.0f - metallic.at(x, y));
+                diffuse[c].at(x, y) = viewZ.at(x, y) <= 0.0f ? 0.0f : colour * ssgi[c]->at(x, y);
+            }
+    }
+}
+
+FrameParts frameParts(const Frame& frame) {
+    if (!frame.has("ssr.R") || !frame.has("ssgi.R"))
+        throw std::invalid_argument("frame parts: the frame needs both trace passes (SSR and SSGI)");
+    const PlaneF* parts = frame.scratch.directParts;
+    if (parts[0].width() != frame.width || parts[0].height() != frame.height)
+        throw std::invalid_argument("frame parts: the frame has no direct parts");
+    FrameParts fp;
+    const PlaneF* ssr[3] = {&frame.plane("ssr.R"), &frame.plane("ssr.G"), &frame.plane("ssr.B")};
+    const PlaneF* ssgi[3] = {&frame.plane("ssgi.R"), &frame.plane("ssgi.G"),
+                             &frame.plane("ssgi.B")};
+    specularDiffuse(frame, ssr, frame.plane("ssrOpacity"), ssgi, fp.specular, fp.diffuse);
+    for (int c = 0; c < 3; ++c) fp.direct[c] = parts[kDirect + c].clone();
+    return fp;
+}
+
+void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmissive, int threads,
+                      ReferenceImage& ref) {
+    const PlaneF* parts = frame.scratch.directParts;
+    const PlaneF opacity = surfaceOpacity(frame);
+    CompositeInputs ci;
+    for (int c = 0; c < 3; ++c) {
+        ci.direct[c] = &ref.direct[c];
+        ci.emission[c] = anyEmissive ? &parts[kEmission + c] : nullptr;
+        ci.envDiffuse[c] = &parts[kEnvDiffuse + c];
+        ci.envSpecular[c] = &parts[kEnvSpecular + c];
+        ci.specWeight[c] = &parts[kSpecWeight + c];
+        ci.ssgi[c] = &ref.ssgi[c];
+        ci.albedo[c] = &frame.plane(kAlbedo[c]);
+        ci.ssrColor[c] = &ref.ssr[c];
+    }
+    ci.viewZ = &frame.plane("viewZ");
+    ci.metallic = &frame.plane("metallic");
+    ci.ssrOpacity = &opacity;
+    ci.exposure = exposure;
+    PlaneF display[3];
+    composite(isa, ci, ref.color, display, threads);
+    const PlaneF* ssr[3] = {&ref.ssr[0], &ref.ssr[1], &ref.ssr[2]};
+    const PlaneF* ssgi[3] = {&ref.ssgi[0], &ref.ssgi[1], &ref.ssgi[2]};
+    specularDiffuse(frame, ssr, opacity, ssgi, ref.specular, ref.diffuse);
+}
+
+}  // namespace ssrt

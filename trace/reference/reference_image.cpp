@@ -1,0 +1,334 @@
+// The reference image (trace/reference/reference_image.h): the direct pass's sun with Embree's
+// (or the shadow map's) visibility, and the frame's own SSR and SSGI sample sequences, many
+// samples of them, traced by Embree.
+#include "trace/reference/reference_image.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/tiles.h"
+#include "renderer/direct_lighting.h"
+#include "shading/brdf.h"
+#include "trace/reference/parts.h"
+#include "trace/reference/reference_shading.h"
+
+namespace ssrt {
+
+namespace {
+
+using reference::PointSurface;
+using reference::ShadingContext;
+namespace ln = ssrt::lanes;
+
+// The resolve's cap on one ray's weight (trace/ssr_resolve_kernel.cpp): sums stay finite.
+constexpr float kMaxWeight = 1.0e20f;
+// Enough for any convergence; bounds the progress steps and the run time a typo can ask for.
+constexpr int kMaxSpp = 1 << 16;
+// Rays per Embree packet: a 4x4 block of pixels (Embree's 16-wide packets).
+constexpr int kBlock = 4;
+
+// Progress in steps, reported from the calling thread at most kReports + 1 times.
+class ProgressSteps {
+public:
+    ProgressSteps(const Progress& fn, int total) : fn_(fn), total_(total) {}
+    void step() {
+        ++done_;
+        const int bucket = int(int64_t(done_) * kReports / total_);
+        if (fn_ && (bucket > reported_ || done_ == total_)) {
+            reported_ = bucket;
+            fn_(double(done_) / double(total_));
+        }
+    }
+
+private:
+    static constexpr int kReports = 200;
+    const Progress& fn_;
+    int total_, done_ = 0, reported_ = -1;
+};
+
+// Everything a pass reads, set up once.
+struct Setup {
+    const Frame& frame;
+    DirectLighting lighting;  // with the frame's G-buffer and camera filled in
+    ShadingContext ctx;
+    RayGenGBuffer rayGen{};
+    Isa isa = Isa::Scalar;
+    int threads = 0;
+    TileGrid grid{1, 1};
+    float maxDistance = 0.0f;
+    SsrMethod ssrMethod = SsrMethod::VndfBounded;  // the frame's SSR sampler
+    uint32_t frameIndex = 0;                       // the frame's RNG frame
+    std::vector<glm::vec3> offset;                 // per pixel: surfaceOffsets
+    explicit Setup(const Frame& f) : frame(f) {}
+};
+
+const char* const kGBuffer[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z", "albedo.R",
+                                  "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
+
+void requireTraced(const Frame& frame, const RenderSettings& rs) {
+    if (frame.width != rs.width || frame.height != rs.height)
+        throw std::invalid_argument("reference: the frame was not rendered with these settings");
+    if (!frame.has("ssr.R") || !frame.has("ssgi.R"))
+        throw std::invalid_argument("reference: the frame needs both trace passes (SSR and SSGI)");
+    if (frame.scratch.directParts[0].width() != frame.width ||
+        frame.scratch.directParts[0].height() != frame.height)
+        throw std::invalid_argument("reference: the frame has no direct parts");
+}
+
+void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
+               const ReferenceSettings& settings) {
+    const Frame& f = s.frame;
+    const RenderSettings& rs = renderer.settings();
+    const Scene& scene = embree.scene();
+    std::shared_ptr<const SkyLighting> sky;
+    if (scene.sky.kind == Sky::Kind::Image) sky = cachedSkyLighting(scene.sky.image, rs.threads);
+    setDirectLighting(scene, rs, f.scratch.shadow, std::move(sky), s.lighting);
+    DirectArgs& a = s.lighting.args;
+    for (int i = 0; i < 10; ++i) a.g[i] = f.plane(kGBuffer[i]).row(0);
+    a.gStride = f.plane("viewZ").stride();
+    a.width = f.width;
+    a.height = f.height;
+    a.tanHalfX = f.camera.tanHalfX;
+    a.tanHalfY = f.camera.tanHalfY;
+    std::copy_n(f.camera.viewToWorld, 9, a.viewToWorld);
+    std::copy_n(f.camera.position, 3, a.camPos);
+    s.ctx = {&a, &embree, settings.visibility};
+    s.rayGen = {&f.plane("viewZ"),
+                {&f.plane("normal.X"), &f.plane("normal.Y"), &f.plane("normal.Z")},
+                &f.plane("roughness")};
+    s.isa = resolveIsa(rs.isa);
+    s.threads = rs.threads;
+    s.grid = TileGrid(f.width, f.height);
+    s.maxDistance = settings.maxDistance;
+    s.ssrMethod = rs.trace.ssrMethod;
+    s.frameIndex = rs.frame;
+}
+
+glm::vec3 rotate(const float* m, glm::vec3 v) {
+    return {(m[0] * v.x + m[3] * v.y) + m[6] * v.z, (m[1] * v.x + m[4] * v.y) + m[7] * v.z,
+            (m[2] * v.x + m[5] * v.y) + m[8] * v.z};
+}
+
+void ensure3(PlaneF p[3], int w, int h) {
+    for (int c = 0; c < 3; ++c) p[c].ensureSize(w, h);
+}
+
+// Per surface pixel, the step off its surface that every ray leaving it takes: epsilon
+// along the geometric normal, on the camera's side. The G-buffer's point is the true one
+// only to float rounding (1e-5 below a floor seen at a distance is typical), enough for a
+// grazing ray to hit the pixel's own surface from behind; and the G-buffer has no geometric
+// normal (its shading normal would self-shadow at low-poly terminators), so Embree's primary
+// hit through the pixel gives it. A pixel Embree misses (a silhouette) steps along its
+// shading normal.
+void surfaceOffsets(Setup& s) {
+    const DirectArgs& a = s.lighting.args;
+    const EmbreeScene& embree = *s.ctx.embree;
+    const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
+    s.offset.assign(std::size_t(a.width) * a.height, glm::vec3(0.0f));
+    parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+        const TileRect r = s.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (!(a.g[0][std::size_t(y) * a.gStride + x] > 0.0f)) continue;
+                const PointSurface ps = reference::pixelSurface(a, x, y);
+                const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
+                glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
+                const EmbreeHit h = embree.intersect(cam, -toCam, 0.0f, INFINITY);
+                if (h.hit) {
+                    n = embree.surface(cam, -toCam, h).geometricNormal;
+                    if (glm::dot(n, toCam) < 0.0f) n = -n;
+                }
+                s.offset[std::size_t(y) * a.width + x] = n * embree.epsilon();
+            }
+    });
+}
+
+glm::vec3 pointOf(const PointSurface& ps) { return {ps.p.x, ps.p.y, ps.p.z}; }
+
+// Direct: the sun part of each surface pixel with the chosen visibility; the sky (the frame's
+// own direct part) on background pixels.
+void renderDirect(const Setup& s, PlaneF out[3]) {
+    const DirectArgs& a = s.lighting.args;
+    const PlaneF* frameDirect = s.frame.scratch.directParts;
+    parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+        const TileRect r = s.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (!(a.g[0][std::size_t(y) * a.gStride + x] > 0.0f)) {
+                    for (int c = 0; c < 3; ++c) out[c].at(x, y) = frameDirect[c].at(x, y);
+                    continue;
+                }
+                const PointSurface ps = reference::pixelSurface(a, x, y);
+                const glm::vec3 origin = pointOf(ps) + s.offset[std::size_t(y) * a.width + x];
+                const float vis = reference::sunVisibility(s.ctx, ps, origin);
+                const shade::Parts<float> parts = shade::shadeSurface(a, ps, vis);
+                out[0].at(x, y) = parts.sun.x;
+                out[1].at(x, y) = parts.sun.y;
+                out[2].at(x, y) = parts.sun.z;
+            }
+    });
+}
+
+// One traced ray of a pixel: its world direction, pdf and the radiance it brought back.
+struct TracedRay {
+    int x, y;
+    glm::vec3 dir;
+    float pdf;
+    glm::vec3 radiance;
+};
+
+// Traces one sample's rays (view space, as generated) of one tile with Embree, 16 at a time
+// over 4x4 pixel blocks, and hands each to `use` in pixel order. full: hits shaded with the
+// whole direct model (SSR), else the Lambert bounce (SSGI).
+template <class Use>
+void traceTile(const Setup& s, const RayBatch& rays, int tile, bool full, Use&& use) {
+    const DirectArgs& a = s.lighting.args;
+    const EmbreeScene& embree = *s.ctx.embree;
+    const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
+    const TileRect r = s.grid.rect(tile);
+    for (int by = r.y0; by < r.y1; by += kBlock)
+        for (int bx = r.x0; bx < r.x1; bx += kBlock) {
+            std::array<glm::vec3, 16> org, dir;
+            std::array<TracedRay, 16> out;
+            int n = 0;
+            for (int y = by; y < std::min(by + kBlock, r.y1); ++y)
+                for (int x = bx; x < std::min(bx + kBlock, r.x1); ++x) {
+                    const float pdf = rays.pdf.at(x, y);
+                    if (!(pdf > 0.0f)) continue;
+                    const glm::vec3 o(rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y));
+                    const glm::vec3 d(rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y));
+                    // The frame's ray, stepped off its surface (surfaceOffsets).
+                    org[n] = (cam + rotate(a.viewToWorld, o)) + s.offset[std::size_t(y) * a.width + x];
+                    dir[n] = glm::normalize(rotate(a.viewToWorld, d));
+                    out[n] = {x, y, dir[n], pdf, glm::vec3(0.0f)};
+                    ++n;
+                }
+            if (n == 0) continue;
+            std::array<EmbreeHit, 16> hits;
+            embree.intersect16(n, org.data(), dir.data(), embree.epsilon(), s.maxDistance,
+                               hits.data());
+            for (int i = 0; i < n; ++i) {
+                out[i].radiance = hits[i].hit
+                                      ? reference::hitRadiance(s.ctx, org[i], dir[i], hits[i], full)
+                                      : reference::missRadiance(s.ctx, dir[i]);
+                use(out[i]);
+            }
+        }
+}
+
+// The resolve's weight of a ray for its own pixel: D V n.l / pdf (the pixel's GGX lobe over
+// the sampler's pdf, capped like the resolve's), 0 below the pixel's horizon.
+float ssrWeight(const PointSurface& ps, glm::vec3 dir, float pdf) {
+    using namespace ssrt::brdf;
+    const ln::V3<float> l{dir.x, dir.y, dir.z};
+    const float NoLraw = ln::dot(ps.n, l);
+    if (!(NoLraw > 0.0f)) return 0.0f;
+    const float NoL = ln::saturate(NoLraw);
+    const float NoV = std::max(ln::dot(ps.n, ps.view), 1e-4f);
+    const float NoH = ln::saturate(ln::dot(ps.n, ln::normalize(ps.view + l)));
+    const float alpha = roughnessToAlpha(ps.roughness);
+    return std::min(D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha) * NoL / pdf,
+                    kMaxWeight);
+}
+
+// Per-pixel sums over samples, in double (spp can be large), in sample order per pixel.
+struct Sums {
+    int width = 0;
+    std::vector<double> w, l[3];
+    Sums(int wd, int h) : width(wd), w(std::size_t(wd) * h, 0.0) {
+        for (auto& v : l) v.assign(w.size(), 0.0);
+    }
+    void add(int x, int y, double weight, glm::vec3 radiance) {
+        const std::size_t i = std::size_t(y) * width + x;
+        w[i] += weight;
+        for (int c = 0; c < 3; ++c) l[c][i] += weight * double(radiance[c]);
+    }
+};
+
+// SSR: the weighted mean of `spp` rays' radiance; a pixel none of whose rays weighs anything
+// (its lobe never left the surface) keeps the prefiltered sky, as the frame's opacity 0 does.
+void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) {
+    const Frame& f = s.frame;
+    Sums sums(f.width, f.height);
+    RayBatch rays;
+    const DirectArgs& a = s.lighting.args;
+    for (int k = 0; k < spp; ++k) {
+        generateSpecularRays(s.isa, s.ssrMethod, s.frameIndex, uint32_t(k), f.camera, s.rayGen,
+                             rays, s.threads);
+        parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+            traceTile(s, rays, tile, true, [&](const TracedRay& t) {
+                const PointSurface ps = reference::pixelSurface(a, t.x, t.y);
+                sums.add(t.x, t.y, ssrWeight(ps, t.dir, t.pdf), t.radiance);
+            });
+        });
+        progress.step();
+    }
+    const PlaneF* envSpecular = f.scratch.directParts + 9;
+    const PlaneF& viewZ = f.plane("viewZ");
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t i = std::size_t(y) * f.width + x;
+            for (int c = 0; c < 3; ++c)
+                out[c].at(x, y) = !(viewZ.at(x, y) > 0.0f) ? 0.0f
+                                  : sums.w[i] > 0.0   ? float(sums.l[c][i] / sums.w[i])
+                                                      : envSpecular[c].at(x, y);
+        }
+}
+
+// SSGI: the plain mean of `spp` cosine rays' radiance (a pixel without a ray in a sample adds
+// 0 for it, as trace/ssgi.h counts).
+void renderSsgi(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) {
+    const Frame& f = s.frame;
+    Sums sums(f.width, f.height);
+    RayBatch rays;
+    for (int k = 0; k < spp; ++k) {
+        generateDiffuseRays(s.isa, s.frameIndex, uint32_t(k), f.camera, s.rayGen, rays, s.threads);
+        parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+            traceTile(s, rays, tile, false,
+                      [&](const TracedRay& t) { sums.add(t.x, t.y, 1.0, t.radiance); });
+        });
+        progress.step();
+    }
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                out[c].at(x, y) = float(sums.l[c][std::size_t(y) * f.width + x] / double(spp));
+}
+
+}  // namespace
+
+void ReferenceSettings::validate() const {
+    if (spp < 1 || spp > kMaxSpp)
+        throw std::invalid_argument("reference spp must be between 1 and " +
+                                    std::to_string(kMaxSpp));
+    if (!std::isfinite(maxDistance) || !(maxDistance > 0.0f))
+        throw std::invalid_argument("reference maxDistance must be finite and > 0");
+}
+
+ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
+                               const Frame& frame, const ReferenceSettings& settings,
+                               const Progress& progress) {
+    settings.validate();
+    requireTraced(frame, renderer.settings());
+    Setup s(frame);
+    fillSetup(s, embree, renderer, settings);
+    const int w = frame.width, h = frame.height;
+    ReferenceImage ref;
+    for (PlaneF* p : {ref.color, ref.direct, ref.ssr, ref.ssgi, ref.specular, ref.diffuse})
+        ensure3(p, w, h);
+    ProgressSteps steps(progress, 1 + 2 * settings.spp);
+    surfaceOffsets(s);
+    renderDirect(s, ref.direct);
+    steps.step();
+    renderSsr(s, settings.spp, steps, ref.ssr);
+    renderSsgi(s, settings.spp, steps, ref.ssgi);
+    composeReference(s.isa, frame, renderer.settings().exposure, s.lighting.args.anyEmissive,
+                     s.threads, ref);
+    return ref;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,148 @@
+// referenceKey (trace/reference/reference_image.h): FNV-1a 64 over everything the reference
+// depends on, field by field in a fixed order (never over struct bytes: padding is undefined).
+#include <cstring>
+#include <string_view>
+#include <vector>
+
+#include "trace/reference/reference_image.h"
+
+namespace ssrt {
+
+namespace {
+
+// Bump whenever the reference's model or sampling changes: old cached images then miss.
+constexpr uint64_t kReferenceVersion = 1;
+
+// Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
+class Fnv1a {
+public:
+    void bytes(const void* data, std::size_t n) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 0x100000001b3ull;
+    }
+    template <class T>
+    void value(const T& v) {
+        static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
+        bytes(&v, sizeof v);
+    }
+    // Vectors carry their length, so [a][bc] and [ab][c] differ.
+    template <class T>
+    void array(const std::vector<T>& v) {
+        value(uint64_t(v.size()));
+        bytes(v.data(), v.size() * sizeof(T));
+    }
+    void vec3(glm::vec3 v) { bytes(&v[0], 3 * sizeof(float)); }
+    void mat4(const glm::mat4& m) {
+        for (int c = 0; c < 4; ++c) bytes(&m[c][0], 4 * sizeof(float));
+    }
+    uint64_t digest() const { return h_; }
+
+private:
+    uint64_t h_ = 0xcbf29ce484222325ull;
+};
+
+// glm::vec2/3/4 and uint32_t are tightly packed floats or integers: hashed as arrays.
+static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16);
+
+void hashMaterial(Fnv1a& h, const Material& m) {
+    h.vec3(m.baseColor);
+    h.value(m.metallic);
+    h.value(m.roughness);
+    h.vec3(m.emissive);
+    h.value(m.doubleSided);
+    h.value(m.baseColorTexture);
+    h.value(m.metallicRoughnessTexture);
+}
+
+void hashTexture(Fnv1a& h, const Texture& t) {
+    h.value(t.wrapU);
+    h.value(t.wrapV);
+    h.value(uint64_t(t.levels.size()));
+    for (const TextureLevel& l : t.levels) {
+        h.value(l.width);
+        h.value(l.height);
+        h.array(l.texels);
+    }
+}
+
+void hashSky(Fnv1a& h, const Sky& s) {
+    h.value(s.kind);
+    h.vec3(s.zenith);
+    h.vec3(s.horizon);
+    h.vec3(s.ground);
+    h.value(s.intensity);
+    h.value(bool(s.image));
+    if (s.image) {
+        h.value(s.image->width);
+        h.value(s.image->height);
+        h.array(s.image->rgb);
+    }
+}
+
+void hashCamera(Fnv1a& h, const Camera& c) {
+    h.vec3(c.position);
+    h.vec3(c.target);
+    h.vec3(c.up);
+    h.value(c.fovY);
+    h.value(c.nearZ);
+    h.value(c.farZ);
+}
+
+// The scene's content; names and the scene's own cameras aside (the camera is an argument).
+void hashScene(Fnv1a& h, const Scene& scene) {
+    h.value(uint64_t(scene.meshes.size()));
+    for (const Mesh& m : scene.meshes) {
+        h.array(m.positions);
+        h.array(m.normals);
+        h.array(m.uvs);
+        h.array(m.indices);
+    }
+    h.value(uint64_t(scene.materials.size()));
+    for (const Material& m : scene.materials) hashMaterial(h, m);
+    h.value(uint64_t(scene.instances.size()));
+    for (const Instance& i : scene.instances) {
+        h.value(i.mesh);
+        h.value(i.material);
+        h.mat4(i.transform);  // the previous transform moves motion vectors only
+    }
+    h.value(uint64_t(scene.textures.size()));
+    for (const Texture& t : scene.textures) hashTexture(h, t);
+    h.vec3(scene.light.direction);
+    h.vec3(scene.light.color);
+    h.value(scene.light.intensity);
+    hashSky(h, scene.sky);
+}
+
+// The render settings that shape the reference: the G-buffer (size), the shadow map (its
+// visibility mode and the ray offsets' surface), the exposure, and the SSR sampler and frame
+// index (the reference's rays are the frame's sample sequence). Threads and ISA do not (the
+// determinism contract), nor the marcher, the resolve or the frame's spp (the reference
+// replaces them).
+void hashRender(Fnv1a& h, const RenderSettings& r) {
+    h.value(r.width);
+    h.value(r.height);
+    h.value(r.shadowMapSize);
+    h.value(r.shadowBias);
+    h.value(r.shadowSlopeBias);
+    h.value(r.pcfRadius);
+    h.value(r.exposure);
+    h.value(r.frame);
+    h.value(r.trace.ssrMethod);
+}
+
+}  // namespace
+
+uint64_t referenceKey(const Scene& scene, const Camera& camera, const RenderSettings& render,
+                      const ReferenceSettings& settings) {
+    Fnv1a h;
+    h.value(kReferenceVersion);
+    hashScene(h, scene);
+    hashCamera(h, camera);
+    hashRender(h, render);
+    h.value(settings.visibility);
+    h.value(settings.spp);
+    h.value(settings.maxDistance);
+    return h.digest();
+}
+
+}  // namespace ssrt

@@ -1,0 +1,92 @@
+#include "trace/reference/reference_shading.h"
+
+#include <limits>
+
+namespace ssrt::reference {
+
+namespace ln = ssrt::lanes;
+
+namespace {
+
+using V3f = ln::V3<float>;
+
+V3f toV3(glm::vec3 v) { return {v.x, v.y, v.z}; }
+glm::vec3 toGlm(const V3f& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+PointSurface pixelSurface(const DirectArgs& a, int x, int y) {
+    // The direct kernel's camera ray and point, operation for operation (shadeChunk).
+    const std::size_t go = std::size_t(y) * a.gStride + x;
+    const float viewZ = a.g[0][go];
+    const float px = (float(x) + 0.0f) + 0.5f;
+    const float ndcX = px * (2.0f / float(a.width)) - 1.0f;
+    const float ndcY = 1.0f - (float(y) + 0.5f) * (2.0f / float(a.height));
+    const V3f dirView{ndcX * a.tanHalfX, ndcY * a.tanHalfY, -1.0f};
+    const float* r = a.viewToWorld;
+    const V3f dirWorld{(r[0] * dirView.x + r[3] * dirView.y) + r[6] * dirView.z,
+                       (r[1] * dirView.x + r[4] * dirView.y) + r[7] * dirView.z,
+                       (r[2] * dirView.x + r[5] * dirView.y) + r[8] * dirView.z};
+    PointSurface s;
+    s.p = shade::splat3<float>(a.camPos) + dirWorld * viewZ;
+    s.n = {a.g[1][go], a.g[2][go], a.g[3][go]};
+    s.albedo = {a.g[4][go], a.g[5][go], a.g[6][go]};
+    s.metallic = a.g[7][go];
+    s.roughness = a.g[8][go];
+    const V3f toCam = ln::normalize(dirWorld);
+    s.view = {0.0f - toCam.x, 0.0f - toCam.y, 0.0f - toCam.z};
+    return s;
+}
+
+float embreeSunVisibility(const ShadingContext& c, glm::vec3 origin) {
+    const float* l = c.lighting->toLight;
+    return c.embree->occluded(origin, {l[0], l[1], l[2]}, c.embree->epsilon(),
+                              std::numeric_limits<float>::infinity())
+               ? 0.0f
+               : 1.0f;
+}
+
+float sunVisibility(const ShadingContext& c, const PointSurface& s, glm::vec3 offsetOrigin) {
+    if (c.visibility == ReferenceSettings::Visibility::ShadowMap)
+        return shade::shadowMapVisibility(*c.lighting, s);
+    if (!(ln::dot(s.n, shade::splat3<float>(c.lighting->toLight)) > 0.0f)) return 0.0f;
+    return embreeSunVisibility(c, offsetOrigin);
+}
+
+glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
+                      const EmbreeHit& hit, bool full) {
+    const SurfacePoint sp = c.embree->surface(origin, dir, hit);
+    glm::vec3 ng = sp.geometricNormal, n = sp.shadingNormal;
+    // Seen from behind: a double-sided surface turns its normals towards the ray.
+    if (glm::dot(ng, dir) > 0.0f) {
+        if (!sp.doubleSided) return glm::vec3(0.0f);
+        ng = -ng;
+        n = -n;
+    }
+    PointSurface s;
+    s.p = toV3(sp.position);
+    s.n = toV3(n);
+    s.albedo = toV3(sp.baseColor);
+    s.view = toV3(-dir);
+    s.metallic = sp.metallic;
+    s.roughness = sp.roughness;
+    const float vis = sunVisibility(c, s, sp.position + ng * c.embree->epsilon());
+    const DirectArgs& a = *c.lighting;
+    if (full) {
+        const shade::Parts<float> p = shade::shadeSurface(a, s, vis);
+        // The direct pass's `color` order: ((sun + envDiffuse) + specWeight envSpecular) + emission.
+        const V3f lit = (p.sun + p.envDiffuse) + p.specWeight * p.envSpecular;
+        return toGlm(lit) + sp.emissive;
+    }
+    // The SSGI kernel's Lambert part: albedo (1 - metallic) / pi E_sun n.l visibility.
+    const float NoL = ln::saturate(ln::dot(s.n, shade::splat3<float>(a.toLight)));
+    const V3f diffuse = s.albedo * ((1.0f - s.metallic) * ln::kInvPi);
+    const V3f lit = diffuse * shade::splat3<float>(a.lightRadiance) * (NoL * vis);
+    return toGlm(lit) + sp.emissive;
+}
+
+glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir) {
+    return toGlm(shade::skyRadiance(*c.lighting, toV3(dir)));
+}
+
+}  // namespace ssrt::reference

@@ -1,0 +1,50 @@
+// The reference image's shading (trace/reference/reference_image.h), one point at a time:
+// the direct pass's model (shading/direct_lanes.h, L = float: the very template the kernel
+// runs) at any world point and view direction, with the sun's visibility from an Embree shadow
+// ray or the frame's shadow map. Internal to trace/reference/ (and its tests).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "shading/direct_kernel.h"
+#include "shading/direct_lanes.h"
+#include "trace/reference/embree_scene.h"
+#include "trace/reference/reference_image.h"
+
+namespace ssrt::reference {
+
+using PointSurface = shade::Surface<float>;
+
+// What the shading of one pass needs: the direct pass's lighting set-up (with the frame's
+// camera), the BVH and the visibility to use.
+struct ShadingContext {
+    const DirectArgs* lighting = nullptr;
+    const EmbreeScene* embree = nullptr;
+    ReferenceSettings::Visibility visibility = ReferenceSettings::Visibility::Embree;
+};
+
+// The surface a G-buffer pixel shows, as the direct kernel reconstructs it (the same float
+// operations: the point is camPos + dirWorld viewZ, the view the reversed unit camera ray).
+// Reads the DirectArgs' G-buffer pointers; viewZ must be > 0.
+PointSurface pixelSurface(const DirectArgs& a, int x, int y);
+
+// 1 when nothing lies between `origin` (already off the surface) and the sun, else 0.
+float embreeSunVisibility(const ShadingContext& c, glm::vec3 origin);
+
+// The sun's visibility at s: 0 when s faces away from the light; otherwise the chosen
+// source, the Embree shadow ray leaving from `offsetOrigin` (a point off the surface along
+// the geometric normal, on the viewer's side).
+float sunVisibility(const ShadingContext& c, const PointSurface& s, glm::vec3 offsetOrigin);
+
+// Radiance leaving a traced hit towards the ray's origin. full: the whole direct-pass colour
+// ((sun + sky diffuse) + split-sum specular + emission, as the direct pass's `color`, without
+// the Kulla-Conty factor, which `color` never has); otherwise the SSGI bounce's Lambert part
+// of the sun plus emission (trace/ssgi.h). A back face of a single-sided material is black
+// (the rasterizer culls it: light does not leave it).
+glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
+                      const EmbreeHit& hit, bool full);
+
+// The sky along a unit world direction (a ray that missed).
+glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir);
+
+}  // namespace ssrt::reference
