@@ -2,5 +2,6 @@
 # library of its own so that the core library never links Embree (DESIGN.md).
 find_package(embree 3 REQUIRED)
 add_library(ssrt_reference STATIC
-    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp)
+    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/ray_check.cpp)
 target_link_libraries(ssrt_reference PUBLIC ssrt PRIVATE embree)
