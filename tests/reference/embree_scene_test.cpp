@@ -2,6 +2,8 @@
 // and a box face at the exact distance, a tessellated sphere within its sagitta, one mesh
 // instanced twice, packets against single rays, shadow rays, the surface at a hit and the
 // build statistics.
+#include "trace/reference/embree_scene.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
-#include "trace/reference/embree_scene.h"
 
 using namespace ssrt;
 using namespace ssrt::helpers;
@@ -62,8 +63,8 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
     for (int i = 0; i < 200; ++i) {
         // Down onto the floor from 2 m above it, at random slants that stay on the quad.
         const glm::vec3 o(2.0f * rng.next() - 1.0f, 2.5f, 2.0f * rng.next() - 1.0f);
-        const glm::vec3 d = glm::normalize(
-            glm::vec3(0.8f * rng.next() - 0.4f, -1.0f, 0.8f * rng.next() - 0.4f));
+        const glm::vec3 d =
+            glm::normalize(glm::vec3(0.8f * rng.next() - 0.4f, -1.0f, 0.8f * rng.next() - 0.4f));
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 0);
@@ -73,7 +74,8 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
     for (int i = 0; i < 200; ++i) {
         // Along -X onto the box's +X face (x = 6) from x = 9.
         const glm::vec3 o(9.0f, 0.4f * rng.next() - 0.2f, 3.0f * rng.next() - 1.5f);
-        const glm::vec3 d = glm::normalize(glm::vec3(-1.0f, 0.1f * rng.next() - 0.05f, 0.1f * rng.next() - 0.05f));
+        const glm::vec3 d =
+            glm::normalize(glm::vec3(-1.0f, 0.1f * rng.next() - 0.05f, 0.1f * rng.next() - 0.05f));
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 1);
@@ -102,7 +104,8 @@ TEST_CASE("embree scene: a tessellated sphere is hit within its sagitta of the t
     for (int i = 0; i < 500; ++i) {
         // From 4 m out, aimed at a random point near the centre.
         const glm::vec3 o = centre + 4.0f * rng.unitVector();
-        const glm::vec3 aim = centre + 0.5f * r * (glm::vec3(rng.next(), rng.next(), rng.next()) - 0.5f);
+        const glm::vec3 aim =
+            centre + 0.5f * r * (glm::vec3(rng.next(), rng.next(), rng.next()) - 0.5f);
         const glm::vec3 d = glm::normalize(aim - o);
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
@@ -124,8 +127,8 @@ TEST_CASE("embree scene: a mesh instanced twice names the instance and triangle 
     const uint32_t mat = addMaterial(s, "grey", glm::vec3(0.5f), 0.0f, 0.5f);
     const uint32_t box = addMesh(s, makeBox({0.5f, 0.5f, 0.5f}));
     addInstance(s, box, mat, translate({-3.0f, 0, 0}));
-    addInstance(s, box, mat, translate({3.0f, 1.0f, 0}) * rotate(30.0f, {0, 1, 0}) *
-                                 glm::mat4(glm::mat3(2.0f)));
+    addInstance(s, box, mat,
+                translate({3.0f, 1.0f, 0}) * rotate(30.0f, {0, 1, 0}) * glm::mat4(glm::mat3(2.0f)));
     const EmbreeScene e(s);
     TestRng rng{3};
     int hits[2] = {0, 0};
@@ -198,17 +201,20 @@ TEST_CASE("embree scene: occluded() sees what lies within [tnear, tfar]") {
 TEST_CASE("embree scene: the surface at a hit (position, normals, uv, textured material)") {
     Scene s;
     // A 2x2 texture, one colour (uv-independent): the base colour is factor times texel.
-    s.textures.emplace_back("tex", 2, 2, std::vector<glm::vec4>(4, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f)));
-    s.textures.emplace_back("mr", 2, 2, std::vector<glm::vec4>(4, glm::vec4(0.0f, 0.5f, 0.25f, 1.0f)));
+    s.textures.emplace_back("tex", 2, 2,
+                            std::vector<glm::vec4>(4, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f)));
+    s.textures.emplace_back("mr", 2, 2,
+                            std::vector<glm::vec4>(4, glm::vec4(0.0f, 0.5f, 0.25f, 1.0f)));
     const uint32_t mat = addMaterial(s, "tex", {0.8f, 0.6f, 0.4f}, 1.0f, 0.8f, true);
     s.materials[mat].baseColorTexture = 0;
     s.materials[mat].metallicRoughnessTexture = 1;
     s.materials[mat].emissive = {0.1f, 0.2f, 0.3f};
     // The floor quad turned to face +Z (a wall at z = -2) and stretched 2x along X: the
     // normal matrix must keep the normal unit and along +Z.
-    addInstance(s, addMesh(s, makeQuad({1.0f, 1.0f}, 1)), mat,
-                translate({0, 0, -2.0f}) * rotate(90.0f, {1, 0, 0}) *
-                    glm::mat4(glm::mat3(glm::vec3(2, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1))));
+    addInstance(
+        s, addMesh(s, makeQuad({1.0f, 1.0f}, 1)), mat,
+        translate({0, 0, -2.0f}) * rotate(90.0f, {1, 0, 0}) *
+            glm::mat4(glm::mat3(glm::vec3(2, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1))));
     const EmbreeScene e(s);
     const glm::vec3 o(0.0f, 0.0f, 1.0f);
     const glm::vec3 target(1.2f, -0.4f, -2.0f);

@@ -2,6 +2,8 @@
 // the error values and planes, the same results for every thread count; then the failure
 // scenes (`thin`, `offscreen`, `occluded`) rendered with each marcher, their SSR and SSGI rays
 // checked, and the failures each scene was built for found.
+#include "trace/reference/ray_check.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -17,7 +19,6 @@
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
 #include "trace/march.h"
-#include "trace/reference/ray_check.h"
 
 using namespace ssrt;
 using namespace ssrt::helpers;
@@ -83,9 +84,9 @@ Frame1 emptyFrame(int w, int h) {
     f.viewZ = wallViewZ(f.camera);
     f.rays.ensureSize(w, h);
     f.march.ensureSize(w, h);
-    for (PlaneF* p : {&f.rays.ox, &f.rays.oy, &f.rays.oz, &f.rays.dx, &f.rays.dy, &f.rays.dz,
-                      &f.rays.pdf, &f.march.hit, &f.march.hitX, &f.march.hitY, &f.march.hitZ,
-                      &f.march.steps})
+    for (PlaneF* p :
+         {&f.rays.ox, &f.rays.oy, &f.rays.oz, &f.rays.dx, &f.rays.dy, &f.rays.dz, &f.rays.pdf,
+          &f.march.hit, &f.march.hitX, &f.march.hitY, &f.march.hitZ, &f.march.steps})
         p->fill(0.0f);
     f.march.cause.fill(float(int(MarchEnd::NoRay)));
     return f;
@@ -125,7 +126,8 @@ std::string tableText(const RayCheckTable& t) {
 
 uint64_t planesHash(const RayCheckPlanes& p) {
     uint64_t h = 0xcbf29ce484222325ull;
-    for (const PlaneF* q : {&p.rayClass, &p.pixelError, &p.depthError, &p.trueT}) h = hashPlane(*q, h);
+    for (const PlaneF* q : {&p.rayClass, &p.pixelError, &p.depthError, &p.trueT})
+        h = hashPlane(*q, h);
     return h;
 }
 
@@ -210,9 +212,8 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
     CHECK(t.embreeHits == 7);
     // Planes: the class of each ray, NoRay elsewhere.
     const std::pair<int, RayClass> expect[] = {
-        {10, RayClass::Agreed},         {20, RayClass::FalseHit},
-        {30, RayClass::FalseHit},       {35, RayClass::FalseHit},
-        {40, RayClass::MissedOnScreen}, {50, RayClass::TrueMiss},
+        {10, RayClass::Agreed},         {20, RayClass::FalseHit},       {30, RayClass::FalseHit},
+        {35, RayClass::FalseHit},       {40, RayClass::MissedOnScreen}, {50, RayClass::TrueMiss},
         {60, RayClass::OffScreenTruth}, {70, RayClass::OffScreenTruth}};
     for (auto [x, cls] : expect) CHECK(classAt(planes, x, 10) == cls);
     CHECK(classAt(planes, 79, 69) == RayClass::MissedOnScreen);
@@ -220,7 +221,8 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
     CHECK(classAt(planes, 0, 0) == RayClass::NoRay);
     // True distances, 0 without a true hit.
     CHECK(planes.trueT.at(10, 10) == doctest::Approx(glm::length(w1 - o)).epsilon(1e-5));
-    CHECK(planes.trueT.at(60, 10) == doctest::Approx(glm::length(hidden - behindOccluder)).epsilon(1e-5));
+    CHECK(planes.trueT.at(60, 10) ==
+          doctest::Approx(glm::length(hidden - behindOccluder)).epsilon(1e-5));
     CHECK(planes.trueT.at(30, 10) == 0.0f);
     CHECK(planes.trueT.at(50, 10) == 0.0f);
     CHECK(planes.trueT.at(11, 10) == 0.0f);
@@ -252,7 +254,8 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
     // A maximum distance short of the wall: every truth is gone.
     tight = {};
     tight.maxDistance = 1.0f;
-    const RayCheckTable shortRays = checkRays(embree, c, f.viewZ, f.rays, f.march, tight, nullptr, 1);
+    const RayCheckTable shortRays =
+        checkRays(embree, c, f.viewZ, f.rays, f.march, tight, nullptr, 1);
     CHECK(shortRays.count[int(RayClass::TrueMiss)] == 5);
     CHECK(shortRays.count[int(RayClass::FalseHit)] == 4);
 }

@@ -13,12 +13,18 @@ namespace ssrt {
 
 std::string_view rayClassName(RayClass c) {
     switch (c) {
-        case RayClass::NoRay: return "no_ray";
-        case RayClass::Agreed: return "agreed";
-        case RayClass::FalseHit: return "false_hit";
-        case RayClass::MissedOnScreen: return "missed_on_screen";
-        case RayClass::TrueMiss: return "true_miss";
-        case RayClass::OffScreenTruth: return "offscreen_truth";
+        case RayClass::NoRay:
+            return "no_ray";
+        case RayClass::Agreed:
+            return "agreed";
+        case RayClass::FalseHit:
+            return "false_hit";
+        case RayClass::MissedOnScreen:
+            return "missed_on_screen";
+        case RayClass::TrueMiss:
+            return "true_miss";
+        case RayClass::OffScreenTruth:
+            return "offscreen_truth";
     }
     return "?";
 }
@@ -149,9 +155,9 @@ uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& cam, const RayBa
 // Where the true hit sits in the frame, and whether the camera sees it there.
 struct TrueHit {
     bool exists = false;
-    float z = 0.0f;             // view Z (positive in front of the camera)
+    float z = 0.0f;              // view Z (positive in front of the camera)
     float px = 0.0f, py = 0.0f;  // continuous pixel position (when z > 0)
-    bool projects = false;      // in front of the camera: px, py mean something
+    bool projects = false;       // in front of the camera: px, py mean something
     bool visible = false;
 };
 
@@ -182,11 +188,11 @@ struct PixelCheck {
     float pixelError = 0.0f, depthError = 0.0f;
 };
 
-PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSettings& s,
-                    int x, int y) {
+PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSettings& s, int x,
+                    int y) {
     PixelCheck c;
     if (!(m.hit.at(x, y) > 0.0f)) {
-        c.cls = !truth.exists  ? RayClass::TrueMiss
+        c.cls = !truth.exists   ? RayClass::TrueMiss
                 : truth.visible ? RayClass::MissedOnScreen
                                 : RayClass::OffScreenTruth;
         return c;
