@@ -136,7 +136,9 @@ uint64_t countWhere(const SceneCheck& c, RayClass cls, Pred pred) {
     return n;
 }
 
-std::string tableText(const std::string& what, const RayCheckTable& t) {
+// The table, and both tracers' speed on the same rays (the march's pass time includes its
+// lane packing; Embree's is its traversal alone).
+std::string tableText(const std::string& what, const RayCheckTable& t, double marchMs) {
     std::ostringstream s;
     s << what << ": " << t.rays << " rays;";
     for (int c = 1; c < kRayClassCount; ++c)
@@ -147,6 +149,7 @@ std::string tableText(const std::string& what, const RayCheckTable& t) {
       << RayCheckTable::quantile(t.depthError, 0.9);
     if (t.embreeSeconds > 0.0)
         s << "; Embree " << double(t.rays) / t.embreeSeconds * 1e-6 << " M rays/s";
+    if (marchMs > 0.0) s << ", march " << double(t.rays) / marchMs * 1e-3 << " M rays/s";
     return s.str();
 }
 
@@ -186,6 +189,12 @@ bool insideInstance(const Scene& s, int instance, glm::vec3 p) {
            glm::all(glm::lessThanEqual(p, b.hi + 1e-3f));
 }
 
+double passMs(const FrameStats& stats, const std::string& name) {
+    for (const PassTime& p : stats.passes)
+        if (p.name == name) return p.ms;
+    return 0.0;
+}
+
 // The classes partition the rays the marcher traced: its hits are the agreed and false hits.
 void checkAgainstMarch(const RayCheckTable& t, const MarchStats& march) {
     CHECK(t.rays == march.rays);
@@ -203,8 +212,8 @@ void forEachMarcher(const Scene& scene, Check check) {
         CAPTURE(marcherName(m));
         const SceneCheck c = renderAndCheck(scene, embree, m);
         const std::string label = scene.name + " " + std::string(marcherName(m));
-        MESSAGE(tableText(label + " ssr", c.tables.ssr));
-        MESSAGE(tableText(label + " ssgi", c.tables.ssgi));
+        MESSAGE(tableText(label + " ssr", c.tables.ssr, passMs(c.stats, "ssr march")));
+        MESSAGE(tableText(label + " ssgi", c.tables.ssgi, passMs(c.stats, "ssgi march")));
         checkAgainstMarch(c.tables.ssr, c.stats.ssr.march);
         checkAgainstMarch(c.tables.ssgi, c.stats.ssgi.march);
         check(m, c);
