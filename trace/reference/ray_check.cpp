@@ -199,6 +199,8 @@ PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSe
     }
     c.cls = RayClass::FalseHit;
     if (!truth.exists) return c;
+    // Both hit: the errors. A truth behind the camera has no pixel and no relative depth to
+    // compare with, so both errors are infinite there (never Agreed).
     c.bothHit = true;
     const float inf = std::numeric_limits<float>::infinity();
     c.pixelError = inf;
