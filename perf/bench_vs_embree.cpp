@@ -5,9 +5,9 @@
 //   ./build/perf/ssrt_bench --benchmark_filter=VsEmbree
 //
 // Set-up, once per scene (not timed): the G-buffer of a frame rendered with the trace passes
-// off, its Hi-Z pyramid, and an Embree scene of every instance's mesh flattened through its
-// transform into one world-space triangle geometry (RTC_BUILD_QUALITY_HIGH; the time of
-// rtcCommitScene on every core, second of two builds, is the counter build_ms). Once per ray kind: the RayBatch from trace/ray_gen.h, the same
+// off, its Hi-Z pyramid, and the truth's Embree scene (trace/reference/embree_scene.h: one BVH
+// per mesh and one over the instances, RTC_BUILD_QUALITY_HIGH; its build time, second of two
+// builds, is the counter build_ms). Once per ray kind: the RayBatch from trace/ray_gen.h, the same
 // rays in world space (origin = camera position + viewToWorld * view origin, direction =
 // viewToWorld * view direction; the rotation keeps lengths, so t is the view-space distance)
 // and Embree's answer for every ray, which the agreement counters compare with.
@@ -19,8 +19,9 @@
 // marchers end on back faces: that difference shows in the agreement counters).
 //
 // Benchmarks (names start with VsEmbree so one filter takes them all):
-// - VsEmbree_embree/<scene>_<rays>_<single|packet16>/<threads>: Embree alone, rtcIntersect1
-//   per ray or rtcIntersect16 per 4x4 pixel block, over 64x64 tiles (parallelForTiles).
+// - VsEmbree_embree/<scene>_<rays>_<single|packet16>/<threads>: Embree alone,
+//   EmbreeScene::intersect per ray (rtcIntersect1) or intersect16 per 4x4 pixel block
+//   (rtcIntersect16), over 64x64 tiles (parallelForTiles).
 //   Counters: Mrays/s, build_ms, triangles, e_hit (share of traced rays that hit), vs_single
 //   (share of rays whose answer differs from rtcIntersect1's: a sanity check, expect 0),
 //   native16 (1 when Embree runs 16-wide packets natively, i.e. its AVX-512 kernels).
@@ -33,8 +34,6 @@
 //   points more than agree_tol apart), m_only (marcher hit, Embree none within tfar),
 //   e_only (Embree hit, marcher none). agree_tol = 1 % of the scene's bounding diagonal.
 #include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -55,6 +54,7 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/march.h"
+#include "trace/reference/embree_scene.h"
 #include "trace/ray_gen.h"
 #include "trace/trace_types.h"
 
@@ -64,7 +64,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr int kWidth = 1920, kHeight = 1080;
-constexpr float kNearScale = 1e-4f;   // tnear, times the scene's bounding diagonal
 constexpr float kAgreeScale = 1e-2f;  // agreement tolerance, times the diagonal
 constexpr float kNoHit = std::numeric_limits<float>::infinity();
 
@@ -74,63 +73,13 @@ double secondsSince(Clock::time_point t0) {
 
 // ---- Embree scene ----------------------------------------------------------------------
 
-struct EmbreeScene {
-    RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
-    double buildMs = 0.0;
-    std::size_t triangles = 0;
-
-    explicit EmbreeScene(const Scene& s) {
-        device = rtcNewDevice(nullptr);
-        if (!device) throw std::runtime_error("rtcNewDevice failed");
-        // The first build also starts Embree's threads; time the second.
-        for (int pass = 0; pass < 2; ++pass) {
-            if (scene) rtcReleaseScene(scene);
-            triangles = 0;
-            build(s);
-        }
-    }
-    void build(const Scene& s) {
-        scene = rtcNewScene(device);
-        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-        // Flatten every instance's mesh through its transform into one geometry.
-        std::size_t vertexCount = 0;
-        for (const Instance& inst : s.instances) {
-            vertexCount += s.meshes[inst.mesh].positions.size();
-            triangles += s.meshes[inst.mesh].triangleCount();
-        }
-        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
-        auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
-        uint32_t base = 0;
-        for (const Instance& inst : s.instances) {
-            const Mesh& m = s.meshes[inst.mesh];
-            for (const glm::vec3& p : m.positions) {
-                const glm::vec4 w = inst.transform * glm::vec4(p, 1.0f);
-                *v++ = w.x, *v++ = w.y, *v++ = w.z;
-            }
-            for (uint32_t i : m.indices) *idx++ = base + i;
-            base += uint32_t(m.positions.size());
-        }
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(scene, geom);
-        rtcReleaseGeometry(geom);
-        const auto t0 = Clock::now();
-        rtcCommitScene(scene);
-        buildMs = secondsSince(t0) * 1e3;
-        if (rtcGetDeviceError(device) != RTC_ERROR_NONE)
-            throw std::runtime_error("Embree scene build failed");
-    }
-    ~EmbreeScene() {
-        rtcReleaseScene(scene);
-        rtcReleaseDevice(device);
-    }
-    EmbreeScene(const EmbreeScene&) = delete;
-    EmbreeScene& operator=(const EmbreeScene&) = delete;
-};
+// The truth's scene, built twice: the first build also starts Embree's threads, so the second
+// one's time is build_ms.
+std::unique_ptr<EmbreeScene> buildEmbree(const Scene& s) {
+    auto first = std::make_unique<EmbreeScene>(s);
+    first.reset();
+    return std::make_unique<EmbreeScene>(s);
+}
 
 // The rays of a RayBatch in world space, per pixel (index y * width + x).
 struct WorldRays {
@@ -172,37 +121,24 @@ enum class EmbreeMode { Single, Packet16 };
 void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, int threads,
                  float* t) {
     const TileGrid grid(wr.width, wr.height);
+    auto origin = [&](std::size_t i) { return glm::vec3(wr.o[0][i], wr.o[1][i], wr.o[2][i]); };
+    auto direction = [&](std::size_t i) { return glm::vec3(wr.d[0][i], wr.d[1][i], wr.d[2][i]); };
     parallelForTiles(grid.count(), threads, [&](int tile) {
         const TileRect r = grid.rect(tile);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
         if (mode == EmbreeMode::Single) {
             for (int y = r.y0; y < r.y1; ++y)
                 for (int x = r.x0; x < r.x1; ++x) {
                     const std::size_t i = std::size_t(y) * wr.width + x;
-                    if (!wr.valid[i]) {
-                        t[i] = kNoHit;
-                        continue;
-                    }
-                    RTCRayHit rh;
-                    rh.ray.org_x = wr.o[0][i], rh.ray.org_y = wr.o[1][i], rh.ray.org_z = wr.o[2][i];
-                    rh.ray.dir_x = wr.d[0][i], rh.ray.dir_y = wr.d[1][i], rh.ray.dir_z = wr.d[2][i];
-                    rh.ray.tnear = wr.tnear;
-                    rh.ray.tfar = wr.tfar;
-                    rh.ray.time = 0.0f;
-                    rh.ray.mask = ~0u;
-                    rh.ray.id = 0;
-                    rh.ray.flags = 0;
-                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                    rtcIntersect1(es.scene, &ctx, &rh);
-                    t[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kNoHit;
+                    t[i] = kNoHit;
+                    if (!wr.valid[i]) continue;
+                    const EmbreeHit h = es.intersect(origin(i), direction(i), wr.tnear, wr.tfar);
+                    if (h.hit) t[i] = h.t;
                 }
             return;
         }
         // Packets: the valid rays of each 4x4 pixel block.
-        alignas(64) RTCRayHit16 rh;
-        alignas(64) int active[16];
+        glm::vec3 o[16], d[16];
+        EmbreeHit hits[16];
         std::size_t lane[16];
         for (int by = r.y0; by < r.y1; by += 4)
             for (int bx = r.x0; bx < r.x1; bx += 4) {
@@ -211,29 +147,13 @@ void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, in
                     for (int x = bx; x < std::min(bx + 4, r.x1); ++x) {
                         const std::size_t i = std::size_t(y) * wr.width + x;
                         t[i] = kNoHit;
-                        if (wr.valid[i]) lane[n++] = i;
+                        if (!wr.valid[i]) continue;
+                        o[n] = origin(i), d[n] = direction(i), lane[n++] = i;
                     }
                 if (n == 0) continue;
-                for (int k = 0; k < 16; ++k) {
-                    const std::size_t i = lane[k < n ? k : 0];
-                    active[k] = k < n ? -1 : 0;
-                    rh.ray.org_x[k] = wr.o[0][i], rh.ray.org_y[k] = wr.o[1][i],
-                    rh.ray.org_z[k] = wr.o[2][i];
-                    rh.ray.dir_x[k] = wr.d[0][i], rh.ray.dir_y[k] = wr.d[1][i],
-                    rh.ray.dir_z[k] = wr.d[2][i];
-                    rh.ray.tnear[k] = wr.tnear;
-                    rh.ray.tfar[k] = wr.tfar;
-                    rh.ray.time[k] = 0.0f;
-                    rh.ray.mask[k] = ~0u;
-                    rh.ray.id[k] = unsigned(k);
-                    rh.ray.flags[k] = 0;
-                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-                }
-                rtcIntersect16(active, es.scene, &ctx, &rh);
+                es.intersect16(n, o, d, wr.tnear, wr.tfar, hits);
                 for (int k = 0; k < n; ++k)
-                    t[lane[k]] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar[k]
-                                                                             : kNoHit;
+                    if (hits[k].hit) t[lane[k]] = hits[k].t;
             }
     });
 }
@@ -290,7 +210,7 @@ Workload& workload(const std::string& name) {
     const glm::mat3 v2w = glm::mat3(glm::inverse(cam.view()));
     std::copy_n(glm::value_ptr(v2w), 9, tc.viewToWorld);
     buildHiZ(w->viewZ, w->hiz, 0);
-    w->embree = std::make_unique<EmbreeScene>(w->scene);
+    w->embree = buildEmbree(w->scene);
     glm::vec3 lo, hi;
     w->scene.bounds(lo, hi);
     w->diagonal = glm::length(hi - lo);
@@ -304,7 +224,7 @@ const RayKind& rayKind(Workload& w, SsrMethod method) {
     const RayGenGBuffer rg{&w.viewZ, {&w.normal[0], &w.normal[1], &w.normal[2]}, &w.roughness};
     generateSpecularRays(defaultIsa(), method, 0, 0, w.camera, rg, k->rays, 0);
     k->world = toWorld(k->rays, w.viewToWorld(), w.scene.camera.position,
-                       kNearScale * w.diagonal, MarchSettings{}.maxDistance);
+                       w.embree->epsilon(), MarchSettings{}.maxDistance);
     k->embreeT.resize(k->world.valid.size());
     traceEmbree(*w.embree, k->world, EmbreeMode::Single, 0, k->embreeT.data());
     for (float t : k->embreeT) k->embreeHits += t != kNoHit;
@@ -336,13 +256,12 @@ void embreeBench(benchmark::State& state, std::string scene, SsrMethod method, E
             ++differ;
     }
     state.counters["Mrays/s"] = double(k.world.count) * 1e-6 * double(state.iterations()) / sec;
-    state.counters["build_ms"] = w.embree->buildMs;
-    state.counters["triangles"] = double(w.embree->triangles);
+    state.counters["build_ms"] = w.embree->stats().buildMs;
+    state.counters["triangles"] = double(w.embree->stats().triangles);
     state.counters["e_hit"] = double(hits) / double(k.world.count);
     state.counters["vs_single"] = double(differ) / double(k.world.count);
     state.counters["rays"] = double(k.world.count);
-    state.counters["native16"] = double(
-        rtcGetDeviceProperty(w.embree->device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED));
+    state.counters["native16"] = double(w.embree->nativePackets16());
 }
 
 struct Agreement {

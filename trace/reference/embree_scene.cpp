@@ -176,6 +176,10 @@ bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tnear, float tfar) co
     return r.tfar < 0.0f;  // Embree sets tfar to -inf when something is in the way
 }
 
+bool EmbreeScene::nativePackets16() const {
+    return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+}
+
 SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) const {
     const Instance& inst = scene_.instances[h.instance];
     const Mesh& mesh = scene_.meshes[inst.mesh];

@@ -82,6 +82,9 @@ public:
 
     // A small distance for stepping off a surface: 1e-4 of the bounds' diagonal.
     float epsilon() const { return 1e-4f * stats_.diagonal; }
+    // Whether Embree runs 16-ray packets natively on this CPU (its AVX-512 kernels); else
+    // intersect16 splits them.
+    bool nativePackets16() const;
 
 private:
     const Scene& scene_;

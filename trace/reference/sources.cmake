@@ -5,6 +5,7 @@ add_library(ssrt_reference STATIC
     ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp
     ${CMAKE_CURRENT_LIST_DIR}/image_error.cpp
     ${CMAKE_CURRENT_LIST_DIR}/parts.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/ray_check.cpp
     ${CMAKE_CURRENT_LIST_DIR}/reference_image.cpp
     ${CMAKE_CURRENT_LIST_DIR}/reference_key.cpp
     ${CMAKE_CURRENT_LIST_DIR}/reference_shading.cpp)

@@ -1,0 +1,288 @@
+// Ray checks on the failure scenes (scenes/failure_scenes.cpp): each is rendered small with
+// every marcher, the SSR and SSGI rays the renderer marched are traced by Embree, and the
+// classes must show the failure the scene was built for, and none that it rules out.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "renderer/renderer.h"
+#include "scenes/builtin_scenes.h"
+#include "trace/march.h"
+#include "trace/reference/ray_check.h"
+
+using namespace ssrt;
+
+namespace {
+
+constexpr Marcher kMarchers[] = {Marcher::Linear, Marcher::Dda, Marcher::HiZ};
+
+struct PassTables {
+    RayCheckTable ssr, ssgi;
+};
+
+// One checked ray: its class, where Embree hit (world space) and which instance the march's
+// hit pixel shows.
+struct RayRecord {
+    TracePass pass;
+    RayClass cls;
+    bool trueHit;
+    glm::vec3 truePoint;  // world space, when trueHit
+    int marchInstance;    // instanceId at the march's hit pixel; -1 without a march hit
+};
+
+struct SceneCheck {
+    PassTables tables;
+    std::vector<RayRecord> rays;
+    FrameStats stats;  // the renderer's own counts of the same marches
+};
+
+// A sample's rays and march, kept until the frame (and its camera and depth) is done.
+struct Sample {
+    TracePass pass;
+    RayBatch rays;
+    MarchResult march;
+};
+
+RayBatch copyOf(const RayBatch& r) {
+    RayBatch c;
+    for (auto m : {&RayBatch::ox, &RayBatch::oy, &RayBatch::oz, &RayBatch::dx, &RayBatch::dy,
+                   &RayBatch::dz, &RayBatch::pdf})
+        c.*m = (r.*m).clone();
+    return c;
+}
+
+MarchResult copyOf(const MarchResult& r) {
+    MarchResult c;
+    for (auto m : {&MarchResult::hit, &MarchResult::hitX, &MarchResult::hitY, &MarchResult::hitZ,
+                   &MarchResult::steps, &MarchResult::cause})
+        c.*m = (r.*m).clone();
+    return c;
+}
+
+glm::mat3 rotationOf(const TraceCamera& c) {
+    glm::mat3 m;
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) m[col][row] = c.viewToWorld[col * 3 + row];
+    return m;
+}
+
+// Every ray of one checked sample, as records.
+void addRecords(const Frame& frame, const Sample& s, const RayCheckPlanes& planes,
+                std::vector<RayRecord>& out) {
+    const TraceCamera& c = frame.camera;
+    const glm::mat3 rot = rotationOf(c);
+    const glm::vec3 pos(c.position[0], c.position[1], c.position[2]);
+    const PlaneF& ids = frame.plane("instanceId");
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            if (!(s.rays.pdf.at(x, y) > 0.0f)) continue;
+            RayRecord r{s.pass, RayClass(int(planes.rayClass.at(x, y))), false, {}, -1};
+            const float t = planes.trueT.at(x, y);
+            if (t > 0.0f) {
+                const glm::vec3 o(s.rays.ox.at(x, y), s.rays.oy.at(x, y), s.rays.oz.at(x, y));
+                const glm::vec3 d(s.rays.dx.at(x, y), s.rays.dy.at(x, y), s.rays.dz.at(x, y));
+                r.trueHit = true;
+                r.truePoint = pos + rot * (o + t * d);
+            }
+            if (s.march.hit.at(x, y) > 0.0f) {
+                const int hx = std::clamp(int(s.march.hitX.at(x, y)), 0, c.width - 1);
+                const int hy = std::clamp(int(s.march.hitY.at(x, y)), 0, c.height - 1);
+                r.marchInstance = int(ids.at(hx, hy));
+            }
+            out.push_back(r);
+        }
+}
+
+// Renders `scene` at 320x180 (one SSR and one SSGI ray per pixel) with `marcher` and checks
+// every marched ray against Embree.
+SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher marcher) {
+    RenderSettings rs;
+    rs.width = 320;
+    rs.height = 180;
+    rs.shadowMapSize = 512;
+    rs.trace.marcher = marcher;
+    std::vector<Sample> samples;
+    const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
+                                   const MarchResult& march) {
+        samples.push_back({pass, copyOf(rays), copyOf(march)});
+    };
+    Frame frame;
+    Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame, &keep);
+    RayCheckSettings cs;
+    cs.maxDistance = rs.trace.march.maxDistance;
+    SceneCheck out;
+    for (const Sample& s : samples) {
+        RayCheckPlanes planes;
+        const RayCheckTable one =
+            checkRays(embree, frame.camera, frame.plane("viewZ"), s.rays, s.march, cs, &planes, 0);
+        (s.pass == TracePass::Ssr ? out.tables.ssr : out.tables.ssgi).add(one);
+        addRecords(frame, s, planes, out.rays);
+    }
+    out.tables.ssr.finish();
+    out.tables.ssgi.finish();
+    out.stats = frame.stats;
+    return out;
+}
+
+// Rays of `cls` (of either pass) for which `pred(record)` holds.
+template <class Pred>
+uint64_t countWhere(const SceneCheck& c, RayClass cls, Pred pred) {
+    uint64_t n = 0;
+    for (const RayRecord& r : c.rays) n += r.cls == cls && pred(r);
+    return n;
+}
+
+// The table, and both tracers' speed on the same rays (the march's pass time includes its
+// lane packing; Embree's is its traversal alone).
+std::string tableText(const std::string& what, const RayCheckTable& t, double marchMs) {
+    std::ostringstream s;
+    s << what << ": " << t.rays << " rays;";
+    for (int c = 1; c < kRayClassCount; ++c)
+        s << " " << rayClassName(RayClass(c)) << " " << t.count[c];
+    s << "; pixel error p50/p90 " << RayCheckTable::quantile(t.pixelError, 0.5) << "/"
+      << RayCheckTable::quantile(t.pixelError, 0.9) << ", depth error p50/p90 "
+      << RayCheckTable::quantile(t.depthError, 0.5) << "/"
+      << RayCheckTable::quantile(t.depthError, 0.9);
+    if (t.embreeSeconds > 0.0)
+        s << "; Embree " << double(t.rays) / t.embreeSeconds * 1e-6 << " M rays/s";
+    if (marchMs > 0.0) s << ", march " << double(t.rays) / marchMs * 1e-3 << " M rays/s";
+    return s.str();
+}
+
+// The instances whose material is called `prefix...`.
+std::vector<int> instancesOf(const Scene& s, const std::string& prefix) {
+    std::vector<int> out;
+    for (std::size_t i = 0; i < s.instances.size(); ++i)
+        if (s.materials[s.instances[i].material].name.rfind(prefix, 0) == 0) out.push_back(int(i));
+    return out;
+}
+
+bool contains(const std::vector<int>& v, int x) {
+    return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+struct Bounds {
+    glm::vec3 lo, hi;
+};
+
+// World bounds of one instance.
+Bounds instanceBounds(const Scene& s, int instance) {
+    const Instance& inst = s.instances[std::size_t(instance)];
+    Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+    for (const glm::vec3& p : s.meshes[inst.mesh].positions) {
+        const glm::vec3 w(inst.transform * glm::vec4(p, 1.0f));
+        b.lo = glm::min(b.lo, w);
+        b.hi = glm::max(b.hi, w);
+    }
+    return b;
+}
+
+// Whether p lies on or in an instance's (axis-aligned) bounds, 1 mm of slack.
+bool insideInstance(const Scene& s, int instance, glm::vec3 p) {
+    if (instance < 0) return false;
+    const Bounds b = instanceBounds(s, instance);
+    return glm::all(glm::greaterThanEqual(p, b.lo - 1e-3f)) &&
+           glm::all(glm::lessThanEqual(p, b.hi + 1e-3f));
+}
+
+double passMs(const FrameStats& stats, const std::string& name) {
+    for (const PassTime& p : stats.passes)
+        if (p.name == name) return p.ms;
+    return 0.0;
+}
+
+// The classes partition the rays the marcher traced: its hits are the agreed and false hits.
+void checkAgainstMarch(const RayCheckTable& t, const MarchStats& march) {
+    CHECK(t.rays == march.rays);
+    CHECK(t.count[int(RayClass::Agreed)] + t.count[int(RayClass::FalseHit)] ==
+          march.ends[int(MarchEnd::Hit)]);
+    CHECK(t.count[int(RayClass::NoRay)] == 0);
+    CHECK(t.pixelError.size() <= t.embreeHits);
+}
+
+// Runs every marcher on `name`, prints the tables and hands each check to `check`.
+template <class Check>
+void forEachMarcher(const Scene& scene, Check check) {
+    const EmbreeScene embree(scene);
+    for (Marcher m : kMarchers) {
+        CAPTURE(marcherName(m));
+        const SceneCheck c = renderAndCheck(scene, embree, m);
+        const std::string label = scene.name + " " + std::string(marcherName(m));
+        MESSAGE(tableText(label + " ssr", c.tables.ssr, passMs(c.stats, "ssr march")));
+        MESSAGE(tableText(label + " ssgi", c.tables.ssgi, passMs(c.stats, "ssgi march")));
+        checkAgainstMarch(c.tables.ssr, c.stats.ssr.march);
+        checkAgainstMarch(c.tables.ssgi, c.stats.ssgi.march);
+        check(m, c);
+    }
+}
+
+}  // namespace
+
+// `thin`: a marcher that assumes 10 cm behind every pixel finds hits behind slabs 3 mm to
+// 5 cm deep. Nothing is ruled out here: the sky is open (true misses), the floor runs past
+// the frame and the slabs have hidden sides (off-screen truths).
+TEST_CASE("ray check: thin scene") {
+    const Scene scene = makeBuiltinScene("thin");
+    const std::vector<int> slabs = instancesOf(scene, "post_");
+    REQUIRE(slabs.size() == 6);
+    forEachMarcher(scene, [&](Marcher, const SceneCheck& c) {
+        // A leak: the march hits a slab's pixel, but the true ray never touches that slab
+        // (it passed behind it, within the thickness guess).
+        const uint64_t leaks = countWhere(c, RayClass::FalseHit, [&](const RayRecord& r) {
+            return contains(slabs, r.marchInstance) &&
+                   !(r.trueHit && insideInstance(scene, r.marchInstance, r.truePoint));
+        });
+        MESSAGE("false hits on a slab the true ray never touches: " << leaks);
+        CHECK(leaks > 0);
+    });
+}
+
+// `offscreen`: the lamps are above the frame, their mirror images in it. A ray whose truth
+// is a lamp cannot be agreed or missed on screen (no pixel holds a lamp); the floor's
+// reflections of them must be off-screen truths.
+TEST_CASE("ray check: offscreen scene") {
+    const Scene scene = makeBuiltinScene("offscreen");
+    forEachMarcher(scene, [&](Marcher, const SceneCheck& c) {
+        auto lamp = [](const RayRecord& r) { return r.trueHit && r.truePoint.y > 2.5f; };
+        auto ssrLamp = [&](const RayRecord& r) { return r.pass == TracePass::Ssr && lamp(r); };
+        CHECK(countWhere(c, RayClass::OffScreenTruth, ssrLamp) > 0);
+        CHECK(countWhere(c, RayClass::Agreed, lamp) == 0);
+        CHECK(countWhere(c, RayClass::MissedOnScreen, lamp) == 0);
+        CHECK(c.tables.ssr.count[int(RayClass::OffScreenTruth)] > 0);
+        MESSAGE("rays whose truth is a lamp: off-screen truth "
+                << countWhere(c, RayClass::OffScreenTruth, lamp) << ", false hit "
+                << countWhere(c, RayClass::FalseHit, lamp));
+    });
+}
+
+// `occluded`: the mirror wall sees the sphere that the box hides; no pixel holds the sphere.
+// Rays whose truth is the sphere are never agreed nor missed on screen, and the mirror's
+// rays toward it must be there as hidden (off-screen) truths.
+TEST_CASE("ray check: occluded scene") {
+    const Scene scene = makeBuiltinScene("occluded");
+    const std::vector<int> hidden = instancesOf(scene, "hidden");
+    REQUIRE(hidden.size() == 1);
+    const Bounds b = instanceBounds(scene, hidden[0]);
+    const glm::vec3 centre = 0.5f * (b.lo + b.hi);
+    const float radius = 0.5f * (b.hi.y - b.lo.y);
+    forEachMarcher(scene, [&](Marcher, const SceneCheck& c) {
+        // On the sphere, not the floor it stands on.
+        auto sphere = [&](const RayRecord& r) {
+            return r.trueHit && r.truePoint.y > 0.01f &&
+                   glm::length(r.truePoint - centre) < radius + 1e-3f;
+        };
+        auto ssrSphere = [&](const RayRecord& r) { return r.pass == TracePass::Ssr && sphere(r); };
+        CHECK(countWhere(c, RayClass::OffScreenTruth, ssrSphere) > 0);
+        CHECK(countWhere(c, RayClass::Agreed, sphere) == 0);
+        CHECK(countWhere(c, RayClass::MissedOnScreen, sphere) == 0);
+        MESSAGE("rays whose truth is the hidden sphere: off-screen truth "
+                << countWhere(c, RayClass::OffScreenTruth, sphere) << ", false hit "
+                << countWhere(c, RayClass::FalseHit, sphere) << " (of them SSR "
+                << countWhere(c, RayClass::OffScreenTruth, ssrSphere) << " and "
+                << countWhere(c, RayClass::FalseHit, ssrSphere) << ")");
+    });
+}

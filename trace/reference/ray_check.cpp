@@ -1,0 +1,278 @@
+#include "trace/reference/ray_check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/tiles.h"
+
+namespace ssrt {
+
+std::string_view rayClassName(RayClass c) {
+    switch (c) {
+        case RayClass::NoRay:
+            return "no_ray";
+        case RayClass::Agreed:
+            return "agreed";
+        case RayClass::FalseHit:
+            return "false_hit";
+        case RayClass::MissedOnScreen:
+            return "missed_on_screen";
+        case RayClass::TrueMiss:
+            return "true_miss";
+        case RayClass::OffScreenTruth:
+            return "offscreen_truth";
+    }
+    return "?";
+}
+
+// ---- Table ------------------------------------------------------------------------------
+
+void RayCheckTable::add(const RayCheckTable& o) {
+    rays += o.rays;
+    for (int i = 0; i < kRayClassCount; ++i) count[i] += o.count[i];
+    pixelError.insert(pixelError.end(), o.pixelError.begin(), o.pixelError.end());
+    depthError.insert(depthError.end(), o.depthError.begin(), o.depthError.end());
+    embreeSeconds += o.embreeSeconds;
+    embreeHits += o.embreeHits;
+}
+
+void RayCheckTable::finish() {
+    std::sort(pixelError.begin(), pixelError.end());
+    std::sort(depthError.begin(), depthError.end());
+}
+
+double RayCheckTable::share(RayClass c) const {
+    return rays ? double(count[int(c)]) / double(rays) : 0.0;
+}
+
+float RayCheckTable::quantile(const std::vector<float>& sorted, double q) {
+    if (sorted.empty()) return 0.0f;
+    // Nearest rank: the smallest value with at least ceil(q n) values at or below it (the
+    // errors hold infinities, which an interpolation would turn into NaN).
+    const double n = double(sorted.size());
+    const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * n);
+    const std::size_t i = rank < 1.0 ? 0 : std::size_t(rank) - 1;
+    return sorted[std::min(i, sorted.size() - 1)];
+}
+
+void RayCheckPlanes::ensureSize(int width, int height) {
+    for (PlaneF* p : {&rayClass, &pixelError, &depthError, &trueT}) p->ensureSize(width, height);
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kBlock = 4;  // 4x4 pixels: one 16-ray Embree packet
+
+void requireSize(const PlaneF& p, const TraceCamera& cam, const char* what) {
+    if (p.width() != cam.width || p.height() != cam.height)
+        throw std::invalid_argument(std::string("checkRays: ") + what + " is " +
+                                    std::to_string(p.width()) + "x" + std::to_string(p.height()) +
+                                    ", the camera " + std::to_string(cam.width) + "x" +
+                                    std::to_string(cam.height));
+}
+
+void requireSizes(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
+                  const MarchResult& m) {
+    if (cam.width <= 0 || cam.height <= 0)
+        throw std::invalid_argument("checkRays: the camera has no pixels");
+    requireSize(viewZ, cam, "viewZ");
+    for (const PlaneF* p : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf})
+        requireSize(*p, cam, "a RayBatch plane");
+    for (const PlaneF* p : {&m.hit, &m.hitX, &m.hitY, &m.hitZ, &m.steps, &m.cause})
+        requireSize(*p, cam, "a MarchResult plane");
+}
+
+glm::vec3 viewOrigin(const RayBatch& r, int x, int y) {
+    return {r.ox.at(x, y), r.oy.at(x, y), r.oz.at(x, y)};
+}
+
+glm::vec3 viewDirection(const RayBatch& r, int x, int y) {
+    return {r.dx.at(x, y), r.dy.at(x, y), r.dz.at(x, y)};
+}
+
+// The world ray of a view-space ray: world = position + viewToWorld * view.
+struct WorldFrame {
+    glm::mat3 rotation;
+    glm::vec3 position;
+
+    explicit WorldFrame(const TraceCamera& c)
+        : position(c.position[0], c.position[1], c.position[2]) {
+        for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row) rotation[col][row] = c.viewToWorld[col * 3 + row];
+    }
+};
+
+// Traces one 4x4 block's rays (pdf > 0) as one packet; writes each one's true t (0 for no
+// hit) and leaves pixels without a ray at 0. Returns the hits.
+uint64_t traceBlock(const EmbreeScene& embree, const WorldFrame& wf, const RayBatch& rays,
+                    float tfar, int bx, int by, int bx1, int by1, PlaneF& trueT) {
+    glm::vec3 org[16], dir[16];
+    int px[16], py[16], n = 0;
+    for (int y = by; y < by1; ++y)
+        for (int x = bx; x < bx1; ++x) {
+            trueT.at(x, y) = 0.0f;
+            if (!(rays.pdf.at(x, y) > 0.0f)) continue;
+            org[n] = wf.position + wf.rotation * viewOrigin(rays, x, y);
+            dir[n] = wf.rotation * viewDirection(rays, x, y);
+            px[n] = x, py[n] = y, ++n;
+        }
+    if (n == 0) return 0;
+    EmbreeHit hits[16];
+    embree.intersect16(n, org, dir, embree.epsilon(), tfar, hits);
+    uint64_t count = 0;
+    for (int k = 0; k < n; ++k) {
+        if (!hits[k].hit) continue;
+        trueT.at(px[k], py[k]) = hits[k].t;
+        ++count;
+    }
+    return count;
+}
+
+// Embree's first hit for every ray, tile by tile in 4x4 packets: trueT per pixel.
+uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& cam, const RayBatch& rays,
+                  float tfar, PlaneF& trueT, int threads) {
+    const TileGrid grid(cam.width, cam.height);
+    const WorldFrame wf(cam);
+    std::vector<uint64_t> hits(std::size_t(grid.count()), 0);
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        const TileRect r = grid.rect(tile);
+        for (int by = r.y0; by < r.y1; by += kBlock)
+            for (int bx = r.x0; bx < r.x1; bx += kBlock)
+                hits[std::size_t(tile)] +=
+                    traceBlock(embree, wf, rays, tfar, bx, by, std::min(bx + kBlock, r.x1),
+                               std::min(by + kBlock, r.y1), trueT);
+    });
+    uint64_t total = 0;
+    for (uint64_t h : hits) total += h;
+    return total;
+}
+
+// Where the true hit sits in the frame, and whether the camera sees it there.
+struct TrueHit {
+    bool exists = false;
+    float z = 0.0f;              // view Z (positive in front of the camera)
+    float px = 0.0f, py = 0.0f;  // continuous pixel position (when z > 0)
+    bool projects = false;       // in front of the camera: px, py mean something
+    bool visible = false;
+};
+
+TrueHit locateTrueHit(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
+                      const RayCheckSettings& s, float t, int x, int y) {
+    TrueHit h;
+    if (!(t > 0.0f)) return h;
+    h.exists = true;
+    // The rotation keeps lengths: the view-space hit is o + t d.
+    const glm::vec3 p = viewOrigin(rays, x, y) + t * viewDirection(rays, x, y);
+    h.z = -p.z;
+    if (!(h.z > 0.0f)) return h;
+    h.projects = true;
+    h.px = (p.x / (h.z * cam.tanHalfX) * 0.5f + 0.5f) * float(cam.width);
+    h.py = (0.5f - p.y / (h.z * cam.tanHalfY) * 0.5f) * float(cam.height);
+    if (h.z < cam.nearZ || !(h.px >= 0.0f && h.px < float(cam.width)) ||
+        !(h.py >= 0.0f && h.py < float(cam.height)))
+        return h;
+    // Visible: the pixel it lands on shows this depth (background shows nothing).
+    const float z = viewZ.at(int(h.px), int(h.py));
+    h.visible = z > 0.0f && std::abs(z - h.z) <= s.depthTolerance * h.z;
+    return h;
+}
+
+struct PixelCheck {
+    RayClass cls = RayClass::NoRay;
+    bool bothHit = false;
+    float pixelError = 0.0f, depthError = 0.0f;
+};
+
+PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSettings& s, int x,
+                    int y) {
+    PixelCheck c;
+    if (!(m.hit.at(x, y) > 0.0f)) {
+        c.cls = !truth.exists   ? RayClass::TrueMiss
+                : truth.visible ? RayClass::MissedOnScreen
+                                : RayClass::OffScreenTruth;
+        return c;
+    }
+    c.cls = RayClass::FalseHit;
+    if (!truth.exists) return c;
+    // Both hit: the errors. A truth behind the camera has no pixel and no relative depth to
+    // compare with, so both errors are infinite there (never Agreed).
+    c.bothHit = true;
+    const float inf = std::numeric_limits<float>::infinity();
+    c.pixelError = inf;
+    c.depthError = inf;
+    if (truth.projects) {
+        const float ex = m.hitX.at(x, y) - truth.px, ey = m.hitY.at(x, y) - truth.py;
+        c.pixelError = std::sqrt(ex * ex + ey * ey);
+        c.depthError = std::abs(m.hitZ.at(x, y) - truth.z) / truth.z;
+    }
+    if (truth.visible && c.pixelError <= s.pixelTolerance && c.depthError <= s.depthTolerance)
+        c.cls = RayClass::Agreed;
+    return c;
+}
+
+void writePlanes(RayCheckPlanes* planes, const PixelCheck& c, int x, int y) {
+    if (!planes) return;
+    planes->rayClass.at(x, y) = float(int(c.cls));
+    planes->pixelError.at(x, y) = c.bothHit ? c.pixelError : 0.0f;
+    planes->depthError.at(x, y) = c.bothHit ? c.depthError : 0.0f;
+}
+
+// Classifies one tile's rays into its own table (row order within the tile).
+void classifyTile(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
+                  const MarchResult& m, const RayCheckSettings& s, const PlaneF& trueT,
+                  RayCheckPlanes* planes, const TileRect& r, RayCheckTable& table) {
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            PixelCheck c;
+            if (rays.pdf.at(x, y) > 0.0f) {
+                const TrueHit truth = locateTrueHit(cam, viewZ, rays, s, trueT.at(x, y), x, y);
+                c = classify(m, truth, s, x, y);
+                ++table.rays;
+                ++table.count[int(c.cls)];
+                if (c.bothHit) {
+                    table.pixelError.push_back(c.pixelError);
+                    table.depthError.push_back(c.depthError);
+                }
+            }
+            writePlanes(planes, c, x, y);
+        }
+}
+
+}  // namespace
+
+RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& cam, const PlaneF& viewZ,
+                        const RayBatch& rays, const MarchResult& march,
+                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads) {
+    requireSizes(cam, viewZ, rays, march);
+    if (!(settings.maxDistance > 0.0f))
+        throw std::invalid_argument("checkRays: maxDistance must be > 0");
+    // Embree first, alone, so that its wall clock is its own; the true distances go to the
+    // caller's trueT plane or a local one.
+    PlaneF localT;
+    PlaneF& trueT = planes ? planes->trueT : localT;
+    if (planes)
+        planes->ensureSize(cam.width, cam.height);
+    else
+        localT.ensureSize(cam.width, cam.height);
+    RayCheckTable total;
+    const auto t0 = Clock::now();
+    total.embreeHits = traceAll(embree, cam, rays, settings.maxDistance, trueT, threads);
+    total.embreeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+    // Then the classes, per tile, combined in tile order.
+    const TileGrid grid(cam.width, cam.height);
+    std::vector<RayCheckTable> tiles(std::size_t(grid.count()));
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        classifyTile(cam, viewZ, rays, march, settings, trueT, planes, grid.rect(tile),
+                     tiles[std::size_t(tile)]);
+    });
+    for (const RayCheckTable& t : tiles) total.add(t);
+    return total;
+}
+
+}  // namespace ssrt
