@@ -6,8 +6,10 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "cli/compare_command.h"
 #include "cli/render_command.h"
 #include "cli/scenes_command.h"
+#include "cli/sweep_command.h"
 
 namespace ssrt::cli {
 
@@ -30,7 +32,8 @@ int reportErrors(std::ostream& err, const std::function<int()>& command) {
 }
 
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-    CLI::App app{"ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, direct light)",
+    CLI::App app{"ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
+                 "direct light, screen-space reflections and diffuse, checked against Embree)",
                  "ssrt"};
     app.footer(
         "Exit status: 0 success, 1 the work failed (a bad shot, scene or image file, file I/O, "
@@ -39,9 +42,13 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     app.require_subcommand(1);
     RenderOptions renderOptions;
     CLI::App* render = addRenderCommand(app, renderOptions);
+    CompareOptions compareOptions;
+    CLI::App* compare = addCompareCommand(app, compareOptions);
+    SweepOptions sweepOptions;
+    CLI::App* sweep = addSweepCommand(app, sweepOptions);
     CLI::App* scenes = addScenesCommand(app);
     if (argc <= 1) {
-        err << "ssrt: error: no command given (render or scenes; see 'ssrt --help')\n";
+        err << "ssrt: error: no command given (render, compare, sweep or scenes; see 'ssrt --help')\n";
         return kExitUsage;
     }
     try {
@@ -51,9 +58,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (e.get_exit_code() == 0) return app.exit(e, out, err);
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
-        if (!render->parsed() && !scenes->parsed() && first.rfind('-', 0) != 0) {
+        if (!render->parsed() && !compare->parsed() && !sweep->parsed() && !scenes->parsed() &&
+            first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first
-                << "' (expected render or scenes; see 'ssrt --help')\n";
+                << "' (expected render, compare, sweep or scenes; see 'ssrt --help')\n";
             return kExitUsage;
         }
         err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
@@ -61,6 +69,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     }
     if (render->parsed())
         return reportErrors(err, [&] { return runRender(renderOptions, out, err); });
+    if (compare->parsed())
+        return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
+    if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
     if (scenes->parsed()) return reportErrors(err, [&] { return runScenes(out); });
     return kExitUsage;  // unreachable: require_subcommand(1) holds
 }

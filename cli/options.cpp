@@ -277,4 +277,13 @@ void loadScene(SceneRequest& r) {
     }
 }
 
+Camera requestCamera(const SceneRequest& r, Camera& previous) {
+    if (r.path.empty()) {
+        previous = r.scene.previousCamera;
+        return r.scene.camera;
+    }
+    previous = r.path.at(r.path.frameTime(0, 1), r.scene.camera);
+    return previous;
+}
+
 }  // namespace ssrt::cli

@@ -82,5 +82,8 @@ struct SceneRequest {
 SceneRequest loadSceneRequest(const RenderOptions& options, const RenderSettings& defaults = {});
 // Loads the scene (glTF, shot's light, sky image, camera path); throws on a bad file.
 void loadScene(SceneRequest& request);
+// The camera of a single-frame command (compare, sweep): the path's first key, or the
+// scene's camera; previous = the scene's previous camera without a path, else itself.
+Camera requestCamera(const SceneRequest& request, Camera& previous);
 
 }  // namespace ssrt::cli

@@ -18,7 +18,7 @@ namespace {
 // The reference's planes as the cache file names them.
 struct RefPlane {
     const char* name;
-    PlaneF ReferenceImage::*group;
+    PlaneF (ReferenceImage::*group)[3];
 };
 constexpr RefPlane kGroups[] = {
     {"ref.color", &ReferenceImage::color},       {"ref.direct", &ReferenceImage::direct},

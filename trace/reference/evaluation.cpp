@@ -53,6 +53,9 @@ ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     planeTriple(frame, "color", color);
     const PlaneF* refColor[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
     t.color = imageError(color, refColor);
+    // With both passes off the direct pass hands out no parts: the colour error alone.
+    if (!frame.has("ssr.R") && !frame.has("ssgi.R")) return t;
+    t.parts = true;
     const FrameParts parts = frameParts(frame);
     const auto err = [](const PlaneF (&a)[3], const PlaneF (&b)[3]) {
         const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};

@@ -17,6 +17,7 @@ namespace ssrt {
 // exposure (reference_image.h, FrameParts) so a user sees which part is wrong.
 struct ErrorTable {
     ImageError color, direct, specular, diffuse;
+    bool parts = false;  // direct, specular and diffuse measured (not with both passes off)
 };
 
 struct EvaluationSettings {

@@ -1,6 +1,7 @@
 #include "trace/reference/parts.h"
 
 #include <stdexcept>
+#include <string>
 
 #include "shading/composite.h"
 
@@ -47,17 +48,29 @@ void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const Plane
 }
 
 FrameParts frameParts(const Frame& frame) {
-    if (!frame.has("ssr.R") || !frame.has("ssgi.R"))
-        throw std::invalid_argument("frame parts: the frame needs both trace passes (SSR and SSGI)");
     const PlaneF* parts = frame.scratch.directParts;
-    if (parts[0].width() != frame.width || parts[0].height() != frame.height)
-        throw std::invalid_argument("frame parts: the frame has no direct parts");
+    if (!(frame.has("ssr.R") || frame.has("ssgi.R")) || parts[0].width() != frame.width ||
+        parts[0].height() != frame.height)
+        throw std::invalid_argument("frame parts: the frame has no direct parts (both trace "
+                                    "passes were off)");
     FrameParts fp;
-    const PlaneF* ssr[3] = {&frame.plane("ssr.R"), &frame.plane("ssr.G"), &frame.plane("ssr.B")};
-    const PlaneF* ssgi[3] = {&frame.plane("ssgi.R"), &frame.plane("ssgi.G"),
-                             &frame.plane("ssgi.B")};
-    specularDiffuse(frame, ssr, frame.plane("ssrOpacity"), ssgi, fp.specular, fp.diffuse);
-    for (int c = 0; c < 3; ++c) fp.direct[c] = parts[kDirect + c].clone();
+    // A pass that was off stands in as the composite has it: SSR off is opacity 0 (the sky's
+    // specular alone), SSGI off is the sky's diffuse light.
+    const bool ssrOn = frame.has("ssr.R"), ssgiOn = frame.has("ssgi.R");
+    const PlaneF zero = ssrOn ? PlaneF() : PlaneF(frame.width, frame.height);
+    const PlaneF* ssr[3];
+    const PlaneF* ssgi[3];
+    const char* rgb[3] = {".R", ".G", ".B"};
+    for (int c = 0; c < 3; ++c) {
+        ssr[c] = ssrOn ? &frame.plane(std::string("ssr") + rgb[c]) : &parts[kEnvSpecular + c];
+        ssgi[c] = ssgiOn ? &frame.plane(std::string("ssgi") + rgb[c]) : &parts[kEnvDiffuse + c];
+    }
+    specularDiffuse(frame, ssr, ssrOn ? frame.plane("ssrOpacity") : zero, ssgi, fp.specular,
+                    fp.diffuse);
+    for (int c = 0; c < 3; ++c) {
+        fp.direct[c] = parts[kDirect + c].clone();
+        if (!ssgiOn) fp.diffuse[c] = parts[kEnvDiffuse + c].clone();
+    }
     return fp;
 }
 

@@ -72,14 +72,12 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
 uint64_t referenceKey(const Scene& scene, const Camera& camera, const RenderSettings& render,
                       const ReferenceSettings& settings);
 
-}  // namespace ssrt
-
-namespace ssrt {
-
-// The same parts of a screen-space frame (rendered with both trace passes on), before
-// exposure, for the per-component error: direct = the direct pass's sun part, specular =
-// specWeight x (ssr x opacity + envSpecular x (1 - opacity)), diffuse = albedo (1 - metallic)
-// x ssgi (0 on background). Throws std::invalid_argument when a pass was off.
+// The same parts of a screen-space frame, before exposure, for the per-component error:
+// direct = the direct pass's sun part, specular = specWeight x (ssr x opacity + envSpecular x
+// (1 - opacity)), diffuse = albedo (1 - metallic) x ssgi (0 on background). A pass that was
+// off stands in as the composite has it (SSR off: opacity 0; SSGI off: the sky's diffuse
+// part). Throws std::invalid_argument when both were off: the direct pass then hands out no
+// parts.
 struct FrameParts {
     PlaneF direct[3], specular[3], diffuse[3];
 };

@@ -3,6 +3,7 @@
 find_package(embree 3 REQUIRED)
 add_library(ssrt_reference STATIC
     ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/evaluation.cpp
     ${CMAKE_CURRENT_LIST_DIR}/image_error.cpp
     ${CMAKE_CURRENT_LIST_DIR}/parts.cpp
     ${CMAKE_CURRENT_LIST_DIR}/ray_check.cpp

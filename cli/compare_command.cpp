@@ -1,0 +1,261 @@
+#include "cli/compare_command.h"
+
+#include <CLI/CLI.hpp>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/cli.h"
+#include "cli/options.h"
+#include "cli/reference_cache.h"
+#include "io/image_io.h"
+
+namespace ssrt::cli {
+
+namespace {
+
+constexpr long long kMaxReferenceSpp = 65536;
+constexpr int kLabel = 22, kValue = 13;
+
+std::string formatFloat(float v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::optional<ReferenceSettings::Visibility> parseVisibility(std::string_view s) {
+    if (s == "embree") return ReferenceSettings::Visibility::Embree;
+    if (s == "shadowmap") return ReferenceSettings::Visibility::ShadowMap;
+    return std::nullopt;
+}
+
+// The ray-check table: one column per pass that ran.
+void printChecks(std::ostream& out, const Evaluation& ev) {
+    const RayCheckTable* tables[2] = {ev.ssr ? &ev.ssrCheck : nullptr,
+                                      ev.ssgi ? &ev.ssgiCheck : nullptr};
+    const auto row = [&](const std::string& label, auto value) {
+        out << "  " << std::left << std::setw(kLabel) << label << std::right;
+        for (const RayCheckTable* t : tables) {
+            out << std::setw(kValue);
+            if (t) out << value(*t);
+            else out << "-";
+        }
+        out << "\n";
+    };
+    out << std::left << std::setw(kLabel + 2) << "ray check (Embree)" << std::right
+        << std::setw(kValue) << "ssr" << std::setw(kValue) << "ssgi" << "\n";
+    row("rays", [](const RayCheckTable& t) { return t.rays; });
+    out << std::fixed << std::setprecision(2);
+    for (int c = 1; c < kRayClassCount; ++c) {
+        const RayClass rc = RayClass(c);
+        row(std::string(rayClassName(rc)) + " %",
+            [rc](const RayCheckTable& t) { return 100.0 * t.share(rc); });
+    }
+    out << std::setprecision(3);
+    const auto err = [&](const char* label, bool pixels, double q) {
+        row(label, [=](const RayCheckTable& t) {
+            return RayCheckTable::quantile(pixels ? t.pixelError : t.depthError, q);
+        });
+    };
+    err("hit error px, p50", true, 0.5);
+    err("hit error px, p95", true, 0.95);
+    err("hit error px, max", true, 1.0);
+    err("depth error rel, p50", false, 0.5);
+    err("depth error rel, p95", false, 0.95);
+    out << std::defaultfloat;
+}
+
+void printErrors(std::ostream& out, const ErrorTable& e) {
+    out << std::left << std::setw(kLabel + 2) << "image error" << std::right << std::setw(kValue)
+        << "relMSE" << std::setw(kValue) << "RMSE" << std::setw(kValue) << "non-finite" << "\n";
+    const auto row = [&](const char* label, const ImageError& x) {
+        out << "  " << std::left << std::setw(kLabel) << label << std::right << std::scientific
+            << std::setprecision(3) << std::setw(kValue) << x.relMse << std::setw(kValue) << x.rmse
+            << std::defaultfloat << std::setw(kValue) << x.nonFinite << "\n";
+    };
+    row("color (exposed)", e.color);
+    if (e.parts) {
+        row("direct", e.direct);
+        row("specular", e.specular);
+        row("diffuse", e.diffuse);
+    }
+    out << "  relMSE = mean over pixels and RGB of (I - R)^2 / (R^2 + 0.01)\n";
+}
+
+// The reference and the first sample's checks as extra layers of the frame.
+void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation& ev) {
+    const char* suffix[3] = {".R", ".G", ".B"};
+    for (int c = 0; c < 3; ++c) {
+        frame.planes.push_back({std::string("ref.color") + suffix[c], ref.color[c].clone()});
+        frame.planes.push_back({std::string("ref.ssr") + suffix[c], ref.ssr[c].clone()});
+        frame.planes.push_back({std::string("ref.ssgi") + suffix[c], ref.ssgi[c].clone()});
+    }
+    const auto checks = [&](const char* base, const RayCheckPlanes& p) {
+        if (p.rayClass.width() != frame.width) return;  // the pass did not run
+        frame.planes.push_back({std::string(base) + ".class", p.rayClass.clone()});
+        frame.planes.push_back({std::string(base) + ".pixelError", p.pixelError.clone()});
+        frame.planes.push_back({std::string(base) + ".depthError", p.depthError.clone()});
+    };
+    if (ev.ssr) checks("ssrCheck", ev.ssrPlanes);
+    if (ev.ssgi) checks("ssgiCheck", ev.ssgiPlanes);
+}
+
+}  // namespace
+
+TruthOptions::TruthOptions() {
+    const RayCheckSettings d;
+    pixelTolerance = formatFloat(d.pixelTolerance);
+    depthTolerance = formatFloat(d.depthTolerance);
+}
+
+void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
+    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
+                         const std::string& help) {
+        cmd.add_option(flags, value, help)->type_name(type)->capture_default_str()->group("Truth");
+    };
+    add("--reference-spp", o.referenceSpp, "INT",
+        "Rays per pixel of the reference image for each of SSR and SSGI, 1 to " +
+            std::to_string(kMaxReferenceSpp));
+    add("--visibility", o.visibility, "KIND",
+        "Sun visibility in the reference: embree (shadow rays, the truth) or shadowmap (the "
+        "frame's own shadow map, to isolate the tracing errors)");
+    add("--pixel-tolerance", o.pixelTolerance, "FLOAT",
+        "Pixels between a march hit and the true hit's projection for an agreed hit, > 0");
+    add("--depth-tolerance", o.depthTolerance, "FLOAT",
+        "Relative view depth for an agreed hit and for a true hit to count as visible, in (0, 1)");
+    add("--repeats", o.repeats, "INT",
+        "Timed renders per setting; each pass's median is reported, 1 to 1000");
+    cmd.add_option_function<std::string>(
+           "--cache-dir", [&o](const std::string& v) { o.cacheDir = v; },
+           "Where reference images are cached, by a hash of the scene and settings")
+        ->type_name("DIR")
+        ->default_str("$SSRT_CACHE_DIR, else $XDG_CACHE_HOME/ssrt, else ~/.cache/ssrt")
+        ->group("Truth");
+    cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
+        ->group("Truth");
+    cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
+}
+
+ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const RenderSettings& render) {
+    ReferenceSettings r;
+    r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
+    r.visibility =
+        parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
+    r.maxDistance = render.trace.march.maxDistance;
+    r.validate();
+    return r;
+}
+
+EvaluationSettings evaluationSettingsFrom(const TruthOptions& o) {
+    EvaluationSettings e;
+    e.repeats = int(parseInteger("--repeats", o.repeats, 1, 1000));
+    e.check.pixelTolerance = parsePositive("--pixel-tolerance", o.pixelTolerance);
+    e.check.depthTolerance = parsePositive("--depth-tolerance", o.depthTolerance);
+    if (e.check.depthTolerance >= 1.0f)
+        badValue("--depth-tolerance", o.depthTolerance, "a number in (0, 1)");
+    e.validate();
+    return e;
+}
+
+CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
+    CLI::App* cmd = app.add_subcommand(
+        "compare",
+        "Check one screen-space setting against the Embree truth: every traced ray classified, "
+        "the image against a converged reference (cached), per-pass times");
+    RenderSettings d;
+    d.width = 640;
+    d.height = 360;
+    addSceneOptions(*cmd, o.render, d);
+    addTraceOptions(*cmd, o.render);
+    addTruthOptions(*cmd, o.truth);
+    cmd->add_option_function<std::string>(
+           "-o,--output", [&o](const std::string& v) { o.output = v; },
+           "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
+           "per-pixel checks of the first sample (ssrCheck.class, .pixelError, .depthError, "
+           "ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
+           "off-screen truth), or .png")
+        ->type_name("FILE");
+    return cmd;
+}
+
+int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
+    RenderSettings defaults;
+    defaults.width = 640;
+    defaults.height = 360;
+    SceneRequest request = loadSceneRequest(o.render, defaults);
+    const RenderSettings& settings = request.settings;
+    if (!settings.trace.any())
+        throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
+    const ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings);
+    const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
+    if (o.output) checkWritable(*o.output);
+    loadScene(request);
+    const Scene& scene = request.scene;
+    Camera previous;
+    const Camera camera = requestCamera(request, previous);
+    std::ostream* progress = o.truth.quiet ? nullptr : &err;
+    if (progress)
+        *progress << "comparing " << request.name << " " << settings.width << "x" << settings.height
+                  << " on " << isaName(request.isa) << ", "
+                  << plural(threadsFor(settings), "thread") << "...\n";
+
+    const EmbreeScene embree(scene);
+    ReferenceSource source;
+    source.progress = progress;
+    if (!o.truth.noCache) {
+        const std::string dir = o.truth.cacheDir ? *o.truth.cacheDir : defaultCacheDir();
+        if (!dir.empty()) source.cacheDir = dir;
+    }
+    bool fromCache = false;
+    const ReferenceImage reference =
+        referenceFor(embree, scene, camera, previous, settings, refSettings, source, fromCache);
+    if (progress)
+        *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
+                  << refSettings.spp << " spp)\n";
+
+    Frame frame;
+    const Evaluation ev =
+        evaluate(embree, scene, camera, previous, settings, reference, evalSettings, frame);
+    out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
+        << marcherName(settings.trace.marcher) << ", ssr "
+        << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +
+                                     std::to_string(settings.trace.ssrSpp)
+                               : std::string("off"))
+        << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
+        << ", reference " << refSettings.spp << " spp\n\n";
+    printEvaluation(out, embree.stats(), ev);
+    if (o.output) {
+        appendTruthPlanes(frame, reference, ev);
+        writeImage(*o.output, frame);
+        if (progress) *progress << "wrote " << *o.output << "\n";
+    }
+    return kExitOk;
+}
+
+void printEvaluation(std::ostream& out, const BvhStats& bvh, const Evaluation& ev) {
+    std::ios saved(nullptr);
+    saved.copyfmt(out);
+    out << "BVH (Embree 3): " << bvh.triangles << " triangles, " << bvh.meshes << " meshes, "
+        << bvh.instances << " instances, built in " << std::fixed << std::setprecision(1)
+        << bvh.buildMs << " ms, " << std::setprecision(2) << double(bvh.bytes) / (1 << 20)
+        << " MiB\n\n"
+        << std::defaultfloat;
+    printChecks(out, ev);
+    out << "\n";
+    printErrors(out, ev.error);
+    out << "\n" << std::left << std::setw(kLabel + 2) << "pass (median)" << std::right
+        << std::setw(kValue) << "ms" << "\n"
+        << std::fixed << std::setprecision(3);
+    for (const PassTime& p : ev.passes)
+        out << "  " << std::left << std::setw(kLabel) << p.name << std::right << std::setw(kValue)
+            << p.ms << "\n";
+    out << "  " << std::left << std::setw(kLabel) << "frame" << std::right << std::setw(kValue)
+        << ev.frameMs << "\n\n"
+        << std::setprecision(2) << "rays per second: march " << ev.marchMraysPerSecond
+        << " M, Embree " << ev.embreeMraysPerSecond << " M on the same rays (march / Embree "
+        << std::setprecision(3) << ev.marchVsEmbree() << ")\n";
+    out.copyfmt(saved);
+}
+
+}  // namespace ssrt::cli

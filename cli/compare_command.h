@@ -1,0 +1,49 @@
+// `ssrt compare`: one scene and one screen-space setting against the Embree truth. Prints the
+// BVH build, the classification of every traced ray per pass with its hit-position error,
+// the image error against the reference (overall and per component) and the pass times;
+// optionally writes the frame with the reference and the per-pixel checks as EXR layers.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "cli/render_command.h"
+#include "trace/reference/evaluation.h"
+
+namespace CLI {
+class App;
+}
+
+namespace ssrt::cli {
+
+// What compare and sweep add to the render options: the reference, the checks, the cache.
+struct TruthOptions {
+    std::string referenceSpp = "64";
+    std::string visibility = "embree";
+    std::string pixelTolerance, depthTolerance;  // filled from RayCheckSettings{}
+    std::string repeats = "3";
+    std::optional<std::string> cacheDir;
+    bool noCache = false;
+    bool quiet = false;
+    TruthOptions();
+};
+
+struct CompareOptions {
+    RenderOptions render;
+    TruthOptions truth;
+    std::optional<std::string> output;  // .exr (frame + reference + checks) or .png
+};
+
+// Registers the reference, check and cache options (shared with sweep).
+void addTruthOptions(CLI::App& cmd, TruthOptions& options);
+ReferenceSettings referenceSettingsFrom(const TruthOptions& options, const RenderSettings& render);
+EvaluationSettings evaluationSettingsFrom(const TruthOptions& options);
+
+CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);
+int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& err);
+
+// The tables compare prints, for one evaluation (also used by tests).
+void printEvaluation(std::ostream& out, const BvhStats& bvh, const Evaluation& ev);
+
+}  // namespace ssrt::cli

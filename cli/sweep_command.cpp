@@ -1,0 +1,331 @@
+#include "cli/sweep_command.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/cli.h"
+#include "cli/options.h"
+#include "cli/reference_cache.h"
+#include "io/image_io.h"
+
+namespace ssrt::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
+const char* const kPasses[] = {"shadow",      "geometry",   "visibility", "resolve",
+                               "textures",    "ids",        "environment", "shading",
+                               "hi-z",        "ssr rays",   "ssr march",  "ssr resolve",
+                               "ssgi rays",   "ssgi march", "ssgi resolve", "composite"};
+
+std::string columnName(std::string s) {
+    for (char& c : s)
+        if (c == ' ' || c == '-') c = '_';
+    return s;
+}
+
+// One point of the grid.
+struct Point {
+    bool traced = true;  // false: the "off" marcher (both passes off, the environment's light)
+    Marcher marcher = Marcher::HiZ;
+    int maxSteps = 0, ssrSpp = 1, ssgiSpp = 1;
+    SsrMethod ssrMethod = SsrMethod::VndfBounded;
+    float thickness = 0.0f;
+    SsrResolveMode resolve = SsrResolveMode::Reuse;
+};
+
+template <class T, class F>
+std::vector<T> parseEach(const std::string& option, const std::string& text, F parse) {
+    std::vector<T> out;
+    for (const std::string& item : splitList(option, text)) out.push_back(parse(item));
+    return out;
+}
+
+std::vector<Point> grid(const SweepOptions& o) {
+    const auto marchers = parseEach<std::optional<Marcher>>("--marchers", o.marchers,
+        [](const std::string& s) -> std::optional<Marcher> {
+            if (s == "off") return std::nullopt;
+            return parseChoice("--marchers", s, parseMarcher, "off, " + kMarchers);
+        });
+    const auto steps = parseEach<int>("--max-steps", o.maxSteps, [](const std::string& s) {
+        return int(parseInteger("--max-steps", s, 1, kMaxMarchSteps));
+    });
+    const auto methods = parseEach<SsrMethod>("--ssr-methods", o.ssrMethods, [](const std::string& s) {
+        return parseChoice("--ssr-methods", s, parseSsrMethod, kSsrMethods);
+    });
+    const auto spp = [](const char* option, const std::string& text) {
+        return parseEach<int>(option, text, [option](const std::string& s) {
+            return int(parseInteger(option, s, 1, TraceSettings::kMaxSpp));
+        });
+    };
+    const auto ssrSpp = spp("--ssr-spp", o.ssrSpp), ssgiSpp = spp("--ssgi-spp", o.ssgiSpp);
+    const auto thickness = parseEach<float>("--thickness", o.thickness, [](const std::string& s) {
+        return parsePositive("--thickness", s);
+    });
+    const auto resolves = parseEach<SsrResolveMode>("--ssr-resolve", o.resolves, [](const std::string& s) {
+        return parseChoice("--ssr-resolve", s, parseResolveMode, "mip, reuse");
+    });
+    std::vector<Point> points;
+    bool off = false;
+    for (const auto& m : marchers) {
+        if (!m) {
+            if (!off) points.push_back(Point{false});  // once, whatever the other lists say
+            off = true;
+            continue;
+        }
+        for (int st : steps)
+            for (SsrMethod me : methods)
+                for (int sp : ssrSpp)
+                    for (int gp : ssgiSpp)
+                        for (float th : thickness)
+                            for (SsrResolveMode re : resolves)
+                                points.push_back({true, *m, st, sp, gp, me, th, re});
+    }
+    return points;
+}
+
+RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
+    RenderSettings s = base;
+    TraceSettings& t = s.trace;
+    t.ssr = t.ssgi = p.traced;
+    if (p.traced) {
+        t.marcher = p.marcher;
+        t.march.maxSteps = p.maxSteps;
+        t.ssrMethod = p.ssrMethod;
+        t.ssrSpp = p.ssrSpp;
+        t.ssgiSpp = p.ssgiSpp;
+        t.march.thickness = p.thickness;
+        t.resolve.mode = p.resolve;
+    }
+    s.validate();
+    return s;
+}
+
+// RFC 4180: a field with a comma, quote or line break is quoted, its quotes doubled (a glTF
+// path may hold any of them).
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string q = "\"";
+    for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+double passMs(const Evaluation& ev, const char* name) {
+    for (const PassTime& p : ev.passes)
+        if (p.name == name) return p.ms;
+    return -1.0;  // not run: an empty cell
+}
+
+// One CSV row (the values of sweepColumns(), in order).
+std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
+                   int referenceSpp, const Evaluation& ev) {
+    std::ostringstream r;
+    r << std::setprecision(6);
+    const auto cell = [&](auto v) { r << ',' << v; };
+    const auto optional = [&](bool on, double v) {
+        r << ',';
+        if (on) r << v;
+    };
+    r << csvField(scene);
+    cell(s.width), cell(s.height), cell(s.threads);
+    cell(p.traced ? marcherName(p.marcher) : std::string_view("off"));
+    r << ',' << (p.traced ? std::string(ssrMethodName(p.ssrMethod)) : "");
+    optional(p.traced, p.ssrSpp), optional(p.traced, p.ssgiSpp), optional(p.traced, p.maxSteps);
+    optional(p.traced, p.thickness);
+    r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
+    cell(referenceSpp);
+    cell(ev.frameMs);
+    for (const char* pass : kPasses) {
+        const double ms = passMs(ev, pass);
+        optional(ms >= 0.0, ms);
+    }
+    const auto checks = [&](bool on, const RayCheckTable& t) {
+        optional(on, double(t.rays));
+        for (int c = 1; c < kRayClassCount; ++c) optional(on, t.share(RayClass(c)));
+        optional(on, RayCheckTable::quantile(t.pixelError, 0.5));
+        optional(on, RayCheckTable::quantile(t.pixelError, 0.95));
+        optional(on, RayCheckTable::quantile(t.depthError, 0.5));
+    };
+    checks(ev.ssr, ev.ssrCheck);
+    checks(ev.ssgi, ev.ssgiCheck);
+    const ErrorTable& e = ev.error;
+    cell(e.color.relMse), cell(e.color.rmse);
+    for (const ImageError* x : {&e.direct, &e.specular, &e.diffuse}) optional(e.parts, x->relMse);
+    for (const ImageError* x : {&e.direct, &e.specular, &e.diffuse}) optional(e.parts, x->rmse);
+    const bool traced = ev.ssr || ev.ssgi;
+    optional(traced, ev.marchMraysPerSecond);
+    optional(traced, ev.embreeMraysPerSecond);
+    optional(traced, ev.marchVsEmbree());
+    return r.str();
+}
+
+// Written whole or not at all: a temporary beside the target, renamed over it.
+void writeText(const std::string& path, const std::string& text) {
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp");
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        f << text;
+        f.close();
+        if (!f) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(path + ": cannot write");
+        }
+    }
+    fs::rename(tmp, target);
+}
+
+void checkCsvPath(const std::string& path) {
+    const fs::path p(path);
+    if (p.extension() != ".csv")
+        throw std::invalid_argument("-o: '" + path + "' must end in .csv");
+    const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw std::runtime_error(path + ": directory '" + dir.string() + "' does not exist");
+    if (fs::is_directory(p, ec)) throw std::runtime_error(path + ": is a directory");
+}
+
+std::string describe(const Point& p) {
+    if (!p.traced) return "off (environment light only)";
+    std::ostringstream s;
+    s << marcherName(p.marcher) << ", " << p.maxSteps << " steps, " << ssrMethodName(p.ssrMethod)
+      << ", ssr x" << p.ssrSpp << ", ssgi x" << p.ssgiSpp << ", thickness " << p.thickness << ", "
+      << (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse");
+    return s.str();
+}
+
+}  // namespace
+
+SweepOptions::SweepOptions() {
+    const TraceSettings d;
+    maxSteps = std::to_string(d.march.maxSteps);
+    ssrMethods = std::string(ssrMethodName(d.ssrMethod));
+    ssrSpp = std::to_string(d.ssrSpp);
+    ssgiSpp = std::to_string(d.ssgiSpp);
+    std::ostringstream t;
+    t << d.march.thickness;
+    thickness = t.str();
+    resolves = d.resolve.mode == SsrResolveMode::Mip ? "mip" : "reuse";
+}
+
+const std::vector<std::string>& sweepColumns() {
+    static const std::vector<std::string> columns = [] {
+        std::vector<std::string> c = {"scene", "width", "height", "threads", "marcher",
+                                      "ssr_method", "ssr_spp", "ssgi_spp", "max_steps",
+                                      "thickness", "resolve", "reference_spp", "frame_ms"};
+        for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
+        for (const char* pass : {"ssr", "ssgi"}) {
+            const std::string p = pass;
+            c.push_back(p + "_rays");
+            for (int k = 1; k < kRayClassCount; ++k)
+                c.push_back(p + "_" + std::string(rayClassName(RayClass(k))));
+            c.insert(c.end(), {p + "_err_px_p50", p + "_err_px_p95", p + "_err_depth_p50"});
+        }
+        c.insert(c.end(), {"relmse", "rmse", "relmse_direct", "relmse_specular",
+                           "relmse_diffuse", "rmse_direct", "rmse_specular", "rmse_diffuse",
+                           "march_mrays_s", "embree_mrays_s", "march_vs_embree"});
+        return c;
+    }();
+    return columns;
+}
+
+CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
+    CLI::App* cmd = app.add_subcommand(
+        "sweep",
+        "Measure a grid of screen-space settings on one scene for time and error against the "
+        "Embree truth, one CSV row per setting (chart it with perf/plot.py)");
+    RenderSettings d;
+    d.width = 640;
+    d.height = 360;
+    addSceneOptions(*cmd, o.render, d);
+    const auto list = [&](const std::string& flags, std::string& value, const std::string& help) {
+        cmd->add_option(flags, value, help)->type_name("LIST")->capture_default_str()->group("Grid");
+    };
+    list("--marchers", o.marchers,
+         "Marchers, comma-separated: linear, dda, hiz, and off (both passes off: the "
+         "environment's light, the baseline)");
+    list("--max-steps", o.maxSteps, "March steps per ray (Hi-Z: iterations)");
+    list("--ssr-methods", o.ssrMethods, "SSR samplers: " + kSsrMethods);
+    list("--ssr-spp", o.ssrSpp, "SSR rays per pixel");
+    list("--ssgi-spp", o.ssgiSpp, "SSGI rays per pixel");
+    list("--thickness", o.thickness, "Depth-buffer thickness (view-space units)");
+    list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
+    addTruthOptions(*cmd, o.truth);
+    cmd->add_option("-o,--output", o.output, "CSV file to write (whole, when the sweep ends)")
+        ->type_name("FILE")
+        ->capture_default_str();
+    return cmd;
+}
+
+int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
+    RenderSettings defaults;
+    defaults.width = 640;
+    defaults.height = 360;
+    SceneRequest request = loadSceneRequest(o.render, defaults);
+    const std::vector<Point> points = grid(o);
+    std::vector<RenderSettings> settings;
+    for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
+    const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings);
+    checkCsvPath(o.output);
+    loadScene(request);
+    const Scene& scene = request.scene;
+    Camera previous;
+    const Camera camera = requestCamera(request, previous);
+    std::ostream* progress = o.truth.quiet ? nullptr : &err;
+    if (progress)
+        *progress << "sweeping " << request.name << " " << request.settings.width << "x"
+                  << request.settings.height << ": " << plural(int(points.size()), "setting")
+                  << " on " << isaName(request.isa) << ", "
+                  << plural(threadsFor(request.settings), "thread") << "\n";
+
+    const EmbreeScene embree(scene);
+    ReferenceSource source;
+    source.progress = progress;
+    if (!o.truth.noCache) {
+        const std::string dir = o.truth.cacheDir ? *o.truth.cacheDir : defaultCacheDir();
+        if (!dir.empty()) source.cacheDir = dir;
+    }
+    std::ostringstream csv;
+    const auto& columns = sweepColumns();
+    for (std::size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
+    csv << "\n";
+    out << std::left << std::setw(56) << "setting" << std::right << std::setw(12) << "frame ms"
+        << std::setw(12) << "relMSE" << "\n";
+    Frame frame;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (progress)
+            *progress << "setting " << (i + 1) << "/" << points.size() << ": " << describe(points[i])
+                      << "\n";
+        // The reference follows the setting's SSR sampler (cached per sampler).
+        ReferenceSettings refSettings = refBase;
+        refSettings.maxDistance = settings[i].trace.march.maxDistance;
+        bool fromCache = false;
+        RenderSettings refRender = settings[i];
+        if (!points[i].traced) refRender.trace = request.settings.trace;
+        const ReferenceImage reference = referenceFor(embree, scene, camera, previous, refRender,
+                                                      refSettings, source, fromCache);
+        const Evaluation ev = evaluate(embree, scene, camera, previous, settings[i], reference,
+                                       evalSettings, frame);
+        csv << csvRow(request.name, settings[i], points[i], refSettings.spp, ev) << "\n";
+        out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
+            << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific
+            << std::setprecision(3) << std::setw(12) << ev.error.color.relMse << std::defaultfloat
+            << "\n";
+    }
+    writeText(o.output, csv.str());
+    if (progress) *progress << "wrote " << o.output << "\n";
+    return kExitOk;
+}
+
+}  // namespace ssrt::cli

@@ -1,0 +1,35 @@
+// `ssrt sweep`: a grid of screen-space settings (marchers, step counts, SSR samplers, rays
+// per pixel, thickness, resolve modes) on one scene, each measured on both axes as
+// `ssrt compare` does, one CSV row per setting: time per pass, every ray-check share, the
+// hit-error quantiles, the image errors, and the march's rate against Embree's on the same
+// rays. perf/plot.py turns the CSV into the error-against-time chart.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cli/compare_command.h"
+
+namespace CLI {
+class App;
+}
+
+namespace ssrt::cli {
+
+struct SweepOptions {
+    RenderOptions render;  // scene options only (the grid replaces the tracing options)
+    TruthOptions truth;
+    std::string marchers = "off,linear,dda,hiz";
+    std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, resolves;  // defaults: TraceSettings{}
+    std::string output = "sweep.csv";
+    SweepOptions();
+};
+
+// The CSV's columns, in order (the header line).
+const std::vector<std::string>& sweepColumns();
+
+CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options);
+int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace ssrt::cli
