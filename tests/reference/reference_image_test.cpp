@@ -44,28 +44,49 @@ ImageError errorOf(const PlaneF (&image)[3], const PlaneF (&ref)[3]) {
 
 }  // namespace
 
+namespace {
+
+// Largest relative difference between (((direct + diffuse) + specular) + emission) x exposure
+// and the frame's colour, over every pixel and channel.
+float partsVersusColour(const Frame& frame, float exposure) {
+    const FrameParts p = frameParts(frame);
+    const PlaneF* emission = frame.scratch.directParts + 3;
+    const char* color[3] = {"color.R", "color.G", "color.B"};
+    float worst = 0.0f;
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const float sum =
+                    (((p.direct[c].at(x, y) + p.diffuse[c].at(x, y)) + p.specular[c].at(x, y)) +
+                     emission[c].at(x, y)) *
+                    exposure;
+                const float want = frame.plane(color[c]).at(x, y);
+                worst = std::max(worst, std::abs(sum - want) / std::max(want, 1e-3f));
+            }
+    return worst;
+}
+
+}  // namespace
+
 TEST_CASE("reference: the frame's parts add up to its colour") {
     for (const char* name : {"cornell", "spheres"}) {
         const ReferenceRig rig(name);
-        const FrameParts p = frameParts(rig.frame);
-        const PlaneF* emission = rig.frame.scratch.directParts + 3;
-        const float exposure = rig.renderer.settings().exposure;
-        const char* color[3] = {"color.R", "color.G", "color.B"};
-        float worst = 0.0f;
-        for (int c = 0; c < 3; ++c)
-            for (int y = 0; y < rig.frame.height; ++y)
-                for (int x = 0; x < rig.frame.width; ++x) {
-                    const float sum = (((p.direct[c].at(x, y) + p.diffuse[c].at(x, y)) +
-                                        p.specular[c].at(x, y)) +
-                                       emission[c].at(x, y)) *
-                                      exposure;
-                    const float want = rig.frame.plane(color[c]).at(x, y);
-                    worst = std::max(worst, std::abs(sum - want) / std::max(want, 1e-3f));
-                }
+        const float worst = partsVersusColour(rig.frame, rig.renderer.settings().exposure);
         MESSAGE(std::string(name) << ": largest relative difference " << worst);
         CHECK(worst < 1e-6f);
     }
-    // A frame without the trace passes has no SSR or SSGI to split.
+    // One pass off: it stands in as the composite has it (SSR off: the sky's specular alone;
+    // SSGI off: the sky's diffuse light), and the parts still add up.
+    const Scene scene = makeBuiltinScene("cornell");
+    for (const bool ssr : {false, true}) {
+        RenderSettings rs = test::referenceRigSettings(48, 27, 0, true);
+        rs.trace.ssr = ssr;
+        rs.trace.ssgi = !ssr;
+        const Frame frame = Renderer(rs).render(scene);
+        CAPTURE(ssr);
+        CHECK(partsVersusColour(frame, rs.exposure) < 1e-6f);
+    }
+    // A frame without the trace passes has no parts to split.
     const ReferenceRig plain("cornell", 32, 18, 0, false);
     CHECK_THROWS_AS(frameParts(plain.frame), std::invalid_argument);
 }
