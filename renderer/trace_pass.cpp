@@ -9,6 +9,7 @@
 
 #include "core/tiles.h"
 #include "shading/composite.h"
+#include "trace/hit_stats.h"
 #include "trace/ssgi.h"
 
 namespace ssrt {
@@ -25,63 +26,6 @@ PlaneF& planeOf(Frame& f, std::string_view name) {
     for (NamedPlane& p : f.planes)
         if (p.name == name) return p.plane;
     throw std::logic_error("frame has no plane '" + std::string(name) + "'");
-}
-
-// Per-pixel statistics of one pass over its samples: rays that hit, mean steps and (SSR) the
-// mean view-space distance to the hits. Sums are kept in the output planes while samples
-// run (in sample order, per pixel: no dependence on tiles or threads) and divided at the end.
-struct HitPlanes {
-    PlaneF* hit = nullptr;
-    PlaneF* steps = nullptr;
-    PlaneF* distance = nullptr;  // optional
-};
-
-void accumulateHits(const TraceCamera& cam, const RayBatch& rays, const MarchResult& m,
-                    const HitPlanes& out, bool first, int threads) {
-    const TileGrid grid(cam.width, cam.height);
-    parallelForTiles(grid.count(), threads, [&](int tile) {
-        const TileRect r = grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) {
-                const float hit = m.hit.at(x, y);
-                float d = 0.0f;
-                if (out.distance && hit > 0.0f) {
-                    // Hit point in view space from its pixel position and depth.
-                    const float z = m.hitZ.at(x, y);
-                    const float px = (2.0f * m.hitX.at(x, y) / float(cam.width) - 1.0f) * cam.tanHalfX * z;
-                    const float py = (1.0f - 2.0f * m.hitY.at(x, y) / float(cam.height)) * cam.tanHalfY * z;
-                    const float dx = px - rays.ox.at(x, y), dy = py - rays.oy.at(x, y),
-                                dz = -z - rays.oz.at(x, y);
-                    d = std::sqrt(dx * dx + dy * dy + dz * dz);
-                }
-                const float steps = m.steps.at(x, y);
-                if (first) {
-                    out.hit->at(x, y) = hit;
-                    out.steps->at(x, y) = steps;
-                    if (out.distance) out.distance->at(x, y) = d;
-                } else {
-                    out.hit->at(x, y) += hit;
-                    out.steps->at(x, y) += steps;
-                    if (out.distance) out.distance->at(x, y) += d;
-                }
-            }
-    });
-}
-
-void finishHits(const HitPlanes& out, int spp, int width, int height, int threads) {
-    const TileGrid grid(width, height);
-    const float inv = 1.0f / float(spp);
-    parallelForTiles(grid.count(), threads, [&](int tile) {
-        const TileRect r = grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) {
-                const float hits = out.hit->at(x, y);
-                if (out.distance)
-                    out.distance->at(x, y) = hits > 0.0f ? out.distance->at(x, y) / hits : 0.0f;
-                out.hit->at(x, y) = hits * inv;
-                out.steps->at(x, y) *= inv;
-            }
-    });
 }
 
 // The frame's SSR colour and opacity planes, lent to the resolve's output while it runs.
@@ -176,8 +120,9 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         }
         // The output planes are the frame's own, lent to the resolve.
         swapSsrOutput(frame, ssrOut);
-        const HitPlanes hp{&planeOf(frame, "ssrHit"), &planeOf(frame, "ssrSteps"),
-                           &planeOf(frame, "ssrHitDistance")};
+        // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
+        const HitStatsPlanes hp{&planeOf(frame, "ssrHit"), &planeOf(frame, "ssrSteps"),
+                                &planeOf(frame, "ssrHitDistance")};
         TraceStats& st = frame.stats.ssr;
         st.ran = true;
         st.spp = ts.ssrSpp;
@@ -191,10 +136,9 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
             if (observer && *observer) (*observer)(TracePass::Ssr, s, sc.rays, sc.march);
             timed(resolveMs2, [&] {
                 resolveSsr(isa, rs, in, sc.rays, sc.march, ssrOut, s, ts.ssrSpp, threads);
-                accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);
+                accumulateHitStats(isa, camera, sc.rays, sc.march, hp, s, ts.ssrSpp, threads);
             });
         }
-        timed(resolveMs2, [&] { finishHits(hp, ts.ssrSpp, w, h, threads); });
         frame.stats.passes.push_back({"ssr rays", genMs});
         frame.stats.passes.push_back({"ssr march", marchMs});
         frame.stats.passes.push_back({"ssr resolve", resolveMs2});
@@ -214,7 +158,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         in.metallic = &frame.plane("metallic");
         in.shadow = &frame.plane("shadow");
         in.lighting = &direct;
-        const HitPlanes hp{&planeOf(frame, "ssgiHit"), &planeOf(frame, "ssgiSteps"), nullptr};
+        const HitStatsPlanes hp{&planeOf(frame, "ssgiHit"), &planeOf(frame, "ssgiSteps"), nullptr};
         TraceStats& st = frame.stats.ssgi;
         st.ran = true;
         st.spp = ts.ssgiSpp;
@@ -230,11 +174,10 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
             if (observer && *observer) (*observer)(TracePass::Ssgi, s, sc.rays, sc.march);
             timed(resolveMs2, [&] {
                 resolveSsgi(isa, in, sc.rays, sc.march, out, s, ts.ssgiSpp, threads);
-                accumulateHits(camera, sc.rays, sc.march, hp, s == 0, threads);
+                accumulateHitStats(isa, camera, sc.rays, sc.march, hp, s, ts.ssgiSpp, threads);
             });
         }
         for (int c = 0; c < 3; ++c) std::swap(out[c], *ssgi[c]);
-        timed(resolveMs2, [&] { finishHits(hp, ts.ssgiSpp, w, h, threads); });
         frame.stats.passes.push_back({"ssgi rays", genMs});
         frame.stats.passes.push_back({"ssgi march", marchMs});
         frame.stats.passes.push_back({"ssgi resolve", resolveMs2});

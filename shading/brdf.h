@@ -32,6 +32,30 @@ SSRT_INLINE L V_SmithGGXCorrelated(L NoV, L NoL, L alpha) {
     return ln::select(denom > L(0.0f), L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)), L(0.0f));
 }
 
+// D_GGX(NoH, alpha) x V_SmithGGXCorrelated(NoV, NoL, alpha) for one view and many light
+// directions (the SSR resolve weighs 9 neighbours' rays by one pixel's lobe): the terms of
+// alpha and NoV alone are computed once. Every product has the bits of the two functions
+// above: the same expressions in the same order (tests/shading/sampling_test.cpp).
+template <class L>
+struct GgxDV {
+    L a2, a2m1, oneMinusA2, NoV, viewRoot;
+
+    SSRT_INLINE GgxDV(L NoV_, L alpha)
+        : a2(alpha * alpha), a2m1(a2 - L(1.0f)), oneMinusA2(L(1.0f) - a2), NoV(NoV_),
+          viewRoot(ln::sqrt(NoV_ * NoV_ * oneMinusA2 + a2)) {}
+
+    SSRT_INLINE L operator()(L NoH, L NoL) const {
+        const L f = (NoH * NoH) * a2m1 + L(1.0f);
+        const L d = a2 / (L(ln::kPi) * f * f);
+        const L lv = NoL * viewRoot;
+        const L ll = NoV * ln::sqrt(NoL * NoL * oneMinusA2 + a2);
+        const L denom = lv + ll;
+        const L v =
+            ln::select(denom > L(0.0f), L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)), L(0.0f));
+        return d * v;
+    }
+};
+
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-Based Rendering"
 // F = F0 + (F90 - F0) (1 - VoH)^5
 template <class L>

@@ -98,6 +98,11 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
         a.outColor[c] = out.color[c].row(0);
     }
     a.hitFade = out.hitFade.row(0);
+    if (a.reuse)
+        for (int c = 0; c < 3; ++c) {
+            out.hitTarget[c].ensureSize(w, h);  // only the reuse mode needs it
+            a.hitTarget[c] = out.hitTarget[c].row(0);
+        }
     a.outOpacity = out.opacity.row(0);
     a.sample = sample;
     a.sampleCount = sampleCount;

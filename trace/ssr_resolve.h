@@ -75,8 +75,9 @@ struct SsrResolveInputs {
 struct SsrOutput {
     PlaneF color[3];  // reflected radiance where SSR found something (not premultiplied)
     PlaneF opacity;   // how much of it to use, [0, 1]
-    // Scratch of the reuse mode (per-pixel hit radiance and fade), kept to reuse memory.
-    PlaneF hitRadiance[3], hitFade;
+    // Scratch (per-pixel hit radiance and fade; for the reuse mode also the view-space hit
+    // point, or the ray's direction for a miss), kept to reuse memory.
+    PlaneF hitRadiance[3], hitFade, hitTarget[3];
 
     void ensureSize(int width, int height);
 };

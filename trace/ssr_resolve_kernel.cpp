@@ -102,6 +102,57 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
     ln::store(a.hitRadiance[1] + o, radiance.y);
     ln::store(a.hitRadiance[2] + o, radiance.z);
     ln::store(a.hitFade + o, fade);
+    if (a.reuse) {
+        // What the 3x3 reuse aims at: the hit point in view space, or the ray's direction for
+        // a miss (computed once here instead of once per neighbour there).
+        const V3 hitP = screen::viewPoint(hx, hy, loadAt(a.hitPos[2], o), a.width, a.height,
+                                          a.tanHalfX, a.tanHalfY);
+        const V3 dir{loadAt(a.rayDir[0], o), loadAt(a.rayDir[1], o), loadAt(a.rayDir[2], o)};
+        const V3 target = ln::select(hit > Lane(0.5f), hitP, dir);
+        ln::store(a.hitTarget[0] + o, target.x);
+        ln::store(a.hitTarget[1] + o, target.y);
+        ln::store(a.hitTarget[2] + o, target.z);
+    }
+}
+
+// This pixel's side of the reuse weights, the same for all 9 neighbours.
+struct ReusePixel {
+    V3 p, n, view;
+    brdf::GgxDV<Lane> dv;
+};
+
+struct ReuseSums {
+    Lane w, wf;
+    V3 wfl;
+};
+
+// One neighbour's ray weighted for this pixel; `at(plane)` reads the neighbour's value of a
+// plane for every lane (a load where the neighbours are contiguous, else a clamped gather).
+template <class At>
+SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
+                                ln::MaskOf<Lane> inFrame, At&& at, ReuseSums& sum) {
+    const Lane zero(0.0f), one(1.0f);
+    const Lane pdf = at(a.pdf);
+    const auto hasRay = inFrame & (pdf > zero);
+    if (!ln::any(hasRay)) return;
+    // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
+    const V3 target{at(a.hitTarget[0]), at(a.hitTarget[1]), at(a.hitTarget[2])};
+    const V3 toHit = ln::normalize(target - s.p);
+    const V3 l = ln::select(at(a.hit) > Lane(0.5f), toHit, target);
+    // This pixel's lobe towards l.
+    const Lane NoLraw = ln::dot(s.n, l);
+    const Lane NoL = ln::saturate(NoLraw);
+    const V3 h = ln::normalize(s.view + l);
+    const Lane NoH = ln::saturate(ln::dot(s.n, h));
+    const Lane brdfCos = s.dv(NoH, NoL) * NoL;
+    const auto ok = hasRay & (NoLraw > zero);
+    const Lane w =
+        ln::select(ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
+    const Lane wf = w * at(a.hitFade);
+    const V3 L{at(a.hitRadiance[0]), at(a.hitRadiance[1]), at(a.hitRadiance[2])};
+    sum.w = sum.w + w;
+    sum.wf = sum.wf + wf;
+    sum.wfl = sum.wfl + L * wf;
 }
 
 // Stachowiak 2015, "Stochastic Screen-Space Reflections": the 3x3 neighbours' hits, each
@@ -119,50 +170,35 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
     const V3 n = ln::normalize(screen::worldToView(a.viewToWorld, nWorld));
     const V3 view = ln::normalize(V3{zero - p.x, zero - p.y, zero - p.z});
     const Lane NoV = ln::max(ln::dot(n, view), Lane(1e-4f));
-    const Lane alpha = roughnessToAlpha(rough);
-    Lane sumW = zero, sumWF = zero;
-    V3 sumWFL{zero, zero, zero};
+    const ReusePixel s{p, n, view, GgxDV<Lane>(NoV, roughnessToAlpha(rough))};
+    ReuseSums sum{zero, zero, V3{zero, zero, zero}};
     for (int dy = -1; dy <= 1; ++dy) {
         const int yy = y + dy;
         if (yy < 0 || yy >= a.height) continue;
         for (int dx = -1; dx <= 1; ++dx) {
-            const Lane nx = px + Lane(float(dx));
-            const auto inFrame = (nx >= zero) & (nx < Lane(float(a.width)));
-            const ILane i = screen::pixelIndex(nx, Lane(float(yy)), a.width, a.height, a.stride);
-            const Lane pdf = ln::gather(a.pdf, i);
-            const auto hasRay = inFrame & (pdf > zero);
-            if (!ln::any(hasRay)) continue;
-            // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
-            const V3 hitP = screen::viewPoint(
-                ln::gather(a.hitPos[0], i), ln::gather(a.hitPos[1], i), ln::gather(a.hitPos[2], i),
-                a.width, a.height, a.tanHalfX, a.tanHalfY);
-            const V3 toHit = ln::normalize(hitP - p);
-            const V3 dir{ln::gather(a.rayDir[0], i), ln::gather(a.rayDir[1], i),
-                         ln::gather(a.rayDir[2], i)};
-            const V3 l = ln::select(ln::gather(a.hit, i) > Lane(0.5f), toHit, dir);
-            // This pixel's lobe towards l.
-            const Lane NoLraw = ln::dot(n, l);
-            const Lane NoL = ln::saturate(NoLraw);
-            const V3 h = ln::normalize(view + l);
-            const Lane NoH = ln::saturate(ln::dot(n, h));
-            const Lane brdfCos = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha) * NoL;
-            const auto ok = hasRay & (NoLraw > zero);
-            const Lane w =
-                ln::select(ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
-            const Lane wf = w * ln::gather(a.hitFade, i);
-            const V3 L{ln::gather(a.hitRadiance[0], i), ln::gather(a.hitRadiance[1], i),
-                       ln::gather(a.hitRadiance[2], i)};
-            sumW = sumW + w;
-            sumWF = sumWF + wf;
-            sumWFL = sumWFL + L * wf;
+            if (x + dx >= 0 && x + dx + kW <= a.width) {
+                // Every lane's neighbour is in the frame: they sit side by side in memory.
+                const std::size_t on = std::size_t(yy) * a.stride + std::size_t(x + dx);
+                reuseNeighbour(a, s, zero == zero, [&](const float* plane) {
+                    return loadAt(plane, on);
+                }, sum);
+            } else {
+                const Lane nx = px + Lane(float(dx));
+                const auto inFrame = (nx >= zero) & (nx < Lane(float(a.width)));
+                const ILane i =
+                    screen::pixelIndex(nx, Lane(float(yy)), a.width, a.height, a.stride);
+                reuseNeighbour(a, s, inFrame, [&](const float* plane) {
+                    return ln::gather(plane, i);
+                }, sum);
+            }
         }
     }
-    const auto any = sumWF > zero;
-    const Lane den = ln::select(any, sumWF, one);
-    color =
-        ln::select(any, V3{sumWFL.x / den, sumWFL.y / den, sumWFL.z / den}, V3{zero, zero, zero});
-    opacity =
-        ln::select(sumW > zero, ln::min(sumWF / ln::select(sumW > zero, sumW, one), one), zero);
+    const auto any = sum.wf > zero;
+    const Lane den = ln::select(any, sum.wf, one);
+    color = ln::select(any, V3{sum.wfl.x / den, sum.wfl.y / den, sum.wfl.z / den},
+                       V3{zero, zero, zero});
+    opacity = ln::select(sum.w > zero, ln::min(sum.wf / ln::select(sum.w > zero, sum.w, one), one),
+                         zero);
 }
 
 // One lane group of pass 2: combine, fade by roughness, accumulate the sample.

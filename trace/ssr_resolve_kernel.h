@@ -39,9 +39,11 @@ struct SsrResolveArgs {
     float edgeFadeScale;                         // 1 / edgeFadeLength
     float roughnessFadeEnd, roughnessFadeScale;  // fade = saturate((end - r) * scale)
     float radianceScale;
-    // Scratch written by ssrHitTile, read by ssrResolveTile.
+    // Scratch written by ssrHitTile, read by ssrResolveTile. hitTarget (reuse only): the hit
+    // point in view space, or the ray's direction for a miss.
     float* hitRadiance[3];
     float* hitFade;
+    float* hitTarget[3];
     // Output, accumulated over samples.
     float* outColor[3];
     float* outOpacity;

@@ -3,6 +3,7 @@
 // f cos / pdf, and bounded VNDF sends fewer reflections below the horizon than the caps.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -244,6 +245,23 @@ TEST_CASE("shading: BRDF terms match their isotropic forms and limits") {
     CHECK(brdf::F_Schlick(1.0f, 0.04f, 0.7f) == 0.04f);
     CHECK(brdf::F_Schlick(0.0f, 0.04f, 0.7f) == doctest::Approx(0.7f));
     CHECK(brdf::F_Schlick(0.0f, 0.04f) == doctest::Approx(1.0f));
+}
+
+TEST_CASE("shading: GgxDV has the bits of D_GGX x V_SmithGGXCorrelated") {
+    // Grazing, head-on, the alpha clamp, NoL and NoH of 0 and 1, and random values.
+    const float edges[] = {0.0f, 1e-4f, 1e-3f, 0.5f, 0.999f, 1.0f};
+    for (uint32_t i = 0; i < 20000; ++i) {
+        const auto pick = [&](uint32_t dim) {
+            const float u = randomFloat(i, 44, 0, dim);
+            return i < 2000 ? edges[int(u * 6.0f)] : u;
+        };
+        const float NoV = std::max(pick(0), 1e-4f), NoL = pick(1), NoH = pick(2);
+        const float alpha = brdf::roughnessToAlpha(pick(3));
+        const brdf::GgxDV<float> dv(NoV, alpha);
+        const float ref = brdf::D_GGX(NoH, alpha) * brdf::V_SmithGGXCorrelated(NoV, NoL, alpha);
+        const float got = dv(NoH, NoL);
+        CHECK(std::memcmp(&ref, &got, sizeof ref) == 0);
+    }
 }
 
 TEST_CASE("shading: bounded VNDF sends no more reflections below the horizon than spherical caps") {

@@ -1,0 +1,31 @@
+// Per-pixel statistics of one trace pass over its samples (the renderer's "ssrHit",
+// "ssrSteps", "ssrHitDistance", "ssgiHit", "ssgiSteps" planes): the fraction of rays that hit,
+// the mean march steps and, optionally, the mean view-space distance from the ray's origin to
+// its hit (over the hits; 0 without any). A kernel over the lane type, one copy per ISA:
+// every pixel gets the same bits on every ISA and thread count, and the same as the scalar
+// loops it replaces (renderer/trace_pass.cpp before it).
+#pragma once
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+struct HitStatsPlanes {
+    PlaneF* hit = nullptr;
+    PlaneF* steps = nullptr;
+    PlaneF* distance = nullptr;  // optional (null: not kept)
+};
+
+// Adds one sample's march to `out` (planes of the camera's size, ensured): sample 0
+// overwrites, later samples add, and the call with sample == sampleCount - 1 turns the sums
+// into means. Per pixel, the distance to a hit is |P - O| with P the hit's view-space point,
+//   P = ((2 hitX / W - 1) tanHalfX z, (1 - 2 hitY / H) tanHalfY z, -z), z = hitZ,
+// and O the ray's origin. Throws std::invalid_argument on a missing or mis-sized plane or a
+// sample outside [0, sampleCount).
+void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
+                        const MarchResult& march, const HitStatsPlanes& out, int sample,
+                        int sampleCount, int threads);
+
+}  // namespace ssrt

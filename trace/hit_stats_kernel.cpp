@@ -1,0 +1,71 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "trace/hit_stats_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+
+SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
+    return ln::load<Lane>(plane + offset);
+}
+
+void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f);
+    const Lane hit = loadAt(a.hit, o), steps = loadAt(a.steps, o);
+    Lane hitSum = hit, stepSum = steps;
+    if (!a.first) {
+        hitSum = loadAt(a.outHit, o) + hit;
+        stepSum = loadAt(a.outSteps, o) + steps;
+    }
+    if (a.outDistance) {
+        Lane d = zero;
+        const auto hits = hit > zero;
+        if (ln::any(hits)) {
+            // The hit's view-space point from its pixel position and depth, minus the origin
+            // (the scalar loop's expressions, in its order).
+            const Lane z = loadAt(a.hitPos[2], o);
+            const Lane px = ((Lane(2.0f) * loadAt(a.hitPos[0], o)) / Lane(float(a.width)) -
+                             Lane(1.0f)) * Lane(a.tanHalfX) * z;
+            const Lane py = (Lane(1.0f) - (Lane(2.0f) * loadAt(a.hitPos[1], o)) /
+                                              Lane(float(a.height))) * Lane(a.tanHalfY) * z;
+            const Lane dx = px - loadAt(a.origin[0], o), dy = py - loadAt(a.origin[1], o),
+                       dz = -z - loadAt(a.origin[2], o);
+            d = ln::select(hits, ln::sqrt(dx * dx + dy * dy + dz * dz), zero);
+        }
+        Lane distSum = d;
+        if (!a.first) distSum = loadAt(a.outDistance, o) + d;
+        if (a.last) {
+            const auto any = hitSum > zero;
+            distSum = ln::select(any, distSum / ln::select(any, hitSum, Lane(1.0f)), zero);
+        }
+        ln::store(a.outDistance + o, distSum);
+    }
+    if (a.last) {
+        hitSum = hitSum * Lane(a.invCount);
+        stepSum = stepSum * Lane(a.invCount);
+    }
+    ln::store(a.outHit + o, hitSum);
+    ln::store(a.outSteps + o, stepSum);
+}
+
+}  // namespace
+
+void hitStatsTile(const HitStatsArgs& args, int tile) {
+    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) hitStatsChunk(args, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS
