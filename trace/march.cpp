@@ -118,24 +118,31 @@ struct TileScratch {
     float* array(int i) { return data.data() + std::size_t(i) * capacity; }
 };
 
-// Rays are packed bucket by bucket: 16 sectors of the ray's screen-space direction at its
-// origin, times toward / away from the camera (32 buckets), in row order within a bucket.
-// Neighbouring rays of one bucket take similar paths, so a lane group's rays end after
-// similar step counts (fewer idle lanes) and read nearby cells. Only the order of the rays
-// changes: each lane's path depends on its own ray alone, so no result bit does.
-constexpr int kSortBuckets = 32;
+// Rays are packed bucket by bucket: 64 sectors of the ray's screen-space direction at its
+// origin, times toward / away from the camera (128 buckets); within a bucket in 4x4 pixel
+// blocks (block rows, then rows in a block). Neighbouring rays of one bucket take similar
+// paths, so a lane group's rays end after similar step counts (fewer idle lanes) and read
+// nearby cells. Only the order of the rays changes: each lane's path depends on its own ray
+// alone, so no result bit does (tests/trace/march_test.cpp holds every ray to the same ray
+// marched alone).
+constexpr int kSectors = 64;
+constexpr int kSortBuckets = 2 * kSectors;
+constexpr int kSortBlock = 4;
 
 // The bucket of a view-space ray (origin o, direction d); sx, sy: the projection's scales.
 // The screen direction of a view point's motion is (sx (o.x d.z - d.x o.z), sy (d.y o.z -
-// o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z) along the ray).
+// o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z) along the ray); its
+// angle is binned by the "diamond angle" in [0, 4), monotonic in the angle, no arctangent.
 int sortBucket(float sx, float sy, float ox, float oy, float oz, float dx, float dy, float dz) {
     const float u = sx * (ox * dz - dx * oz), v = sy * (dy * oz - oy * dz);
-    const float au = std::fabs(u), av = std::fabs(v);
-    // Octant: signs and the major axis; then each octant split at 22.5 degrees.
-    int b = (u < 0.0f ? 1 : 0) | (v < 0.0f ? 2 : 0) | (av > au ? 4 : 0);
-    if (std::min(au, av) > 0.41421356f * std::max(au, av)) b |= 8;
-    if (dz > 0.0f) b |= 16;
-    return b;
+    const float sum = std::fabs(u) + std::fabs(v);
+    float angle = 0.0f;
+    if (sum > 0.0f) {
+        const float r = v / sum;  // [-1, 1]
+        angle = u >= 0.0f ? (v >= 0.0f ? r : 4.0f + r) : 2.0f - r;
+    }
+    const int sector = std::clamp(int(angle * (0.25f * float(kSectors))), 0, kSectors - 1);
+    return 2 * sector + (dz > 0.0f ? 1 : 0);
 }
 
 void checkPlane(const PlaneF* p, int w, int h, const char* name) {
@@ -263,29 +270,30 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         }
         for (int b = 1; b <= kSortBuckets; ++b) counts[b] += counts[b - 1];
         const int n = counts[kSortBuckets];
-        // Pack them bucket by bucket, in row order within a bucket.
         float* A[TileScratch::kArrays];
         for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
-        for (int y = rect.y0; y < rect.y1; ++y) {
-            const int8_t* k = key + (y - rect.y0) * tw;
-            for (int x = rect.x0; x < rect.x1; ++x) {
-                if (k[x - rect.x0] < 0) continue;
-                const int i = counts[k[x - rect.x0]]++;
-                A[TileScratch::kOx][i] = rays.ox.at(x, y);
-                A[TileScratch::kOy][i] = rays.oy.at(x, y);
-                A[TileScratch::kOz][i] = rays.oz.at(x, y);
-                A[TileScratch::kDx][i] = rays.dx.at(x, y);
-                A[TileScratch::kDy][i] = rays.dy.at(x, y);
-                A[TileScratch::kDz][i] = rays.dz.at(x, y);
-                A[TileScratch::kPx][i] = float(x);
-                A[TileScratch::kPy][i] = float(y);
-                const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
-                A[TileScratch::kJitter][i] =
-                    jitter ? settings.ddaJitter *
-                                 randomFloat(pixel, settings.frame, settings.sample, 0)
-                           : 0.0f;
-            }
-        }
+        // Pack them bucket by bucket; within a bucket in 4x4 blocks (block rows, then rows).
+        auto place = [&](int x, int y) {
+            const int b = key[(y - rect.y0) * tw + (x - rect.x0)];
+            if (b < 0) return;
+            const int i = counts[b]++;
+            A[TileScratch::kOx][i] = rays.ox.at(x, y);
+            A[TileScratch::kOy][i] = rays.oy.at(x, y);
+            A[TileScratch::kOz][i] = rays.oz.at(x, y);
+            A[TileScratch::kDx][i] = rays.dx.at(x, y);
+            A[TileScratch::kDy][i] = rays.dy.at(x, y);
+            A[TileScratch::kDz][i] = rays.dz.at(x, y);
+            A[TileScratch::kPx][i] = float(x);
+            A[TileScratch::kPy][i] = float(y);
+            const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
+            A[TileScratch::kJitter][i] =
+                jitter ? settings.ddaJitter * randomFloat(pixel, settings.frame, settings.sample, 0)
+                       : 0.0f;
+        };
+        for (int by = rect.y0; by < rect.y1; by += kSortBlock)
+            for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
+                for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y)
+                    for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) place(x, y);
         // Pad the last lane group with copies of the first ray (their results are dropped).
         const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
         for (int i = n; i < padded; ++i)
