@@ -273,27 +273,33 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         float* A[TileScratch::kArrays];
         for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
         // Pack them bucket by bucket; within a bucket in 4x4 blocks (block rows, then rows).
-        auto place = [&](int x, int y) {
-            const int b = key[(y - rect.y0) * tw + (x - rect.x0)];
-            if (b < 0) return;
-            const int i = counts[b]++;
-            A[TileScratch::kOx][i] = rays.ox.at(x, y);
-            A[TileScratch::kOy][i] = rays.oy.at(x, y);
-            A[TileScratch::kOz][i] = rays.oz.at(x, y);
-            A[TileScratch::kDx][i] = rays.dx.at(x, y);
-            A[TileScratch::kDy][i] = rays.dy.at(x, y);
-            A[TileScratch::kDz][i] = rays.dz.at(x, y);
-            A[TileScratch::kPx][i] = float(x);
-            A[TileScratch::kPy][i] = float(y);
-            const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
-            A[TileScratch::kJitter][i] =
-                jitter ? settings.ddaJitter * randomFloat(pixel, settings.frame, settings.sample, 0)
-                       : 0.0f;
-        };
         for (int by = rect.y0; by < rect.y1; by += kSortBlock)
             for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
-                for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y)
-                    for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) place(x, y);
+                for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y) {
+                    const int8_t* k = key + (y - rect.y0) * tw;
+                    const float *OX = rays.ox.row(y), *OY = rays.oy.row(y),
+                                *OZ = rays.oz.row(y);
+                    const float *DX = rays.dx.row(y), *DY = rays.dy.row(y),
+                                *DZ = rays.dz.row(y);
+                    for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) {
+                        const int b = k[x - rect.x0];
+                        if (b < 0) continue;
+                        const int i = counts[b]++;
+                        A[TileScratch::kOx][i] = OX[x];
+                        A[TileScratch::kOy][i] = OY[x];
+                        A[TileScratch::kOz][i] = OZ[x];
+                        A[TileScratch::kDx][i] = DX[x];
+                        A[TileScratch::kDy][i] = DY[x];
+                        A[TileScratch::kDz][i] = DZ[x];
+                        A[TileScratch::kPx][i] = float(x);
+                        A[TileScratch::kPy][i] = float(y);
+                        const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
+                        A[TileScratch::kJitter][i] =
+                            jitter ? settings.ddaJitter * randomFloat(pixel, settings.frame,
+                                                                      settings.sample, 0)
+                                   : 0.0f;
+                    }
+                }
         // Pad the last lane group with copies of the first ray (their results are dropped).
         const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
         for (int i = n; i < padded; ++i)
