@@ -1,6 +1,8 @@
 // Marcher benchmarks: each marcher alone on fixed G-buffers (corridor and cornell rendered
-// once at 1920x1080), mirror rays from every surface pixel, threads 1 (per core) and 2;
-// counters rays/s, steps/s, lane utilisation, mean steps and hits. Also the Hi-Z build.
+// once at 1920x1080), threads 1 (per core) and 2; rays from every surface pixel: mirror
+// (coherent), and as the renderer traces them (frame 0, sample 0): VNDF-bounded GGX (`_vndf`)
+// and cosine-weighted diffuse (`_cosine`), both incoherent. Counters rays/s, steps/s, lane
+// utilisation, mean steps and hits. Also the Hi-Z build.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -8,15 +10,19 @@
 #include <string>
 
 #include "tests/trace/march_fixture.h"
+#include "trace/ray_gen.h"
 
 using namespace ssrt;
 using namespace ssrt::test;
 
 namespace {
 
+enum class Rays { Mirror, Vndf, Cosine };
+
 struct Workload {
     GBuf g;
-    RayBatch rays;
+    PlaneF roughness;
+    RayBatch rays[3];  // by Rays
     HiZPyramid hiz;
 };
 
@@ -26,14 +32,19 @@ const Workload& workload(const std::string& scene) {
     auto& w = cache[scene];
     if (!w) {
         w = std::make_unique<Workload>();
-        w->g = renderGBuffer(scene, 1920, 1080);
-        w->rays = mirrorRays(w->g);
+        w->g = renderGBuffer(scene, 1920, 1080, &w->roughness);
+        w->rays[int(Rays::Mirror)] = mirrorRays(w->g);
+        const RayGenGBuffer rg{&w->g.viewZ, {&w->g.nx, &w->g.ny, &w->g.nz}, &w->roughness};
+        generateSpecularRays(defaultIsa(), SsrMethod::VndfBounded, 0, 0, w->g.camera, rg,
+                             w->rays[int(Rays::Vndf)], 0);
+        generateDiffuseRays(defaultIsa(), 0, 0, w->g.camera, rg, w->rays[int(Rays::Cosine)], 0);
         buildHiZ(w->g.viewZ, w->hiz, 0);
     }
     return *w;
 }
 
-void marchBench(benchmark::State& state, std::string scene, Marcher marcher) {
+void marchBench(benchmark::State& state, std::string scene, Marcher marcher,
+                Rays kind = Rays::Mirror) {
     const Isa isa = defaultIsa();
     const int threads = int(state.range(0));
     const Workload& w = workload(scene);
@@ -42,7 +53,8 @@ void marchBench(benchmark::State& state, std::string scene, Marcher marcher) {
     MarchStats stats;
     for (auto _ : state) {
         stats = marchRays(isa, marcher, settings, w.g.camera, w.g.view(),
-                          marcher == Marcher::HiZ ? &w.hiz : nullptr, w.rays, result, threads);
+                          marcher == Marcher::HiZ ? &w.hiz : nullptr, w.rays[int(kind)], result,
+                          threads);
         benchmark::DoNotOptimize(result.hit.row(0));
     }
     const double iters = double(state.iterations());
@@ -97,6 +109,66 @@ BENCHMARK_CAPTURE(marchBench, cornell_dda, "cornell", Marcher::Dda)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(marchBench, cornell_hiz, "cornell", Marcher::HiZ)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_linear_vndf, "corridor", Marcher::Linear, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_linear_cosine, "corridor", Marcher::Linear, Rays::Cosine)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_dda_vndf, "corridor", Marcher::Dda, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_dda_cosine, "corridor", Marcher::Dda, Rays::Cosine)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_hiz_vndf, "corridor", Marcher::HiZ, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, corridor_hiz_cosine, "corridor", Marcher::HiZ, Rays::Cosine)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_linear_vndf, "cornell", Marcher::Linear, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_linear_cosine, "cornell", Marcher::Linear, Rays::Cosine)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_dda_vndf, "cornell", Marcher::Dda, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_dda_cosine, "cornell", Marcher::Dda, Rays::Cosine)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_hiz_vndf, "cornell", Marcher::HiZ, Rays::Vndf)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(marchBench, cornell_hiz_cosine, "cornell", Marcher::HiZ, Rays::Cosine)
     ->Arg(1)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)

@@ -113,10 +113,37 @@ struct TileScratch {
         kArrays
     };
     std::vector<float> data;
-    std::vector<int> pixel;  // x + y * width of each packed ray
+    std::vector<int8_t> key;  // per tile pixel: the ray's bucket, -1 for no ray
     std::size_t capacity = 0;
     float* array(int i) { return data.data() + std::size_t(i) * capacity; }
 };
+
+// Rays are packed bucket by bucket: 64 sectors of the ray's screen-space direction at its
+// origin, times toward / away from the camera (128 buckets); within a bucket in 4x4 pixel
+// blocks (block rows, then rows in a block). Neighbouring rays of one bucket take similar
+// paths, so a lane group's rays end after similar step counts (fewer idle lanes) and read
+// nearby cells. Only the order of the rays changes: each lane's path depends on its own ray
+// alone, so no result bit does (tests/trace/march_test.cpp holds every ray to the same ray
+// marched alone).
+constexpr int kSectors = 64;
+constexpr int kSortBuckets = 2 * kSectors;
+constexpr int kSortBlock = 4;
+
+// The bucket of a view-space ray (origin o, direction d); sx, sy: the projection's scales.
+// The screen direction of a view point's motion is (sx (o.x d.z - d.x o.z), sy (d.y o.z -
+// o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z) along the ray); its
+// angle is binned by the "diamond angle" in [0, 4), monotonic in the angle, no arctangent.
+int sortBucket(float sx, float sy, float ox, float oy, float oz, float dx, float dy, float dz) {
+    const float u = sx * (ox * dz - dx * oz), v = sy * (dy * oz - oy * dz);
+    const float sum = std::fabs(u) + std::fabs(v);
+    float angle = 0.0f;
+    if (sum > 0.0f) {
+        const float r = v / sum;  // [-1, 1]
+        angle = u >= 0.0f ? (v >= 0.0f ? r : 4.0f + r) : 2.0f - r;
+    }
+    const int sector = std::clamp(int(angle * (0.25f * float(kSectors))), 0, kSectors - 1);
+    return 2 * sector + (dz > 0.0f ? 1 : 0);
+}
 
 void checkPlane(const PlaneF* p, int w, int h, const char* name) {
     if (!p || p->width() != w || p->height() != h)
@@ -215,39 +242,64 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         if (scratch.capacity != cap) {
             scratch.capacity = cap;
             scratch.data.assign(cap * TileScratch::kArrays, 0.0f);
-            scratch.pixel.resize(cap);
+            scratch.key.resize(cap);
         }
-        // Pack the tile's rays (pdf > 0, finite unit direction), row by row.
-        int n = 0;
-        float* A[TileScratch::kArrays];
-        for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
+        // Which pixels have a ray (pdf > 0, finite non-zero direction, origin in front of
+        // the camera), and each ray's bucket.
+        int8_t* key = scratch.key.data();
+        int counts[kSortBuckets + 1] = {};
+        const int tw = rect.x1 - rect.x0;
         for (int y = rect.y0; y < rect.y1; ++y) {
             const float* pdf = rays.pdf.row(y);
+            const float *DX = rays.dx.row(y), *DY = rays.dy.row(y), *DZ = rays.dz.row(y);
+            const float *OX = rays.ox.row(y), *OY = rays.oy.row(y), *OZ = rays.oz.row(y);
+            int8_t* k = key + (y - rect.y0) * tw;
             for (int x = rect.x0; x < rect.x1; ++x) {
-                const float dx = rays.dx.at(x, y), dy = rays.dy.at(x, y), dz = rays.dz.at(x, y);
-                const float ox = rays.ox.at(x, y), oy = rays.oy.at(x, y), oz = rays.oz.at(x, y);
+                const float dx = DX[x], dy = DY[x], dz = DZ[x];
+                const float ox = OX[x], oy = OY[x], oz = OZ[x];
                 const bool finite = std::isfinite(dx) && std::isfinite(dy) && std::isfinite(dz) &&
                                     std::isfinite(ox) && std::isfinite(oy) && std::isfinite(oz);
                 if (!(pdf[x] > 0.0f) || !finite || dx * dx + dy * dy + dz * dz == 0.0f ||
-                    !(-oz > 0.0f))
+                    !(-oz > 0.0f)) {
+                    k[x - rect.x0] = -1;
                     continue;
-                A[TileScratch::kOx][n] = ox;
-                A[TileScratch::kOy][n] = oy;
-                A[TileScratch::kOz][n] = oz;
-                A[TileScratch::kDx][n] = dx;
-                A[TileScratch::kDy][n] = dy;
-                A[TileScratch::kDz][n] = dz;
-                A[TileScratch::kPx][n] = float(x);
-                A[TileScratch::kPy][n] = float(y);
-                const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
-                A[TileScratch::kJitter][n] =
-                    jitter ? settings.ddaJitter *
-                                 randomFloat(pixel, settings.frame, settings.sample, 0)
-                           : 0.0f;
-                scratch.pixel[std::size_t(n)] = x + y * w;
-                ++n;
+                }
+                k[x - rect.x0] = int8_t(sortBucket(proto.sx, proto.sy, ox, oy, oz, dx, dy, dz));
+                ++counts[k[x - rect.x0] + 1];
             }
         }
+        for (int b = 1; b <= kSortBuckets; ++b) counts[b] += counts[b - 1];
+        const int n = counts[kSortBuckets];
+        float* A[TileScratch::kArrays];
+        for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
+        // Pack them bucket by bucket; within a bucket in 4x4 blocks (block rows, then rows).
+        for (int by = rect.y0; by < rect.y1; by += kSortBlock)
+            for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
+                for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y) {
+                    const int8_t* k = key + (y - rect.y0) * tw;
+                    const float *OX = rays.ox.row(y), *OY = rays.oy.row(y),
+                                *OZ = rays.oz.row(y);
+                    const float *DX = rays.dx.row(y), *DY = rays.dy.row(y),
+                                *DZ = rays.dz.row(y);
+                    for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) {
+                        const int b = k[x - rect.x0];
+                        if (b < 0) continue;
+                        const int i = counts[b]++;
+                        A[TileScratch::kOx][i] = OX[x];
+                        A[TileScratch::kOy][i] = OY[x];
+                        A[TileScratch::kOz][i] = OZ[x];
+                        A[TileScratch::kDx][i] = DX[x];
+                        A[TileScratch::kDy][i] = DY[x];
+                        A[TileScratch::kDz][i] = DZ[x];
+                        A[TileScratch::kPx][i] = float(x);
+                        A[TileScratch::kPy][i] = float(y);
+                        const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
+                        A[TileScratch::kJitter][i] =
+                            jitter ? settings.ddaJitter * randomFloat(pixel, settings.frame,
+                                                                      settings.sample, 0)
+                                   : 0.0f;
+                    }
+                }
         // Pad the last lane group with copies of the first ray (their results are dropped).
         const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
         for (int i = n; i < padded; ++i)
@@ -286,8 +338,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         st.laneSlots = args.laneSlots;
         st.laneActive = args.laneActive;
         for (int i = 0; i < n; ++i) {
-            const int p = scratch.pixel[std::size_t(i)];
-            const int x = p % w, y = p / w;
+            const int x = int(args.pixelX[i]), y = int(args.pixelY[i]);
             result.hit.at(x, y) = args.hit[i];
             result.hitX.at(x, y) = args.hitX[i];
             result.hitY.at(x, y) = args.hitY[i];

@@ -158,24 +158,26 @@ SSRT_INLINE void countLanes(MarchKernelArgs& a, Mask active) {
     a.laneActive += uint64_t(popcount(ln::maskBits(active)));
 }
 
-// Marches every packed ray with two lane groups in flight, their steps interleaved: each
-// step waits on a gather, and the other group's work hides part of that latency. Lanes never
-// interact, so the pairing does not change a bit. G has init(args, base), step(args) ->
+// Marches every packed ray with kInFlight lane groups in flight, their steps interleaved:
+// each step waits on a gather, and the other groups' work hides part of that latency. Lanes
+// never interact, so the grouping does not change a bit. G has init(args, base), step(args) ->
 // bool (false once every lane has ended) and finish(args).
-template <class G>
+template <class G, int kInFlight = 2>
 inline void marchGroups(MarchKernelArgs& a) {
-    for (int base = 0; base < a.count; base += 2 * kW) {
-        G g[2];
-        g[0].init(a, base);
-        const bool second = base + kW < a.count;
-        if (second) g[1].init(a, base + kW);
-        bool more0 = true, more1 = second;
-        while (more0 || more1) {
-            if (more0) more0 = g[0].step(a);
-            if (more1) more1 = g[1].step(a);
+    for (int base = 0; base < a.count; base += kInFlight * kW) {
+        G g[kInFlight];
+        bool more[kInFlight];
+        int live = 0;
+        for (int j = 0; j < kInFlight; ++j) {
+            more[j] = base + j * kW < a.count;
+            if (more[j]) g[j].init(a, base + j * kW), ++live;
         }
-        g[0].finish(a);
-        if (second) g[1].finish(a);
+        const int started = live;
+        while (live) {
+            for (int j = 0; j < kInFlight; ++j)
+                if (more[j] && !(more[j] = g[j].step(a))) --live;
+        }
+        for (int j = 0; j < started; ++j) g[j].finish(a);
     }
 }
 

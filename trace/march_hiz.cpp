@@ -18,17 +18,34 @@ namespace ssrt::SSRT_ISA_NS {
 
 namespace {
 
+// Entry L (per lane, 0..15) of a 16-float level table: a register permute where the ISA has
+// one (AVX-512: one vpermps; AVX2: two and a blend), else a gather. Same values either way.
+SSRT_INLINE Lane levelTable(const float* table, ILane L) {
+#if defined(SSRT_ISA_avx512)
+    static_assert(kMaxHiZLevels == 16);
+    return Lane(_mm512_permutexvar_ps(L, _mm512_loadu_ps(table)));
+#elif defined(SSRT_ISA_avx2)
+    static_assert(kMaxHiZLevels == 16);
+    const __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), L);
+    const __m256 hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table + 8), L);
+    const __m256i upper = _mm256_cmpgt_epi32(L, _mm256_set1_epi32(7));
+    return Lane(_mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper)));
+#else
+    return ln::gather(table, L);
+#endif
+}
+
 // 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
 SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, Lane level, Lane cx, Lane cy) {
     if (a.hizInvPacked) {
-        // Packed pyramid: one gather for the level tables, one for the depth.
+        // Packed pyramid: the level tables from registers, one gather for the depth.
         const ILane L = ln::toIntTrunc(level);
-        const Lane width = ln::gather(a.hizWidthF, L);
+        const Lane width = levelTable(a.hizWidthF, L);
         const Lane x = ln::clamp(cx, Lane(0.0f), width - Lane(1.0f));
         const Lane y = ln::max(cy, Lane(0.0f));
         // (Lanes already done may point anywhere: keep them inside the buffer.)
         const Lane index =
-            ln::min(ln::gather(a.hizOffset, L) + y * width + x, Lane(a.hizPackedLast));
+            ln::min(levelTable(a.hizOffset, L) + y * width + x, Lane(a.hizPackedLast));
         return ln::gather(a.hizInvPacked, ln::toIntTrunc(index));
     }
     alignas(64) float lv[kW], x[kW], y[kW], out[kW];
@@ -182,6 +199,10 @@ struct Group {
 
 }  // namespace
 
-void marchHiZKernel(MarchKernelArgs& a) { marchGroups<Group>(a); }
+// Lane groups in flight: three with AVX-512 (32 vector registers; 8-18 % faster on incoherent
+// rays than two, the same on mirror rays), two elsewhere (with AVX2 a third was no faster).
+constexpr int kHiZInFlight = kW >= 16 ? 3 : 2;
+
+void marchHiZKernel(MarchKernelArgs& a) { marchGroups<Group, kHiZInFlight>(a); }
 
 }  // namespace ssrt::SSRT_ISA_NS

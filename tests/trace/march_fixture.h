@@ -83,8 +83,8 @@ inline GBuf makeBoxGBuffer(int w, int h) {
     return g;
 }
 
-// A rendered built-in scene's G-buffer.
-inline GBuf renderGBuffer(const std::string& scene, int w, int h) {
+// A rendered built-in scene's G-buffer (and its perceptual roughness, where asked).
+inline GBuf renderGBuffer(const std::string& scene, int w, int h, PlaneF* roughness = nullptr) {
     RenderSettings rs;
     rs.width = w;
     rs.height = h;
@@ -103,6 +103,7 @@ inline GBuf renderGBuffer(const std::string& scene, int w, int h) {
     g.nx = f.plane("normal.X").clone();
     g.ny = f.plane("normal.Y").clone();
     g.nz = f.plane("normal.Z").clone();
+    if (roughness) *roughness = f.plane("roughness").clone();
     return g;
 }
 
