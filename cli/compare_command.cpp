@@ -103,6 +103,23 @@ void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation
 
 }  // namespace
 
+RenderSettings truthDefaults() {
+    RenderSettings d;
+    d.width = 640;
+    d.height = 360;
+    return d;
+}
+
+ReferenceSource referenceSourceFrom(const TruthOptions& o, std::ostream& err) {
+    ReferenceSource source;
+    source.progress = o.quiet ? nullptr : &err;
+    if (!o.noCache) {
+        const std::string dir = o.cacheDir ? *o.cacheDir : defaultCacheDir();
+        if (!dir.empty()) source.cacheDir = dir;
+    }
+    return source;
+}
+
 TruthOptions::TruthOptions() {
     const RayCheckSettings d;
     pixelTolerance = formatFloat(d.pixelTolerance);
@@ -163,10 +180,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
         "compare",
         "Check one screen-space setting against the Embree truth: every traced ray classified, "
         "the image against a converged reference (cached), per-pass times");
-    RenderSettings d;
-    d.width = 640;
-    d.height = 360;
-    addSceneOptions(*cmd, o.render, d);
+    addSceneOptions(*cmd, o.render, truthDefaults());
     addTraceOptions(*cmd, o.render);
     addTruthOptions(*cmd, o.truth);
     cmd->add_option_function<std::string>(
@@ -180,10 +194,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
 }
 
 int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
-    RenderSettings defaults;
-    defaults.width = 640;
-    defaults.height = 360;
-    SceneRequest request = loadSceneRequest(o.render, defaults);
+    SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
@@ -201,12 +212,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                   << plural(threadsFor(settings), "thread") << "...\n";
 
     const EmbreeScene embree(scene);
-    ReferenceSource source;
-    source.progress = progress;
-    if (!o.truth.noCache) {
-        const std::string dir = o.truth.cacheDir ? *o.truth.cacheDir : defaultCacheDir();
-        if (!dir.empty()) source.cacheDir = dir;
-    }
+    const ReferenceSource source = referenceSourceFrom(o.truth, err);
     bool fromCache = false;
     const ReferenceImage reference =
         referenceFor(embree, scene, camera, previous, settings, refSettings, source, fromCache);

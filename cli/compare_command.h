@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/reference_cache.h"
 #include "cli/render_command.h"
 #include "trace/reference/evaluation.h"
 
@@ -34,6 +35,12 @@ struct CompareOptions {
     TruthOptions truth;
     std::optional<std::string> output;  // .exr (frame + reference + checks) or .png
 };
+
+// The render settings compare and sweep start from: 640x360 (a reference renders in seconds).
+RenderSettings truthDefaults();
+// Where the reference comes from: the cache (--cache-dir, else defaultCacheDir(); none with
+// --no-cache) and progress on `err` unless quiet.
+ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& err);
 
 // Registers the reference, check and cache options (shared with sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);

@@ -244,10 +244,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
         "sweep",
         "Measure a grid of screen-space settings on one scene for time and error against the "
         "Embree truth, one CSV row per setting (chart it with perf/plot.py)");
-    RenderSettings d;
-    d.width = 640;
-    d.height = 360;
-    addSceneOptions(*cmd, o.render, d);
+    addSceneOptions(*cmd, o.render, truthDefaults());
     const auto list = [&](const std::string& flags, std::string& value, const std::string& help) {
         cmd->add_option(flags, value, help)->type_name("LIST")->capture_default_str()->group("Grid");
     };
@@ -268,10 +265,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
 }
 
 int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
-    RenderSettings defaults;
-    defaults.width = 640;
-    defaults.height = 360;
-    SceneRequest request = loadSceneRequest(o.render, defaults);
+    SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const std::vector<Point> points = grid(o);
     std::vector<RenderSettings> settings;
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
@@ -290,12 +284,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                   << plural(threadsFor(request.settings), "thread") << "\n";
 
     const EmbreeScene embree(scene);
-    ReferenceSource source;
-    source.progress = progress;
-    if (!o.truth.noCache) {
-        const std::string dir = o.truth.cacheDir ? *o.truth.cacheDir : defaultCacheDir();
-        if (!dir.empty()) source.cacheDir = dir;
-    }
+    const ReferenceSource source = referenceSourceFrom(o.truth, err);
     std::ostringstream csv;
     const auto& columns = sweepColumns();
     for (std::size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
