@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+
+#include "shading/energy_tables_data.h"
 
 namespace ssrt {
 
@@ -51,32 +54,44 @@ DfgSample integrateGgxAlbedo(double mu, double alpha, int n) {
     return {e * inv, a * inv, b * inv};
 }
 
+EnergyTables computeEnergyTables() {
+    EnergyTables t;
+    constexpr int N = kEnergyTableSize;
+    for (int j = 0; j < N; ++j) {
+        const double r = double(j) / (N - 1);
+        const double alpha = std::max(r * r, 1e-3);
+        for (int i = 0; i < N; ++i) {
+            const double x = double(i) / (N - 1);
+            const DfgSample s = integrateGgxAlbedo(std::max(x * x, 1e-4), alpha, 96);
+            t.e[j * N + i] = float(std::min(s.e, 1.0));
+            t.dfgA[j * N + i] = float(s.a);
+            t.dfgB[j * N + i] = float(s.b);
+        }
+        // E_avg = 2 int E mu dmu = 4 int E(x) x^3 dx over the table, linear in x = sqrt(mu)
+        // (midpoint rule on 64 points per interval: error far below the float table's).
+        double avg = 0;
+        constexpr int kSub = 64;
+        for (int i = 0; i + 1 < N; ++i)
+            for (int k = 0; k < kSub; ++k) {
+                const double f = (k + 0.5) / kSub, x = (i + f) / (N - 1);
+                const double e = t.e[j * N + i] + (t.e[j * N + i + 1] - t.e[j * N + i]) * f;
+                avg += 4.0 * e * x * x * x / (double(N - 1) * kSub);
+            }
+        t.eAvg[j] = float(std::min(avg, 1.0));
+    }
+    return t;
+}
+
 const EnergyTables& energyTables() {
+    // The tables as computeEnergyTables() made them, stored (shading/energy_tables_data.h):
+    // computing them costs half a second at start-up, and the stored bits do not depend on
+    // the machine's libm (a test compares the two).
     static const EnergyTables tables = [] {
         EnergyTables t;
-        constexpr int N = kEnergyTableSize;
-        for (int j = 0; j < N; ++j) {
-            const double r = double(j) / (N - 1);
-            const double alpha = std::max(r * r, 1e-3);
-            for (int i = 0; i < N; ++i) {
-                const double x = double(i) / (N - 1);
-                const DfgSample s = integrateGgxAlbedo(std::max(x * x, 1e-4), alpha, 96);
-                t.e[j * N + i] = float(std::min(s.e, 1.0));
-                t.dfgA[j * N + i] = float(s.a);
-                t.dfgB[j * N + i] = float(s.b);
-            }
-            // E_avg = 2 int E mu dmu = 4 int E(x) x^3 dx over the table, linear in x = sqrt(mu)
-            // (midpoint rule on 64 points per interval: error far below the float table's).
-            double avg = 0;
-            constexpr int kSub = 64;
-            for (int i = 0; i + 1 < N; ++i)
-                for (int k = 0; k < kSub; ++k) {
-                    const double f = (k + 0.5) / kSub, x = (i + f) / (N - 1);
-                    const double e = t.e[j * N + i] + (t.e[j * N + i + 1] - t.e[j * N + i]) * f;
-                    avg += 4.0 * e * x * x * x / (double(N - 1) * kSub);
-                }
-            t.eAvg[j] = float(std::min(avg, 1.0));
-        }
+        std::copy(std::begin(energy_data::kE), std::end(energy_data::kE), t.e.begin());
+        std::copy(std::begin(energy_data::kEAvg), std::end(energy_data::kEAvg), t.eAvg.begin());
+        std::copy(std::begin(energy_data::kDfgA), std::end(energy_data::kDfgA), t.dfgA.begin());
+        std::copy(std::begin(energy_data::kDfgB), std::end(energy_data::kDfgB), t.dfgB.begin());
         return t;
     }();
     return tables;

@@ -1,7 +1,7 @@
 // Precomputed GGX tables over (cos theta_v, perceptual roughness): the directional albedo E
 // and its cosine-weighted average E_avg of Kulla-Conty energy compensation, and the DFG
-// table of the split-sum image-based light. Computed deterministically at first use (double
-// precision, a fixed point set, no threads), used in float.
+// table of the split-sum image-based light. Computed deterministically (double precision, a
+// fixed point set, no threads), stored in shading/energy_tables_data.h, used in float.
 #pragma once
 
 #include <array>
@@ -23,8 +23,12 @@ struct EnergyTables {
     std::array<float, kEnergyTableSize * kEnergyTableSize> dfgA{}, dfgB{};
 };
 
-// The tables, built on first call (thread-safe, about 50 ms).
+// The stored tables (shading/energy_tables_data.h; copied out on first call, thread-safe).
 const EnergyTables& energyTables();
+
+// The tables computed afresh (about 0.5 s): what the stored ones were made from
+// (shading/gen_energy_tables.cpp writes them; a test checks that they still agree).
+EnergyTables computeEnergyTables();
 
 // The estimator behind the tables, for tests: E, dfgA, dfgB at one (mu, alpha) with n^2
 // stratified points (VNDF importance sampling, weight G2 / G1).

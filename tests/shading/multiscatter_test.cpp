@@ -119,3 +119,25 @@ TEST_CASE("shading: DFG table sums to E and matches the estimator") {
     CHECK(t.dfgA[N - 1] == doctest::Approx(1.0).epsilon(2e-3));
     CHECK(t.dfgB[N - 1] < 1e-3);
 }
+
+TEST_CASE("shading: the stored energy tables are what the estimator computes") {
+    // The stored bits (shading/energy_tables_data.h) came from computeEnergyTables(); another
+    // libm may round a double differently, so allow a float ulp or two, no more.
+    const EnergyTables& stored = energyTables();
+    const EnergyTables fresh = computeEnergyTables();
+    const auto agree = [](const auto& a, const auto& b) {
+        REQUIRE(a.size() == b.size());
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (std::fabs(a[i] - b[i]) > 2.5e-7f * std::max(1.0f, std::fabs(b[i]))) {
+                INFO("entry " << i << ": stored " << a[i] << ", computed " << b[i]);
+                return false;
+            }
+        return true;
+    };
+    CHECK(agree(stored.e, fresh.e));
+    CHECK(agree(stored.eAvg, fresh.eAvg));
+    CHECK(agree(stored.dfgA, fresh.dfgA));
+    CHECK(agree(stored.dfgB, fresh.dfgB));
+    // And the tables are not trivially equal: they vary over the grid.
+    CHECK(stored.e[0] != stored.e[kEnergyTableSize * kEnergyTableSize - 1]);
+}
