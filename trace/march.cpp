@@ -232,6 +232,9 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
 
     const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
     result.ensureSize(w, h);
+    const std::size_t outStride = result.hit.stride();
+    for (const PlaneF* p : {&result.hitX, &result.hitY, &result.hitZ, &result.steps, &result.cause})
+        if (p->stride() != outStride) throw std::logic_error("marchRays: result planes differ in stride");
     const TileGrid grid(w, h);
     std::vector<MarchStats> tileStats(std::size_t(grid.count()));
     const std::size_t histogramSize = std::size_t(settings.maxSteps) + 1;
@@ -333,24 +336,29 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         args.cause = A[TileScratch::kCause];
         args.laneSlots = args.laneActive = 0;
         kernel(args);
-        // Scatter the results and count.
+        // Scatter the results and count (plane pointers and counters in locals: stores
+        // through float pointers would otherwise make the compiler reload them per ray).
         st.rays = uint64_t(n);
         st.laneSlots = args.laneSlots;
         st.laneActive = args.laneActive;
+        float* const out[6] = {result.hit.row(0),  result.hitX.row(0),  result.hitY.row(0),
+                               result.hitZ.row(0), result.steps.row(0), result.cause.row(0)};
+        const float* const from[6] = {args.hit,  args.hitX,  args.hitY,
+                                      args.hitZ, args.steps, args.cause};
+        const std::size_t stride = outStride;
+        uint64_t ends[kMarchEndCount] = {}, steps = 0;
+        uint64_t* const histogram = st.stepHistogram.data();
         for (int i = 0; i < n; ++i) {
-            const int x = int(args.pixelX[i]), y = int(args.pixelY[i]);
-            result.hit.at(x, y) = args.hit[i];
-            result.hitX.at(x, y) = args.hitX[i];
-            result.hitY.at(x, y) = args.hitY[i];
-            result.hitZ.at(x, y) = args.hitZ[i];
-            result.steps.at(x, y) = args.steps[i];
-            result.cause.at(x, y) = args.cause[i];
+            const std::size_t at = std::size_t(args.pixelY[i]) * stride + std::size_t(args.pixelX[i]);
+            for (int p = 0; p < 6; ++p) out[p][at] = from[p][i];
             const int cause = int(args.cause[i]);
-            if (cause >= 0 && cause < kMarchEndCount) ++st.ends[cause];
+            if (cause >= 0 && cause < kMarchEndCount) ++ends[cause];
             const uint64_t s = uint64_t(args.steps[i]);
-            st.steps += s;
-            ++st.stepHistogram[std::min<std::size_t>(std::size_t(s), histogramSize - 1)];
+            steps += s;
+            ++histogram[std::min<std::size_t>(std::size_t(s), histogramSize - 1)];
         }
+        st.steps = steps;
+        for (int c = 0; c < kMarchEndCount; ++c) st.ends[c] = ends[c];
     });
     MarchStats total;
     total.stepHistogram.assign(histogramSize, 0);

@@ -35,11 +35,19 @@ SSRT_INLINE Lane levelTable(const float* table, ILane L) {
 #endif
 }
 
+// A cell's side in pixels at level L, and its reciprocal (powers of two: exact).
+alignas(64) constexpr float kCellSize[kMaxHiZLevels] = {1,    2,    4,    8,    16,   32,
+                                                        64,   128,  256,  512,  1024, 2048,
+                                                        4096, 8192, 16384, 32768};
+alignas(64) constexpr float kInvCellSize[kMaxHiZLevels] = {
+    1.0f,         0.5f,          0.25f,         0.125f,         0.0625f,         0.03125f,
+    0x1p-6f,      0x1p-7f,       0x1p-8f,       0x1p-9f,        0x1p-10f,        0x1p-11f,
+    0x1p-12f,     0x1p-13f,      0x1p-14f,      0x1p-15f};
+
 // 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
-SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, Lane level, Lane cx, Lane cy) {
+SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, ILane L, Lane level, Lane cx, Lane cy) {
     if (a.hizInvPacked) {
         // Packed pyramid: the level tables from registers, one gather for the depth.
-        const ILane L = ln::toIntTrunc(level);
         const Lane width = levelTable(a.hizWidthF, L);
         const Lane x = ln::clamp(cx, Lane(0.0f), width - Lane(1.0f));
         const Lane y = ln::max(cy, Lane(0.0f));
@@ -67,7 +75,7 @@ struct Group {
     ScreenSegment s;
     Lane dPx, dPy, dk, invDx, invDy, invDk, floorX, floorY, nudgeX, nudgeY;
     Mask deeper;
-    Lane t, px, py, level, size, invSize;
+    Lane t, px, py, level;  // the cell size follows from the level (kCellSize)
     LaneEnds e;
     int base;
 
@@ -98,8 +106,6 @@ struct Group {
         const Lane planeY = (ln::floor(s.y0 * invD) + floorY) * sizeD + nudgeY;
         t = ln::min((planeX - s.x0) * invDx, (planeY - s.y0) * invDy);
         level = Lane(float(a.startLevel));
-        size = Lane(float(1 << a.startLevel));
-        invSize = Lane(1.0f / float(1 << a.startLevel));
         e = startEnds(a, base);
         px = s.x0 + dPx * t;
         py = s.y0 + dPy * t;
@@ -107,7 +113,7 @@ struct Group {
 
     // One iteration for the lanes still marching; false when none is.
     SSRT_INLINE bool step(MarchKernelArgs& a) {
-        const Lane zero(0.0f), one(1.0f), two(2.0f), half(0.5f), big(1e30f);
+        const Lane zero(0.0f), one(1.0f), big(1e30f);
         Mask active = e.cause < zero;
         if (!ln::any(active)) return false;
         // Off screen, past the end of the segment or out of iterations: a miss.
@@ -125,8 +131,10 @@ struct Group {
         countLanes(a, active);
         e.steps = ln::select(active, e.steps + one, e.steps);
         // The cell's minimum depth and the three planes.
+        const ILane L = ln::toIntTrunc(level);
+        const Lane size = levelTable(kCellSize, L), invSize = levelTable(kInvCellSize, L);
         const Lane cellX = ln::floor(px * invSize), cellY = ln::floor(py * invSize);
-        const Lane kSurface = loadInvMinZ(a, level, cellX, cellY);  // background: 0
+        const Lane kSurface = loadInvMinZ(a, L, level, cellX, cellY);  // background: 0
         const Lane tx = ((cellX + floorX) * size + nudgeX - s.x0) * invDx;
         const Lane ty = ((cellY + floorY) * size + nudgeY - s.y0) * invDy;
         const Lane tz = ln::select(deeper, (kSurface - s.k0) * invDk, big);
@@ -141,8 +149,6 @@ struct Group {
         const Mask up = active & skipped & (level < Lane(float(a.hizLevels - 1)));
         const Mask down = active & !skipped;
         level = ln::select(up, level + one, ln::select(down, level - one, level));
-        size = ln::select(up, size * two, ln::select(down, size * half, size));
-        invSize = ln::select(up, invSize * half, ln::select(down, invSize * two, invSize));
         // Below the most detailed level: a candidate hit (keep the level loadable).
         const Lane mostDetailed(float(a.mostDetailedLevel));
         Mask candidate = active & (level < mostDetailed);
@@ -161,8 +167,6 @@ struct Group {
             px = s.x0 + dPx * t;
             py = s.y0 + dPy * t;
             level = ln::select(inFront, mostDetailed, level);
-            size = ln::select(inFront, cellSize, size);
-            invSize = ln::select(inFront, invCell, invSize);
             candidate = candidate & !inFront;
         }
         e.cause = ln::select(candidate, endCode(MarchEnd::Hit), e.cause);
