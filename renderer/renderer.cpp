@@ -392,6 +392,13 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
             if (p.stride() != da.outStride) throw std::logic_error("direct part plane stride");
             parts[i / 3][i % 3] = p.row(0);
         }
+        if (s.trace.ssgi)
+            for (int c = 0; c < 3; ++c) {
+                PlaneF& p = frame.scratch.hitLight[c];
+                p.ensureSize(w, h);
+                if (p.stride() != da.outStride) throw std::logic_error("hit light plane stride");
+                da.hitLight[c] = p.row(0);
+            }
     }
     const auto shade = SSRT_DISPATCH(isa, shadeTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });

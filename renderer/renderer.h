@@ -103,6 +103,7 @@ struct Frame {
         ColorPyramid colorPyramid;
         SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent the frame's planes
         PlaneF directParts[15];   // direct, emission, envDiffuse, envSpecular, specWeight (RGB each)
+        PlaneF hitLight[3];       // DirectArgs::hitLight, for SSGI
         PlaneF previousColor[3];  // last frame's final colour, for reprojected SSR hits
         bool hasPrevious = false;
     } scratch;

@@ -153,6 +153,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
             in.normal[c] = normal[c];
             in.albedo[c] = albedo[c];
             in.emission[c] = direct.anyEmissive ? &parts[3 + c] : nullptr;
+            in.hitLight[c] = &sc.hitLight[c];
             ssgi[c] = &planeOf(frame, c == 0 ? "ssgi.R" : c == 1 ? "ssgi.G" : "ssgi.B");
         }
         in.metallic = &frame.plane("metallic");

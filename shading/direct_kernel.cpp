@@ -41,7 +41,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     Lane visibility(1.0f);
     const Lane zero(0.0f);
     V3 sun = color, emission{zero, zero, zero}, envDiffuse = emission, specWeight = emission,
-       envSpecular = emission;
+       envSpecular = emission, hitLight = emission;
     if (!ln::all(background)) {
         Surface s;
         s.p = splat3(a.camPos) + dirWorld * viewZ;
@@ -66,6 +66,13 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
             lit = lit + e;
             emission = ln::select(background, emission, e);
         }
+        if (a.hitLight[0]) {
+            const Lane NoL = ln::saturate(ln::dot(s.n, splat3(a.toLight)));
+            const V3 diffuse = s.albedo * ((Lane(1.0f) - s.metallic) * Lane(ln::kInvPi));
+            V3 light = diffuse * splat3(a.lightRadiance) * (NoL * vis);
+            if (a.anyEmissive) light = light + emission;
+            hitLight = ln::select(background, hitLight, light);
+        }
         color = ln::select(background, color, lit);
         visibility = ln::select(background, visibility, vis);
         sun = ln::select(background, sun, parts.sun);
@@ -86,6 +93,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     put(a.envDiffuse, envDiffuse);
     put(a.envSpecular, envSpecular);
     put(a.specWeight, specWeight);
+    put(a.hitLight, hitLight);
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};

@@ -66,6 +66,12 @@ struct DirectArgs {
     float* envDiffuse[3];
     float* envSpecular[3];
     float* specWeight[3];
+    // Optional too (null = not written): the Lambert part of the sun light leaving each
+    // surface pixel, plus its emission where any material emits,
+    //   albedo (1 - metallic) / pi  lightRadiance  saturate(n.l)  shadow  (+ emission),
+    // the radiance SSGI reads at its hits (trace/ssgi.h), in SSGI's order of operations so
+    // that reading it gives the bits SSGI computed from the G-buffer; 0 on background.
+    float* hitLight[3];
     // Kulla-Conty energy compensation of the specWeight part (null: none, the part is the
     // single-scattering factor above). With the tables, the part is multiplied by
     //   1 + F0 (1 / E(n.v, roughness) - 1)

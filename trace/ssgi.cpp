@@ -34,14 +34,18 @@ void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const Marc
     a.tilesX = grid.tilesX;
     a.stride = out[0].stride();
     a.viewZ = need(in.viewZ, w, h, "viewZ");
-    for (int c = 0; c < 3; ++c) {
-        a.normal[c] = need(in.normal[c], w, h, "normal");
-        a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+    if (in.hitLight[0] || in.hitLight[1] || in.hitLight[2]) {
+        for (int c = 0; c < 3; ++c) a.hitLight[c] = need(in.hitLight[c], w, h, "hitLight");
+    } else {
+        for (int c = 0; c < 3; ++c) {
+            a.normal[c] = need(in.normal[c], w, h, "normal");
+            a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+        }
+        a.metallic = need(in.metallic, w, h, "metallic");
+        a.shadow = need(in.shadow, w, h, "shadow");
+        if (in.emission[0] || in.emission[1] || in.emission[2])
+            for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], w, h, "emission");
     }
-    a.metallic = need(in.metallic, w, h, "metallic");
-    a.shadow = need(in.shadow, w, h, "shadow");
-    if (in.emission[0] || in.emission[1] || in.emission[2])
-        for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], w, h, "emission");
     const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
     for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
     a.pdf = need(&rays.pdf, w, h, "ray pdf");

@@ -33,6 +33,10 @@ struct SsgiInputs {
     const PlaneF* metallic = nullptr;  // "metallic"
     const PlaneF* shadow = nullptr;    // the direct pass's "shadow"
     const PlaneF* emission[3] = {};    // optional: DirectArgs::emission planes (null: none)
+    // Optional: DirectArgs::hitLight planes, L(x1 -> x0) of every pixel as above, computed
+    // by the direct pass; when given, normal, albedo, metallic, shadow and emission are not
+    // read (the same bits, fewer gathers).
+    const PlaneF* hitLight[3] = {};
     // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
     // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
     // renderer fills them; their plane pointers are not used.

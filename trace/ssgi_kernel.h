@@ -20,6 +20,7 @@ struct SsgiArgs {
     const float* metallic;
     const float* shadow;
     const float* emission[3];  // all null: no emission
+    const float* hitLight[3];  // all null: computed from the planes above (SsgiInputs)
     const float* rayDir[3];    // view space
     const float* pdf;
     const float* hit;

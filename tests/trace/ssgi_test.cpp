@@ -10,6 +10,7 @@
 
 #include "core/lane_math.h"
 #include "core/rng.h"
+#include "renderer/direct_lighting.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/environment.h"
@@ -81,6 +82,31 @@ struct Furnace {
 };
 
 }  // namespace
+
+// Random rays from most surface pixels and hits anywhere: the frame's edges and background
+// pixels included.
+void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) {
+    const int w = viewZ.width(), h = viewZ.height();
+    rays.ensureSize(w, h);
+    march.ensureSize(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t i = uint32_t(y * w + x);
+            const float u[5] = {randomFloat(i, 9, 0, 0), randomFloat(i, 9, 0, 1),
+                                randomFloat(i, 9, 0, 2), randomFloat(i, 9, 0, 3),
+                                randomFloat(i, 9, 0, 4)};
+            const bool ray = viewZ.at(x, y) > 0.0f && u[0] > 0.1f;
+            rays.pdf.at(x, y) = ray ? u[1] : 0.0f;
+            const float dx = u[2] - 0.5f, dy = u[3] - 0.5f, dz = u[4] - 0.5f;
+            const float len = std::sqrt(dx * dx + dy * dy + dz * dz);
+            rays.dx.at(x, y) = ray ? dx / len : 0.0f;
+            rays.dy.at(x, y) = ray ? dy / len : 0.0f;
+            rays.dz.at(x, y) = ray ? dz / len : 0.0f;
+            march.hit.at(x, y) = ray && u[4] < 0.6f ? 1.0f : 0.0f;
+            march.hitX.at(x, y) = march.hit.at(x, y) > 0 ? float(w) * u[2] * 1.1f - 2.0f : 0.0f;
+            march.hitY.at(x, y) = march.hit.at(x, y) > 0 ? float(h) * u[3] : 0.0f;
+        }
+}
 
 TEST_CASE("ssgi: every hit on a surface of known direct light gives that radiance") {
     Furnace f;
@@ -171,26 +197,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     in.lighting = &light;
     RayBatch rays;
     MarchResult march;
-    rays.ensureSize(w, h);
-    march.ensureSize(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const uint32_t i = uint32_t(y * w + x);
-            const float u[5] = {randomFloat(i, 9, 0, 0), randomFloat(i, 9, 0, 1),
-                                randomFloat(i, 9, 0, 2), randomFloat(i, 9, 0, 3),
-                                randomFloat(i, 9, 0, 4)};
-            const bool ray = in.viewZ->at(x, y) > 0.0f && u[0] > 0.1f;
-            rays.pdf.at(x, y) = ray ? u[1] : 0.0f;
-            const float dx = u[2] - 0.5f, dy = u[3] - 0.5f, dz = u[4] - 0.5f;
-            const float len = std::sqrt(dx * dx + dy * dy + dz * dz);
-            rays.dx.at(x, y) = ray ? dx / len : 0.0f;
-            rays.dy.at(x, y) = ray ? dy / len : 0.0f;
-            rays.dz.at(x, y) = ray ? dz / len : 0.0f;
-            march.hit.at(x, y) = ray && u[4] < 0.6f ? 1.0f : 0.0f;
-            // Hits anywhere, the frame's edges and background pixels included.
-            march.hitX.at(x, y) = march.hit.at(x, y) > 0 ? float(w) * u[2] * 1.1f - 2.0f : 0.0f;
-            march.hitY.at(x, y) = march.hit.at(x, y) > 0 ? float(h) * u[3] : 0.0f;
-        }
+    randomRaysAndHits(*in.viewZ, rays, march);
     PlaneF ref[3];
     for (int k = 0; k < 3; ++k) resolveSsgi(Isa::Scalar, in, rays, march, ref, k, 3, 1);
     bool finite = true;
@@ -239,4 +246,58 @@ TEST_CASE("ssgi: misses read the equirect sky image when there is one") {
             CHECK(out[0].at(x, y) == doctest::Approx(0.5f).epsilon(1e-6));
             CHECK(out[2].at(x, y) == doctest::Approx(2.0f).epsilon(1e-6));
         }
+}
+
+TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path") {
+    for (const bool emits : {false, true}) {
+        CAPTURE(emits);
+        Scene scene = makeBuiltinScene("cornell");
+        if (emits) scene.materials[0].emissive = glm::vec3(2.0f, 1.0f, 0.5f);
+        RenderSettings rs;
+        rs.width = 133;
+        rs.height = 77;
+        rs.shadowMapSize = 128;
+        rs.threads = 2;
+        Frame frame;
+        Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame);
+        DirectLighting dl;
+        setDirectLighting(scene, rs, frame.scratch.shadow, nullptr, dl);
+        REQUIRE(dl.args.anyEmissive == emits);
+        SsgiInputs in;
+        in.camera = frame.camera;
+        in.viewZ = &frame.plane("viewZ");
+        const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
+        const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
+        for (int c = 0; c < 3; ++c) {
+            in.normal[c] = &frame.plane(n[c]);
+            in.albedo[c] = &frame.plane(a[c]);
+            in.emission[c] = emits ? &frame.scratch.directParts[3 + c] : nullptr;
+        }
+        in.metallic = &frame.plane("metallic");
+        in.shadow = &frame.plane("shadow");
+        in.lighting = &dl.args;
+        RayBatch rays;
+        MarchResult march;
+        randomRaysAndHits(*in.viewZ, rays, march);
+        PlaneF ref[3];
+        resolveSsgi(Isa::Scalar, in, rays, march, ref, 0, 1, 1);
+        // Lit hits there are, so equal planes say something.
+        int lit = 0;
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x)
+                lit += march.hit.at(x, y) > 0.0f && ref[0].at(x, y) > 0.0f;
+        CHECK(lit > 100);
+        SsgiInputs fast = in;
+        for (int c = 0; c < 3; ++c) {
+            fast.hitLight[c] = &frame.scratch.hitLight[c];
+            fast.normal[c] = fast.albedo[c] = fast.emission[c] = nullptr;
+        }
+        fast.metallic = fast.shadow = nullptr;
+        for (Isa isa : supportedIsas()) {
+            CAPTURE(isaName(isa));
+            PlaneF out[3];
+            resolveSsgi(isa, fast, rays, march, out, 0, 1, 2);
+            for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], ref[c]));
+        }
+    }
 }
