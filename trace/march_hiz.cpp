@@ -116,18 +116,22 @@ struct Group {
         const Lane zero(0.0f), one(1.0f), big(1e30f);
         Mask active = e.cause < zero;
         if (!ln::any(active)) return false;
-        // Off screen, past the end of the segment or out of iterations: a miss.
+        // Off screen, past the end of the segment or out of iterations: a miss. (Most steps
+        // end no lane: the end codes are worked out only when one does.)
         const Mask left = !onScreen(a, px, py);
         const Mask past = t > one;
-        Lane c = ln::select(
-            past,
-            ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen), endCode(MarchEnd::StepCap)),
-            Lane(kMarching));
-        c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
-        c = ln::select(e.steps >= Lane(float(a.maxSteps)), endCode(MarchEnd::StepCap), c);
-        e.cause = ln::select(active, c, e.cause);
-        active = e.cause < zero;
-        if (!ln::any(active)) return false;
+        const Mask capped = e.steps >= Lane(float(a.maxSteps));
+        if (ln::any(active & (left | past | capped))) {
+            Lane c = ln::select(past,
+                                ln::select(s.nearClipped, endCode(MarchEnd::LeftScreen),
+                                           endCode(MarchEnd::StepCap)),
+                                Lane(kMarching));
+            c = ln::select(left, endCode(MarchEnd::LeftScreen), c);
+            c = ln::select(capped, endCode(MarchEnd::StepCap), c);
+            e.cause = ln::select(active, c, e.cause);
+            active = e.cause < zero;
+            if (!ln::any(active)) return false;
+        }
         countLanes(a, active);
         e.steps = ln::select(active, e.steps + one, e.steps);
         // The cell's minimum depth and the three planes.
