@@ -124,26 +124,13 @@ struct TileScratch {
 // paths, so a lane group's rays end after similar step counts (fewer idle lanes) and read
 // nearby cells. Only the order of the rays changes: each lane's path depends on its own ray
 // alone, so no result bit does (tests/trace/march_test.cpp holds every ray to the same ray
-// marched alone).
-constexpr int kSectors = 64;
-constexpr int kSortBuckets = 2 * kSectors;
+// marched alone). The keys come from marchSortKeys (trace/march_keys.cpp): the screen
+// direction of a view point's motion along the ray (origin o, direction d) is (sx (o.x d.z -
+// d.x o.z), sy (d.y o.z - o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z)
+// along the ray); its angle is binned by the "diamond angle" in [0, 4), monotonic in the
+// angle, no arctangent.
+constexpr int kSortBuckets = 2 * kSortSectors;
 constexpr int kSortBlock = 4;
-
-// The bucket of a view-space ray (origin o, direction d); sx, sy: the projection's scales.
-// The screen direction of a view point's motion is (sx (o.x d.z - d.x o.z), sy (d.y o.z -
-// o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z) along the ray); its
-// angle is binned by the "diamond angle" in [0, 4), monotonic in the angle, no arctangent.
-int sortBucket(float sx, float sy, float ox, float oy, float oz, float dx, float dy, float dz) {
-    const float u = sx * (ox * dz - dx * oz), v = sy * (dy * oz - oy * dz);
-    const float sum = std::fabs(u) + std::fabs(v);
-    float angle = 0.0f;
-    if (sum > 0.0f) {
-        const float r = v / sum;  // [-1, 1]
-        angle = u >= 0.0f ? (v >= 0.0f ? r : 4.0f + r) : 2.0f - r;
-    }
-    const int sector = std::clamp(int(angle * (0.25f * float(kSectors))), 0, kSectors - 1);
-    return 2 * sector + (dz > 0.0f ? 1 : 0);
-}
 
 void checkPlane(const PlaneF* p, int w, int h, const char* name) {
     if (!p || p->width() != w || p->height() != h)
@@ -230,6 +217,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                   : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
                                              : SSRT_DISPATCH(isa, marchHiZKernel);
 
+    const auto sortKeys = SSRT_DISPATCH(isa, marchSortKeys);
     const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
     result.ensureSize(w, h);
     const std::size_t outStride = result.hit.stride();
@@ -253,23 +241,14 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         int counts[kSortBuckets + 1] = {};
         const int tw = rect.x1 - rect.x0;
         for (int y = rect.y0; y < rect.y1; ++y) {
-            const float* pdf = rays.pdf.row(y);
-            const float *DX = rays.dx.row(y), *DY = rays.dy.row(y), *DZ = rays.dz.row(y);
-            const float *OX = rays.ox.row(y), *OY = rays.oy.row(y), *OZ = rays.oz.row(y);
+            const int x = rect.x0;
             int8_t* k = key + (y - rect.y0) * tw;
-            for (int x = rect.x0; x < rect.x1; ++x) {
-                const float dx = DX[x], dy = DY[x], dz = DZ[x];
-                const float ox = OX[x], oy = OY[x], oz = OZ[x];
-                const bool finite = std::isfinite(dx) && std::isfinite(dy) && std::isfinite(dz) &&
-                                    std::isfinite(ox) && std::isfinite(oy) && std::isfinite(oz);
-                if (!(pdf[x] > 0.0f) || !finite || dx * dx + dy * dy + dz * dz == 0.0f ||
-                    !(-oz > 0.0f)) {
-                    k[x - rect.x0] = -1;
-                    continue;
-                }
-                k[x - rect.x0] = int8_t(sortBucket(proto.sx, proto.sy, ox, oy, oz, dx, dy, dz));
-                ++counts[k[x - rect.x0] + 1];
-            }
+            const SortKeyArgs ka{rays.pdf.row(y) + x, rays.ox.row(y) + x, rays.oy.row(y) + x,
+                                 rays.oz.row(y) + x,  rays.dx.row(y) + x, rays.dy.row(y) + x,
+                                 rays.dz.row(y) + x,  tw, proto.sx, proto.sy, k};
+            sortKeys(ka);
+            for (int i = 0; i < tw; ++i)
+                if (k[i] >= 0) ++counts[k[i] + 1];
         }
         for (int b = 1; b <= kSortBuckets; ++b) counts[b] += counts[b - 1];
         const int n = counts[kSortBuckets];

@@ -52,6 +52,19 @@ struct MarchKernelArgs {
     uint64_t laneSlots, laneActive;
 };
 
+// The packing key of each of `count` rays in a row (trace/march.cpp: the ray's bucket by its
+// screen-space direction, 2 sector + (dir.z > 0)), or -1 where the pixel has no ray (pdf <= 0,
+// a non-finite or zero direction or origin, an origin not in front of the camera). The row
+// planes are read in whole lane groups: they must be padded to a multiple of 16 floats.
+inline constexpr int kSortSectors = 64;
+struct SortKeyArgs {
+    const float *pdf, *ox, *oy, *oz, *dx, *dy, *dz;
+    int count;
+    float sx, sy;  // MarchKernelArgs::sx, sy
+    int8_t* key;
+};
+
+SSRT_DECLARE_KERNEL(void, marchSortKeys, (const SortKeyArgs& args))
 SSRT_DECLARE_KERNEL(void, marchLinearKernel, (MarchKernelArgs & args))
 SSRT_DECLARE_KERNEL(void, marchDdaKernel, (MarchKernelArgs & args))
 SSRT_DECLARE_KERNEL(void, marchHiZKernel, (MarchKernelArgs & args))
