@@ -18,6 +18,13 @@ namespace ssrt {
 
 struct HiZPyramid {
     std::vector<PlaneF> minZ, maxZ;  // [level], level 0 = full resolution
+    // Every level of minZ packed for a hardware gather (the Hi-Z marcher's reads): level after
+    // level, rows of the level's width without padding, as 1 / minZ (background 0); level L
+    // starts at packedOffset[L]. Empty when the whole would reach 2^24 elements (the marcher
+    // indexes it with exact floats) or when the pyramid was not made by buildHiZ; code that
+    // changes minZ after buildHiZ must clear it (marchRays then packs its own copy).
+    std::vector<float> invMinPacked;
+    std::vector<std::size_t> packedOffset;
     int levels() const { return int(minZ.size()); }
 };
 

@@ -187,26 +187,35 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             proto.hizWidth[L] = p.width();
             proto.hizHeight[L] = p.height();
         }
-        // The packed reciprocal copy for the hardware gather (rebuilt per call: about 1.33
-        // frames of floats, small next to the march).
+        // The packed reciprocal copy for the hardware gather: buildHiZ's, or made here for a
+        // pyramid that lacks it (about 1.33 frames of floats).
         std::size_t total = 0;
         for (int L = 0; L < proto.hizLevels; ++L)
             total += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
         if (total < (std::size_t(1) << 24)) {
-            packed.resize(total);
             std::size_t offset = 0;
             for (int L = 0; L < proto.hizLevels; ++L) {
                 proto.hizOffset[L] = float(offset);
                 proto.hizWidthF[L] = float(proto.hizWidth[L]);
                 offset += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
             }
-            parallelFor(proto.hizLevels, threads, [&](int L) {
-                const PlaneF& p = hiz->minZ[std::size_t(L)];
-                float* out = packed.data() + std::size_t(proto.hizOffset[L]);
-                for (int y = 0; y < p.height(); ++y)
-                    for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
-            });
-            proto.hizInvPacked = packed.data();
+            const bool built = hiz->invMinPacked.size() == total &&
+                               hiz->packedOffset.size() >= std::size_t(proto.hizLevels) &&
+                               std::equal(hiz->packedOffset.begin(),
+                                          hiz->packedOffset.begin() + proto.hizLevels,
+                                          proto.hizOffset, [](std::size_t a, float b) {
+                                              return float(a) == b;
+                                          });
+            if (!built) {
+                packed.resize(total);
+                parallelFor(proto.hizLevels, threads, [&](int L) {
+                    const PlaneF& p = hiz->minZ[std::size_t(L)];
+                    float* out = packed.data() + std::size_t(proto.hizOffset[L]);
+                    for (int y = 0; y < p.height(); ++y)
+                        for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
+                });
+            }
+            proto.hizInvPacked = built ? hiz->invMinPacked.data() : packed.data();
             proto.hizPackedLast = float(total - 1);
         }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "core/isa.h"
+#include "plane_compare.h"
 #include "raster/hiz.h"
 #include "tests/trace/march_fixture.h"
 #include "trace/ray_gen.h"
@@ -135,6 +136,48 @@ TEST_CASE("march: hi-z levels equal brute-force min/max of their footprint") {
     buildHiZ(g.viewZ, hiz, 1);
     CHECK(hiz.minZ[3].row(0) == before);
     CHECK(hashPlane(hiz.minZ[2]) == h);
+}
+
+TEST_CASE("march: hi-z packs 1/minZ once, and marching from it equals packing per call") {
+    const GBuf g = renderGBuffer("spheres", 101, 77);
+    HiZPyramid hiz;
+    buildHiZ(g.viewZ, hiz, 2);
+    REQUIRE(hiz.packedOffset.size() == std::size_t(hiz.levels()));
+    bool background = false;
+    for (int L = 0; L < hiz.levels(); ++L) {
+        const PlaneF& lo = hiz.minZ[std::size_t(L)];
+        const float* packed = hiz.invMinPacked.data() + hiz.packedOffset[std::size_t(L)];
+        for (int y = 0; y < lo.height(); ++y)
+            for (int x = 0; x < lo.width(); ++x) {
+                const float want = 1.0f / lo.at(x, y);  // background (+inf) -> 0
+                background |= want == 0.0f;
+                REQUIRE(std::bit_cast<uint32_t>(*packed++) == std::bit_cast<uint32_t>(want));
+            }
+    }
+    CHECK(background);
+    CHECK(hiz.packedOffset.back() + 1 == hiz.invMinPacked.size());  // the last level is 1x1
+    // A pyramid without the packed copy (not from buildHiZ) is packed by marchRays itself.
+    HiZPyramid bare;
+    buildHiZ(g.viewZ, bare, 1);
+    bare.invMinPacked.clear();
+    bare.packedOffset.clear();
+    const RayBatch rays = mirrorRays(g);
+    MarchResult a, b;
+    const MarchSettings s;
+    for (Isa isa : supportedIsas()) {
+        CAPTURE(isaName(isa));
+        marchRays(isa, Marcher::HiZ, s, g.camera, g.view(), &hiz, rays, a, 2);
+        marchRays(isa, Marcher::HiZ, s, g.camera, g.view(), &bare, rays, b, 2);
+        CHECK(sameBits(a.hit, b.hit));
+        CHECK(sameBits(a.hitX, b.hitX));
+        CHECK(sameBits(a.hitZ, b.hitZ));
+        CHECK(sameBits(a.steps, b.steps));
+    }
+    // Equal planes say something only if rays hit.
+    int hits = 0;
+    for (int y = 0; y < 77; ++y)
+        for (int x = 0; x < 101; ++x) hits += a.hit.at(x, y) > 0.0f;
+    CHECK(hits > 100);
 }
 
 TEST_CASE("march: mirror floor under a box hits the box face at the analytic pixel") {
