@@ -67,34 +67,30 @@ void reduceLevel(const PlaneF& srcMin, const PlaneF& srcMax, PlaneF& minZ, Plane
 
 }  // namespace
 
-namespace {
-
-// HiZPyramid::invMinPacked, built once per pyramid (it used to be rebuilt by every marchRays
-// call: twice a frame, with an 11 MB allocation each at 1080p).
-void packInverseMin(HiZPyramid& pyramid, int threads) {
-    const int levels = pyramid.levels();
-    pyramid.packedOffset.assign(std::size_t(levels), 0);
+// HiZPyramid::invMinPacked is built once per pyramid here (marchRays used to pack its own
+// copy every call: twice a frame, an 11 MB allocation each at 1080p).
+bool packInverseMin(const std::vector<PlaneF>& minZ, std::vector<float>& packed,
+                    std::vector<std::size_t>& offset, int threads) {
+    offset.assign(minZ.size(), 0);
     std::size_t total = 0;
-    for (int L = 0; L < levels; ++L) {
-        pyramid.packedOffset[std::size_t(L)] = total;
-        const PlaneF& p = pyramid.minZ[std::size_t(L)];
-        total += std::size_t(p.width()) * std::size_t(p.height());
+    for (std::size_t L = 0; L < minZ.size(); ++L) {
+        offset[L] = total;
+        total += std::size_t(minZ[L].width()) * std::size_t(minZ[L].height());
     }
-    if (total >= (std::size_t(1) << 24)) {
-        pyramid.invMinPacked.clear();
-        pyramid.packedOffset.clear();
-        return;
+    if (total >= kHiZMaxPacked) {
+        packed.clear();
+        offset.clear();
+        return false;
     }
-    pyramid.invMinPacked.resize(total);
-    parallelFor(levels, threads, [&](int L) {
-        const PlaneF& p = pyramid.minZ[std::size_t(L)];
-        float* out = pyramid.invMinPacked.data() + pyramid.packedOffset[std::size_t(L)];
+    packed.resize(total);
+    parallelFor(int(minZ.size()), threads, [&](int L) {
+        const PlaneF& p = minZ[std::size_t(L)];
+        float* out = packed.data() + offset[std::size_t(L)];
         for (int y = 0; y < p.height(); ++y)
             for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
     });
+    return true;
 }
-
-}  // namespace
 
 void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads) {
     if (viewZ.empty()) throw std::invalid_argument("buildHiZ: viewZ is empty");
@@ -112,7 +108,7 @@ void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads) {
     for (std::size_t k = 1; k < std::size_t(levels); ++k)
         reduceLevel(pyramid.minZ[k - 1], pyramid.maxZ[k - 1], pyramid.minZ[k], pyramid.maxZ[k],
                     threads);
-    packInverseMin(pyramid, threads);
+    packInverseMin(pyramid.minZ, pyramid.invMinPacked, pyramid.packedOffset, threads);
 }
 
 }  // namespace ssrt

@@ -28,10 +28,17 @@ struct HiZPyramid {
     int levels() const { return int(minZ.size()); }
 };
 
-// Builds every level from the G-buffer's viewZ; reuses the planes when the sizes match.
-// Rows of a level are cut across `threads` workers (0 = every core); min and max are exact,
-// so the result does not depend on the thread count.
+// Builds every level from the G-buffer's viewZ, and the packed 1/minZ copy; reuses the
+// planes when the sizes match. Rows of a level are cut across `threads` workers (0 = every
+// core); min and max are exact, so the result does not depend on the thread count.
 void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads);
+
+// The packed copy's size limit (elements), and the packing itself: minZ levels into `packed`
+// and `offset` as HiZPyramid::invMinPacked and packedOffset; false (both emptied) when the
+// whole would reach the limit.
+inline constexpr std::size_t kHiZMaxPacked = std::size_t(1) << 24;
+bool packInverseMin(const std::vector<PlaneF>& minZ, std::vector<float>& packed,
+                    std::vector<std::size_t>& offset, int threads);
 
 // Number of levels for a w x h image: down to 1x1.
 int hiZLevelCount(int width, int height);

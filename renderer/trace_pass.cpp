@@ -153,7 +153,9 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
             in.normal[c] = normal[c];
             in.albedo[c] = albedo[c];
             in.emission[c] = direct.anyEmissive ? &parts[3 + c] : nullptr;
-            in.hitLight[c] = &sc.hitLight[c];
+            // The direct pass's hit light where it wrote one (then the G-buffer planes above
+            // are not read), else SSGI computes it from them.
+            in.hitLight[c] = direct.hitLight[0] ? &sc.hitLight[c] : nullptr;
             ssgi[c] = &planeOf(frame, c == 0 ? "ssgi.R" : c == 1 ? "ssgi.G" : "ssgi.B");
         }
         in.metallic = &frame.plane("metallic");

@@ -86,6 +86,12 @@ const EnergyTables& energyTables() {
     // The tables as computeEnergyTables() made them, stored (shading/energy_tables_data.h):
     // computing them costs half a second at start-up, and the stored bits do not depend on
     // the machine's libm (a test compares the two).
+    namespace d = energy_data;
+    static_assert(std::size(d::kE) == kEnergyTableSize * kEnergyTableSize &&
+                      std::size(d::kDfgA) == std::size(d::kE) &&
+                      std::size(d::kDfgB) == std::size(d::kE) &&
+                      std::size(d::kEAvg) == kEnergyTableSize,
+                  "shading/energy_tables_data.h is out of date: run ssrt_gen_energy_tables");
     static const EnergyTables tables = [] {
         EnergyTables t;
         std::copy(std::begin(energy_data::kE), std::end(energy_data::kE), t.e.begin());

@@ -131,6 +131,9 @@ struct TileScratch {
 // angle, no arctangent.
 constexpr int kSortBuckets = 2 * kSortSectors;
 constexpr int kSortBlock = 4;
+// marchSortKeys reads a tile's row segments in whole lane groups: tiles start at multiples
+// of the widest group, and plane rows are padded to one (core/image.h).
+static_assert(kTileSize % kMarchPad == 0);
 
 void checkPlane(const PlaneF* p, int w, int h, const char* name) {
     if (!p || p->width() != w || p->height() != h)
@@ -188,35 +191,21 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             proto.hizHeight[L] = p.height();
         }
         // The packed reciprocal copy for the hardware gather: buildHiZ's, or made here for a
-        // pyramid that lacks it (about 1.33 frames of floats).
-        std::size_t total = 0;
-        for (int L = 0; L < proto.hizLevels; ++L)
-            total += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
-        if (total < (std::size_t(1) << 24)) {
-            std::size_t offset = 0;
+        // pyramid without one (of more than kMaxHiZLevels levels, only those are read).
+        const std::vector<float>* inv = &hiz->invMinPacked;
+        std::vector<std::size_t> ownOffset;
+        const std::vector<std::size_t>* offset = &hiz->packedOffset;
+        if (inv->empty() || offset->size() != hiz->minZ.size()) {
+            packInverseMin(hiz->minZ, packed, ownOffset, threads);
+            inv = &packed, offset = &ownOffset;
+        }
+        if (!inv->empty()) {
             for (int L = 0; L < proto.hizLevels; ++L) {
-                proto.hizOffset[L] = float(offset);
+                proto.hizOffset[L] = float((*offset)[std::size_t(L)]);
                 proto.hizWidthF[L] = float(proto.hizWidth[L]);
-                offset += std::size_t(proto.hizWidth[L]) * std::size_t(proto.hizHeight[L]);
             }
-            const bool built = hiz->invMinPacked.size() == total &&
-                               hiz->packedOffset.size() >= std::size_t(proto.hizLevels) &&
-                               std::equal(hiz->packedOffset.begin(),
-                                          hiz->packedOffset.begin() + proto.hizLevels,
-                                          proto.hizOffset, [](std::size_t a, float b) {
-                                              return float(a) == b;
-                                          });
-            if (!built) {
-                packed.resize(total);
-                parallelFor(proto.hizLevels, threads, [&](int L) {
-                    const PlaneF& p = hiz->minZ[std::size_t(L)];
-                    float* out = packed.data() + std::size_t(proto.hizOffset[L]);
-                    for (int y = 0; y < p.height(); ++y)
-                        for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
-                });
-            }
-            proto.hizInvPacked = built ? hiz->invMinPacked.data() : packed.data();
-            proto.hizPackedLast = float(total - 1);
+            proto.hizInvPacked = inv->data();
+            proto.hizPackedLast = float(inv->size() - 1);
         }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
         proto.startLevel =
@@ -229,9 +218,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
     const auto sortKeys = SSRT_DISPATCH(isa, marchSortKeys);
     const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
     result.ensureSize(w, h);
-    const std::size_t outStride = result.hit.stride();
-    for (const PlaneF* p : {&result.hitX, &result.hitY, &result.hitZ, &result.steps, &result.cause})
-        if (p->stride() != outStride) throw std::logic_error("marchRays: result planes differ in stride");
+    const std::size_t outStride = result.hit.stride();  // all six: one size, one stride
     const TileGrid grid(w, h);
     std::vector<MarchStats> tileStats(std::size_t(grid.count()));
     const std::size_t histogramSize = std::size_t(settings.maxSteps) + 1;
@@ -333,11 +320,11 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                                result.hitZ.row(0), result.steps.row(0), result.cause.row(0)};
         const float* const from[6] = {args.hit,  args.hitX,  args.hitY,
                                       args.hitZ, args.steps, args.cause};
-        const std::size_t stride = outStride;
         uint64_t ends[kMarchEndCount] = {}, steps = 0;
         uint64_t* const histogram = st.stepHistogram.data();
         for (int i = 0; i < n; ++i) {
-            const std::size_t at = std::size_t(args.pixelY[i]) * stride + std::size_t(args.pixelX[i]);
+            const std::size_t at =
+                std::size_t(args.pixelY[i]) * outStride + std::size_t(args.pixelX[i]);
             for (int p = 0; p < 6; ++p) out[p][at] = from[p][i];
             const int cause = int(args.cause[i]);
             if (cause >= 0 && cause < kMarchEndCount) ++ends[cause];

@@ -35,14 +35,10 @@ SSRT_INLINE Lane levelTable(const float* table, ILane L) {
 #endif
 }
 
-// A cell's side in pixels at level L, and its reciprocal (powers of two: exact).
-alignas(64) constexpr float kCellSize[kMaxHiZLevels] = {1,    2,    4,    8,    16,   32,
-                                                        64,   128,  256,  512,  1024, 2048,
-                                                        4096, 8192, 16384, 32768};
-alignas(64) constexpr float kInvCellSize[kMaxHiZLevels] = {
-    1.0f,         0.5f,          0.25f,         0.125f,         0.0625f,         0.03125f,
-    0x1p-6f,      0x1p-7f,       0x1p-8f,       0x1p-9f,        0x1p-10f,        0x1p-11f,
-    0x1p-12f,     0x1p-13f,      0x1p-14f,      0x1p-15f};
+// A cell's side in pixels at level L, 2^L, and its reciprocal, 2^-L: exact, from the
+// exponent bits (L <= 15), on every ISA without a table.
+SSRT_INLINE Lane levelCellSize(ILane L) { return ln::floatFromBits((L + ILane(127)) << 23); }
+SSRT_INLINE Lane levelInvCellSize(ILane L) { return ln::floatFromBits((ILane(127) - L) << 23); }
 
 // 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
 SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, ILane L, Lane level, Lane cx, Lane cy) {
@@ -75,7 +71,7 @@ struct Group {
     ScreenSegment s;
     Lane dPx, dPy, dk, invDx, invDy, invDk, floorX, floorY, nudgeX, nudgeY;
     Mask deeper;
-    Lane t, px, py, level;  // the cell size follows from the level (kCellSize)
+    Lane t, px, py, level;  // the cell size follows from the level (levelCellSize)
     LaneEnds e;
     int base;
 
@@ -136,7 +132,7 @@ struct Group {
         e.steps = ln::select(active, e.steps + one, e.steps);
         // The cell's minimum depth and the three planes.
         const ILane L = ln::toIntTrunc(level);
-        const Lane size = levelTable(kCellSize, L), invSize = levelTable(kInvCellSize, L);
+        const Lane size = levelCellSize(L), invSize = levelInvCellSize(L);
         const Lane cellX = ln::floor(px * invSize), cellY = ln::floor(py * invSize);
         const Lane kSurface = loadInvMinZ(a, L, level, cellX, cellY);  // background: 0
         const Lane tx = ((cellX + floorX) * size + nudgeX - s.x0) * invDx;

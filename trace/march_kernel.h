@@ -54,8 +54,9 @@ struct MarchKernelArgs {
 
 // The packing key of each of `count` rays in a row (trace/march.cpp: the ray's bucket by its
 // screen-space direction, 2 sector + (dir.z > 0)), or -1 where the pixel has no ray (pdf <= 0,
-// a non-finite or zero direction or origin, an origin not in front of the camera). The row
-// planes are read in whole lane groups: they must be padded to a multiple of 16 floats.
+// a non-finite or zero direction or origin, an origin not in front of the camera). The
+// inputs are read in whole lane groups: each must be readable up to count rounded up to a
+// multiple of kMarchPad floats.
 inline constexpr int kSortSectors = 64;
 struct SortKeyArgs {
     const float *pdf, *ox, *oy, *oz, *dx, *dy, *dz;

@@ -3,7 +3,6 @@
 // depends on them), so a wrong key would show only as slower marching: tested here directly.
 #include <doctest/doctest.h>
 
-#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -48,7 +47,7 @@ std::vector<KeyRay> keyRays() {
 TEST_CASE("march keys: rays without a march are -1, the others by screen direction") {
     const std::vector<KeyRay> rays = keyRays();
     const int n = int(rays.size());
-    // Planes padded to 16 floats past the rays, as rows of a PlaneF are.
+    // Readable 16 floats past the rays (kMarchPad), as a tile's row segments are.
     std::vector<float> p[7];
     for (auto& v : p) v.assign(std::size_t(n + 16), 0.0f);
     for (int i = 0; i < n; ++i) {

@@ -81,8 +81,6 @@ struct Furnace {
     }
 };
 
-}  // namespace
-
 // Random rays from most surface pixels and hits anywhere: the frame's edges and background
 // pixels included.
 void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) {
@@ -107,6 +105,8 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
             march.hitY.at(x, y) = march.hit.at(x, y) > 0 ? float(h) * u[3] : 0.0f;
         }
 }
+
+}  // namespace
 
 TEST_CASE("ssgi: every hit on a surface of known direct light gives that radiance") {
     Furnace f;
