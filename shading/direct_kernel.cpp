@@ -67,9 +67,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
             emission = ln::select(background, emission, e);
         }
         if (a.hitLight[0]) {
-            const Lane NoL = ln::saturate(ln::dot(s.n, splat3(a.toLight)));
-            const V3 diffuse = s.albedo * ((Lane(1.0f) - s.metallic) * Lane(ln::kInvPi));
-            V3 light = diffuse * splat3(a.lightRadiance) * (NoL * vis);
+            V3 light = shade::lambertSunLight(a, s.n, s.albedo, s.metallic, vis);
             if (a.anyEmissive) light = light + emission;
             hitLight = ln::select(background, hitLight, light);
         }

@@ -69,8 +69,8 @@ struct DirectArgs {
     // Optional too (null = not written): the Lambert part of the sun light leaving each
     // surface pixel, plus its emission where any material emits,
     //   albedo (1 - metallic) / pi  lightRadiance  saturate(n.l)  shadow  (+ emission),
-    // the radiance SSGI reads at its hits (trace/ssgi.h), in SSGI's order of operations so
-    // that reading it gives the bits SSGI computed from the G-buffer; 0 on background.
+    // the radiance SSGI reads at its hits (trace/ssgi.h), by the function SSGI's G-buffer path
+    // uses (shade::lambertSunLight), so reading it gives the same bits; 0 on background.
     float* hitLight[3];
     // Kulla-Conty energy compensation of the specWeight part (null: none, the part is the
     // single-scattering factor above). With the tables, the part is multiplied by

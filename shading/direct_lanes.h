@@ -142,6 +142,18 @@ SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
                       zero);
 }
 
+// The Lambert part of the sun light leaving a surface point, emission aside:
+//   albedo (1 - metallic) / pi  lightRadiance  saturate(n.l)  shadow,
+// what SSGI reads at its hits (trace/ssgi.h). One copy for the direct pass, which writes it
+// per pixel (DirectArgs::hitLight), and SSGI's G-buffer path, so both give the same bits.
+template <class L>
+SSRT_INLINE V3<L> lambertSunLight(const DirectArgs& a, V3<L> n, V3<L> albedo, L metallic,
+                                  L shadow) {
+    const L NoL = ln::saturate(ln::dot(n, splat3<L>(a.toLight)));
+    const V3<L> diffuse = albedo * ((L(1.0f) - metallic) * L(ln::kInvPi));
+    return diffuse * splat3<L>(a.lightRadiance) * (NoL * shadow);
+}
+
 // The direct pass's model at one surface point seen along s.view, with the sun's
 // `visibility` given (the shadow map's above, or a traced one: the reference image).
 template <class L>

@@ -18,9 +18,21 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 
+SSRT_INLINE V3 gather3(const float* const* planes, ILane i) {
+    return {ln::gather(planes[0], i), ln::gather(planes[1], i), ln::gather(planes[2], i)};
+}
+
+// The Lambert direct light leaving the pixels i (plus their emission) from the G-buffer.
+// (The direct pass's hitLight planes hold the same bits: 3 gathers instead of 8 to 11.)
+SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
+    const V3 lit = shade::lambertSunLight(a.lighting, gather3(a.normal, i), gather3(a.albedo, i),
+                                          ln::gather(a.metallic, i), ln::gather(a.shadow, i));
+    return a.emission[0] ? lit + gather3(a.emission, i) : lit;
+}
+
 void ssgiChunk(const SsgiArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
-    const Lane zero(0.0f), one(1.0f);
+    const Lane zero(0.0f);
     const Lane pdf = ln::load<Lane>(a.pdf + o);
     const auto hasRay = pdf > zero;
     V3 radiance{zero, zero, zero};
@@ -30,30 +42,9 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
         const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + o), ln::load<Lane>(a.hitY + o),
                                              a.width, a.height, a.stride);
         const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
-        if (!ln::any(surface)) {
-        } else if (a.hitLight[0]) {
-            // The direct pass computed it per pixel: 3 gathers (4 with viewZ's) instead of 8
-            // to 11 (9 to 12).
-            const V3 lit{ln::gather(a.hitLight[0], i), ln::gather(a.hitLight[1], i),
-                         ln::gather(a.hitLight[2], i)};
-            radiance = ln::select(surface, lit, radiance);
-        } else {
-            // Lambert direct light leaving x1: albedo (1 - metallic) / pi E_sun n.l shadow.
-            const V3 n{ln::gather(a.normal[0], i), ln::gather(a.normal[1], i),
-                       ln::gather(a.normal[2], i)};
-            const V3 albedo{ln::gather(a.albedo[0], i), ln::gather(a.albedo[1], i),
-                            ln::gather(a.albedo[2], i)};
-            const Lane metallic = ln::gather(a.metallic, i);
-            const V3 l = shade::splat3<Lane>(a.lighting.toLight);
-            const Lane NoL = ln::saturate(ln::dot(n, l));
-            const V3 diffuse = albedo * ((one - metallic) * Lane(ln::kInvPi));
-            V3 lit = diffuse * shade::splat3<Lane>(a.lighting.lightRadiance) *
-                     (NoL * ln::gather(a.shadow, i));
-            if (a.emission[0])
-                lit = lit + V3{ln::gather(a.emission[0], i), ln::gather(a.emission[1], i),
-                               ln::gather(a.emission[2], i)};
-            radiance = ln::select(surface, lit, radiance);
-        }
+        if (ln::any(surface))
+            radiance = ln::select(surface, a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i),
+                                  radiance);
         // Misses: the sky along the ray, in world space.
         const auto miss = hasRay & !surface;
         if (ln::any(miss)) {

@@ -106,6 +106,19 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
         }
 }
 
+// SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
+void gbufferInputs(const Frame& frame, SsgiInputs& in) {
+    in.viewZ = &frame.plane("viewZ");
+    const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
+    const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
+    for (int c = 0; c < 3; ++c) {
+        in.normal[c] = &frame.plane(n[c]);
+        in.albedo[c] = &frame.plane(a[c]);
+    }
+    in.metallic = &frame.plane("metallic");
+    in.shadow = &frame.plane("shadow");
+}
+
 }  // namespace
 
 TEST_CASE("ssgi: every hit on a surface of known direct light gives that radiance") {
@@ -184,15 +197,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     in.camera.height = h;
     const float rot[9] = {0.8f, 0.0f, -0.6f, 0.0f, 1.0f, 0.0f, 0.6f, 0.0f, 0.8f};
     std::copy_n(rot, 9, in.camera.viewToWorld);
-    in.viewZ = &frame.plane("viewZ");
-    const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
-    const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
-    for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &frame.plane(n[c]);
-        in.albedo[c] = &frame.plane(a[c]);
-    }
-    in.metallic = &frame.plane("metallic");
-    in.shadow = &frame.plane("shadow");
+    gbufferInputs(frame, in);
     const DirectArgs light = lighting(true);
     in.lighting = &light;
     RayBatch rays;
@@ -265,16 +270,9 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         REQUIRE(dl.args.anyEmissive == emits);
         SsgiInputs in;
         in.camera = frame.camera;
-        in.viewZ = &frame.plane("viewZ");
-        const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
-        const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
-        for (int c = 0; c < 3; ++c) {
-            in.normal[c] = &frame.plane(n[c]);
-            in.albedo[c] = &frame.plane(a[c]);
+        gbufferInputs(frame, in);
+        for (int c = 0; c < 3; ++c)
             in.emission[c] = emits ? &frame.scratch.directParts[3 + c] : nullptr;
-        }
-        in.metallic = &frame.plane("metallic");
-        in.shadow = &frame.plane("shadow");
         in.lighting = &dl.args;
         RayBatch rays;
         MarchResult march;
