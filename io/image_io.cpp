@@ -198,6 +198,9 @@ void writeExr(const std::string& path, const fs::path& tmp, const Frame& frame) 
     spec.z_channel = -1;
     spec.attribute("compression", "zip");
     spec.attribute("Software", "ssrt");
+    // OpenImageIO writes the current time as capDate unless given a DateTime: an empty one
+    // keeps the file's bytes the same whenever it is written.
+    spec.attribute("DateTime", "");
     writeScanlines(path, tmp, spec, planes, false);
 }
 

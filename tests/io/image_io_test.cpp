@@ -10,9 +10,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -77,6 +79,25 @@ TEST_CASE("EXR round trip keeps every plane's name and bits") {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
                 CHECK(sameBits(values[y * width + x], probeValue(int(c), x, y, width)));
+    }
+}
+
+TEST_CASE("an EXR file's bytes do not depend on when it was written") {
+    // OpenImageIO stamps EXR headers with the current time (capDate) unless told a DateTime;
+    // the same frame must give the same file at any hour (golden files compare bytes).
+    TempDir dir;
+    const std::string path = dir.file("frame.exr");
+    writeImage(path, makeFrame(4, 2, {"color.R", "viewZ"}));
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // An attribute is name\0 type\0 int32 size, value. capDate may be there, empty.
+    const std::string key("capDate\0string\0", 15);
+    const std::size_t at = bytes.find(key);
+    if (at != std::string::npos) {
+        REQUIRE(at + key.size() + 4 <= bytes.size());
+        int32_t size = -1;
+        std::memcpy(&size, bytes.data() + at + key.size(), sizeof size);
+        CHECK(size == 0);
     }
 }
 
