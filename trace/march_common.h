@@ -113,43 +113,41 @@ SSRT_INLINE LaneEnds startEnds(const MarchKernelArgs& a, int base) {
             zero};
 }
 
-// Scalar validation and write-out of lanes [base, min(base + kW, count)): a candidate hit
-// whose surface normal faces along the ray (world space) becomes BackFace; a ray that was
-// rejected for thickness on the way and then left the screen or ran out of steps ends as
-// Thickness; misses write zero positions.
+// Validation and write-out of lanes [base, base + kW) (the packed arrays are padded to whole
+// lane groups; lanes past the tile's last ray write NoRay there, which nobody reads): a
+// candidate hit whose surface normal faces along the ray (world space) becomes BackFace; a
+// ray that was rejected for thickness on the way and then left the screen or ran out of
+// steps ends as Thickness; misses write zero positions. (In lanes: the normals at the hits
+// are scattered cache misses, which a gather overlaps and a scalar loop with a branch on
+// each did not.)
 inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
-    alignas(64) float cause[kW], hx[kW], hy[kW], hz[kW], steps[kW], thick[kW];
-    ln::store(cause, e.cause);
-    ln::store(hx, e.hitX);
-    ln::store(hy, e.hitY);
-    ln::store(hz, e.hitZ);
-    ln::store(steps, e.steps);
-    ln::store(thick, e.thick);
-    const float* R = a.viewToWorld;
-    for (int l = 0; l < kW && base + l < a.count; ++l) {
-        const int i = base + l;
-        MarchEnd c = MarchEnd(int(cause[l]));
-        if (c == MarchEnd::Hit) {
-            const int ix = clampIndex(int(hx[l]), 0, a.width - 1);
-            const int iy = clampIndex(int(hy[l]), 0, a.height - 1);
-            const std::size_t n = std::size_t(iy) * a.nStride + std::size_t(ix);
-            const float dx = a.dx[i], dy = a.dy[i], dz = a.dz[i];
-            const float wx = (R[0] * dx + R[3] * dy) + R[6] * dz;
-            const float wy = (R[1] * dx + R[4] * dy) + R[7] * dz;
-            const float wz = (R[2] * dx + R[5] * dy) + R[8] * dz;
-            const float facing = (a.normal[0][n] * wx + a.normal[1][n] * wy) + a.normal[2][n] * wz;
-            if (facing > 0.0f) c = MarchEnd::BackFace;
-        } else if ((c == MarchEnd::LeftScreen || c == MarchEnd::StepCap) && thick[l] != 0.0f) {
-            c = MarchEnd::Thickness;
-        }
-        const bool isHit = c == MarchEnd::Hit;
-        a.hit[i] = isHit ? 1.0f : 0.0f;
-        a.hitX[i] = isHit ? hx[l] : 0.0f;
-        a.hitY[i] = isHit ? hy[l] : 0.0f;
-        a.hitZ[i] = isHit ? hz[l] : 0.0f;
-        a.steps[i] = steps[l];
-        a.cause[i] = float(int(c));
+    const Lane zero(0.0f), one(1.0f);
+    Lane c = e.cause;
+    const Mask hit = c == endCode(MarchEnd::Hit);
+    if (ln::any(hit)) {
+        // Hit positions are on screen; misses (0, 0) read pixel 0, harmlessly.
+        const ILane ix = ln::toIntTrunc(ln::clamp(e.hitX, zero, Lane(float(a.width - 1))));
+        const ILane iy = ln::toIntTrunc(ln::clamp(e.hitY, zero, Lane(float(a.height - 1))));
+        const ILane n = iy * ILane(int32_t(a.nStride)) + ix;
+        const Lane dx = ln::load<Lane>(a.dx + base), dy = ln::load<Lane>(a.dy + base),
+                   dz = ln::load<Lane>(a.dz + base);
+        const float* R = a.viewToWorld;
+        const Lane wx = (Lane(R[0]) * dx + Lane(R[3]) * dy) + Lane(R[6]) * dz;
+        const Lane wy = (Lane(R[1]) * dx + Lane(R[4]) * dy) + Lane(R[7]) * dz;
+        const Lane wz = (Lane(R[2]) * dx + Lane(R[5]) * dy) + Lane(R[8]) * dz;
+        const Lane facing = (ln::gather(a.normal[0], n) * wx + ln::gather(a.normal[1], n) * wy) +
+                            ln::gather(a.normal[2], n) * wz;
+        c = ln::select(hit & (facing > zero), endCode(MarchEnd::BackFace), c);
     }
+    const Mask gaveUp = (c == endCode(MarchEnd::LeftScreen)) | (c == endCode(MarchEnd::StepCap));
+    c = ln::select(gaveUp & (e.thick != zero), endCode(MarchEnd::Thickness), c);
+    const Mask isHit = c == endCode(MarchEnd::Hit);
+    ln::store(a.hit + base, ln::select(isHit, one, zero));
+    ln::store(a.hitX + base, ln::select(isHit, e.hitX, zero));
+    ln::store(a.hitY + base, ln::select(isHit, e.hitY, zero));
+    ln::store(a.hitZ + base, ln::select(isHit, e.hitZ, zero));
+    ln::store(a.steps + base, e.steps);
+    ln::store(a.cause + base, c);
 }
 
 // Lane bookkeeping of one step: slots issued and lanes still marching.
