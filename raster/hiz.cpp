@@ -69,13 +69,14 @@ void reduceLevel(const PlaneF& srcMin, const PlaneF& srcMax, PlaneF& minZ, Plane
 
 // HiZPyramid::invMinPacked is built once per pyramid here (marchRays used to pack its own
 // copy every call: twice a frame, an 11 MB allocation each at 1080p).
-bool packInverseMin(const std::vector<PlaneF>& minZ, std::vector<float>& packed,
+bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
                     std::vector<std::size_t>& offset, int threads) {
     offset.assign(minZ.size(), 0);
     std::size_t total = 0;
     for (std::size_t L = 0; L < minZ.size(); ++L) {
         offset[L] = total;
-        total += std::size_t(minZ[L].width()) * std::size_t(minZ[L].height());
+        total += std::size_t(hiZPackedTiles(minZ[L].width())) *
+                 std::size_t(hiZPackedTiles(minZ[L].height())) * kHiZPackedTileSize;
     }
     if (total >= kHiZMaxPacked) {
         packed.clear();
@@ -86,8 +87,13 @@ bool packInverseMin(const std::vector<PlaneF>& minZ, std::vector<float>& packed,
     parallelFor(int(minZ.size()), threads, [&](int L) {
         const PlaneF& p = minZ[std::size_t(L)];
         float* out = packed.data() + offset[std::size_t(L)];
-        for (int y = 0; y < p.height(); ++y)
-            for (int x = 0; x < p.width(); ++x) *out++ = 1.0f / p.at(x, y);
+        const int w = p.width(), h = p.height(), tilesX = hiZPackedTiles(w);
+        const int side = kHiZPackedTile, tilesY = hiZPackedTiles(h);
+        for (int ty = 0; ty < tilesY; ++ty)
+            for (int tx = 0; tx < tilesX; ++tx)
+                for (int y = ty * side; y < (ty + 1) * side; ++y)
+                    for (int x = tx * side; x < (tx + 1) * side; ++x)
+                        *out++ = x < w && y < h ? 1.0f / p.at(x, y) : 0.0f;  // padding: background
     });
     return true;
 }

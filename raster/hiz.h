@@ -12,18 +12,41 @@
 
 #include <vector>
 
+#include "core/aligned.h"
 #include "core/image.h"
 
 namespace ssrt {
 
+// The packed 1/minZ copy: 64-byte aligned, so that each 4x4 tile is one cache line.
+using HiZPacked = std::vector<float, AlignedAllocator<float, 64>>;
+
+// The packed copy's layout: each level in 4x4 tiles of 16 floats (row-major within a tile,
+// tiles row-major), its width and height rounded up to whole tiles (padding 0, background);
+// level L starts at packedOffset[L], a multiple of 16. A ray that moves a few pixels in any
+// direction stays in one cache line more often than with rows (vertical steps cross a line
+// every row there).
+inline constexpr int kHiZPackedTile = 4;
+inline constexpr std::size_t kHiZPackedTileSize = std::size_t(kHiZPackedTile * kHiZPackedTile);
+// Tiles across a level of width `size` (or down one of height `size`).
+inline constexpr int hiZPackedTiles(int size) {
+    return (size + kHiZPackedTile - 1) / kHiZPackedTile;
+}
+// Index of texel (x, y) of a level within its packed copy.
+inline constexpr std::size_t hiZPackedIndex(int x, int y, int tilesX) {
+    return (std::size_t(y / kHiZPackedTile) * std::size_t(tilesX) +
+            std::size_t(x / kHiZPackedTile)) *
+               kHiZPackedTileSize +
+           std::size_t((y % kHiZPackedTile) * kHiZPackedTile + x % kHiZPackedTile);
+}
+
 struct HiZPyramid {
     std::vector<PlaneF> minZ, maxZ;  // [level], level 0 = full resolution
     // Every level of minZ packed for a hardware gather (the Hi-Z marcher's reads): level after
-    // level, rows of the level's width without padding, as 1 / minZ (background 0); level L
-    // starts at packedOffset[L]. Empty when the whole would reach 2^24 elements (the marcher
-    // indexes it with exact floats) or when the pyramid was not made by buildHiZ; code that
-    // changes minZ after buildHiZ must clear it (marchRays then packs its own copy).
-    std::vector<float> invMinPacked;
+    // level in 4x4 tiles (hiZPackedIndex), as 1 / minZ (background 0); level L starts at
+    // packedOffset[L]. Empty when the whole would reach 2^24 elements (the marcher indexes it
+    // with exact floats) or when the pyramid was not made by buildHiZ; code that changes
+    // minZ after buildHiZ must clear it (marchRays then packs its own copy).
+    HiZPacked invMinPacked;
     std::vector<std::size_t> packedOffset;
     int levels() const { return int(minZ.size()); }
 };
@@ -37,7 +60,7 @@ void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads);
 // and `offset` as HiZPyramid::invMinPacked and packedOffset; false (both emptied) when the
 // whole would reach the limit.
 inline constexpr std::size_t kHiZMaxPacked = std::size_t(1) << 24;
-bool packInverseMin(const std::vector<PlaneF>& minZ, std::vector<float>& packed,
+bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
                     std::vector<std::size_t>& offset, int threads);
 
 // Number of levels for a w x h image: down to 1x1.

@@ -160,7 +160,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         throw std::invalid_argument("marchRays: the normal planes differ in stride");
 
     MarchKernelArgs proto{};
-    std::vector<float> packed;
+    HiZPacked packed;
     proto.width = w;
     proto.height = h;
     proto.sx = float(w) / (2.0f * camera.tanHalfX);
@@ -192,7 +192,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         }
         // The packed reciprocal copy for the hardware gather: buildHiZ's, or made here for a
         // pyramid without one (of more than kMaxHiZLevels levels, only those are read).
-        const std::vector<float>* inv = &hiz->invMinPacked;
+        const HiZPacked* inv = &hiz->invMinPacked;
         std::vector<std::size_t> ownOffset;
         const std::vector<std::size_t>* offset = &hiz->packedOffset;
         if (inv->empty() || offset->size() != hiz->minZ.size()) {
@@ -203,9 +203,10 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             for (int L = 0; L < proto.hizLevels; ++L) {
                 proto.hizOffset[L] = float((*offset)[std::size_t(L)]);
                 proto.hizWidthF[L] = float(proto.hizWidth[L]);
+                proto.hizHeightF[L] = float(proto.hizHeight[L]);
+                proto.hizTilesX[L] = float(hiZPackedTiles(proto.hizWidth[L]));
             }
             proto.hizInvPacked = inv->data();
-            proto.hizPackedLast = float(inv->size() - 1);
         }
         proto.mostDetailedLevel = std::min(settings.hizMostDetailedLevel, proto.hizLevels - 1);
         proto.startLevel =

@@ -12,6 +12,7 @@
 // infinitely thick (FidelityFX does the same); the max pyramid is not used here.
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
+#include "raster/hiz.h"
 #include "trace/march_common.h"
 
 namespace ssrt::SSRT_ISA_NS {
@@ -43,14 +44,19 @@ SSRT_INLINE Lane levelInvCellSize(ILane L) { return ln::floatFromBits((ILane(127
 // 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
 SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, ILane L, Lane level, Lane cx, Lane cy) {
     if (a.hizInvPacked) {
-        // Packed pyramid: the level tables from registers, one gather for the depth.
-        const Lane width = levelTable(a.hizWidthF, L);
-        const Lane x = ln::clamp(cx, Lane(0.0f), width - Lane(1.0f));
-        const Lane y = ln::max(cy, Lane(0.0f));
-        // (Lanes already done may point anywhere: keep them inside the buffer.)
-        const Lane index =
-            ln::min(levelTable(a.hizOffset, L) + y * width + x, Lane(a.hizPackedLast));
-        return ln::gather(a.hizInvPacked, ln::toIntTrunc(index));
+        // Packed pyramid in 4x4 tiles (raster/hiz.h, hiZPackedIndex): the level tables from
+        // registers, one gather for the depth. (Lanes already done may point anywhere, NaN
+        // included: the clamps keep every lane inside its level.)
+        const Lane one(1.0f);
+        const ILane x = ln::toIntTrunc(ln::clamp(cx, Lane(0.0f), levelTable(a.hizWidthF, L) - one));
+        const ILane y =
+            ln::toIntTrunc(ln::clamp(cy, Lane(0.0f), levelTable(a.hizHeightF, L) - one));
+        const ILane tilesX = ln::toIntTrunc(levelTable(a.hizTilesX, L));
+        static_assert(kHiZPackedTile == 4 && kHiZPackedTileSize == 16);
+        const ILane tile = (y >> 2) * tilesX + (x >> 2);
+        const ILane index = ln::toIntTrunc(levelTable(a.hizOffset, L)) + (tile << 4) +
+                            ((y & ILane(3)) << 2) + (x & ILane(3));
+        return ln::gather(a.hizInvPacked, index);
     }
     alignas(64) float lv[kW], x[kW], y[kW], out[kW];
     ln::store(lv, level);

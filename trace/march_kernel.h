@@ -31,12 +31,13 @@ struct MarchKernelArgs {
     const float* hizMin[kMaxHiZLevels];
     std::size_t hizStride[kMaxHiZLevels];
     int hizWidth[kMaxHiZLevels], hizHeight[kMaxHiZLevels];
-    // The same levels packed (rows of hizWidth, no padding) as 1/minZ (background 0), with
-    // each level's first element and width as floats (exact: the whole is < 2^24 elements),
-    // for a hardware gather; null when the pyramid is too large (then the planes are read).
+    // The same levels packed as 1/minZ (background 0) in 4x4 tiles (raster/hiz.h,
+    // hiZPackedIndex), with each level's first element, width, height and tiles across as
+    // floats (exact: the whole is < 2^24 elements), for a hardware gather; null when the
+    // pyramid is too large (then the planes are read).
     const float* hizInvPacked;
-    float hizOffset[kMaxHiZLevels], hizWidthF[kMaxHiZLevels];
-    float hizPackedLast;  // index of the last packed element
+    float hizOffset[kMaxHiZLevels], hizWidthF[kMaxHiZLevels], hizHeightF[kMaxHiZLevels],
+        hizTilesX[kMaxHiZLevels];
     // Settings.
     int maxSteps;
     float maxDistance, linearStep, thickness, ddaStride;

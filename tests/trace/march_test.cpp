@@ -147,15 +147,28 @@ TEST_CASE("march: hi-z packs 1/minZ once, and marching from it equals packing pe
     for (int L = 0; L < hiz.levels(); ++L) {
         const PlaneF& lo = hiz.minZ[std::size_t(L)];
         const float* packed = hiz.invMinPacked.data() + hiz.packedOffset[std::size_t(L)];
-        for (int y = 0; y < lo.height(); ++y)
-            for (int x = 0; x < lo.width(); ++x) {
-                const float want = 1.0f / lo.at(x, y);  // background (+inf) -> 0
-                background |= want == 0.0f;
-                REQUIRE(std::bit_cast<uint32_t>(*packed++) == std::bit_cast<uint32_t>(want));
+        const int tilesX = (lo.width() + 3) / 4, tilesY = (lo.height() + 3) / 4;
+        for (int y = 0; y < tilesY * 4; ++y)
+            for (int x = 0; x < tilesX * 4; ++x) {
+                // 4x4 tiles of 16 floats, row-major within a tile and across tiles; texels past
+                // the level's edge are background.
+                const std::size_t at =
+                    std::size_t((y / 4 * tilesX + x / 4) * 16 + y % 4 * 4 + x % 4);
+                CHECK(at == hiZPackedIndex(x, y, tilesX));
+                const bool inside = x < lo.width() && y < lo.height();
+                const float want = inside ? 1.0f / lo.at(x, y) : 0.0f;  // background (+inf) -> 0
+                background |= inside && want == 0.0f;
+                REQUIRE(std::bit_cast<uint32_t>(packed[at]) == std::bit_cast<uint32_t>(want));
             }
+        const std::size_t next = std::size_t(L) + 1 < hiz.packedOffset.size()
+                                     ? hiz.packedOffset[std::size_t(L) + 1]
+                                     : hiz.invMinPacked.size();
+        CHECK(next - hiz.packedOffset[std::size_t(L)] == std::size_t(tilesX * tilesY * 16));
     }
     CHECK(background);
-    CHECK(hiz.packedOffset.back() + 1 == hiz.invMinPacked.size());  // the last level is 1x1
+    // Whole tiles on cache lines.
+    CHECK(reinterpret_cast<std::uintptr_t>(hiz.invMinPacked.data()) % 64 == 0);
+    CHECK(hiz.packedOffset.back() + 16 == hiz.invMinPacked.size());  // the last level is 1x1
     // A pyramid without the packed copy (not from buildHiZ) is packed by marchRays itself.
     HiZPyramid bare;
     buildHiZ(g.viewZ, bare, 1);
