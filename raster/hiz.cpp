@@ -84,16 +84,36 @@ bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
         return false;
     }
     packed.resize(total);
-    parallelFor(int(minZ.size()), threads, [&](int L) {
-        const PlaneF& p = minZ[std::size_t(L)];
-        float* out = packed.data() + offset[std::size_t(L)];
+    // One job per row of tiles of every level (level 0 alone is three quarters of the work).
+    std::vector<int> firstRow(minZ.size() + 1, 0);
+    for (std::size_t L = 0; L < minZ.size(); ++L)
+        firstRow[L + 1] = firstRow[L] + hiZPackedTiles(minZ[L].height());
+    parallelFor(firstRow.back(), threads, [&](int job) {
+        const std::size_t L = std::size_t(std::upper_bound(firstRow.begin(), firstRow.end(), job) -
+                                          firstRow.begin() - 1);
+        const PlaneF& p = minZ[L];
         const int w = p.width(), h = p.height(), tilesX = hiZPackedTiles(w);
-        const int side = kHiZPackedTile, tilesY = hiZPackedTiles(h);
-        for (int ty = 0; ty < tilesY; ++ty)
-            for (int tx = 0; tx < tilesX; ++tx)
-                for (int y = ty * side; y < (ty + 1) * side; ++y)
-                    for (int x = tx * side; x < (tx + 1) * side; ++x)
-                        *out++ = x < w && y < h ? 1.0f / p.at(x, y) : 0.0f;  // padding: background
+        const int ty = job - firstRow[L];
+        float* out =
+            packed.data() + offset[L] + std::size_t(ty) * std::size_t(tilesX) * kHiZPackedTileSize;
+        for (int r = 0; r < kHiZPackedTile; ++r) {
+            const int y = ty * kHiZPackedTile + r;
+            float* dst = out + std::size_t(r * kHiZPackedTile);
+            if (y >= h) {
+                for (int tx = 0; tx < tilesX; ++tx)
+                    std::fill_n(dst + std::size_t(tx) * kHiZPackedTileSize, kHiZPackedTile, 0.0f);
+                continue;
+            }
+            const float* src = p.row(y);
+            const int whole = w / kHiZPackedTile;  // tiles with no padding column
+            for (int tx = 0; tx < whole; ++tx)
+                for (int i = 0; i < kHiZPackedTile; ++i)
+                    dst[std::size_t(tx) * kHiZPackedTileSize + std::size_t(i)] =
+                        1.0f / src[tx * kHiZPackedTile + i];
+            for (int x = whole * kHiZPackedTile; x < tilesX * kHiZPackedTile; ++x)
+                dst[std::size_t(whole) * kHiZPackedTileSize + std::size_t(x % kHiZPackedTile)] =
+                    x < w ? 1.0f / src[x] : 0.0f;  // padding: background
+        }
     });
     return true;
 }
