@@ -35,6 +35,11 @@ struct TraceSettings {
     int ssgiSpp = 1;
     MarchSettings march;          // its frame and sample are set per pass by the renderer
     SsrResolveSettings resolve;   // hit radiance source, fades, mip or ray-reuse mode
+    // SSR rays also where the roughness fade hides them (perceptual roughness >=
+    // resolve.roughnessFadeEnd: the SSR opacity is 0 there whatever the ray finds). Off: no
+    // ray there (RayGenStats::faded), as HDRP does; the composite is the same at those
+    // pixels, and only the reuse resolve of a smoother neighbour misses their rays.
+    bool ssrTraceFaded = false;
 
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }

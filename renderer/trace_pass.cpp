@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -127,10 +128,12 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         st.ran = true;
         st.spp = ts.ssrSpp;
         double genMs = 0.0, marchMs = 0.0, resolveMs2 = pyramidMs;
+        const float maxRoughness =
+            ts.ssrTraceFaded ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
         for (int s = 0; s < ts.ssrSpp; ++s) {
             timed(genMs, [&] {
                 st.rays.add(generateSpecularRays(isa, ts.ssrMethod, settings.frame, uint32_t(s),
-                                                 camera, rg, sc.rays, threads));
+                                                 camera, rg, sc.rays, threads, maxRoughness));
             });
             timed(marchMs, [&] { march(st, uint32_t(s)); });
             if (observer && *observer) (*observer)(TracePass::Ssr, s, sc.rays, sc.march);

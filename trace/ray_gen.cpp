@@ -1,6 +1,8 @@
 #include "trace/ray_gen.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +34,7 @@ void RayGenStats::add(const RayGenStats& o) {
     rays += o.rays;
     belowSurface += o.belowSurface;
     background += o.background;
+    faded += o.faded;
 }
 
 namespace {
@@ -52,8 +55,10 @@ void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam,
 
 // Set-up shared by both passes: checks, arguments, the tile loop, counters in tile order.
 RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
-                const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
-                int threads) {
+                const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays, int threads,
+                float maxRoughness) {
+    if (std::isnan(maxRoughness))
+        throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
         throw std::invalid_argument("ray generation: the camera has no pixels");
     std::size_t gStride = 0;
@@ -83,6 +88,7 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
     a.frame = frame;
     a.sample = sample;
     a.dim = dim;
+    a.maxRoughness = maxRoughness;
 
     std::vector<RayGenCounts> counts(std::size_t(grid.count()));
     auto* kernel = SSRT_DISPATCH(isa, generateRaysTile);
@@ -90,7 +96,7 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
                      [&](int tile) { kernel(a, tile, counts[std::size_t(tile)]); });
     RayGenStats stats;
     for (const RayGenCounts& c : counts)
-        stats.add({c.pixels, c.rays, c.belowSurface, c.background});
+        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.faded});
     return stats;
 }
 
@@ -98,16 +104,16 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
 
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
                                  const TraceCamera& camera, const RayGenGBuffer& g,
-                                 RayBatch& rays, int threads) {
+                                 RayBatch& rays, int threads, float maxRoughness) {
     return run(isa, RayGenLobe(int(method)), frame, sample, kRayGenSpecularDim, camera, g, rays,
-               threads);
+               threads, maxRoughness);
 }
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
                                 const TraceCamera& camera, const RayGenGBuffer& g,
                                 RayBatch& rays, int threads) {
     return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays,
-               threads);
+               threads, std::numeric_limits<float>::infinity());
 }
 
 }  // namespace ssrt

@@ -37,6 +37,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -74,6 +75,9 @@ struct RayGenStats {
     // samples that fell below the surface (rejected: pdf 0), counted per method (see above)
     uint64_t belowSurface = 0;
     uint64_t background = 0;  // background pixels (no ray)
+    // surface pixels left without a specular ray because their roughness is at or above
+    // the cut (generateSpecularRays' maxRoughness); not in belowSurface
+    uint64_t faded = 0;
     void add(const RayGenStats&);
 };
 
@@ -82,10 +86,16 @@ struct RayGenStats {
 // sampled microfacet normal (Mirror: about the shading normal). The PDF is the solid-angle
 // PDF of the reflected direction (Mirror: 1, a delta). Writes every pixel. `rays` is sized to
 // the camera; the G-buffer planes must have the camera's size (else std::invalid_argument).
-// threads: 0 = every core.
+// threads: 0 = every core. A surface pixel whose perceptual roughness is not below
+// `maxRoughness` (NaN included) gets no ray, as one rejected below the surface but counted
+// as `faded`: the renderer passes the resolve's roughnessFadeEnd, where SSR's opacity is 0
+// whatever the ray finds (HDRP does not trace there either). +infinity (the default) cuts
+// nothing; NaN is std::invalid_argument. The random numbers of the other pixels do not
+// depend on it, so neither do their rays.
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
                                  const TraceCamera& camera, const RayGenGBuffer& g,
-                                 RayBatch& rays, int threads);
+                                 RayBatch& rays, int threads,
+                                 float maxRoughness = std::numeric_limits<float>::infinity());
 
 // Diffuse (SSGI) rays: cosine-weighted hemisphere around the shading normal; pdf = cos/pi.
 // (g.roughness is not read and may be null.)

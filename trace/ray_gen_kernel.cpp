@@ -138,16 +138,26 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     const V3 n = ln::normalize(V3{(Lane(r[0]) * nw.x + Lane(r[1]) * nw.y) + Lane(r[2]) * nw.z,
                                   (Lane(r[3]) * nw.x + Lane(r[4]) * nw.y) + Lane(r[5]) * nw.z,
                                   (Lane(r[6]) * nw.x + Lane(r[7]) * nw.y) + Lane(r[8]) * nw.z});
-    Lane u1(0.0f), u2(0.0f);
-    if constexpr (K != RayGenLobe::Mirror) uniforms(a, x, y, u1, u2);
-    V3 dir;
-    Lane pdf;
-    Mask ok;
-    drawLobe<K>(a, go, n, v, u1, u2, dir, pdf, ok);
-    ok = ok & surface;
+    // Specular rays where the resolve's roughness fade would hide them are not drawn.
+    Mask wanted = surface;
+    if constexpr (K != RayGenLobe::Diffuse) {
+        if (a.maxRoughness < std::numeric_limits<float>::infinity()) {
+            wanted = surface & (ln::load<Lane>(a.g[4] + go) < Lane(a.maxRoughness));
+            c.faded += surfaceCount - popcount(wanted, valid);
+        }
+    }
+    V3 dir{zero, zero, zero};
+    Lane pdf = zero;
+    Mask ok = wanted;
+    if (ln::any(wanted)) {
+        Lane u1(0.0f), u2(0.0f);
+        if constexpr (K != RayGenLobe::Mirror) uniforms(a, x, y, u1, u2);
+        drawLobe<K>(a, go, n, v, u1, u2, dir, pdf, ok);
+        ok = ok & wanted;
+    }
     const unsigned rays = popcount(ok, valid);
     c.rays += rays;
-    c.belowSurface += surfaceCount - rays;
+    c.belowSurface += popcount(wanted, valid) - rays;
     ln::store(out[0] + oo, ln::select(surface, origin.x, zero));
     ln::store(out[1] + oo, ln::select(surface, origin.y, zero));
     ln::store(out[2] + oo, ln::select(surface, origin.z, zero));

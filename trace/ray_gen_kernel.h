@@ -32,11 +32,14 @@ struct RayGenArgs {
     float viewToWorld[9];  // rotation, column-major
     uint32_t frame, sample;
     uint32_t dim;  // first of the two random-number dimensions
+    // Specular lobes: pixels whose perceptual roughness is not below this (NaN included)
+    // get no ray ("faded"); +infinity traces every pixel.
+    float maxRoughness;
 };
 
 // Counters of one tile (RayGenStats, as plain numbers).
 struct RayGenCounts {
-    uint64_t pixels, rays, belowSurface, background;
+    uint64_t pixels, rays, belowSurface, background, faded;
 };
 
 SSRT_DECLARE_KERNEL(void, generateRaysTile,

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -291,6 +293,76 @@ TEST_CASE("ray generation: background pixels have no ray") {
         // (checkBatch holds every background pixel to zeros)
         checkBatch(f, &m, rays, s);
     }
+}
+
+TEST_CASE(
+    "ray generation: a roughness cut leaves the rougher pixels without a ray, the rest as they "
+    "were") {
+    // Cornell: walls 0.9, box 0.6, floor 0.15, mirror 0.02; one wall pixel made NaN.
+    GBufferFrame f = renderBuiltin("cornell", 203, 137);
+    PlaneF* roughPlane = nullptr;
+    for (NamedPlane& p : f.frame.planes)
+        if (p.name == "roughness") roughPlane = &p.plane;
+    REQUIRE(roughPlane);
+    PlaneF& rough = *roughPlane;
+    const PlaneF& viewZ = f.frame.plane("viewZ");
+    int nanX = -1, nanY = -1;
+    for (int y = 0; y < f.height() && nanX < 0; ++y)
+        for (int x = 0; x < f.width(); ++x)
+            if (viewZ.at(x, y) > 0.0f && rough.at(x, y) < 0.5f) {
+                rough.at(x, y) = std::nanf("");
+                nanX = x, nanY = y;
+                break;
+            }
+    REQUIRE(nanX >= 0);
+    const float cut = 0.7f;
+    for (SsrMethod m : kAllSsrMethods) {
+        CAPTURE(ssrMethodName(m));
+        for (Isa isa : {Isa::Scalar, defaultIsa()}) {
+            CAPTURE(isaName(isa));
+            RayBatch all, some;
+            const RayGenStats sa = generateSpecularRays(isa, m, 3, 1, f.camera, f.g(), all, 2);
+            const RayGenStats ss =
+                generateSpecularRays(isa, m, 3, 1, f.camera, f.g(), some, 2, cut);
+            uint64_t rougher = 0, keptRays = 0;
+            bool cutOnes = true, sameOthers = true;
+            for (int y = 0; y < f.height(); ++y)
+                for (int x = 0; x < f.width(); ++x) {
+                    if (!(viewZ.at(x, y) > 0.0f)) continue;
+                    const PlaneF* ps[7] = {&all.ox, &all.oy, &all.oz, &all.dx,
+                                           &all.dy, &all.dz, &all.pdf};
+                    const PlaneF* qs[7] = {&some.ox, &some.oy, &some.oz, &some.dx,
+                                           &some.dy, &some.dz, &some.pdf};
+                    if (!(rough.at(x, y) < cut)) {
+                        ++rougher;
+                        // No ray: pdf and direction 0; the origin is still the surface point.
+                        cutOnes &= some.pdf.at(x, y) == 0.0f && some.dx.at(x, y) == 0.0f &&
+                                   some.dy.at(x, y) == 0.0f && some.dz.at(x, y) == 0.0f &&
+                                   some.oz.at(x, y) == all.oz.at(x, y);
+                        continue;
+                    }
+                    keptRays += some.pdf.at(x, y) > 0.0f;
+                    for (int p = 0; p < 7; ++p)
+                        sameOthers &= std::memcmp(&ps[p]->at(x, y), &qs[p]->at(x, y), 4) == 0;
+                }
+            CHECK(rougher > 1000);  // the walls
+            CHECK(ss.faded == rougher);
+            CHECK(sa.faded == 0);
+            CHECK(cutOnes);
+            CHECK(sameOthers);
+            CHECK(some.pdf.at(nanX, nanY) == 0.0f);  // NaN roughness is not below the cut
+            CHECK(ss.rays == keptRays);
+            CHECK(ss.rays + ss.belowSurface + ss.faded == ss.pixels);
+            CHECK(ss.pixels == sa.pixels);
+            CHECK(ss.background == sa.background);
+        }
+    }
+    // Diffuse rays take no cut; a NaN cut is refused.
+    RayBatch rays;
+    CHECK(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1).faded == 0);
+    CHECK_THROWS_AS(generateSpecularRays(defaultIsa(), SsrMethod::Mirror, 0, 0, f.camera, f.g(),
+                                         rays, 1, std::nanf("")),
+                    std::invalid_argument);
 }
 
 TEST_CASE("ray generation: mirror rays are exact reflections") {
