@@ -138,10 +138,11 @@ void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_flag("--no-ssgi", o.noSsgi,
                  "Skip screen-space one-bounce diffuse (the environment's irradiance stands in)")
         ->group("Screen-space tracing");
-    cmd.add_flag("--ssr-trace-faded", o.ssrTraceFaded,
-                 "Trace SSR rays also where the roughness fade hides them (perceptual roughness "
-                 ">= 0.7, the fade's end): the image is the same there, the counters and hit "
-                 "planes then cover rough surfaces too; by default those pixels get no ray")
+    cmd.add_flag("--trace-hidden", o.traceHidden,
+                 "Trace rays also where the composite hides what they find: SSR where the "
+                 "roughness fade does (perceptual roughness >= 0.7), SSGI on metals (no diffuse "
+                 "colour). The image is the same at those pixels; the counters and hit planes "
+                 "then cover them too. By default they get no ray")
         ->group("Screen-space tracing");
     add("--ssr-method", o.ssrMethod, "NAME", "How SSR rays sample the GGX lobe: " + kSsrMethods,
         std::string(ssrMethodName(d.ssrMethod)));
@@ -174,7 +175,7 @@ void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
 void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
     if (o.noSsr) t.ssr = false;
     if (o.noSsgi) t.ssgi = false;
-    if (o.ssrTraceFaded) t.ssrTraceFaded = true;
+    if (o.traceHidden) t.traceHidden = true;
     if (o.ssrMethod)
         t.ssrMethod = parseChoice("--ssr-method", *o.ssrMethod, parseSsrMethod, kSsrMethods);
     if (o.marcher) t.marcher = parseChoice("--marcher", *o.marcher, parseMarcher, kMarchers);

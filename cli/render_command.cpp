@@ -208,7 +208,7 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
     row("surface pixels", [](const TraceStats& t) { return t.rays.pixels; });
     row("rays traced", [](const TraceStats& t) { return t.march.rays; });
     row("below surface", [](const TraceStats& t) { return t.rays.belowSurface; });
-    row("faded (rough)", [](const TraceStats& t) { return t.rays.faded; });
+    row("hidden, no ray", [](const TraceStats& t) { return t.rays.hidden; });
     for (int e = 0; e < kMarchEndCount; ++e) {
         if (MarchEnd(e) == MarchEnd::NoRay) continue;
         const std::string label = MarchEnd(e) == MarchEnd::Hit

@@ -26,7 +26,7 @@ struct RenderOptions {
     // The screen-space passes (RenderSettings::trace); unset = the default.
     std::optional<std::string> ssrMethod, marcher, ssrSpp, ssgiSpp, maxSteps, thickness,
         ssrResolve, hitRadiance;
-    bool noSsr = false, noSsgi = false, ssrTraceFaded = false;
+    bool noSsr = false, noSsgi = false, traceHidden = false;
     std::string output = "ssrt.png";
     bool stats = false;
     bool quiet = false;

@@ -35,11 +35,12 @@ struct TraceSettings {
     int ssgiSpp = 1;
     MarchSettings march;          // its frame and sample are set per pass by the renderer
     SsrResolveSettings resolve;   // hit radiance source, fades, mip or ray-reuse mode
-    // SSR rays also where the roughness fade hides them (perceptual roughness >=
-    // resolve.roughnessFadeEnd: the SSR opacity is 0 there whatever the ray finds). Off: no
-    // ray there (RayGenStats::faded), as HDRP does; the composite is the same at those
-    // pixels, and only the reuse resolve of a smoother neighbour misses their rays.
-    bool ssrTraceFaded = false;
+    // Rays also where the composite hides what they find: SSR where the roughness fade
+    // does (perceptual roughness >= resolve.roughnessFadeEnd: SSR opacity 0), as HDRP does
+    // not, and SSGI where the diffuse colour albedo (1 - metallic) is 0 (metals). Off: no
+    // ray there (RayGenStats::hidden); the composite is the same at those pixels, and only
+    // the SSR reuse resolve of a smoother neighbour misses their rays.
+    bool traceHidden = false;
 
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }

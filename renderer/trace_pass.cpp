@@ -75,7 +75,12 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         pass("hi-z", t0);
     }
     const MarchGBuffer mg{&viewZ, {normal[0], normal[1], normal[2]}};
-    const RayGenGBuffer rg{&viewZ, {normal[0], normal[1], normal[2]}, &frame.plane("roughness")};
+    // (albedo and metallic: the diffuse colour the composite multiplies SSGI by)
+    const RayGenGBuffer rg{&viewZ,
+                           {normal[0], normal[1], normal[2]},
+                           &frame.plane("roughness"),
+                           {albedo[0], albedo[1], albedo[2]},
+                           &frame.plane("metallic")};
     double pyramidMs = 0.0;
     auto timed = [](double& ms, auto&& fn) {
         const auto t0 = Clock::now();
@@ -129,7 +134,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         st.spp = ts.ssrSpp;
         double genMs = 0.0, marchMs = 0.0, resolveMs2 = pyramidMs;
         const float maxRoughness =
-            ts.ssrTraceFaded ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
+            ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
         for (int s = 0; s < ts.ssrSpp; ++s) {
             timed(genMs, [&] {
                 st.rays.add(generateSpecularRays(isa, ts.ssrMethod, settings.frame, uint32_t(s),
@@ -174,7 +179,7 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         for (int s = 0; s < ts.ssgiSpp; ++s) {
             timed(genMs, [&] {
                 st.rays.add(generateDiffuseRays(isa, settings.frame, uint32_t(s), camera, rg,
-                                                sc.rays, threads));
+                                                sc.rays, threads, !ts.traceHidden));
             });
             timed(marchMs, [&] { march(st, uint32_t(s)); });
             if (observer && *observer) (*observer)(TracePass::Ssgi, s, sc.rays, sc.march);

@@ -34,7 +34,7 @@ void RayGenStats::add(const RayGenStats& o) {
     rays += o.rays;
     belowSurface += o.belowSurface;
     background += o.background;
-    faded += o.faded;
+    hidden += o.hidden;
 }
 
 namespace {
@@ -56,7 +56,7 @@ void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam,
 // Set-up shared by both passes: checks, arguments, the tile loop, counters in tile order.
 RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays, int threads,
-                float maxRoughness) {
+                float maxRoughness, bool onlyDiffuse) {
     if (std::isnan(maxRoughness))
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
@@ -67,6 +67,12 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
     checkPlane(g.normal[1], "normal.Y", camera, gStride);
     checkPlane(g.normal[2], "normal.Z", camera, gStride);
     if (lobe != RayGenLobe::Diffuse) checkPlane(g.roughness, "roughness", camera, gStride);
+    if (onlyDiffuse) {
+        checkPlane(g.albedo[0], "albedo.R", camera, gStride);
+        checkPlane(g.albedo[1], "albedo.G", camera, gStride);
+        checkPlane(g.albedo[2], "albedo.B", camera, gStride);
+        checkPlane(g.metallic, "metallic", camera, gStride);
+    }
     rays.ensureSize(camera.width, camera.height);
 
     RayGenArgs a{};
@@ -89,6 +95,10 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
     a.sample = sample;
     a.dim = dim;
     a.maxRoughness = maxRoughness;
+    if (onlyDiffuse) {
+        for (int c = 0; c < 3; ++c) a.diffuse[c] = g.albedo[c]->row(0);
+        a.diffuse[3] = g.metallic->row(0);
+    }
 
     std::vector<RayGenCounts> counts(std::size_t(grid.count()));
     auto* kernel = SSRT_DISPATCH(isa, generateRaysTile);
@@ -96,7 +106,7 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
                      [&](int tile) { kernel(a, tile, counts[std::size_t(tile)]); });
     RayGenStats stats;
     for (const RayGenCounts& c : counts)
-        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.faded});
+        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.hidden});
     return stats;
 }
 
@@ -106,14 +116,14 @@ RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint
                                  const TraceCamera& camera, const RayGenGBuffer& g,
                                  RayBatch& rays, int threads, float maxRoughness) {
     return run(isa, RayGenLobe(int(method)), frame, sample, kRayGenSpecularDim, camera, g, rays,
-               threads, maxRoughness);
+               threads, maxRoughness, false);
 }
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads) {
+                                RayBatch& rays, int threads, bool onlyDiffuse) {
     return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays,
-               threads, std::numeric_limits<float>::infinity());
+               threads, std::numeric_limits<float>::infinity(), onlyDiffuse);
 }
 
 }  // namespace ssrt

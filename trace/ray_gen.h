@@ -67,6 +67,9 @@ struct RayGenGBuffer {
     const PlaneF* viewZ;
     const PlaneF* normal[3];  // world space
     const PlaneF* roughness;  // perceptual
+    // Read only by generateDiffuseRays with onlyDiffuse.
+    const PlaneF* albedo[3] = {};
+    const PlaneF* metallic = nullptr;
 };
 
 struct RayGenStats {
@@ -75,9 +78,10 @@ struct RayGenStats {
     // samples that fell below the surface (rejected: pdf 0), counted per method (see above)
     uint64_t belowSurface = 0;
     uint64_t background = 0;  // background pixels (no ray)
-    // surface pixels left without a specular ray because their roughness is at or above
-    // the cut (generateSpecularRays' maxRoughness); not in belowSurface
-    uint64_t faded = 0;
+    // surface pixels left without a ray because the composite would not show what it found
+    // (specular: roughness at or past the cut; diffuse: no diffuse colour); not in
+    // belowSurface
+    uint64_t hidden = 0;
     void add(const RayGenStats&);
 };
 
@@ -88,7 +92,7 @@ struct RayGenStats {
 // the camera; the G-buffer planes must have the camera's size (else std::invalid_argument).
 // threads: 0 = every core. A surface pixel whose perceptual roughness is not below
 // `maxRoughness` (NaN included) gets no ray, as one rejected below the surface but counted
-// as `faded`: the renderer passes the resolve's roughnessFadeEnd, where SSR's opacity is 0
+// as `hidden`: the renderer passes the resolve's roughnessFadeEnd, where SSR's opacity is 0
 // whatever the ray finds (HDRP does not trace there either). +infinity (the default) cuts
 // nothing; NaN is std::invalid_argument. The random numbers of the other pixels do not
 // depend on it, so neither do their rays.
@@ -98,9 +102,13 @@ RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint
                                  float maxRoughness = std::numeric_limits<float>::infinity());
 
 // Diffuse (SSGI) rays: cosine-weighted hemisphere around the shading normal; pdf = cos/pi.
-// (g.roughness is not read and may be null.)
+// (g.roughness is not read and may be null.) With `onlyDiffuse`, a surface pixel whose
+// diffuse colour albedo (1 - metallic) is 0 in every channel (metals) gets no ray, counted
+// as `hidden`: the composite multiplies SSGI by that colour, and a pixel without a ray
+// contributes 0 (trace/ssgi.h), so its image is the same; g.albedo and g.metallic are then
+// required. The other pixels' rays do not change a bit.
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads);
+                                RayBatch& rays, int threads, bool onlyDiffuse = false);
 
 }  // namespace ssrt

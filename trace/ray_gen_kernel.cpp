@@ -138,14 +138,22 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     const V3 n = ln::normalize(V3{(Lane(r[0]) * nw.x + Lane(r[1]) * nw.y) + Lane(r[2]) * nw.z,
                                   (Lane(r[3]) * nw.x + Lane(r[4]) * nw.y) + Lane(r[5]) * nw.z,
                                   (Lane(r[6]) * nw.x + Lane(r[7]) * nw.y) + Lane(r[8]) * nw.z});
-    // Specular rays where the resolve's roughness fade would hide them are not drawn.
+    // Rays whose result the composite would not show are not drawn: specular ones where
+    // the resolve's roughness fade hides SSR, diffuse ones where the diffuse colour that
+    // multiplies SSGI (as shading/composite_kernel.cpp computes it) is 0.
     Mask wanted = surface;
     if constexpr (K != RayGenLobe::Diffuse) {
-        if (a.maxRoughness < std::numeric_limits<float>::infinity()) {
+        if (a.maxRoughness < std::numeric_limits<float>::infinity())
             wanted = surface & (ln::load<Lane>(a.g[4] + go) < Lane(a.maxRoughness));
-            c.faded += surfaceCount - popcount(wanted, valid);
-        }
+    } else if (a.diffuse[0]) {
+        // (!(x == 0), not x != 0: a NaN colour is kept on every ISA, where vector != is
+        // ordered and scalar != is not.)
+        const Lane keep = Lane(1.0f) - ln::load<Lane>(a.diffuse[3] + go);
+        wanted = surface & !((ln::load<Lane>(a.diffuse[0] + go) * keep == zero) &
+                             (ln::load<Lane>(a.diffuse[1] + go) * keep == zero) &
+                             (ln::load<Lane>(a.diffuse[2] + go) * keep == zero));
     }
+    c.hidden += surfaceCount - popcount(wanted, valid);
     V3 dir{zero, zero, zero};
     Lane pdf = zero;
     Mask ok = wanted;

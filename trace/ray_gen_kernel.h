@@ -33,13 +33,16 @@ struct RayGenArgs {
     uint32_t frame, sample;
     uint32_t dim;  // first of the two random-number dimensions
     // Specular lobes: pixels whose perceptual roughness is not below this (NaN included)
-    // get no ray ("faded"); +infinity traces every pixel.
+    // get no ray ("hidden"); +infinity traces every pixel.
     float maxRoughness;
+    // Diffuse lobe: albedo R, G, B and metallic (gStride), or all null. Where given, pixels
+    // whose albedo (1 - metallic) is 0 in every channel get no ray ("hidden").
+    const float* diffuse[4];
 };
 
 // Counters of one tile (RayGenStats, as plain numbers).
 struct RayGenCounts {
-    uint64_t pixels, rays, belowSurface, background, faded;
+    uint64_t pixels, rays, belowSurface, background, hidden;
 };
 
 SSRT_DECLARE_KERNEL(void, generateRaysTile,

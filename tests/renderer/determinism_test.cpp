@@ -118,12 +118,12 @@ const std::map<std::string, uint64_t> kGolden = {
     {"offscreen", 0x493e5905e1814489ull},
     {"occluded", 0xc49813c3c3429ad4ull},
     {"cornell+tex", 0x2f3eaaa925cfbec0ull},
-    {"cornell@hiz", 0xaf4dab76d7f9f62bull},
-    {"spheres@dda", 0x5f2ec33ac1e841e9ull},
-    {"corridor@linear", 0xb762900de106d599ull},
-    {"thin@hiz/mip", 0xff90779d7feebe5cull},
-    {"offscreen@hiz", 0xc548fbd5153b7edbull},
-    {"occluded@dda", 0xca13cc4fdf6e66e2ull},
+    {"cornell@hiz", 0xffa8207adcd67af8ull},
+    {"spheres@dda", 0x9c5b1b3545f1a32aull},
+    {"corridor@linear", 0x5f577ac6a1167134ull},
+    {"thin@hiz/mip", 0x2ad134a1caa8aaa1ull},
+    {"offscreen@hiz", 0xfd2d7cfab002f8a3ull},
+    {"occluded@dda", 0xcf35047d5c45a6afull},
 };
 // clang-format on
 

@@ -56,36 +56,48 @@ TEST_CASE("renderer: trace planes agree with the trace counters") {
         uint64_t ended = 0;
         for (int e = 0; e < kMarchEndCount; ++e) ended += ssr.ends[e];
         CHECK(ended == ssr.rays);
-        // (Cornell's walls, roughness 0.9, are past the fade's end: no ray there.)
-        CHECK(f.stats.ssr.rays.faded > 0);
-        CHECK(ssr.rays + f.stats.ssr.rays.belowSurface + f.stats.ssr.rays.faded ==
-              f.stats.ssr.rays.pixels);
-        CHECK(f.stats.ssgi.rays.faded == 0);
+        // (No SSR ray on cornell's walls, roughness 0.9, past the fade's end; no SSGI ray on
+        // its mirror, metallic 1.)
+        for (const TraceStats* t : {&f.stats.ssr, &f.stats.ssgi}) {
+            CHECK(t->rays.hidden > 0);
+            // (pixels: summed over the samples, as the others)
+            CHECK(t->march.rays + t->rays.belowSurface + t->rays.hidden == t->rays.pixels);
+        }
+        CHECK(f.stats.ssr.rays.hidden > f.stats.ssgi.rays.hidden);
         CHECK(ssr.laneActive <= ssr.laneSlots);
     }
 }
 
-TEST_CASE(
-    "renderer: no SSR ray where the roughness fade hides it, and the image is the same there") {
-    // Cornell's walls (roughness 0.9) are past the fade's end (0.7): their SSR opacity is 0
-    // whatever a ray finds, so skipping their rays may change only the reuse resolve of a
-    // smoother pixel beside them (it reads its 3x3 neighbours' rays).
+TEST_CASE("renderer: no ray where the composite hides what it finds, and the image is the same") {
+    // Cornell: the walls (roughness 0.9) are past the SSR fade's end (0.7), so their SSR
+    // opacity is 0 whatever a ray finds; the mirror (metallic 1) has no diffuse colour to
+    // multiply SSGI by. Skipping those rays may change only the SSR reuse resolve of a
+    // smoother pixel beside a rough one (it reads its 3x3 neighbours' rays).
     const Scene scene = makeBuiltinScene("cornell");
     for (const SsrResolveMode mode : {SsrResolveMode::Reuse, SsrResolveMode::Mip}) {
         CAPTURE(int(mode));
         RenderSettings skip = smallTraced(), traceAll = smallTraced();
         skip.trace.resolve.mode = traceAll.trace.resolve.mode = mode;
         skip.trace.ssrSpp = traceAll.trace.ssrSpp = 2;
-        traceAll.trace.ssrTraceFaded = true;
+        traceAll.trace.traceHidden = true;
         const Frame a = Renderer(skip).render(scene), b = Renderer(traceAll).render(scene);
-        const PlaneF& rough = a.plane("roughness");
         const PlaneF& viewZ = a.plane("viewZ");
         const float end = skip.trace.resolve.roughnessFadeEnd;
         const auto isRough = [&](int x, int y) {
-            return viewZ.at(x, y) > 0.0f && !(rough.at(x, y) < end);
+            return viewZ.at(x, y) > 0.0f && !(a.plane("roughness").at(x, y) < end);
         };
-        uint64_t rougher = 0;
-        int roughSame = 0, roughPixels = 0, farSame = 0, farPixels = 0;
+        const auto isMetal = [&](int x, int y) {
+            const float keep = 1.0f - a.plane("metallic").at(x, y);
+            return viewZ.at(x, y) > 0.0f && a.plane("albedo.R").at(x, y) * keep == 0.0f &&
+                   a.plane("albedo.G").at(x, y) * keep == 0.0f &&
+                   a.plane("albedo.B").at(x, y) * keep == 0.0f;
+        };
+        const auto same = [&](const char* p, int x, int y) {
+            return std::memcmp(&a.plane(p).at(x, y), &b.plane(p).at(x, y), 4) == 0;
+        };
+        uint64_t rough = 0, metal = 0;
+        int imageKept = 0, imagePixels = 0, ssrKept = 0, ssrPixels = 0, ssgiKept = 0;
+        int hiddenEmpty = 0;
         for (int y = 0; y < a.height; ++y)
             for (int x = 0; x < a.width; ++x) {
                 bool nearRough = false;
@@ -95,34 +107,46 @@ TEST_CASE(
                         if (u >= 0 && v >= 0 && u < a.width && v < a.height)
                             nearRough |= isRough(u, v);
                     }
-                bool same = true;
-                for (const char* p : {"color.R", "color.G", "color.B", "ssrOpacity"})
-                    same &= std::memcmp(&a.plane(p).at(x, y), &b.plane(p).at(x, y), 4) == 0;
-                if (isRough(x, y)) {
-                    ++rougher;
-                    ++roughPixels;
-                    roughSame += same && a.plane("ssrOpacity").at(x, y) == 0.0f &&
-                                 a.plane("ssrHit").at(x, y) == 0.0f;
-                } else if (!nearRough || mode == SsrResolveMode::Mip) {
-                    ++farPixels;
-                    for (const char* p : {"ssr.R", "ssr.G", "ssr.B", "ssrHit", "ssrSteps"})
-                        same &= std::memcmp(&a.plane(p).at(x, y), &b.plane(p).at(x, y), 4) == 0;
-                    farSame += same;
+                rough += isRough(x, y);
+                metal += isMetal(x, y);
+                // The image: wherever no smoother pixel borrowed a skipped SSR ray.
+                if (isRough(x, y) || !nearRough || mode == SsrResolveMode::Mip) {
+                    ++imagePixels;
+                    imageKept += same("color.R", x, y) && same("color.G", x, y) &&
+                                 same("color.B", x, y) && same("ssrOpacity", x, y);
                 }
+                // SSR's own planes away from the rough pixels.
+                if (!isRough(x, y) && (!nearRough || mode == SsrResolveMode::Mip)) {
+                    ++ssrPixels;
+                    ssrKept += same("ssr.R", x, y) && same("ssrHit", x, y) &&
+                               same("ssrSteps", x, y);
+                }
+                // SSGI borrows nothing from neighbours: every pixel with a diffuse colour.
+                if (!isMetal(x, y))
+                    ssgiKept += same("ssgi.R", x, y) && same("ssgiHit", x, y) &&
+                                same("ssgiSteps", x, y);
+                hiddenEmpty += isRough(x, y) && a.plane("ssrOpacity").at(x, y) == 0.0f &&
+                               a.plane("ssrHit").at(x, y) == 0.0f;
+                hiddenEmpty += isMetal(x, y) && a.plane("ssgi.R").at(x, y) == 0.0f &&
+                               a.plane("ssgiHit").at(x, y) == 0.0f;
             }
-        CHECK(roughPixels > 1000);
-        CHECK(roughSame == roughPixels);
-        CHECK(farPixels > 1000);
-        CHECK(farSame == farPixels);
-        CHECK(a.stats.ssr.rays.faded == rougher * 2);  // two samples
-        CHECK(b.stats.ssr.rays.faded == 0);
-        // The rough pixels' rays are all that is missing (some of them would have been
-        // rejected below the surface anyway).
+        CHECK(rough > 1000);
+        CHECK(metal > 100);
+        CHECK(imagePixels > 10000);
+        CHECK(imageKept == imagePixels);
+        CHECK(ssrPixels > 1000);
+        CHECK(ssrKept == ssrPixels);
+        CHECK(ssgiKept == a.width * a.height - int(metal));
+        CHECK(hiddenEmpty == int(rough + metal));
+        CHECK(a.stats.ssr.rays.hidden == rough * 2);  // two samples
+        CHECK(a.stats.ssgi.rays.hidden == metal);
+        CHECK(b.stats.ssr.rays.hidden == 0);
+        CHECK(b.stats.ssgi.rays.hidden == 0);
+        // The hidden pixels' rays are all that is missing (some of the SSR ones would have
+        // been rejected below the surface anyway).
         CHECK(a.stats.ssr.march.rays < b.stats.ssr.march.rays);
-        CHECK(b.stats.ssr.march.rays - a.stats.ssr.march.rays <= rougher * 2);
-        CHECK(a.stats.ssr.rays.pixels == b.stats.ssr.rays.pixels);
-        for (const char* p : {"ssgi.R", "ssgiHit", "ssgiSteps"})
-            CHECK(test::sameBits(a.plane(p), b.plane(p)));
+        CHECK(b.stats.ssr.march.rays - a.stats.ssr.march.rays <= rough * 2);
+        CHECK(b.stats.ssgi.march.rays - a.stats.ssgi.march.rays == metal);
     }
 }
 

@@ -346,22 +346,85 @@ TEST_CASE(
                         sameOthers &= std::memcmp(&ps[p]->at(x, y), &qs[p]->at(x, y), 4) == 0;
                 }
             CHECK(rougher > 1000);  // the walls
-            CHECK(ss.faded == rougher);
-            CHECK(sa.faded == 0);
+            CHECK(ss.hidden == rougher);
+            CHECK(sa.hidden == 0);
             CHECK(cutOnes);
             CHECK(sameOthers);
             CHECK(some.pdf.at(nanX, nanY) == 0.0f);  // NaN roughness is not below the cut
             CHECK(ss.rays == keptRays);
-            CHECK(ss.rays + ss.belowSurface + ss.faded == ss.pixels);
+            CHECK(ss.rays + ss.belowSurface + ss.hidden == ss.pixels);
             CHECK(ss.pixels == sa.pixels);
             CHECK(ss.background == sa.background);
         }
     }
     // Diffuse rays take no cut; a NaN cut is refused.
     RayBatch rays;
-    CHECK(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1).faded == 0);
+    CHECK(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1).hidden == 0);
     CHECK_THROWS_AS(generateSpecularRays(defaultIsa(), SsrMethod::Mirror, 0, 0, f.camera, f.g(),
                                          rays, 1, std::nanf("")),
+                    std::invalid_argument);
+}
+
+TEST_CASE("ray generation: onlyDiffuse leaves pixels without a diffuse colour without a ray") {
+    // Cornell has a mirror (metallic 1); four more pixels are edited: black albedo (no ray),
+    // one channel of albedo left at half metallic (a ray), NaN metallic (a ray: the
+    // composite's colour is NaN there, not 0), metallic 1 on a wall (no ray).
+    GBufferFrame f = renderBuiltin("cornell", 203, 137);
+    const auto plane = [&](const char* name) -> PlaneF& {
+        for (NamedPlane& p : f.frame.planes)
+            if (p.name == name) return p.plane;
+        FAIL("no plane " << name);
+        return f.frame.planes.front().plane;
+    };
+    PlaneF &r = plane("albedo.R"), &g = plane("albedo.G"), &b = plane("albedo.B");
+    PlaneF& metallic = plane("metallic");
+    const PlaneF& viewZ = f.frame.plane("viewZ");
+    const int y = f.height() / 2;
+    std::vector<int> xs;
+    for (int x = 0; x < f.width() && xs.size() < 4; x += 7)
+        if (viewZ.at(x, y) > 0.0f && metallic.at(x, y) == 0.0f) xs.push_back(x);
+    REQUIRE(xs.size() == 4);
+    r.at(xs[0], y) = g.at(xs[0], y) = b.at(xs[0], y) = 0.0f;
+    r.at(xs[1], y) = g.at(xs[1], y) = 0.0f, b.at(xs[1], y) = 0.1f, metallic.at(xs[1], y) = 0.5f;
+    metallic.at(xs[2], y) = std::nanf("");
+    metallic.at(xs[3], y) = 1.0f;
+    RayGenGBuffer gb = f.g();
+    gb.albedo[0] = &r, gb.albedo[1] = &g, gb.albedo[2] = &b, gb.metallic = &metallic;
+    for (Isa isa : {Isa::Scalar, defaultIsa()}) {
+        CAPTURE(isaName(isa));
+        RayBatch all, some;
+        const RayGenStats sa = generateDiffuseRays(isa, 4, 2, f.camera, gb, all, 2);
+        const RayGenStats ss = generateDiffuseRays(isa, 4, 2, f.camera, gb, some, 2, true);
+        uint64_t none = 0;
+        bool cut = true, kept = true;
+        for (int v = 0; v < f.height(); ++v)
+            for (int x = 0; x < f.width(); ++x) {
+                if (!(viewZ.at(x, v) > 0.0f)) continue;
+                const float keep = 1.0f - metallic.at(x, v);
+                const bool dark = r.at(x, v) * keep == 0.0f && g.at(x, v) * keep == 0.0f &&
+                                  b.at(x, v) * keep == 0.0f;
+                if (dark) {
+                    ++none;
+                    cut &= some.pdf.at(x, v) == 0.0f && some.dx.at(x, v) == 0.0f;
+                } else {
+                    for (const auto m : {&RayBatch::dx, &RayBatch::dy, &RayBatch::dz, &RayBatch::pdf})
+                        kept &= std::memcmp(&(all.*m).at(x, v), &(some.*m).at(x, v), 4) == 0;
+                }
+            }
+        CHECK(none > 100);  // the mirror, and two edited pixels
+        CHECK(ss.hidden == none);
+        CHECK(sa.hidden == 0);
+        CHECK(cut);
+        CHECK(kept);
+        CHECK(some.pdf.at(xs[0], y) == 0.0f);
+        CHECK(some.pdf.at(xs[1], y) > 0.0f);
+        CHECK(some.pdf.at(xs[2], y) > 0.0f);
+        CHECK(some.pdf.at(xs[3], y) == 0.0f);
+        CHECK(ss.rays + ss.belowSurface + ss.hidden == ss.pixels);
+    }
+    // It needs the planes it reads.
+    RayBatch rays;
+    CHECK_THROWS_AS(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1, true),
                     std::invalid_argument);
 }
 
