@@ -67,6 +67,9 @@ SSRT_INLINE xsimd::batch<int32_t, A> select(xsimd::batch_bool<int32_t, A> m,
     return xsimd::select(m, a, b);
 }
 
+// Comparisons: <, <=, >, >= and == are false for NaN on every ISA, but xsimd's != is
+// ordered (false for NaN) with AVX and AVX-512 and unordered (true) with SSE and in scalar
+// code. Where a NaN can reach a test of inequality, write !(a == b): the same on every ISA.
 template <class L>
 SSRT_INLINE L min(L a, L b) { return lanes::select(a < b, a, b); }
 template <class L>
