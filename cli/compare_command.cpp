@@ -229,7 +229,8 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                                      std::to_string(settings.trace.ssrSpp)
                                : std::string("off"))
         << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
-        << ", reference " << refSettings.spp << " spp\n\n";
+        << (settings.trace.traceHidden ? ", hidden rays traced" : "") << ", reference "
+        << refSettings.spp << " spp\n\n";
     printEvaluation(out, embree.stats(), ev);
     if (o.output) {
         appendTruthPlanes(frame, reference, ev);

@@ -141,6 +141,7 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     optional(p.traced, p.ssrSpp), optional(p.traced, p.ssgiSpp), optional(p.traced, p.maxSteps);
     optional(p.traced, p.thickness);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
+    optional(p.traced, s.trace.traceHidden ? 1 : 0);
     cell(referenceSpp);
     cell(ev.frameMs);
     for (const char* pass : kPasses) {
@@ -222,7 +223,8 @@ const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
         std::vector<std::string> c = {"scene", "width", "height", "threads", "marcher",
                                       "ssr_method", "ssr_spp", "ssgi_spp", "max_steps",
-                                      "thickness", "resolve", "reference_spp", "frame_ms"};
+                                      "thickness", "resolve", "trace_hidden", "reference_spp",
+                                      "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -257,6 +259,11 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     list("--ssgi-spp", o.ssgiSpp, "SSGI rays per pixel");
     list("--thickness", o.thickness, "Depth-buffer thickness (view-space units)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
+    cmd->add_flag("--trace-hidden", o.traceHidden,
+                  "Every setting also traces the rays the composite hides (SSR past the "
+                  "roughness fade, SSGI on metals); by default they get no ray, so the ray "
+                  "checks leave those pixels out (column trace_hidden)")
+        ->group("Grid");
     addTruthOptions(*cmd, o.truth);
     cmd->add_option("-o,--output", o.output, "CSV file to write (whole, when the sweep ends)")
         ->type_name("FILE")
@@ -266,6 +273,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
 
 int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
+    request.settings.trace.traceHidden = o.traceHidden;
     const std::vector<Point> points = grid(o);
     std::vector<RenderSettings> settings;
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));

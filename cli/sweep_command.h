@@ -23,6 +23,7 @@ struct SweepOptions {
     std::string marchers = "off,linear,dda,hiz";
     std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, resolves;  // defaults: TraceSettings{}
     std::string output = "sweep.csv";
+    bool traceHidden = false;  // every setting: TraceSettings::traceHidden
     SweepOptions();
 };
 

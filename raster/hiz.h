@@ -14,6 +14,7 @@
 
 #include "core/aligned.h"
 #include "core/image.h"
+#include "raster/hiz_layout.h"
 
 namespace ssrt {
 
@@ -25,8 +26,6 @@ using HiZPacked = std::vector<float, AlignedAllocator<float, 64>>;
 // level L starts at packedOffset[L], a multiple of 16. A ray that moves a few pixels in any
 // direction stays in one cache line more often than with rows (vertical steps cross a line
 // every row there).
-inline constexpr int kHiZPackedTile = 4;
-inline constexpr std::size_t kHiZPackedTileSize = std::size_t(kHiZPackedTile * kHiZPackedTile);
 // Tiles across a level of width `size` (or down one of height `size`).
 inline constexpr int hiZPackedTiles(int size) {
     return (size + kHiZPackedTile - 1) / kHiZPackedTile;

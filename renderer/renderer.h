@@ -38,8 +38,9 @@ struct TraceSettings {
     // Rays also where the composite hides what they find: SSR where the roughness fade
     // does (perceptual roughness >= resolve.roughnessFadeEnd: SSR opacity 0), as HDRP does
     // not, and SSGI where the diffuse colour albedo (1 - metallic) is 0 (metals). Off: no
-    // ray there (RayGenStats::hidden); the composite is the same at those pixels, and only
-    // the SSR reuse resolve of a smoother neighbour misses their rays.
+    // ray there (RayGenStats::hidden); the composite is the same at those pixels (the
+    // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
+    // misses their rays.
     bool traceHidden = false;
 
     static constexpr int kMaxSpp = 64;

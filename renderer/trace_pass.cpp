@@ -178,8 +178,9 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
         for (int c = 0; c < 3; ++c) std::swap(out[c], *ssgi[c]);
         for (int s = 0; s < ts.ssgiSpp; ++s) {
             timed(genMs, [&] {
-                st.rays.add(generateDiffuseRays(isa, settings.frame, uint32_t(s), camera, rg,
-                                                sc.rays, threads, !ts.traceHidden));
+                st.rays.add(generateDiffuseRays(
+                    isa, settings.frame, uint32_t(s), camera, rg, sc.rays, threads,
+                    ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour));
             });
             timed(marchMs, [&] { march(st, uint32_t(s)); });
             if (observer && *observer) (*observer)(TracePass::Ssgi, s, sc.rays, sc.march);

@@ -1,5 +1,5 @@
 // What the three marcher kernels share: loading a lane group of packed rays, projection,
-// depth lookups and the scalar hit validation once a lane group is done. Included only by
+// depth lookups and the hit validation once a lane group is done. Included only by
 // kernel sources (after core/isa_target.h), so everything here is per ISA.
 #pragma once
 
@@ -140,7 +140,7 @@ inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
         c = ln::select(hit & (facing > zero), endCode(MarchEnd::BackFace), c);
     }
     const Mask gaveUp = (c == endCode(MarchEnd::LeftScreen)) | (c == endCode(MarchEnd::StepCap));
-    c = ln::select(gaveUp & (e.thick != zero), endCode(MarchEnd::Thickness), c);
+    c = ln::select(gaveUp & !(e.thick == zero), endCode(MarchEnd::Thickness), c);
     const Mask isHit = c == endCode(MarchEnd::Hit);
     ln::store(a.hit + base, ln::select(isHit, one, zero));
     ln::store(a.hitX + base, ln::select(isHit, e.hitX, zero));

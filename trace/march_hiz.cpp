@@ -12,7 +12,7 @@
 // infinitely thick (FidelityFX does the same); the max pyramid is not used here.
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
-#include "raster/hiz.h"
+#include "raster/hiz_layout.h"
 #include "trace/march_common.h"
 
 namespace ssrt::SSRT_ISA_NS {

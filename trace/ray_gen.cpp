@@ -121,9 +121,10 @@ RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads, bool onlyDiffuse) {
+                                RayBatch& rays, int threads, DiffuseCut cut) {
     return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays,
-               threads, std::numeric_limits<float>::infinity(), onlyDiffuse);
+               threads, std::numeric_limits<float>::infinity(),
+               cut == DiffuseCut::NoDiffuseColour);
 }
 
 }  // namespace ssrt

@@ -67,7 +67,7 @@ struct RayGenGBuffer {
     const PlaneF* viewZ;
     const PlaneF* normal[3];  // world space
     const PlaneF* roughness;  // perceptual
-    // Read only by generateDiffuseRays with onlyDiffuse.
+    // Read only by generateDiffuseRays with DiffuseCut::NoDiffuseColour.
     const PlaneF* albedo[3] = {};
     const PlaneF* metallic = nullptr;
 };
@@ -101,14 +101,21 @@ RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint
                                  RayBatch& rays, int threads,
                                  float maxRoughness = std::numeric_limits<float>::infinity());
 
+// Which pixels generateDiffuseRays leaves without a ray besides the background.
+enum class DiffuseCut {
+    None,
+    // albedo (1 - metallic) is 0 in every channel (metals); a NaN colour keeps its ray
+    NoDiffuseColour,
+};
+
 // Diffuse (SSGI) rays: cosine-weighted hemisphere around the shading normal; pdf = cos/pi.
-// (g.roughness is not read and may be null.) With `onlyDiffuse`, a surface pixel whose
-// diffuse colour albedo (1 - metallic) is 0 in every channel (metals) gets no ray, counted
-// as `hidden`: the composite multiplies SSGI by that colour, and a pixel without a ray
-// contributes 0 (trace/ssgi.h), so its image is the same; g.albedo and g.metallic are then
-// required. The other pixels' rays do not change a bit.
+// (g.roughness is not read and may be null.) With DiffuseCut::NoDiffuseColour a surface
+// pixel without a diffuse colour gets no ray, counted as `hidden`: the composite multiplies
+// SSGI by that colour, and a pixel without a ray contributes 0 (trace/ssgi.h), so its image
+// is the same; g.albedo and g.metallic are then required. The other pixels' rays do not
+// change a bit.
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads, bool onlyDiffuse = false);
+                                RayBatch& rays, int threads, DiffuseCut cut = DiffuseCut::None);
 
 }  // namespace ssrt

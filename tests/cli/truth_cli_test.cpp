@@ -98,6 +98,8 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
         CHECK(std::isfinite(relMse));
         CHECK(relMse >= 0.0);
         CHECK(std::stod(row[col("frame_ms")]) > 0.0);
+        // (The rays the composite hides are not traced unless --trace-hidden.)
+        CHECK(row[col("trace_hidden")] == (row[col("marcher")] == "off" ? "" : "0"));
         if (row[col("marcher")] == "off") {
             CHECK(row[col("ssr_agreed")].empty());
             CHECK(row[col("march_vs_embree")].empty());

@@ -306,19 +306,23 @@ TEST_CASE(
     REQUIRE(roughPlane);
     PlaneF& rough = *roughPlane;
     const PlaneF& viewZ = f.frame.plane("viewZ");
-    int nanX = -1, nanY = -1;
-    for (int y = 0; y < f.height() && nanX < 0; ++y)
-        for (int x = 0; x < f.width(); ++x)
-            if (viewZ.at(x, y) > 0.0f && rough.at(x, y) < 0.5f) {
-                rough.at(x, y) = std::nanf("");
-                nanX = x, nanY = y;
-                break;
-            }
-    REQUIRE(nanX >= 0);
+    // Three smooth pixels edited: NaN, exactly the cut (no ray: the fade is 0 there) and the
+    // float just below it (a ray).
     const float cut = 0.7f;
+    std::vector<std::pair<int, int>> edited;
+    for (int y = 0; y < f.height() && edited.size() < 3; ++y)
+        for (int x = 0; x < f.width() && edited.size() < 3; x += 5)
+            if (viewZ.at(x, y) > 0.0f && rough.at(x, y) < 0.5f) edited.emplace_back(x, y);
+    REQUIRE(edited.size() == 3);
+    const auto [nanX, nanY] = edited[0];
+    const auto [atX, atY] = edited[1];
+    const auto [belowX, belowY] = edited[2];
+    rough.at(nanX, nanY) = std::nanf("");
+    rough.at(atX, atY) = cut;
+    rough.at(belowX, belowY) = std::nextafter(cut, 0.0f);
     for (SsrMethod m : kAllSsrMethods) {
         CAPTURE(ssrMethodName(m));
-        for (Isa isa : {Isa::Scalar, defaultIsa()}) {
+        for (Isa isa : supportedIsas()) {
             CAPTURE(isaName(isa));
             RayBatch all, some;
             const RayGenStats sa = generateSpecularRays(isa, m, 3, 1, f.camera, f.g(), all, 2);
@@ -351,6 +355,10 @@ TEST_CASE(
             CHECK(cutOnes);
             CHECK(sameOthers);
             CHECK(some.pdf.at(nanX, nanY) == 0.0f);  // NaN roughness is not below the cut
+            CHECK(some.pdf.at(atX, atY) == 0.0f);
+            // Just below the cut: the pixel's own ray (a mirror ray is never rejected there).
+            CHECK(std::memcmp(&some.pdf.at(belowX, belowY), &all.pdf.at(belowX, belowY), 4) == 0);
+            if (m == SsrMethod::Mirror) CHECK(some.pdf.at(belowX, belowY) > 0.0f);
             CHECK(ss.rays == keptRays);
             CHECK(ss.rays + ss.belowSurface + ss.hidden == ss.pixels);
             CHECK(ss.pixels == sa.pixels);
@@ -365,7 +373,7 @@ TEST_CASE(
                     std::invalid_argument);
 }
 
-TEST_CASE("ray generation: onlyDiffuse leaves pixels without a diffuse colour without a ray") {
+TEST_CASE("ray generation: NoDiffuseColour leaves pixels without a diffuse colour without a ray") {
     // Cornell has a mirror (metallic 1); four more pixels are edited: black albedo (no ray),
     // one channel of albedo left at half metallic (a ray), NaN metallic (a ray: the
     // composite's colour is NaN there, not 0), metallic 1 on a wall (no ray).
@@ -390,11 +398,12 @@ TEST_CASE("ray generation: onlyDiffuse leaves pixels without a diffuse colour wi
     metallic.at(xs[3], y) = 1.0f;
     RayGenGBuffer gb = f.g();
     gb.albedo[0] = &r, gb.albedo[1] = &g, gb.albedo[2] = &b, gb.metallic = &metallic;
-    for (Isa isa : {Isa::Scalar, defaultIsa()}) {
+    for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
         RayBatch all, some;
         const RayGenStats sa = generateDiffuseRays(isa, 4, 2, f.camera, gb, all, 2);
-        const RayGenStats ss = generateDiffuseRays(isa, 4, 2, f.camera, gb, some, 2, true);
+        const RayGenStats ss = generateDiffuseRays(isa, 4, 2, f.camera, gb, some, 2,
+                                                   DiffuseCut::NoDiffuseColour);
         uint64_t none = 0;
         bool cut = true, kept = true;
         for (int v = 0; v < f.height(); ++v)
@@ -424,7 +433,8 @@ TEST_CASE("ray generation: onlyDiffuse leaves pixels without a diffuse colour wi
     }
     // It needs the planes it reads.
     RayBatch rays;
-    CHECK_THROWS_AS(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1, true),
+    CHECK_THROWS_AS(generateDiffuseRays(defaultIsa(), 0, 0, f.camera, f.g(), rays, 1,
+                                        DiffuseCut::NoDiffuseColour),
                     std::invalid_argument);
 }
 
