@@ -32,9 +32,10 @@ int reportErrors(std::ostream& err, const std::function<int()>& command) {
 }
 
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-    CLI::App app{"ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
-                 "direct light, screen-space reflections and diffuse, checked against Embree)",
-                 "ssrt"};
+    CLI::App app{
+        "ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
+        "direct light, screen-space reflections and diffuse, checked against Embree)",
+        "ssrt"};
     app.footer(
         "Exit status: 0 success, 1 the work failed (a bad shot, scene or image file, file I/O, "
         "an ISA this CPU lacks, rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for "
@@ -48,7 +49,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* sweep = addSweepCommand(app, sweepOptions);
     CLI::App* scenes = addScenesCommand(app);
     if (argc <= 1) {
-        err << "ssrt: error: no command given (render, compare, sweep or scenes; see 'ssrt --help')\n";
+        err << "ssrt: error: no command given (render, compare, sweep or scenes; see 'ssrt "
+               "--help')\n";
         return kExitUsage;
     }
     try {

@@ -44,7 +44,8 @@ void printChecks(std::ostream& out, const Evaluation& ev) {
         out << "\n";
     };
     out << std::left << std::setw(kLabel + 2) << "ray check (Embree)" << std::right
-        << std::setw(kValue) << "ssr" << std::setw(kValue) << "ssgi" << "\n";
+        << std::setw(kValue) << "ssr" << std::setw(kValue) << "ssgi"
+        << "\n";
     row("rays", [](const RayCheckTable& t) { return t.rays; });
     out << std::fixed << std::setprecision(2);
     for (int c = 1; c < kRayClassCount; ++c) {
@@ -68,7 +69,8 @@ void printChecks(std::ostream& out, const Evaluation& ev) {
 
 void printErrors(std::ostream& out, const ErrorTable& e) {
     out << std::left << std::setw(kLabel + 2) << "image error" << std::right << std::setw(kValue)
-        << "relMSE" << std::setw(kValue) << "RMSE" << std::setw(kValue) << "non-finite" << "\n";
+        << "relMSE" << std::setw(kValue) << "RMSE" << std::setw(kValue) << "non-finite"
+        << "\n";
     const auto row = [&](const char* label, const ImageError& x) {
         out << "  " << std::left << std::setw(kLabel) << label << std::right << std::scientific
             << std::setprecision(3) << std::setw(kValue) << x.relMse << std::setw(kValue) << x.rmse
@@ -157,8 +159,7 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
 ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const RenderSettings& render) {
     ReferenceSettings r;
     r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
-    r.visibility =
-        parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
+    r.visibility = parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
     r.maxDistance = render.trace.march.maxDistance;
     r.validate();
     return r;
@@ -251,8 +252,10 @@ void printEvaluation(std::ostream& out, const BvhStats& bvh, const Evaluation& e
     printChecks(out, ev);
     out << "\n";
     printErrors(out, ev.error);
-    out << "\n" << std::left << std::setw(kLabel + 2) << "pass (median)" << std::right
-        << std::setw(kValue) << "ms" << "\n"
+    out << "\n"
+        << std::left << std::setw(kLabel + 2) << "pass (median)" << std::right << std::setw(kValue)
+        << "ms"
+        << "\n"
         << std::fixed << std::setprecision(3);
     for (const PassTime& p : ev.passes)
         out << "  " << std::left << std::setw(kLabel) << p.name << std::right << std::setw(kValue)

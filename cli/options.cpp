@@ -50,7 +50,6 @@ float parsePositive(const std::string& option, const std::string& text) {
     return value;
 }
 
-
 std::string defaultSceneName() {
     const auto& scenes = builtinScenes();
     return scenes.empty() ? "cornell" : scenes.front().name;
@@ -65,9 +64,11 @@ std::string knownScenes() {
 // A --scene value naming a glTF file rather than a built-in scene.
 bool isSceneFile(const std::string& name) {
     std::string lower = name;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     auto endsWith = [&](const std::string& ext) {
-        return lower.size() > ext.size() && lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
+        return lower.size() > ext.size() &&
+               lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
     };
     return endsWith(".gltf") || endsWith(".glb");
 }
@@ -109,7 +110,6 @@ std::string plural(int n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-
 std::optional<SsrResolveMode> parseResolveMode(std::string_view s) {
     if (s == "mip") return SsrResolveMode::Mip;
     if (s == "reuse") return SsrResolveMode::Reuse;
@@ -132,8 +132,9 @@ void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
             ->default_str(defaultText)
             ->group("Screen-space tracing");
     };
-    cmd.add_flag("--no-ssr", o.noSsr, "Skip screen-space reflections (the environment's split-sum "
-                                      "light stands in)")
+    cmd.add_flag("--no-ssr", o.noSsr,
+                 "Skip screen-space reflections (the environment's split-sum "
+                 "light stands in)")
         ->group("Screen-space tracing");
     cmd.add_flag("--no-ssgi", o.noSsgi,
                  "Skip screen-space one-bounce diffuse (the environment's irradiance stands in)")
@@ -182,10 +183,12 @@ void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
     if (o.ssrSpp) t.ssrSpp = int(parseInteger("--ssr-spp", *o.ssrSpp, 1, TraceSettings::kMaxSpp));
     if (o.ssgiSpp)
         t.ssgiSpp = int(parseInteger("--ssgi-spp", *o.ssgiSpp, 1, TraceSettings::kMaxSpp));
-    if (o.maxSteps) t.march.maxSteps = int(parseInteger("--max-steps", *o.maxSteps, 1, kMaxMarchSteps));
+    if (o.maxSteps)
+        t.march.maxSteps = int(parseInteger("--max-steps", *o.maxSteps, 1, kMaxMarchSteps));
     if (o.thickness) t.march.thickness = parsePositive("--thickness", *o.thickness);
     if (o.ssrResolve)
-        t.resolve.mode = parseChoice("--ssr-resolve", *o.ssrResolve, parseResolveMode, "mip, reuse");
+        t.resolve.mode =
+            parseChoice("--ssr-resolve", *o.ssrResolve, parseResolveMode, "mip, reuse");
     if (o.hitRadiance)
         t.resolve.radiance =
             parseChoice("--hit-radiance", *o.hitRadiance, parseHitRadiance, "current, reprojected");

@@ -74,8 +74,8 @@ struct SceneRequest {
     RenderSettings settings;
     std::string name;  // built-in scene or glTF file
     Isa isa = Isa::Scalar;
-    Scene scene;       // after loadScene
-    CameraPath path;   // the shot's camera path (empty: the scene's still camera)
+    Scene scene;      // after loadScene
+    CameraPath path;  // the shot's camera path (empty: the scene's still camera)
 };
 // Parses and checks everything; throws std::invalid_argument for bad flags, runtime errors
 // for a bad shot file. `defaults` are the command's own defaults under the shot and flags.

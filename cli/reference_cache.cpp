@@ -45,8 +45,7 @@ bool readCached(const std::string& path, int width, int height, ReferenceImage& 
                 if (w != width || h != height) return false;
                 PlaneF& p = (ref.*g.group)[c];
                 p = PlaneF(w, h);
-                for (int y = 0; y < h; ++y)
-                    std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
+                for (int y = 0; y < h; ++y) std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
             }
     } catch (const std::exception&) {
         return false;  // unreadable or incomplete: render it again
@@ -69,7 +68,8 @@ void writeCached(const std::string& path, const ReferenceImage& ref) {
 
 std::string defaultCacheDir() {
     if (const char* d = std::getenv("SSRT_CACHE_DIR"); d && *d) return d;
-    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "ssrt").string();
+    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
+        return (fs::path(d) / "ssrt").string();
     if (const char* d = std::getenv("HOME"); d && *d)
         return (fs::path(d) / ".cache" / "ssrt").string();
     return {};

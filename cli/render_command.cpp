@@ -171,8 +171,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         if (!o.quiet) {
             if (frames > 1)
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file << "\n";
-            else
-                err << "wrote " << file << "\n";
+            else err << "wrote " << file << "\n";
         }
         if (o.stats) {
             if (frames > 1) out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";
@@ -202,8 +201,10 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
     const auto share = [](uint64_t part, uint64_t whole) {
         return whole ? 100.0 * double(part) / double(whole) : 0.0;
     };
-    out << "\n" << std::left << std::setw(kLabelWidth + 2) << "trace counter" << std::right
-        << std::setw(kValueWidth) << "ssr" << std::setw(kValueWidth) << "ssgi" << "\n";
+    out << "\n"
+        << std::left << std::setw(kLabelWidth + 2) << "trace counter" << std::right
+        << std::setw(kValueWidth) << "ssr" << std::setw(kValueWidth) << "ssgi"
+        << "\n";
     row("rays per pixel", [](const TraceStats& t) { return t.spp; });
     row("surface pixels", [](const TraceStats& t) { return t.rays.pixels; });
     row("rays traced", [](const TraceStats& t) { return t.march.rays; });
@@ -222,9 +223,8 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
     row("steps per ray, p95", [](const TraceStats& t) { return t.march.stepsPercentile(0.95); });
     row("steps per ray, max", [](const TraceStats& t) { return t.march.maxStepsTaken(); });
     row("steps in all", [](const TraceStats& t) { return t.march.steps; });
-    row("lanes active %", [&](const TraceStats& t) {
-        return share(t.march.laneActive, t.march.laneSlots);
-    });
+    row("lanes active %",
+        [&](const TraceStats& t) { return share(t.march.laneActive, t.march.laneSlots); });
 }
 
 }  // namespace

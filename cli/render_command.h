@@ -24,8 +24,8 @@ struct RenderOptions {
     std::optional<std::string> width, height, shadowMapSize, exposure, frame, frames;
     std::string threads, isa;
     // The screen-space passes (RenderSettings::trace); unset = the default.
-    std::optional<std::string> ssrMethod, marcher, ssrSpp, ssgiSpp, maxSteps, thickness,
-        ssrResolve, hitRadiance;
+    std::optional<std::string> ssrMethod, marcher, ssrSpp, ssgiSpp, maxSteps, thickness, ssrResolve,
+        hitRadiance;
     bool noSsr = false, noSsgi = false, traceHidden = false;
     std::string output = "ssrt.png";
     bool stats = false;

@@ -21,10 +21,10 @@ namespace fs = std::filesystem;
 namespace {
 
 // The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
-const char* const kPasses[] = {"shadow",      "geometry",   "visibility", "resolve",
-                               "textures",    "ids",        "environment", "shading",
-                               "hi-z",        "ssr rays",   "ssr march",  "ssr resolve",
-                               "ssgi rays",   "ssgi march", "ssgi resolve", "composite"};
+const char* const kPasses[] = {"shadow",    "geometry",   "visibility",   "resolve",
+                               "textures",  "ids",        "environment",  "shading",
+                               "hi-z",      "ssr rays",   "ssr march",    "ssr resolve",
+                               "ssgi rays", "ssgi march", "ssgi resolve", "composite"};
 
 std::string columnName(std::string s) {
     for (char& c : s)
@@ -50,17 +50,18 @@ std::vector<T> parseEach(const std::string& option, const std::string& text, F p
 }
 
 std::vector<Point> grid(const SweepOptions& o) {
-    const auto marchers = parseEach<std::optional<Marcher>>("--marchers", o.marchers,
-        [](const std::string& s) -> std::optional<Marcher> {
+    const auto marchers = parseEach<std::optional<Marcher>>(
+        "--marchers", o.marchers, [](const std::string& s) -> std::optional<Marcher> {
             if (s == "off") return std::nullopt;
             return parseChoice("--marchers", s, parseMarcher, "off, " + kMarchers);
         });
     const auto steps = parseEach<int>("--max-steps", o.maxSteps, [](const std::string& s) {
         return int(parseInteger("--max-steps", s, 1, kMaxMarchSteps));
     });
-    const auto methods = parseEach<SsrMethod>("--ssr-methods", o.ssrMethods, [](const std::string& s) {
-        return parseChoice("--ssr-methods", s, parseSsrMethod, kSsrMethods);
-    });
+    const auto methods =
+        parseEach<SsrMethod>("--ssr-methods", o.ssrMethods, [](const std::string& s) {
+            return parseChoice("--ssr-methods", s, parseSsrMethod, kSsrMethods);
+        });
     const auto spp = [](const char* option, const std::string& text) {
         return parseEach<int>(option, text, [option](const std::string& s) {
             return int(parseInteger(option, s, 1, TraceSettings::kMaxSpp));
@@ -70,9 +71,10 @@ std::vector<Point> grid(const SweepOptions& o) {
     const auto thickness = parseEach<float>("--thickness", o.thickness, [](const std::string& s) {
         return parsePositive("--thickness", s);
     });
-    const auto resolves = parseEach<SsrResolveMode>("--ssr-resolve", o.resolves, [](const std::string& s) {
-        return parseChoice("--ssr-resolve", s, parseResolveMode, "mip, reuse");
-    });
+    const auto resolves =
+        parseEach<SsrResolveMode>("--ssr-resolve", o.resolves, [](const std::string& s) {
+            return parseChoice("--ssr-resolve", s, parseResolveMode, "mip, reuse");
+        });
     std::vector<Point> points;
     bool off = false;
     for (const auto& m : marchers) {
@@ -187,8 +189,7 @@ void writeText(const std::string& path, const std::string& text) {
 
 void checkCsvPath(const std::string& path) {
     const fs::path p(path);
-    if (p.extension() != ".csv")
-        throw std::invalid_argument("-o: '" + path + "' must end in .csv");
+    if (p.extension() != ".csv") throw std::invalid_argument("-o: '" + path + "' must end in .csv");
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
@@ -221,10 +222,10 @@ SweepOptions::SweepOptions() {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"scene", "width", "height", "threads", "marcher",
-                                      "ssr_method", "ssr_spp", "ssgi_spp", "max_steps",
-                                      "thickness", "resolve", "trace_hidden", "reference_spp",
-                                      "frame_ms"};
+        std::vector<std::string> c = {"scene",         "width",      "height",  "threads",
+                                      "marcher",       "ssr_method", "ssr_spp", "ssgi_spp",
+                                      "max_steps",     "thickness",  "resolve", "trace_hidden",
+                                      "reference_spp", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -233,9 +234,9 @@ const std::vector<std::string>& sweepColumns() {
                 c.push_back(p + "_" + std::string(rayClassName(RayClass(k))));
             c.insert(c.end(), {p + "_err_px_p50", p + "_err_px_p95", p + "_err_depth_p50"});
         }
-        c.insert(c.end(), {"relmse", "rmse", "relmse_direct", "relmse_specular",
-                           "relmse_diffuse", "rmse_direct", "rmse_specular", "rmse_diffuse",
-                           "march_mrays_s", "embree_mrays_s", "march_vs_embree"});
+        c.insert(c.end(), {"relmse", "rmse", "relmse_direct", "relmse_specular", "relmse_diffuse",
+                           "rmse_direct", "rmse_specular", "rmse_diffuse", "march_mrays_s",
+                           "embree_mrays_s", "march_vs_embree"});
         return c;
     }();
     return columns;
@@ -248,7 +249,10 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
         "Embree truth, one CSV row per setting (chart it with perf/plot.py)");
     addSceneOptions(*cmd, o.render, truthDefaults());
     const auto list = [&](const std::string& flags, std::string& value, const std::string& help) {
-        cmd->add_option(flags, value, help)->type_name("LIST")->capture_default_str()->group("Grid");
+        cmd->add_option(flags, value, help)
+            ->type_name("LIST")
+            ->capture_default_str()
+            ->group("Grid");
     };
     list("--marchers", o.marchers,
          "Marchers, comma-separated: linear, dda, hiz, and off (both passes off: the "
@@ -298,12 +302,13 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     for (std::size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
     csv << "\n";
     out << std::left << std::setw(56) << "setting" << std::right << std::setw(12) << "frame ms"
-        << std::setw(12) << "relMSE" << "\n";
+        << std::setw(12) << "relMSE"
+        << "\n";
     Frame frame;
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (progress)
-            *progress << "setting " << (i + 1) << "/" << points.size() << ": " << describe(points[i])
-                      << "\n";
+            *progress << "setting " << (i + 1) << "/" << points.size() << ": "
+                      << describe(points[i]) << "\n";
         // The reference follows the setting's SSR sampler (cached per sampler).
         ReferenceSettings refSettings = refBase;
         refSettings.maxDistance = settings[i].trace.march.maxDistance;
@@ -312,8 +317,8 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         if (!points[i].traced) refRender.trace = request.settings.trace;
         const ReferenceImage reference = referenceFor(embree, scene, camera, previous, refRender,
                                                       refSettings, source, fromCache);
-        const Evaluation ev = evaluate(embree, scene, camera, previous, settings[i], reference,
-                                       evalSettings, frame);
+        const Evaluation ev =
+            evaluate(embree, scene, camera, previous, settings[i], reference, evalSettings, frame);
         csv << csvRow(request.name, settings[i], points[i], refSettings.spp, ev) << "\n";
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific

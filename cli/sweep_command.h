@@ -21,7 +21,8 @@ struct SweepOptions {
     RenderOptions render;  // scene options only (the grid replaces the tracing options)
     TruthOptions truth;
     std::string marchers = "off,linear,dda,hiz";
-    std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, resolves;  // defaults: TraceSettings{}
+    std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness,
+        resolves;  // defaults: TraceSettings{}
     std::string output = "sweep.csv";
     bool traceHidden = false;  // every setting: TraceSettings::traceHidden
     SweepOptions();

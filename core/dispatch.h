@@ -10,6 +10,8 @@
 
 #include "core/isa.h"
 
+// One namespace per line reads as the table it is: not formatted.
+// clang-format off
 #define SSRT_DECLARE_KERNEL(ret, name, params)  \
     namespace isa_scalar { ret name params; }   \
     namespace isa_sse2 { ret name params; }     \
@@ -28,3 +30,4 @@
             default: return &isa_scalar::name;                \
         }                                                     \
     }())
+// clang-format on

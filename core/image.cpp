@@ -20,7 +20,8 @@ Plane<T>::Plane(int width, int height, T fill) : Plane(width, height, kUninitial
 
 template <class T>
 void Plane<T>::ensureSize(int width, int height) {
-    if (width != width_ || height != height_ || !data_) *this = Plane(width, height, kUninitialized);
+    if (width != width_ || height != height_ || !data_)
+        *this = Plane(width, height, kUninitialized);
 }
 
 template <class T>

@@ -64,10 +64,14 @@ SSRT_INLINE L log2(L x) {
 }
 
 template <class L>
-SSRT_INLINE L exp(L x) { return lanes::exp2(x * L(1.44269504088896341f)); }
+SSRT_INLINE L exp(L x) {
+    return lanes::exp2(x * L(1.44269504088896341f));
+}
 
 template <class L>
-SSRT_INLINE L log(L x) { return lanes::log2(x) * L(0.693147180559945309f); }
+SSRT_INLINE L log(L x) {
+    return lanes::log2(x) * L(0.693147180559945309f);
+}
 
 // x^y for x >= 0 (0^y = 0 for y > 0); negative x is treated as 0.
 template <class L>
@@ -88,8 +92,7 @@ SSRT_INLINE void sincos(L x, L& s, L& c) {
                 j * L(3.77489497744594108e-8f);
     const L z = y * y;
     constexpr float sc[] = {-1.9515295891e-4f, 8.3321608736e-3f, -1.6666654611e-1f};
-    constexpr float cc[] = {2.443315711809948e-5f, -1.388731625493765e-3f,
-                            4.166664568298827e-2f};
+    constexpr float cc[] = {2.443315711809948e-5f, -1.388731625493765e-3f, 4.166664568298827e-2f};
     const L sy = y + y * z * lanes::polynomial(z, sc);
     const L cy = L(1.0f) - L(0.5f) * z + z * z * lanes::polynomial(z, cc);
     // quadrant q = (j / 2) mod 4
@@ -126,8 +129,8 @@ SSRT_INLINE L asin(L x) {
     const auto big = ax > L(0.5f);
     const L z = lanes::select(big, L(0.5f) * (L(1.0f) - ax), ax * ax);
     const L r = lanes::select(big, lanes::sqrt(z), ax);
-    constexpr float c[] = {4.2163199048e-2f, 2.4181311049e-2f, 4.5470025998e-2f,
-                           7.4953002686e-2f, 1.6666752422e-1f};
+    constexpr float c[] = {4.2163199048e-2f, 2.4181311049e-2f, 4.5470025998e-2f, 7.4953002686e-2f,
+                           1.6666752422e-1f};
     const L p = r + r * z * lanes::polynomial(z, c);
     const L a = lanes::select(big, L(kHalfPi) - (p + p), p);
     return lanes::select(x < L(0.0f), L(0.0f) - a, a);
@@ -140,8 +143,8 @@ SSRT_INLINE L acos(L x) {
     const L ax = lanes::abs(x);
     const L z = L(0.5f) * (L(1.0f) - ax);
     const L s = lanes::sqrt(z);
-    constexpr float c[] = {4.2163199048e-2f, 2.4181311049e-2f, 4.5470025998e-2f,
-                           7.4953002686e-2f, 1.6666752422e-1f};
+    constexpr float c[] = {4.2163199048e-2f, 2.4181311049e-2f, 4.5470025998e-2f, 7.4953002686e-2f,
+                           1.6666752422e-1f};
     const L half = s + s * z * lanes::polynomial(z, c);  // lanes::asin(lanes::sqrt((1 - |x|) / 2))
     const L nearOne = lanes::select(x < L(0.0f), L(kPi) - (half + half), half + half);
     return lanes::select(ax > L(0.5f), nearOne, L(kHalfPi) - lanes::asin(x));
@@ -154,7 +157,7 @@ SSRT_INLINE L atan(L x) {
     const auto far = ax > L(2.414213562373095f);
     const auto mid = (ax > L(0.4142135623730950f)) & !far;
     const L t = lanes::select(far, L(-1.0f) / lanes::select(far, ax, L(1.0f)),
-                       lanes::select(mid, (ax - L(1.0f)) / (ax + L(1.0f)), ax));
+                              lanes::select(mid, (ax - L(1.0f)) / (ax + L(1.0f)), ax));
     const L base = lanes::select(far, L(kHalfPi), lanes::select(mid, L(0.25f * kPi), L(0.0f)));
     const L z = t * t;
     constexpr float c[] = {8.05374449538e-2f, -1.38776856032e-1f, 1.99777106478e-1f,

@@ -12,21 +12,33 @@ struct V3 {
 };
 
 template <class L>
-SSRT_INLINE V3<L> operator+(V3<L> a, V3<L> b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+SSRT_INLINE V3<L> operator+(V3<L> a, V3<L> b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 template <class L>
-SSRT_INLINE V3<L> operator-(V3<L> a, V3<L> b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+SSRT_INLINE V3<L> operator-(V3<L> a, V3<L> b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 template <class L>
-SSRT_INLINE V3<L> operator*(V3<L> a, L s) { return {a.x * s, a.y * s, a.z * s}; }
+SSRT_INLINE V3<L> operator*(V3<L> a, L s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
 template <class L>
-SSRT_INLINE V3<L> operator*(V3<L> a, V3<L> b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+SSRT_INLINE V3<L> operator*(V3<L> a, V3<L> b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
 template <class L>
-SSRT_INLINE L dot(V3<L> a, V3<L> b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+SSRT_INLINE L dot(V3<L> a, V3<L> b) {
+    return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
 template <class L>
 SSRT_INLINE V3<L> cross(V3<L> a, V3<L> b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <class L>
-SSRT_INLINE V3<L> splat(float x, float y, float z) { return {L(x), L(y), L(z)}; }
+SSRT_INLINE V3<L> splat(float x, float y, float z) {
+    return {L(x), L(y), L(z)};
+}
 template <class L>
 SSRT_INLINE V3<L> select(MaskOf<L> m, V3<L> a, V3<L> b) {
     return {lanes::select(m, a.x, b.x), lanes::select(m, a.y, b.y), lanes::select(m, a.z, b.z)};

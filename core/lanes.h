@@ -71,22 +71,34 @@ SSRT_INLINE xsimd::batch<int32_t, A> select(xsimd::batch_bool<int32_t, A> m,
 // ordered (false for NaN) with AVX and AVX-512 and unordered (true) with SSE and in scalar
 // code. Where a NaN can reach a test of inequality, write !(a == b): the same on every ISA.
 template <class L>
-SSRT_INLINE L min(L a, L b) { return lanes::select(a < b, a, b); }
+SSRT_INLINE L min(L a, L b) {
+    return lanes::select(a < b, a, b);
+}
 template <class L>
-SSRT_INLINE L max(L a, L b) { return lanes::select(a > b, a, b); }
+SSRT_INLINE L max(L a, L b) {
+    return lanes::select(a > b, a, b);
+}
 template <class L>
-SSRT_INLINE L clamp(L x, L lo, L hi) { return lanes::min(lanes::max(x, lo), hi); }
+SSRT_INLINE L clamp(L x, L lo, L hi) {
+    return lanes::min(lanes::max(x, lo), hi);
+}
 template <class L>
-SSRT_INLINE L saturate(L x) { return lanes::clamp(x, L(0.0f), L(1.0f)); }
+SSRT_INLINE L saturate(L x) {
+    return lanes::clamp(x, L(0.0f), L(1.0f));
+}
 
 // ---- Correctly rounded unary operations -------------------------------------------------
 SSRT_INLINE float sqrt(float x) { return __builtin_sqrtf(x); }
 template <class A>
-SSRT_INLINE xsimd::batch<float, A> sqrt(xsimd::batch<float, A> x) { return xsimd::sqrt(x); }
+SSRT_INLINE xsimd::batch<float, A> sqrt(xsimd::batch<float, A> x) {
+    return xsimd::sqrt(x);
+}
 
 SSRT_INLINE float abs(float x) { return __builtin_fabsf(x); }
 template <class A>
-SSRT_INLINE xsimd::batch<float, A> abs(xsimd::batch<float, A> x) { return xsimd::abs(x); }
+SSRT_INLINE xsimd::batch<float, A> abs(xsimd::batch<float, A> x) {
+    return xsimd::abs(x);
+}
 
 // ---- Integer lanes ----------------------------------------------------------------------
 SSRT_INLINE int32_t toIntTrunc(float x) { return static_cast<int32_t>(x); }
@@ -132,9 +144,13 @@ SSRT_INLINE L floor(L x) {
 SSRT_INLINE bool any(bool m) { return m; }
 SSRT_INLINE bool all(bool m) { return m; }
 template <class T, class A>
-SSRT_INLINE bool any(xsimd::batch_bool<T, A> m) { return xsimd::any(m); }
+SSRT_INLINE bool any(xsimd::batch_bool<T, A> m) {
+    return xsimd::any(m);
+}
 template <class T, class A>
-SSRT_INLINE bool all(xsimd::batch_bool<T, A> m) { return xsimd::all(m); }
+SSRT_INLINE bool all(xsimd::batch_bool<T, A> m) {
+    return xsimd::all(m);
+}
 
 // Exclusive or of two masks. Not `a ^ b`: xsimd 8.1's AVX-512 batch_bool xor is an or
 // (arch/xsimd_avx512f.hpp returns self.data | other.data), and not `a != b`, which 8.1
@@ -170,10 +186,11 @@ SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<float, A> m) {
     else
 #endif
 #if defined(__AVX__)
-    if constexpr (std::is_base_of_v<xsimd::avx, A>) return uint64_t(_mm256_movemask_ps(m));
+        if constexpr (std::is_base_of_v<xsimd::avx, A>)
+        return uint64_t(_mm256_movemask_ps(m));
     else
 #endif
-    return uint64_t(_mm_movemask_ps(m));
+        return uint64_t(_mm_movemask_ps(m));
 }
 template <class A>
 SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<int32_t, A> m) {
@@ -194,9 +211,13 @@ SSRT_INLINE IntOf<L> loadInt(const int32_t* p) {
 SSRT_INLINE void store(float* p, float x) { *p = x; }
 SSRT_INLINE void store(int32_t* p, int32_t x) { *p = x; }
 template <class A>
-SSRT_INLINE void store(float* p, xsimd::batch<float, A> x) { x.store_unaligned(p); }
+SSRT_INLINE void store(float* p, xsimd::batch<float, A> x) {
+    x.store_unaligned(p);
+}
 template <class A>
-SSRT_INLINE void store(int32_t* p, xsimd::batch<int32_t, A> x) { x.store_unaligned(p); }
+SSRT_INLINE void store(int32_t* p, xsimd::batch<int32_t, A> x) {
+    x.store_unaligned(p);
+}
 
 // Store that bypasses the caches (no read for ownership) for planes written once per frame;
 // `p` must be aligned to the lane group. Call streamFence() before another thread reads.
@@ -208,10 +229,11 @@ SSRT_INLINE void storeStream(float* p, xsimd::batch<float, A> x) {
     else
 #endif
 #if defined(__AVX__)
-    if constexpr (std::is_base_of_v<xsimd::avx, A>) _mm256_stream_ps(p, x);
+        if constexpr (std::is_base_of_v<xsimd::avx, A>)
+        _mm256_stream_ps(p, x);
     else
 #endif
-    _mm_stream_ps(p, x);
+        _mm_stream_ps(p, x);
 }
 SSRT_INLINE void streamFence() {
 #if defined(__SSE2__)
@@ -238,10 +260,11 @@ SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_
     else
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return _mm256_i32gather_ps(base, index, 4);
+        if constexpr (std::is_base_of_v<xsimd::avx2, A>)
+        return _mm256_i32gather_ps(base, index, 4);
     else
 #endif
-    return xsimd::batch<float, A>::gather(base, index);
+        return xsimd::batch<float, A>::gather(base, index);
 }
 
 }  // namespace ssrt::lanes

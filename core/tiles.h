@@ -19,7 +19,9 @@ struct TileGrid {
 
     TileGrid() = default;
     TileGrid(int w, int h)
-        : width(w), height(h), tilesX((w + kTileSize - 1) / kTileSize),
+        : width(w),
+          height(h),
+          tilesX((w + kTileSize - 1) / kTileSize),
           tilesY((h + kTileSize - 1) / kTileSize) {}
 
     int count() const { return tilesX * tilesY; }

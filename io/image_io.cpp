@@ -163,10 +163,8 @@ void writeScanlines(const std::string& path, const fs::path& tmp, const OIIO::Im
         for (std::size_t c = 0; c < n; ++c) {
             const float* src = planes[c]->row(y);
             for (int x = 0; x < spec.width; ++x) {
-                if (toBytes)
-                    rowB[x * n + c] = quantise(src[x]);
-                else
-                    rowF[x * n + c] = src[x];
+                if (toBytes) rowB[x * n + c] = quantise(src[x]);
+                else rowF[x * n + c] = src[x];
             }
         }
         const bool ok = toBytes ? out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, rowB.data())
@@ -228,10 +226,8 @@ void writeImage(const std::string& path, const Frame& frame) {
     checkDirectory(path);
     const fs::path tmp = reserveTemporary(path, ext);
     try {
-        if (ext == ".png")
-            writePng(path, tmp, frame);
-        else
-            writeExr(path, tmp, frame);
+        if (ext == ".png") writePng(path, tmp, frame);
+        else writeExr(path, tmp, frame);
         // rename() within one directory replaces the target atomically: readers see the old
         // file or the new one, never a half-written one.
         std::error_code ec;
@@ -267,10 +263,8 @@ SkyImage readSkyImage(const std::string& path) {
     // Which file channel feeds R, G and B.
     int src[3] = {0, 0, 0};
     const int r = channelIndex(spec, "R"), g = channelIndex(spec, "G"), b = channelIndex(spec, "B");
-    if (r >= 0 && g >= 0 && b >= 0)
-        src[0] = r, src[1] = g, src[2] = b;
-    else if (n >= 3)
-        src[0] = 0, src[1] = 1, src[2] = 2;
+    if (r >= 0 && g >= 0 && b >= 0) src[0] = r, src[1] = g, src[2] = b;
+    else if (n >= 3) src[0] = 0, src[1] = 1, src[2] = 2;
     const bool srgb = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
     SkyImage img;
     img.source = path;

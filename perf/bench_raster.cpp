@@ -61,15 +61,23 @@ void rasterSoup(benchmark::State& state, Isa isa) {
         stats = RasterStats{};
         benchmark::DoNotOptimize(rasterize(scene, tv, view, o, stats).depth.row(0));
     }
-    state.counters["tris/s"] = benchmark::Counter(double(count), benchmark::Counter::kIsIterationInvariantRate);
-    state.counters["px/s"] = benchmark::Counter(double(stats.pixelsCovered), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["tris/s"] =
+        benchmark::Counter(double(count), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["px/s"] = benchmark::Counter(double(stats.pixelsCovered),
+                                                benchmark::Counter::kIsIterationInvariantRate);
 }
 
 // Small (4 px) and large (200 px) triangles, one thread, per ISA.
 void BM_RasterSmall(benchmark::State& s) { rasterSoup(s, Isa(s.range(2))); }
 void BM_RasterLarge(benchmark::State& s) { rasterSoup(s, Isa(s.range(2))); }
-BENCHMARK(BM_RasterSmall)->ArgsProduct({{100000}, {4}, {0, 1, 2, 3, 4}})->ArgNames({"tris", "px", "isa"})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RasterLarge)->ArgsProduct({{2000}, {200}, {0, 1, 2, 3, 4}})->ArgNames({"tris", "px", "isa"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RasterSmall)
+    ->ArgsProduct({{100000}, {4}, {0, 1, 2, 3, 4}})
+    ->ArgNames({"tris", "px", "isa"})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RasterLarge)
+    ->ArgsProduct({{2000}, {200}, {0, 1, 2, 3, 4}})
+    ->ArgNames({"tris", "px", "isa"})
+    ->Unit(benchmark::kMillisecond);
 
 // Whole passes at 1920x1080 on the benchmark scenes (2 threads, best ISA).
 void passBench(benchmark::State& state, const char* passName) {
@@ -87,8 +95,9 @@ void passBench(benchmark::State& state, const char* passName) {
         double ms = 0.0;
         for (const PassTime& p : f.stats.passes) {
             const std::string n = p.name;
-            if (std::string(passName) == "gbuffer" ? (n == "geometry" || n == "visibility" || n == "resolve")
-                                                   : n == passName)
+            if (std::string(passName) == "gbuffer"
+                    ? (n == "geometry" || n == "visibility" || n == "resolve")
+                    : n == passName)
                 ms += p.ms;
         }
         state.SetIterationTime(ms / 1000.0);
@@ -98,8 +107,22 @@ void passBench(benchmark::State& state, const char* passName) {
 void BM_GBufferPass(benchmark::State& s) { passBench(s, "gbuffer"); }
 void BM_ShadowPass(benchmark::State& s) { passBench(s, "shadow"); }
 void BM_ShadingPass(benchmark::State& s) { passBench(s, "shading"); }
-BENCHMARK(BM_GBufferPass)->Arg(3700)->Arg(121000)->ArgName("tris")->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ShadowPass)->Arg(3700)->Arg(121000)->ArgName("tris")->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ShadingPass)->Arg(3700)->ArgName("tris")->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GBufferPass)
+    ->Arg(3700)
+    ->Arg(121000)
+    ->ArgName("tris")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShadowPass)
+    ->Arg(3700)
+    ->Arg(121000)
+    ->ArgName("tris")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShadingPass)
+    ->Arg(3700)
+    ->ArgName("tris")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -60,10 +60,10 @@ void benchRayGen(benchmark::State& state, int method, Isa isa, int threads) {
     RayGenStats stats;
     uint32_t sample = 0;
     for (auto _ : state) {
-        stats = method < 5 ? generateSpecularRays(isa, SsrMethod(method), 0, sample++, gb.camera,
-                                                  gb.g(), rays, threads)
-                           : generateDiffuseRays(isa, 0, sample++, gb.camera, gb.g(), rays,
-                                                 threads);
+        stats = method < 5
+                    ? generateSpecularRays(isa, SsrMethod(method), 0, sample++, gb.camera, gb.g(),
+                                           rays, threads)
+                    : generateDiffuseRays(isa, 0, sample++, gb.camera, gb.g(), rays, threads);
         benchmark::DoNotOptimize(rays.pdf.row(0));
         benchmark::ClobberMemory();
     }

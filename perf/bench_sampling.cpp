@@ -43,8 +43,16 @@ void benchSampler(benchmark::State& state, Isa isa, Sampler s, bool withPdf) {
         return;
     }
     static Inputs in;
-    SampleArgs a{in.wiX.data(), in.wiY.data(), in.wiZ.data(), in.ax.data(), in.ay.data(),
-                 in.u1.data(),  in.u2.data(),  in.ox.data(),  in.oy.data(), in.oz.data(),
+    SampleArgs a{in.wiX.data(),
+                 in.wiY.data(),
+                 in.wiZ.data(),
+                 in.ax.data(),
+                 in.ay.data(),
+                 in.u1.data(),
+                 in.u2.data(),
+                 in.ox.data(),
+                 in.oy.data(),
+                 in.oz.data(),
                  withPdf ? in.pdf.data() : nullptr};
     for (auto _ : state) {
         sampleDirections(isa, s, a, kN);

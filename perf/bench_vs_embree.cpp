@@ -34,13 +34,13 @@
 //   points more than agree_tol apart), m_only (marcher hit, Embree none within tfar),
 //   e_only (Embree hit, marcher none). agree_tol = 1 % of the scene's bounding diagonal.
 #include <benchmark/benchmark.h>
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <map>
 #include <memory>
@@ -54,8 +54,8 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/march.h"
-#include "trace/reference/embree_scene.h"
 #include "trace/ray_gen.h"
+#include "trace/reference/embree_scene.h"
 #include "trace/trace_types.h"
 
 using namespace ssrt;
@@ -90,8 +90,8 @@ struct WorldRays {
     float tnear = 0.0f, tfar = 0.0f;
 };
 
-WorldRays toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 camPos,
-                  float tnear, float tfar) {
+WorldRays toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 camPos, float tnear,
+                  float tfar) {
     WorldRays wr;
     wr.width = rays.width();
     wr.height = rays.height();
@@ -103,9 +103,8 @@ WorldRays toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 
     for (int y = 0; y < wr.height; ++y)
         for (int x = 0; x < wr.width; ++x) {
             const std::size_t i = std::size_t(y) * wr.width + x;
-            const glm::vec3 o = camPos + viewToWorld * glm::vec3(rays.ox.at(x, y),
-                                                                  rays.oy.at(x, y),
-                                                                  rays.oz.at(x, y));
+            const glm::vec3 o = camPos + viewToWorld * glm::vec3(rays.ox.at(x, y), rays.oy.at(x, y),
+                                                                 rays.oz.at(x, y));
             const glm::vec3 d =
                 viewToWorld * glm::vec3(rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y));
             for (int c = 0; c < 3; ++c) wr.o[c][i] = o[c], wr.d[c][i] = d[c];
@@ -223,8 +222,8 @@ const RayKind& rayKind(Workload& w, SsrMethod method) {
     k = std::make_unique<RayKind>();
     const RayGenGBuffer rg{&w.viewZ, {&w.normal[0], &w.normal[1], &w.normal[2]}, &w.roughness};
     generateSpecularRays(defaultIsa(), method, 0, 0, w.camera, rg, k->rays, 0);
-    k->world = toWorld(k->rays, w.viewToWorld(), w.scene.camera.position,
-                       w.embree->epsilon(), MarchSettings{}.maxDistance);
+    k->world = toWorld(k->rays, w.viewToWorld(), w.scene.camera.position, w.embree->epsilon(),
+                       MarchSettings{}.maxDistance);
     k->embreeT.resize(k->world.valid.size());
     traceEmbree(*w.embree, k->world, EmbreeMode::Single, 0, k->embreeT.data());
     for (float t : k->embreeT) k->embreeHits += t != kNoHit;
@@ -251,8 +250,7 @@ void embreeBench(benchmark::State& state, std::string scene, SsrMethod method, E
     for (std::size_t i = 0; i < t.size(); ++i) {
         hits += t[i] != kNoHit;
         const float r = k.embreeT[i];
-        if ((t[i] == kNoHit) != (r == kNoHit) ||
-            (r != kNoHit && std::abs(t[i] - r) > 1e-4f * r))
+        if ((t[i] == kNoHit) != (r == kNoHit) || (r != kNoHit && std::abs(t[i] - r) > 1e-4f * r))
             ++differ;
     }
     state.counters["Mrays/s"] = double(k.world.count) * 1e-6 * double(state.iterations()) / sec;
@@ -282,9 +280,9 @@ Agreement agree(const Workload& w, const RayKind& k, const MarchResult& m) {
                 // Both hit points in view space: the marcher's from its pixel and depth,
                 // Embree's along the view-space ray (t is a length: the rotation keeps it).
                 const float z = m.hitZ.at(x, y);
-                const glm::vec3 pm((2.0f * m.hitX.at(x, y) / float(c.width) - 1.0f) * c.tanHalfX * z,
-                                   (1.0f - 2.0f * m.hitY.at(x, y) / float(c.height)) * c.tanHalfY * z,
-                                   -z);
+                const glm::vec3 pm(
+                    (2.0f * m.hitX.at(x, y) / float(c.width) - 1.0f) * c.tanHalfX * z,
+                    (1.0f - 2.0f * m.hitY.at(x, y) / float(c.height)) * c.tanHalfY * z, -z);
                 const glm::vec3 o(k.rays.ox.at(x, y), k.rays.oy.at(x, y), k.rays.oz.at(x, y));
                 const glm::vec3 d(k.rays.dx.at(x, y), k.rays.dy.at(x, y), k.rays.dz.at(x, y));
                 const glm::vec3 pe = o + k.embreeT[i] * d;
@@ -362,7 +360,10 @@ const bool kRegistered = [] {
                 const std::string name = std::string("VsEmbree_embree/") + s + "_" + kindName(k) +
                                          (mode == EmbreeMode::Single ? "_single" : "_packet16");
                 benchmark::RegisterBenchmark(name.c_str(), embreeBench, std::string(s), k, mode)
-                    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+                    ->Arg(1)
+                    ->Arg(2)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
             }
     for (const char* s : scenes)
         for (SsrMethod k : kinds)
@@ -370,7 +371,10 @@ const bool kRegistered = [] {
                 const std::string name = std::string("VsEmbree_") + std::string(marcherName(m)) +
                                          "/" + s + "_" + kindName(k);
                 benchmark::RegisterBenchmark(name.c_str(), marcherBench, std::string(s), k, m)
-                    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+                    ->Arg(1)
+                    ->Arg(2)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseManualTime();
             }
     return true;
 }();

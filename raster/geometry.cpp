@@ -166,8 +166,8 @@ static bool insideClipVolume(const glm::vec4& c, const RasterView& view) {
     return true;
 }
 
-bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack,
-                   const RasterView& view, std::vector<TriangleSetup>& out, RasterStats& stats) {
+bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, const RasterView& view,
+                   std::vector<TriangleSetup>& out, RasterStats& stats) {
     if (!finite4(clip[0]) || !finite4(clip[1]) || !finite4(clip[2])) {
         ++stats.trianglesInvalid;
         return false;
@@ -229,8 +229,9 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
     constexpr uint32_t kChunk = 4096;
     parallelFor(int((vertexCount + kChunk - 1) / kChunk), threads, [&](int c) {
         const uint32_t begin = uint32_t(c) * kChunk, end = std::min(vertexCount, begin + kChunk);
-        std::size_t i = std::upper_bound(tv.instanceOffset.begin(), tv.instanceOffset.end(), begin) -
-                        tv.instanceOffset.begin() - 1;
+        std::size_t i =
+            std::upper_bound(tv.instanceOffset.begin(), tv.instanceOffset.end(), begin) -
+            tv.instanceOffset.begin() - 1;
         for (uint32_t v = begin; v < end; ++v) {
             while (i + 1 < tv.instanceOffset.size() && tv.instanceOffset[i + 1] <= v) ++i;
             const Instance& inst = scene.instances[i];
@@ -238,7 +239,7 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
             const glm::vec3& p = scene.meshes[inst.mesh].positions[v - tv.instanceOffset[i]];
             tv.clip[v] = m * glm::vec4(p, 1.0f);
             tv.screen[v] = insideClipVolume(tv.clip[v], view) ? toScreen(tv.clip[v], view)
-                                                             : ScreenVertex{0, 0, 0.0, false};
+                                                              : ScreenVertex{0, 0, 0.0, false};
         }
     });
     return tv;
@@ -255,8 +256,9 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
         const uint32_t begin = uint32_t(c) * SetupChunks::kChunkSize;
         const uint32_t end = std::min(n, begin + SetupChunks::kChunkSize);
         // Instance holding `begin`: the last whose first triangle is <= begin.
-        std::size_t inst = std::upper_bound(tv.triangleOffset.begin(), tv.triangleOffset.end(),
-                                            begin) - tv.triangleOffset.begin() - 1;
+        std::size_t inst =
+            std::upper_bound(tv.triangleOffset.begin(), tv.triangleOffset.end(), begin) -
+            tv.triangleOffset.begin() - 1;
         auto& out = result.chunks[c];
         auto& stats = result.stats[c];
         out.reserve(end - begin);
@@ -265,8 +267,7 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
                 ++inst;
             const Instance& instance = scene.instances[inst];
             const Mesh& mesh = scene.meshes[instance.mesh];
-            const bool cull =
-                view.cullBackFaces && !scene.materials[instance.material].doubleSided;
+            const bool cull = view.cullBackFaces && !scene.materials[instance.material].doubleSided;
             const uint32_t local = prim - tv.triangleOffset[inst];
             const uint32_t i0 = tv.instanceOffset[inst] + mesh.indices[3 * local];
             const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];

@@ -16,8 +16,8 @@ namespace ssrt {
 struct RasterView {
     glm::mat4 viewProj{1.0f};
     int width = 0, height = 0;
-    bool perspective = true;  // depth key 1/w (perspective) or 1 - z01 (orthographic)
-    float nearW = 0.05f;      // near plane as clip-space w (perspective only)
+    bool perspective = true;    // depth key 1/w (perspective) or 1 - z01 (orthographic)
+    float nearW = 0.05f;        // near plane as clip-space w (perspective only)
     bool cullBackFaces = true;  // honour Material::doubleSided (false: draw every face)
 };
 
@@ -53,7 +53,7 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& vertic
 
 // Clips one clip-space triangle and appends its screen triangles to `out`; exposed for the
 // tests. Returns false when nothing of it can be seen.
-bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack,
-                   const RasterView& view, std::vector<TriangleSetup>& out, RasterStats& stats);
+bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, const RasterView& view,
+                   std::vector<TriangleSetup>& out, RasterStats& stats);
 
 }  // namespace ssrt

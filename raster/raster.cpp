@@ -17,8 +17,8 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertices,
-                           const RasterView& view, const RasterOptions& options,
-                           RasterStats& stats, RasterTimes* times) {
+                           const RasterView& view, const RasterOptions& options, RasterStats& stats,
+                           RasterTimes* times) {
     VisibilityBuffer vb;
     rasterize(scene, vertices, view, options, vb, stats, times);
     return vb;
@@ -39,10 +39,17 @@ void rasterize(const Scene& scene, const TransformedVertices& vertices, const Ra
     vb.depth.ensureSize(view.width, view.height);
     if (options.writeIds) vb.ids.ensureSize(view.width, view.height);
     else vb.ids = PlaneU32();
-    const TileRasterArgs args{bins.triangles.data(), bins.start.data(), bins.items.data(),
-                              view.width, view.height, grid.tilesX, options.clearDepth,
-                              vb.depth.row(0), options.writeIds ? vb.ids.row(0) : nullptr,
-                              vb.depth.stride(), options.writeIds ? vb.ids.stride() : 0};
+    const TileRasterArgs args{bins.triangles.data(),
+                              bins.start.data(),
+                              bins.items.data(),
+                              view.width,
+                              view.height,
+                              grid.tilesX,
+                              options.clearDepth,
+                              vb.depth.row(0),
+                              options.writeIds ? vb.ids.row(0) : nullptr,
+                              vb.depth.stride(),
+                              options.writeIds ? vb.ids.stride() : 0};
     // Counters per tile, summed in tile order afterwards.
     std::vector<RasterStats> tileStats(grid.count());
     const auto kernel = SSRT_DISPATCH(options.isa, rasterTile);

@@ -40,7 +40,7 @@ void rasterize(const Scene& scene, const TransformedVertices& vertices, const Ra
 
 // The same into a new buffer.
 VisibilityBuffer rasterize(const Scene& scene, const TransformedVertices& vertices,
-                           const RasterView& view, const RasterOptions& options,
-                           RasterStats& stats, RasterTimes* times = nullptr);
+                           const RasterView& view, const RasterOptions& options, RasterStats& stats,
+                           RasterTimes* times = nullptr);
 
 }  // namespace ssrt

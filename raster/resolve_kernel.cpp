@@ -35,7 +35,6 @@ struct Gathered {
     alignas(64) float f[kFieldCount][kW];
 };
 
-
 SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& g, float* m) {
     const ResolveTriangle& t = a.triangles[id];
     const ResolveInstance& in = a.instances[t.instance];
@@ -233,7 +232,8 @@ void resolveTile(const ResolveArgs& args, int tile) {
         for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache, bufPtr, x0);
         for (int p = 0; p < outputs; ++p) {
             float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
-            for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+            for (int i = 0; i < span; i += kW)
+                ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }
     }
     ln::streamFence();

@@ -14,7 +14,7 @@ namespace ssrt {
 struct ResolveTriangle {
     float p0[3], n[3], d, g1[3], g2[3];
     uint32_t instance;
-    uint32_t v[3];  // global vertex indices (world normals)
+    uint32_t v[3];           // global vertex indices (world normals)
     uint32_t localTriangle;  // index within its mesh
 };
 

@@ -19,7 +19,7 @@ namespace ssrt {
 
 inline constexpr int kSubPixelBits = 8;
 inline constexpr int kSubPixel = 1 << kSubPixelBits;
-inline constexpr int kBlockSize = 8;  // pixels per side of a raster block
+inline constexpr int kBlockSize = 8;       // pixels per side of a raster block
 inline constexpr int kGuardBandPx = 8192;  // pixels beyond each side of an 8192-pixel screen
 inline constexpr int64_t kMaxCoord = int64_t(1) << 22;
 inline constexpr int32_t kMaxK0 = int32_t(1) << 30;
@@ -30,12 +30,12 @@ static_assert(2 * kMaxCoord * (kBlockSize - 1) * 2 < (int64_t(1) << 31) - kMaxK0
               "in-block increments plus the clamped corner value must fit int32");
 
 struct TriangleSetup {
-    int32_t a[3], b[3];  // edge coefficients (sub-pixel units)
-    int64_t c[3];        // constant terms, top-left bias folded in
+    int32_t a[3], b[3];              // edge coefficients (sub-pixel units)
+    int64_t c[3];                    // constant terms, top-left bias folded in
     int32_t minX, minY, maxX, maxY;  // inclusive pixel bounds, clipped to the screen
-    float zBase;         // depth key at the centre of pixel (minX, minY)
-    float zdx, zdy;      // depth key per pixel step in x and y
-    uint32_t primId;     // global triangle index (instance order, then triangle order)
+    float zBase;                     // depth key at the centre of pixel (minX, minY)
+    float zdx, zdy;                  // depth key per pixel step in x and y
+    uint32_t primId;                 // global triangle index (instance order, then triangle order)
 };
 
 }  // namespace ssrt

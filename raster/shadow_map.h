@@ -9,10 +9,10 @@
 namespace ssrt {
 
 struct ShadowMap {
-    PlaneF depth;                 // depth key 1 - z01: larger is nearer the light
+    PlaneF depth;  // depth key 1 - z01: larger is nearer the light
     glm::mat4 lightViewProj{1.0f};
-    float depthRange = 1.0f;      // world units spanned by the key's [0, 1]
-    float texelSize = 1.0f;       // world units per texel (the larger of x and y)
+    float depthRange = 1.0f;  // world units spanned by the key's [0, 1]
+    float texelSize = 1.0f;   // world units per texel (the larger of x and y)
 };
 
 // Light view and orthographic projection enclosing the scene's bounds (with a margin).

@@ -97,11 +97,14 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
     const ILane prim(int32_t(t.primId));
     // Only the lane groups that meet the triangle's pixel bounds (small triangles touch a
     // few rows of a block, not all eight).
-    const int rowLo = std::max(t.minY - blockY, 0), rowHi = std::min(t.maxY - blockY, kBlockSize - 1);
-    const int colLo = std::max(t.minX - blockX, 0), colHi = std::min(t.maxX - blockX, kBlockSize - 1);
+    const int rowLo = std::max(t.minY - blockY, 0),
+              rowHi = std::min(t.maxY - blockY, kBlockSize - 1);
+    const int colLo = std::max(t.minX - blockX, 0),
+              colHi = std::min(t.maxX - blockX, kBlockSize - 1);
     for (int c = 0; c < kChunks; ++c) {
         const int i0 = (c * kW) % kBlockSize, j0 = (c * kW) / kBlockSize;
-        const int j1 = (c * kW + kW - 1) / kBlockSize, i1 = kW >= kBlockSize ? kBlockSize - 1 : i0 + kW - 1;
+        const int j1 = (c * kW + kW - 1) / kBlockSize,
+                  i1 = kW >= kBlockSize ? kBlockSize - 1 : i0 + kW - 1;
         if (j1 < rowLo || j0 > rowHi || i1 < colLo || i0 > colHi) continue;
         const Lane px = Lane(float(blockX + i0)) + fdi;  // exact: small integers
         const Lane py = Lane(float(blockY + j0)) + fdj;
@@ -119,7 +122,8 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
         if (!coveredBits) continue;
         stats.pixelsCovered += popcount(coveredBits);
         // Depth key at each pixel centre, the same expression on every ISA.
-        const Lane z = (zBase + zdx * (px - Lane(float(t.minX)))) + zdy * (py - Lane(float(t.minY)));
+        const Lane z =
+            (zBase + zdx * (px - Lane(float(t.minX)))) + zdy * (py - Lane(float(t.minY)));
         float* dp = depth + c * kW;
         const Lane zb = ln::load<Lane>(dp);
         const auto pass = covered & (z > zb);
@@ -161,8 +165,10 @@ void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& 
                 std::fill_n(d, kBlockSize, args.clearDepth);
                 std::fill_n(id, kBlockSize, kNoPrimitiveId);
             } else {
-                std::memcpy(d, buf.depth + b * kBlockPixels + rowInBlock, sizeof(float) * kBlockSize);
-                std::memcpy(id, buf.ids + b * kBlockPixels + rowInBlock, sizeof(float) * kBlockSize);
+                std::memcpy(d, buf.depth + b * kBlockPixels + rowInBlock,
+                            sizeof(float) * kBlockSize);
+                std::memcpy(id, buf.ids + b * kBlockPixels + rowInBlock,
+                            sizeof(float) * kBlockSize);
             }
         }
         streamRow(args.depth + std::size_t(y) * args.depthStride + r.x0, depthRow, span);

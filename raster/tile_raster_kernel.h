@@ -16,8 +16,8 @@ struct TileRasterArgs {
     const uint32_t* binItems;
     int width, height, tilesX;
     float clearDepth;
-    float* depth;         // plane rows
-    uint32_t* ids;        // nullptr for depth-only
+    float* depth;                       // plane rows
+    uint32_t* ids;                      // nullptr for depth-only
     std::size_t depthStride, idStride;  // elements per row
 };
 

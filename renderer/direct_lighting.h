@@ -15,8 +15,8 @@ namespace ssrt {
 
 // Owns what DirectArgs points to; neither copied nor moved, so the pointers stay valid.
 struct DirectLighting {
-    DirectArgs args{};             // lighting and shadow fields set; the rest left zero
-    std::vector<float> emissive;   // args.emissive: 3 per material
+    DirectArgs args{};                       // lighting and shadow fields set; the rest left zero
+    std::vector<float> emissive;             // args.emissive: 3 per material
     std::shared_ptr<const SkyLighting> sky;  // args.envLevel's pixels (Sky::Kind::Image)
 
     DirectLighting() = default;

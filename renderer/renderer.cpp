@@ -58,8 +58,8 @@ ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const 
     r.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     r.materialId = float(inst.material);
     // current view -> world -> object (current) -> world (previous) -> previous clip
-    const glm::mat4 toPrev = prevViewProj * inst.previousTransform *
-                             glm::inverse(inst.transform) * glm::inverse(view);
+    const glm::mat4 toPrev =
+        prevViewProj * inst.previousTransform * glm::inverse(inst.transform) * glm::inverse(view);
     std::copy_n(glm::value_ptr(toPrev), 16, r.viewToPrevClip);
     return r;
 }
@@ -159,19 +159,39 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
 
 // Output planes, in the order the frame lists them.
 enum PlaneIndex {
-    kColorR, kColorG, kColorB, kDisplayR, kDisplayG, kDisplayB, kShadow,
-    kViewZ, kNormalX, kNormalY, kNormalZ, kAlbedoR, kAlbedoG, kAlbedoB, kMetallic, kRoughness,
-    kMaterialId, kMotionX, kMotionY, kInstanceId, kTriangleId, kPlaneCount
+    kColorR,
+    kColorG,
+    kColorB,
+    kDisplayR,
+    kDisplayG,
+    kDisplayB,
+    kShadow,
+    kViewZ,
+    kNormalX,
+    kNormalY,
+    kNormalZ,
+    kAlbedoR,
+    kAlbedoG,
+    kAlbedoB,
+    kMetallic,
+    kRoughness,
+    kMaterialId,
+    kMotionX,
+    kMotionY,
+    kInstanceId,
+    kTriangleId,
+    kPlaneCount
 };
 const char* const kPlaneNames[kPlaneCount] = {
-    "color.R", "color.G", "color.B", "display.R", "display.G", "display.B", "shadow",
-    "viewZ", "normal.X", "normal.Y", "normal.Z", "albedo.R", "albedo.G", "albedo.B",
-    "metallic", "roughness", "materialId", "motion.X", "motion.Y", "instanceId", "triangleId"};
+    "color.R",  "color.G",   "color.B",    "display.R", "display.G", "display.B",  "shadow",
+    "viewZ",    "normal.X",  "normal.Y",   "normal.Z",  "albedo.R",  "albedo.G",   "albedo.B",
+    "metallic", "roughness", "materialId", "motion.X",  "motion.Y",  "instanceId", "triangleId"};
 
 // Gives the frame its planes, keeping the existing ones when names and sizes match. Every
 // pixel of every plane is written by a pass, so none is cleared here.
 void ensurePlanes(Frame& f, int w, int h, bool idPlanes, const TraceSettings& trace) {
-    std::vector<const char*> names(kPlaneNames, kPlaneNames + (idPlanes ? kPlaneCount : kInstanceId));
+    std::vector<const char*> names(kPlaneNames,
+                                   kPlaneNames + (idPlanes ? kPlaneCount : kInstanceId));
     for (const char* n : tracePlaneNames(trace)) names.push_back(n);
     bool same = f.planes.size() == names.size();
     for (std::size_t i = 0; same && i < names.size(); ++i)
@@ -223,7 +243,8 @@ void TraceSettings::validate() const {
     requireRange(std::isfinite(resolve.edgeFadeLength) && resolve.edgeFadeLength > 0.0f &&
                      resolve.edgeFadeLength <= 0.5f,
                  "SSR edge fade length must be in (0, 0.5]");
-    requireRange(std::isfinite(resolve.roughnessFadeStart) && std::isfinite(resolve.roughnessFadeEnd) &&
+    requireRange(std::isfinite(resolve.roughnessFadeStart) &&
+                     std::isfinite(resolve.roughnessFadeEnd) &&
                      resolve.roughnessFadeStart >= 0.0f && resolve.roughnessFadeEnd <= 1.0f,
                  "SSR roughness fade must lie in [0, 1]");
 }
@@ -414,7 +435,6 @@ void Renderer::render(const Scene& scene, const Camera& camera, const Camera& pr
     std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
     std::copy_n(da.camPos, 3, tc.position);
     if (s.trace.any()) runTracePasses(s, isa, tc, da, frame, observer);
-
 }
 
 }  // namespace ssrt

@@ -33,8 +33,8 @@ struct TraceSettings {
     Marcher marcher = Marcher::HiZ;                // used by both passes
     int ssrSpp = 1;                                // rays per pixel, 1 to kMaxSpp
     int ssgiSpp = 1;
-    MarchSettings march;          // its frame and sample are set per pass by the renderer
-    SsrResolveSettings resolve;   // hit radiance source, fades, mip or ray-reuse mode
+    MarchSettings march;         // its frame and sample are set per pass by the renderer
+    SsrResolveSettings resolve;  // hit radiance source, fades, mip or ray-reuse mode
     // Rays also where the composite hides what they find: SSR where the roughness fade
     // does (perceptual roughness >= resolve.roughnessFadeEnd: SSR opacity 0), as HDRP does
     // not, and SSGI where the diffuse colour albedo (1 - metallic) is 0 (metals). Off: no
@@ -51,16 +51,16 @@ struct TraceSettings {
 struct RenderSettings {
     int width = 1280;
     int height = 720;
-    int threads = 0;              // worker threads; 0 = every core
-    std::optional<Isa> isa;       // nullopt: best the CPU runs (or $SSRT_ISA)
-    int shadowMapSize = 2048;     // texels per side
-    float shadowBias = 1.5f;      // constant depth bias, in shadow-map texels of depth
-    float shadowSlopeBias = 2.0f; // extra bias per unit of tan(angle to the light), texels
-    int pcfRadius = 1;            // PCF kernel is (2r+1)^2 texels
-    float exposure = 1.0f;        // scale on linear radiance before the tone map
-    uint32_t frame = 0;           // frame index (feeds the counter-based RNG)
-    bool idPlanes = true;         // also hand out instanceId and triangleId float planes
-    TraceSettings trace;          // SSR and SSGI (on by default)
+    int threads = 0;               // worker threads; 0 = every core
+    std::optional<Isa> isa;        // nullopt: best the CPU runs (or $SSRT_ISA)
+    int shadowMapSize = 2048;      // texels per side
+    float shadowBias = 1.5f;       // constant depth bias, in shadow-map texels of depth
+    float shadowSlopeBias = 2.0f;  // extra bias per unit of tan(angle to the light), texels
+    int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
+    float exposure = 1.0f;         // scale on linear radiance before the tone map
+    uint32_t frame = 0;            // frame index (feeds the counter-based RNG)
+    bool idPlanes = true;          // also hand out instanceId and triangleId float planes
+    TraceSettings trace;           // SSR and SSGI (on by default)
 
     // Throws std::invalid_argument with a one-line message naming the bad field.
     void validate() const;
@@ -109,8 +109,8 @@ struct Frame {
         MarchResult march;
         ColorPyramid colorPyramid;
         SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent the frame's planes
-        PlaneF directParts[15];   // direct, emission, envDiffuse, envSpecular, specWeight (RGB each)
-        PlaneF hitLight[3];       // DirectArgs::hitLight, for SSGI
+        PlaneF directParts[15];  // direct, emission, envDiffuse, envSpecular, specWeight (RGB each)
+        PlaneF hitLight[3];      // DirectArgs::hitLight, for SSGI
         PlaneF previousColor[3];  // last frame's final colour, for reprojected SSR hits
         bool hasPrevious = false;
     } scratch;

@@ -98,9 +98,9 @@ void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& 
     if (ts.ssr) {
         // The hit radiance: this frame's direct light, or last frame's composite (when there is
         // one) through the motion vectors.
-        const bool reproject =
-            ts.resolve.radiance == HitRadiance::Reprojected && sc.hasPrevious &&
-            sc.previousColor[0].width() == w && sc.previousColor[0].height() == h;
+        const bool reproject = ts.resolve.radiance == HitRadiance::Reprojected && sc.hasPrevious &&
+                               sc.previousColor[0].width() == w &&
+                               sc.previousColor[0].height() == h;
         SsrResolveSettings rs = ts.resolve;
         if (!reproject) rs.radiance = HitRadiance::Current;
         SsrResolveInputs in;

@@ -134,9 +134,8 @@ Scene makeKnotScene(int triangles) {
     // 8 * sides keeps the triangles near square.
     constexpr int kMinTriangles = 2 + 2 * 8 * 3 * 3;
     if (triangles < kMinTriangles)
-        throw std::invalid_argument("knot scene needs at least " +
-                                    std::to_string(kMinTriangles) + " triangles (got " +
-                                    std::to_string(triangles) + ")");
+        throw std::invalid_argument("knot scene needs at least " + std::to_string(kMinTriangles) +
+                                    " triangles (got " + std::to_string(triangles) + ")");
     const double cells = double(triangles - 2) / 2.0;
     const int sides = std::max(3, int(std::lround(std::sqrt(cells / 8.0))));
     const int segments = std::max(3, int(std::lround(cells / sides)));

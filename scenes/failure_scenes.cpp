@@ -17,9 +17,8 @@ uint32_t addMirror(Scene& scene, const std::string& name, bool doubleSided = fal
 }
 
 // Saturated colours, so that a reflection that lands on the wrong object shows at a glance.
-constexpr glm::vec3 kPalette[] = {{0.9f, 0.1f, 0.1f}, {0.1f, 0.8f, 0.15f}, {0.15f, 0.3f, 0.95f},
-                                  {0.95f, 0.8f, 0.1f}, {0.85f, 0.15f, 0.85f},
-                                  {0.1f, 0.8f, 0.85f}};
+constexpr glm::vec3 kPalette[] = {{0.9f, 0.1f, 0.1f},  {0.1f, 0.8f, 0.15f},   {0.15f, 0.3f, 0.95f},
+                                  {0.95f, 0.8f, 0.1f}, {0.85f, 0.15f, 0.85f}, {0.1f, 0.8f, 0.85f}};
 
 // A walled strip along -Z: floor, two side walls, a wall across the far end; the near end
 // and the top are open (the camera stands in the first, the sun comes through the second).
@@ -64,8 +63,8 @@ Scene makeThinScene() {
     const float height = 1.0f, width = 0.1f;
     for (int i = 0; i < 6; ++i) {
         const glm::vec3 half(0.5f * width, 0.5f * height, 0.5f * depths[i]);
-        const uint32_t mat = addMaterial(scene, "post_" + std::to_string(i), kPalette[i],
-                                         0.0f, 0.5f);
+        const uint32_t mat =
+            addMaterial(scene, "post_" + std::to_string(i), kPalette[i], 0.0f, 0.5f);
         const glm::vec3 at(-1.5f + 0.6f * float(i), half.y, -0.5f * float(i));
         addInstance(scene, addMesh(scene, makeBox(half)), mat, translate(at));
     }
@@ -93,10 +92,8 @@ Scene makeCorridorScene() {
         const bool metal = i % 3 == 2;
         const uint32_t mat = addMaterial(scene, "object_" + std::to_string(i), kPalette[i],
                                          metal ? 1.0f : 0.0f, metal ? 0.2f : 0.5f);
-        if (i % 2 == 0)
-            addInstance(scene, sphere, mat, translate({x, r, z}));
-        else
-            addInstance(scene, box, mat, translate({x, 0.6f, z}));
+        if (i % 2 == 0) addInstance(scene, sphere, mat, translate({x, r, z}));
+        else addInstance(scene, box, mat, translate({x, 0.6f, z}));
     }
     // High and nearly along the axis, a little from +X: the sun reaches the floor and
     // lights the left wall, while the right wall throws a narrow shadow.
@@ -119,8 +116,8 @@ Scene makeOffscreenScene() {
     const float r = 0.35f;
     const uint32_t sphere = addMesh(scene, makeUvSphere(r, 48, 24));
     for (int i = 0; i < 5; ++i) {
-        const uint32_t mat = addMaterial(scene, "lamp_" + std::to_string(i), kPalette[i],
-                                         0.0f, 0.5f);
+        const uint32_t mat =
+            addMaterial(scene, "lamp_" + std::to_string(i), kPalette[i], 0.0f, 0.5f);
         scene.materials[mat].emissive = 6.0f * kPalette[i];
         addInstance(scene, sphere, mat, translate({-2.0f + float(i), 3.2f, -4.0f}));
     }

@@ -91,9 +91,9 @@ std::size_t skipValue(const std::string& s, std::size_t i) {
 
 // The first problem found, or "" when every known top-level member has its glTF type.
 std::string topLevelTypeProblem(const std::string& json) {
-    static const char* arrays[] = {"accessors", "animations", "buffers", "bufferViews",
-                                   "cameras", "images", "materials", "meshes", "nodes",
-                                   "samplers", "scenes", "skins", "textures"};
+    static const char* arrays[] = {"accessors", "animations", "buffers", "bufferViews", "cameras",
+                                   "images",    "materials",  "meshes",  "nodes",       "samplers",
+                                   "scenes",    "skins",      "textures"};
     std::size_t i = skipSpace(json, 0);
     if (i >= json.size() || json[i] != '{') return "the top level is not a JSON object";
     for (i = skipSpace(json, i + 1); i < json.size() && json[i] == '"';) {
@@ -160,13 +160,13 @@ struct AccessorView {
 
 std::size_t componentBytes(int type) {
     switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
     }
 }
 
@@ -188,8 +188,8 @@ AccessorView viewAccessor(const Context& ctx, int index, const std::string& role
         ctx.fail(name + ": buffer " + std::to_string(bv.buffer) + " out of range");
     const std::vector<unsigned char>& buf = m.buffers[bv.buffer].data;
     if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
-        ctx.fail(name + ": bufferView " + std::to_string(a.bufferView) +
-                 " overruns its buffer (" + str(buf.size()) + " bytes)");
+        ctx.fail(name + ": bufferView " + std::to_string(a.bufferView) + " overruns its buffer (" +
+                 str(buf.size()) + " bytes)");
 
     const int components = tinygltf::GetNumComponentsInType(a.type);
     const std::size_t elemBytes = compBytes * std::size_t(components);
@@ -197,9 +197,9 @@ AccessorView viewAccessor(const Context& ctx, int index, const std::string& role
     if (stride < elemBytes) ctx.fail(name + ": byteStride smaller than an element");
     // count * stride can overflow; compare by division instead.
     const std::size_t avail = bv.byteLength;
-    const bool fits = a.count == 0 ||
-                      (a.byteOffset <= avail && elemBytes <= avail - a.byteOffset &&
-                       (a.count - 1) <= (avail - a.byteOffset - elemBytes) / stride);
+    const bool fits =
+        a.count == 0 || (a.byteOffset <= avail && elemBytes <= avail - a.byteOffset &&
+                         (a.count - 1) <= (avail - a.byteOffset - elemBytes) / stride);
     if (!fits)
         ctx.fail(name + ": count " + str(a.count) + " overruns bufferView " +
                  std::to_string(a.bufferView) + " (" + str(avail) + " bytes)");
@@ -218,19 +218,19 @@ T load(const unsigned char* p) {
 float readComponent(const AccessorView& v, std::size_t element, int component) {
     const unsigned char* p = v.data + element * v.stride;
     switch (v.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p + 4 * component);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[component]) / 255.0f;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return float(load<uint16_t>(p + 2 * component)) / 65535.0f;
-    default: return 0.0f;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p + 4 * component);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[component]) / 255.0f;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return float(load<uint16_t>(p + 2 * component)) / 65535.0f;
+        default: return 0.0f;
     }
 }
 
 template <int N>
 std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
                                             bool floatOnly) {
-    const AccessorView v = viewAccessor(ctx, index, role, N == 2 ? TINYGLTF_TYPE_VEC2
-                                                                 : TINYGLTF_TYPE_VEC3);
+    const AccessorView v =
+        viewAccessor(ctx, index, role, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3);
     const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
     const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
@@ -257,17 +257,16 @@ std::vector<uint32_t> readIndices(const Context& ctx, int index, std::size_t ver
     for (std::size_t i = 0; i < v.count; ++i) {
         const unsigned char* p = v.data + i * v.stride;
         switch (v.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[i] = load<uint16_t>(p); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[i] = load<uint32_t>(p); break;
-        default:
-            ctx.fail("accessor " + std::to_string(index) +
-                     " (indices): component type must be an unsigned integer");
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[i] = load<uint16_t>(p); break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[i] = load<uint32_t>(p); break;
+            default:
+                ctx.fail("accessor " + std::to_string(index) +
+                         " (indices): component type must be an unsigned integer");
         }
         if (out[i] >= vertexCount)
             ctx.fail("accessor " + std::to_string(index) + " (indices): index " +
-                     std::to_string(out[i]) + " out of range (" + str(vertexCount) +
-                     " vertices)");
+                     std::to_string(out[i]) + " out of range (" + str(vertexCount) + " vertices)");
     }
     return out;
 }
@@ -298,11 +297,11 @@ std::vector<uint32_t> triangulate(const Context& ctx, const std::string& name, i
 
 const char* modeName(int mode) {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    default: return "unknown";
+        case TINYGLTF_MODE_POINTS: return "POINTS";
+        case TINYGLTF_MODE_LINE: return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+        default: return "unknown";
     }
 }
 
@@ -372,8 +371,8 @@ void checkTexture(const Context& ctx, const std::string& name, int textureIndex)
     const fs::path file = fs::path(ctx.path).parent_path() / gltf::percentDecoded(img.uri);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec))
-        ctx.fail(name + ": texture image " + std::to_string(source) + " file not found: " +
-                 file.string());
+        ctx.fail(name + ": texture image " + std::to_string(source) +
+                 " file not found: " + file.string());
 }
 
 glm::vec3 finiteColor(const Context& ctx, const std::string& name, const char* what,
@@ -462,8 +461,8 @@ std::vector<std::vector<Part>> convertMeshes(const Context& ctx, Scene& scene) {
                 scene.materials.push_back(defaultMaterial());
             }
             scene.meshes.push_back(convertPrimitive(ctx, name, prims[k]));
-            parts[i].push_back({uint32_t(scene.meshes.size() - 1),
-                                mat < 0 ? *fallback : uint32_t(mat)});
+            parts[i].push_back(
+                {uint32_t(scene.meshes.size() - 1), mat < 0 ? *fallback : uint32_t(mat)});
         }
     }
     return parts;
@@ -543,8 +542,7 @@ void Walk::takeCamera(std::size_t node, int camera, const glm::mat4& world) {
     cam.fovY = glm::degrees(float(p.yfov));
     cam.nearZ = float(p.znear);
     cam.farZ = float(p.zfar);
-    if (!std::isfinite(cam.target.x + cam.target.y + cam.target.z + cam.up.x + cam.up.y +
-                       cam.up.z))
+    if (!std::isfinite(cam.target.x + cam.target.y + cam.target.z + cam.up.x + cam.up.y + cam.up.z))
         ctx.fail("node " + str(node) + ": camera transform is degenerate");
     haveCamera = true;
 }
@@ -667,8 +665,8 @@ void fitCamera(Scene& scene, float fileFar, bool haveCamera) {
         cam.farZ = 2.0f * (distance + radius);
     } else if (fileFar <= 0.0f) {
         // An infinite projection in the file: a finite far plane past the whole scene.
-        cam.farZ = std::max(cam.nearZ * 1000.0f,
-                            2.0f * (glm::length(cam.position - centre) + radius));
+        cam.farZ =
+            std::max(cam.nearZ * 1000.0f, 2.0f * (glm::length(cam.position - centre) + radius));
     }
     scene.previousCamera = cam;
 }

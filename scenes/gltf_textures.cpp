@@ -40,14 +40,10 @@ std::string formatHint(const std::string& mimeType) {
 
 TextureWrap wrapMode(int gl) {
     switch (gl) {
-        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
-            return TextureWrap::ClampToEdge;
-        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
-            return TextureWrap::MirroredRepeat;
-        case TINYGLTF_TEXTURE_WRAP_REPEAT:
-            return TextureWrap::Repeat;
-        default:
-            fail("sampler wrap mode " + std::to_string(gl) + " is not a glTF wrap mode");
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
+        case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::Repeat;
+        default: fail("sampler wrap mode " + std::to_string(gl) + " is not a glTF wrap mode");
     }
 }
 

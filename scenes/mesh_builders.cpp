@@ -26,8 +26,7 @@ float turnAngle(int i, int n) { return kTwoPi * float(i % n) / float(n); }
 void requireAtLeast(const char* what, int value, int least) {
     if (value < least)
         throw std::invalid_argument(std::string(what) + " must be at least " +
-                                    std::to_string(least) + " (got " + std::to_string(value) +
-                                    ")");
+                                    std::to_string(least) + " (got " + std::to_string(value) + ")");
 }
 
 void requirePositive(const char* what, float value) {

@@ -98,8 +98,7 @@ public:
         if (!j.is_number()) fail(p, "expected " + expected);
         const double v = j.get<double>();
         // Finite also as a float: every number here ends up in one.
-        const bool inRange = fitsFloat(v) &&
-                             (loIn ? v >= lo : v > lo) && (hiIn ? v <= hi : v < hi);
+        const bool inRange = fitsFloat(v) && (loIn ? v >= lo : v > lo) && (hiIn ? v <= hi : v < hi);
         if (!inRange) fail(p, "expected " + expected);
         return v;
     }
@@ -230,9 +229,7 @@ json parseDocument(const std::string& text, const Reader& r) {
                         duplicate = pathOf();
                 }
                 break;
-            case json::parse_event_t::value:
-                elementStarts();
-                break;
+            case json::parse_event_t::value: elementStarts(); break;
         }
         return true;
     };
@@ -248,8 +245,7 @@ json parseDocument(const std::string& text, const Reader& r) {
         // "[json.exception.parse_error.101] parse error at line 3, column 7: ..." -> from "line"
         std::string what = e.what();
         const std::size_t at = what.find("at line ");
-        if (at != std::string::npos)
-            what = what.substr(at + 3);
+        if (at != std::string::npos) what = what.substr(at + 3);
         else if (const std::size_t b = what.find("] "); b != std::string::npos)
             what = what.substr(b + 2);
         r.fail("", "not valid JSON: " + what);
@@ -304,12 +300,9 @@ Shot parseShot(const std::string& text, const std::string& file) {
             const std::string pp = "camera.path";
             r.object(path, pp, {"interpolation", "keys"});
             if (const auto interp = r.string(path, pp, "interpolation")) {
-                if (*interp == "catmull-rom")
-                    shot.interpolation = PathInterpolation::CatmullRom;
-                else if (*interp == "linear")
-                    shot.interpolation = PathInterpolation::Linear;
-                else
-                    r.fail(pp + ".interpolation", "expected \"catmull-rom\" or \"linear\"");
+                if (*interp == "catmull-rom") shot.interpolation = PathInterpolation::CatmullRom;
+                else if (*interp == "linear") shot.interpolation = PathInterpolation::Linear;
+                else r.fail(pp + ".interpolation", "expected \"catmull-rom\" or \"linear\"");
             }
             if (!path.contains("keys") || !path["keys"].is_array() || path["keys"].empty())
                 r.fail(pp + ".keys", "expected an array of at least one key");

@@ -55,16 +55,14 @@ TextureLevel halveY(const TextureLevel& in) {
 int wrapIndex(int i, int n, TextureWrap mode) {
     if (unsigned(i) < unsigned(n)) return i;  // inside: every mode agrees
     switch (mode) {
-        case TextureWrap::ClampToEdge:
-            return std::clamp(i, 0, n - 1);
+        case TextureWrap::ClampToEdge: return std::clamp(i, 0, n - 1);
         case TextureWrap::MirroredRepeat: {
             const int period = 2 * n;
             const int m = ((i % period) + period) % period;
             return m < n ? m : period - 1 - m;
         }
         case TextureWrap::Repeat:
-        default:
-            return ((i % n) + n) % n;
+        default: return ((i % n) + n) % n;
     }
 }
 

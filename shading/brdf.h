@@ -29,7 +29,8 @@ SSRT_INLINE L V_SmithGGXCorrelated(L NoV, L NoL, L alpha) {
     const L lv = NoL * ln::sqrt(NoV * NoV * (L(1.0f) - a2) + a2);
     const L ll = NoV * ln::sqrt(NoL * NoL * (L(1.0f) - a2) + a2);
     const L denom = lv + ll;
-    return ln::select(denom > L(0.0f), L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)), L(0.0f));
+    return ln::select(denom > L(0.0f), L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)),
+                      L(0.0f));
 }
 
 // D_GGX(NoH, alpha) x V_SmithGGXCorrelated(NoV, NoL, alpha) for one view and many light
@@ -41,7 +42,10 @@ struct GgxDV {
     L a2, a2m1, oneMinusA2, NoV, viewRoot;
 
     SSRT_INLINE GgxDV(L NoV_, L alpha)
-        : a2(alpha * alpha), a2m1(a2 - L(1.0f)), oneMinusA2(L(1.0f) - a2), NoV(NoV_),
+        : a2(alpha * alpha),
+          a2m1(a2 - L(1.0f)),
+          oneMinusA2(L(1.0f) - a2),
+          NoV(NoV_),
           viewRoot(ln::sqrt(NoV_ * NoV_ * oneMinusA2 + a2)) {}
 
     SSRT_INLINE L operator()(L NoH, L NoL) const {
@@ -50,8 +54,8 @@ struct GgxDV {
         const L lv = NoL * viewRoot;
         const L ll = NoV * ln::sqrt(NoL * NoL * oneMinusA2 + a2);
         const L denom = lv + ll;
-        const L v =
-            ln::select(denom > L(0.0f), L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)), L(0.0f));
+        const L v = ln::select(denom > L(0.0f),
+                               L(0.5f) / ln::select(denom > L(0.0f), denom, L(1.0f)), L(0.0f));
         return d * v;
     }
 };
@@ -116,8 +120,7 @@ SSRT_INLINE L G1_GGX(L wx, L wy, L wz, L ax, L ay) {
     const L az = ln::abs(wz);
     const L t = smithT(wx, wy, wz, ax, ay);
     const L den = az + t;
-    return ln::select(den > L(0.0f), (az + az) / ln::select(den > L(0.0f), den, L(1.0f)),
-                      L(0.0f));
+    return ln::select(den > L(0.0f), (az + az) / ln::select(den > L(0.0f), den, L(1.0f)), L(0.0f));
 }
 
 // Heitz 2014, eq. 99: height-correlated G2 = 1 / (1 + Lambda_i + Lambda_o)

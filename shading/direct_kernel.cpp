@@ -45,7 +45,8 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     if (!ln::all(background)) {
         Surface s;
         s.p = splat3(a.camPos) + dirWorld * viewZ;
-        s.n = {ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go), ln::load<Lane>(a.g[3] + go)};
+        s.n = {ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go),
+               ln::load<Lane>(a.g[3] + go)};
         s.albedo = {ln::load<Lane>(a.g[4] + go), ln::load<Lane>(a.g[5] + go),
                     ln::load<Lane>(a.g[6] + go)};
         s.metallic = ln::load<Lane>(a.g[7] + go);
@@ -118,7 +119,8 @@ void shadeTile(const DirectArgs& args, int tile) {
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
         for (int p = 0; p < 7; ++p) {
             float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
-            for (int i = 0; i < span; i += kW) ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+            for (int i = 0; i < span; i += kW)
+                ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }
     }
     ln::streamFence();

@@ -38,7 +38,7 @@ struct DirectArgs {
     const float* shadow;
     std::size_t shadowStride;
     int shadowSize;
-    float lightViewProj[16];  // column-major
+    float lightViewProj[16];     // column-major
     float biasConst, biasSlope;  // depth-key units; slope term scales tan(angle to light)
     int pcfRadius;
     float exposure;

@@ -91,8 +91,8 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, L bias) {
     const int r = a.pcfRadius;
     L lit(0.0f);
     for (int dy = -r; dy <= r; ++dy) {
-        const IL row =
-            ln::toIntTrunc(ln::clamp(v + L(float(dy)), L(0.0f), last)) * IL(int32_t(a.shadowStride));
+        const IL row = ln::toIntTrunc(ln::clamp(v + L(float(dy)), L(0.0f), last)) *
+                       IL(int32_t(a.shadowStride));
         for (int dx = -r; dx <= r; ++dx) {
             const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), L(0.0f), last));
             const L depth = ln::gather(a.shadow, row + col);
@@ -138,8 +138,8 @@ SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
     // Slope-scaled bias: grows with tan(angle to the light), capped at grazing angles.
     const L cosL = ln::max(NoLraw, L(1e-3f));
     const L tanL = ln::min(ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL, L(10.0f));
-    return ln::select(NoLraw > zero, shadowVisibility(a, s.p, L(a.biasConst) + L(a.biasSlope) * tanL),
-                      zero);
+    return ln::select(NoLraw > zero,
+                      shadowVisibility(a, s.p, L(a.biasConst) + L(a.biasSlope) * tanL), zero);
 }
 
 // The Lambert part of the sun light leaving a surface point, emission aside:
@@ -184,9 +184,9 @@ SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L vi
     } else {
         // Analytic sky: irradiance blended by the normal's elevation, and the reflected sky
         // through the environment BRDF, blurred towards the sky's average as roughness grows.
-        const V3<L> skyAvg = mix3(splat3<L>(a.skyGround),
-                                  mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(0.5f)),
-                                  L(0.5f));
+        const V3<L> skyAvg =
+            mix3(splat3<L>(a.skyGround),
+                 mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(0.5f)), L(0.5f));
         const V3<L> up = mix3(splat3<L>(a.skyHorizon), splat3<L>(a.skyZenith), L(0.5f));
         irradiance = mix3(splat3<L>(a.skyGround), up, L(0.5f) + L(0.5f) * s.n.y);
         specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
@@ -201,8 +201,8 @@ SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L vi
         const L lost = one / e - one;
         compensation = {one + f0.x * lost, one + f0.y * lost, one + f0.z * lost};
     }
-    return {direct, irradiance * diffuse * L(ln::kPi), f0 * envScale + V3<L>{envBias, envBias, envBias},
-            specSky, compensation};
+    return {direct, irradiance * diffuse * L(ln::kPi),
+            f0 * envScale + V3<L>{envBias, envBias, envBias}, specSky, compensation};
 }
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"

@@ -15,7 +15,8 @@ namespace {
 //   D G1(v) / (4 v.z), so each sample weighs f cos / pdf = F G2(v, o) / G1(v); with Schlick,
 //   F = f0 (1 - Fc) + f90 Fc and Fc = (1 - o.h)^5 splits the estimate into dfgA and dfgB.
 // Samples: the spherical-cap VNDF sampler (Dupuy and Benyoub 2023) on an n x n stratified grid
-// of cell centres (warped towards the rim), in double. Isotropic, so the view lies in the x-z plane.
+// of cell centres (warped towards the rim), in double. Isotropic, so the view lies in the x-z
+// plane.
 
 double lambdaT(double x, double z, double a) { return std::sqrt(a * a * x * x + z * z); }
 
@@ -30,7 +31,8 @@ DfgSample integrateGgxAlbedo(double mu, double alpha, int n) {
         for (int j = 0; j < n; ++j) {
             // u2 = 1 - (1 - v)^3 crowds the points towards the cap's rim, where the
             // reflections that leave below the horizon (the loss of smooth surfaces) come from.
-            const double u1 = (i + 0.5) / n, v = (j + 0.5) / n, u2 = 1.0 - (1.0 - v) * (1.0 - v) * (1.0 - v);
+            const double u1 = (i + 0.5) / n, v = (j + 0.5) / n,
+                         u2 = 1.0 - (1.0 - v) * (1.0 - v) * (1.0 - v);
             const double jac = 3.0 * (1.0 - v) * (1.0 - v);
             const double phi = 2.0 * M_PI * u1;
             const double z = (1.0 - u2) * (1.0 + sz) - sz;

@@ -8,8 +8,8 @@
 // Lane-generic lookups into the tables of shading/energy_tables.h (pointers into them).
 #pragma once
 
-#include "core/lanes.h"
 #include "core/lane_math.h"
+#include "core/lanes.h"
 #include "shading/energy_tables.h"
 
 namespace ssrt::multiscatter {

@@ -142,8 +142,7 @@ SSRT_INLINE L vndfReflectionPdf(V3<L> wi, V3<L> wo, L ax, L ay) {
     ay = clampAlpha(ay);
     const V3<L> h = ln::normalize(wi + wo);
     const L d = brdf::D_GGXAniso(h.x, h.y, h.z, ax, ay);
-    return ln::select(ln::dot(wi, h) > L(0.0f), L(0.5f) * d * invTPlusB(wi, ax, ay, wi.z),
-                      L(0.0f));
+    return ln::select(ln::dot(wi, h) > L(0.0f), L(0.5f) * d * invTPlusB(wi, ax, ay, wi.z), L(0.0f));
 }
 
 // Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1: stretch the
@@ -277,8 +276,8 @@ SSRT_INLINE V3<L> sampleVndfBoundedReflection(V3<L> wi, L ax, L ay, L u1, L u2) 
 template <class L>
 SSRT_INLINE ln::MaskOf<L> vndfBoundedInCap(V3<L> wi, V3<L> wm, L ax, L ay) {
     const V3<L> wiStd = ln::normalize(V3<L>{ax * wi.x, ay * wi.y, wi.z});
-    const L gap = ln::select(wi.z > L(0.0f), (vndfBoundedK(wi, ax, ay) - L(1.0f)) * wiStd.z,
-                             L(0.0f));
+    const L gap =
+        ln::select(wi.z > L(0.0f), (vndfBoundedK(wi, ax, ay) - L(1.0f)) * wiStd.z, L(0.0f));
     const V3<L> d = ln::normalize(V3<L>{wm.x / ax, wm.y / ay, wm.z});
     const L di = ln::dot(d, wiStd);
     // (a rounding's worth of slack: samples drawn on the cap's rim must keep a positive PDF)

@@ -81,7 +81,7 @@ void sampleWith(const SampleArgs& a, std::size_t n) {
     constexpr float pad[7] = {0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.5f, 0.5f};
     const bool withPdf = a.outPdf != nullptr;
     float* const out[4] = {a.outX, a.outY, a.outZ, a.outPdf};
-    runLanes(in, pad, out, n, [withPdf](const Lane (&x)[7], Lane (&y)[4]) {
+    runLanes(in, pad, out, n, [withPdf](const Lane(&x)[7], Lane(&y)[4]) {
         const V wi{x[0], x[1], x[2]};
         const V d = draw<S>(wi, x[3], x[4], x[5], x[6]);
         y[0] = d.x;
@@ -115,17 +115,17 @@ void evalSamplerPdf(Sampler s, const PdfArgs& a, std::size_t n) {
     const float* const in[8] = {a.wiX, a.wiY, a.wiZ, a.alphaX, a.alphaY, a.dirX, a.dirY, a.dirZ};
     constexpr float pad[8] = {0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.0f, 0.0f, 1.0f};
     float* const out[1] = {a.outPdf};
-    runLanes(in, pad, out, n, [s](const Lane (&x)[8], Lane (&y)[1]) {
+    runLanes(in, pad, out, n, [s](const Lane(&x)[8], Lane(&y)[1]) {
         y[0] = pdfOf(s, V{x[0], x[1], x[2]}, x[3], x[4], V{x[5], x[6], x[7]});
     });
 }
 
 void evalBrdfTerm(BrdfTerm t, const BrdfArgs& a, std::size_t n) {
-    const float* const in[10] = {a.wiX, a.wiY, a.wiZ, a.woX, a.woY, a.woZ,
-                                 a.alphaX, a.alphaY, a.f0, a.f90};
+    const float* const in[10] = {a.wiX, a.wiY,    a.wiZ,    a.woX, a.woY,
+                                 a.woZ, a.alphaX, a.alphaY, a.f0,  a.f90};
     constexpr float pad[10] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.04f, 1.0f};
     float* const out[1] = {a.out};
-    runLanes(in, pad, out, n, [t](const Lane (&x)[10], Lane (&y)[1]) {
+    runLanes(in, pad, out, n, [t](const Lane(&x)[10], Lane(&y)[1]) {
         const V wi{x[0], x[1], x[2]}, wo{x[3], x[4], x[5]};
         const Lane ax = x[6], ay = x[7];
         const V h = ln::normalize(wi + wo);

@@ -26,11 +26,16 @@ enum class Sampler {
 };
 
 inline constexpr Sampler kAllSamplers[] = {
-    Sampler::CosineHemisphere,  Sampler::UniformHemisphere,
-    Sampler::GgxNdf,            Sampler::GgxNdfReflection,
-    Sampler::VndfEllipsoid,     Sampler::VndfEllipsoidReflection,
-    Sampler::VndfSphericalCaps, Sampler::VndfSphericalCapsReflection,
-    Sampler::VndfBounded,       Sampler::VndfBoundedReflection,
+    Sampler::CosineHemisphere,
+    Sampler::UniformHemisphere,
+    Sampler::GgxNdf,
+    Sampler::GgxNdfReflection,
+    Sampler::VndfEllipsoid,
+    Sampler::VndfEllipsoidReflection,
+    Sampler::VndfSphericalCaps,
+    Sampler::VndfSphericalCapsReflection,
+    Sampler::VndfBounded,
+    Sampler::VndfBoundedReflection,
 };
 
 inline std::string_view samplerName(Sampler s) {
@@ -51,8 +56,8 @@ inline std::string_view samplerName(Sampler s) {
 
 // True for the samplers that return a half vector rather than a reflected direction.
 inline bool samplerDrawsHalfVector(Sampler s) {
-    return s == Sampler::GgxNdf || s == Sampler::VndfEllipsoid ||
-           s == Sampler::VndfSphericalCaps || s == Sampler::VndfBounded;
+    return s == Sampler::GgxNdf || s == Sampler::VndfEllipsoid || s == Sampler::VndfSphericalCaps ||
+           s == Sampler::VndfBounded;
 }
 
 struct SampleArgs {
@@ -60,23 +65,23 @@ struct SampleArgs {
     const float *alphaX, *alphaY;  // GGX alphas
     const float *u1, *u2;          // uniform numbers in [0, 1)
     float *outX, *outY, *outZ;     // sampled direction
-    float* outPdf;                 // its PDF (may be null: not computed)
+    float *outPdf;                 // its PDF (may be null: not computed)
 };
 
 struct PdfArgs {
     const float *wiX, *wiY, *wiZ;
     const float *alphaX, *alphaY;
     const float *dirX, *dirY, *dirZ;  // half vector or reflected direction, as the sampler draws
-    float* outPdf;
+    float *outPdf;
 };
 
-SSRT_DECLARE_KERNEL(void, sampleDirections, (Sampler s, const SampleArgs& a, std::size_t n))
-SSRT_DECLARE_KERNEL(void, evalSamplerPdf, (Sampler s, const PdfArgs& a, std::size_t n))
+SSRT_DECLARE_KERNEL(void, sampleDirections, (Sampler s, const SampleArgs &a, std::size_t n))
+SSRT_DECLARE_KERNEL(void, evalSamplerPdf, (Sampler s, const PdfArgs &a, std::size_t n))
 
-inline void sampleDirections(Isa isa, Sampler s, const SampleArgs& a, std::size_t n) {
+inline void sampleDirections(Isa isa, Sampler s, const SampleArgs &a, std::size_t n) {
     SSRT_DISPATCH(isa, sampleDirections)(s, a, n);
 }
-inline void evalSamplerPdf(Isa isa, Sampler s, const PdfArgs& a, std::size_t n) {
+inline void evalSamplerPdf(Isa isa, Sampler s, const PdfArgs &a, std::size_t n) {
     SSRT_DISPATCH(isa, evalSamplerPdf)(s, a, n);
 }
 
@@ -99,12 +104,12 @@ struct BrdfArgs {
     const float *woX, *woY, *woZ;
     const float *alphaX, *alphaY;
     const float *f0, *f90;
-    float* out;
+    float *out;
 };
 
-SSRT_DECLARE_KERNEL(void, evalBrdfTerm, (BrdfTerm t, const BrdfArgs& a, std::size_t n))
+SSRT_DECLARE_KERNEL(void, evalBrdfTerm, (BrdfTerm t, const BrdfArgs &a, std::size_t n))
 
-inline void evalBrdfTerm(Isa isa, BrdfTerm t, const BrdfArgs& a, std::size_t n) {
+inline void evalBrdfTerm(Isa isa, BrdfTerm t, const BrdfArgs &a, std::size_t n) {
     SSRT_DISPATCH(isa, evalBrdfTerm)(t, a, n);
 }
 

@@ -34,10 +34,12 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
             // The hit's view-space point from its pixel position and depth, minus the origin
             // (the scalar loop's expressions, in its order).
             const Lane z = loadAt(a.hitPos[2], o);
-            const Lane px = ((Lane(2.0f) * loadAt(a.hitPos[0], o)) / Lane(float(a.width)) -
-                             Lane(1.0f)) * Lane(a.tanHalfX) * z;
-            const Lane py = (Lane(1.0f) - (Lane(2.0f) * loadAt(a.hitPos[1], o)) /
-                                              Lane(float(a.height))) * Lane(a.tanHalfY) * z;
+            const Lane px =
+                ((Lane(2.0f) * loadAt(a.hitPos[0], o)) / Lane(float(a.width)) - Lane(1.0f)) *
+                Lane(a.tanHalfX) * z;
+            const Lane py =
+                (Lane(1.0f) - (Lane(2.0f) * loadAt(a.hitPos[1], o)) / Lane(float(a.height))) *
+                Lane(a.tanHalfY) * z;
             const Lane dx = px - loadAt(a.origin[0], o), dy = py - loadAt(a.origin[1], o),
                        dz = -z - loadAt(a.origin[2], o);
             d = ln::select(hits, ln::sqrt(dx * dx + dy * dy + dz * dz), zero);

@@ -13,12 +13,9 @@ namespace ssrt {
 
 std::string_view marcherName(Marcher marcher) {
     switch (marcher) {
-        case Marcher::Linear:
-            return "linear";
-        case Marcher::Dda:
-            return "dda";
-        case Marcher::HiZ:
-            return "hiz";
+        case Marcher::Linear: return "linear";
+        case Marcher::Dda: return "dda";
+        case Marcher::HiZ: return "hiz";
     }
     return "?";
 }
@@ -240,9 +237,17 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
         for (int y = rect.y0; y < rect.y1; ++y) {
             const int x = rect.x0;
             int8_t* k = key + (y - rect.y0) * tw;
-            const SortKeyArgs ka{rays.pdf.row(y) + x, rays.ox.row(y) + x, rays.oy.row(y) + x,
-                                 rays.oz.row(y) + x,  rays.dx.row(y) + x, rays.dy.row(y) + x,
-                                 rays.dz.row(y) + x,  tw, proto.sx, proto.sy, k};
+            const SortKeyArgs ka{rays.pdf.row(y) + x,
+                                 rays.ox.row(y) + x,
+                                 rays.oy.row(y) + x,
+                                 rays.oz.row(y) + x,
+                                 rays.dx.row(y) + x,
+                                 rays.dy.row(y) + x,
+                                 rays.dz.row(y) + x,
+                                 tw,
+                                 proto.sx,
+                                 proto.sy,
+                                 k};
             sortKeys(ka);
             for (int i = 0; i < tw; ++i)
                 if (k[i] >= 0) ++counts[k[i] + 1];
@@ -256,10 +261,8 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
             for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
                 for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y) {
                     const int8_t* k = key + (y - rect.y0) * tw;
-                    const float *OX = rays.ox.row(y), *OY = rays.oy.row(y),
-                                *OZ = rays.oz.row(y);
-                    const float *DX = rays.dx.row(y), *DY = rays.dy.row(y),
-                                *DZ = rays.dz.row(y);
+                    const float *OX = rays.ox.row(y), *OY = rays.oy.row(y), *OZ = rays.oz.row(y);
+                    const float *DX = rays.dx.row(y), *DY = rays.dy.row(y), *DZ = rays.dz.row(y);
                     for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) {
                         const int b = k[x - rect.x0];
                         if (b < 0) continue;
@@ -274,8 +277,8 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                         A[TileScratch::kPy][i] = float(y);
                         const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
                         A[TileScratch::kJitter][i] =
-                            jitter ? settings.ddaJitter * randomFloat(pixel, settings.frame,
-                                                                      settings.sample, 0)
+                            jitter ? settings.ddaJitter *
+                                         randomFloat(pixel, settings.frame, settings.sample, 0)
                                    : 0.0f;
                     }
                 }

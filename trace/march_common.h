@@ -109,8 +109,8 @@ struct LaneEnds {
 SSRT_INLINE LaneEnds startEnds(const MarchKernelArgs& a, int base) {
     const Lane zero(0.0f);
     const Mask real = (ln::laneIndex<Lane>() + Lane(float(base))) < Lane(float(a.count));
-    return {ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero, zero,
-            zero};
+    return {
+        ln::select(real, Lane(kMarching), endCode(MarchEnd::NoRay)), zero, zero, zero, zero, zero};
 }
 
 // Validation and write-out of lanes [base, base + kW) (the packed arrays are padded to whole

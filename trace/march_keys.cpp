@@ -26,11 +26,11 @@ SSRT_INLINE Lane keys(const SortKeyArgs& a, int i) {
     const Lane sum = ln::abs(u) + ln::abs(v);
     const Mask moving = sum > zero;
     const Lane r = v / ln::select(moving, sum, one);
-    const Lane turned = ln::select(u >= zero, ln::select(v >= zero, r, Lane(4.0f) + r),
-                                   Lane(2.0f) - r);
+    const Lane turned =
+        ln::select(u >= zero, ln::select(v >= zero, r, Lane(4.0f) + r), Lane(2.0f) - r);
     const Lane angle = ln::select(moving, turned, zero);
-    const Lane sector = ln::floor(ln::clamp(angle * Lane(0.25f * float(kSortSectors)), zero,
-                                            Lane(float(kSortSectors - 1))));
+    const Lane sector = ln::floor(
+        ln::clamp(angle * Lane(0.25f * float(kSortSectors)), zero, Lane(float(kSortSectors - 1))));
     const Lane key = sector * Lane(2.0f) + ln::select(dz > zero, one, zero);
     return ln::select(valid, key, Lane(-1.0f));
 }

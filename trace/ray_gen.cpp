@@ -39,14 +39,13 @@ void RayGenStats::add(const RayGenStats& o) {
 
 namespace {
 
-void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam,
-                std::size_t& stride) {
+void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam, std::size_t& stride) {
     if (!p) throw std::invalid_argument(std::string("ray generation: no G-buffer plane ") + what);
     if (p->width() != cam.width || p->height() != cam.height)
         throw std::invalid_argument(std::string("ray generation: G-buffer plane ") + what + " is " +
-                                    std::to_string(p->width()) + "x" +
-                                    std::to_string(p->height()) + ", the camera " +
-                                    std::to_string(cam.width) + "x" + std::to_string(cam.height));
+                                    std::to_string(p->width()) + "x" + std::to_string(p->height()) +
+                                    ", the camera " + std::to_string(cam.width) + "x" +
+                                    std::to_string(cam.height));
     if (stride != 0 && p->stride() != stride)
         throw std::invalid_argument(std::string("ray generation: G-buffer plane ") + what +
                                     " has a different row stride");
@@ -113,18 +112,17 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
 }  // namespace
 
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                 RayBatch& rays, int threads, float maxRoughness) {
+                                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
+                                 int threads, float maxRoughness) {
     return run(isa, RayGenLobe(int(method)), frame, sample, kRayGenSpecularDim, camera, g, rays,
                threads, maxRoughness, false);
 }
 
-RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
-                                const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads, DiffuseCut cut) {
-    return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays,
-               threads, std::numeric_limits<float>::infinity(),
-               cut == DiffuseCut::NoDiffuseColour);
+RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
+                                const RayGenGBuffer& g, RayBatch& rays, int threads,
+                                DiffuseCut cut) {
+    return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays, threads,
+               std::numeric_limits<float>::infinity(), cut == DiffuseCut::NoDiffuseColour);
 }
 
 }  // namespace ssrt

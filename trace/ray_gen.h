@@ -49,10 +49,9 @@ namespace ssrt {
 
 enum class SsrMethod { Mirror, GgxNdf, VndfEllipsoid, VndfSphericalCaps, VndfBounded };
 
-inline constexpr SsrMethod kAllSsrMethods[] = {SsrMethod::Mirror, SsrMethod::GgxNdf,
-                                               SsrMethod::VndfEllipsoid,
-                                               SsrMethod::VndfSphericalCaps,
-                                               SsrMethod::VndfBounded};
+inline constexpr SsrMethod kAllSsrMethods[] = {
+    SsrMethod::Mirror, SsrMethod::GgxNdf, SsrMethod::VndfEllipsoid, SsrMethod::VndfSphericalCaps,
+    SsrMethod::VndfBounded};
 
 // "mirror", "ggx_ndf", "vndf_ellipsoid", "vndf_spherical_caps", "vndf_bounded".
 std::string_view ssrMethodName(SsrMethod);
@@ -97,8 +96,8 @@ struct RayGenStats {
 // nothing; NaN is std::invalid_argument. The random numbers of the other pixels do not
 // depend on it, so neither do their rays.
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                 const TraceCamera& camera, const RayGenGBuffer& g,
-                                 RayBatch& rays, int threads,
+                                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
+                                 int threads,
                                  float maxRoughness = std::numeric_limits<float>::infinity());
 
 // Which pixels generateDiffuseRays leaves without a ray besides the background.
@@ -114,8 +113,8 @@ enum class DiffuseCut {
 // SSGI by that colour, and a pixel without a ray contributes 0 (trace/ssgi.h), so its image
 // is the same; g.albedo and g.metallic are then required. The other pixels' rays do not
 // change a bit.
-RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample,
-                                const TraceCamera& camera, const RayGenGBuffer& g,
-                                RayBatch& rays, int threads, DiffuseCut cut = DiffuseCut::None);
+RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
+                                const RayGenGBuffer& g, RayBatch& rays, int threads,
+                                DiffuseCut cut = DiffuseCut::None);
 
 }  // namespace ssrt

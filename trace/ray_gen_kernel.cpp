@@ -89,8 +89,7 @@ SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane 
         else wm = sm::sampleVndfBounded(wi, alpha, alpha, u1, u2);
         // Reflect about the microfacet normal; its PDF over the reflected direction
         wo = sm::reflect(wi, wm);
-        if constexpr (K == RayGenLobe::GgxNdf)
-            pdf = sm::ggxNdfReflectionPdf(wi, wo, alpha, alpha);
+        if constexpr (K == RayGenLobe::GgxNdf) pdf = sm::ggxNdfReflectionPdf(wi, wo, alpha, alpha);
         else if constexpr (K == RayGenLobe::VndfBounded)
             pdf = sm::vndfBoundedReflectionPdf(wi, wo, alpha, alpha);
         else pdf = sm::vndfReflectionPdf(wi, wo, alpha, alpha);

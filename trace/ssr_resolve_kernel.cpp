@@ -179,17 +179,15 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
             if (x + dx >= 0 && x + dx + kW <= a.width) {
                 // Every lane's neighbour is in the frame: they sit side by side in memory.
                 const std::size_t on = std::size_t(yy) * a.stride + std::size_t(x + dx);
-                reuseNeighbour(a, s, zero == zero, [&](const float* plane) {
-                    return loadAt(plane, on);
-                }, sum);
+                reuseNeighbour(
+                    a, s, zero == zero, [&](const float* plane) { return loadAt(plane, on); }, sum);
             } else {
                 const Lane nx = px + Lane(float(dx));
                 const auto inFrame = (nx >= zero) & (nx < Lane(float(a.width)));
                 const ILane i =
                     screen::pixelIndex(nx, Lane(float(yy)), a.width, a.height, a.stride);
-                reuseNeighbour(a, s, inFrame, [&](const float* plane) {
-                    return ln::gather(plane, i);
-                }, sum);
+                reuseNeighbour(
+                    a, s, inFrame, [&](const float* plane) { return ln::gather(plane, i); }, sum);
             }
         }
     }
@@ -197,8 +195,8 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
     const Lane den = ln::select(any, sum.wf, one);
     color = ln::select(any, V3{sum.wfl.x / den, sum.wfl.y / den, sum.wfl.z / den},
                        V3{zero, zero, zero});
-    opacity = ln::select(sum.w > zero, ln::min(sum.wf / ln::select(sum.w > zero, sum.w, one), one),
-                         zero);
+    opacity =
+        ln::select(sum.w > zero, ln::min(sum.wf / ln::select(sum.w > zero, sum.w, one), one), zero);
 }
 
 // One lane group of pass 2: combine, fade by roughness, accumulate the sample.

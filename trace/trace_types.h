@@ -41,11 +41,11 @@ struct RayBatch {
 // Why a ray ended, per pixel (MarchResult::cause, as a float).
 enum class MarchEnd : uint8_t {
     Hit = 0,
-    NoRay = 1,        // pdf 0: nothing was traced
-    LeftScreen = 2,   // left the frame (or passed the near/far plane) before a hit
-    StepCap = 3,      // ran out of steps or iterations
-    Thickness = 4,    // crossed the depth buffer but behind the surface by more than the thickness
-    BackFace = 5,     // met a surface whose normal faces the ray's direction
+    NoRay = 1,       // pdf 0: nothing was traced
+    LeftScreen = 2,  // left the frame (or passed the near/far plane) before a hit
+    StepCap = 3,     // ran out of steps or iterations
+    Thickness = 4,   // crossed the depth buffer but behind the surface by more than the thickness
+    BackFace = 5,    // met a surface whose normal faces the ray's direction
 };
 inline constexpr int kMarchEndCount = 6;
 
@@ -63,11 +63,11 @@ inline std::string_view marchEndName(MarchEnd e) {
 
 // What the march found for each pixel's ray.
 struct MarchResult {
-    PlaneF hit;           // 1 hit, 0 not
-    PlaneF hitX, hitY;    // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
-    PlaneF hitZ;          // view Z at the hit (positive); 0 on a miss
-    PlaneF steps;         // march steps (or Hi-Z iterations) this ray took
-    PlaneF cause;         // MarchEnd as a float
+    PlaneF hit;         // 1 hit, 0 not
+    PlaneF hitX, hitY;  // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
+    PlaneF hitZ;        // view Z at the hit (positive); 0 on a miss
+    PlaneF steps;       // march steps (or Hi-Z iterations) this ray took
+    PlaneF cause;       // MarchEnd as a float
 
     void ensureSize(int width, int height);
 };

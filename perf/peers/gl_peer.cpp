@@ -43,12 +43,12 @@ bool hasExtension(const char* list, std::string_view name) {
 EGLDisplay openSurfacelessDisplay() {
     const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!hasExtension(clientExts, "EGL_MESA_platform_surfaceless"))
-        fail("EGL has no surfaceless platform (EGL_MESA_platform_surfaceless); is Mesa's "
-             "EGL (libegl-mesa0) installed?");
-    EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                           nullptr);
-    if (dpy == EGL_NO_DISPLAY) fail("eglGetPlatformDisplay(surfaceless) failed: " +
-                                    eglErrorText());
+        fail(
+            "EGL has no surfaceless platform (EGL_MESA_platform_surfaceless); is Mesa's "
+            "EGL (libegl-mesa0) installed?");
+    EGLDisplay dpy =
+        eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (dpy == EGL_NO_DISPLAY) fail("eglGetPlatformDisplay(surfaceless) failed: " + eglErrorText());
     EGLint major = 0, minor = 0;
     if (!eglInitialize(dpy, &major, &minor))
         fail("eglInitialize failed: " + eglErrorText() + " (is libgl1-mesa-dri installed?)");
@@ -57,8 +57,8 @@ EGLDisplay openSurfacelessDisplay() {
 
 EGLConfig chooseConfig(EGLDisplay dpy) {
     // The surfaceless platform offers only pbuffer-capable configs; we render into FBOs.
-    const EGLint attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                              EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                              EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(dpy, attribs, &config, 1, &count) || count < 1)
@@ -68,12 +68,15 @@ EGLConfig chooseConfig(EGLDisplay dpy) {
 
 EGLContext createCoreContext(EGLDisplay dpy, EGLConfig config) {
     if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              3,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              3,
                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_NONE};
     EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
-    if (ctx == EGL_NO_CONTEXT) fail("cannot create an OpenGL 3.3 core context: " +
-                                    eglErrorText());
+    if (ctx == EGL_NO_CONTEXT) fail("cannot create an OpenGL 3.3 core context: " + eglErrorText());
     // Surfaceless: no default framebuffer at all, every pass renders into its own FBO.
     if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
         fail("eglMakeCurrent without a surface failed: " + eglErrorText());
@@ -271,8 +274,8 @@ void setMat4(GLuint program, const char* name, const glm::mat4& m) {
 
 // Share of `values` that differ from `cleared`, and the value at the centre.
 Coverage measureCoverage(const std::vector<float>& values, int w, int h, float cleared) {
-    std::size_t touched = std::count_if(values.begin(), values.end(),
-                                        [&](float v) { return v != cleared; });
+    std::size_t touched =
+        std::count_if(values.begin(), values.end(), [&](float v) { return v != cleared; });
     Coverage c;
     c.fraction = double(touched) / double(values.size());
     c.centre = values[std::size_t(h / 2) * std::size_t(w) + std::size_t(w / 2)];
@@ -301,8 +304,8 @@ struct GlWorkloads::Impl {
 };
 
 void GlWorkloads::Impl::makeShadowTarget() {
-    shadowDepth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, shadowSize,
-                              shadowSize);
+    shadowDepth =
+        makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, shadowSize, shadowSize);
     glGenFramebuffers(1, &shadowFbo);
     glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowDepth, 0);
@@ -312,16 +315,15 @@ void GlWorkloads::Impl::makeShadowTarget() {
 }
 
 void GlWorkloads::Impl::makeGBufferTargets() {
-    targets[0] = makeTexture(GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, width, height);  // N + rough
-    targets[1] = makeTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height); // albedo + m
-    targets[2] = makeTexture(GL_RG16F, GL_RG, GL_HALF_FLOAT, width, height);      // motion
-    targets[3] = makeTexture(GL_R32F, GL_RED, GL_FLOAT, width, height);           // lin. depth
-    gbufferDepth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width,
-                               height);
+    targets[0] = makeTexture(GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, width, height);   // N + rough
+    targets[1] = makeTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);  // albedo + m
+    targets[2] = makeTexture(GL_RG16F, GL_RG, GL_HALF_FLOAT, width, height);       // motion
+    targets[3] = makeTexture(GL_R32F, GL_RED, GL_FLOAT, width, height);            // lin. depth
+    gbufferDepth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
     glGenFramebuffers(1, &gbufferFbo);
     glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo);
-    const GLenum attachments[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                   GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    const GLenum attachments[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GL_COLOR_ATTACHMENT3};
     for (int i = 0; i < 4; ++i)
         glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[i], GL_TEXTURE_2D, targets[i], 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, gbufferDepth, 0);

@@ -32,10 +32,11 @@ struct NamedScene {
 };
 
 void printUsage() {
-    std::printf("usage: ssrt_peer_llvmpipe [--reps N] [--scene knot3k|knot121k|cornell|all]\n"
-                "Times a %dx%d shadow map and a %dx%d G-buffer on Mesa llvmpipe and on ssrt\n"
-                "(%d threads each) and prints median ms and llvmpipe/ssrt ratios.\n",
-                kShadowSize, kShadowSize, kWidth, kHeight, kThreads);
+    std::printf(
+        "usage: ssrt_peer_llvmpipe [--reps N] [--scene knot3k|knot121k|cornell|all]\n"
+        "Times a %dx%d shadow map and a %dx%d G-buffer on Mesa llvmpipe and on ssrt\n"
+        "(%d threads each) and prints median ms and llvmpipe/ssrt ratios.\n",
+        kShadowSize, kShadowSize, kWidth, kHeight, kThreads);
 }
 
 Options parseOptions(int argc, char** argv) {
@@ -130,10 +131,10 @@ std::size_t drawnTriangles(const ssrt::Scene& scene) {
 // Medians over the repetitions, and what each side drew (to show the workloads match).
 struct Timings {
     double shadowMs = 0.0, gbufferMs = 0.0;
-    double coverage = 0.0;       // share of G-buffer pixels with geometry
-    float centre = 0.0f;         // linear depth (distance along the view axis), centre pixel
-    double shadowCoverage = 0.0; // share of shadow-map texels with geometry (GL only)
-    double parts[3] = {};        // ssrt only: geometry, visibility, resolve medians
+    double coverage = 0.0;        // share of G-buffer pixels with geometry
+    float centre = 0.0f;          // linear depth (distance along the view axis), centre pixel
+    double shadowCoverage = 0.0;  // share of shadow-map texels with geometry (GL only)
+    double parts[3] = {};         // ssrt only: geometry, visibility, resolve medians
 };
 
 constexpr const char* kGBufferPasses[3] = {"geometry", "visibility", "resolve"};
@@ -246,9 +247,10 @@ void runScene(const NamedScene& s, int reps) {
     printRow("G-buffer 1920x1080", gl.gbufferMs, ss.gbufferMs);
     std::printf("  ssrt G-buffer medians: geometry %.2f, visibility %.2f, resolve %.2f ms\n",
                 ss.parts[0], ss.parts[1], ss.parts[2]);
-    std::printf("  covered pixels: G-buffer llvmpipe %.1f%%, ssrt %.1f%%; "
-                "shadow map llvmpipe %.1f%%\n",
-                100.0 * gl.coverage, 100.0 * ss.coverage, 100.0 * gl.shadowCoverage);
+    std::printf(
+        "  covered pixels: G-buffer llvmpipe %.1f%%, ssrt %.1f%%; "
+        "shadow map llvmpipe %.1f%%\n",
+        100.0 * gl.coverage, 100.0 * ss.coverage, 100.0 * gl.shadowCoverage);
     std::printf("  centre pixel depth: llvmpipe %.4f, ssrt %.4f\n", gl.centre, ss.centre);
     // Same scene and camera should cover the same pixels; if not, the workloads differ.
     if (std::abs(gl.coverage - ss.coverage) > 0.02)
@@ -276,10 +278,11 @@ int main(int argc, char** argv) {
         if (!context.isLlvmpipe())
             throw std::runtime_error("GL_RENDERER is '" + context.renderer() +
                                      "', not llvmpipe; this comparison is CPU against CPU");
-        std::printf("GL_RENDERER: %s\nGL_VERSION: %s\nLP_NUM_THREADS=%s, ssrt threads=%d, "
-                    "%d reps after warm-up, ratio = llvmpipe / ssrt (>1: ssrt faster)\n",
-                    context.renderer().c_str(), context.version().c_str(),
-                    std::getenv("LP_NUM_THREADS"), kThreads, opt.reps);
+        std::printf(
+            "GL_RENDERER: %s\nGL_VERSION: %s\nLP_NUM_THREADS=%s, ssrt threads=%d, "
+            "%d reps after warm-up, ratio = llvmpipe / ssrt (>1: ssrt faster)\n",
+            context.renderer().c_str(), context.version().c_str(), std::getenv("LP_NUM_THREADS"),
+            kThreads, opt.reps);
         for (const NamedScene& s : scenes) runScene(s, opt.reps);
         std::printf("\nload average (1 min) at the end: %s on %u hardware threads\n",
                     loadAverage().c_str(), std::thread::hardware_concurrency());

@@ -45,16 +45,12 @@ struct ScopedEnv {
     std::optional<std::string> old;
     ScopedEnv(const std::string& n, const char* value) : name(n) {
         if (const char* v = std::getenv(n.c_str())) old = v;
-        if (value)
-            ::setenv(n.c_str(), value, 1);
-        else
-            ::unsetenv(n.c_str());
+        if (value) ::setenv(n.c_str(), value, 1);
+        else ::unsetenv(n.c_str());
     }
     ~ScopedEnv() {
-        if (old)
-            ::setenv(name.c_str(), old->c_str(), 1);
-        else
-            ::unsetenv(name.c_str());
+        if (old) ::setenv(name.c_str(), old->c_str(), 1);
+        else ::unsetenv(name.c_str());
     }
 };
 
@@ -71,17 +67,26 @@ TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
     CHECK(help.code == 0);
     const RenderSettings d;
     for (const std::string& part : std::vector<std::string>{
-             "--width INT=" + std::to_string(d.width), "--height INT=" + std::to_string(d.height),
-             "--threads INT=" + std::to_string(d.threads), "--isa ISA=auto",
-             "--shadow-map-size INT=" + std::to_string(d.shadowMapSize), "--exposure FLOAT=1",
-             "--frame INT=" + std::to_string(d.frame), "--output FILE=ssrt.png",
-             "--scene NAME=" + builtinScenes().front().name, "--stats", "--quiet",
+             "--width INT=" + std::to_string(d.width),
+             "--height INT=" + std::to_string(d.height),
+             "--threads INT=" + std::to_string(d.threads),
+             "--isa ISA=auto",
+             "--shadow-map-size INT=" + std::to_string(d.shadowMapSize),
+             "--exposure FLOAT=1",
+             "--frame INT=" + std::to_string(d.frame),
+             "--output FILE=ssrt.png",
+             "--scene NAME=" + builtinScenes().front().name,
+             "--stats",
+             "--quiet",
              "--marcher NAME=" + std::string(marcherName(d.trace.marcher)),
              "--ssr-method NAME=" + std::string(ssrMethodName(d.trace.ssrMethod)),
              "--ssr-spp INT=" + std::to_string(d.trace.ssrSpp),
              "--ssgi-spp INT=" + std::to_string(d.trace.ssgiSpp),
-             "--max-steps INT=" + std::to_string(d.trace.march.maxSteps), "--no-ssr",
-             "--no-ssgi", "--ssr-resolve MODE=reuse", "--hit-radiance SOURCE=current",
+             "--max-steps INT=" + std::to_string(d.trace.march.maxSteps),
+             "--no-ssr",
+             "--no-ssgi",
+             "--ssr-resolve MODE=reuse",
+             "--hit-radiance SOURCE=current",
              "--trace-hidden"}) {
         CAPTURE(part);
         CHECK(contains(help.out, part));
@@ -301,8 +306,8 @@ TEST_CASE("cli: --trace-hidden traces the rays the composite hides, and --stats 
         row >> ssr >> ssgi;
         return std::pair{ssr, ssgi};
     };
-    const std::vector<std::string> base{"render", "--width", "64", "--height", "40",
-                                        "--threads", "1", "--stats", "-q"};
+    const std::vector<std::string> base{"render",    "--width", "64",      "--height", "40",
+                                        "--threads", "1",       "--stats", "-q"};
     std::vector<std::string> cut = base, all = base;
     cut.insert(cut.end(), {"-o", dir.file("cut.png")});
     all.insert(all.end(), {"--trace-hidden", "-o", dir.file("all.png")});

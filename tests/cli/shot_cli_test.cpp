@@ -199,19 +199,17 @@ TEST_CASE("cli shot: a 3-frame sequence writes 3 files whose motion follows the 
                          << " px over " << visible << " pixels");
         CHECK(visible > w * h / 2);
         CHECK(worst < 2e-3);
-        if (i == 0)
-            CHECK(largest < 1e-3);  // a still frame: only rounding
-        else
-            CHECK(largest > 2.0);  // the camera really moved, so the bound above means something
+        if (i == 0) CHECK(largest < 1e-3);  // a still frame: only rounding
+        else CHECK(largest > 2.0);  // the camera really moved, so the bound above means something
     }
 }
 
 TEST_CASE("cli shot: frames without a path repeat the still camera") {
     TempDir dir;
     // Without the screen-space passes a frame has no random numbers: the frames are equal.
-    Result r = run({"render", "--frames", "2", "--width", "16", "--height", "16",
-                    "--shadow-map-size", "64", "--no-ssr", "--no-ssgi", "-o",
-                    dir.file("still.exr"), "-q"});
+    Result r =
+        run({"render", "--frames", "2", "--width", "16", "--height", "16", "--shadow-map-size",
+             "64", "--no-ssr", "--no-ssgi", "-o", dir.file("still.exr"), "-q"});
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK(r.err.empty());
     CHECK(dir.listing() == std::vector<std::string>{"still_0000.exr", "still_0001.exr"});

@@ -27,8 +27,8 @@ namespace {
 
 // Small and quick: the point is the plumbing, the physics is tested in tests/reference/.
 std::vector<std::string> tiny(std::vector<std::string> args, const TempDir& dir) {
-    for (const char* a : {"--width", "64", "--height", "36", "--reference-spp", "4",
-                          "--repeats", "1", "--shadow-map-size", "256", "-j", "2"})
+    for (const char* a : {"--width", "64", "--height", "36", "--reference-spp", "4", "--repeats",
+                          "1", "--shadow-map-size", "256", "-j", "2"})
         args.push_back(a);
     args.insert(args.end(), {"--cache-dir", dir.file("cache")});
     return args;
@@ -57,8 +57,8 @@ TEST_CASE("compare: tables of ray classes, image error and times; the reference 
         CHECK_MESSAGE(contains(first.out, part), part);
     CHECK(contains(first.err, "reference: rendered"));
     const std::vector<std::string> channels = readChannelNames(dir.file("cmp.exr"));
-    for (const char* layer : {"color.R", "ref.color.R", "ref.ssr.G", "ssrCheck.class",
-                              "ssgiCheck.pixelError"})
+    for (const char* layer :
+         {"color.R", "ref.color.R", "ref.ssr.G", "ssrCheck.class", "ssgiCheck.pixelError"})
         CHECK_MESSAGE(std::find(channels.begin(), channels.end(), layer) != channels.end(), layer);
 
     // The same request again: the reference comes from the cache and the figures are equal.
@@ -75,10 +75,10 @@ TEST_CASE("compare: tables of ray classes, image error and times; the reference 
 TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
     TempDir dir;
     const std::string csv = dir.file("s.csv");
-    const test::CliResult r = runSsrt(tiny({"sweep", "--scene", "cornell", "--marchers",
-                                            "off,hiz,linear", "--max-steps", "16,128", "-o", csv,
-                                            "-q"},
-                                           dir));
+    const test::CliResult r =
+        runSsrt(tiny({"sweep", "--scene", "cornell", "--marchers", "off,hiz,linear", "--max-steps",
+                      "16,128", "-o", csv, "-q"},
+                     dir));
     INFO(r.err);
     REQUIRE(r.code == 0);
     std::ifstream in(csv);
@@ -121,16 +121,16 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
 TEST_CASE("compare and sweep: bad input is one error line and nothing is written") {
     TempDir dir;
     const std::string csv = dir.file("s.csv");
-    for (const auto& args : std::vector<std::vector<std::string>>{
-             {"sweep", "--marchers", "hiz,,dda", "-o", csv},
-             {"sweep", "--marchers", "hiz,march", "-o", csv},
-             {"sweep", "--max-steps", "0", "-o", csv},
-             {"sweep", "-o", dir.file("s.txt")},
-             {"sweep", "--reference-spp", "0", "-o", csv},
-             {"compare", "--no-ssr", "--no-ssgi"},
-             {"compare", "--visibility", "raytraced"},
-             {"compare", "--depth-tolerance", "1.5"},
-             {"compare", "--scene", "nowhere"}}) {
+    for (const auto& args :
+         std::vector<std::vector<std::string>>{{"sweep", "--marchers", "hiz,,dda", "-o", csv},
+                                               {"sweep", "--marchers", "hiz,march", "-o", csv},
+                                               {"sweep", "--max-steps", "0", "-o", csv},
+                                               {"sweep", "-o", dir.file("s.txt")},
+                                               {"sweep", "--reference-spp", "0", "-o", csv},
+                                               {"compare", "--no-ssr", "--no-ssgi"},
+                                               {"compare", "--visibility", "raytraced"},
+                                               {"compare", "--depth-tolerance", "1.5"},
+                                               {"compare", "--scene", "nowhere"}}) {
         const test::CliResult r = runSsrt(args);
         CAPTURE(args[1]);
         CHECK(r.code == cli::kExitUsage);

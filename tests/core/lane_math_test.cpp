@@ -16,26 +16,39 @@ namespace {
 struct Case {
     MathFn fn;
     const char* name;
-    float lo, hi;            // input range of a
-    float blo, bhi;          // input range of b (two-argument functions)
+    float lo, hi;    // input range of a
+    float blo, bhi;  // input range of b (two-argument functions)
     double (*reference)(double, double);
-    double absTol, relTol;   // |got - ref| <= absTol + relTol |ref|
+    double absTol, relTol;  // |got - ref| <= absTol + relTol |ref|
 };
 
 const Case kCases[] = {
-    {MathFn::Floor, "floor", -1e6f, 1e6f, 0, 0, [](double a, double) { return std::floor(a); }, 0, 0},
-    {MathFn::Sqrt, "sqrt", 0.0f, 1e4f, 0, 0, [](double a, double) { return std::sqrt(a); }, 0, 1e-7},
-    {MathFn::Exp2, "exp2", -30.0f, 30.0f, 0, 0, [](double a, double) { return std::exp2(a); }, 0, 3e-7},
-    {MathFn::Log2, "log2", 1e-6f, 1e6f, 0, 0, [](double a, double) { return std::log2(a); }, 3e-7, 3e-7},
-    {MathFn::Exp, "exp", -20.0f, 20.0f, 0, 0, [](double a, double) { return std::exp(a); }, 0, 1e-6},
-    {MathFn::Log, "log", 1e-6f, 1e6f, 0, 0, [](double a, double) { return std::log(a); }, 3e-7, 3e-7},
-    {MathFn::Pow, "pow", 0.0f, 4.0f, 0.05f, 4.0f, [](double a, double b) { return std::pow(a, b); }, 1e-6, 2e-6},
-    {MathFn::Sin, "sin", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::sin(a); }, 3e-7, 0},
-    {MathFn::Cos, "cos", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::cos(a); }, 3e-7, 0},
-    {MathFn::Asin, "asin", -1.0f, 1.0f, 0, 0, [](double a, double) { return std::asin(a); }, 3e-7, 3e-7},
-    {MathFn::Acos, "acos", -1.0f, 1.0f, 0, 0, [](double a, double) { return std::acos(a); }, 3e-7, 3e-7},
-    {MathFn::Atan, "atan", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::atan(a); }, 3e-7, 3e-7},
-    {MathFn::Atan2, "atan2", -10.0f, 10.0f, -10.0f, 10.0f, [](double a, double b) { return std::atan2(a, b == 0 ? 0.0 : b); }, 5e-7, 3e-7},
+    {MathFn::Floor, "floor", -1e6f, 1e6f, 0, 0, [](double a, double) { return std::floor(a); }, 0,
+     0},
+    {MathFn::Sqrt, "sqrt", 0.0f, 1e4f, 0, 0, [](double a, double) { return std::sqrt(a); }, 0,
+     1e-7},
+    {MathFn::Exp2, "exp2", -30.0f, 30.0f, 0, 0, [](double a, double) { return std::exp2(a); }, 0,
+     3e-7},
+    {MathFn::Log2, "log2", 1e-6f, 1e6f, 0, 0, [](double a, double) { return std::log2(a); }, 3e-7,
+     3e-7},
+    {MathFn::Exp, "exp", -20.0f, 20.0f, 0, 0, [](double a, double) { return std::exp(a); }, 0,
+     1e-6},
+    {MathFn::Log, "log", 1e-6f, 1e6f, 0, 0, [](double a, double) { return std::log(a); }, 3e-7,
+     3e-7},
+    {MathFn::Pow, "pow", 0.0f, 4.0f, 0.05f, 4.0f, [](double a, double b) { return std::pow(a, b); },
+     1e-6, 2e-6},
+    {MathFn::Sin, "sin", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::sin(a); }, 3e-7,
+     0},
+    {MathFn::Cos, "cos", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::cos(a); }, 3e-7,
+     0},
+    {MathFn::Asin, "asin", -1.0f, 1.0f, 0, 0, [](double a, double) { return std::asin(a); }, 3e-7,
+     3e-7},
+    {MathFn::Acos, "acos", -1.0f, 1.0f, 0, 0, [](double a, double) { return std::acos(a); }, 3e-7,
+     3e-7},
+    {MathFn::Atan, "atan", -100.0f, 100.0f, 0, 0, [](double a, double) { return std::atan(a); },
+     3e-7, 3e-7},
+    {MathFn::Atan2, "atan2", -10.0f, 10.0f, -10.0f, 10.0f,
+     [](double a, double b) { return std::atan2(a, b == 0 ? 0.0 : b); }, 5e-7, 3e-7},
 };
 
 // Inputs: a uniform sweep plus the edges where reductions change branch.
@@ -64,7 +77,8 @@ TEST_CASE("lane math is accurate against libm") {
         double worst = 0;
         for (std::size_t i = 0; i < a.size(); ++i) {
             const double ref = c.reference(a[i], b[i]);
-            const double err = std::fabs(out[i] - ref) / (c.absTol + c.relTol * std::fabs(ref) + 1e-30);
+            const double err =
+                std::fabs(out[i] - ref) / (c.absTol + c.relTol * std::fabs(ref) + 1e-30);
             if (c.absTol == 0 && c.relTol == 0) {
                 CAPTURE(a[i]);
                 REQUIRE(out[i] == ref);

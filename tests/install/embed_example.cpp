@@ -1,7 +1,8 @@
 // Renders a built-in scene through the library and prints the mean of the display image.
-#include <cstdio>
 #include <ssrt/renderer/renderer.h>
 #include <ssrt/scenes/builtin_scenes.h>
+
+#include <cstdio>
 
 int main() {
     ssrt::RenderSettings settings;

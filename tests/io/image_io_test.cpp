@@ -3,8 +3,6 @@
 #include "io/image_io.h"
 
 #include <doctest/doctest.h>
-
-#include "temp_dir.h"
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +17,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "temp_dir.h"
 
 using namespace ssrt;
 namespace fs = std::filesystem;
@@ -181,10 +181,8 @@ TEST_CASE("a missing directory fails with one line naming the path, and creates 
     const std::string path = dir.file("missing/out.exr");
     for (int check = 0; check < 2; ++check) {
         try {
-            if (check)
-                checkWritable(path);
-            else
-                writeImage(path, frame);
+            if (check) checkWritable(path);
+            else writeImage(path, frame);
             FAIL("no exception");
         } catch (const std::runtime_error& e) {
             const std::string message = e.what();

@@ -16,8 +16,10 @@ namespace {
 // A rectangle at z = zWorld facing +z, built directly (no rotation: coordinates stay exact).
 Mesh wall(float halfSize, float zWorld) {
     Mesh m;
-    m.positions = {{-halfSize, -halfSize, zWorld}, {halfSize, -halfSize, zWorld},
-                   {halfSize, halfSize, zWorld}, {-halfSize, halfSize, zWorld}};
+    m.positions = {{-halfSize, -halfSize, zWorld},
+                   {halfSize, -halfSize, zWorld},
+                   {halfSize, halfSize, zWorld},
+                   {-halfSize, halfSize, zWorld}};
     m.normals.assign(4, {0.0f, 0.0f, 1.0f});
     m.indices = {0, 1, 2, 0, 2, 3};
     return m;
@@ -106,8 +108,9 @@ TEST_CASE("motion vectors of a known camera move and of a moving instance") {
         s.previousCamera.position = {0.3f, -0.2f, 0.5f};
         s.previousCamera.target = s.previousCamera.position + glm::vec3(0.0f, 0.0f, -1.0f);
         const Frame f = Renderer(small()).render(s);
-        const glm::dmat4 prevVp = glm::dmat4(s.previousCamera.projection(float(f.width) / f.height)) *
-                                  glm::dmat4(s.previousCamera.view());
+        const glm::dmat4 prevVp =
+            glm::dmat4(s.previousCamera.projection(float(f.width) / f.height)) *
+            glm::dmat4(s.previousCamera.view());
         double worst = 0.0;
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
@@ -115,8 +118,9 @@ TEST_CASE("motion vectors of a known camera move and of a moving instance") {
                 const glm::dvec4 c = prevVp * glm::dvec4(p, 1.0);
                 const double px = (c.x / c.w * 0.5 + 0.5) * f.width;
                 const double py = (0.5 - c.y / c.w * 0.5) * f.height;
-                worst = std::max({worst, std::fabs(px - (x + 0.5) - double(f.plane("motion.X").at(x, y))),
-                                  std::fabs(py - (y + 0.5) - double(f.plane("motion.Y").at(x, y)))});
+                worst = std::max(
+                    {worst, std::fabs(px - (x + 0.5) - double(f.plane("motion.X").at(x, y))),
+                     std::fabs(py - (y + 0.5) - double(f.plane("motion.Y").at(x, y)))});
             }
         MESSAGE("camera motion: worst error " << worst << " px");
         CHECK(worst < 1e-3);
@@ -161,8 +165,9 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
             if (f.plane("instanceId").at(x, y) != 0.0f) continue;
-            const glm::dvec3 p = glm::dvec3(s.camera.position) +
-                                 pixelRay(s.camera, f.width, f.height, x, y) * double(f.plane("viewZ").at(x, y));
+            const glm::dvec3 p =
+                glm::dvec3(s.camera.position) +
+                pixelRay(s.camera, f.width, f.height, x, y) * double(f.plane("viewZ").at(x, y));
             const double edge = std::max(std::fabs(p.x), std::fabs(p.z));
             const float v = f.plane("shadow").at(x, y);
             CAPTURE(x);

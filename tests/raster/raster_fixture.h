@@ -11,8 +11,8 @@
 namespace ssrt::test {
 
 struct PixelTri {
-    glm::vec2 a, b, c;  // pixel coordinates, y down
-    float depth = 0.5f; // z01 (smaller is nearer)
+    glm::vec2 a, b, c;   // pixel coordinates, y down
+    float depth = 0.5f;  // z01 (smaller is nearer)
 };
 
 struct RasterResult {
@@ -25,7 +25,8 @@ inline Scene sceneFromPixelTris(const std::vector<PixelTri>& tris, int w, int h)
     Scene s;
     Mesh m;
     auto ndc = [&](glm::vec2 p, float z) {
-        return glm::vec3(2.0f * p.x / float(w) - 1.0f, 1.0f - 2.0f * p.y / float(h), 2.0f * z - 1.0f);
+        return glm::vec3(2.0f * p.x / float(w) - 1.0f, 1.0f - 2.0f * p.y / float(h),
+                         2.0f * z - 1.0f);
     };
     for (const PixelTri& t : tris) {
         for (glm::vec2 p : {t.a, t.b, t.c}) {

@@ -25,8 +25,9 @@ std::vector<PixelTri> tiledRectangle(glm::vec2 lo, glm::vec2 hi, int nx, int ny,
             glm::vec2 p = lo + (hi - lo) * glm::vec2(float(i) / nx, float(j) / ny);
             if (i > 0 && i < nx && j > 0 && j < ny) {
                 const glm::vec2 cell = (hi - lo) / glm::vec2(nx, ny);
-                p += cell * 0.4f * glm::vec2(randomFloat(i, j, seed, 0) - 0.5f,
-                                             randomFloat(i, j, seed, 1) - 0.5f);
+                p +=
+                    cell * 0.4f *
+                    glm::vec2(randomFloat(i, j, seed, 0) - 0.5f, randomFloat(i, j, seed, 1) - 0.5f);
             }
             pts.push_back(snap(p));
         }
@@ -93,7 +94,8 @@ TEST_CASE("a fan around a shared vertex covers every centre exactly once") {
                 bool inside = true;
                 for (int i = 0; i < n; ++i) {
                     const glm::vec2 e = rim[(i + 1) % n] - rim[i];
-                    const float d = (e.x * (p.y - rim[i].y) - e.y * (p.x - rim[i].x)) / glm::length(e);
+                    const float d =
+                        (e.x * (p.y - rim[i].y) - e.y * (p.x - rim[i].x)) / glm::length(e);
                     inside &= d > 0.0f;
                     minDist = std::min(minDist, std::fabs(d));
                 }
@@ -127,7 +129,8 @@ TEST_CASE("top-left rule on edges through pixel centres") {
     // Winding must not matter (double-sided).
     requireExactCover(rasterPixelTris({{lo, hi, b}, {lo, d, hi}}, w, h), lo, hi);
     // A diagonal through centres: the shared edge's centres are owned by exactly one side.
-    const auto r = rasterPixelTris({{{0, 0}, {64, 64}, {64, 0}}, {{0, 0}, {0, 64}, {64, 64}}}, w, h);
+    const auto r =
+        rasterPixelTris({{{0, 0}, {64, 64}, {64, 0}}, {{0, 0}, {0, 64}, {64, 64}}}, w, h);
     CHECK(coveredCount(r.vb) == w * h);
     CHECK(r.stats.pixelsCovered == uint64_t(w * h));
 }
@@ -155,8 +158,8 @@ TEST_CASE("huge triangles are clipped to the guard band and cover the screen onc
     CHECK(coveredCount(r.vb) == w * h);
     CHECK(r.stats.pixelsWritten == uint64_t(w * h));
     // Two huge triangles sharing an edge through the screen: still exactly once each pixel.
-    const auto r2 = rasterPixelTris({{{-big, -big}, {big, big}, {big, -big}},
-                                     {{-big, -big}, {-big, big}, {big, big}}}, w, h);
+    const auto r2 = rasterPixelTris(
+        {{{-big, -big}, {big, big}, {big, -big}}, {{-big, -big}, {-big, big}, {big, big}}}, w, h);
     CHECK(coveredCount(r2.vb) == w * h);
     CHECK(r2.stats.pixelsCovered == uint64_t(w * h));
 }
@@ -164,9 +167,9 @@ TEST_CASE("huge triangles are clipped to the guard band and cover the screen onc
 TEST_CASE("NaN and infinite vertices are skipped") {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    const auto r = rasterPixelTris({{{nan, 1}, {10, 1}, {5, 9}},
-                                    {{inf, 1}, {10, 1}, {5, 9}},
-                                    {{1, 1}, {10, 1}, {5, 9}}}, 16, 16);
+    const auto r = rasterPixelTris(
+        {{{nan, 1}, {10, 1}, {5, 9}}, {{inf, 1}, {10, 1}, {5, 9}}, {{1, 1}, {10, 1}, {5, 9}}}, 16,
+        16);
     CHECK(r.stats.trianglesInvalid == 2);
     CHECK(coveredCount(r.vb) > 0);
     for (int y = 0; y < 16; ++y)
@@ -193,12 +196,15 @@ TEST_CASE("every ISA and thread count rasterizes the same bits") {
     const int w = 301, h = 177;
     std::vector<PixelTri> tris;
     for (uint32_t i = 0; i < 400; ++i) {
-        auto rnd = [&](uint32_t d, float lo, float hi) { return lo + (hi - lo) * randomFloat(i, 7, 0, d); };
+        auto rnd = [&](uint32_t d, float lo, float hi) {
+            return lo + (hi - lo) * randomFloat(i, 7, 0, d);
+        };
         const glm::vec2 c(rnd(0, -20, w + 20), rnd(1, -20, h + 20));
         const float size = rnd(2, 0.3f, 120.0f);
         tris.push_back({snap(c + size * glm::vec2(rnd(3, -1, 1), rnd(4, -1, 1))),
                         snap(c + size * glm::vec2(rnd(5, -1, 1), rnd(6, -1, 1))),
-                        snap(c + size * glm::vec2(rnd(7, -1, 1), rnd(8, -1, 1))), rnd(9, 0.05f, 0.95f)});
+                        snap(c + size * glm::vec2(rnd(7, -1, 1), rnd(8, -1, 1))),
+                        rnd(9, 0.05f, 0.95f)});
     }
     const RasterResult ref = rasterPixelTris(tris, w, h, Isa::Scalar, 1);
     CHECK(coveredCount(ref.vb) > w * h / 2);

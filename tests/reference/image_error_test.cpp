@@ -1,12 +1,12 @@
 // imageError against hand-computed values: the relMSE and RMSE conventions, a non-finite
 // pixel counted, and the refusals.
+#include "trace/reference/image_error.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-
-#include "trace/reference/image_error.h"
 
 using namespace ssrt;
 

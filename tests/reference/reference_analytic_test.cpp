@@ -18,7 +18,8 @@ Mesh square(float y, float half, bool up) {
     Mesh m;
     m.positions = {{-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half}};
     m.normals.assign(4, {0.0f, up ? 1.0f : -1.0f, 0.0f});
-    m.indices = up ? std::vector<uint32_t>{0, 2, 1, 0, 3, 2} : std::vector<uint32_t>{0, 1, 2, 0, 2, 3};
+    m.indices =
+        up ? std::vector<uint32_t>{0, 2, 1, 0, 3, 2} : std::vector<uint32_t>{0, 1, 2, 0, 2, 3};
     return m;
 }
 
@@ -66,7 +67,9 @@ struct Floor {
     EmbreeScene embree;
     ReferenceImage ref;
     explicit Floor(const FloorOptions& o)
-        : scene(floorScene(o)), renderer(settings(o.method)), frame(renderer.render(scene)),
+        : scene(floorScene(o)),
+          renderer(settings(o.method)),
+          frame(renderer.render(scene)),
           embree(scene) {
         ReferenceSettings s;
         s.spp = o.spp;
@@ -87,7 +90,8 @@ struct Floor {
         int n = 0;
         for (int y = 0; y < frame.height; ++y)
             for (int x = 0; x < frame.width; ++x)
-                if (frame.plane("viewZ").at(x, y) > 0.0f && frame.plane("materialId").at(x, y) == 0.0f) {
+                if (frame.plane("viewZ").at(x, y) > 0.0f &&
+                    frame.plane("materialId").at(x, y) == 0.0f) {
                     check(x, y);
                     ++n;
                 }
@@ -154,11 +158,12 @@ TEST_CASE("reference: SSR converges to the same reflection whatever the sampler"
     // estimator's O(1/n) bias differs a little between samplers); weights without the pdf
     // (the mutation this guards against): 8 times.
     auto floorSsr = [](SsrMethod method, int spp) {
-        return Floor(FloorOptions{.gradientSky = true, .roughness = 0.7f, .method = method,
-                                  .spp = spp})
+        return Floor(FloorOptions{
+                         .gradientSky = true, .roughness = 0.7f, .method = method, .spp = spp})
             .ref;
     };
-    const ReferenceImage a1 = floorSsr(SsrMethod::GgxNdf, 32), a4 = floorSsr(SsrMethod::GgxNdf, 128);
+    const ReferenceImage a1 = floorSsr(SsrMethod::GgxNdf, 32),
+                         a4 = floorSsr(SsrMethod::GgxNdf, 128);
     const ReferenceImage b1 = floorSsr(SsrMethod::VndfBounded, 32),
                          b4 = floorSsr(SsrMethod::VndfBounded, 128);
     const double noise = (mse(a1.ssr, a4.ssr) + mse(b1.ssr, b4.ssr)) / 3.0;

@@ -1,5 +1,7 @@
 // The reference image: the frame's parts add up, the cache key, determinism over threads,
 // Monte Carlo convergence; and (skipped by default) the measurements for the issue report.
+#include "trace/reference/reference_image.h"
+
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -9,7 +11,6 @@
 
 #include "tests/reference/reference_test_rig.h"
 #include "trace/reference/image_error.h"
-#include "trace/reference/reference_image.h"
 
 using namespace ssrt;
 using test::ReferenceRig;
@@ -152,8 +153,7 @@ TEST_CASE("reference: the key follows the scene, the settings and the spp, nothi
     CHECK(changed([](Scene&, Camera&, RenderSettings& r, ReferenceSettings&) { r.frame += 1; }));
     CHECK(changed(
         [](Scene&, Camera&, RenderSettings& r, ReferenceSettings&) { r.shadowMapSize *= 2; }));
-    CHECK(changed(
-        [](Scene&, Camera&, RenderSettings& r, ReferenceSettings&) { r.exposure *= 2; }));
+    CHECK(changed([](Scene&, Camera&, RenderSettings& r, ReferenceSettings&) { r.exposure *= 2; }));
     CHECK(changed([](Scene&, Camera&, RenderSettings& r, ReferenceSettings&) {
         r.trace.ssrMethod = SsrMethod::GgxNdf;
     }));
@@ -173,12 +173,11 @@ TEST_CASE("reference: the same bits with 1 and 2 threads, and progress to 1") {
     double last = 0.0;
     bool rising = true;
     const ReferenceImage a = renderReference(one.embree, one.renderer, one.frame, s);
-    const ReferenceImage b =
-        renderReference(two.embree, two.renderer, two.frame, s, [&](double f) {
-            rising = rising && f >= last;
-            last = f;
-            ++calls;
-        });
+    const ReferenceImage b = renderReference(two.embree, two.renderer, two.frame, s, [&](double f) {
+        rising = rising && f >= last;
+        last = f;
+        ++calls;
+    });
     CHECK(samePlanes(a.color, b.color));
     CHECK(samePlanes(a.direct, b.direct));
     CHECK(samePlanes(a.ssr, b.ssr));
@@ -203,10 +202,10 @@ TEST_CASE("reference: converges like Monte Carlo") {
                          r16 = rig.reference(16 * kN);
     const double e1 = mse(r1.color, r16.color), e4 = mse(r4.color, r16.color);
     const double ratio = e1 / e4;
-    MESSAGE("MSE against " << 16 * kN << " spp: " << e1 << " at " << kN << " spp, " << e4
-                           << " at " << 4 * kN << " spp; ratio " << ratio
-                           << " (5 expected); relMSE " << errorOf(r1.color, r16.color).relMse
-                           << ", " << errorOf(r4.color, r16.color).relMse);
+    MESSAGE("MSE against " << 16 * kN << " spp: " << e1 << " at " << kN << " spp, " << e4 << " at "
+                           << 4 * kN << " spp; ratio " << ratio << " (5 expected); relMSE "
+                           << errorOf(r1.color, r16.color).relMse << ", "
+                           << errorOf(r4.color, r16.color).relMse);
     CHECK(e1 > 0.0);
     CHECK(e4 < e1);
     CHECK(ratio > 3.5);
@@ -235,11 +234,12 @@ TEST_CASE("reference: measure (640x360, 64 spp, 2 threads)" * doctest::skip()) {
         PlaneF color[3];
         const char* names[3] = {"color.R", "color.G", "color.B"};
         for (int c = 0; c < 3; ++c) color[c] = rig.frame.plane(names[c]).clone();
-        MESSAGE(std::string(name) << ": reference " << sec << " s, " << rays / sec / 1e6
-                     << " M camera-side rays/s (SSR + SSGI, shadow rays not counted); relMSE color "
-                     << errorOf(color, ref.color).relMse << ", direct "
-                     << errorOf(p.direct, ref.direct).relMse << ", specular "
-                     << errorOf(p.specular, ref.specular).relMse << ", diffuse "
-                     << errorOf(p.diffuse, ref.diffuse).relMse);
+        MESSAGE(std::string(name)
+                << ": reference " << sec << " s, " << rays / sec / 1e6
+                << " M camera-side rays/s (SSR + SSGI, shadow rays not counted); relMSE color "
+                << errorOf(color, ref.color).relMse << ", direct "
+                << errorOf(p.direct, ref.direct).relMse << ", specular "
+                << errorOf(p.specular, ref.specular).relMse << ", diffuse "
+                << errorOf(p.diffuse, ref.diffuse).relMse);
     }
 }

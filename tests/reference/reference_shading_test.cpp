@@ -1,5 +1,7 @@
 // The reference's shading against the direct pass: the same model at the G-buffer's points
 // and at Embree's hits, and what changes with Embree's visibility.
+#include "trace/reference/reference_shading.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 #include "renderer/direct_lighting.h"
 #include "tests/reference/reference_test_rig.h"
 #include "trace/reference/reference_image.h"
-#include "trace/reference/reference_shading.h"
 
 using namespace ssrt;
 using test::ReferenceRig;
@@ -21,7 +22,7 @@ float relDiff(float a, float b) { return std::abs(a - b) / std::max(std::abs(b),
 // The frame's lighting with its G-buffer and camera, as the reference sets it up.
 void frameLighting(const ReferenceRig& rig, DirectLighting& l) {
     setDirectLighting(rig.scene, rig.renderer.settings(), rig.frame.scratch.shadow, nullptr, l);
-    const char* g[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z", "albedo.R",
+    const char* g[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z",  "albedo.R",
                          "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
     DirectArgs& a = l.args;
     for (int i = 0; i < 10; ++i) a.g[i] = rig.frame.plane(g[i]).row(0);
@@ -47,7 +48,8 @@ TEST_CASE("reference: with the shadow map, its direct part is the direct pass's 
                 for (int c = 0; c < 3; ++c)
                     differ += ref.direct[c].at(x, y) != rig.frame.scratch.directParts[c].at(x, y);
             }
-        MESSAGE(std::string(name) << ": " << surface << " surface pixels, " << differ << " channels differ");
+        MESSAGE(std::string(name) << ": " << surface << " surface pixels, " << differ
+                                  << " channels differ");
         CHECK(surface > 1000);
         CHECK(differ == 0);
     }
@@ -76,7 +78,8 @@ TEST_CASE("reference: a hit seen from the camera shades like the direct pass's p
             const glm::vec3 l = reference::hitRadiance(ctx, cam, dir, hit, true);
             const char* color[3] = {"color.R", "color.G", "color.B"};
             float e = 0.0f;
-            for (int c = 0; c < 3; ++c) e = std::max(e, relDiff(l[c], rig.frame.plane(color[c]).at(x, y)));
+            for (int c = 0; c < 3; ++c)
+                e = std::max(e, relDiff(l[c], rig.frame.plane(color[c]).at(x, y)));
             errors.push_back(e);
         }
     std::sort(errors.begin(), errors.end());

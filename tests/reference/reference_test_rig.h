@@ -37,8 +37,8 @@ struct ReferenceRig {
           frame(renderer.render(scene)),
           embree(scene) {}
 
-    ReferenceImage reference(int spp, ReferenceSettings::Visibility v =
-                                          ReferenceSettings::Visibility::Embree) const {
+    ReferenceImage reference(
+        int spp, ReferenceSettings::Visibility v = ReferenceSettings::Visibility::Embree) const {
         ReferenceSettings s;
         s.spp = spp;
         s.visibility = v;

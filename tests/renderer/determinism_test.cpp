@@ -164,7 +164,8 @@ TEST_CASE("built-in scenes keep their golden hashes") {
     for (const auto& [scene, golden] : kGolden) {
         CAPTURE(scene);
         const uint64_t h = frameHash(renderSmall(scene, Isa::Scalar, 2));
-        if (print) std::printf("    {\"%s\", 0x%016llxull},\n", scene.c_str(), (unsigned long long)h);
+        if (print)
+            std::printf("    {\"%s\", 0x%016llxull},\n", scene.c_str(), (unsigned long long)h);
         CHECK(h == golden);
     }
 }
@@ -172,9 +173,9 @@ TEST_CASE("built-in scenes keep their golden hashes") {
 TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky, textured") {
     std::vector<std::string> names;
     for (const auto& info : builtinScenes())
-        names.insert(names.end(), {info.name, info.name + "+sky", info.name + "+tex",
-                                   info.name + "@hiz", info.name + "+sky@dda/mip",
-                                   info.name + "+tex@linear"});
+        names.insert(names.end(),
+                     {info.name, info.name + "+sky", info.name + "+tex", info.name + "@hiz",
+                      info.name + "+sky@dda/mip", info.name + "+tex@linear"});
     for (const std::string& name : names) {
         CAPTURE(name);
         const Frame f = renderSmall(name, defaultIsa(), 2);

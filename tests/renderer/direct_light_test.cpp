@@ -42,9 +42,11 @@ TEST_CASE("emission adds to the lit colour exactly") {
     const glm::vec3 light = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
     const Frame a = Renderer(tiny()).render(wallScene(plain, light));
     const Frame b = Renderer(tiny()).render(wallScene(glowing, light));
-    CHECK(b.plane("color.R").at(30, 20) - a.plane("color.R").at(30, 20) == doctest::Approx(2.0f).epsilon(1e-5));
+    CHECK(b.plane("color.R").at(30, 20) - a.plane("color.R").at(30, 20) ==
+          doctest::Approx(2.0f).epsilon(1e-5));
     CHECK(b.plane("color.G").at(30, 20) == a.plane("color.G").at(30, 20));
-    CHECK(b.plane("color.B").at(30, 20) - a.plane("color.B").at(30, 20) == doctest::Approx(0.5f).epsilon(1e-5));
+    CHECK(b.plane("color.B").at(30, 20) - a.plane("color.B").at(30, 20) ==
+          doctest::Approx(0.5f).epsilon(1e-5));
 }
 
 TEST_CASE("a surface facing away from the light gets only sky light") {

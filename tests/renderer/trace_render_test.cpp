@@ -118,13 +118,13 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
                 // SSR's own planes away from the rough pixels.
                 if (!isRough(x, y) && (!nearRough || mode == SsrResolveMode::Mip)) {
                     ++ssrPixels;
-                    ssrKept += same("ssr.R", x, y) && same("ssrHit", x, y) &&
-                               same("ssrSteps", x, y);
+                    ssrKept +=
+                        same("ssr.R", x, y) && same("ssrHit", x, y) && same("ssrSteps", x, y);
                 }
                 // SSGI borrows nothing from neighbours: every pixel with a diffuse colour.
                 if (!isMetal(x, y))
-                    ssgiKept += same("ssgi.R", x, y) && same("ssgiHit", x, y) &&
-                                same("ssgiSteps", x, y);
+                    ssgiKept +=
+                        same("ssgi.R", x, y) && same("ssgiHit", x, y) && same("ssgiSteps", x, y);
                 hiddenEmpty += isRough(x, y) && a.plane("ssrOpacity").at(x, y) == 0.0f &&
                                a.plane("ssrHit").at(x, y) == 0.0f;
                 hiddenEmpty += isMetal(x, y) && a.plane("ssgi.R").at(x, y) == 0.0f &&

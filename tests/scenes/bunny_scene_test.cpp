@@ -1,5 +1,7 @@
 // The bunny scene: the committed scan is the package's mesh (counts, indices, a closed
 // outward surface), it stands on the ground in view, and it renders cleanly with its shadow.
+#include "scenes/bunny_scene.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
-#include "scenes/bunny_scene.h"
 #include "scenes/data/bunny_mesh.h"
 
 using namespace ssrt;

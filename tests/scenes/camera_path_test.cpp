@@ -76,10 +76,8 @@ TEST_CASE("camera path: continuous everywhere, Catmull-Rom also in its slope") {
             const double slopeJump = glm::length(after - before);
             CAPTURE(k);
             CAPTURE(slopeJump);
-            if (cubic)
-                CHECK(slopeJump < 0.05 * glm::length(after));
-            else
-                CHECK(slopeJump > 0.5 * glm::length(after));
+            if (cubic) CHECK(slopeJump < 0.05 * glm::length(after));
+            else CHECK(slopeJump > 0.5 * glm::length(after));
         }
     }
 }

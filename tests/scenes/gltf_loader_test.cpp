@@ -1,5 +1,7 @@
 // The glTF loader: round trips of small files written here, and a corpus of malformed files
 // that must each give one clear SceneLoadError (never a crash, a hang or a partial scene).
+#include "scenes/gltf_loader.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "scenes/gltf_loader.h"
 #include "temp_dir.h"
 
 using ssrt::loadGltf;
@@ -61,32 +62,35 @@ std::string jsonOf(const Knobs& k, const std::string& uri) {
     const std::size_t posBytes = k.positions.size() * 4, idxBytes = k.indices.size() * 2;
     const std::size_t vertices = k.positionCount >= 0 ? k.positionCount : k.positions.size() / 3;
     std::string buffer = R"({"byteLength": )" + std::to_string(binOf(k).size());
-    if (uri.empty()) buffer += R"(, "uri": "data:application/octet-stream;base64,)" +
-                               base64(binOf(k)) + "\"";
+    if (uri.empty())
+        buffer += R"(, "uri": "data:application/octet-stream;base64,)" + base64(binOf(k)) + "\"";
     else if (uri != "-") buffer += R"(, "uri": ")" + uri + "\"";
     buffer += "}";
-    std::string views = R"([{"buffer": 0, "byteOffset": 0, "byteLength": )" +
-                        std::to_string(posBytes) + "}";
+    std::string views =
+        R"([{"buffer": 0, "byteOffset": 0, "byteLength": )" + std::to_string(posBytes) + "}";
     std::string accessors = R"([{"bufferView": 0, "componentType": 5126, "type": "VEC3", )"
-                            R"("count": )" + std::to_string(vertices) + "}";
+                            R"("count": )" +
+                            std::to_string(vertices) + "}";
     std::string indices;
     if (!k.indices.empty()) {
         views += R"(, {"buffer": 0, "byteOffset": )" + std::to_string(posBytes) +
                  R"(, "byteLength": )" + std::to_string(idxBytes) + "}";
         accessors += R"(, {"bufferView": 1, "componentType": 5123, "type": "SCALAR", )"
-                     R"("count": )" + std::to_string(k.indices.size()) + "}";
+                     R"("count": )" +
+                     std::to_string(k.indices.size()) + "}";
         indices = R"(, "indices": 1)";
     }
     const std::string meshes =
         !k.meshes.empty() ? k.meshes
                           : R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": )" +
                                 std::to_string(k.mode) + indices + k.material + "}]}]";
-    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": )" + k.scenes +
-           R"(, "nodes": )" + k.nodes + R"(, "meshes": )" + meshes +
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": )" + k.scenes + R"(, "nodes": )" +
+           k.nodes + R"(, "meshes": )" + meshes +
            R"(, "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1],)"
            R"( "metallicFactor": 0.3, "roughnessFactor": 0.7}, "emissiveFactor": [1, 0.5, 0],)"
-           R"( "doubleSided": true}], "buffers": [)" + buffer + R"(], "bufferViews": )" + views +
-           R"(], "accessors": )" + accessors + "]" + k.extra + "}";
+           R"( "doubleSided": true}], "buffers": [)" +
+           buffer + R"(], "bufferViews": )" + views + R"(], "accessors": )" + accessors + "]" +
+           k.extra + "}";
 }
 
 void writeFile(const std::string& path, const std::string& bytes) {
@@ -265,8 +269,7 @@ TEST_CASE("gltf: malformed files each give one clear error naming the file and t
 
     SUBCASE("index out of range") {
         k.indices = {0, 1, 7};
-        checkRefused(writeGltf(dir, "index.gltf", k),
-                     "accessor 1 (indices): index 7 out of range");
+        checkRefused(writeGltf(dir, "index.gltf", k), "accessor 1 (indices): index 7 out of range");
     }
     SUBCASE("accessor count overruns its buffer view") {
         k.positionCount = 4;
@@ -330,9 +333,7 @@ TEST_CASE("gltf: malformed files each give one clear error naming the file and t
         writeFile(dir.file("texture.gltf"), json);
         checkRefused(dir.file("texture.gltf"), "nope.png");
     }
-    SUBCASE("a file that does not exist") {
-        checkRefused(dir.file("absent.gltf"), "cannot open");
-    }
+    SUBCASE("a file that does not exist") { checkRefused(dir.file("absent.gltf"), "cannot open"); }
     SUBCASE("not JSON at all") {
         writeFile(dir.file("garbage.gltf"), "{\"asset\": [1, 2");
         loadError(dir.file("garbage.gltf"));

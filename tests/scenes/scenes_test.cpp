@@ -17,7 +17,7 @@ namespace {
 // reports how much is wrong without thousands of lines.
 struct MeshCheck {
     int badNormalLength = 0;
-    int inwardTriangles = 0;     // face normal (from winding) against the vertex normals
+    int inwardTriangles = 0;  // face normal (from winding) against the vertex normals
     int degenerateTriangles = 0;
 };
 
@@ -83,8 +83,8 @@ TEST_CASE("makeBox: 24 vertices, 12 outward triangles, flat unit normals") {
     for (std::size_t v = 0; v < box.positions.size(); ++v) {
         const glm::vec3 n = box.normals[v];
         CHECK(std::abs(n.x) + std::abs(n.y) + std::abs(n.z) == 1.0f);
-        CHECK(glm::dot(box.positions[v], n) == doctest::Approx(glm::dot(glm::vec3(0.5f, 1, 2),
-                                                                        glm::abs(n))));
+        CHECK(glm::dot(box.positions[v], n) ==
+              doctest::Approx(glm::dot(glm::vec3(0.5f, 1, 2), glm::abs(n))));
     }
 }
 

@@ -12,11 +12,11 @@
 
 #include "core/rng.h"
 #include "core/tiles.h"
+#include "plane_compare.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/direct_kernel.h"
 #include "shading/multiscatter.h"
-#include "plane_compare.h"
 
 using namespace ssrt;
 
@@ -163,7 +163,8 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("composite: Kulla-Conty compensation scales specWeight by 1 + F0 (1/E - 1), nothing else") {
+TEST_CASE(
+    "composite: Kulla-Conty compensation scales specWeight by 1 + F0 (1/E - 1), nothing else") {
     DirectFixture f("spheres");
     f.shade(Isa::Scalar, true);
     PlaneF plain[3], ref[7];
@@ -192,7 +193,8 @@ TEST_CASE("composite: Kulla-Conty compensation scales specWeight by 1 + F0 (1/E 
                 const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
                 const double nv = -(f.frame.plane("normal.X").at(x, y) * dx +
                                     f.frame.plane("normal.Y").at(x, y) * dy +
-                                    f.frame.plane("normal.Z").at(x, y) * dz) / len;
+                                    f.frame.plane("normal.Z").at(x, y) * dz) /
+                                  len;
                 const float e = std::max(
                     multiscatter::albedo(tables, std::max(float(nv), 1e-4f), rough), 1e-3f);
                 const double expected = 1.0 + f0 * (1.0 / e - 1.0);

@@ -1,5 +1,7 @@
 // Kulla-Conty: the tables against an independent quadrature, single scattering losing energy
 // at high roughness, and the white furnace with the multiple-scattering lobe: total albedo 1.
+#include "shading/multiscatter.h"
+
 #include <doctest/doctest.h>
 
 #include <bit>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "shading/energy_tables.h"
-#include "shading/multiscatter.h"
 
 using namespace ssrt;
 namespace ms = ssrt::multiscatter;
@@ -25,7 +26,8 @@ double albedoByNdf(double mu, double alpha, int n) {
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             const double u = (i + 0.5) / n, phi = 2 * M_PI * (j + 0.5) / n;
-            const double c2 = (1 - u) / (u * (a2 - 1) + 1), ct = std::sqrt(c2), st = std::sqrt(1 - c2);
+            const double c2 = (1 - u) / (u * (a2 - 1) + 1), ct = std::sqrt(c2),
+                         st = std::sqrt(1 - c2);
             const double mx = st * std::cos(phi), my = st * std::sin(phi), mz = ct;
             const double vm = vx * mx + vz * mz;
             if (vm <= 0) continue;
@@ -128,7 +130,8 @@ TEST_CASE("shading: the stored energy tables are what the estimator computes") {
         REQUIRE(a.size() == b.size());
         int bad = 0;
         for (std::size_t i = 0; i < a.size(); ++i) {
-            const int64_t ulps = int64_t(std::bit_cast<int32_t>(a[i])) - std::bit_cast<int32_t>(b[i]);
+            const int64_t ulps =
+                int64_t(std::bit_cast<int32_t>(a[i])) - std::bit_cast<int32_t>(b[i]);
             if (std::abs(ulps) > 2 && bad++ < 3)
                 FAIL_CHECK(name << "[" << i << "]: stored " << a[i] << ", computed " << b[i]);
         }

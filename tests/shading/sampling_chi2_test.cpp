@@ -1,7 +1,6 @@
 // Every sampler against its own PDF: Pearson's chi-square on a theta x phi histogram of 10^6
 // samples (drawn through the SIMD kernels), and the PDFs integrated numerically to one.
 #include <doctest/doctest.h>
-
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -126,8 +125,8 @@ Outcome runConfig(const Config& cfg) {
 
 std::string label(const Config& c) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%s alpha=(%g,%g) theta=%g", std::string(samplerName(c.s.sampler)).c_str(),
-                  c.s.ax, c.s.ay, c.thetaDeg);
+    std::snprintf(buf, sizeof buf, "%s alpha=(%g,%g) theta=%g",
+                  std::string(samplerName(c.s.sampler)).c_str(), c.s.ax, c.s.ay, c.thetaDeg);
     return buf;
 }
 
@@ -136,7 +135,8 @@ const std::vector<Outcome>& gridOutcomes() {
     static const std::vector<Outcome> outcomes = [] {
         const std::vector<Config> grid = buildGrid();
         std::vector<Outcome> out(grid.size());
-        tbb::parallel_for(std::size_t(0), grid.size(), [&](std::size_t i) { out[i] = runConfig(grid[i]); });
+        tbb::parallel_for(std::size_t(0), grid.size(),
+                          [&](std::size_t i) { out[i] = runConfig(grid[i]); });
         return out;
     }();
     return outcomes;
@@ -160,7 +160,8 @@ TEST_CASE("shading: every sampler passes chi-square against its own PDF") {
     std::string table = "chi-square (10^6 samples per configuration), worst p-value per sampler:\n";
     for (const auto& [name, w] : worst) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, "  %-32s configs %3d  min p %.4g\n", name.c_str(), w.second, w.first);
+        std::snprintf(buf, sizeof buf, "  %-32s configs %3d  min p %.4g\n", name.c_str(), w.second,
+                      w.first);
         table += buf;
     }
     char buf[128];

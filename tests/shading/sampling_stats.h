@@ -199,7 +199,8 @@ struct Chi2Result {
 
 // Pearson's test; cells expecting fewer than 5 samples are pooled into one (merged into the
 // smallest regular cell when the pool itself expects fewer than 5).
-inline Chi2Result chiSquare(const std::vector<uint64_t>& observed, const std::vector<double>& expected) {
+inline Chi2Result chiSquare(const std::vector<uint64_t>& observed,
+                            const std::vector<double>& expected) {
     std::vector<double> obs, exp;
     double pooledObs = 0, pooledExp = 0;
     for (std::size_t i = 0; i < observed.size(); ++i) {
@@ -220,7 +221,8 @@ inline Chi2Result chiSquare(const std::vector<uint64_t>& observed, const std::ve
         *it += pooledExp;
     }
     Chi2Result r;
-    for (std::size_t i = 0; i < obs.size(); ++i) r.chi2 += (obs[i] - exp[i]) * (obs[i] - exp[i]) / exp[i];
+    for (std::size_t i = 0; i < obs.size(); ++i)
+        r.chi2 += (obs[i] - exp[i]) * (obs[i] - exp[i]) / exp[i];
     r.dof = int(obs.size()) - 1;
     r.pValue = r.dof > 0 ? gammaQ(0.5 * r.dof, 0.5 * r.chi2) : 1.0;
     return r;

@@ -1,6 +1,8 @@
 // Samplers and BRDF terms beyond the chi-square: every ISA returns the scalar bits, the edge
 // cases stay finite, the VNDF PDFs agree with D_V and with each other, the HDRP weight is
 // f cos / pdf, and bounded VNDF sends fewer reflections below the horizon than the caps.
+#include "shading/sampling.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 
 #include "core/rng.h"
 #include "shading/brdf.h"
-#include "shading/sampling.h"
 #include "shading/sampling_kernels.h"
 
 using namespace ssrt;
@@ -44,12 +45,15 @@ Soa edgeAndRandomInputs(std::size_t nRandom) {
     for (uint32_t i = 0; i < nRandom; ++i) {
         const float r = randomFloat(i, 11, 0, 2);
         const float a = std::max(r * r, 1e-4f);
-        const float b = randomFloat(i, 11, 0, 3) < 0.5f ? a : std::max(randomFloat(i, 11, 0, 4), 1e-4f);
-        s.push(randomDir(i, 12, i % 4 != 0), a, b, randomFloat(i, 13, 0, 0), randomFloat(i, 13, 0, 1));
+        const float b =
+            randomFloat(i, 11, 0, 3) < 0.5f ? a : std::max(randomFloat(i, 11, 0, 4), 1e-4f);
+        s.push(randomDir(i, 12, i % 4 != 0), a, b, randomFloat(i, 13, 0, 0),
+               randomFloat(i, 13, 0, 1));
     }
     const float alphas[] = {0.0f, 1e-7f, 1e-4f, 1e-3f, 0.5f, 1.0f};
-    const V views[] = {{0, 0, 1},           {1, 0, 0},          {0.6f, 0.8f, 0.0f},
-                       {0.99985f, 0, 0.0174524f}, {0.6f, 0, -0.8f}, {0.0174524f, 0, -0.99985f},
+    const V views[] = {{0, 0, 1},          {1, 0, 0},
+                       {0.6f, 0.8f, 0.0f}, {0.99985f, 0, 0.0174524f},
+                       {0.6f, 0, -0.8f},   {0.0174524f, 0, -0.99985f},
                        {0, 0, -1}};
     const float us[] = {0.0f, 0.5f, 0.99999994f, 1.0f};
     for (float a : alphas)
@@ -59,7 +63,9 @@ Soa edgeAndRandomInputs(std::size_t nRandom) {
     return s;
 }
 
-bool isUpperSampler(Sampler s) { return s == Sampler::CosineHemisphere || s == Sampler::UniformHemisphere; }
+bool isUpperSampler(Sampler s) {
+    return s == Sampler::CosineHemisphere || s == Sampler::UniformHemisphere;
+}
 
 }  // namespace
 
@@ -70,8 +76,9 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
     for (Sampler s : kAllSamplers) {
         const std::string name(samplerName(s));
         CAPTURE(name);
-        SampleArgs ref{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(), in.ay.data(),
-                       in.u1.data(), in.u2.data(), rx.data(),    ry.data(),    rz.data(), rp.data()};
+        SampleArgs ref{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(),
+                       in.ay.data(), in.u1.data(), in.u2.data(), rx.data(),
+                       ry.data(),    rz.data(),    rp.data()};
         sampleDirections(Isa::Scalar, s, ref, n);
         // PDFs of other directions than the samples: the random view vectors reused.
         std::vector<float> pdfRef(n), pdfGot(n);
@@ -82,7 +89,8 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
             const std::string isaStr(isaName(isa));
             CAPTURE(isaStr);
             SampleArgs got = ref;
-            got.outX = gx.data(), got.outY = gy.data(), got.outZ = gz.data(), got.outPdf = gp.data();
+            got.outX = gx.data(), got.outY = gy.data(), got.outZ = gz.data(),
+            got.outPdf = gp.data();
             sampleDirections(isa, s, got, n);
             CHECK(std::memcmp(rx.data(), gx.data(), n * 4) == 0);
             CHECK(std::memcmp(ry.data(), gy.data(), n * 4) == 0);
@@ -94,9 +102,11 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
             CHECK(std::memcmp(pdfRef.data(), pdfGot.data(), n * 4) == 0);
         }
     }
-    const BrdfTerm terms[] = {BrdfTerm::D_GGX,  BrdfTerm::V_SmithGGXCorrelated, BrdfTerm::F_Schlick,
-                              BrdfTerm::D_GGXAniso, BrdfTerm::Lambda, BrdfTerm::G1, BrdfTerm::G2,
-                              BrdfTerm::V_Aniso, BrdfTerm::SsrWeight, BrdfTerm::SpecularCos};
+    const BrdfTerm terms[] = {BrdfTerm::D_GGX,     BrdfTerm::V_SmithGGXCorrelated,
+                              BrdfTerm::F_Schlick, BrdfTerm::D_GGXAniso,
+                              BrdfTerm::Lambda,    BrdfTerm::G1,
+                              BrdfTerm::G2,        BrdfTerm::V_Aniso,
+                              BrdfTerm::SsrWeight, BrdfTerm::SpecularCos};
     std::vector<float> ox(n), oy(n), oz(n), f0(n), f90(n), ref(n), got(n);
     for (std::size_t i = 0; i < n; ++i) {
         const V o = randomDir(uint32_t(i), 21, i % 3 != 0);
@@ -105,8 +115,8 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
     }
     for (BrdfTerm t : terms) {
         CAPTURE(int(t));
-        BrdfArgs a{in.wx.data(), in.wy.data(), in.wz.data(), ox.data(), oy.data(), oz.data(),
-                   in.ax.data(), in.ay.data(), f0.data(), f90.data(), ref.data()};
+        BrdfArgs a{in.wx.data(), in.wy.data(), in.wz.data(), ox.data(),  oy.data(), oz.data(),
+                   in.ax.data(), in.ay.data(), f0.data(),    f90.data(), ref.data()};
         evalBrdfTerm(Isa::Scalar, t, a, n);
         for (Isa isa : supportedIsas()) {
             a.out = got.data();
@@ -123,13 +133,15 @@ TEST_CASE("shading: samplers stay finite where methods fail") {
     for (Sampler s : kAllSamplers) {
         const std::string name(samplerName(s));
         CAPTURE(name);
-        SampleArgs a{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(), in.ay.data(),
-                     in.u1.data(), in.u2.data(), x.data(),     y.data(),     z.data(), p.data()};
+        SampleArgs a{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(),
+                     in.ay.data(), in.u1.data(), in.u2.data(), x.data(),
+                     y.data(),     z.data(),     p.data()};
         sampleDirections(Isa::Scalar, s, a, n);
         int positiveMisses = 0;
         for (std::size_t i = 0; i < n; ++i) {
             CAPTURE(i);
-            const float wix = in.wx[i], wiz = in.wz[i], alpha = in.ax[i], u1 = in.u1[i], u2 = in.u2[i];
+            const float wix = in.wx[i], wiz = in.wz[i], alpha = in.ax[i], u1 = in.u1[i],
+                        u2 = in.u2[i];
             CAPTURE(wix);
             CAPTURE(wiz);
             CAPTURE(alpha);
@@ -147,8 +159,9 @@ TEST_CASE("shading: samplers stay finite where methods fail") {
             // defined for (the ellipsoid method needs wi.z >= 0; every VNDF sees nothing
             // from straight below), a direction off the boundary where PDFs drop to 0.
             const bool viewOk = isUpperSampler(s) || in.wz[i] > -0.99f;
-            const bool ellipsoidBelow = (s == Sampler::VndfEllipsoid || s == Sampler::VndfEllipsoidReflection) &&
-                                        in.wz[i] < 0.0f;
+            const bool ellipsoidBelow =
+                (s == Sampler::VndfEllipsoid || s == Sampler::VndfEllipsoidReflection) &&
+                in.wz[i] < 0.0f;
             const bool interior = in.u1[i] < 1.0f && in.u2[i] < 1.0f;
             if (viewOk && !ellipsoidBelow && interior && len > 0.0f && !(p[i] > 0.0f)) {
                 // Only samples on the edge of the support, where the PDF falls to 0, may
@@ -164,7 +177,8 @@ TEST_CASE("shading: samplers stay finite where methods fail") {
                 } else {
                     const V hv = wi + d;
                     const double len = std::sqrt(lanes::dot(hv, hv));
-                    edge = std::min(0.5 * len, std::fabs(hv.z) / std::max(len, 1e-30));  // |wi.h| = |wi + wo| / 2
+                    edge = std::min(0.5 * len, std::fabs(hv.z) /
+                                                   std::max(len, 1e-30));  // |wi.h| = |wi + wo| / 2
                 }
                 CHECK(edge < 1e-2);
             }
@@ -183,7 +197,8 @@ TEST_CASE("shading: the VNDF PDFs agree with D_V and with each other") {
         const V m = sm::sampleVndfSphericalCaps(wi, ax, ay, u1, u2);
         const V o = sm::reflect(wi, m);
         // D_V = G1(wi) max(0, wi.m) D(m) / wi.z (Heitz 2014, eq. 16)
-        const double dv = brdf::G1_GGX(wi.x, wi.y, wi.z, ax, ay) * std::max(0.0f, lanes::dot(wi, m)) *
+        const double dv = brdf::G1_GGX(wi.x, wi.y, wi.z, ax, ay) *
+                          std::max(0.0f, lanes::dot(wi, m)) *
                           brdf::D_GGXAniso(m.x, m.y, m.z, ax, ay) / wi.z;
         const double pdf = sm::vndfPdf(wi, m, ax, ay);
         worstDv = std::max(worstDv, std::fabs(pdf - dv) / dv);
@@ -191,14 +206,16 @@ TEST_CASE("shading: the VNDF PDFs agree with D_V and with each other") {
         // (at the half vector of (wi, o) itself: recovering m from o costs digits near o = -wi)
         const double pr = sm::vndfReflectionPdf(wi, o, ax, ay);
         const V h = lanes::normalize(wi + o);
-        worstRefl = std::max(worstRefl, std::fabs(pr - sm::vndfPdf(wi, h, ax, ay) / (4.0 * lanes::dot(wi, h))) / pr);
+        worstRefl = std::max(
+            worstRefl, std::fabs(pr - sm::vndfPdf(wi, h, ax, ay) / (4.0 * lanes::dot(wi, h))) / pr);
         // Bounded: above the horizon the same lobe renormalised by (t + wi.z) / (t + k wi.z)
         if (o.z > 0) {
             REQUIRE(sm::vndfBoundedInCap(wi, m, ax, ay));  // the cut-off part only holds o.z < 0
             const double t = brdf::smithT(wi.x, wi.y, wi.z, ax, ay);
             const double k = sm::vndfBoundedK(wi, ax, ay);
             const double pb = sm::vndfBoundedReflectionPdf(wi, o, ax, ay);
-            worstBounded = std::max(worstBounded, std::fabs(pb - pr * (t + wi.z) / (t + k * wi.z)) / pb);
+            worstBounded =
+                std::max(worstBounded, std::fabs(pb - pr * (t + wi.z) / (t + k * wi.z)) / pb);
             // HDRP's weight is f cos / pdf for F = 1
             const double w = brdf::ssrSampleWeight(wi, o, ax, ay);
             const double ref = brdf::specularCos(wi, o, ax, ay) / pr;
@@ -206,8 +223,9 @@ TEST_CASE("shading: the VNDF PDFs agree with D_V and with each other") {
             CHECK(w <= 1.0f);
         }
     }
-    MESSAGE("relative errors: vndf vs D_V " << worstDv << ", reflection " << worstRefl << ", bounded "
-            << worstBounded << ", ssr weight " << worstSsr);
+    MESSAGE("relative errors: vndf vs D_V " << worstDv << ", reflection " << worstRefl
+                                            << ", bounded " << worstBounded << ", ssr weight "
+                                            << worstSsr);
     CHECK(worstDv < 1e-4);
     CHECK(worstRefl < 1e-4);
     CHECK(worstBounded < 1e-4);
@@ -220,7 +238,8 @@ TEST_CASE("shading: the VNDF PDFs agree with D_V and with each other") {
         const V a = sm::sampleVndfSphericalCaps(below, 0.3f, 0.3f, u1, u2);
         const V b = sm::sampleVndfBounded(below, 0.3f, 0.3f, u1, u2);
         CHECK(std::memcmp(&a, &b, sizeof a) == 0);
-        CHECK(sm::vndfPdf(below, a, 0.3f, 0.3f) == doctest::Approx(sm::vndfBoundedPdf(below, a, 0.3f, 0.3f)).epsilon(1e-5));
+        CHECK(sm::vndfPdf(below, a, 0.3f, 0.3f) ==
+              doctest::Approx(sm::vndfBoundedPdf(below, a, 0.3f, 0.3f)).epsilon(1e-5));
     }
 }
 
@@ -229,15 +248,20 @@ TEST_CASE("shading: BRDF terms match their isotropic forms and limits") {
         const V wi = randomDir(i, 41, true), wo = randomDir(i, 42, true);
         const float r = 0.03f + 0.97f * randomFloat(i, 43, 0, 0), a = r * r;
         const V h = lanes::normalize(wi + wo);
-        CHECK(brdf::D_GGXAniso(h.x, h.y, h.z, a, a) == doctest::Approx(brdf::D_GGX(h.z, a)).epsilon(1e-4));
+        CHECK(brdf::D_GGXAniso(h.x, h.y, h.z, a, a) ==
+              doctest::Approx(brdf::D_GGX(h.z, a)).epsilon(1e-4));
         CHECK(brdf::V_SmithGGXCorrelatedAniso(wi, wo, a, a) ==
               doctest::Approx(brdf::V_SmithGGXCorrelated(wi.z, wo.z, a)).epsilon(1e-5));
         CHECK(brdf::G2_GGXCorrelated(wi, wo, a, a) ==
-              doctest::Approx(4.0f * wi.z * wo.z * brdf::V_SmithGGXCorrelatedAniso(wi, wo, a, a)).epsilon(1e-5));
+              doctest::Approx(4.0f * wi.z * wo.z * brdf::V_SmithGGXCorrelatedAniso(wi, wo, a, a))
+                  .epsilon(1e-5));
         // 1 / G2 = 1 + Lambda_i + Lambda_o, G1 = 1 / (1 + Lambda)
-        const float li = brdf::Lambda_GGX(wi.x, wi.y, wi.z, a, a), lo = brdf::Lambda_GGX(wo.x, wo.y, wo.z, a, a);
-        CHECK(brdf::G2_GGXCorrelated(wi, wo, a, a) == doctest::Approx(1.0f / (1.0f + li + lo)).epsilon(1e-4));
-        CHECK(brdf::G1_GGX(wi.x, wi.y, wi.z, a, a) == doctest::Approx(1.0f / (1.0f + li)).epsilon(1e-4));
+        const float li = brdf::Lambda_GGX(wi.x, wi.y, wi.z, a, a),
+                    lo = brdf::Lambda_GGX(wo.x, wo.y, wo.z, a, a);
+        CHECK(brdf::G2_GGXCorrelated(wi, wo, a, a) ==
+              doctest::Approx(1.0f / (1.0f + li + lo)).epsilon(1e-4));
+        CHECK(brdf::G1_GGX(wi.x, wi.y, wi.z, a, a) ==
+              doctest::Approx(1.0f / (1.0f + li)).epsilon(1e-4));
     }
     CHECK(brdf::G1_GGX(0.0f, 0.0f, 1.0f, 0.5f, 0.5f) == 1.0f);
     CHECK(brdf::G1_GGX(1.0f, 0.0f, 0.0f, 0.5f, 0.5f) == 0.0f);
@@ -266,14 +290,16 @@ TEST_CASE("shading: GgxDV has the bits of D_GGX x V_SmithGGXCorrelated") {
 
 TEST_CASE("shading: bounded VNDF sends no more reflections below the horizon than spherical caps") {
     // Fraction of sampled reflections with wo.z < 0, 2^18 samples each, same u for both.
-    // Prediction: above the horizon the bounded PDF is the caps PDF times (t + wi.z) / (t + k wi.z),
-    // so f_bounded = 1 - (1 - f_caps) (t + wi.z) / (t + k wi.z).
+    // Prediction: above the horizon the bounded PDF is the caps PDF times (t + wi.z) / (t + k
+    // wi.z), so f_bounded = 1 - (1 - f_caps) (t + wi.z) / (t + k wi.z).
     const float alphas[] = {0.01f, 0.1f, 0.3f, 0.5f, 0.75f, 1.0f};
     const double thetas[] = {0, 30, 60, 75, 85, 89};
     constexpr uint32_t kN = 1 << 18;
     std::vector<float> wx(kN), wy(kN), wz(kN), ax(kN), ay(kN), u1(kN), u2(kN), x(kN), y(kN), z(kN);
-    for (uint32_t i = 0; i < kN; ++i) u1[i] = randomFloat(i, 51, 0, 0), u2[i] = randomFloat(i, 51, 0, 1);
-    std::string table = "below-horizon fraction of reflections: caps / bounded (predicted)\n  alpha  ";
+    for (uint32_t i = 0; i < kN; ++i)
+        u1[i] = randomFloat(i, 51, 0, 0), u2[i] = randomFloat(i, 51, 0, 1);
+    std::string table =
+        "below-horizon fraction of reflections: caps / bounded (predicted)\n  alpha  ";
     for (double t : thetas) {
         char b[32];
         std::snprintf(b, sizeof b, "  theta=%-2g               ", t);
@@ -291,7 +317,8 @@ TEST_CASE("shading: bounded VNDF sends no more reflections below the horizon tha
             std::fill(ax.begin(), ax.end(), a), std::fill(ay.begin(), ay.end(), a);
             double f[2];
             int k = 0;
-            for (Sampler s : {Sampler::VndfSphericalCapsReflection, Sampler::VndfBoundedReflection}) {
+            for (Sampler s :
+                 {Sampler::VndfSphericalCapsReflection, Sampler::VndfBoundedReflection}) {
                 SampleArgs args{wx.data(), wy.data(), wz.data(), ax.data(), ay.data(), u1.data(),
                                 u2.data(), x.data(),  y.data(),  z.data(),  nullptr};
                 sampleDirections(defaultIsa(), s, args, kN);
@@ -309,7 +336,8 @@ TEST_CASE("shading: bounded VNDF sends no more reflections below the horizon tha
             CAPTURE(bounded);
             CHECK(f[1] <= f[0] + 4.0 * sigma);
             CHECK(std::fabs(f[1] - predicted) <= 5.0 * sigma + 1e-6);
-            std::snprintf(b, sizeof b, "  %.4f / %.4f (%.4f)", f[0], f[1], std::max(predicted, 0.0));
+            std::snprintf(b, sizeof b, "  %.4f / %.4f (%.4f)", f[0], f[1],
+                          std::max(predicted, 0.0));
             table += b;
         }
         table += "\n";

@@ -23,8 +23,10 @@ void oracle(const TraceCamera& cam, const RayBatch& rays, const MarchResult& m, 
             float d = 0.0f;
             if (distP && hit > 0.0f) {
                 const float z = m.hitZ.at(x, y);
-                const float px = (2.0f * m.hitX.at(x, y) / float(cam.width) - 1.0f) * cam.tanHalfX * z;
-                const float py = (1.0f - 2.0f * m.hitY.at(x, y) / float(cam.height)) * cam.tanHalfY * z;
+                const float px =
+                    (2.0f * m.hitX.at(x, y) / float(cam.width) - 1.0f) * cam.tanHalfX * z;
+                const float py =
+                    (1.0f - 2.0f * m.hitY.at(x, y) / float(cam.height)) * cam.tanHalfY * z;
                 const float dx = px - rays.ox.at(x, y), dy = py - rays.oy.at(x, y),
                             dz = -z - rays.oz.at(x, y);
                 d = std::sqrt(dx * dx + dy * dy + dz * dz);

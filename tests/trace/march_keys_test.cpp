@@ -26,19 +26,19 @@ std::vector<KeyRay> keyRays() {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     return {
-        {1, 0, 0, -2, 1, 0, 0, 0},            // right
-        {1, 0, 0, -2, 0, -1, 0, 2 * 16},      // down
-        {1, 0, 0, -2, -1, 0, 0, 2 * 32},      // left
-        {1, 0, 0, -2, 0, 1, 0, 2 * 48},       // up
-        {1, 0, 0, -2, 1, -1, 0, 2 * 8},       // right and down: angle 0.5
-        {1, 0, 0, -2, 1, 0, 1, 1},            // right, towards the camera
-        {1, 0, 0, -2, 0, 0, -1, 0},           // straight away on the axis: no screen motion
-        {0, 0, 0, -2, 1, 0, 0, -1},           // pdf 0
-        {1, 0, 0, -2, nan, 0, 0, -1},         // NaN direction
-        {1, inf, 0, -2, 1, 0, 0, -1},         // infinite origin
-        {1, 0, 0, -2, 0, 0, 0, -1},           // zero direction
-        {1, 0, 0, 1, 1, 0, 0, -1},            // origin behind the camera
-        {0.5f, 0, 0, -2, 0, 1, 0, 2 * 48},    // up again (a second lane group on narrow ISAs)
+        {1, 0, 0, -2, 1, 0, 0, 0},          // right
+        {1, 0, 0, -2, 0, -1, 0, 2 * 16},    // down
+        {1, 0, 0, -2, -1, 0, 0, 2 * 32},    // left
+        {1, 0, 0, -2, 0, 1, 0, 2 * 48},     // up
+        {1, 0, 0, -2, 1, -1, 0, 2 * 8},     // right and down: angle 0.5
+        {1, 0, 0, -2, 1, 0, 1, 1},          // right, towards the camera
+        {1, 0, 0, -2, 0, 0, -1, 0},         // straight away on the axis: no screen motion
+        {0, 0, 0, -2, 1, 0, 0, -1},         // pdf 0
+        {1, 0, 0, -2, nan, 0, 0, -1},       // NaN direction
+        {1, inf, 0, -2, 1, 0, 0, -1},       // infinite origin
+        {1, 0, 0, -2, 0, 0, 0, -1},         // zero direction
+        {1, 0, 0, 1, 1, 0, 0, -1},          // origin behind the camera
+        {0.5f, 0, 0, -2, 0, 1, 0, 2 * 48},  // up again (a second lane group on narrow ISAs)
     };
 }
 
@@ -58,8 +58,9 @@ TEST_CASE("march keys: rays without a march are -1, the others by screen directi
     for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
         std::vector<int8_t> key(std::size_t(n + 16), int8_t(99));
-        const SortKeyArgs a{p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data(),
-                            p[5].data(), p[6].data(), n, 100.0f, 100.0f, key.data()};
+        const SortKeyArgs a{p[0].data(), p[1].data(), p[2].data(), p[3].data(),
+                            p[4].data(), p[5].data(), p[6].data(), n,
+                            100.0f,      100.0f,      key.data()};
         SSRT_DISPATCH(isa, marchSortKeys)(a);
         for (int i = 0; i < n; ++i) {
             CAPTURE(i);

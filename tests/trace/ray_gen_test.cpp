@@ -2,15 +2,16 @@
 // surface, exact mirror reflections, the PDF written against the sampler's PDF function,
 // the lobe against a quadrature of that PDF, rejections counted, no NaN anywhere, and the
 // determinism contract (threads, ISAs, frames).
-#include <doctest/doctest.h>
+#include "trace/ray_gen.h"
 
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
+#include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,7 +23,6 @@
 #include "shading/brdf.h"
 #include "shading/sampling.h"
 #include "shading/sampling_stats.h"
-#include "trace/ray_gen.h"
 
 using namespace ssrt;
 
@@ -120,9 +120,7 @@ Vec toViewer(const TraceCamera& c, int x, int y) {
     return {-r.x, -r.y, -r.z};
 }
 
-Vec dirAt(const RayBatch& r, int x, int y) {
-    return {r.dx.at(x, y), r.dy.at(x, y), r.dz.at(x, y)};
-}
+Vec dirAt(const RayBatch& r, int x, int y) { return {r.dx.at(x, y), r.dy.at(x, y), r.dz.at(x, y)}; }
 
 // Float local frame around n (any tangent: the lobes are isotropic), for the samplers' PDFs.
 struct Frame3 {
@@ -130,8 +128,8 @@ struct Frame3 {
     explicit Frame3(Vec nd) {
         n = {float(nd.x), float(nd.y), float(nd.z)};
         const Vec a = std::abs(nd.x) > 0.5 ? Vec{0, 1, 0} : Vec{1, 0, 0};
-        const Vec td = normalized({a.y * nd.z - a.z * nd.y, a.z * nd.x - a.x * nd.z,
-                                   a.x * nd.y - a.y * nd.x});
+        const Vec td =
+            normalized({a.y * nd.z - a.z * nd.y, a.z * nd.x - a.x * nd.z, a.x * nd.y - a.y * nd.x});
         const Vec bd{nd.y * td.z - nd.z * td.y, nd.z * td.x - nd.x * td.z,
                      nd.x * td.y - nd.y * td.x};
         t = {float(td.x), float(td.y), float(td.z)};
@@ -167,9 +165,9 @@ uint64_t batchHash(const RayBatch& r) {
 RayGenStats generate(const GBufferFrame& f, const SsrMethod* method, RayBatch& rays,
                      uint32_t frame = 0, uint32_t sample = 0, Isa isa = Isa::Scalar,
                      int threads = 1) {
-    return method ? generateSpecularRays(isa, *method, frame, sample, f.camera, f.g(), rays,
-                                         threads)
-                  : generateDiffuseRays(isa, frame, sample, f.camera, f.g(), rays, threads);
+    return method
+               ? generateSpecularRays(isa, *method, frame, sample, f.camera, f.g(), rays, threads)
+               : generateDiffuseRays(isa, frame, sample, f.camera, f.g(), rays, threads);
 }
 
 // Every invariant that holds pixel by pixel; returns the number of rays seen.
@@ -217,10 +215,9 @@ uint64_t checkBatch(const GBufferFrame& f, const SsrMethod* method, const RayBat
                     }
                     // (the frames differ by roundings; the PDFs are smooth over them except
                     // at alpha near 1e-3, where D spans 10 decades in a milliradian)
-                    const float tol = method && *method != SsrMethod::Mirror &&
-                                              rough.at(x, y) < 0.1f
-                                          ? 0.2f
-                                          : 2e-3f;
+                    const float tol =
+                        method && *method != SsrMethod::Mirror && rough.at(x, y) < 0.1f ? 0.2f
+                                                                                        : 2e-3f;
                     ok = ok && std::abs(pdf - expect) <= tol * expect + 1e-5f;
                 } else {
                     ok = ok && d[0] == 0.0f && d[1] == 0.0f && d[2] == 0.0f;
@@ -402,8 +399,8 @@ TEST_CASE("ray generation: NoDiffuseColour leaves pixels without a diffuse colou
         CAPTURE(isaName(isa));
         RayBatch all, some;
         const RayGenStats sa = generateDiffuseRays(isa, 4, 2, f.camera, gb, all, 2);
-        const RayGenStats ss = generateDiffuseRays(isa, 4, 2, f.camera, gb, some, 2,
-                                                   DiffuseCut::NoDiffuseColour);
+        const RayGenStats ss =
+            generateDiffuseRays(isa, 4, 2, f.camera, gb, some, 2, DiffuseCut::NoDiffuseColour);
         uint64_t none = 0;
         bool cut = true, kept = true;
         for (int v = 0; v < f.height(); ++v)
@@ -416,7 +413,8 @@ TEST_CASE("ray generation: NoDiffuseColour leaves pixels without a diffuse colou
                     ++none;
                     cut &= some.pdf.at(x, v) == 0.0f && some.dx.at(x, v) == 0.0f;
                 } else {
-                    for (const auto m : {&RayBatch::dx, &RayBatch::dy, &RayBatch::dz, &RayBatch::pdf})
+                    for (const auto m :
+                         {&RayBatch::dx, &RayBatch::dy, &RayBatch::dz, &RayBatch::pdf})
                         kept &= std::memcmp(&(all.*m).at(x, v), &(some.*m).at(x, v), 4) == 0;
                 }
             }
@@ -461,8 +459,8 @@ TEST_CASE("ray generation: mirror rays are exact reflections") {
                 const Vec d = dirAt(rays, x, y);
                 if (nv > 1e-3) CHECK(rays.pdf.at(x, y) == 1.0f);
                 if (rays.pdf.at(x, y) == 0.0f) continue;
-                worst = std::max({worst, std::abs(d.x - r.x), std::abs(d.y - r.y),
-                                  std::abs(d.z - r.z)});
+                worst = std::max(
+                    {worst, std::abs(d.x - r.x), std::abs(d.y - r.y), std::abs(d.z - r.z)});
             }
         CHECK(facing > 0);
         CHECK(worst < 2e-6);
@@ -640,8 +638,7 @@ TEST_CASE("ray generation: rays are the samplers' maps of randomFloat(pixel, fra
                 } else {
                     const Vec v = toViewer(f.camera, x, y);
                     const Vec wi{dot(v, t), dot(v, b), dot(v, n)};
-                    const float alpha =
-                        brdf::roughnessToAlpha(f.frame.plane("roughness").at(x, y));
+                    const float alpha = brdf::roughnessToAlpha(f.frame.plane("roughness").at(x, y));
                     const V3f wmf = sm::sampleGgxNdf(alpha, alpha, u1, u2);
                     const Vec wm = normalized({wmf.x, wmf.y, wmf.z});
                     const double d = 2.0 * dot(wi, wm);
@@ -650,8 +647,8 @@ TEST_CASE("ray generation: rays are the samplers' maps of randomFloat(pixel, fra
                 const Vec e{t.x * w.x + b.x * w.y + n.x * w.z, t.y * w.x + b.y * w.y + n.y * w.z,
                             t.z * w.x + b.z * w.y + n.z * w.z};
                 const Vec got = dirAt(rays, x, y);
-                worst = std::max({worst, std::abs(got.x - e.x), std::abs(got.y - e.y),
-                                  std::abs(got.z - e.z)});
+                worst = std::max(
+                    {worst, std::abs(got.x - e.x), std::abs(got.y - e.y), std::abs(got.z - e.z)});
                 ++checked;
             }
         CHECK(checked > 1000);

@@ -10,11 +10,11 @@
 
 #include "core/lane_math.h"
 #include "core/rng.h"
+#include "plane_compare.h"
 #include "renderer/direct_lighting.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/environment.h"
-#include "plane_compare.h"
 
 using namespace ssrt;
 

@@ -10,10 +10,10 @@
 #include <cstring>
 
 #include "core/rng.h"
+#include "plane_compare.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/color_pyramid.h"
-#include "plane_compare.h"
 
 using namespace ssrt;
 

@@ -193,7 +193,8 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
     // The triangle in world space, for its geometric normal (Embree's Ng is in object space
     // under instancing).
     glm::vec3 p[3];
-    for (int c = 0; c < 3; ++c) p[c] = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[c]], 1.0f));
+    for (int c = 0; c < 3; ++c)
+        p[c] = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[c]], 1.0f));
     const glm::vec3 ng = glm::cross(p[1] - p[0], p[2] - p[0]);
     const float ngl = glm::length(ng);
     s.geometricNormal = ngl > 0.0f ? ng / ngl : glm::vec3(0.0f, 1.0f, 0.0f);

@@ -7,11 +7,11 @@
 // in its last bits between machines; a first hit can differ only where two triangles tie.
 #pragma once
 
-#include <cstddef>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
-#include <vector>
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scenes/scene.h"
 
@@ -23,11 +23,11 @@ namespace ssrt {
 
 // What the build made, for `ssrt compare` and the sweep.
 struct BvhStats {
-    double buildMs = 0.0;      // every mesh's BVH and the instance BVH, wall clock
-    std::size_t meshes = 0;    // meshes some instance uses (one bottom-level BVH each)
+    double buildMs = 0.0;    // every mesh's BVH and the instance BVH, wall clock
+    std::size_t meshes = 0;  // meshes some instance uses (one bottom-level BVH each)
     std::size_t instances = 0;
-    std::size_t triangles = 0;  // over instances (what a flattened scene would hold)
-    std::size_t bytes = 0;      // Embree's memory after the build (its memory monitor)
+    std::size_t triangles = 0;     // over instances (what a flattened scene would hold)
+    std::size_t bytes = 0;         // Embree's memory after the build (its memory monitor)
     glm::vec3 lo{0.0f}, hi{0.0f};  // world bounds
     float diagonal = 0.0f;
 };
@@ -35,9 +35,9 @@ struct BvhStats {
 // First hit of a world-space ray.
 struct EmbreeHit {
     bool hit = false;
-    float t = 0.0f;          // distance along the (unit) direction
-    uint32_t instance = 0;   // Scene::instances index
-    uint32_t triangle = 0;   // triangle of that instance's mesh
+    float t = 0.0f;            // distance along the (unit) direction
+    uint32_t instance = 0;     // Scene::instances index
+    uint32_t triangle = 0;     // triangle of that instance's mesh
     float u = 0.0f, v = 0.0f;  // Embree's barycentrics: p = (1 - u - v) p0 + u p1 + v p2
 };
 

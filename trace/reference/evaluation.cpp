@@ -57,7 +57,7 @@ ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     if (!frame.has("ssr.R") && !frame.has("ssgi.R")) return t;
     t.parts = true;
     const FrameParts parts = frameParts(frame);
-    const auto err = [](const PlaneF (&a)[3], const PlaneF (&b)[3]) {
+    const auto err = [](const PlaneF(&a)[3], const PlaneF(&b)[3]) {
         const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
         const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
         return imageError(pa, pb);
@@ -81,8 +81,7 @@ void EvaluationSettings::validate() const {
 
 Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
                     const Camera& previousCamera, const RenderSettings& settings,
-                    const ReferenceImage& reference, const EvaluationSettings& es,
-                    Frame& frame) {
+                    const ReferenceImage& reference, const EvaluationSettings& es, Frame& frame) {
     es.validate();
     const Renderer renderer(settings);
     Evaluation ev;
@@ -104,8 +103,8 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera&
     const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
                                        const MarchResult& march) {
         const bool ssr = pass == TracePass::Ssr;
-        RayCheckPlanes* planes = es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes)
-                                                          : nullptr;
+        RayCheckPlanes* planes =
+            es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes) : nullptr;
         // The G-buffer is complete before the trace passes run; the frame's camera too.
         if (!viewZ) viewZ = &frame.plane("viewZ");
         const RayCheckTable t =

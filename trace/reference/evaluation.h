@@ -21,10 +21,10 @@ struct ErrorTable {
 };
 
 struct EvaluationSettings {
-    int repeats = 3;             // timed renders (the median of each pass is kept), >= 1
-    RayCheckSettings check;      // maxDistance is taken from the render settings
-    bool planes = true;          // keep the per-pixel check planes of sample 0
-    void validate() const;       // throws std::invalid_argument naming the field
+    int repeats = 3;         // timed renders (the median of each pass is kept), >= 1
+    RayCheckSettings check;  // maxDistance is taken from the render settings
+    bool planes = true;      // keep the per-pixel check planes of sample 0
+    void validate() const;   // throws std::invalid_argument naming the field
 };
 
 struct Evaluation {
@@ -32,8 +32,8 @@ struct Evaluation {
     double frameMs = 0.0;          // median over the repeats of the sum of the passes
     FrameStats stats;              // of the checked render (counters)
     bool ssr = false, ssgi = false;
-    RayCheckTable ssrCheck, ssgiCheck;      // every sample's rays, errors sorted
-    RayCheckPlanes ssrPlanes, ssgiPlanes;   // sample 0, when settings.planes
+    RayCheckTable ssrCheck, ssgiCheck;     // every sample's rays, errors sorted
+    RayCheckPlanes ssrPlanes, ssgiPlanes;  // sample 0, when settings.planes
     ErrorTable error;
     double marchMraysPerSecond = 0.0;   // rays marched (both passes) / march time (medians)
     double embreeMraysPerSecond = 0.0;  // the same rays / Embree's traversal time

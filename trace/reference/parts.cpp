@@ -51,8 +51,9 @@ FrameParts frameParts(const Frame& frame) {
     const PlaneF* parts = frame.scratch.directParts;
     if (!(frame.has("ssr.R") || frame.has("ssgi.R")) || parts[0].width() != frame.width ||
         parts[0].height() != frame.height)
-        throw std::invalid_argument("frame parts: the frame has no direct parts (both trace "
-                                    "passes were off)");
+        throw std::invalid_argument(
+            "frame parts: the frame has no direct parts (both trace "
+            "passes were off)");
     FrameParts fp;
     // A pass that was off stands in as the composite has it: SSR off is opacity 0 (the sky's
     // specular alone), SSGI off is the sky's diffuse light.

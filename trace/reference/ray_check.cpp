@@ -13,18 +13,12 @@ namespace ssrt {
 
 std::string_view rayClassName(RayClass c) {
     switch (c) {
-        case RayClass::NoRay:
-            return "no_ray";
-        case RayClass::Agreed:
-            return "agreed";
-        case RayClass::FalseHit:
-            return "false_hit";
-        case RayClass::MissedOnScreen:
-            return "missed_on_screen";
-        case RayClass::TrueMiss:
-            return "true_miss";
-        case RayClass::OffScreenTruth:
-            return "offscreen_truth";
+        case RayClass::NoRay: return "no_ray";
+        case RayClass::Agreed: return "agreed";
+        case RayClass::FalseHit: return "false_hit";
+        case RayClass::MissedOnScreen: return "missed_on_screen";
+        case RayClass::TrueMiss: return "true_miss";
+        case RayClass::OffScreenTruth: return "offscreen_truth";
     }
     return "?";
 }
@@ -255,10 +249,8 @@ RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& cam, const
     // caller's trueT plane or a local one.
     PlaneF localT;
     PlaneF& trueT = planes ? planes->trueT : localT;
-    if (planes)
-        planes->ensureSize(cam.width, cam.height);
-    else
-        localT.ensureSize(cam.width, cam.height);
+    if (planes) planes->ensureSize(cam.width, cam.height);
+    else localT.ensureSize(cam.width, cam.height);
     RayCheckTable total;
     const auto t0 = Clock::now();
     total.embreeHits = traceAll(embree, cam, rays, settings.maxDistance, trueT, threads);

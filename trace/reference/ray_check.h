@@ -52,11 +52,11 @@ struct RayCheckSettings {
 
 // Counts and error distributions over every ray checked (several samples add up).
 struct RayCheckTable {
-    uint64_t rays = 0;                       // rays checked (pdf > 0)
+    uint64_t rays = 0;                             // rays checked (pdf > 0)
     std::array<uint64_t, kRayClassCount> count{};  // per RayClass (NoRay stays 0)
-    std::vector<float> pixelError;           // one per ray where both hit (sorted by finish())
-    std::vector<float> depthError;           // relative, same rays
-    double embreeSeconds = 0.0;              // wall clock of Embree's traversal alone
+    std::vector<float> pixelError;  // one per ray where both hit (sorted by finish())
+    std::vector<float> depthError;  // relative, same rays
+    double embreeSeconds = 0.0;     // wall clock of Embree's traversal alone
     uint64_t embreeHits = 0;
 
     void add(const RayCheckTable& other);  // combine (in a fixed order)
@@ -68,10 +68,10 @@ struct RayCheckTable {
 
 // Per-pixel results of one sample's check, planes of the frame's size.
 struct RayCheckPlanes {
-    PlaneF rayClass;     // RayClass as a float
-    PlaneF pixelError;   // where both hit, else 0 (inf stays inf)
-    PlaneF depthError;   // where both hit, else 0
-    PlaneF trueT;        // Embree's hit distance (0: no true hit)
+    PlaneF rayClass;    // RayClass as a float
+    PlaneF pixelError;  // where both hit, else 0 (inf stays inf)
+    PlaneF depthError;  // where both hit, else 0
+    PlaneF trueT;       // Embree's hit distance (0: no true hit)
     void ensureSize(int width, int height);
 };
 

@@ -66,7 +66,7 @@ struct Setup {
     explicit Setup(const Frame& f) : frame(f) {}
 };
 
-const char* const kGBuffer[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z", "albedo.R",
+const char* const kGBuffer[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z",  "albedo.R",
                                   "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
 
 void requireTraced(const Frame& frame, const RenderSettings& rs) {
@@ -202,7 +202,8 @@ void traceTile(const Setup& s, const RayBatch& rays, int tile, bool full, Use&& 
                     const glm::vec3 o(rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y));
                     const glm::vec3 d(rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y));
                     // The frame's ray, stepped off its surface (surfaceOffsets).
-                    org[n] = (cam + rotate(a.viewToWorld, o)) + s.offset[std::size_t(y) * a.width + x];
+                    org[n] =
+                        (cam + rotate(a.viewToWorld, o)) + s.offset[std::size_t(y) * a.width + x];
                     dir[n] = glm::normalize(rotate(a.viewToWorld, d));
                     out[n] = {x, y, dir[n], pdf, glm::vec3(0.0f)};
                     ++n;
@@ -274,8 +275,8 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
             const std::size_t i = std::size_t(y) * f.width + x;
             for (int c = 0; c < 3; ++c)
                 out[c].at(x, y) = !(viewZ.at(x, y) > 0.0f) ? 0.0f
-                                  : sums.w[i] > 0.0   ? float(sums.l[c][i] / sums.w[i])
-                                                      : envSpecular[c].at(x, y);
+                                  : sums.w[i] > 0.0        ? float(sums.l[c][i] / sums.w[i])
+                                                           : envSpecular[c].at(x, y);
         }
 }
 

@@ -74,7 +74,8 @@ glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
     const DirectArgs& a = *c.lighting;
     if (full) {
         const shade::Parts<float> p = shade::shadeSurface(a, s, vis);
-        // The direct pass's `color` order: ((sun + envDiffuse) + specWeight envSpecular) + emission.
+        // The direct pass's `color` order: ((sun + envDiffuse) + specWeight envSpecular) +
+        // emission.
         const V3f lit = (p.sun + p.envDiffuse) + p.specWeight * p.envSpecular;
         return toGlm(lit) + sp.emissive;
     }
