@@ -1,0 +1,60 @@
+// The renderer's settings: plain structs with defaults, immutable once a Renderer holds them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "core/isa.h"
+#include "trace/march.h"
+#include "trace/ray_gen.h"
+#include "trace/ssr_resolve.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+// The screen-space passes: specular reflections (SSR) and one-bounce diffuse (SSGI), each
+// `spp` rays per pixel marched through the depth buffer, resolved, and composited over the
+// direct light. With both off the frame is the direct pass alone (as before issue 5).
+struct TraceSettings {
+    bool ssr = true;
+    bool ssgi = true;
+    SsrMethod ssrMethod = SsrMethod::VndfBounded;  // how SSR rays sample the GGX lobe
+    Marcher marcher = Marcher::HiZ;                // used by both passes
+    int ssrSpp = 1;                                // rays per pixel, 1 to kMaxSpp
+    int ssgiSpp = 1;
+    MarchSettings march;         // its frame and sample are set per pass by the renderer
+    SsrResolveSettings resolve;  // hit radiance source, fades, mip or ray-reuse mode
+    // Rays also where the composite hides what they find: SSR where the roughness fade
+    // does (perceptual roughness >= resolve.roughnessFadeEnd: SSR opacity 0), as HDRP does
+    // not, and SSGI where the diffuse colour albedo (1 - metallic) is 0 (metals). Off: no
+    // ray there (RayGenStats::hidden); the composite is the same at those pixels (the
+    // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
+    // misses their rays.
+    bool traceHidden = false;
+
+    static constexpr int kMaxSpp = 64;
+    bool any() const { return ssr || ssgi; }
+    void validate() const;  // throws std::invalid_argument naming the field
+};
+
+struct RenderSettings {
+    int width = 1280;
+    int height = 720;
+    int threads = 0;               // worker threads; 0 = every core
+    std::optional<Isa> isa;        // nullopt: best the CPU runs (or $SSRT_ISA)
+    int shadowMapSize = 2048;      // texels per side
+    float shadowBias = 1.5f;       // constant depth bias, in shadow-map texels of depth
+    float shadowSlopeBias = 2.0f;  // extra bias per unit of tan(angle to the light), texels
+    int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
+    float exposure = 1.0f;         // scale on linear radiance before the tone map
+    uint32_t frame = 0;            // frame index (feeds the counter-based RNG)
+    bool idPlanes = true;          // also hand out instanceId and triangleId float planes
+    TraceSettings trace;           // SSR and SSGI (on by default)
+
+    // Throws std::invalid_argument with a one-line message naming the bad field.
+    void validate() const;
+};
+
+inline constexpr int kMaxImageSize = 8192;  // per side; the fixed-point budget in raster/
+
+}  // namespace ssrt
