@@ -89,15 +89,15 @@ void printErrors(std::ostream& out, const ErrorTable& e) {
 void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation& ev) {
     const char* suffix[3] = {".R", ".G", ".B"};
     for (int c = 0; c < 3; ++c) {
-        frame.planes.push_back({std::string("ref.color") + suffix[c], ref.color[c].clone()});
-        frame.planes.push_back({std::string("ref.ssr") + suffix[c], ref.ssr[c].clone()});
-        frame.planes.push_back({std::string("ref.ssgi") + suffix[c], ref.ssgi[c].clone()});
+        frame.extraLayers.push_back({std::string("ref.color") + suffix[c], ref.color[c].clone()});
+        frame.extraLayers.push_back({std::string("ref.ssr") + suffix[c], ref.ssr[c].clone()});
+        frame.extraLayers.push_back({std::string("ref.ssgi") + suffix[c], ref.ssgi[c].clone()});
     }
     const auto checks = [&](const char* base, const RayCheckPlanes& p) {
         if (p.rayClass.width() != frame.width) return;  // the pass did not run
-        frame.planes.push_back({std::string(base) + ".class", p.rayClass.clone()});
-        frame.planes.push_back({std::string(base) + ".pixelError", p.pixelError.clone()});
-        frame.planes.push_back({std::string(base) + ".depthError", p.depthError.clone()});
+        frame.extraLayers.push_back({std::string(base) + ".class", p.rayClass.clone()});
+        frame.extraLayers.push_back({std::string(base) + ".pixelError", p.pixelError.clone()});
+        frame.extraLayers.push_back({std::string(base) + ".depthError", p.depthError.clone()});
     };
     if (ev.ssr) checks("ssrCheck", ev.ssrPlanes);
     if (ev.ssgi) checks("ssgiCheck", ev.ssgiPlanes);
@@ -204,8 +204,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     if (o.output) checkWritable(*o.output);
     loadScene(request);
     const Scene& scene = request.scene;
-    Camera previous;
-    const Camera camera = requestCamera(request, previous);
+    const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
     if (progress)
         *progress << "comparing " << request.name << " " << settings.width << "x" << settings.height
@@ -216,14 +215,13 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const ReferenceSource source = referenceSourceFrom(o.truth, err);
     bool fromCache = false;
     const ReferenceImage reference =
-        referenceFor(embree, scene, camera, previous, settings, refSettings, source, fromCache);
+        referenceFor(embree, scene, input, settings, refSettings, source, fromCache);
     if (progress)
         *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
                   << refSettings.spp << " spp)\n";
 
     Frame frame;
-    const Evaluation ev =
-        evaluate(embree, scene, camera, previous, settings, reference, evalSettings, frame);
+    const Evaluation ev = evaluate(embree, scene, input, settings, reference, evalSettings, frame);
     out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
         << marcherName(settings.trace.marcher) << ", ssr "
         << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +

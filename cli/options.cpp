@@ -239,7 +239,7 @@ void addSceneOptions(CLI::App& command, RenderOptions& o, const RenderSettings& 
     addShotOption("--frame", o.frame, "INT",
                   "Frame index (seeds the per-pixel random numbers); of a sequence's first frame, "
                   "frame i getting this + i",
-                  std::to_string(d.frame));
+                  "0");
 }
 
 std::vector<std::string> splitList(const std::string& option, const std::string& text) {
@@ -264,6 +264,8 @@ SceneRequest loadSceneRequest(const RenderOptions& o, const RenderSettings& defa
         applyShot(*r.shot, base);
     }
     r.settings = settingsFrom(o, base);
+    if (r.shot && r.shot->render.frame) r.firstFrame = *r.shot->render.frame;
+    if (o.frame) r.firstFrame = uint32_t(parseInteger("--frame", *o.frame, 0, kMaxFrame));
     r.name = defaultSceneName();
     if (o.scene) {
         checkSceneName(*o.scene);
@@ -287,13 +289,16 @@ void loadScene(SceneRequest& r) {
     }
 }
 
-Camera requestCamera(const SceneRequest& r, Camera& previous) {
+FrameInput requestInput(const SceneRequest& r) {
+    FrameInput in;
+    in.frameIndex = r.firstFrame;
     if (r.path.empty()) {
-        previous = r.scene.previousCamera;
-        return r.scene.camera;
+        in.camera = r.scene.camera;
+        in.previousCamera = r.scene.previousCamera;
+    } else {
+        in.camera = in.previousCamera = r.path.at(r.path.frameTime(0, 1), r.scene.camera);
     }
-    previous = r.path.at(r.path.frameTime(0, 1), r.scene.camera);
-    return previous;
+    return in;
 }
 
 }  // namespace ssrt::cli

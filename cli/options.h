@@ -72,7 +72,8 @@ void traceSettingsFrom(const RenderOptions& options, TraceSettings& trace);
 struct SceneRequest {
     std::optional<Shot> shot;
     RenderSettings settings;
-    std::string name;  // built-in scene or glTF file
+    std::string name;         // built-in scene or glTF file
+    uint32_t firstFrame = 0;  // FrameInput::frameIndex of the first frame (--frame, the shot)
     Isa isa = Isa::Scalar;
     Scene scene;      // after loadScene
     CameraPath path;  // the shot's camera path (empty: the scene's still camera)
@@ -82,8 +83,9 @@ struct SceneRequest {
 SceneRequest loadSceneRequest(const RenderOptions& options, const RenderSettings& defaults = {});
 // Loads the scene (glTF, shot's light, sky image, camera path); throws on a bad file.
 void loadScene(SceneRequest& request);
-// The camera of a single-frame command (compare, sweep): the path's first key, or the
-// scene's camera; previous = the scene's previous camera without a path, else itself.
-Camera requestCamera(const SceneRequest& request, Camera& previous);
+// The input of a single-frame command (compare, sweep): the first frame index, the path's
+// first key or the scene's camera; previous = the scene's previous camera without a path,
+// else the camera itself.
+FrameInput requestInput(const SceneRequest& request);
 
 }  // namespace ssrt::cli

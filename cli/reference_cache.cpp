@@ -55,13 +55,15 @@ bool readCached(const std::string& path, int width, int height, ReferenceImage& 
 
 void writeCached(const std::string& path, const ReferenceImage& ref) {
     fs::create_directories(fs::path(path).parent_path());
-    Frame f;
-    f.width = ref.color[0].width();
-    f.height = ref.color[0].height();
+    ImageLayers image{ref.color[0].width(), ref.color[0].height(), {}};
+    std::vector<std::string> names;  // kept alive while image.layers view them
+    names.reserve(std::size(kGroups) * 3);
     for (const RefPlane& g : kGroups)
-        for (int c = 0; c < 3; ++c)
-            f.planes.push_back({std::string(g.name) + kSuffix[c], (ref.*g.group)[c].clone()});
-    writeImage(path, f);  // whole or not at all (a temporary renamed over the target)
+        for (int c = 0; c < 3; ++c) {
+            names.push_back(std::string(g.name) + kSuffix[c]);
+            image.layers.push_back({names.back(), &(ref.*g.group)[c]});
+        }
+    writeImage(path, image);  // whole or not at all (a temporary renamed over the target)
 }
 
 }  // namespace
@@ -75,12 +77,11 @@ std::string defaultCacheDir() {
     return {};
 }
 
-ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
-                            const Camera& previousCamera, const RenderSettings& settings,
-                            const ReferenceSettings& reference, const ReferenceSource& source,
-                            bool& fromCache) {
+ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                            const RenderSettings& settings, const ReferenceSettings& reference,
+                            const ReferenceSource& source, bool& fromCache) {
     fromCache = false;
-    const uint64_t key = referenceKey(scene, camera, settings, reference);
+    const uint64_t key = referenceKey(scene, input.camera, input.frameIndex, settings, reference);
     const std::string path = source.cacheDir ? cachePath(*source.cacheDir, key) : std::string();
     ReferenceImage ref;
     if (!path.empty() && readCached(path, settings.width, settings.height, ref)) {
@@ -92,7 +93,7 @@ ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const
     base.trace.ssr = base.trace.ssgi = true;
     const Renderer renderer(base);
     Frame frame;
-    renderer.render(scene, camera, previousCamera, frame);
+    renderer.renderWithoutHistory(scene, input, frame);
     std::mutex mutex;
     int lastPercent = -1;
     const Progress progress = [&](double fraction) {

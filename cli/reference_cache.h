@@ -25,9 +25,8 @@ struct ReferenceSource {
 // The reference for `settings` (its trace settings' SSR sampler and frame index; both trace
 // passes are turned on for the frame it is rendered over). `fromCache` tells where it came
 // from. A cache file that cannot be read or does not match is rendered again and replaced.
-ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
-                            const Camera& previousCamera, const RenderSettings& settings,
-                            const ReferenceSettings& reference, const ReferenceSource& source,
-                            bool& fromCache);
+ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                            const RenderSettings& settings, const ReferenceSettings& reference,
+                            const ReferenceSource& source, bool& fromCache);
 
 }  // namespace ssrt::cli

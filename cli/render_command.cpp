@@ -107,7 +107,6 @@ RenderSettings settingsFrom(const RenderOptions& o, const RenderSettings& base) 
         s.shadowMapSize =
             int(parseInteger("--shadow-map-size", *o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
     if (o.exposure) s.exposure = parsePositive("--exposure", *o.exposure);
-    if (o.frame) s.frame = uint32_t(parseInteger("--frame", *o.frame, 0, kMaxFrame));
     traceSettingsFrom(o, s.trace);
     s.validate();
     return s;
@@ -133,8 +132,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const std::optional<Shot>& shot = request.shot;
     int frames = shot && shot->render.frames ? *shot->render.frames : 1;
     if (o.frames) frames = int(parseInteger("--frames", *o.frames, 1, kMaxShotFrames));
-    if (settings.frame + uint64_t(frames - 1) > uint64_t(kMaxFrame))
-        throw std::invalid_argument("--frame: " + std::to_string(settings.frame) + " + " +
+    if (request.firstFrame + uint64_t(frames - 1) > uint64_t(kMaxFrame))
+        throw std::invalid_argument("--frame: " + std::to_string(request.firstFrame) + " + " +
                                     std::to_string(frames) + " frames passes " +
                                     std::to_string(kMaxFrame));
     checkWritable(sequenceFileName(o.output, 0, frames));
@@ -148,23 +147,24 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
     }
 
-    // One Frame for the whole sequence: its planes and scratch buffers are reused. Frame i
-    // looks from the path at frameTime(i, frames) and its previous camera is frame i - 1's
-    // (frame 0's is itself), so motion vectors follow the path.
+    // One Renderer, one Frame and one history for the whole sequence: planes and scratch
+    // buffers are reused. Frame i looks from the path at frameTime(i, frames) and its previous
+    // camera is frame i - 1's (frame 0's is itself), so motion vectors follow the path.
+    const Renderer renderer(settings);
     Frame frame;
-    Camera previous;
+    FrameHistory history;
+    FrameInput input;
     for (int i = 0; i < frames; ++i) {
         const Camera camera =
             path.empty() ? scene.camera : path.at(path.frameTime(i, frames), scene.camera);
-        const Camera& previousCamera =
-            i > 0 ? previous : (path.empty() ? scene.previousCamera : camera);
-        RenderSettings frameSettings = settings;
-        frameSettings.frame = settings.frame + uint32_t(i);
+        input.previousCamera =
+            i > 0 ? input.camera : (path.empty() ? scene.previousCamera : camera);
+        input.camera = camera;
+        input.frameIndex = request.firstFrame + uint32_t(i);
         const auto start = std::chrono::steady_clock::now();
-        Renderer(frameSettings).render(scene, camera, previousCamera, frame);
+        renderer.render(scene, input, history, frame);
         const std::chrono::duration<double, std::milli> wall =
             std::chrono::steady_clock::now() - start;
-        previous = camera;
 
         const std::string file = sequenceFileName(o.output, i, frames);
         writeImage(file, frame);

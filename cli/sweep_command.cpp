@@ -286,8 +286,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     checkCsvPath(o.output);
     loadScene(request);
     const Scene& scene = request.scene;
-    Camera previous;
-    const Camera camera = requestCamera(request, previous);
+    const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
     if (progress)
         *progress << "sweeping " << request.name << " " << request.settings.width << "x"
@@ -315,10 +314,10 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         bool fromCache = false;
         RenderSettings refRender = settings[i];
         if (!points[i].traced) refRender.trace = request.settings.trace;
-        const ReferenceImage reference = referenceFor(embree, scene, camera, previous, refRender,
-                                                      refSettings, source, fromCache);
+        const ReferenceImage reference =
+            referenceFor(embree, scene, input, refRender, refSettings, source, fromCache);
         const Evaluation ev =
-            evaluate(embree, scene, camera, previous, settings[i], reference, evalSettings, frame);
+            evaluate(embree, scene, input, settings[i], reference, evalSettings, frame);
         csv << csvRow(request.name, settings[i], points[i], refSettings.spp, ev) << "\n";
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific

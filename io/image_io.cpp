@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+#include <string_view>
 
 #include "scenes/texture.h"  // srgbToLinear
 #include "shading/environment.h"
@@ -115,30 +116,31 @@ fs::path reserveTemporary(const std::string& path, const std::string& ext) {
 
 constexpr const char* kDisplayPlanes[] = {"display.R", "display.G", "display.B"};
 
-const PlaneF* findPlane(const Frame& frame, const std::string& name) {
-    for (const NamedPlane& p : frame.planes)
-        if (p.name == name) return &p.plane;
+const PlaneF* findPlane(const ImageLayers& image, std::string_view name) {
+    for (const PlaneRef& p : image.layers)
+        if (p.name == name) return p.plane;
     return nullptr;
 }
 
 // Every plane must match the frame size and carry a unique, non-empty name; a PNG preview
 // needs the display planes.
-void checkFrame(const std::string& path, const Frame& frame, const std::string& ext) {
+void checkFrame(const std::string& path, const ImageLayers& image, const std::string& ext) {
     const auto fail = [&](const std::string& why) {
         throw std::invalid_argument("cannot write '" + path + "': " + why);
     };
-    if (frame.width <= 0 || frame.height <= 0) fail("the frame is empty");
-    if (frame.planes.empty()) fail("the frame has no planes");
-    std::set<std::string> seen;
-    for (const NamedPlane& p : frame.planes) {
-        if (p.name.empty()) fail("a plane has no name");
-        if (!seen.insert(p.name).second) fail("two planes are named '" + p.name + "'");
-        if (p.plane.width() != frame.width || p.plane.height() != frame.height)
-            fail("plane '" + p.name + "' is not the size of the frame");
+    if (image.width <= 0 || image.height <= 0) fail("the frame is empty");
+    if (image.layers.empty()) fail("the frame has no planes");
+    std::set<std::string_view> seen;
+    for (const PlaneRef& p : image.layers) {
+        const std::string name(p.name);
+        if (name.empty()) fail("a plane has no name");
+        if (!seen.insert(p.name).second) fail("two planes are named '" + name + "'");
+        if (p.plane->width() != image.width || p.plane->height() != image.height)
+            fail("plane '" + name + "' is not the size of the frame");
     }
     if (ext != ".png") return;
     for (const char* name : kDisplayPlanes)
-        if (!findPlane(frame, name)) fail(std::string("the frame has no '") + name + "' plane");
+        if (!findPlane(image, name)) fail(std::string("the frame has no '") + name + "' plane");
 }
 
 // round(clamp(v, 0, 1) * 255); the comparisons are written so that NaN lands on 0.
@@ -174,22 +176,22 @@ void writeScanlines(const std::string& path, const fs::path& tmp, const OIIO::Im
     if (!out->close()) failWrite(path, out->geterror());
 }
 
-void writePng(const std::string& path, const fs::path& tmp, const Frame& frame) {
+void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
     std::vector<const PlaneF*> planes;
-    for (const char* name : kDisplayPlanes) planes.push_back(findPlane(frame, name));
-    OIIO::ImageSpec spec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8);
+    for (const char* name : kDisplayPlanes) planes.push_back(findPlane(image, name));
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("Software", "ssrt");
     writeScanlines(path, tmp, spec, planes, true);
 }
 
-void writeExr(const std::string& path, const fs::path& tmp, const Frame& frame) {
+void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
     std::vector<const PlaneF*> planes;
-    OIIO::ImageSpec spec(frame.width, frame.height, int(frame.planes.size()),
+    OIIO::ImageSpec spec(image.width, image.height, int(image.layers.size()),
                          OIIO::TypeDesc::FLOAT);
     spec.channelnames.clear();
-    for (const NamedPlane& p : frame.planes) {
-        spec.channelnames.push_back(p.name);
-        planes.push_back(&p.plane);
+    for (const PlaneRef& p : image.layers) {
+        spec.channelnames.emplace_back(p.name);
+        planes.push_back(p.plane);
     }
     // The constructor guessed RGBA; our fourth plane is not alpha and none is "Z" depth.
     spec.alpha_channel = -1;
@@ -221,6 +223,10 @@ void checkWritable(const std::string& path) {
 }
 
 void writeImage(const std::string& path, const Frame& frame) {
+    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers()});
+}
+
+void writeImage(const std::string& path, const ImageLayers& frame) {
     const std::string ext = checkedExtension(path);
     checkFrame(path, frame, ext);
     checkDirectory(path);

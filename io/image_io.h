@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/renderer.h"
+#include "renderer/frame.h"
+#include "scenes/scene.h"
 
 namespace ssrt {
 
@@ -19,7 +20,15 @@ namespace ssrt {
 // renamed over it only on success. Throws std::invalid_argument for an unsupported extension
 // or a frame without the planes the format needs, std::runtime_error (one line, naming the
 // path and the reason) when the file cannot be written.
+// The frame's layers (Frame::layers()).
 void writeImage(const std::string& path, const Frame& frame);
+
+// Planes of one size with their names, as files hold them.
+struct ImageLayers {
+    int width = 0, height = 0;
+    std::vector<PlaneRef> layers;  // in file order
+};
+void writeImage(const std::string& path, const ImageLayers& image);
 
 // Fails fast, before minutes of rendering, for a path writeImage would reject: throws
 // std::invalid_argument for an unsupported extension and std::runtime_error when the

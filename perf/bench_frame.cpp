@@ -29,10 +29,10 @@ void BM_Frame(benchmark::State& state) {
     rs.trace.traceHidden = state.range(3) != 0;
     const Renderer r(rs);
     Frame f;  // reused: no allocation after the first frame
-    r.render(scene, scene.camera, scene.previousCamera, f);
+    r.renderWithoutHistory(scene, FrameInput::still(scene), f);
     std::map<std::string, double> passMs;
     for (auto _ : state) {
-        r.render(scene, scene.camera, scene.previousCamera, f);
+        r.renderWithoutHistory(scene, FrameInput::still(scene), f);
         for (const PassTime& p : f.stats.passes) passMs[p.name] += p.ms;
     }
     for (const auto& [name, ms] : passMs)

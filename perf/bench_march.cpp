@@ -52,7 +52,7 @@ void marchBench(benchmark::State& state, std::string scene, Marcher marcher,
     MarchResult result;
     MarchStats stats;
     for (auto _ : state) {
-        stats = marchRays(isa, marcher, settings, w.g.camera, w.g.view(),
+        stats = marchRays(isa, marcher, settings, {}, w.g.camera, w.g.view(),
                           marcher == Marcher::HiZ ? &w.hiz : nullptr, w.rays[int(kind)], result,
                           threads);
         benchmark::DoNotOptimize(result.hit.row(0));

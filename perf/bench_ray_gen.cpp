@@ -29,7 +29,7 @@ struct GBuffer {
         rs.height = kH;
         rs.threads = 2;
         rs.shadowMapSize = 512;
-        frame = Renderer(rs).render(scene);
+        frame = Renderer(rs).renderWithoutHistory(scene);
         camera.width = kW;
         camera.height = kH;
         camera.tanHalfY = std::tan(glm::radians(scene.camera.fovY) * 0.5f);
@@ -38,9 +38,9 @@ struct GBuffer {
         std::copy_n(glm::value_ptr(viewToWorld), 9, camera.viewToWorld);
     }
     RayGenGBuffer g() const {
-        return {&frame.plane("viewZ"),
-                {&frame.plane("normal.X"), &frame.plane("normal.Y"), &frame.plane("normal.Z")},
-                &frame.plane("roughness")};
+        return {&frame.gbuffer.viewZ,
+                {&frame.gbuffer.normal[0], &frame.gbuffer.normal[1], &frame.gbuffer.normal[2]},
+                &frame.gbuffer.roughness};
     }
 };
 

@@ -192,11 +192,11 @@ Workload& workload(const std::string& name) {
     rs.shadowMapSize = 256;
     rs.idPlanes = false;
     rs.trace.ssr = rs.trace.ssgi = false;
-    const Frame f = Renderer(rs).render(w->scene);
-    w->viewZ = f.plane("viewZ").clone();
+    const Frame f = Renderer(rs).renderWithoutHistory(w->scene);
+    w->viewZ = f.gbuffer.viewZ.clone();
     const char* n[3] = {"normal.X", "normal.Y", "normal.Z"};
     for (int c = 0; c < 3; ++c) w->normal[c] = f.plane(n[c]).clone();
-    w->roughness = f.plane("roughness").clone();
+    w->roughness = f.gbuffer.roughness.clone();
     // The camera as renderer.cpp builds it.
     const Camera& cam = w->scene.camera;
     TraceCamera& tc = w->camera;
@@ -313,7 +313,7 @@ void marcherBench(benchmark::State& state, std::string scene, SsrMethod method, 
         if (marcher == Marcher::HiZ) buildHiZ(w.viewZ, hiz, threads);
         hizSec += secondsSince(t0);
         t0 = Clock::now();
-        stats = marchRays(isa, marcher, settings, w.camera, w.march(),
+        stats = marchRays(isa, marcher, settings, {}, w.camera, w.march(),
                           marcher == Marcher::HiZ ? &hiz : nullptr, k.rays, result, threads);
         const double marchIter = secondsSince(t0);
         marchSec += marchIter;

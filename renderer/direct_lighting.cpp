@@ -47,4 +47,12 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.exposure = s.exposure;
 }
 
+void setDirectGBuffer(const GBuffer& g, DirectArgs& a) {
+    const PlaneF* const planes[10] = {&g.viewZ,     &g.normal[0], &g.normal[1], &g.normal[2],
+                                      &g.albedo[0], &g.albedo[1], &g.albedo[2], &g.metallic,
+                                      &g.roughness, &g.materialId};
+    for (int i = 0; i < 10; ++i) a.g[i] = planes[i]->row(0);
+    a.gStride = g.viewZ.stride();
+}
+
 }  // namespace ssrt

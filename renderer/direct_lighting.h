@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "raster/shadow_map.h"
-#include "renderer/renderer.h"
+#include "renderer/frame.h"
+#include "renderer/settings.h"
 #include "renderer/sky_lighting.h"
+#include "scenes/scene.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
@@ -30,5 +32,9 @@ struct DirectLighting {
 // Camera, G-buffer, outputs, parts and compensation are the caller's.
 void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
                        std::shared_ptr<const SkyLighting> sky, DirectLighting& out);
+
+// Points args.g and args.gStride at the G-buffer, in the kernel's order (viewZ, normal XYZ,
+// albedo RGB, metallic, roughness, materialId).
+void setDirectGBuffer(const GBuffer& gbuffer, DirectArgs& args);
 
 }  // namespace ssrt

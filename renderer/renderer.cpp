@@ -3,10 +3,10 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <memory>
 #include <stdexcept>
 
 #include "core/tiles.h"
@@ -14,6 +14,8 @@
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
 #include "renderer/direct_lighting.h"
+#include "renderer/pass_timer.h"
+#include "renderer/resolve_tables.h"
 #include "renderer/sky_lighting.h"
 #include "renderer/texture_pass.h"
 #include "renderer/trace_pass.h"
@@ -23,383 +25,288 @@ namespace ssrt {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+// What every pass of one frame shares.
+struct FrameContext {
+    const RenderSettings& settings;
+    const Camera& camera;
+    Isa isa;
+    int threads;
+    TileGrid grid;
+    glm::mat4 view, proj, prevViewProj;
+    float tanHalfX, tanHalfY;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
 
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-// Per-triangle ray-plane and barycentric set-up in view space, and world-space normals per
-// vertex, for the resolve kernel.
-struct ResolveTables {
-    std::vector<ResolveTriangle> triangles;
-    std::vector<ResolveInstance> instances;
-    std::vector<float> nx, ny, nz;
-    std::vector<float> u, v;  // texture coordinates per vertex, only for textured scenes
+    FrameContext(const RenderSettings& s, const FrameInput& input)
+        : settings(s),
+          camera(input.camera),
+          isa(resolveIsa(s.isa)),
+          threads(s.threads),
+          grid(s.width, s.height) {
+        const float aspect = float(s.width) / float(s.height);
+        view = camera.view();
+        proj = camera.projection(aspect);
+        prevViewProj = input.previousCamera.projection(aspect) * input.previousCamera.view();
+        tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
+        tanHalfX = tanHalfY * aspect;
+    }
+    RasterOptions raster() const {
+        RasterOptions ro;
+        ro.isa = isa;
+        ro.threads = threads;
+        return ro;
+    }
 };
 
-bool anyTextured(const Scene& scene) {
-    return std::any_of(scene.materials.begin(), scene.materials.end(),
-                       [](const Material& m) { return m.textured(); });
-}
-
-ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
-                                const glm::mat4& prevViewProj) {
-    const Material& m = scene.materials[inst.material];
-    ResolveInstance r;
-    r.albedo[0] = m.baseColor.r;
-    r.albedo[1] = m.baseColor.g;
-    r.albedo[2] = m.baseColor.b;
-    r.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
-    r.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
-    r.materialId = float(inst.material);
-    // current view -> world -> object (current) -> world (previous) -> previous clip
-    const glm::mat4 toPrev =
-        prevViewProj * inst.previousTransform * glm::inverse(inst.transform) * glm::inverse(view);
-    std::copy_n(glm::value_ptr(toPrev), 16, r.viewToPrevClip);
-    return r;
-}
-
-// Runs fn(instance, first, end) over chunks of [0, count(instance)) for every instance, so
-// that one big mesh still spreads over every thread.
-template <class CountFn, class Fn>
-void forInstanceChunks(std::size_t instances, int threads, CountFn count, Fn fn) {
-    constexpr uint32_t kChunk = 4096;
-    std::vector<std::pair<uint32_t, uint32_t>> work;  // (instance, first)
-    for (uint32_t i = 0; i < instances; ++i)
-        for (uint32_t first = 0; first < count(i); first += kChunk) work.push_back({i, first});
-    parallelFor(int(work.size()), threads, [&](int w) {
-        const auto [i, first] = work[w];
-        fn(i, first, std::min<uint32_t>(count(i), first + kChunk));
-    });
-}
-
-ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
-                                 const glm::mat4& prevViewProj, bool textured, int threads) {
-    ResolveTables t;
-    std::vector<uint32_t> vertexOffset, triOffset;
-    uint32_t nv = 0, nt = 0;
-    for (const Instance& inst : scene.instances) {
-        vertexOffset.push_back(nv);
-        triOffset.push_back(nt);
-        nv += uint32_t(scene.meshes[inst.mesh].positions.size());
-        nt += uint32_t(scene.meshes[inst.mesh].triangleCount());
-        t.instances.push_back(resolveInstance(scene, inst, view, prevViewProj));
-    }
-    t.triangles.resize(nt);
-    t.nx.resize(nv);
-    t.ny.resize(nv);
-    t.nz.resize(nv);
-    if (textured) {
-        t.u.resize(nv);
-        t.v.resize(nv);
-    }
-    std::vector<glm::vec3> viewPos(nv);
-    auto meshOf = [&](uint32_t i) -> const Mesh& { return scene.meshes[scene.instances[i].mesh]; };
-    // View-space positions and world-space unit normals per vertex.
-    forInstanceChunks(
-        scene.instances.size(), threads,
-        [&](uint32_t i) { return uint32_t(meshOf(i).positions.size()); },
-        [&](uint32_t i, uint32_t first, uint32_t end) {
-            const Instance& inst = scene.instances[i];
-            const Mesh& mesh = meshOf(i);
-            const glm::mat4 modelView = view * inst.transform;
-            const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(inst.transform));
-            for (uint32_t v = first; v < end; ++v) {
-                const uint32_t g = vertexOffset[i] + v;
-                viewPos[g] = glm::vec3(modelView * glm::vec4(mesh.positions[v], 1.0f));
-                glm::vec3 n = normalMatrix * mesh.normals[v];
-                const float len = glm::length(n);
-                n = std::isfinite(len) && len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
-                t.nx[g] = n.x;
-                t.ny[g] = n.y;
-                t.nz[g] = n.z;
-                if (textured) {
-                    const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
-                    t.u[g] = uv.x;
-                    t.v[g] = uv.y;
-                }
-            }
-        });
-    // Ray-plane and barycentric set-up per triangle.
-    forInstanceChunks(
-        scene.instances.size(), threads,
-        [&](uint32_t i) { return uint32_t(meshOf(i).triangleCount()); },
-        [&](uint32_t i, uint32_t first, uint32_t end) {
-            const Mesh& mesh = meshOf(i);
-            const glm::vec3* pv = viewPos.data() + vertexOffset[i];
-            for (uint32_t k = first; k < end; ++k) {
-                const uint32_t* idx = &mesh.indices[3 * k];
-                const glm::vec3 p0 = pv[idx[0]], e1 = pv[idx[1]] - p0, e2 = pv[idx[2]] - p0;
-                const glm::vec3 n = glm::cross(e1, e2);
-                const float nn = glm::dot(n, n);
-                ResolveTriangle& r = t.triangles[triOffset[i] + k];
-                r = ResolveTriangle{};
-                r.instance = i;
-                r.localTriangle = k;
-                for (int c = 0; c < 3; ++c) r.v[c] = vertexOffset[i] + idx[c];
-                if (!(nn > 0.0f) || !std::isfinite(nn)) continue;  // never rasterized
-                const glm::vec3 un = n / std::sqrt(nn);
-                const glm::vec3 g1 = glm::cross(e2, n) / nn, g2 = glm::cross(n, e1) / nn;
-                for (int c = 0; c < 3; ++c) {
-                    r.p0[c] = p0[c];
-                    r.n[c] = un[c];
-                    r.g1[c] = g1[c];
-                    r.g2[c] = g2[c];
-                }
-                r.d = glm::dot(un, p0);
-            }
-        });
-    return t;
-}
-
-// Output planes, in the order the frame lists them.
-enum PlaneIndex {
-    kColorR,
-    kColorG,
-    kColorB,
-    kDisplayR,
-    kDisplayG,
-    kDisplayB,
-    kShadow,
-    kViewZ,
-    kNormalX,
-    kNormalY,
-    kNormalZ,
-    kAlbedoR,
-    kAlbedoG,
-    kAlbedoB,
-    kMetallic,
-    kRoughness,
-    kMaterialId,
-    kMotionX,
-    kMotionY,
-    kInstanceId,
-    kTriangleId,
-    kPlaneCount
-};
-const char* const kPlaneNames[kPlaneCount] = {
-    "color.R",  "color.G",   "color.B",    "display.R", "display.G", "display.B",  "shadow",
-    "viewZ",    "normal.X",  "normal.Y",   "normal.Z",  "albedo.R",  "albedo.G",   "albedo.B",
-    "metallic", "roughness", "materialId", "motion.X",  "motion.Y",  "instanceId", "triangleId"};
-
-// Gives the frame its planes, keeping the existing ones when names and sizes match. Every
-// pixel of every plane is written by a pass, so none is cleared here.
-void ensurePlanes(Frame& f, int w, int h, bool idPlanes, const TraceSettings& trace) {
-    std::vector<const char*> names(kPlaneNames,
-                                   kPlaneNames + (idPlanes ? kPlaneCount : kInstanceId));
-    for (const char* n : tracePlaneNames(trace)) names.push_back(n);
-    bool same = f.planes.size() == names.size();
-    for (std::size_t i = 0; same && i < names.size(); ++i)
-        same = f.planes[i].name == names[i] && f.planes[i].plane.width() == w &&
-               f.planes[i].plane.height() == h;
-    if (same) return;
-    f.planes.clear();
-    for (const char* n : names) f.planes.push_back({n, PlaneF(w, h, kUninitialized)});
-}
-
-void writeIdPlanes(const std::vector<ResolveTriangle>& tris, const PlaneU32& ids, PlaneF& instance,
-                   PlaneF& triangle, const TileGrid& grid, int threads) {
-    parallelForTiles(grid.count(), threads, [&](int tile) {
-        const TileRect r = grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) {
-                const uint32_t id = ids.at(x, y);
-                const bool hit = id != kNoPrimitive;
-                instance.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
-                triangle.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
-            }
-    });
-}
-
-}  // namespace
-
-const PlaneF& Frame::plane(std::string_view name) const {
-    for (const NamedPlane& p : planes)
-        if (p.name == name) return p.plane;
-    throw std::out_of_range("frame has no plane '" + std::string(name) + "'");
-}
-
-bool Frame::has(std::string_view name) const {
-    for (const NamedPlane& p : planes)
-        if (p.name == name) return true;
-    return false;
-}
-
-Renderer::Renderer(RenderSettings settings) : settings_(settings) { settings_.validate(); }
-
-Frame Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera) const {
-    Frame frame;
-    render(scene, camera, prevCamera, frame);
-    return frame;
-}
-
-void Renderer::render(const Scene& scene, const Camera& camera, const Camera& prevCamera,
-                      Frame& frame, const TraceObserver* observer) const {
-    scene.validate();
-    const RenderSettings& s = settings_;
-    const Isa isa = resolveIsa(s.isa);
-    const int threads = s.threads;
+// The frame's planes at this size, kept when they already are; the groups the settings leave
+// out are emptied. Every pixel of every plane is written by a pass, so none is cleared here.
+void ensurePlanes(const RenderSettings& s, Frame& f) {
     const int w = s.width, h = s.height;
-    const float aspect = float(w) / float(h);
-    const glm::mat4 view = camera.view(), proj = camera.projection(aspect);
-    const glm::mat4 prevViewProj = prevCamera.projection(aspect) * prevCamera.view();
-
-    frame.width = w;
-    frame.height = h;
-    frame.stats = FrameStats{};
-    frame.stats.isa = isa;
-    frame.stats.threads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-    auto pass = [&](const char* name, Clock::time_point t0) {
-        frame.stats.passes.push_back({name, msSince(t0)});
+    f.width = w;
+    f.height = h;
+    f.image.ensureSize(w, h);
+    f.gbuffer.ensureSize(w, h);
+    const auto keepIf = [&](bool on, auto& group) {
+        if (on) group.ensureSize(w, h);
+        else group.release();
     };
-    RasterOptions ro;
-    ro.isa = isa;
-    ro.threads = threads;
+    keepIf(s.idPlanes, f.ids);
+    keepIf(s.trace.ssr, f.trace.ssr);
+    keepIf(s.trace.ssgi, f.trace.ssgi);
+    keepIf(s.trace.any(), f.direct);
+    if (!s.trace.ssgi)
+        for (PlaneF& p : f.direct.hitLight) p = PlaneF();
+}
 
-    // Shadow map of the directional light.
-    auto t0 = Clock::now();
-    ShadowMap& shadow = frame.scratch.shadow;
-    renderShadowMap(scene, s.shadowMapSize, ro, shadow, frame.stats.shadow);
-    pass("shadow", t0);
+void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {
+    const ScopedPass timer(frame.stats, "shadow");
+    renderShadowMap(scene, c.settings.shadowMapSize, c.raster(), frame.scratch.shadow,
+                    frame.stats.shadow);
+}
 
-    // Visibility: depth and triangle ids.
-    t0 = Clock::now();
+// Depth and triangle ids; "geometry" is the vertex transform and set-up around the raster.
+void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
+    const auto t0 = PassClock::now();
     RasterView rv;
-    rv.viewProj = proj * view;
-    rv.width = w;
-    rv.height = h;
-    rv.nearW = camera.nearZ;
-    const TransformedVertices tv = transformVertices(scene, rv, threads);
-    ro.clearDepth = 1.0f / camera.farZ;
+    rv.viewProj = c.proj * c.view;
+    rv.width = c.grid.width;
+    rv.height = c.grid.height;
+    rv.nearW = c.camera.nearZ;
+    const TransformedVertices tv = transformVertices(scene, rv, c.threads);
+    RasterOptions ro = c.raster();
+    ro.clearDepth = 1.0f / c.camera.farZ;
     RasterTimes rt;
-    VisibilityBuffer& vb = frame.scratch.visibility;
-    rasterize(scene, tv, rv, ro, vb, frame.stats.visibility, &rt);
+    rasterize(scene, tv, rv, ro, frame.scratch.visibility, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
     frame.stats.passes.push_back({"visibility", rt.rasterMs});
+}
 
-    // Resolve: the G-buffer for visible pixels.
-    t0 = Clock::now();
-    const bool textured = anyTextured(scene);
-    const ResolveTables tables = buildResolveTables(scene, view, prevViewProj, textured, threads);
-    ensurePlanes(frame, w, h, s.idPlanes, s.trace);
-    PlaneF* gplanes[kResolveOutputs];
-    for (int i = 0; i < kResolveOutputs; ++i) gplanes[i] = &frame.planes[kViewZ + i].plane;
-    const TileGrid grid(w, h);
-    const float tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
+// The G-buffer of the visible pixels (and their UVs for the texture pass).
+ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
+    const ScopedPass timer(frame.stats, "resolve");
+    ResolveTables tables = buildResolveTables(scene, c.view, c.prevViewProj, textured, c.threads);
+    GBuffer& g = frame.gbuffer;
     ResolveArgs ra{};
     ra.triangles = tables.triangles.data();
     ra.instances = tables.instances.data();
     ra.normalX = tables.nx.data();
     ra.normalY = tables.ny.data();
     ra.normalZ = tables.nz.data();
-    ra.ids = vb.ids.row(0);
-    ra.idStride = vb.ids.stride();
-    ra.width = w;
-    ra.height = h;
-    ra.tilesX = grid.tilesX;
-    ra.tanHalfX = tanHalfY * aspect;
-    ra.tanHalfY = tanHalfY;
-    ra.nearZ = camera.nearZ;
-    ra.farZ = camera.farZ;
-    for (int i = 0; i < kResolveOutputs; ++i) ra.out[i] = gplanes[i]->row(0);
-    ra.outStride = gplanes[0]->stride();
+    ra.ids = frame.scratch.visibility.ids.row(0);
+    ra.idStride = frame.scratch.visibility.ids.stride();
+    ra.width = c.grid.width;
+    ra.height = c.grid.height;
+    ra.tilesX = c.grid.tilesX;
+    ra.tanHalfX = c.tanHalfX;
+    ra.tanHalfY = c.tanHalfY;
+    ra.nearZ = c.camera.nearZ;
+    ra.farZ = c.camera.farZ;
+    // The kernel's output order (raster/resolve_kernel.h), every plane with one stride.
+    PlaneF* const out[kResolveOutputs] = {&g.viewZ,     &g.normal[0],  &g.normal[1], &g.normal[2],
+                                          &g.albedo[0], &g.albedo[1],  &g.albedo[2], &g.metallic,
+                                          &g.roughness, &g.materialId, &g.motion[0], &g.motion[1]};
+    for (int i = 0; i < kResolveOutputs; ++i) ra.out[i] = out[i]->row(0);
+    ra.outStride = g.viewZ.stride();
     if (textured) {
         ra.u = tables.u.data();
         ra.v = tables.v.data();
         for (int i = 0; i < kResolveUvOutputs; ++i) {
             PlaneF& p = frame.scratch.uv[i];
-            p.ensureSize(w, h);
-            // The kernel writes every output with one stride.
-            if (p.stride() != ra.outStride) throw std::logic_error("texture UV plane stride");
+            p.ensureSize(c.grid.width, c.grid.height);
             ra.out[kResolveOutputs + i] = p.row(0);
         }
     }
-    const auto resolve = SSRT_DISPATCH(isa, resolveTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { resolve(ra, tile); });
-    pass("resolve", t0);
+    const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
+    return tables;
+}
 
-    // Textures: base colour, metallic and roughness texels into the G-buffer.
-    if (textured) {
-        t0 = Clock::now();
-        TexturePlanes tp;
-        for (int i = 0; i < kResolveUvOutputs; ++i) tp.uv[i] = &frame.scratch.uv[i];
-        tp.materialId = gplanes[kMaterialId - kViewZ];
-        for (int i = 0; i < 3; ++i) tp.albedo[i] = gplanes[kAlbedoR - kViewZ + i];
-        tp.metallic = gplanes[kMetallic - kViewZ];
-        tp.roughness = gplanes[kRoughness - kViewZ];
-        applyTextures(scene, tp, grid, threads);
-        pass("textures", t0);
-    }
+// Base colour, metallic and roughness texels into the G-buffer.
+void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
+    const ScopedPass timer(frame.stats, "textures");
+    GBuffer& g = frame.gbuffer;
+    TexturePlanes tp;
+    for (int i = 0; i < kResolveUvOutputs; ++i) tp.uv[i] = &frame.scratch.uv[i];
+    tp.materialId = &g.materialId;
+    for (int i = 0; i < 3; ++i) tp.albedo[i] = &g.albedo[i];
+    tp.metallic = &g.metallic;
+    tp.roughness = &g.roughness;
+    applyTextures(scene, tp, c.grid, c.threads);
+}
 
-    // Instance and triangle ids as float planes, from the visibility buffer (optional).
-    if (s.idPlanes) {
-        t0 = Clock::now();
-        writeIdPlanes(tables.triangles, vb.ids, frame.planes[kInstanceId].plane,
-                      frame.planes[kTriangleId].plane, grid, threads);
-        pass("ids", t0);
-    }
-
-    // An equirect sky's prefiltered levels and irradiance: built on its first frame, then
-    // taken from the cache (renderer/sky_lighting.h).
-    const Sky& sky = scene.sky;
-    std::shared_ptr<const SkyLighting> skyLighting;
-    if (sky.kind == Sky::Kind::Image) {
-        t0 = Clock::now();
-        skyLighting = cachedSkyLighting(sky.image, threads);
-        pass("environment", t0);
-    }
-
-    // Direct light, sky and tone map.
-    t0 = Clock::now();
-    DirectLighting lighting;
-    setDirectLighting(scene, s, shadow, skyLighting, lighting);
-    DirectArgs& da = lighting.args;
-    for (int i = 0; i < 10; ++i) da.g[i] = gplanes[i]->row(0);
-    da.gStride = gplanes[0]->stride();
-    da.width = w;
-    da.height = h;
-    da.tilesX = grid.tilesX;
-    da.tanHalfX = ra.tanHalfX;
-    da.tanHalfY = ra.tanHalfY;
-    const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
-    std::copy_n(glm::value_ptr(viewToWorld), 9, da.viewToWorld);
-    std::copy_n(glm::value_ptr(camera.position), 3, da.camPos);
-    for (int i = 0; i < 7; ++i) da.out[i] = frame.planes[kColorR + i].plane.row(0);
-    da.outStride = frame.planes[kColorR].plane.stride();
-    // With the screen-space passes on, the direct pass also hands out its parts for the
-    // composite (shading/direct_kernel.h).
-    if (s.trace.any()) {
-        da.compensation = &energyTables();
-        float** parts[5] = {da.direct, da.emission, da.envDiffuse, da.envSpecular, da.specWeight};
-        for (int i = 0; i < 15; ++i) {
-            PlaneF& p = frame.scratch.directParts[i];
-            p.ensureSize(w, h);
-            if (p.stride() != da.outStride) throw std::logic_error("direct part plane stride");
-            parts[i / 3][i % 3] = p.row(0);
-        }
-        if (s.trace.ssgi)
-            for (int c = 0; c < 3; ++c) {
-                PlaneF& p = frame.scratch.hitLight[c];
-                p.ensureSize(w, h);
-                if (p.stride() != da.outStride) throw std::logic_error("hit light plane stride");
-                da.hitLight[c] = p.row(0);
+// Instance and triangle ids as float planes, from the visibility buffer.
+void idPass(const FrameContext& c, const std::vector<ResolveTriangle>& tris, Frame& frame) {
+    const ScopedPass timer(frame.stats, "ids");
+    const PlaneU32& ids = frame.scratch.visibility.ids;
+    IdPlanes& out = frame.ids;
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
+        const TileRect r = c.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const uint32_t id = ids.at(x, y);
+                const bool hit = id != kNoPrimitive;
+                out.instanceId.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
+                out.triangleId.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
             }
-    }
-    const auto shade = SSRT_DISPATCH(isa, shadeTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { shade(da, tile); });
-    pass("shading", t0);
+    });
+}
 
-    TraceCamera& tc = frame.camera;
-    tc.width = w;
-    tc.height = h;
-    tc.tanHalfX = ra.tanHalfX;
-    tc.tanHalfY = ra.tanHalfY;
-    tc.nearZ = camera.nearZ;
-    tc.farZ = camera.farZ;
+// An equirect sky's prefiltered levels and irradiance: built on its first frame, then taken
+// from the cache (renderer/sky_lighting.h). Null for the analytic skies.
+std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const Scene& scene,
+                                                   Frame& frame) {
+    if (scene.sky.kind != Sky::Kind::Image) return nullptr;
+    const ScopedPass timer(frame.stats, "environment");
+    return cachedSkyLighting(scene.sky.image, c.threads);
+}
+
+// Direct light, sky and tone map into frame.image; with a trace pass on, also the parts the
+// composite rebuilds the colour from (frame.direct; shading/direct_kernel.h).
+void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const SkyLighting> sky,
+                Frame& frame, DirectLighting& lighting) {
+    const ScopedPass timer(frame.stats, "shading");
+    setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
+    DirectArgs& da = lighting.args;
+    setDirectGBuffer(frame.gbuffer, da);
+    da.width = c.grid.width;
+    da.height = c.grid.height;
+    da.tilesX = c.grid.tilesX;
+    da.tanHalfX = c.tanHalfX;
+    da.tanHalfY = c.tanHalfY;
+    const glm::mat3 viewToWorld = glm::mat3(glm::inverse(c.view));
+    std::copy_n(glm::value_ptr(viewToWorld), 9, da.viewToWorld);
+    std::copy_n(glm::value_ptr(c.camera.position), 3, da.camPos);
+    ImagePlanes& im = frame.image;
+    // The kernel's output order: colour, display, shadow, all with one stride.
+    PlaneF* const out[7] = {&im.color[0],   &im.color[1],   &im.color[2], &im.display[0],
+                            &im.display[1], &im.display[2], &im.shadow};
+    for (int i = 0; i < 7; ++i) da.out[i] = out[i]->row(0);
+    da.outStride = im.color[0].stride();
+    if (c.settings.trace.any()) {
+        DirectParts& p = frame.direct;
+        da.compensation = &energyTables();
+        for (int ch = 0; ch < 3; ++ch) {
+            da.direct[ch] = p.direct[ch].row(0);
+            da.emission[ch] = p.emission[ch].row(0);
+            da.envDiffuse[ch] = p.envDiffuse[ch].row(0);
+            da.envSpecular[ch] = p.envSpecular[ch].row(0);
+            da.specWeight[ch] = p.specWeight[ch].row(0);
+            if (c.settings.trace.ssgi) da.hitLight[ch] = p.hitLight[ch].row(0);
+        }
+    }
+    const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { shade(da, tile); });
+}
+
+// The camera as the trace passes see it.
+TraceCamera traceCamera(const FrameContext& c, const DirectArgs& da) {
+    TraceCamera tc;
+    tc.width = c.grid.width;
+    tc.height = c.grid.height;
+    tc.tanHalfX = c.tanHalfX;
+    tc.tanHalfY = c.tanHalfY;
+    tc.nearZ = c.camera.nearZ;
+    tc.farZ = c.camera.farZ;
     std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
     std::copy_n(da.camPos, 3, tc.position);
-    if (s.trace.any()) runTracePasses(s, isa, tc, da, frame, observer);
+    return tc;
+}
+
+}  // namespace
+
+std::vector<PlaneRef> Frame::layers() const {
+    std::vector<PlaneRef> out;
+    const auto add = [&](std::string_view name, const PlaneF& p) {
+        if (!p.empty()) out.push_back({name, &p});
+    };
+    image.forEachPlane(add);
+    gbuffer.forEachPlane(add);
+    ids.forEachPlane(add);
+    trace.ssr.forEachPlane(add);
+    trace.ssgi.forEachPlane(add);
+    for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane});
+    return out;
+}
+
+const PlaneF& Frame::plane(std::string_view name) const {
+    for (const PlaneRef& p : layers())
+        if (p.name == name) return *p.plane;
+    throw std::out_of_range("frame has no plane '" + std::string(name) + "'");
+}
+
+bool Frame::has(std::string_view name) const {
+    for (const PlaneRef& p : layers())
+        if (p.name == name) return true;
+    return false;
+}
+
+Renderer::Renderer(RenderSettings settings) : settings_(settings) { settings_.validate(); }
+
+void Renderer::render(const Scene& scene, const FrameInput& input, FrameHistory& history,
+                      Frame& frame, const TraceObserver* observer) const {
+    renderFrame(scene, input, &history, frame, observer);
+}
+
+Frame Renderer::render(const Scene& scene, const FrameInput& input, FrameHistory& history) const {
+    Frame frame;
+    renderFrame(scene, input, &history, frame, nullptr);
+    return frame;
+}
+
+void Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input, Frame& frame,
+                                    const TraceObserver* observer) const {
+    renderFrame(scene, input, nullptr, frame, observer);
+}
+
+Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input) const {
+    Frame frame;
+    renderFrame(scene, input, nullptr, frame, nullptr);
+    return frame;
+}
+
+void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
+                           Frame& frame, const TraceObserver* observer) const {
+    scene.validate();
+    const FrameContext c(settings_, input);
+    frame.stats = FrameStats{};
+    frame.stats.isa = c.isa;
+    frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
+    ensurePlanes(settings_, frame);
+
+    shadowPass(c, scene, frame);
+    visibilityPass(c, scene, frame);
+    const bool textured = anyTextured(scene);
+    const ResolveTables tables = resolvePass(c, scene, textured, frame);
+    if (textured) texturePass(c, scene, frame);
+    if (settings_.idPlanes) idPass(c, tables.triangles, frame);
+    DirectLighting lighting;
+    directPass(c, scene, environmentPass(c, scene, frame), frame, lighting);
+    frame.camera = traceCamera(c, lighting.args);
+    frame.index = input.frameIndex;
+    if (!settings_.trace.any()) return;
+    const FrameHistory* previous =
+        history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
+                                                                                       : nullptr;
+    runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, observer}, frame);
+    if (history && readsHistory(settings_.trace)) commitHistory(frame, *history);
 }
 
 }  // namespace ssrt

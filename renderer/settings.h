@@ -47,7 +47,6 @@ struct RenderSettings {
     float shadowSlopeBias = 2.0f;  // extra bias per unit of tan(angle to the light), texels
     int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
     float exposure = 1.0f;         // scale on linear radiance before the tone map
-    uint32_t frame = 0;            // frame index (feeds the counter-based RNG)
     bool idPlanes = true;          // also hand out instanceId and triangleId float planes
     TraceSettings trace;           // SSR and SSGI (on by default)
 

@@ -1,21 +1,33 @@
 // The screen-space passes of a frame, after the G-buffer and the direct light: Hi-Z, then
 // per sample ray generation, march and resolve for SSR and SSGI, then the composite that
-// replaces the direct pass's color and display planes.
+// replaces the direct pass's image.
 #pragma once
 
+#include "renderer/frame.h"
 #include "renderer/renderer.h"
+#include "renderer/settings.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
 
-// Names of the planes the trace passes add to a frame, in frame order.
-std::vector<const char*> tracePlaneNames(const TraceSettings& settings);
+struct TracePassArgs {
+    const RenderSettings& settings;
+    Isa isa;
+    uint32_t frameIndex;
+    // The direct pass's argument block (sky, light, shadow map), as it ran; its parts went
+    // to frame.direct.
+    const DirectArgs& direct;
+    const FrameHistory* history;    // the last frame's, usable at this size; null: none
+    const TraceObserver* observer;  // optional: sees each sample's rays and march result
+};
 
-// `direct` is the direct pass's argument block (sky, light, shadow map), as it ran; its
-// parts outputs pointed into frame.scratch.directParts. Appends pass times and stats to
-// frame.stats.
-// `observer` (optional) sees each sample's rays and march result.
-void runTracePasses(const RenderSettings& settings, Isa isa, const TraceCamera& camera,
-                    const DirectArgs& direct, Frame& frame, const TraceObserver* observer);
+// Fills frame.trace and replaces frame.image's colour and display with the composite;
+// appends pass times and stats to frame.stats.
+void runTracePasses(const TracePassArgs& args, Frame& frame);
+
+// Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected).
+bool readsHistory(const TraceSettings& settings);
+// The frame's final colour into `history`, for the next frame.
+void commitHistory(const Frame& frame, FrameHistory& history);
 
 }  // namespace ssrt

@@ -458,7 +458,6 @@ void applyShot(const Shot& shot, RenderSettings& s) {
     if (r.exposure) s.exposure = *r.exposure;
     if (r.shadowBias) s.shadowBias = *r.shadowBias;
     if (r.shadowSlopeBias) s.shadowSlopeBias = *r.shadowSlopeBias;
-    if (r.frame) s.frame = *r.frame;
 }
 
 CameraPath shotCameraPath(const Shot& shot, const Camera& camera) {

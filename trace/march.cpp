@@ -140,7 +140,7 @@ void checkPlane(const PlaneF* p, int w, int h, const char* name) {
 
 }  // namespace
 
-MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
+MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
                      const RayBatch& rays, MarchResult& result, int threads) {
     settings.validate();
@@ -278,7 +278,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
                         const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
                         A[TileScratch::kJitter][i] =
                             jitter ? settings.ddaJitter *
-                                         randomFloat(pixel, settings.frame, settings.sample, 0)
+                                         randomFloat(pixel, seed.frame, seed.sample, 0)
                                    : 0.0f;
                     }
                 }

@@ -50,7 +50,6 @@ struct MarchSettings {
     int hizMostDetailedLevel = 0;
     // Hi-Z: level the traversal starts at (>= hizMostDetailedLevel; clamped to the pyramid).
     int hizStartLevel = 0;
-    uint32_t frame = 0, sample = 0;  // for the DDA jitter
 
     // Throws std::invalid_argument naming the first bad field.
     void validate() const;
@@ -82,7 +81,8 @@ struct MarchGBuffer {
 // Marches every pixel's ray of `rays`; writes every pixel of `result` (ensureSize'd here).
 // `hiz` must be built from g.viewZ when marcher == HiZ (may be null otherwise). Throws
 // std::invalid_argument on bad settings or mismatched sizes.
-MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings,
+// `seed` is the batch's frame and sample, for the DDA jitter.
+MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
                      const RayBatch& rays, MarchResult& result, int threads);
 

@@ -15,6 +15,13 @@
 
 namespace ssrt {
 
+// Which frame and which of its samples a batch of rays is: the counter-based RNG's inputs
+// (core/rng.h), per frame, never settings.
+struct RaySeed {
+    uint32_t frame = 0;
+    uint32_t sample = 0;
+};
+
 // The pinhole camera of the frame, as plain numbers.
 struct TraceCamera {
     int width = 0, height = 0;

@@ -187,7 +187,7 @@ void checkGl(peer::GlWorkloads& gl, Timings& t) {
 }
 
 void checkSsrt(const ssrt::Frame& frame, Timings& t) {
-    const ssrt::PlaneF& z = frame.plane("viewZ");
+    const ssrt::PlaneF& z = frame.gbuffer.viewZ;
     std::size_t touched = 0;
     for (int y = 0; y < z.height(); ++y)
         for (int x = 0; x < z.width(); ++x) touched += z.at(x, y) != 0.0f;
@@ -219,10 +219,10 @@ void timeBoth(const ssrt::Scene& scene, int reps, Timings& gl, Timings& ss) {
     for (int i = 0; i < 2; ++i) recordGl(glWork, unused);  // warm-up: JIT, first touches
     // Rendered into the same frame every time: its planes are reused, as GL reuses its
     // framebuffers (a fresh frame would time page faults).
-    ssrt::Frame frame = renderer.render(scene);
+    ssrt::Frame frame = renderer.renderWithoutHistory(scene);
     for (int i = 0; i < reps; ++i) {
         recordGl(glWork, glSamples);
-        renderer.render(scene, scene.camera, scene.previousCamera, frame);
+        renderer.renderWithoutHistory(scene, ssrt::FrameInput::still(scene), frame);
         recordSsrt(frame, ssrtSamples);
     }
     gl = glSamples.medians();

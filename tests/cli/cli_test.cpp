@@ -73,7 +73,7 @@ TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
              "--isa ISA=auto",
              "--shadow-map-size INT=" + std::to_string(d.shadowMapSize),
              "--exposure FLOAT=1",
-             "--frame INT=" + std::to_string(d.frame),
+             "--frame INT=0",
              "--output FILE=ssrt.png",
              "--scene NAME=" + builtinScenes().front().name,
              "--stats",

@@ -9,12 +9,12 @@ int main() {
     settings.width = 160;
     settings.height = 90;
     const ssrt::Renderer renderer(settings);
-    const ssrt::Frame frame = renderer.render(ssrt::makeBuiltinScene("cornell"));
-    const ssrt::PlaneF& red = frame.plane("display.R");
+    const ssrt::Frame frame = renderer.renderWithoutHistory(ssrt::makeBuiltinScene("cornell"));
+    const ssrt::PlaneF& red = frame.image.display[0];
     double sum = 0.0;
     for (int y = 0; y < red.height(); ++y)
         for (int x = 0; x < red.width(); ++x) sum += red.at(x, y);
     std::printf("mean display.R = %.4f over %zu planes\n", sum / (red.width() * red.height()),
-                frame.planes.size());
+                frame.layers().size());
     return sum > 0.0 ? 0 : 1;
 }

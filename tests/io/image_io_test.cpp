@@ -45,7 +45,7 @@ Frame makeFrame(int width, int height, const std::vector<std::string>& names) {
         PlaneF plane(width, height);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) plane.at(x, y) = probeValue(int(c), x, y, width);
-        frame.planes.push_back({names[c], std::move(plane)});
+        frame.extraLayers.push_back({names[c], std::move(plane)});
     }
     return frame;
 }
@@ -112,9 +112,9 @@ TEST_CASE("PNG quantises display planes as round(clamp(v, 0, 1) * 255)") {
     const int width = int(in.size());
     Frame frame = makeFrame(width, 1, {"display.R", "display.G", "display.B", "viewZ"});
     for (int x = 0; x < width; ++x) {
-        frame.planes[0].plane.at(x, 0) = in[x];
-        frame.planes[1].plane.at(x, 0) = in[width - 1 - x];  // channels must not be mixed up
-        frame.planes[2].plane.at(x, 0) = 0.2f;
+        frame.extraLayers[0].plane.at(x, 0) = in[x];
+        frame.extraLayers[1].plane.at(x, 0) = in[width - 1 - x];  // channels must not be mixed up
+        frame.extraLayers[2].plane.at(x, 0) = 0.2f;
     }
     const std::string path = dir.file("preview.png");
     writeImage(path, frame);
@@ -167,7 +167,7 @@ TEST_CASE("a PNG needs the display planes") {
 TEST_CASE("a frame whose planes disagree with it is refused") {
     TempDir dir;
     Frame frame = makeFrame(4, 4, {"viewZ", "shadow"});
-    frame.planes[1].plane = PlaneF(3, 4);
+    frame.extraLayers[1].plane = PlaneF(3, 4);
     CHECK_THROWS_WITH_AS(writeImage(dir.file("x.exr"), frame), doctest::Contains("shadow"),
                          std::invalid_argument);
     frame = makeFrame(4, 4, {"viewZ", "viewZ"});

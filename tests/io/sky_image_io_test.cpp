@@ -29,7 +29,7 @@ Frame planesFrame(int w, int h, const std::vector<std::string>& names, F value) 
         PlaneF plane(w, h);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) plane.at(x, y) = value(int(c), x, y);
-        frame.planes.push_back({names[c], std::move(plane)});
+        frame.extraLayers.push_back({names[c], std::move(plane)});
     }
     return frame;
 }

@@ -65,12 +65,12 @@ TEST_CASE("a plane at known depth gives exact view Z") {
         s.camera.position = eye;
         s.camera.target = eye + glm::vec3(0.0f, 0.0f, -1.0f);
         s.previousCamera = s.camera;
-        const Frame f = Renderer(small()).render(s);
-        const PlaneF& z = f.plane("viewZ");
+        const Frame f = Renderer(small()).renderWithoutHistory(s);
+        const PlaneF& z = f.gbuffer.viewZ;
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) REQUIRE(z.at(x, y) == 4.0f);
-        CHECK(f.plane("normal.Z").at(7, 9) == 1.0f);
-        CHECK(f.plane("instanceId").at(7, 9) == 0.0f);
+        CHECK(f.gbuffer.normal[2].at(7, 9) == 1.0f);
+        CHECK(f.ids.instanceId.at(7, 9) == 0.0f);
     }
 }
 
@@ -78,12 +78,12 @@ TEST_CASE("sphere normals match the analytic normal") {
     const glm::dvec3 centre(0.0, 0.0, -4.0);
     const Scene s = oneMeshScene(makeUvSphere(1.0f, 512, 256),
                                  glm::translate(glm::mat4(1.0f), glm::vec3(centre)));
-    const Frame f = Renderer(small(160, 160)).render(s);
+    const Frame f = Renderer(small(160, 160)).renderWithoutHistory(s);
     double worstDeg = 0.0;
     int checked = 0;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
-            if (f.plane("viewZ").at(x, y) <= 0.0f) continue;
+            if (f.gbuffer.viewZ.at(x, y) <= 0.0f) continue;
             // Ray-sphere in double from the camera at the origin.
             const glm::dvec3 d = glm::normalize(pixelRay(s.camera, f.width, f.height, x, y));
             const double b = glm::dot(d, centre), c = glm::dot(centre, centre) - 1.0;
@@ -91,8 +91,8 @@ TEST_CASE("sphere normals match the analytic normal") {
             if (disc <= 0.0) continue;
             const glm::dvec3 n = glm::normalize(d * (b - std::sqrt(disc)) - centre);
             if (glm::dot(n, -d) < 0.2) continue;  // the tessellated silhouette differs
-            const glm::dvec3 got(f.plane("normal.X").at(x, y), f.plane("normal.Y").at(x, y),
-                                 f.plane("normal.Z").at(x, y));
+            const glm::dvec3 got(f.gbuffer.normal[0].at(x, y), f.gbuffer.normal[1].at(x, y),
+                                 f.gbuffer.normal[2].at(x, y));
             const double cosA = std::min(1.0, glm::dot(got, n) / glm::length(got));
             worstDeg = std::max(worstDeg, glm::degrees(std::acos(cosA)));
             ++checked;
@@ -107,7 +107,7 @@ TEST_CASE("motion vectors of a known camera move and of a moving instance") {
         Scene s = oneMeshScene(wall(100.0f, -4.0f));
         s.previousCamera.position = {0.3f, -0.2f, 0.5f};
         s.previousCamera.target = s.previousCamera.position + glm::vec3(0.0f, 0.0f, -1.0f);
-        const Frame f = Renderer(small()).render(s);
+        const Frame f = Renderer(small()).renderWithoutHistory(s);
         const glm::dmat4 prevVp =
             glm::dmat4(s.previousCamera.projection(float(f.width) / f.height)) *
             glm::dmat4(s.previousCamera.view());
@@ -119,23 +119,23 @@ TEST_CASE("motion vectors of a known camera move and of a moving instance") {
                 const double px = (c.x / c.w * 0.5 + 0.5) * f.width;
                 const double py = (0.5 - c.y / c.w * 0.5) * f.height;
                 worst = std::max(
-                    {worst, std::fabs(px - (x + 0.5) - double(f.plane("motion.X").at(x, y))),
-                     std::fabs(py - (y + 0.5) - double(f.plane("motion.Y").at(x, y)))});
+                    {worst, std::fabs(px - (x + 0.5) - double(f.gbuffer.motion[0].at(x, y))),
+                     std::fabs(py - (y + 0.5) - double(f.gbuffer.motion[1].at(x, y)))});
             }
         MESSAGE("camera motion: worst error " << worst << " px");
         CHECK(worst < 1e-3);
         // Sanity: the expected motion is large, so the bound above means something.
-        CHECK(std::fabs(f.plane("motion.X").at(64, 48)) > 2.0f);
+        CHECK(std::fabs(f.gbuffer.motion[0].at(64, 48)) > 2.0f);
     }
     SUBCASE("instance translation under a still camera") {
         Scene s = oneMeshScene(wall(1.0f, -4.0f));
         s.instances[0].previousTransform = glm::translate(glm::mat4(1.0f), {0.5f, 0.0f, 0.0f});
-        const Frame f = Renderer(small()).render(s);
+        const Frame f = Renderer(small()).renderWithoutHistory(s);
         // 0.5 world units at depth 4: 0.5 / (4 tan(30 deg) aspect) of half the width.
         const double expected = 0.5 / (4.0 * std::tan(glm::radians(30.0)) * (128.0 / 96.0)) * 64.0;
-        CHECK(f.plane("motion.X").at(64, 48) == doctest::Approx(expected).epsilon(1e-4));
-        CHECK(f.plane("motion.Y").at(64, 48) == doctest::Approx(0.0).epsilon(1e-4));
-        CHECK(f.plane("motion.X").at(2, 2) == 0.0f);  // background
+        CHECK(f.gbuffer.motion[0].at(64, 48) == doctest::Approx(expected).epsilon(1e-4));
+        CHECK(f.gbuffer.motion[1].at(64, 48) == doctest::Approx(0.0).epsilon(1e-4));
+        CHECK(f.gbuffer.motion[0].at(2, 2) == 0.0f);  // background
     }
 }
 
@@ -158,18 +158,18 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
     s.previousCamera = s.camera;
     RenderSettings rs = small(200, 160);
     rs.shadowMapSize = 512;
-    const Frame f = Renderer(rs).render(s);
+    const Frame f = Renderer(rs).renderWithoutHistory(s);
     // World units per texel: the map spans the scene's bounds (20 units plus a margin).
     const double border = (rs.pcfRadius + 1.5) * 20.5 / rs.shadowMapSize;
     int inside = 0, outside = 0;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
-            if (f.plane("instanceId").at(x, y) != 0.0f) continue;
+            if (f.ids.instanceId.at(x, y) != 0.0f) continue;
             const glm::dvec3 p =
                 glm::dvec3(s.camera.position) +
-                pixelRay(s.camera, f.width, f.height, x, y) * double(f.plane("viewZ").at(x, y));
+                pixelRay(s.camera, f.width, f.height, x, y) * double(f.gbuffer.viewZ.at(x, y));
             const double edge = std::max(std::fabs(p.x), std::fabs(p.z));
-            const float v = f.plane("shadow").at(x, y);
+            const float v = f.image.shadow.at(x, y);
             CAPTURE(x);
             CAPTURE(y);
             if (edge < 1.0 - border) {
@@ -186,9 +186,9 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
     int lit = 0, top = 0;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x)
-            if (f.plane("instanceId").at(x, y) == 1.0f) {
+            if (f.ids.instanceId.at(x, y) == 1.0f) {
                 ++top;
-                lit += f.plane("shadow").at(x, y) == 1.0f;
+                lit += f.image.shadow.at(x, y) == 1.0f;
             }
     CHECK(top > 100);
     CHECK(lit == top);

@@ -76,7 +76,7 @@ void addRecords(const Frame& frame, const Sample& s, const RayCheckPlanes& plane
     const TraceCamera& c = frame.camera;
     const glm::mat3 rot = rotationOf(c);
     const glm::vec3 pos(c.position[0], c.position[1], c.position[2]);
-    const PlaneF& ids = frame.plane("instanceId");
+    const PlaneF& ids = frame.ids.instanceId;
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {
             if (!(s.rays.pdf.at(x, y) > 0.0f)) continue;
@@ -111,14 +111,14 @@ SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher
         samples.push_back({pass, copyOf(rays), copyOf(march)});
     };
     Frame frame;
-    Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame, &keep);
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame, &keep);
     RayCheckSettings cs;
     cs.maxDistance = rs.trace.march.maxDistance;
     SceneCheck out;
     for (const Sample& s : samples) {
         RayCheckPlanes planes;
         const RayCheckTable one =
-            checkRays(embree, frame.camera, frame.plane("viewZ"), s.rays, s.march, cs, &planes, 0);
+            checkRays(embree, frame.camera, frame.gbuffer.viewZ, s.rays, s.march, cs, &planes, 0);
         (s.pass == TracePass::Ssr ? out.tables.ssr : out.tables.ssgi).add(one);
         addRecords(frame, s, planes, out.rays);
     }

@@ -69,7 +69,7 @@ struct Floor {
     explicit Floor(const FloorOptions& o)
         : scene(floorScene(o)),
           renderer(settings(o.method)),
-          frame(renderer.render(scene)),
+          frame(renderer.renderWithoutHistory(scene)),
           embree(scene) {
         ReferenceSettings s;
         s.spp = o.spp;
@@ -90,8 +90,8 @@ struct Floor {
         int n = 0;
         for (int y = 0; y < frame.height; ++y)
             for (int x = 0; x < frame.width; ++x)
-                if (frame.plane("viewZ").at(x, y) > 0.0f &&
-                    frame.plane("materialId").at(x, y) == 0.0f) {
+                if (frame.gbuffer.viewZ.at(x, y) > 0.0f &&
+                    frame.gbuffer.materialId.at(x, y) == 0.0f) {
                     check(x, y);
                     ++n;
                 }

@@ -26,7 +26,7 @@ void frameLighting(const ReferenceRig& rig, DirectLighting& l) {
                          "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
     DirectArgs& a = l.args;
     for (int i = 0; i < 10; ++i) a.g[i] = rig.frame.plane(g[i]).row(0);
-    a.gStride = rig.frame.plane("viewZ").stride();
+    a.gStride = rig.frame.gbuffer.viewZ.stride();
     a.width = rig.frame.width;
     a.height = rig.frame.height;
     a.tanHalfX = rig.frame.camera.tanHalfX;
@@ -44,9 +44,9 @@ TEST_CASE("reference: with the shadow map, its direct part is the direct pass's 
         int surface = 0, differ = 0;
         for (int y = 0; y < rig.frame.height; ++y)
             for (int x = 0; x < rig.frame.width; ++x) {
-                surface += rig.frame.plane("viewZ").at(x, y) > 0.0f;
+                surface += rig.frame.gbuffer.viewZ.at(x, y) > 0.0f;
                 for (int c = 0; c < 3; ++c)
-                    differ += ref.direct[c].at(x, y) != rig.frame.scratch.directParts[c].at(x, y);
+                    differ += ref.direct[c].at(x, y) != rig.frame.direct.direct[c].at(x, y);
             }
         MESSAGE(std::string(name) << ": " << surface << " surface pixels, " << differ
                                   << " channels differ");
@@ -70,7 +70,7 @@ TEST_CASE("reference: a hit seen from the camera shades like the direct pass's p
     std::vector<float> errors;
     for (int y = 0; y < rig.frame.height; ++y)
         for (int x = 0; x < rig.frame.width; ++x) {
-            if (!(rig.frame.plane("viewZ").at(x, y) > 0.0f)) continue;
+            if (!(rig.frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
             const reference::PointSurface ps = reference::pixelSurface(lighting.args, x, y);
             const glm::vec3 dir = -glm::vec3(ps.view.x, ps.view.y, ps.view.z);
             const EmbreeHit hit = rig.embree.intersect(cam, dir, 0.0f, 1e30f);
@@ -98,11 +98,11 @@ TEST_CASE("reference: Embree's visibility differs from the shadow map's only whe
     const ReferenceRig rig("cornell");
     const ReferenceImage sm = rig.reference(1, ReferenceSettings::Visibility::ShadowMap);
     const ReferenceImage em = rig.reference(1, ReferenceSettings::Visibility::Embree);
-    const PlaneF& v = rig.frame.plane("shadow");
+    const PlaneF& v = rig.frame.image.shadow;
     int hard = 0, hardDisagree = 0, bothLit = 0, bothDark = 0;
     for (int y = 0; y < rig.frame.height; ++y)
         for (int x = 0; x < rig.frame.width; ++x) {
-            if (!(rig.frame.plane("viewZ").at(x, y) > 0.0f)) continue;
+            if (!(rig.frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
             bool zero = true, equal = true;
             for (int c = 0; c < 3; ++c) {
                 const float e = em.direct[c].at(x, y), s = sm.direct[c].at(x, y);

@@ -34,7 +34,7 @@ struct ReferenceRig {
                           bool trace = true, int shadowMapSize = 512)
         : scene(makeBuiltinScene(name)),
           renderer(referenceRigSettings(width, height, threads, trace, shadowMapSize)),
-          frame(renderer.render(scene)),
+          frame(renderer.renderWithoutHistory(scene)),
           embree(scene) {}
 
     ReferenceImage reference(

@@ -40,21 +40,21 @@ TEST_CASE("emission adds to the lit colour exactly") {
     Material glowing = plain;
     glowing.emissive = {2.0f, 0.0f, 0.5f};
     const glm::vec3 light = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
-    const Frame a = Renderer(tiny()).render(wallScene(plain, light));
-    const Frame b = Renderer(tiny()).render(wallScene(glowing, light));
-    CHECK(b.plane("color.R").at(30, 20) - a.plane("color.R").at(30, 20) ==
+    const Frame a = Renderer(tiny()).renderWithoutHistory(wallScene(plain, light));
+    const Frame b = Renderer(tiny()).renderWithoutHistory(wallScene(glowing, light));
+    CHECK(b.image.color[0].at(30, 20) - a.image.color[0].at(30, 20) ==
           doctest::Approx(2.0f).epsilon(1e-5));
-    CHECK(b.plane("color.G").at(30, 20) == a.plane("color.G").at(30, 20));
-    CHECK(b.plane("color.B").at(30, 20) - a.plane("color.B").at(30, 20) ==
+    CHECK(b.image.color[1].at(30, 20) == a.image.color[1].at(30, 20));
+    CHECK(b.image.color[2].at(30, 20) - a.image.color[2].at(30, 20) ==
           doctest::Approx(0.5f).epsilon(1e-5));
 }
 
 TEST_CASE("a surface facing away from the light gets only sky light") {
     Material m;
-    const Frame lit = Renderer(tiny()).render(wallScene(m, {0.0f, 0.0f, -1.0f}));
-    const Frame unlit = Renderer(tiny()).render(wallScene(m, {0.0f, 0.0f, 1.0f}));
-    CHECK(lit.plane("shadow").at(30, 20) == 1.0f);
-    CHECK(unlit.plane("shadow").at(30, 20) == 0.0f);
-    CHECK(unlit.plane("color.R").at(30, 20) < lit.plane("color.R").at(30, 20));
-    CHECK(unlit.plane("color.R").at(30, 20) > 0.0f);  // the sky term
+    const Frame lit = Renderer(tiny()).renderWithoutHistory(wallScene(m, {0.0f, 0.0f, -1.0f}));
+    const Frame unlit = Renderer(tiny()).renderWithoutHistory(wallScene(m, {0.0f, 0.0f, 1.0f}));
+    CHECK(lit.image.shadow.at(30, 20) == 1.0f);
+    CHECK(unlit.image.shadow.at(30, 20) == 0.0f);
+    CHECK(unlit.image.color[0].at(30, 20) < lit.image.color[0].at(30, 20));
+    CHECK(unlit.image.color[0].at(30, 20) > 0.0f);  // the sky term
 }

@@ -72,7 +72,7 @@ TEST_CASE("sky image: a background pixel looking along a texel's direction shows
         scene.camera.target = glm::vec3(d.x, d.y, d.z);
         scene.camera.fovY = 20.0f;
         scene.previousCamera = scene.camera;
-        const Frame f = Renderer(rs).render(scene);
+        const Frame f = Renderer(rs).renderWithoutHistory(scene);
         const float* texel = scene.sky.image->rgb.data() + (std::size_t(ty) * kW + tx) * 3;
         const char* planes[3] = {"color.R", "color.G", "color.B"};
         for (int c = 0; c < 3; ++c) {
@@ -83,7 +83,7 @@ TEST_CASE("sky image: a background pixel looking along a texel's direction shows
         // The scene model's own (nearest-texel) lookup agrees
         const glm::vec3 ref = scene.sky.radiance(scene.camera.target);
         CHECK(ref.r == doctest::Approx(texel[0] * 1.5f));
-        CHECK(f.plane("viewZ").at(16, 16) == 0.0f);  // it is background
+        CHECK(f.gbuffer.viewZ.at(16, 16) == 0.0f);  // it is background
     }
 }
 
@@ -105,7 +105,8 @@ TEST_CASE("sky image: a white image lights like the constant white sky") {
         rs.width = 160;
         rs.height = 90;
         rs.shadowMapSize = 256;
-        const Frame a = Renderer(rs).render(constant), b = Renderer(rs).render(image);
+        const Frame a = Renderer(rs).renderWithoutHistory(constant),
+                    b = Renderer(rs).renderWithoutHistory(image);
         double worst = 0.0, sum = 0.0;
         for (const char* p : {"color.R", "color.G", "color.B"})
             for (int y = 0; y < a.height; ++y)
@@ -197,9 +198,9 @@ TEST_CASE("sky image: prefiltered data is built once per image and dropped with 
     rs.height = 16;
     rs.shadowMapSize = 32;
     Frame frame;
-    Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame);
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
     CHECK(skyLightingCacheSize() == before + 1);
-    Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame);
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
     CHECK(skyLightingCacheSize() == before + 1);
     cachedSkyLighting(scene.sky.image, 1, &built);
     CHECK_FALSE(built);

@@ -51,7 +51,7 @@ Frame render(const Scene& scene, int size, Isa isa = Isa::Scalar) {
     rs.shadowMapSize = 256;
     rs.threads = 2;
     rs.isa = isa;
-    return Renderer(rs).render(scene);
+    return Renderer(rs).renderWithoutHistory(scene);
 }
 
 }  // namespace
@@ -78,11 +78,11 @@ TEST_CASE("texture render: a magnified texture shows its texels at the pixels th
                 const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
                 const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
                 const glm::vec4 t = texel(tx, ty);
-                CHECK(f.plane("albedo.R").at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
-                CHECK(f.plane("albedo.G").at(px, py) == doctest::Approx(0.5 * t.g).epsilon(1e-4));
-                CHECK(f.plane("albedo.B").at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
-                CHECK(f.plane("roughness").at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
-                CHECK(f.plane("metallic").at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(0.5 * t.g).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[2].at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+                CHECK(f.gbuffer.roughness.at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
+                CHECK(f.gbuffer.metallic.at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
             }
     }
 }
@@ -102,11 +102,11 @@ TEST_CASE("texture render: a minified checker averages to grey; without a textur
         for (int x = 0; x < kImage; ++x) {
             CAPTURE(x);
             CAPTURE(y);
-            REQUIRE(f.plane("albedo.R").at(x, y) == doctest::Approx(0.5).epsilon(1e-4));
+            REQUIRE(f.gbuffer.albedo[0].at(x, y) == doctest::Approx(0.5).epsilon(1e-4));
         }
 
     scene.materials[0].baseColorTexture = -1;
     const Frame plain = render(scene, kImage);
-    CHECK(plain.plane("albedo.R").at(kImage / 2, kImage / 2) == 1.0f);
-    CHECK(plain.plane("roughness").at(kImage / 2, kImage / 2) == 1.0f);
+    CHECK(plain.gbuffer.albedo[0].at(kImage / 2, kImage / 2) == 1.0f);
+    CHECK(plain.gbuffer.roughness.at(kImage / 2, kImage / 2) == 1.0f);
 }

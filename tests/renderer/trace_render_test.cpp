@@ -31,18 +31,18 @@ TEST_CASE("renderer: trace planes agree with the trace counters") {
         rs.trace.marcher = m;
         rs.trace.ssrSpp = 3;
         rs.trace.ssgiSpp = 2;
-        const Frame f = Renderer(rs).render(makeBuiltinScene("cornell"));
+        const Frame f = Renderer(rs).renderWithoutHistory(makeBuiltinScene("cornell"));
         double ssrHits = 0, ssgiHits = 0, ssrSteps = 0;
         bool bounded = true, distanceOnlyOnHits = true;
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float hit = f.plane("ssrHit").at(x, y);
-                const float opacity = f.plane("ssrOpacity").at(x, y);
+                const float hit = f.trace.ssr.hit.at(x, y);
+                const float opacity = f.trace.ssr.opacity.at(x, y);
                 bounded &= hit >= 0.0f && hit <= 1.0f && opacity >= 0.0f && opacity <= 1.0f;
-                distanceOnlyOnHits &= (hit > 0.0f) == (f.plane("ssrHitDistance").at(x, y) > 0.0f);
+                distanceOnlyOnHits &= (hit > 0.0f) == (f.trace.ssr.hitDistance.at(x, y) > 0.0f);
                 ssrHits += double(hit) * rs.trace.ssrSpp;
-                ssgiHits += double(f.plane("ssgiHit").at(x, y)) * rs.trace.ssgiSpp;
-                ssrSteps += double(f.plane("ssrSteps").at(x, y)) * rs.trace.ssrSpp;
+                ssgiHits += double(f.trace.ssgi.hit.at(x, y)) * rs.trace.ssgiSpp;
+                ssrSteps += double(f.trace.ssr.steps.at(x, y)) * rs.trace.ssrSpp;
             }
         CHECK(bounded);
         CHECK(distanceOnlyOnHits);
@@ -80,17 +80,18 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
         skip.trace.resolve.mode = traceAll.trace.resolve.mode = mode;
         skip.trace.ssrSpp = traceAll.trace.ssrSpp = 2;
         traceAll.trace.traceHidden = true;
-        const Frame a = Renderer(skip).render(scene), b = Renderer(traceAll).render(scene);
-        const PlaneF& viewZ = a.plane("viewZ");
+        const Frame a = Renderer(skip).renderWithoutHistory(scene),
+                    b = Renderer(traceAll).renderWithoutHistory(scene);
+        const PlaneF& viewZ = a.gbuffer.viewZ;
         const float end = skip.trace.resolve.roughnessFadeEnd;
         const auto isRough = [&](int x, int y) {
-            return viewZ.at(x, y) > 0.0f && !(a.plane("roughness").at(x, y) < end);
+            return viewZ.at(x, y) > 0.0f && !(a.gbuffer.roughness.at(x, y) < end);
         };
         const auto isMetal = [&](int x, int y) {
-            const float keep = 1.0f - a.plane("metallic").at(x, y);
-            return viewZ.at(x, y) > 0.0f && a.plane("albedo.R").at(x, y) * keep == 0.0f &&
-                   a.plane("albedo.G").at(x, y) * keep == 0.0f &&
-                   a.plane("albedo.B").at(x, y) * keep == 0.0f;
+            const float keep = 1.0f - a.gbuffer.metallic.at(x, y);
+            return viewZ.at(x, y) > 0.0f && a.gbuffer.albedo[0].at(x, y) * keep == 0.0f &&
+                   a.gbuffer.albedo[1].at(x, y) * keep == 0.0f &&
+                   a.gbuffer.albedo[2].at(x, y) * keep == 0.0f;
         };
         const auto same = [&](const char* p, int x, int y) {
             return std::memcmp(&a.plane(p).at(x, y), &b.plane(p).at(x, y), 4) == 0;
@@ -125,10 +126,10 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
                 if (!isMetal(x, y))
                     ssgiKept +=
                         same("ssgi.R", x, y) && same("ssgiHit", x, y) && same("ssgiSteps", x, y);
-                hiddenEmpty += isRough(x, y) && a.plane("ssrOpacity").at(x, y) == 0.0f &&
-                               a.plane("ssrHit").at(x, y) == 0.0f;
-                hiddenEmpty += isMetal(x, y) && a.plane("ssgi.R").at(x, y) == 0.0f &&
-                               a.plane("ssgiHit").at(x, y) == 0.0f;
+                hiddenEmpty += isRough(x, y) && a.trace.ssr.opacity.at(x, y) == 0.0f &&
+                               a.trace.ssr.hit.at(x, y) == 0.0f;
+                hiddenEmpty += isMetal(x, y) && a.trace.ssgi.color[0].at(x, y) == 0.0f &&
+                               a.trace.ssgi.hit.at(x, y) == 0.0f;
             }
         CHECK(rough > 1000);
         CHECK(metal > 100);
@@ -154,15 +155,44 @@ TEST_CASE("renderer: reprojected SSR hits read the previous frame of a sequence"
     const Scene scene = makeBuiltinScene("spheres");
     RenderSettings current = smallTraced(), reprojected = smallTraced();
     reprojected.trace.resolve.radiance = HitRadiance::Reprojected;
+    const Renderer rc(current), rr(reprojected);
+    FrameInput input = FrameInput::still(scene);
+    input.previousCamera = input.camera;
     Frame a, b;
+    FrameHistory ha, hb;
     // The first frame has no previous one: reprojected falls back to the current frame.
-    Renderer(current).render(scene, scene.camera, scene.camera, a);
-    Renderer(reprojected).render(scene, scene.camera, scene.camera, b);
-    CHECK(test::sameBits(a.plane("ssr.R"), b.plane("ssr.R")));
+    rc.render(scene, input, ha, a);
+    rr.render(scene, input, hb, b);
+    CHECK(test::sameBits(a.trace.ssr.color[0], b.trace.ssr.color[0]));
+    // Only what the next frame reads is committed.
+    CHECK_FALSE(ha.valid);
+    REQUIRE(hb.valid);
+    CHECK(test::sameBits(hb.color[0], b.image.color[0]));
     // The second reads last frame's composite (SSR and SSGI included) instead of this
     // frame's direct light, so the reflections change while the G-buffer does not.
-    Renderer(current).render(scene, scene.camera, scene.camera, a);
-    Renderer(reprojected).render(scene, scene.camera, scene.camera, b);
-    CHECK(test::sameBits(a.plane("viewZ"), b.plane("viewZ")));
-    CHECK_FALSE(test::sameBits(a.plane("ssr.R"), b.plane("ssr.R")));
+    rc.render(scene, input, ha, a);
+    rr.render(scene, input, hb, b);
+    CHECK(test::sameBits(a.gbuffer.viewZ, b.gbuffer.viewZ));
+    CHECK_FALSE(test::sameBits(a.trace.ssr.color[0], b.trace.ssr.color[0]));
+    const PlaneF second = b.trace.ssr.color[0].clone();
+    // The same history given again gives the same frame (nothing else is kept); a reset, and
+    // a frame without history, give the first frame's bits.
+    FrameHistory replay;
+    rr.render(scene, input, replay, b);  // commits the first frame again
+    rr.render(scene, input, replay, b);
+    CHECK(test::sameBits(b.trace.ssr.color[0], second));
+    FrameInput cut = input;
+    cut.resetHistory = true;
+    rr.render(scene, cut, replay, b);
+    CHECK(test::sameBits(a.trace.ssr.color[0],
+                         rc.renderWithoutHistory(scene, input).trace.ssr.color[0]));
+    const Frame still = rr.renderWithoutHistory(scene, input);
+    CHECK(test::sameBits(b.trace.ssr.color[0], still.trace.ssr.color[0]));
+    // A history of another size is not read.
+    RenderSettings wider = reprojected;
+    wider.width += 8;
+    FrameHistory other;
+    Renderer(wider).render(scene, input, other, b);
+    rr.render(scene, input, other, b);
+    CHECK(test::sameBits(b.trace.ssr.color[0], still.trace.ssr.color[0]));
 }

@@ -192,19 +192,19 @@ TEST_CASE("bunny scene renders finite: many small triangles seen, a shadow on th
     settings.width = kWidth;
     settings.height = kHeight;
     settings.shadowMapSize = 512;
-    const Frame frame = Renderer(settings).render(scene);
-    for (const NamedPlane& p : frame.planes) {
+    const Frame frame = Renderer(settings).renderWithoutHistory(scene);
+    for (const PlaneRef& p : frame.layers()) {
         int bad = 0;
         for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) bad += !std::isfinite(p.plane.at(x, y));
+            for (int x = 0; x < kWidth; ++x) bad += !std::isfinite(p.plane->at(x, y));
         CAPTURE(p.name);
         CHECK(bad == 0);
     }
     const float ground = float(instanceNamed(scene, "bunny_ground"));
     const float bunny = float(instanceNamed(scene, "bunny"));
-    const PlaneF& ids = frame.plane("instanceId");
-    const PlaneF& triangles = frame.plane("triangleId");
-    const PlaneF& shadow = frame.plane("shadow");
+    const PlaneF& ids = frame.ids.instanceId;
+    const PlaneF& triangles = frame.ids.triangleId;
+    const PlaneF& shadow = frame.image.shadow;
     int bunnyPixels = 0, shadowedGround = 0, litGround = 0;
     std::set<float> bunnyTriangles;
     for (int y = 0; y < kHeight; ++y)

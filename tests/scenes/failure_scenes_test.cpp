@@ -28,7 +28,7 @@ Frame renderSmall(const Scene& scene) {
     settings.width = kWidth;
     settings.height = kHeight;
     settings.shadowMapSize = 512;
-    return Renderer(settings).render(scene);
+    return Renderer(settings).renderWithoutHistory(scene);
 }
 
 // Instances whose material's name starts with `prefix`, in scene order.
@@ -119,7 +119,7 @@ float instanceAt(const Frame& frame, glm::ivec2 px) {
     REQUIRE(px.x < kWidth);
     REQUIRE(px.y >= 0);
     REQUIRE(px.y < kHeight);
-    return frame.plane("instanceId").at(px.x, px.y);
+    return frame.ids.instanceId.at(px.x, px.y);
 }
 
 }  // namespace
@@ -139,10 +139,10 @@ TEST_CASE("failure scenes: registered, valid, still, and render with finite plan
         CHECK(listed);
 
         const Frame frame = renderSmall(scene);
-        for (const NamedPlane& p : frame.planes) {
+        for (const PlaneRef& p : frame.layers()) {
             int bad = 0;
-            for (int y = 0; y < p.plane.height(); ++y)
-                for (int x = 0; x < p.plane.width(); ++x) bad += !std::isfinite(p.plane.at(x, y));
+            for (int y = 0; y < p.plane->height(); ++y)
+                for (int x = 0; x < p.plane->width(); ++x) bad += !std::isfinite(p.plane->at(x, y));
             CAPTURE(p.name);
             CHECK(bad == 0);
         }
@@ -188,7 +188,7 @@ TEST_CASE("corridor scene: long and narrow, no ceiling, far end visible down the
     scene.bounds(lo, hi);
     CHECK(hi.y <= wallTop + 1e-5f);  // nothing above the walls: open to the sun
     const Frame frame = renderSmall(scene);
-    const float centreZ = frame.plane("viewZ").at(kWidth / 2, kHeight / 2);
+    const float centreZ = frame.gbuffer.viewZ.at(kWidth / 2, kHeight / 2);
     CHECK(centreZ > 20.0f);
     CHECK(instanceAt(frame, {kWidth / 2, kHeight / 2}) ==
           float(onlyInstanceOf(scene, "corridor_end")));
@@ -237,7 +237,7 @@ TEST_CASE("occluded scene: the mirror shows a sphere that the camera cannot see"
     CHECK(instanceAt(frame, pixelOf(scene.camera, image)) == float(mirror));
     // No pixel anywhere holds the sphere: a screen-space reflection has nothing to hit.
     int sphereSeen = 0;
-    const PlaneF& ids = frame.plane("instanceId");
+    const PlaneF& ids = frame.ids.instanceId;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) sphereSeen += ids.at(x, y) == float(hidden);
     CHECK(sphereSeen == 0);

@@ -102,7 +102,7 @@ TEST_CASE("shot: every field lands where it is meant to") {
     CHECK(s.shadowBias == 0.5f);
     CHECK(s.shadowSlopeBias == 1.25f);
     CHECK(s.pcfRadius == 2);
-    CHECK(s.frame == 7u);
+    CHECK(shot.render.frame == 7u);
     CHECK(shot.render.frames == 12);
 }
 

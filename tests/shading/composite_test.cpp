@@ -40,13 +40,13 @@ struct DirectFixture {
         rs.height = 70;
         rs.shadowMapSize = 64;
         rs.threads = 2;
-        frame = Renderer(rs).render(makeBuiltinScene(scene));
+        frame = Renderer(rs).renderWithoutHistory(makeBuiltinScene(scene));
         const int w = frame.width, h = frame.height;
         static const char* const g[10] = {"viewZ",     "normal.X",  "normal.Y", "normal.Z",
                                           "albedo.R",  "albedo.G",  "albedo.B", "metallic",
                                           "roughness", "materialId"};
         for (int i = 0; i < 10; ++i) args.g[i] = frame.plane(g[i]).row(0);
-        args.gStride = frame.plane("viewZ").stride();
+        args.gStride = frame.gbuffer.viewZ.stride();
         args.width = w;
         args.height = h;
         args.tilesX = TileGrid(w, h).tilesX;
@@ -66,7 +66,7 @@ struct DirectFixture {
         std::copy_n(zen, 3, args.skyZenith);
         std::copy_n(hor, 3, args.skyHorizon);
         std::copy_n(gnd, 3, args.skyGround);
-        const PlaneF& mat = frame.plane("materialId");
+        const PlaneF& mat = frame.gbuffer.materialId;
         int materials = 1;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) materials = std::max(materials, int(mat.at(x, y)) + 1);
@@ -178,22 +178,22 @@ TEST_CASE(
         for (int i = 0; i < 7; ++i) CHECK(sameBits(f.out[i], ref[i]));  // color untouched
         // Every surface pixel: the ratio is 1 + F0 (1/E - 1), E at the kernel's n.v.
         int checked = 0, raised = 0;
-        const PlaneF& viewZ = f.frame.plane("viewZ");
+        const PlaneF& viewZ = f.frame.gbuffer.viewZ;
         const int w = f.frame.width, h = f.frame.height;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 if (viewZ.at(x, y) <= 0.0f) continue;
-                const float metallic = f.frame.plane("metallic").at(x, y);
-                const float rough = f.frame.plane("roughness").at(x, y);
-                const float albedo = f.frame.plane("albedo.R").at(x, y);
+                const float metallic = f.frame.gbuffer.metallic.at(x, y);
+                const float rough = f.frame.gbuffer.roughness.at(x, y);
+                const float albedo = f.frame.gbuffer.albedo[0].at(x, y);
                 const float f0 = 0.04f + (albedo - 0.04f) * metallic;
                 // The fixture's camera: identity rotation, view ray through the pixel centre.
                 const double dx = (2.0 * (x + 0.5) / w - 1.0) * f.args.tanHalfX,
                              dy = (1.0 - 2.0 * (y + 0.5) / h) * f.args.tanHalfY, dz = -1.0;
                 const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-                const double nv = -(f.frame.plane("normal.X").at(x, y) * dx +
-                                    f.frame.plane("normal.Y").at(x, y) * dy +
-                                    f.frame.plane("normal.Z").at(x, y) * dz) /
+                const double nv = -(f.frame.gbuffer.normal[0].at(x, y) * dx +
+                                    f.frame.gbuffer.normal[1].at(x, y) * dy +
+                                    f.frame.gbuffer.normal[2].at(x, y) * dz) /
                                   len;
                 const float e = std::max(
                     multiscatter::albedo(tables, std::max(float(nv), 1e-4f), rough), 1e-3f);
@@ -265,8 +265,8 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
         in.albedo[c] = &f.frame.plane(c == 0 ? "albedo.R" : c == 1 ? "albedo.G" : "albedo.B");
         in.envDiffuse[c] = nullptr;  // not needed with SSGI on
     }
-    in.viewZ = &f.frame.plane("viewZ");
-    in.metallic = &f.frame.plane("metallic");
+    in.viewZ = &f.frame.gbuffer.viewZ;
+    in.metallic = &f.frame.gbuffer.metallic;
     PlaneF color[3], display[3];
     composite(Isa::Scalar, in, color, display, 2);
     int surfaces = 0;

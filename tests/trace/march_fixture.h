@@ -91,7 +91,7 @@ inline GBuf renderGBuffer(const std::string& scene, int w, int h, PlaneF* roughn
     rs.shadowMapSize = 256;
     rs.idPlanes = false;
     const Scene s = makeBuiltinScene(scene);
-    const Frame f = Renderer(rs).render(s);
+    const Frame f = Renderer(rs).renderWithoutHistory(s);
     GBuf g;
     g.camera = makeCamera(w, h, s.camera.fovY);
     g.camera.nearZ = s.camera.nearZ;
@@ -99,11 +99,11 @@ inline GBuf renderGBuffer(const std::string& scene, int w, int h, PlaneF* roughn
     const glm::mat3 toWorld = glm::transpose(glm::mat3(s.camera.view()));
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) g.camera.viewToWorld[c * 3 + r] = toWorld[c][r];
-    g.viewZ = f.plane("viewZ").clone();
-    g.nx = f.plane("normal.X").clone();
-    g.ny = f.plane("normal.Y").clone();
-    g.nz = f.plane("normal.Z").clone();
-    if (roughness) *roughness = f.plane("roughness").clone();
+    g.viewZ = f.gbuffer.viewZ.clone();
+    g.nx = f.gbuffer.normal[0].clone();
+    g.ny = f.gbuffer.normal[1].clone();
+    g.nz = f.gbuffer.normal[2].clone();
+    if (roughness) *roughness = f.gbuffer.roughness.clone();
     return g;
 }
 
@@ -163,11 +163,12 @@ inline void setRay(RayBatch& rays, const GBuf& g, int x, int y, glm::vec3 d) {
 
 // Marches with any marcher (building the pyramid for Hi-Z).
 inline MarchStats march(Marcher m, const MarchSettings& s, const GBuf& g, const RayBatch& rays,
-                        MarchResult& out, Isa isa = Isa::Scalar, int threads = 1) {
+                        MarchResult& out, Isa isa = Isa::Scalar, int threads = 1,
+                        RaySeed seed = {}) {
     HiZPyramid hiz;
     if (m == Marcher::HiZ) buildHiZ(g.viewZ, hiz, threads);
-    return marchRays(isa, m, s, g.camera, g.view(), m == Marcher::HiZ ? &hiz : nullptr, rays, out,
-                     threads);
+    return marchRays(isa, m, s, seed, g.camera, g.view(), m == Marcher::HiZ ? &hiz : nullptr, rays,
+                     out, threads);
 }
 
 }  // namespace ssrt::test

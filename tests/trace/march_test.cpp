@@ -179,8 +179,8 @@ TEST_CASE("march: hi-z packs 1/minZ once, and marching from it equals packing pe
     const MarchSettings s;
     for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
-        marchRays(isa, Marcher::HiZ, s, g.camera, g.view(), &hiz, rays, a, 2);
-        marchRays(isa, Marcher::HiZ, s, g.camera, g.view(), &bare, rays, b, 2);
+        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), &hiz, rays, a, 2);
+        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), &bare, rays, b, 2);
         // (Both paths give the same bits by design: this holds the stored copy to the one
         // marchRays would make, not that the stored one is used; the benchmarks show that.)
         CHECK(sameBits(a.hit, b.hit));
@@ -406,10 +406,11 @@ TEST_CASE("march: bit-identical for threads 1/2/8 and every ISA the CPU runs") {
             MarchSettings s;
             if (variant == 1) {
                 s.ddaStride = 2.5f, s.linearStep = 0.11f, s.hizMostDetailedLevel = 1;
-                s.hizStartLevel = 2, s.frame = 3;
+                s.hizStartLevel = 2;
             }
+            const RaySeed seed{variant == 1 ? 3u : 0u, 0};
             MarchResult ref;
-            const MarchStats refStats = march(m, s, g, rays, ref, Isa::Scalar, 1);
+            const MarchStats refStats = march(m, s, g, rays, ref, Isa::Scalar, 1, seed);
             CHECK(refStats.ends[int(MarchEnd::Hit)] > 100);
             const uint64_t h = resultHash(ref);
             for (Isa isa : supportedIsas())
@@ -417,7 +418,7 @@ TEST_CASE("march: bit-identical for threads 1/2/8 and every ISA the CPU runs") {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     MarchResult r;
-                    const MarchStats st = march(m, s, g, rays, r, isa, threads);
+                    const MarchStats st = march(m, s, g, rays, r, isa, threads, seed);
                     CHECK(resultHash(r) == h);
                     CHECK(st.steps == refStats.steps);
                     CHECK(st.laneActive == refStats.laneActive);
@@ -440,10 +441,10 @@ TEST_CASE("march: every ray's result is the same bits as when it is marched alon
     for (Marcher m : kMarchers)
         for (const RayBatch* rays : {&vndf, &cosine}) {
             CAPTURE(marcherName(m));
-            MarchSettings s;
-            s.frame = 2;
+            const MarchSettings s;
+            const RaySeed seed{2, 0};
             MarchResult all;
-            march(m, s, g, *rays, all, best, 2);
+            march(m, s, g, *rays, all, best, 2, seed);
             int compared = 0, hits = 0;
             // Every 37th pixel with a ray (about 700 rays).
             for (int p = 0; p < 200 * 136; p += 37) {
@@ -454,7 +455,7 @@ TEST_CASE("march: every ray's result is the same bits as when it is marched alon
                                    &RayBatch::dy, &RayBatch::dz, &RayBatch::pdf})
                     (one.*plane).at(x, y) = ((*rays).*plane).at(x, y);
                 MarchResult alone;
-                march(m, s, g, one, alone, best, 1);
+                march(m, s, g, one, alone, best, 1, seed);
                 CAPTURE(x);
                 CAPTURE(y);
                 for (auto plane : {&MarchResult::hit, &MarchResult::hitX, &MarchResult::hitY,

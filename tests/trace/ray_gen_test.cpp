@@ -36,9 +36,9 @@ struct GBufferFrame {
     Frame frame;
     TraceCamera camera;
     RayGenGBuffer g() const {
-        return {&frame.plane("viewZ"),
-                {&frame.plane("normal.X"), &frame.plane("normal.Y"), &frame.plane("normal.Z")},
-                &frame.plane("roughness")};
+        return {&frame.gbuffer.viewZ,
+                {&frame.gbuffer.normal[0], &frame.gbuffer.normal[1], &frame.gbuffer.normal[2]},
+                &frame.gbuffer.roughness};
     }
     int width() const { return camera.width; }
     int height() const { return camera.height; }
@@ -63,7 +63,7 @@ GBufferFrame renderScene(const Scene& scene, int w, int h) {
     rs.height = h;
     rs.shadowMapSize = 256;
     rs.threads = 1;
-    GBufferFrame f{Renderer(rs).render(scene), traceCamera(scene.camera, w, h)};
+    GBufferFrame f{Renderer(rs).renderWithoutHistory(scene), traceCamera(scene.camera, w, h)};
     return f;
 }
 
@@ -105,8 +105,8 @@ Vec normalized(Vec v) {
 // The pixel's shading normal in view space (double), and its view direction (to the camera).
 Vec viewNormal(const GBufferFrame& f, int x, int y) {
     const float* r = f.camera.viewToWorld;
-    const Vec nw{f.frame.plane("normal.X").at(x, y), f.frame.plane("normal.Y").at(x, y),
-                 f.frame.plane("normal.Z").at(x, y)};
+    const Vec nw{f.frame.gbuffer.normal[0].at(x, y), f.frame.gbuffer.normal[1].at(x, y),
+                 f.frame.gbuffer.normal[2].at(x, y)};
     return normalized({r[0] * nw.x + r[1] * nw.y + r[2] * nw.z,
                        r[3] * nw.x + r[4] * nw.y + r[5] * nw.z,
                        r[6] * nw.x + r[7] * nw.y + r[8] * nw.z});
@@ -173,8 +173,8 @@ RayGenStats generate(const GBufferFrame& f, const SsrMethod* method, RayBatch& r
 // Every invariant that holds pixel by pixel; returns the number of rays seen.
 uint64_t checkBatch(const GBufferFrame& f, const SsrMethod* method, const RayBatch& rays,
                     const RayGenStats& stats) {
-    const PlaneF& viewZ = f.frame.plane("viewZ");
-    const PlaneF& rough = f.frame.plane("roughness");
+    const PlaneF& viewZ = f.frame.gbuffer.viewZ;
+    const PlaneF& rough = f.frame.gbuffer.roughness;
     uint64_t surface = 0, background = 0, withRay = 0, bad = 0;
     for (int y = 0; y < f.height(); ++y)
         for (int x = 0; x < f.width(); ++x) {
@@ -297,12 +297,8 @@ TEST_CASE(
     "were") {
     // Cornell: walls 0.9, box 0.6, floor 0.15, mirror 0.02; one wall pixel made NaN.
     GBufferFrame f = renderBuiltin("cornell", 203, 137);
-    PlaneF* roughPlane = nullptr;
-    for (NamedPlane& p : f.frame.planes)
-        if (p.name == "roughness") roughPlane = &p.plane;
-    REQUIRE(roughPlane);
-    PlaneF& rough = *roughPlane;
-    const PlaneF& viewZ = f.frame.plane("viewZ");
+    PlaneF& rough = f.frame.gbuffer.roughness;
+    const PlaneF& viewZ = f.frame.gbuffer.viewZ;
     // Three smooth pixels edited: NaN, exactly the cut (no ray: the fade is 0 there) and the
     // float just below it (a ray).
     const float cut = 0.7f;
@@ -375,15 +371,11 @@ TEST_CASE("ray generation: NoDiffuseColour leaves pixels without a diffuse colou
     // one channel of albedo left at half metallic (a ray), NaN metallic (a ray: the
     // composite's colour is NaN there, not 0), metallic 1 on a wall (no ray).
     GBufferFrame f = renderBuiltin("cornell", 203, 137);
-    const auto plane = [&](const char* name) -> PlaneF& {
-        for (NamedPlane& p : f.frame.planes)
-            if (p.name == name) return p.plane;
-        FAIL("no plane " << name);
-        return f.frame.planes.front().plane;
-    };
-    PlaneF &r = plane("albedo.R"), &g = plane("albedo.G"), &b = plane("albedo.B");
-    PlaneF& metallic = plane("metallic");
-    const PlaneF& viewZ = f.frame.plane("viewZ");
+    PlaneF& r = f.frame.gbuffer.albedo[0];
+    PlaneF& g = f.frame.gbuffer.albedo[1];
+    PlaneF& b = f.frame.gbuffer.albedo[2];
+    PlaneF& metallic = f.frame.gbuffer.metallic;
+    const PlaneF& viewZ = f.frame.gbuffer.viewZ;
     const int y = f.height() / 2;
     std::vector<int> xs;
     for (int x = 0; x < f.width() && xs.size() < 4; x += 7)
@@ -446,7 +438,7 @@ TEST_CASE("ray generation: mirror rays are exact reflections") {
         int facing = 0;
         for (int y = 0; y < f.height(); ++y)
             for (int x = 0; x < f.width(); ++x) {
-                if (!(f.frame.plane("viewZ").at(x, y) > 0.0f)) continue;
+                if (!(f.frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
                 const Vec n = viewNormal(f, x, y), v = toViewer(f.camera, x, y);
                 const double nv = dot(n, v);
                 if (nv <= 0.0) {
@@ -502,12 +494,12 @@ namespace {
 
 // The lobe of pixel (px, py) for every method but Mirror, and the cosine lobe.
 void checkLobe(const GBufferFrame& f, int px, int py) {
-    REQUIRE(f.frame.plane("viewZ").at(px, py) > 0.0f);
+    REQUIRE(f.frame.gbuffer.viewZ.at(px, py) > 0.0f);
     const Vec n = viewNormal(f, px, py);
     const Frame3 fr(n);
     const V3f wi = fr.local(toViewer(f.camera, px, py));
     CAPTURE(wi.z);
-    const float alpha = brdf::roughnessToAlpha(f.frame.plane("roughness").at(px, py));
+    const float alpha = brdf::roughnessToAlpha(f.frame.gbuffer.roughness.at(px, py));
     // Chi-square cells: cos(theta) in (0, 1] x phi about the normal, and one for rejections
     constexpr int kBinsZ = 16, kBinsPhi = 16, kCells = kBinsZ * kBinsPhi + 1;
     auto cellOf = [&](double z, double phi) {
@@ -548,9 +540,9 @@ void checkLobe(const GBufferFrame& f, int px, int py) {
         double hits = 0.0, sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
         std::vector<uint64_t> count(kCells, 0);
         // (only this pixel is a surface, so the rest of the frame costs little)
-        PlaneF lone = f.frame.plane("viewZ").clone();
+        PlaneF lone = f.frame.gbuffer.viewZ.clone();
         lone.fill(0.0f);
-        lone.at(px, py) = f.frame.plane("viewZ").at(px, py);
+        lone.at(px, py) = f.frame.gbuffer.viewZ.at(px, py);
         RayGenGBuffer g = f.g();
         g.viewZ = &lone;
         const Isa isa = supportedIsas().back();
@@ -638,7 +630,7 @@ TEST_CASE("ray generation: rays are the samplers' maps of randomFloat(pixel, fra
                 } else {
                     const Vec v = toViewer(f.camera, x, y);
                     const Vec wi{dot(v, t), dot(v, b), dot(v, n)};
-                    const float alpha = brdf::roughnessToAlpha(f.frame.plane("roughness").at(x, y));
+                    const float alpha = brdf::roughnessToAlpha(f.frame.gbuffer.roughness.at(x, y));
                     const V3f wmf = sm::sampleGgxNdf(alpha, alpha, u1, u2);
                     const Vec wm = normalized({wmf.x, wmf.y, wmf.z});
                     const double d = 2.0 * dot(wi, wm);

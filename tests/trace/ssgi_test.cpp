@@ -108,15 +108,15 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
 
 // SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
 void gbufferInputs(const Frame& frame, SsgiInputs& in) {
-    in.viewZ = &frame.plane("viewZ");
+    in.viewZ = &frame.gbuffer.viewZ;
     const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
     const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
     for (int c = 0; c < 3; ++c) {
         in.normal[c] = &frame.plane(n[c]);
         in.albedo[c] = &frame.plane(a[c]);
     }
-    in.metallic = &frame.plane("metallic");
-    in.shadow = &frame.plane("shadow");
+    in.metallic = &frame.gbuffer.metallic;
+    in.shadow = &frame.image.shadow;
 }
 
 }  // namespace
@@ -190,7 +190,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     rs.height = 77;
     rs.shadowMapSize = 128;
     rs.threads = 2;
-    const Frame frame = Renderer(rs).render(makeBuiltinScene("cornell"));
+    const Frame frame = Renderer(rs).renderWithoutHistory(makeBuiltinScene("cornell"));
     const int w = frame.width, h = frame.height;
     SsgiInputs in;
     in.camera.width = w;
@@ -264,15 +264,14 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         rs.shadowMapSize = 128;
         rs.threads = 2;
         Frame frame;
-        Renderer(rs).render(scene, scene.camera, scene.previousCamera, frame);
+        Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
         DirectLighting dl;
         setDirectLighting(scene, rs, frame.scratch.shadow, nullptr, dl);
         REQUIRE(dl.args.anyEmissive == emits);
         SsgiInputs in;
         in.camera = frame.camera;
         gbufferInputs(frame, in);
-        for (int c = 0; c < 3; ++c)
-            in.emission[c] = emits ? &frame.scratch.directParts[3 + c] : nullptr;
+        for (int c = 0; c < 3; ++c) in.emission[c] = emits ? &frame.direct.emission[c] : nullptr;
         in.lighting = &dl.args;
         RayBatch rays;
         MarchResult march;
@@ -287,7 +286,7 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         CHECK(lit > 100);
         SsgiInputs fast = in;
         for (int c = 0; c < 3; ++c) {
-            fast.hitLight[c] = &frame.scratch.hitLight[c];
+            fast.hitLight[c] = &frame.direct.hitLight[c];
             fast.normal[c] = fast.albedo[c] = fast.emission[c] = nullptr;
         }
         fast.metallic = fast.shadow = nullptr;

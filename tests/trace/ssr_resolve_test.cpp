@@ -382,15 +382,16 @@ TEST_CASE(
     rs.height = 77;
     rs.shadowMapSize = 128;
     rs.threads = 2;
-    const Frame frame = Renderer(rs).render(makeBuiltinScene("spheres"));  // roughness 0..1
+    const Frame frame =
+        Renderer(rs).renderWithoutHistory(makeBuiltinScene("spheres"));  // roughness 0..1
     const int w = frame.width, h = frame.height;
     SsrResolveInputs in;
     in.camera.width = w;
     in.camera.height = h;
     in.camera.tanHalfY = 0.4f;
     in.camera.tanHalfX = 0.4f * float(w) / float(h);
-    in.viewZ = &frame.plane("viewZ");
-    in.roughness = &frame.plane("roughness");
+    in.viewZ = &frame.gbuffer.viewZ;
+    in.roughness = &frame.gbuffer.roughness;
     const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
     const char* const col[3] = {"color.R", "color.G", "color.B"};
     for (int c = 0; c < 3; ++c) {
@@ -398,8 +399,8 @@ TEST_CASE(
         in.color[c] = &frame.plane(col[c]);
         in.prevColor[c] = &frame.plane(col[c]);
     }
-    in.motion[0] = &frame.plane("motion.X");
-    in.motion[1] = &frame.plane("motion.Y");
+    in.motion[0] = &frame.gbuffer.motion[0];
+    in.motion[1] = &frame.gbuffer.motion[1];
     // Random rays: some without a ray, some with a tiny or huge pdf, hits anywhere including
     // exactly on the frame's edges and beyond.
     RayBatch rays;

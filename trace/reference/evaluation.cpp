@@ -42,19 +42,13 @@ double passMs(const std::vector<PassTime>& passes, const std::string& name) {
     return 0.0;
 }
 
-void planeTriple(const Frame& f, const char* base, const PlaneF* out[3]) {
-    const char* suffix[3] = {".R", ".G", ".B"};
-    for (int c = 0; c < 3; ++c) out[c] = &f.plane(std::string(base) + suffix[c]);
-}
-
 ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     ErrorTable t;
-    const PlaneF* color[3];
-    planeTriple(frame, "color", color);
+    const PlaneF* color[3] = {&frame.image.color[0], &frame.image.color[1], &frame.image.color[2]};
     const PlaneF* refColor[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
     t.color = imageError(color, refColor);
     // With both passes off the direct pass hands out no parts: the colour error alone.
-    if (!frame.has("ssr.R") && !frame.has("ssgi.R")) return t;
+    if (frame.direct.direct[0].empty()) return t;
     t.parts = true;
     const FrameParts parts = frameParts(frame);
     const auto err = [](const PlaneF(&a)[3], const PlaneF(&b)[3]) {
@@ -79,9 +73,9 @@ void EvaluationSettings::validate() const {
         throw std::invalid_argument("depth tolerance must be in (0, 1)");
 }
 
-Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
-                    const Camera& previousCamera, const RenderSettings& settings,
-                    const ReferenceImage& reference, const EvaluationSettings& es, Frame& frame) {
+Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                    const RenderSettings& settings, const ReferenceImage& reference,
+                    const EvaluationSettings& es, Frame& frame) {
     es.validate();
     const Renderer renderer(settings);
     Evaluation ev;
@@ -91,7 +85,7 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera&
     // Timed renders: nothing else runs inside them.
     std::vector<std::vector<PassTime>> runs;
     for (int i = 0; i < es.repeats; ++i) {
-        renderer.render(scene, camera, previousCamera, frame);
+        renderer.renderWithoutHistory(scene, input, frame);
         runs.push_back(frame.stats.passes);
     }
     ev.passes = medianPasses(runs, ev.frameMs);
@@ -106,12 +100,12 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera&
         RayCheckPlanes* planes =
             es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes) : nullptr;
         // The G-buffer is complete before the trace passes run; the frame's camera too.
-        if (!viewZ) viewZ = &frame.plane("viewZ");
+        if (!viewZ) viewZ = &frame.gbuffer.viewZ;
         const RayCheckTable t =
             checkRays(embree, frame.camera, *viewZ, rays, march, check, planes, settings.threads);
         (ssr ? ev.ssrCheck : ev.ssgiCheck).add(t);
     };
-    renderer.render(scene, camera, previousCamera, frame, &observer);
+    renderer.renderWithoutHistory(scene, input, frame, &observer);
     ev.stats = frame.stats;
     ev.ssrCheck.finish();
     ev.ssgiCheck.finish();

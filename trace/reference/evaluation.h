@@ -45,9 +45,8 @@ struct Evaluation {
 // Renders `repeats` timed frames (no checks), then one more whose traced samples Embree
 // checks (the same rays: rendering is deterministic); compares its image with `reference`.
 // `frame` receives the checked render. The Embree checks run on settings.threads workers.
-Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const Camera& camera,
-                    const Camera& previousCamera, const RenderSettings& settings,
-                    const ReferenceImage& reference, const EvaluationSettings& evalSettings,
-                    Frame& frame);
+Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                    const RenderSettings& settings, const ReferenceImage& reference,
+                    const EvaluationSettings& evalSettings, Frame& frame);
 
 }  // namespace ssrt

@@ -9,14 +9,9 @@ namespace ssrt {
 
 namespace {
 
-const char* const kAlbedo[3] = {"albedo.R", "albedo.G", "albedo.B"};
-
-// The direct pass's parts (Frame::Scratch::directParts): RGB triples in this order.
-enum Part { kDirect = 0, kEmission = 3, kEnvDiffuse = 6, kEnvSpecular = 9, kSpecWeight = 12 };
-
 // 1 where the pixel shows a surface: the reference's SSR replaces the sky's specular there.
 PlaneF surfaceOpacity(const Frame& frame) {
-    const PlaneF& viewZ = frame.plane("viewZ");
+    const PlaneF& viewZ = frame.gbuffer.viewZ;
     PlaneF o(frame.width, frame.height);
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x) o.at(x, y) = viewZ.at(x, y) > 0.0f ? 1.0f : 0.0f;
@@ -27,20 +22,20 @@ PlaneF surfaceOpacity(const Frame& frame) {
 
 void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const PlaneF& opacity,
                      const PlaneF* const ssgi[3], PlaneF specular[3], PlaneF diffuse[3]) {
-    const PlaneF* parts = frame.scratch.directParts;
-    const PlaneF& viewZ = frame.plane("viewZ");
-    const PlaneF& metallic = frame.plane("metallic");
+    const DirectParts& parts = frame.direct;
+    const PlaneF& viewZ = frame.gbuffer.viewZ;
+    const PlaneF& metallic = frame.gbuffer.metallic;
     for (int c = 0; c < 3; ++c) {
         specular[c].ensureSize(frame.width, frame.height);
         diffuse[c].ensureSize(frame.width, frame.height);
-        const PlaneF& albedo = frame.plane(kAlbedo[c]);
+        const PlaneF& albedo = frame.gbuffer.albedo[c];
         for (int y = 0; y < frame.height; ++y)
             for (int x = 0; x < frame.width; ++x) {
                 // The composite's operations, in its order.
                 const float o = opacity.at(x, y);
                 const float incoming =
-                    ssr[c]->at(x, y) * o + parts[kEnvSpecular + c].at(x, y) * (1.0f - o);
-                specular[c].at(x, y) = parts[kSpecWeight + c].at(x, y) * incoming;
+                    ssr[c]->at(x, y) * o + parts.envSpecular[c].at(x, y) * (1.0f - o);
+                specular[c].at(x, y) = parts.specWeight[c].at(x, y) * incoming;
                 const float colour = albedo.at(x, y) * (1.0f - metallic.at(x, y));
                 diffuse[c].at(x, y) = viewZ.at(x, y) <= 0.0f ? 0.0f : colour * ssgi[c]->at(x, y);
             }
@@ -48,50 +43,48 @@ void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const Plane
 }
 
 FrameParts frameParts(const Frame& frame) {
-    const PlaneF* parts = frame.scratch.directParts;
-    if (!(frame.has("ssr.R") || frame.has("ssgi.R")) || parts[0].width() != frame.width ||
-        parts[0].height() != frame.height)
+    const DirectParts& parts = frame.direct;
+    if (parts.direct[0].width() != frame.width || parts.direct[0].height() != frame.height)
         throw std::invalid_argument(
             "frame parts: the frame has no direct parts (both trace "
             "passes were off)");
     FrameParts fp;
     // A pass that was off stands in as the composite has it: SSR off is opacity 0 (the sky's
     // specular alone), SSGI off is the sky's diffuse light.
-    const bool ssrOn = frame.has("ssr.R"), ssgiOn = frame.has("ssgi.R");
+    const SsrPlanes& ssrPlanes = frame.trace.ssr;
+    const bool ssrOn = !ssrPlanes.opacity.empty(), ssgiOn = !frame.trace.ssgi.hit.empty();
     const PlaneF zero = ssrOn ? PlaneF() : PlaneF(frame.width, frame.height);
     const PlaneF* ssr[3];
     const PlaneF* ssgi[3];
-    const char* rgb[3] = {".R", ".G", ".B"};
     for (int c = 0; c < 3; ++c) {
-        ssr[c] = ssrOn ? &frame.plane(std::string("ssr") + rgb[c]) : &parts[kEnvSpecular + c];
-        ssgi[c] = ssgiOn ? &frame.plane(std::string("ssgi") + rgb[c]) : &parts[kEnvDiffuse + c];
+        ssr[c] = ssrOn ? &ssrPlanes.color[c] : &parts.envSpecular[c];
+        ssgi[c] = ssgiOn ? &frame.trace.ssgi.color[c] : &parts.envDiffuse[c];
     }
-    specularDiffuse(frame, ssr, ssrOn ? frame.plane("ssrOpacity") : zero, ssgi, fp.specular,
-                    fp.diffuse);
+    specularDiffuse(frame, ssr, ssrOn ? ssrPlanes.opacity : zero, ssgi, fp.specular, fp.diffuse);
     for (int c = 0; c < 3; ++c) {
-        fp.direct[c] = parts[kDirect + c].clone();
-        if (!ssgiOn) fp.diffuse[c] = parts[kEnvDiffuse + c].clone();
+        fp.direct[c] = parts.direct[c].clone();
+        if (!ssgiOn) fp.diffuse[c] = parts.envDiffuse[c].clone();
     }
     return fp;
 }
 
 void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmissive, int threads,
                       ReferenceImage& ref) {
-    const PlaneF* parts = frame.scratch.directParts;
+    const DirectParts& parts = frame.direct;
     const PlaneF opacity = surfaceOpacity(frame);
     CompositeInputs ci;
     for (int c = 0; c < 3; ++c) {
         ci.direct[c] = &ref.direct[c];
-        ci.emission[c] = anyEmissive ? &parts[kEmission + c] : nullptr;
-        ci.envDiffuse[c] = &parts[kEnvDiffuse + c];
-        ci.envSpecular[c] = &parts[kEnvSpecular + c];
-        ci.specWeight[c] = &parts[kSpecWeight + c];
+        ci.emission[c] = anyEmissive ? &parts.emission[c] : nullptr;
+        ci.envDiffuse[c] = &parts.envDiffuse[c];
+        ci.envSpecular[c] = &parts.envSpecular[c];
+        ci.specWeight[c] = &parts.specWeight[c];
         ci.ssgi[c] = &ref.ssgi[c];
-        ci.albedo[c] = &frame.plane(kAlbedo[c]);
+        ci.albedo[c] = &frame.gbuffer.albedo[c];
         ci.ssrColor[c] = &ref.ssr[c];
     }
-    ci.viewZ = &frame.plane("viewZ");
-    ci.metallic = &frame.plane("metallic");
+    ci.viewZ = &frame.gbuffer.viewZ;
+    ci.metallic = &frame.gbuffer.metallic;
     ci.ssrOpacity = &opacity;
     ci.exposure = exposure;
     PlaneF display[3];

@@ -66,16 +66,13 @@ struct Setup {
     explicit Setup(const Frame& f) : frame(f) {}
 };
 
-const char* const kGBuffer[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z",  "albedo.R",
-                                  "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
-
 void requireTraced(const Frame& frame, const RenderSettings& rs) {
     if (frame.width != rs.width || frame.height != rs.height)
         throw std::invalid_argument("reference: the frame was not rendered with these settings");
-    if (!frame.has("ssr.R") || !frame.has("ssgi.R"))
+    if (frame.trace.ssr.opacity.empty() || frame.trace.ssgi.hit.empty())
         throw std::invalid_argument("reference: the frame needs both trace passes (SSR and SSGI)");
-    if (frame.scratch.directParts[0].width() != frame.width ||
-        frame.scratch.directParts[0].height() != frame.height)
+    if (frame.direct.direct[0].width() != frame.width ||
+        frame.direct.direct[0].height() != frame.height)
         throw std::invalid_argument("reference: the frame has no direct parts");
 }
 
@@ -88,8 +85,7 @@ void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
     if (scene.sky.kind == Sky::Kind::Image) sky = cachedSkyLighting(scene.sky.image, rs.threads);
     setDirectLighting(scene, rs, f.scratch.shadow, std::move(sky), s.lighting);
     DirectArgs& a = s.lighting.args;
-    for (int i = 0; i < 10; ++i) a.g[i] = f.plane(kGBuffer[i]).row(0);
-    a.gStride = f.plane("viewZ").stride();
+    setDirectGBuffer(f.gbuffer, a);
     a.width = f.width;
     a.height = f.height;
     a.tanHalfX = f.camera.tanHalfX;
@@ -97,15 +93,14 @@ void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
     std::copy_n(f.camera.viewToWorld, 9, a.viewToWorld);
     std::copy_n(f.camera.position, 3, a.camPos);
     s.ctx = {&a, &embree, settings.visibility};
-    s.rayGen = {&f.plane("viewZ"),
-                {&f.plane("normal.X"), &f.plane("normal.Y"), &f.plane("normal.Z")},
-                &f.plane("roughness")};
+    const GBuffer& g = f.gbuffer;
+    s.rayGen = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}, &g.roughness};
     s.isa = resolveIsa(rs.isa);
     s.threads = rs.threads;
     s.grid = TileGrid(f.width, f.height);
     s.maxDistance = settings.maxDistance;
     s.ssrMethod = rs.trace.ssrMethod;
-    s.frameIndex = rs.frame;
+    s.frameIndex = f.index;
 }
 
 glm::vec3 rotate(const float* m, glm::vec3 v) {
@@ -153,7 +148,7 @@ glm::vec3 pointOf(const PointSurface& ps) { return {ps.p.x, ps.p.y, ps.p.z}; }
 // own direct part) on background pixels.
 void renderDirect(const Setup& s, PlaneF out[3]) {
     const DirectArgs& a = s.lighting.args;
-    const PlaneF* frameDirect = s.frame.scratch.directParts;
+    const PlaneF* frameDirect = s.frame.direct.direct;
     parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
@@ -268,8 +263,8 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
         });
         progress.step();
     }
-    const PlaneF* envSpecular = f.scratch.directParts + 9;
-    const PlaneF& viewZ = f.plane("viewZ");
+    const PlaneF* envSpecular = f.direct.envSpecular;
+    const PlaneF& viewZ = f.gbuffer.viewZ;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
             const std::size_t i = std::size_t(y) * f.width + x;

@@ -60,8 +60,8 @@ struct ReferenceImage {
 using Progress = std::function<void(double fraction)>;
 
 // Renders the reference for `frame` (rendered by `renderer` from `scene` with both trace
-// passes on: its G-buffer, direct parts and shadow map are read). Deterministic for a given
-// Embree build: per-pixel sample sequences from the counter-based RNG.
+// passes on: its G-buffer, direct parts, shadow map and frame index are read). Deterministic for a
+// given Embree build: per-pixel sample sequences from the counter-based RNG.
 ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
                                const Frame& frame, const ReferenceSettings& settings,
                                const Progress& progress = {});
@@ -69,8 +69,8 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
 // A key over everything the reference depends on: the scene's content (meshes, materials,
 // instances, textures, light, sky, cameras), the render settings that shape it (size,
 // shadow map, exposure, frame index, SSR sampler) and the reference settings. For caching.
-uint64_t referenceKey(const Scene& scene, const Camera& camera, const RenderSettings& render,
-                      const ReferenceSettings& settings);
+uint64_t referenceKey(const Scene& scene, const Camera& camera, uint32_t frameIndex,
+                      const RenderSettings& render, const ReferenceSettings& settings);
 
 // The same parts of a screen-space frame, before exposure, for the per-component error:
 // direct = the direct pass's sun part, specular = specWeight x (ssr x opacity + envSpecular x

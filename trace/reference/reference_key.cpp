@@ -118,7 +118,7 @@ void hashScene(Fnv1a& h, const Scene& scene) {
 // index (the reference's rays are the frame's sample sequence). Threads and ISA do not (the
 // determinism contract), nor the marcher, the resolve or the frame's spp (the reference
 // replaces them).
-void hashRender(Fnv1a& h, const RenderSettings& r) {
+void hashRender(Fnv1a& h, const RenderSettings& r, uint32_t frameIndex) {
     h.value(r.width);
     h.value(r.height);
     h.value(r.shadowMapSize);
@@ -126,19 +126,19 @@ void hashRender(Fnv1a& h, const RenderSettings& r) {
     h.value(r.shadowSlopeBias);
     h.value(r.pcfRadius);
     h.value(r.exposure);
-    h.value(r.frame);
+    h.value(frameIndex);
     h.value(r.trace.ssrMethod);
 }
 
 }  // namespace
 
-uint64_t referenceKey(const Scene& scene, const Camera& camera, const RenderSettings& render,
-                      const ReferenceSettings& settings) {
+uint64_t referenceKey(const Scene& scene, const Camera& camera, uint32_t frameIndex,
+                      const RenderSettings& render, const ReferenceSettings& settings) {
     Fnv1a h;
     h.value(kReferenceVersion);
     hashScene(h, scene);
     hashCamera(h, camera);
-    hashRender(h, render);
+    hashRender(h, render, frameIndex);
     h.value(settings.visibility);
     h.value(settings.spp);
     h.value(settings.maxDistance);

@@ -1,0 +1,238 @@
+// What a frame is made of: typed groups of planes, each with one name table, and the
+// history a sequence carries from one frame to the next.
+//
+// Each group lists its planes once, in `table` (name and member, in file order). That table
+// is the only place a plane's name is spelled: it gives the EXR channel names (io/image_io.h)
+// and Frame::plane(name). Passes take the members themselves. A group the settings leave out
+// (SSR off, no id planes) holds empty planes, and empty planes are not layers.
+// (After Filament's FrameHistoryEntry and NRD's resource enums: named resources, not strings
+// looked up at each use.)
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "raster/hiz.h"
+#include "raster/raster.h"
+#include "raster/raster_stats.h"
+#include "raster/shadow_map.h"
+#include "trace/color_pyramid.h"
+#include "trace/march.h"
+#include "trace/ray_gen.h"
+#include "trace/ssr_resolve.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+// A plane with its layer name.
+struct PlaneRef {
+    std::string_view name;
+    const PlaneF* plane;
+};
+
+// forEachPlane(fn) calls fn(name, plane) for every plane of the group, in table order.
+template <class Group>
+struct PlaneTable {
+    template <class Fn>
+    void forEachPlane(Fn&& fn) {
+        Group::table(static_cast<Group&>(*this), fn);
+    }
+    template <class Fn>
+    void forEachPlane(Fn&& fn) const {
+        Group::table(static_cast<const Group&>(*this), fn);
+    }
+    // Every plane of the group at this size (kept when it already is), or all empty.
+    void ensureSize(int width, int height) {
+        forEachPlane([&](std::string_view, PlaneF& p) { p.ensureSize(width, height); });
+    }
+    void release() {
+        forEachPlane([](std::string_view, PlaneF& p) { p = PlaneF(); });
+    }
+};
+
+// The direct pass's image, which the composite replaces when a trace pass runs.
+struct ImagePlanes : PlaneTable<ImagePlanes> {
+    PlaneF color[3];    // linear radiance times the exposure
+    PlaneF display[3];  // tone mapped, sRGB encoded, in [0, 1]
+    PlaneF shadow;      // light visibility, 0..1
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("color.R", g.color[0]), fn("color.G", g.color[1]), fn("color.B", g.color[2]);
+        fn("display.R", g.display[0]), fn("display.G", g.display[1]);
+        fn("display.B", g.display[2]), fn("shadow", g.shadow);
+    }
+};
+
+// The G-buffer: attributes of the visible surface per pixel. Background pixels: viewZ 0,
+// materialId -1, motion 0.
+struct GBuffer : PlaneTable<GBuffer> {
+    PlaneF viewZ;      // positive view-space depth
+    PlaneF normal[3];  // world space, unit
+    PlaneF albedo[3];  // base colour (linear)
+    PlaneF metallic;
+    PlaneF roughness;  // perceptual
+    PlaneF materialId;
+    PlaneF motion[2];  // previous minus current position, pixels
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("viewZ", g.viewZ);
+        fn("normal.X", g.normal[0]), fn("normal.Y", g.normal[1]), fn("normal.Z", g.normal[2]);
+        fn("albedo.R", g.albedo[0]), fn("albedo.G", g.albedo[1]), fn("albedo.B", g.albedo[2]);
+        fn("metallic", g.metallic), fn("roughness", g.roughness);
+        fn("materialId", g.materialId);
+        fn("motion.X", g.motion[0]), fn("motion.Y", g.motion[1]);
+    }
+};
+
+// Instance and triangle of each pixel as floats (RenderSettings::idPlanes); -1 on background.
+struct IdPlanes : PlaneTable<IdPlanes> {
+    PlaneF instanceId;
+    PlaneF triangleId;
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("instanceId", g.instanceId), fn("triangleId", g.triangleId);
+    }
+};
+
+// The direct pass's parts for the composite and the truth (shading/direct_kernel.h, DirectArgs
+// says what each holds), scene-linear; and the light SSGI reads at its hits. Not file layers.
+struct DirectParts : PlaneTable<DirectParts> {
+    PlaneF direct[3];
+    PlaneF emission[3];
+    PlaneF envDiffuse[3];
+    PlaneF envSpecular[3];
+    PlaneF specWeight[3];
+    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("direct.R", g.direct[0]), fn("direct.G", g.direct[1]), fn("direct.B", g.direct[2]);
+        fn("emission.R", g.emission[0]), fn("emission.G", g.emission[1]);
+        fn("emission.B", g.emission[2]);
+        fn("envDiffuse.R", g.envDiffuse[0]), fn("envDiffuse.G", g.envDiffuse[1]);
+        fn("envDiffuse.B", g.envDiffuse[2]);
+        fn("envSpecular.R", g.envSpecular[0]), fn("envSpecular.G", g.envSpecular[1]);
+        fn("envSpecular.B", g.envSpecular[2]);
+        fn("specWeight.R", g.specWeight[0]), fn("specWeight.G", g.specWeight[1]);
+        fn("specWeight.B", g.specWeight[2]);
+        fn("hitLight.R", g.hitLight[0]), fn("hitLight.G", g.hitLight[1]);
+        fn("hitLight.B", g.hitLight[2]);
+    }
+};
+
+// What SSR hands out (TraceSettings::ssr).
+struct SsrPlanes : PlaneTable<SsrPlanes> {
+    PlaneF color[3];     // reflected radiance, before the BRDF factor
+    PlaneF opacity;      // 0..1: the share of SSR over the environment
+    PlaneF hit;          // share of the pixel's rays that hit
+    PlaneF hitDistance;  // view-space distance to the hit, mean over hits (0 without one)
+    PlaneF steps;        // mean march steps (the heat map)
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("ssr.R", g.color[0]), fn("ssr.G", g.color[1]), fn("ssr.B", g.color[2]);
+        fn("ssrOpacity", g.opacity), fn("ssrHit", g.hit);
+        fn("ssrHitDistance", g.hitDistance), fn("ssrSteps", g.steps);
+    }
+};
+
+// What SSGI hands out (TraceSettings::ssgi).
+struct SsgiPlanes : PlaneTable<SsgiPlanes> {
+    PlaneF color[3];  // incoming diffuse radiance
+    PlaneF hit;
+    PlaneF steps;
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("ssgi.R", g.color[0]), fn("ssgi.G", g.color[1]), fn("ssgi.B", g.color[2]);
+        fn("ssgiHit", g.hit), fn("ssgiSteps", g.steps);
+    }
+};
+
+struct TraceOutputs {
+    SsrPlanes ssr;
+    SsgiPlanes ssgi;
+};
+
+// What a frame leaves the next one of a sequence. The caller owns it and hands it to every
+// frame (Renderer::render); the renderer reads it, then commits the new frame's into it after
+// the composite.
+struct FrameHistory : PlaneTable<FrameHistory> {
+    PlaneF color[3];     // the last frame's final colour (exposed), for reprojected SSR hits
+    bool valid = false;  // a frame has committed it (false: nothing to reproject)
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("history.color.R", g.color[0]), fn("history.color.G", g.color[1]);
+        fn("history.color.B", g.color[2]);
+    }
+    // Usable by a frame of this size.
+    bool usableAt(int width, int height) const {
+        return valid && color[0].width() == width && color[0].height() == height;
+    }
+};
+
+// Wall-clock time of one pass, in milliseconds.
+struct PassTime {
+    std::string name;
+    double ms = 0.0;
+};
+
+// What one screen-space pass did, over all its samples.
+struct TraceStats {
+    bool ran = false;
+    int spp = 0;
+    RayGenStats rays;
+    MarchStats march;
+};
+
+struct FrameStats {
+    std::vector<PassTime> passes;
+    TraceStats ssr, ssgi;
+    RasterStats visibility;  // camera pass
+    RasterStats shadow;      // light pass
+    Isa isa = Isa::Scalar;
+    int threads = 0;
+};
+
+struct Frame {
+    int width = 0, height = 0;
+    TraceCamera camera;  // the camera it was rendered from, as the trace passes see it
+    uint32_t index = 0;  // the FrameInput::frameIndex it was rendered with
+    ImagePlanes image;
+    GBuffer gbuffer;
+    IdPlanes ids;
+    DirectParts direct;  // only when a trace pass runs
+    TraceOutputs trace;
+    // Layers a caller adds after rendering (`ssrt compare`: the truth's), written after ours.
+    std::vector<NamedPlane> extraLayers;
+    FrameStats stats;
+
+    // Buffers the passes need but do not hand out; kept so that rendering into the same
+    // Frame again reuses every allocation (no page faults, no clears).
+    struct Scratch {
+        VisibilityBuffer visibility;
+        ShadowMap shadow;
+        PlaneF uv[6];  // UV and its screen derivatives, for textured scenes
+        HiZPyramid hiz;
+        RayBatch rays;
+        MarchResult march;
+        ColorPyramid colorPyramid;
+        SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent trace.ssr's
+    } scratch;
+
+    // Every non-empty plane of image, gbuffer, ids and trace, in that order, then
+    // extraLayers: the file's layers.
+    std::vector<PlaneRef> layers() const;
+    // The layer called `name`; throws std::out_of_range if there is none.
+    const PlaneF& plane(std::string_view name) const;
+    bool has(std::string_view name) const;
+};
+
+}  // namespace ssrt

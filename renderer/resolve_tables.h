@@ -1,0 +1,30 @@
+// The G-buffer resolve's per-frame tables: per-triangle ray-plane and barycentric set-up in
+// view space, per-instance material and motion, per-vertex world normals (and UVs for
+// textured scenes), as raster/resolve_kernel.h reads them.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "raster/resolve_kernel.h"
+#include "scenes/scene.h"
+
+namespace ssrt {
+
+// Per-triangle ray-plane and barycentric set-up in view space, and world-space normals per
+// vertex, for the resolve kernel.
+struct ResolveTables {
+    std::vector<ResolveTriangle> triangles;
+    std::vector<ResolveInstance> instances;
+    std::vector<float> nx, ny, nz;
+    std::vector<float> u, v;  // texture coordinates per vertex, only for textured scenes
+};
+
+bool anyTextured(const Scene& scene);
+
+// `view` is the camera's, `prevViewProj` the previous camera's (motion vectors).
+ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+                                 const glm::mat4& prevViewProj, bool textured, int threads);
+
+}  // namespace ssrt
