@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/image_io.h"
+#include "renderer/settings_fields.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/shot.h"
@@ -55,28 +56,8 @@ std::string defaultSceneName() {
     return scenes.empty() ? "cornell" : scenes.front().name;
 }
 
-std::string knownScenes() {
-    std::string out;
-    for (const auto& s : builtinScenes()) out += (out.empty() ? "" : ", ") + s.name;
-    return out;
-}
-
-// A --scene value naming a glTF file rather than a built-in scene.
-bool isSceneFile(const std::string& name) {
-    std::string lower = name;
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    auto endsWith = [&](const std::string& ext) {
-        return lower.size() > ext.size() &&
-               lower.compare(lower.size() - ext.size(), ext.size(), ext) == 0;
-    };
-    return endsWith(".gltf") || endsWith(".glb");
-}
-
 void checkSceneName(const std::string& name) {
-    if (isSceneFile(name)) return;  // the loader names what is wrong with a file
-    for (const auto& s : builtinScenes())
-        if (s.name == name) return;
+    if (isSceneFile(name) || isBuiltinScene(name)) return;  // the loader names a bad file
     throw std::invalid_argument("--scene: unknown scene '" + name + "' (known: " + knownScenes() +
                                 ")");
 }
@@ -110,132 +91,139 @@ std::string plural(int n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-std::optional<SsrResolveMode> parseResolveMode(std::string_view s) {
-    if (s == "mip") return SsrResolveMode::Mip;
-    if (s == "reuse") return SsrResolveMode::Reuse;
-    return std::nullopt;
+// ---------------------------------------------------------------------------------------
+// The settings' fields
+
+namespace {
+
+std::string kebab(std::string_view key) {
+    std::string out;
+    for (char c : key) {
+        if (std::isupper(static_cast<unsigned char>(c))) out.append("-").push_back(char(c + 32));
+        else out.push_back(c);
+    }
+    return out;
 }
-std::optional<HitRadiance> parseHitRadiance(std::string_view s) {
-    if (s == "current") return HitRadiance::Current;
-    if (s == "reprojected") return HitRadiance::Reprojected;
-    return std::nullopt;
+
+bool defaultIsOn(const FieldInfo& f) {
+    for (const auto& g : kRenderFields)
+        if (g.key == f.key) return g.get(RenderSettings{}) != 0.0;
+    return false;
+}
+
+// The flags CLI11 registers: the table's, or the derived long option.
+std::string fieldFlags(const FieldInfo& f) {
+    return f.flag.empty() ? fieldOption(f) : std::string(f.flag);
+}
+
+std::string fieldHelp(const FieldInfo& f) {
+    if (f.type == FieldType::Bool)
+        return std::string(f.help) + (defaultIsOn(f) ? " (on by default)" : " (off by default)");
+    return std::string(f.help) + " (" + f.expected() + ")";
+}
+
+std::string fieldTypeName(const FieldInfo& f) {
+    if (!f.typeName.empty()) return std::string(f.typeName);
+    return f.type == FieldType::Int ? "INT" : f.type == FieldType::Float ? "FLOAT" : "NAME";
+}
+
+// One option per CLI field of kRenderFields[begin, end), remembered only when typed (so the
+// shot, or else the command's default, decides otherwise); help shows `defaults`.
+void addFieldOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& defaults,
+                     std::size_t begin, std::size_t end, const std::string& group) {
+    for (std::size_t i = begin; i < end; ++i) {
+        const Field<RenderSettings>& f = kRenderFields[i];
+        if (!f.has(kFieldCli)) continue;
+        const std::string key(f.key);
+        CLI::Option* option;
+        if (f.type == FieldType::Bool) {
+            const std::string value = defaultIsOn(f) ? "false" : "true";
+            option = cmd.add_flag_callback(
+                fieldFlags(f), [&o, key, value] { o.settings[key] = value; }, fieldHelp(f));
+        } else {
+            option = cmd.add_option_function<std::string>(
+                            fieldFlags(f), [&o, key](const std::string& v) { o.settings[key] = v; },
+                            fieldHelp(f))
+                         ->type_name(fieldTypeName(f))
+                         ->default_str(f.text(f.get(defaults)));
+        }
+        if (!group.empty()) option->group(group);
+    }
+}
+
+}  // namespace
+
+std::string fieldOption(const FieldInfo& f) {
+    if (!f.flag.empty()) {
+        const std::string_view flags = f.flag;
+        const std::size_t comma = flags.rfind(',');
+        return std::string(comma == std::string_view::npos ? flags : flags.substr(comma + 1));
+    }
+    if (f.type == FieldType::Bool && defaultIsOn(f)) return "--no-" + kebab(f.key);
+    return "--" + kebab(f.key);
+}
+
+const Field<RenderSettings>& renderField(std::string_view key) {
+    for (const auto& f : kRenderFields)
+        if (f.key == key) return f;
+    throw std::logic_error("no settings field '" + std::string(key) + "'");
+}
+
+double parseFieldText(const FieldInfo& f, const std::string& option, const std::string& text) {
+    switch (f.type) {
+        case FieldType::Int:
+            return double(parseInteger(option, text, (long long)f.range.lo, (long long)f.range.hi));
+        case FieldType::Float: {
+            // from_chars reads "nan" and "inf"; accepts() refuses both.
+            float value = 0.0f;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ptr != end || ec != std::errc{} || !f.accepts(value))
+                badValue(option, text, f.expected());
+            return value;
+        }
+        case FieldType::Choice: {
+            const int i = f.choiceIndex(text);
+            if (i < 0) badValue(option, text, "one of " + f.choiceList());
+            return i;
+        }
+        case FieldType::Bool:
+            if (text == "true") return 1.0;
+            if (text == "false") return 0.0;
+            badValue(option, text, "true or false");
+    }
+    return 0.0;
 }
 
 void addTraceOptions(CLI::App& cmd, RenderOptions& o) {
-    const TraceSettings d;
-    const auto add = [&](const std::string& flags, std::optional<std::string>& value,
-                         const std::string& type, const std::string& help,
-                         const std::string& defaultText) {
-        cmd.add_option_function<std::string>(
-               flags, [&value](const std::string& v) { value = v; }, help)
-            ->type_name(type)
-            ->default_str(defaultText)
-            ->group("Screen-space tracing");
-    };
-    cmd.add_flag("--no-ssr", o.noSsr,
-                 "Skip screen-space reflections (the environment's split-sum "
-                 "light stands in)")
-        ->group("Screen-space tracing");
-    cmd.add_flag("--no-ssgi", o.noSsgi,
-                 "Skip screen-space one-bounce diffuse (the environment's irradiance stands in)")
-        ->group("Screen-space tracing");
-    cmd.add_flag("--trace-hidden", o.traceHidden,
-                 "Trace rays also where the composite hides what they find: SSR where the "
-                 "roughness fade does (perceptual roughness >= 0.7), SSGI on metals (no diffuse "
-                 "colour). The image is the same at those pixels; the counters and hit planes "
-                 "then cover them too. By default they get no ray")
-        ->group("Screen-space tracing");
-    add("--ssr-method", o.ssrMethod, "NAME", "How SSR rays sample the GGX lobe: " + kSsrMethods,
-        std::string(ssrMethodName(d.ssrMethod)));
-    add("--marcher", o.marcher, "NAME", "Depth-buffer marcher for SSR and SSGI rays: " + kMarchers,
-        std::string(marcherName(d.marcher)));
-    add("--ssr-spp", o.ssrSpp, "INT",
-        "SSR rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
-        std::to_string(d.ssrSpp));
-    add("--ssgi-spp", o.ssgiSpp, "INT",
-        "SSGI rays per pixel, 1 to " + std::to_string(TraceSettings::kMaxSpp),
-        std::to_string(d.ssgiSpp));
-    add("--max-steps", o.maxSteps, "INT",
-        "March steps per ray (Hi-Z: iterations), 1 to " + std::to_string(kMaxMarchSteps),
-        std::to_string(d.march.maxSteps));
-    std::ostringstream thickness;
-    thickness << d.march.thickness;
-    add("--thickness", o.thickness, "FLOAT",
-        "Depth a surface is assumed to have behind the depth buffer (view-space units), > 0",
-        thickness.str());
-    add("--ssr-resolve", o.ssrResolve, "MODE",
-        "SSR resolve: reuse (3x3 neighbours' hits, ratio estimator) or mip (colour pyramid at "
-        "mip = roughness x max mip)",
-        d.resolve.mode == SsrResolveMode::Mip ? "mip" : "reuse");
-    add("--hit-radiance", o.hitRadiance, "SOURCE",
-        "Radiance at a hit: current (this frame's direct light) or reprojected (the previous "
-        "frame's final colour through the motion vectors; a sequence's first frame uses current)",
-        d.resolve.radiance == HitRadiance::Current ? "current" : "reprojected");
+    addFieldOptions(cmd, o, RenderSettings{}, kRenderOwnFields.size(), kRenderFields.size(),
+                    "Screen-space tracing");
 }
 
-void traceSettingsFrom(const RenderOptions& o, TraceSettings& t) {
-    if (o.noSsr) t.ssr = false;
-    if (o.noSsgi) t.ssgi = false;
-    if (o.traceHidden) t.traceHidden = true;
-    if (o.ssrMethod)
-        t.ssrMethod = parseChoice("--ssr-method", *o.ssrMethod, parseSsrMethod, kSsrMethods);
-    if (o.marcher) t.marcher = parseChoice("--marcher", *o.marcher, parseMarcher, kMarchers);
-    if (o.ssrSpp) t.ssrSpp = int(parseInteger("--ssr-spp", *o.ssrSpp, 1, TraceSettings::kMaxSpp));
-    if (o.ssgiSpp)
-        t.ssgiSpp = int(parseInteger("--ssgi-spp", *o.ssgiSpp, 1, TraceSettings::kMaxSpp));
-    if (o.maxSteps)
-        t.march.maxSteps = int(parseInteger("--max-steps", *o.maxSteps, 1, kMaxMarchSteps));
-    if (o.thickness) t.march.thickness = parsePositive("--thickness", *o.thickness);
-    if (o.ssrResolve)
-        t.resolve.mode =
-            parseChoice("--ssr-resolve", *o.ssrResolve, parseResolveMode, "mip, reuse");
-    if (o.hitRadiance)
-        t.resolve.radiance =
-            parseChoice("--hit-radiance", *o.hitRadiance, parseHitRadiance, "current, reprojected");
-}
-
-void addSceneOptions(CLI::App& command, RenderOptions& o, const RenderSettings& d) {
-    CLI::App* cmd = &command;
+void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
     // Options that a shot file can also give: remembered only when typed, so that the shot
-    // decides otherwise; help shows the built-in default.
+    // decides otherwise; help shows the command's default.
     const auto addShotOption = [&](const std::string& flags, std::optional<std::string>& value,
                                    const std::string& type, const std::string& help,
                                    const std::string& defaultText) {
-        cmd->add_option_function<std::string>(
+        cmd.add_option_function<std::string>(
                flags, [&value](const std::string& v) { value = v; }, help)
             ->type_name(type)
             ->default_str(defaultText);
     };
-    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
-                         const std::string& help) {
-        cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
-    };
-    std::ostringstream exposure;
-    exposure << d.exposure;
     addShotOption("--shot", o.shot, "FILE",
                   "Shot file (JSON): scene, camera and camera path, light, environment, render "
-                  "settings; every field optional, and the flags below override it",
+                  "and tracing settings; every field optional, and the flags below override it",
                   "");
     addShotOption("-s,--scene", o.scene, "NAME",
                   "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file",
                   defaultSceneName());
-    addShotOption("--width", o.width, "INT",
-                  "Image width in pixels, 1 to " + std::to_string(kMaxImageSize),
-                  std::to_string(d.width));
-    addShotOption("--height", o.height, "INT",
-                  "Image height in pixels, 1 to " + std::to_string(kMaxImageSize),
-                  std::to_string(d.height));
-    add("-j,--threads", o.threads, "INT",
-        "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = every core");
-    add("--isa", o.isa, "ISA",
-        "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA if set, "
-        "else the best this CPU runs");
-    addShotOption("--shadow-map-size", o.shadowMapSize, "INT",
-                  "Shadow map texels per side, " + std::to_string(kMinShadowMap) + " to " +
-                      std::to_string(kMaxShadowMap),
-                  std::to_string(d.shadowMapSize));
-    addShotOption("--exposure", o.exposure, "FLOAT",
-                  "Scale on linear radiance before the tone map, > 0", exposure.str());
+    addFieldOptions(cmd, o, d, 0, kRenderOwnFields.size(), "");
+    cmd.add_option("--isa", o.isa,
+                   "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA "
+                   "if set, else the best this CPU runs")
+        ->type_name("ISA")
+        ->capture_default_str();
     addShotOption("--frame", o.frame, "INT",
                   "Frame index (seeds the per-pixel random numbers); of a sequence's first frame, "
                   "frame i getting this + i",

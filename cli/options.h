@@ -9,10 +9,13 @@
 #include <vector>
 
 #include "cli/render_command.h"
+#include "cli/shot_settings.h"
+#include "core/fields.h"
 #include "core/isa.h"
 #include "renderer/renderer.h"
 #include "scenes/camera_path.h"
 #include "scenes/scene.h"
+#include "scenes/scene_names.h"
 #include "scenes/shot.h"
 
 namespace CLI {
@@ -21,14 +24,7 @@ class App;
 
 namespace ssrt::cli {
 
-inline constexpr long long kMaxThreads = 256;
-inline constexpr long long kMinShadowMap = 16;
-inline constexpr long long kMaxShadowMap = 8192;
 inline constexpr long long kMaxFrame = 4294967295ll;  // RenderSettings::frame is 32 bits
-inline constexpr long long kMaxMarchSteps = 65536;
-inline const std::string kSsrMethods =
-    "mirror, ggx_ndf, vndf_ellipsoid, vndf_spherical_caps, vndf_bounded";
-inline const std::string kMarchers = "linear, dda, hiz";
 
 [[noreturn]] void badValue(const std::string& option, const std::string& text,
                            const std::string& expected);
@@ -45,28 +41,35 @@ auto parseChoice(const std::string& option, const std::string& text, Parse parse
     if (!value) badValue(option, text, "one of " + choices);
     return *value;
 }
-std::optional<SsrResolveMode> parseResolveMode(std::string_view s);
-std::optional<HitRadiance> parseHitRadiance(std::string_view s);
+
+// The settings' field table (renderer/settings_fields.h) on the command line. A field's
+// option is its key in kebab case (shadowMapSize: --shadow-map-size) unless the table gives
+// one; a bool's flag turns it away from its default (ssr: --no-ssr, traceHidden:
+// --trace-hidden). fieldOption is the long option, as messages name it.
+std::string fieldOption(const FieldInfo& field);
+// The table's field with this key (std::logic_error if none: a programming error).
+const Field<RenderSettings>& renderField(std::string_view key);
+// The value `text` gives `field`, checked against its range; errors name `option`.
+double parseFieldText(const FieldInfo& field, const std::string& option, const std::string& text);
 // "a,b,c" -> {a, b, c}; an empty item is an error naming the option.
 std::vector<std::string> splitList(const std::string& option, const std::string& text);
 
 std::string defaultSceneName();
-std::string knownScenes();
-bool isSceneFile(const std::string& name);  // .gltf or .glb
 void checkSceneName(const std::string& name);
 // The ISA the renderer will run, resolved now so a CPU without it fails before any work.
 Isa resolveIsaFor(std::optional<Isa> requested);
 int threadsFor(const RenderSettings& settings);  // 0 -> every core
 std::string plural(int n, const std::string& noun);
 
-// --shot, --scene, --width, --height, --threads, --isa, --shadow-map-size, --exposure, --frame;
-// help shows `defaults` (the command's own) where neither a shot nor a flag decides.
+// --shot, --scene, one option per RenderSettings field of the table (--width, --height,
+// --threads, --shadow-map-size, --shadow-bias, ...), --isa, --frame; help shows `defaults`
+// (the command's own) where neither a shot nor a flag decides.
 void addSceneOptions(CLI::App& cmd, RenderOptions& options, const RenderSettings& defaults);
 
-// The "Screen-space tracing" group: --no-ssr, --no-ssgi, --ssr-method, --marcher, --ssr-spp,
-// --ssgi-spp, --max-steps, --thickness, --ssr-resolve, --hit-radiance.
+// The "Screen-space tracing" group: one option per TraceSettings field of the table
+// (--no-ssr, --no-ssgi, --ssr-method, --marcher, --ssr-spp, --ssgi-spp, --trace-hidden,
+// --max-steps, --thickness, ..., --ssr-resolve, --hit-radiance, ...).
 void addTraceOptions(CLI::App& cmd, RenderOptions& options);
-void traceSettingsFrom(const RenderOptions& options, TraceSettings& trace);
 
 // A request checked (flags, shot file, scene name, ISA) but not yet loaded.
 struct SceneRequest {

@@ -14,6 +14,7 @@
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "io/image_io.h"
+#include "renderer/settings_fields.h"
 #include "scenes/shot.h"
 
 namespace ssrt::cli {
@@ -53,7 +54,6 @@ constexpr int kValueWidth = 14;
 
 RenderOptions::RenderOptions() {
     const RenderSettings d;
-    threads = std::to_string(d.threads);
     isa = d.isa ? std::string(isaName(*d.isa)) : "auto";
 }
 
@@ -95,19 +95,17 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
 
 RenderSettings settingsFrom(const RenderOptions& o, const RenderSettings& base) {
     RenderSettings s = base;
-    if (o.width) s.width = int(parseInteger("--width", *o.width, 1, kMaxImageSize));
-    if (o.height) s.height = int(parseInteger("--height", *o.height, 1, kMaxImageSize));
-    s.threads = int(parseInteger("--threads", o.threads, 0, kMaxThreads));
+    for (const auto& [key, text] : o.settings) renderField(key);  // a key the table lacks throws
+    for (const auto& f : kRenderFields) {
+        const auto it = o.settings.find(f.key);
+        if (it != o.settings.end() && f.has(kFieldCli))
+            f.set(s, parseFieldText(f, fieldOption(f), it->second));
+    }
     try {
         s.isa = parseIsa(o.isa);
     } catch (const std::exception& e) {
         throw std::invalid_argument(std::string("--isa: ") + e.what());
     }
-    if (o.shadowMapSize)
-        s.shadowMapSize =
-            int(parseInteger("--shadow-map-size", *o.shadowMapSize, kMinShadowMap, kMaxShadowMap));
-    if (o.exposure) s.exposure = parsePositive("--exposure", *o.exposure);
-    traceSettingsFrom(o, s.trace);
     s.validate();
     return s;
 }

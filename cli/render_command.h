@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -21,17 +22,16 @@ namespace ssrt::cli {
 struct RenderOptions {
     std::optional<std::string> shot;   // a shot file (scenes/shot.h)
     std::optional<std::string> scene;  // a built-in scene or a .gltf/.glb file
-    std::optional<std::string> width, height, shadowMapSize, exposure, frame, frames;
-    std::string threads, isa;
-    // The screen-space passes (RenderSettings::trace); unset = the default.
-    std::optional<std::string> ssrMethod, marcher, ssrSpp, ssgiSpp, maxSteps, thickness, ssrResolve,
-        hitRadiance;
-    bool noSsr = false, noSsgi = false, traceHidden = false;
+    std::optional<std::string> frame, frames;
+    // The settings' fields given (renderer/settings_fields.h): key -> the value as typed; a
+    // bool's flag stores "true" or "false". A key not here is not on the command line.
+    std::map<std::string, std::string, std::less<>> settings;
+    std::string isa;
     std::string output = "ssrt.png";
     bool stats = false;
     bool quiet = false;
 
-    RenderOptions();  // threads and isa default to RenderSettings{}'s
+    RenderOptions();  // isa defaults to RenderSettings{}'s
 };
 
 // Registers the `render` subcommand on `app`, bound to `options`, and returns it.

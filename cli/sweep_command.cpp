@@ -49,32 +49,33 @@ std::vector<T> parseEach(const std::string& option, const std::string& text, F p
     return out;
 }
 
+// Each list item is checked against its setting's range in the field table
+// (renderer/settings_fields.h), as the render command's single values are.
+template <class T>
+std::vector<T> parseField(const char* option, const char* key, const std::string& text) {
+    const FieldInfo& f = renderField(key);
+    return parseEach<T>(option, text, [&](const std::string& s) {
+        return static_cast<T>(static_cast<int>(parseFieldText(f, option, s)));
+    });
+}
+
 std::vector<Point> grid(const SweepOptions& o) {
     const auto marchers = parseEach<std::optional<Marcher>>(
         "--marchers", o.marchers, [](const std::string& s) -> std::optional<Marcher> {
             if (s == "off") return std::nullopt;
-            return parseChoice("--marchers", s, parseMarcher, "off, " + kMarchers);
+            const FieldInfo& f = renderField("marcher");
+            const int i = f.choiceIndex(s);
+            if (i < 0) badValue("--marchers", s, "one of off, " + f.choiceList());
+            return Marcher(i);
         });
-    const auto steps = parseEach<int>("--max-steps", o.maxSteps, [](const std::string& s) {
-        return int(parseInteger("--max-steps", s, 1, kMaxMarchSteps));
-    });
-    const auto methods =
-        parseEach<SsrMethod>("--ssr-methods", o.ssrMethods, [](const std::string& s) {
-            return parseChoice("--ssr-methods", s, parseSsrMethod, kSsrMethods);
-        });
-    const auto spp = [](const char* option, const std::string& text) {
-        return parseEach<int>(option, text, [option](const std::string& s) {
-            return int(parseInteger(option, s, 1, TraceSettings::kMaxSpp));
-        });
-    };
-    const auto ssrSpp = spp("--ssr-spp", o.ssrSpp), ssgiSpp = spp("--ssgi-spp", o.ssgiSpp);
+    const auto steps = parseField<int>("--max-steps", "maxSteps", o.maxSteps);
+    const auto methods = parseField<SsrMethod>("--ssr-methods", "ssrMethod", o.ssrMethods);
+    const auto ssrSpp = parseField<int>("--ssr-spp", "ssrSpp", o.ssrSpp);
+    const auto ssgiSpp = parseField<int>("--ssgi-spp", "ssgiSpp", o.ssgiSpp);
     const auto thickness = parseEach<float>("--thickness", o.thickness, [](const std::string& s) {
-        return parsePositive("--thickness", s);
+        return float(parseFieldText(renderField("thickness"), "--thickness", s));
     });
-    const auto resolves =
-        parseEach<SsrResolveMode>("--ssr-resolve", o.resolves, [](const std::string& s) {
-            return parseChoice("--ssr-resolve", s, parseResolveMode, "mip, reuse");
-        });
+    const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
     std::vector<Point> points;
     bool off = false;
     for (const auto& m : marchers) {
@@ -217,7 +218,7 @@ SweepOptions::SweepOptions() {
     std::ostringstream t;
     t << d.march.thickness;
     thickness = t.str();
-    resolves = d.resolve.mode == SsrResolveMode::Mip ? "mip" : "reuse";
+    resolves = std::string(resolveModeName(d.resolve.mode));
 }
 
 const std::vector<std::string>& sweepColumns() {
@@ -258,7 +259,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
          "Marchers, comma-separated: linear, dda, hiz, and off (both passes off: the "
          "environment's light, the baseline)");
     list("--max-steps", o.maxSteps, "March steps per ray (Hi-Z: iterations)");
-    list("--ssr-methods", o.ssrMethods, "SSR samplers: " + kSsrMethods);
+    list("--ssr-methods", o.ssrMethods, "SSR samplers: " + renderField("ssrMethod").choiceList());
     list("--ssr-spp", o.ssrSpp, "SSR rays per pixel");
     list("--ssgi-spp", o.ssgiSpp, "SSGI rays per pixel");
     list("--thickness", o.thickness, "Depth-buffer thickness (view-space units)");

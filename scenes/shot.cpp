@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "scenes/builtin_scenes.h"
+#include "scenes/scene_names.h"
 
 namespace ssrt {
 
@@ -21,26 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
-
-bool isSceneFile(const std::string& name) {
-    const std::string l = lower(name);
-    const auto endsWith = [&](const std::string& ext) {
-        return l.size() > ext.size() && l.compare(l.size() - ext.size(), ext.size(), ext) == 0;
-    };
-    return endsWith(".gltf") || endsWith(".glb");
-}
-
-std::string knownScenes() {
-    std::string out;
-    for (const auto& s : builtinScenes()) out += (out.empty() ? "" : ", ") + s.name;
-    return out;
-}
 
 std::string join(std::initializer_list<const char*> names) {
     std::string out;
@@ -269,9 +249,7 @@ Shot parseShot(const std::string& text, const std::string& file) {
         if (isSceneFile(*scene)) {
             shot.scene = r.existingFile("scene", *scene);
         } else {
-            const auto& known = builtinScenes();
-            if (std::none_of(known.begin(), known.end(),
-                             [&](const auto& s) { return s.name == *scene; }))
+            if (!isBuiltinScene(*scene))
                 r.fail("scene", "unknown scene '" + *scene + "' (known: " + knownScenes() +
                                     "; or a .gltf/.glb file)");
             shot.scene = *scene;
@@ -370,26 +348,34 @@ Shot parseShot(const std::string& text, const std::string& file) {
         env.intensity = r.nonNegative(e, p, "intensity");
     }
 
-    // render
+    // render: frames and frame here, every other key a setting for the caller's table
     if (doc.contains("render")) {
         const json& rd = doc["render"];
         const std::string p = "render";
-        r.object(rd, p,
-                 {"width", "height", "exposure", "shadowMapSize", "shadowBias", "shadowSlopeBias",
-                  "pcfRadius", "frames", "frame"});
+        if (!rd.is_object()) r.fail(p, "expected an object");
         auto& s = shot.render;
-        const auto asInt = [](std::optional<long long> v) {
-            return v ? std::optional<int>(int(*v)) : std::nullopt;
-        };
-        s.width = asInt(r.integer(rd, p, "width", 1, kMaxImageSize));
-        s.height = asInt(r.integer(rd, p, "height", 1, kMaxImageSize));
-        s.shadowMapSize = asInt(r.integer(rd, p, "shadowMapSize", 16, kMaxImageSize));
-        s.pcfRadius = asInt(r.integer(rd, p, "pcfRadius", 0, 8));
-        s.frames = asInt(r.integer(rd, p, "frames", 1, kMaxShotFrames));
+        if (const auto f = r.integer(rd, p, "frames", 1, kMaxShotFrames)) s.frames = int(*f);
         if (const auto f = r.integer(rd, p, "frame", 0, 4294967295ll)) s.frame = uint32_t(*f);
-        s.exposure = r.positive(rd, p, "exposure");
-        s.shadowBias = r.nonNegative(rd, p, "shadowBias");
-        s.shadowSlopeBias = r.nonNegative(rd, p, "shadowSlopeBias");
+        for (const auto& item : rd.items()) {
+            if (item.key() == "frames" || item.key() == "frame") continue;
+            const json& j = item.value();
+            ShotValue v;
+            if (j.is_boolean()) {
+                v.kind = ShotValue::Kind::Bool;
+                v.number = j.get<bool>() ? 1.0 : 0.0;
+            } else if (j.is_number_integer()) {
+                v.kind = ShotValue::Kind::Integer;
+                v.number = j.is_number_unsigned() ? double(j.get<unsigned long long>())
+                                                  : double(j.get<long long>());
+            } else if (j.is_number()) {
+                v.kind = ShotValue::Kind::Number;
+                v.number = j.get<double>();
+            } else if (j.is_string()) {
+                v.kind = ShotValue::Kind::String;
+                v.text = j.get<std::string>();
+            }
+            s.settings.emplace_back(item.key(), std::move(v));
+        }
     }
     return shot;
 }
@@ -447,17 +433,6 @@ void applyShot(const Shot& shot, Scene& scene) {
     if (e.ground) sky.ground = *e.ground;
     if (e.intensity) sky.intensity = *e.intensity;
     if (sky.kind != Sky::Kind::Image) sky.image.reset();
-}
-
-void applyShot(const Shot& shot, RenderSettings& s) {
-    const auto& r = shot.render;
-    if (r.width) s.width = *r.width;
-    if (r.height) s.height = *r.height;
-    if (r.shadowMapSize) s.shadowMapSize = *r.shadowMapSize;
-    if (r.pcfRadius) s.pcfRadius = *r.pcfRadius;
-    if (r.exposure) s.exposure = *r.exposure;
-    if (r.shadowBias) s.shadowBias = *r.shadowBias;
-    if (r.shadowSlopeBias) s.shadowSlopeBias = *r.shadowSlopeBias;
 }
 
 CameraPath shotCameraPath(const Shot& shot, const Camera& camera) {

@@ -20,9 +20,17 @@
 //                "image" (file: .exr, .hdr or any image OpenImageIO reads, relative to the
 //                shot file's folder; required), intensity >= 0. Without a type only the
 //                intensity may be given (it scales the scene's own sky).
-//   render       object: width, height (1 to 8192), exposure (> 0), shadowMapSize (16 to 8192),
-//                shadowBias, shadowSlopeBias (>= 0), pcfRadius (0 to 8), frames (1 to 100000),
-//                frame (the first frame's index, 0 to 4294967295)
+//   render       object: frames (1 to 100000), frame (the first frame's index, 0 to
+//                4294967295), and every render and tracing setting by its field-table key
+//                (renderer/settings_fields.h; README.md, "Shot files", lists them): width,
+//                height, shadowMapSize, shadowBias, shadowSlopeBias, pcfRadius, exposure,
+//                idPlanes, ssr, ssgi, ssrMethod, marcher, ssrSpp, ssgiSpp, traceHidden,
+//                maxSteps, maxDistance, linearStep, thickness, ddaStride, ddaJitter,
+//                refineSteps, hizMostDetailedLevel, hizStartLevel, ssrResolve, hitRadiance,
+//                hitBilinear, edgeFadeLength, roughnessFadeStart, roughnessFadeEnd. Booleans
+//                are true/false, choices are names ("marcher": "dda"). The parser keeps these
+//                settings as written; applying them (cli/shot_settings.h) checks each against
+//                its table entry, unknown keys included.
 // Numbers must be finite (1e999 is not), integers must be written as integers, and any key
 // not listed is an error (typos do not pass silently), as are duplicate keys.
 #pragma once
@@ -31,9 +39,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "renderer/renderer.h"
 #include "scenes/camera_path.h"
 #include "scenes/scene.h"
 
@@ -52,6 +60,13 @@ struct ShotKey {
     std::optional<double> time;  // default: the key's index
     std::optional<glm::vec3> position, target;
     std::optional<float> fovY;
+};
+
+// A value of the render object as the JSON wrote it.
+struct ShotValue {
+    enum class Kind { Bool, Integer, Number, String, Other } kind = Kind::Other;
+    double number = 0.0;  // Bool (0 or 1), Integer (as written), Number (finite)
+    std::string text;     // String
 };
 
 struct Shot {
@@ -79,14 +94,17 @@ struct Shot {
     } environment;
 
     struct RenderFields {
-        std::optional<int> width, height, shadowMapSize, pcfRadius, frames;
-        std::optional<float> exposure, shadowBias, shadowSlopeBias;
+        std::optional<int> frames;
         std::optional<uint32_t> frame;
+        // Every other key of the render object, in key order: a setting for the caller to
+        // look up in its field table (cli/shot_settings.h), as pbrt-v4's ParameterDictionary
+        // holds parameters for the plugin that reads them.
+        std::vector<std::pair<std::string, ShotValue>> settings;
     } render;
 };
 
 // Reads and validates a shot file; throws ShotError (one line) for anything wrong, files it
-// names that do not exist included.
+// names that do not exist included (the render settings are checked when applied).
 Shot loadShot(const std::string& path);
 
 // The same from text; `file` names it in messages and its folder resolves relative paths.
@@ -97,9 +115,6 @@ Shot parseShot(const std::string& text, const std::string& file);
 // still frame). Throws ShotError if the camera that results cannot look anywhere (position
 // equal to target, up along the view direction).
 void applyShot(const Shot& shot, Scene& scene);
-
-// Applies the shot's render fields to settings.
-void applyShot(const Shot& shot, RenderSettings& settings);
 
 // The shot's camera path, its keys' missing fields taken from `camera` (the scene's camera
 // after applyShot). Empty if the shot has none. Throws ShotError naming the key if a key ends

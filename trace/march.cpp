@@ -7,6 +7,7 @@
 
 #include "core/rng.h"
 #include "core/tiles.h"
+#include "trace/march_fields.h"
 #include "trace/march_kernel.h"
 
 namespace ssrt {
@@ -26,29 +27,15 @@ std::optional<Marcher> parseMarcher(std::string_view name) {
     return std::nullopt;
 }
 
-namespace {
-
-void require(bool ok, const char* field, const std::string& what) {
-    if (!ok) throw std::invalid_argument(std::string("MarchSettings.") + field + ": " + what);
-}
-
-bool finitePositive(float x) { return std::isfinite(x) && x > 0.0f; }
-
-}  // namespace
+static_assert(kLastHiZLevel == kMaxHiZLevels - 1);
 
 void MarchSettings::validate() const {
-    require(maxSteps >= 1 && maxSteps <= (1 << 20), "maxSteps", "must be in [1, 2^20]");
-    require(finitePositive(maxDistance), "maxDistance", "must be finite and > 0");
-    require(finitePositive(linearStep), "linearStep", "must be finite and > 0");
-    require(std::isfinite(thickness) && thickness >= 0.0f, "thickness", "must be finite and >= 0");
-    require(std::isfinite(ddaStride) && ddaStride >= 1.0f, "ddaStride",
-            "must be finite and >= 1 (pixels)");
-    require(ddaJitter >= 0.0f && ddaJitter <= 1.0f, "ddaJitter", "must be in [0, 1]");
-    require(refineSteps >= 0 && refineSteps <= 32, "refineSteps", "must be in [0, 32]");
-    require(hizMostDetailedLevel >= 0 && hizMostDetailedLevel < kMaxHiZLevels,
-            "hizMostDetailedLevel", "must be in [0, 15]");
-    require(hizStartLevel >= hizMostDetailedLevel && hizStartLevel < kMaxHiZLevels, "hizStartLevel",
-            "must be in [hizMostDetailedLevel, 15]");
+    // Each field in its range (trace/march_fields.h), then the levels' order.
+    checkFields(kMarchFields, *this, "MarchSettings");
+    if (hizStartLevel < hizMostDetailedLevel)
+        throw std::invalid_argument(
+            "MarchSettings.hizStartLevel: expected a level >= hizMostDetailedLevel (" +
+            std::to_string(hizMostDetailedLevel) + "), got " + std::to_string(hizStartLevel));
 }
 
 // ---- Statistics -------------------------------------------------------------------------

@@ -9,6 +9,14 @@
 
 namespace ssrt {
 
+std::string_view resolveModeName(SsrResolveMode mode) {
+    return mode == SsrResolveMode::Mip ? "mip" : "reuse";
+}
+
+std::string_view hitRadianceName(HitRadiance radiance) {
+    return radiance == HitRadiance::Current ? "current" : "reprojected";
+}
+
 void SsrOutput::ensureSize(int width, int height) {
     for (PlaneF& p : color) p.ensureSize(width, height);
     opacity.ensureSize(width, height);

@@ -32,6 +32,8 @@
 // Everything is finite whatever the input (pdf 0 rays, roughness 0 and 1, frame edges).
 #pragma once
 
+#include <string_view>
+
 #include "core/image.h"
 #include "core/isa.h"
 #include "trace/color_pyramid.h"
@@ -41,6 +43,11 @@ namespace ssrt {
 
 enum class SsrResolveMode { Mip, Reuse };
 enum class HitRadiance { Current, Reprojected };
+
+// "mip", "reuse".
+std::string_view resolveModeName(SsrResolveMode mode);
+// "current", "reprojected".
+std::string_view hitRadianceName(HitRadiance radiance);
 
 struct SsrResolveSettings {
     SsrResolveMode mode = SsrResolveMode::Reuse;

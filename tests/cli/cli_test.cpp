@@ -125,7 +125,7 @@ TEST_CASE("cli: every bad number is one error line naming the option and value, 
         {"--ssr-method", {"phong"}},
         {"--ssr-spp", {"0", "65"}},
         {"--ssgi-spp", {"-1", "x"}},
-        {"--max-steps", {"0", "65537"}},
+        {"--max-steps", {"0", "1048577"}},  // MarchSettings's range, 1 to 2^20
         {"--thickness", {"0", "nan", "-0.1"}},
         {"--ssr-resolve", {"blur"}},
         {"--hit-radiance", {"previous"}}};

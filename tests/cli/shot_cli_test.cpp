@@ -18,6 +18,7 @@
 
 #include "cli/cli.h"
 #include "cli/render_command.h"
+#include "cli/shot_settings.h"
 #include "io/image_io.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/shot.h"
@@ -98,7 +99,7 @@ TEST_CASE("cli shot: flags override the shot, the shot overrides the defaults") 
     CHECK(h == 30);
     // settingsFrom starts from the shot's settings and applies only the flags given
     cli::RenderOptions o;
-    o.height = "50";
+    o.settings["height"] = "50";
     RenderSettings base;
     applyShot(loadShot(shot), base);
     const RenderSettings s = cli::settingsFrom(o, base);

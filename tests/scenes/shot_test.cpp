@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/shot_settings.h"  // applyShot(shot, RenderSettings&): the render fields
 #include "scenes/builtin_scenes.h"
 #include "temp_dir.h"
 
@@ -163,8 +164,9 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
          "environment.color: unknown key (expected one of: type, zenith, horizon, ground, "
          "intensity)"},
         {R"({"render": {"samples": 4}})",
-         "render.samples: unknown key (expected one of: width, height, exposure, shadowMapSize, "
-         "shadowBias, shadowSlopeBias, pcfRadius, frames, frame)"},
+         "render.samples: unknown key (expected one of: width, height, shadowMapSize, "
+         "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, ssr, ssgi, ssrMethod, "
+         "marcher, ssrSpp, ssgiSpp, traceHidden, maxSteps, "},
         // Wrong types
         {R"([1, 2])", "expected a JSON object at the top level"},
         {R"({"camera": "front"})", "camera: expected an object"},
@@ -236,7 +238,9 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         writeFile(file, text);
         std::string message;
         try {
-            loadShot(file);
+            // The render settings are checked as they are applied (cli/shot_settings.h).
+            RenderSettings settings;
+            applyShot(loadShot(file), settings);
         } catch (const ShotError& e) {
             message = e.what();
         }

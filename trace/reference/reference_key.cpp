@@ -4,6 +4,7 @@
 #include <string_view>
 #include <vector>
 
+#include "renderer/settings_fields.h"
 #include "trace/reference/reference_image.h"
 
 namespace ssrt {
@@ -113,21 +114,20 @@ void hashScene(Fnv1a& h, const Scene& scene) {
     hashSky(h, scene.sky);
 }
 
-// The render settings that shape the reference: the G-buffer (size), the shadow map (its
-// visibility mode and the ray offsets' surface), the exposure, and the SSR sampler and frame
-// index (the reference's rays are the frame's sample sequence). Threads and ISA do not (the
-// determinism contract), nor the marcher, the resolve or the frame's spp (the reference
-// replaces them).
+// The render settings that shape the reference, as the field tables mark them (kFieldKey,
+// renderer/settings_fields.h), in table order: the G-buffer (size), the shadow map (its
+// visibility mode and the ray offsets' surface), the exposure, and the SSR sampler, with the
+// frame index (the reference's rays are the frame's sample sequence) between the
+// RenderSettings fields and the tracing ones. Threads and ISA do not (the determinism
+// contract), nor the marcher, the resolve or the frame's spp (the reference replaces them);
+// the march's maxDistance does through ReferenceSettings. Each field is hashed as its
+// member's bytes, so the key is the one the hand-written list gave.
 void hashRender(Fnv1a& h, const RenderSettings& r, uint32_t frameIndex) {
-    h.value(r.width);
-    h.value(r.height);
-    h.value(r.shadowMapSize);
-    h.value(r.shadowBias);
-    h.value(r.shadowSlopeBias);
-    h.value(r.pcfRadius);
-    h.value(r.exposure);
+    for (const auto& f : kRenderOwnFields)
+        if (f.has(kFieldKey)) h.bytes(f.address(r), f.size);
     h.value(frameIndex);
-    h.value(r.trace.ssrMethod);
+    for (const auto& f : kTraceFields)
+        if (f.has(kFieldKey)) h.bytes(f.address(r.trace), f.size);
 }
 
 }  // namespace

@@ -1,0 +1,79 @@
+#include "cli/shot_settings.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "renderer/settings_fields.h"
+
+namespace ssrt {
+
+namespace {
+
+const Field<RenderSettings>* shotField(const std::string& key) {
+    for (const auto& f : kRenderFields)
+        if (f.has(kFieldShot) && f.key == key) return &f;
+    return nullptr;
+}
+
+// The value the JSON wrote, if the field takes it: integers written as integers, numbers
+// finite and in range, booleans as true/false, choices by name.
+bool valueOf(const FieldInfo& f, const ShotValue& v, double& out) {
+    using Kind = ShotValue::Kind;
+    switch (f.type) {
+        case FieldType::Bool:
+            if (v.kind != Kind::Bool) return false;
+            out = v.number;
+            return true;
+        case FieldType::Int:
+            if (v.kind != Kind::Integer || !f.accepts(v.number)) return false;
+            out = v.number;
+            return true;
+        case FieldType::Float:
+            if ((v.kind != Kind::Integer && v.kind != Kind::Number) || !f.accepts(v.number))
+                return false;
+            out = v.number;
+            return true;
+        case FieldType::Choice: {
+            const int i = v.kind == Kind::String ? f.choiceIndex(v.text) : -1;
+            out = i;
+            return i >= 0;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+std::string shotRenderKeys() {
+    std::string out;
+    for (const auto& f : kRenderFields)
+        if (f.has(kFieldShot)) out.append(out.empty() ? "" : ", ").append(f.key);
+    return out + ", frames, frame";
+}
+
+void applyShot(const Shot& shot, RenderSettings& s) {
+    const auto fail = [&](const std::string& key, const std::string& problem) {
+        throw ShotError(shot.file + ": render" + (key.empty() ? "" : "." + key) + ": " + problem);
+    };
+    const auto& settings = shot.render.settings;
+    // Unknown keys first, as the parser reports them at every other level.
+    for (const auto& [key, value] : settings)
+        if (!shotField(key)) fail(key, "unknown key (expected one of: " + shotRenderKeys() + ")");
+    for (const auto& f : kRenderFields) {
+        if (!f.has(kFieldShot)) continue;
+        const auto it = std::find_if(settings.begin(), settings.end(),
+                                     [&](const auto& kv) { return kv.first == f.key; });
+        if (it == settings.end()) continue;
+        double value = 0.0;
+        if (!valueOf(f, it->second, value)) fail(it->first, "expected " + f.expected());
+        f.set(s, value);
+    }
+    // What one field cannot say alone (the Hi-Z levels' order).
+    try {
+        s.validate();
+    } catch (const std::invalid_argument& e) {
+        fail("", e.what());
+    }
+}
+
+}  // namespace ssrt
