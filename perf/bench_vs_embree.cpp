@@ -194,8 +194,7 @@ Workload& workload(const std::string& name) {
     rs.trace.ssr = rs.trace.ssgi = false;
     const Frame f = Renderer(rs).renderWithoutHistory(w->scene);
     w->viewZ = f.gbuffer.viewZ.clone();
-    const char* n[3] = {"normal.X", "normal.Y", "normal.Z"};
-    for (int c = 0; c < 3; ++c) w->normal[c] = f.plane(n[c]).clone();
+    for (int c = 0; c < 3; ++c) w->normal[c] = f.gbuffer.normal[c].clone();
     w->roughness = f.gbuffer.roughness.clone();
     // The camera as renderer.cpp builds it.
     const Camera& cam = w->scene.camera;

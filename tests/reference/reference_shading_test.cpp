@@ -22,11 +22,8 @@ float relDiff(float a, float b) { return std::abs(a - b) / std::max(std::abs(b),
 // The frame's lighting with its G-buffer and camera, as the reference sets it up.
 void frameLighting(const ReferenceRig& rig, DirectLighting& l) {
     setDirectLighting(rig.scene, rig.renderer.settings(), rig.frame.scratch.shadow, nullptr, l);
-    const char* g[10] = {"viewZ",    "normal.X", "normal.Y", "normal.Z",  "albedo.R",
-                         "albedo.G", "albedo.B", "metallic", "roughness", "materialId"};
     DirectArgs& a = l.args;
-    for (int i = 0; i < 10; ++i) a.g[i] = rig.frame.plane(g[i]).row(0);
-    a.gStride = rig.frame.gbuffer.viewZ.stride();
+    setDirectGBuffer(rig.frame.gbuffer, a);
     a.width = rig.frame.width;
     a.height = rig.frame.height;
     a.tanHalfX = rig.frame.camera.tanHalfX;
@@ -76,10 +73,9 @@ TEST_CASE("reference: a hit seen from the camera shades like the direct pass's p
             const EmbreeHit hit = rig.embree.intersect(cam, dir, 0.0f, 1e30f);
             REQUIRE(hit.hit);
             const glm::vec3 l = reference::hitRadiance(ctx, cam, dir, hit, true);
-            const char* color[3] = {"color.R", "color.G", "color.B"};
             float e = 0.0f;
             for (int c = 0; c < 3; ++c)
-                e = std::max(e, relDiff(l[c], rig.frame.plane(color[c]).at(x, y)));
+                e = std::max(e, relDiff(l[c], rig.frame.image.color[c].at(x, y)));
             errors.push_back(e);
         }
     std::sort(errors.begin(), errors.end());

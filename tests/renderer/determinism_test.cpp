@@ -187,10 +187,10 @@ TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either 
             CHECK(finite);
         }
         // The display planes are tone mapped into [0, 1].
-        for (const char* c : {"display.R", "display.G", "display.B"})
+        for (const PlaneF& display : f.image.display)
             for (int y = 0; y < f.height; ++y)
                 for (int x = 0; x < f.width; ++x) {
-                    const float v = f.plane(c).at(x, y);
+                    const float v = display.at(x, y);
                     REQUIRE((v >= 0.0f && v <= 1.0f));
                 }
     }

@@ -93,9 +93,20 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
                    a.gbuffer.albedo[1].at(x, y) * keep == 0.0f &&
                    a.gbuffer.albedo[2].at(x, y) * keep == 0.0f;
         };
-        const auto same = [&](const char* p, int x, int y) {
-            return std::memcmp(&a.plane(p).at(x, y), &b.plane(p).at(x, y), 4) == 0;
+        // The same plane of both frames, by member.
+        const auto same = [&](auto member, int x, int y) {
+            return std::memcmp(&member(a).at(x, y), &member(b).at(x, y), 4) == 0;
         };
+        const auto color = [](int c) {
+            return [c](const Frame& f) -> auto& { return f.image.color[c]; };
+        };
+        const auto ssrOpacity = [](const Frame& f) -> auto& { return f.trace.ssr.opacity; };
+        const auto ssrR = [](const Frame& f) -> auto& { return f.trace.ssr.color[0]; };
+        const auto ssrHit = [](const Frame& f) -> auto& { return f.trace.ssr.hit; };
+        const auto ssrSteps = [](const Frame& f) -> auto& { return f.trace.ssr.steps; };
+        const auto ssgiR = [](const Frame& f) -> auto& { return f.trace.ssgi.color[0]; };
+        const auto ssgiHit = [](const Frame& f) -> auto& { return f.trace.ssgi.hit; };
+        const auto ssgiSteps = [](const Frame& f) -> auto& { return f.trace.ssgi.steps; };
         uint64_t rough = 0, metal = 0;
         int imageKept = 0, imagePixels = 0, ssrKept = 0, ssrPixels = 0, ssgiKept = 0;
         int hiddenEmpty = 0;
@@ -113,19 +124,17 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
                 // The image: wherever no smoother pixel borrowed a skipped SSR ray.
                 if (isRough(x, y) || !nearRough || mode == SsrResolveMode::Mip) {
                     ++imagePixels;
-                    imageKept += same("color.R", x, y) && same("color.G", x, y) &&
-                                 same("color.B", x, y) && same("ssrOpacity", x, y);
+                    imageKept += same(color(0), x, y) && same(color(1), x, y) &&
+                                 same(color(2), x, y) && same(ssrOpacity, x, y);
                 }
                 // SSR's own planes away from the rough pixels.
                 if (!isRough(x, y) && (!nearRough || mode == SsrResolveMode::Mip)) {
                     ++ssrPixels;
-                    ssrKept +=
-                        same("ssr.R", x, y) && same("ssrHit", x, y) && same("ssrSteps", x, y);
+                    ssrKept += same(ssrR, x, y) && same(ssrHit, x, y) && same(ssrSteps, x, y);
                 }
                 // SSGI borrows nothing from neighbours: every pixel with a diffuse colour.
                 if (!isMetal(x, y))
-                    ssgiKept +=
-                        same("ssgi.R", x, y) && same("ssgiHit", x, y) && same("ssgiSteps", x, y);
+                    ssgiKept += same(ssgiR, x, y) && same(ssgiHit, x, y) && same(ssgiSteps, x, y);
                 hiddenEmpty += isRough(x, y) && a.trace.ssr.opacity.at(x, y) == 0.0f &&
                                a.trace.ssr.hit.at(x, y) == 0.0f;
                 hiddenEmpty += isMetal(x, y) && a.trace.ssgi.color[0].at(x, y) == 0.0f &&

@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "core/tiles.h"
 #include "plane_compare.h"
+#include "renderer/direct_lighting.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/direct_kernel.h"
@@ -42,11 +43,7 @@ struct DirectFixture {
         rs.threads = 2;
         frame = Renderer(rs).renderWithoutHistory(makeBuiltinScene(scene));
         const int w = frame.width, h = frame.height;
-        static const char* const g[10] = {"viewZ",     "normal.X",  "normal.Y", "normal.Z",
-                                          "albedo.R",  "albedo.G",  "albedo.B", "metallic",
-                                          "roughness", "materialId"};
-        for (int i = 0; i < 10; ++i) args.g[i] = frame.plane(g[i]).row(0);
-        args.gStride = frame.gbuffer.viewZ.stride();
+        setDirectGBuffer(frame.gbuffer, args);
         args.width = w;
         args.height = h;
         args.tilesX = TileGrid(w, h).tilesX;
@@ -262,7 +259,7 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
     CompositeInputs in = f.inputs(1.0f);
     for (int c = 0; c < 3; ++c) {
         in.ssgi[c] = &ssgi[c];
-        in.albedo[c] = &f.frame.plane(c == 0 ? "albedo.R" : c == 1 ? "albedo.G" : "albedo.B");
+        in.albedo[c] = &f.frame.gbuffer.albedo[c];
         in.envDiffuse[c] = nullptr;  // not needed with SSGI on
     }
     in.viewZ = &f.frame.gbuffer.viewZ;

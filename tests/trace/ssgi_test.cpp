@@ -109,11 +109,9 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
 // SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
 void gbufferInputs(const Frame& frame, SsgiInputs& in) {
     in.viewZ = &frame.gbuffer.viewZ;
-    const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
-    const char* const a[3] = {"albedo.R", "albedo.G", "albedo.B"};
     for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &frame.plane(n[c]);
-        in.albedo[c] = &frame.plane(a[c]);
+        in.normal[c] = &frame.gbuffer.normal[c];
+        in.albedo[c] = &frame.gbuffer.albedo[c];
     }
     in.metallic = &frame.gbuffer.metallic;
     in.shadow = &frame.image.shadow;

@@ -392,12 +392,10 @@ TEST_CASE(
     in.camera.tanHalfX = 0.4f * float(w) / float(h);
     in.viewZ = &frame.gbuffer.viewZ;
     in.roughness = &frame.gbuffer.roughness;
-    const char* const n[3] = {"normal.X", "normal.Y", "normal.Z"};
-    const char* const col[3] = {"color.R", "color.G", "color.B"};
     for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &frame.plane(n[c]);
-        in.color[c] = &frame.plane(col[c]);
-        in.prevColor[c] = &frame.plane(col[c]);
+        in.normal[c] = &frame.gbuffer.normal[c];
+        in.color[c] = &frame.image.color[c];
+        in.prevColor[c] = &frame.image.color[c];
     }
     in.motion[0] = &frame.gbuffer.motion[0];
     in.motion[1] = &frame.gbuffer.motion[1];

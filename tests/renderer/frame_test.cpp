@@ -1,0 +1,108 @@
+// The frame's name tables (renderer/frame.h): the layers a render hands out, in file order,
+// found by name; groups the settings leave out are no layers; a reused Frame follows the
+// settings it is rendered with.
+#include "renderer/frame.h"
+
+#include <doctest/doctest.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "renderer/renderer.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+
+namespace {
+
+RenderSettings tiny() {
+    RenderSettings rs;
+    rs.width = 24;
+    rs.height = 16;
+    rs.shadowMapSize = 32;
+    return rs;
+}
+
+std::vector<std::string> layerNames(const Frame& f) {
+    std::vector<std::string> names;
+    for (const PlaneRef& p : f.layers()) names.emplace_back(p.name);
+    return names;
+}
+
+}  // namespace
+
+TEST_CASE("frame: the layers are the groups' tables in file order, each found by name") {
+    const Scene scene = makeBuiltinScene("cornell");
+    const Frame f = Renderer(tiny()).renderWithoutHistory(scene);
+    // The EXR channel order ssrt has always written (golden files depend on it).
+    const std::vector<std::string> want = {
+        "color.R",    "color.G",    "color.B",        "display.R", "display.G",  "display.B",
+        "shadow",     "viewZ",      "normal.X",       "normal.Y",  "normal.Z",   "albedo.R",
+        "albedo.G",   "albedo.B",   "metallic",       "roughness", "materialId", "motion.X",
+        "motion.Y",   "instanceId", "triangleId",     "ssr.R",     "ssr.G",      "ssr.B",
+        "ssrOpacity", "ssrHit",     "ssrHitDistance", "ssrSteps",  "ssgi.R",     "ssgi.G",
+        "ssgi.B",     "ssgiHit",    "ssgiSteps"};
+    CHECK(layerNames(f) == want);
+    // plane(name) is the member the table names.
+    CHECK(&f.plane("viewZ") == &f.gbuffer.viewZ);
+    CHECK(&f.plane("normal.Z") == &f.gbuffer.normal[2]);
+    CHECK(&f.plane("display.B") == &f.image.display[2]);
+    CHECK(&f.plane("ssrHitDistance") == &f.trace.ssr.hitDistance);
+    CHECK(&f.plane("ssgiSteps") == &f.trace.ssgi.steps);
+    CHECK(&f.plane("triangleId") == &f.ids.triangleId);
+    for (const PlaneRef& p : f.layers()) {
+        CAPTURE(std::string(p.name));
+        CHECK(p.plane->width() == f.width);
+        CHECK(&f.plane(p.name) == p.plane);
+    }
+    CHECK_THROWS_AS(f.plane("nope"), std::out_of_range);
+    // The direct parts are no layers.
+    CHECK_FALSE(f.has("direct.R"));
+    CHECK(f.direct.direct[0].width() == f.width);
+}
+
+TEST_CASE("frame: groups the settings leave out are empty, also in a reused frame") {
+    const Scene scene = makeBuiltinScene("cornell");
+    Frame f = Renderer(tiny()).renderWithoutHistory(scene);
+    REQUIRE(f.has("ssr.R"));
+    RenderSettings less = tiny();
+    less.trace.ssr = false;
+    less.idPlanes = false;
+    Renderer(less).renderWithoutHistory(scene, FrameInput::still(scene), f);
+    CHECK_FALSE(f.has("ssr.R"));
+    CHECK_FALSE(f.has("instanceId"));
+    CHECK(f.has("ssgi.R"));
+    CHECK(f.trace.ssr.color[0].empty());
+    CHECK(f.direct.hitLight[0].width() == f.width);  // SSGI still reads it
+    less.trace.ssgi = false;
+    Renderer(less).renderWithoutHistory(scene, FrameInput::still(scene), f);
+    CHECK(layerNames(f).size() == 19);  // image and G-buffer alone
+    CHECK(f.direct.direct[0].empty());
+    // Names are unique across every table, the history's and the parts' included.
+    std::set<std::string> names;
+    int count = 0;
+    const auto add = [&](std::string_view n, const PlaneF&) {
+        names.emplace(n);
+        ++count;
+    };
+    f.image.forEachPlane(add);
+    f.gbuffer.forEachPlane(add);
+    f.ids.forEachPlane(add);
+    f.direct.forEachPlane(add);
+    f.trace.ssr.forEachPlane(add);
+    f.trace.ssgi.forEachPlane(add);
+    FrameHistory().forEachPlane(add);
+    CHECK(int(names.size()) == count);
+}
+
+TEST_CASE("frame: extra layers follow the renderer's") {
+    const Scene scene = makeBuiltinScene("cornell");
+    Frame f = Renderer(tiny()).renderWithoutHistory(scene);
+    const std::size_t n = f.layers().size();
+    f.extraLayers.push_back({"ref.color.R", PlaneF(f.width, f.height, 0.5f)});
+    const std::vector<PlaneRef> layers = f.layers();
+    REQUIRE(layers.size() == n + 1);
+    CHECK(layers.back().name == "ref.color.R");
+    CHECK(f.plane("ref.color.R").at(0, 0) == 0.5f);
+}
