@@ -32,7 +32,7 @@ struct CompositeInputs {
     // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): null = off.
     const PlaneF* ssrColor[3] = {};
     const PlaneF* ssrOpacity = nullptr;
-    float exposure = 1.0f;  // the renderer's exposure (FrameSettings::exposure)
+    float exposure = 1.0f;  // the renderer's exposure (RenderSettings::exposure)
 };
 
 // Writes color[3] (linear, exposed) and display[3] (tone mapped, sRGB), ensured to the
