@@ -21,6 +21,8 @@ render_packages=(
 test_packages=(
     # Tests and benchmarks; OpenImageIO's tools (idiff) for comparing images by hand
     doctest-dev libbenchmark-dev openimageio-tools
+    # A second compiler (scripts/test-clang.sh) and the formatter (scripts/check-format.sh)
+    clang clang-format
     # perf/peers: Mesa llvmpipe through EGL surfaceless
     libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
     # Charts (Debian's interpreter: /usr/bin/python3)
