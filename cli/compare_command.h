@@ -10,7 +10,7 @@
 
 #include "cli/reference_cache.h"
 #include "cli/render_command.h"
-#include "trace/reference/evaluation.h"
+#include "truth/evaluation.h"
 
 namespace CLI {
 class App;

@@ -1,5 +1,5 @@
 // The reference image for a request, from the cache when it holds one, else rendered (with
-// progress) and stored. Files are EXRs named by referenceKey() (trace/reference/
+// progress) and stored. Files are EXRs named by referenceKey() (truth/
 // reference_image.h), so any change to the scene or to a setting that shapes the reference
 // makes a new file; nothing is ever read back for a different request.
 #pragma once
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "renderer/renderer.h"
-#include "trace/reference/embree_scene.h"
-#include "trace/reference/reference_image.h"
+#include "truth/embree_scene.h"
+#include "truth/reference_image.h"
 
 namespace ssrt::cli {
 

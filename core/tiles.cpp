@@ -9,11 +9,7 @@
 
 namespace ssrt {
 
-TileRect TileGrid::rect(int tile) const {
-    const int tx = tile % tilesX, ty = tile / tilesX;
-    return {tx * kTileSize, ty * kTileSize, std::min(width, (tx + 1) * kTileSize),
-            std::min(height, (ty + 1) * kTileSize)};
-}
+TileRect TileGrid::rect(int tile) const { return tileRect(tile, tilesX, width, height); }
 
 void parallelFor(int count, int threads, const std::function<void(int)>& fn) {
     if (count <= 0) return;

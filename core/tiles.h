@@ -13,6 +13,16 @@ struct TileRect {
     int x0, y0, x1, y1;  // half-open pixel rectangle [x0, x1) x [y0, y1)
 };
 
+// The pixels of tile `tile` (row-major, tilesX tiles a row) of a width x height image; the
+// last column and row are cut at the image's edge. For kernels too: plain ints, no ISA-
+// dependent code, and always inlined, so no per-ISA object emits a weak copy of it
+// (tests/check_kernel_objects.sh; STYLE.md).
+[[gnu::always_inline]] constexpr TileRect tileRect(int tile, int tilesX, int width, int height) {
+    const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+    return {x0, y0, x0 + kTileSize < width ? x0 + kTileSize : width,
+            y0 + kTileSize < height ? y0 + kTileSize : height};
+}
+
 struct TileGrid {
     int width = 0, height = 0;  // image size in pixels
     int tilesX = 0, tilesY = 0;

@@ -5,7 +5,7 @@
 //   ./build/perf/ssrt_bench --benchmark_filter=VsEmbree
 //
 // Set-up, once per scene (not timed): the G-buffer of a frame rendered with the trace passes
-// off, its Hi-Z pyramid, and the truth's Embree scene (trace/reference/embree_scene.h: one BVH
+// off, its Hi-Z pyramid, and the truth's Embree scene (truth/embree_scene.h: one BVH
 // per mesh and one over the instances, RTC_BUILD_QUALITY_HIGH; its build time, second of two
 // builds, is the counter build_ms). Once per ray kind: the RayBatch from trace/ray_gen.h, the same
 // rays in world space (origin = camera position + viewToWorld * view origin, direction =
@@ -55,8 +55,8 @@
 #include "scenes/builtin_scenes.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
-#include "trace/reference/embree_scene.h"
 #include "trace/trace_types.h"
+#include "truth/embree_scene.h"
 
 using namespace ssrt;
 

@@ -1,5 +1,5 @@
 // The Hi-Z pyramid: min and max view depth over power-of-two footprints, for the Hi-Z
-// marcher (trace/march_hiz.cpp) and anything else that wants conservative depth bounds.
+// marcher (trace/march_hiz_kernel.cpp) and anything else that wants conservative depth bounds.
 //
 // Convention: depths are positive view Z as in the G-buffer, and background (viewZ 0, or
 // anything not > 0) is +infinity in both pyramids: a ray is never behind the background.

@@ -215,9 +215,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
 }  // namespace
 
 void resolveTile(const ResolveArgs& args, int tile) {
-    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
-    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     // Each tile row is resolved into a small buffer, then streamed to the planes in whole
     // cache lines: fourteen planes written in 32-byte pieces would cost a read for
     // ownership per line and thrash the write-combining buffers.

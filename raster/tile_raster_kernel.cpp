@@ -182,9 +182,7 @@ void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& 
 }  // namespace
 
 void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
-    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
-    const TileRect r{tx * kTileSize, ty * kTileSize, std::min(args.width, (tx + 1) * kTileSize),
-                     std::min(args.height, (ty + 1) * kTileSize)};
+    const TileRect r = tileRect(tile, args.tilesX, args.width, args.height);
     static thread_local TileBuffers buf;
     buf.touched = 0;
     for (uint32_t n = args.binStart[tile]; n < args.binStart[tile + 1]; ++n) {

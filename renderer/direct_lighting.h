@@ -1,6 +1,6 @@
 // The direct pass's lighting set-up (sun, sky, prefiltered sky levels, SH irradiance,
 // emission table, shadow map) as DirectArgs, in one place: the renderer's direct pass and the
-// reference image (trace/reference/) shade with the same arguments.
+// reference image (truth/) shade with the same arguments.
 #pragma once
 
 #include <memory>

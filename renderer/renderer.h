@@ -17,7 +17,7 @@ enum class TracePass { Ssr, Ssgi };
 
 // Sees every sample's rays and what the march found, right after the march and before the
 // resolve, on the thread that called render(), in pass then sample order. Its time is not in
-// any pass time. `ssrt compare` hands them to Embree (trace/reference/ray_check.h), so the
+// any pass time. `ssrt compare` hands them to Embree (truth/ray_check.h), so the
 // truth is asked about the very rays that were marched.
 using TraceObserver =
     std::function<void(TracePass pass, int sample, const RayBatch& rays, const MarchResult& march)>;

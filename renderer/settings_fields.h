@@ -2,7 +2,7 @@
 // (MarchSettings' is trace/march_fields.h): the one list of every setting, its range, default
 // (the struct's), help text and where it appears. They generate the CLI flags
 // (cli/options.cpp), the shot file's "render" keys (cli/shot_settings.cpp), validate()
-// (settings.cpp), the reference cache key (trace/reference/reference_key.cpp) and --help.
+// (settings.cpp), the reference cache key (truth/reference_key.cpp) and --help.
 #pragma once
 
 #include "core/fields.h"

@@ -1,24 +1,39 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package ssrt needs to build, test, benchmark and chart.
-# Idempotent: packages already present are skipped, so both README commands can
-# call it on every run at the cost of one dpkg query.
+# Installs the Debian 12 packages ssrt needs (if missing).
+#
+#   scripts/install-deps.sh          # everything: build, render, test, benchmark and chart
+#   scripts/install-deps.sh render   # only what building and running `ssrt` needs
+#
+# Idempotent: packages already present are skipped, so the README commands can call it on
+# every run at the cost of one dpkg query.
 set -euo pipefail
 
-packages=(
+# The `ssrt` command: its build and every library it links.
+render_packages=(
     # Build
     g++ cmake ninja-build pkg-config
     # Core library
     libglm-dev libxsimd-dev libtbb-dev
     # Edges: image files, world-space truth, glTF, shot files (JSON), command line
-    libopenimageio-dev openimageio-tools libembree-dev libtinygltf-dev nlohmann-json3-dev
-    libcli11-dev
-    # Tests and benchmarks
-    doctest-dev libbenchmark-dev
+    libopenimageio-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+)
+# Tests, benchmarks, peers and charts, on top of the render's.
+test_packages=(
+    # Tests and benchmarks; OpenImageIO's tools (idiff) for comparing images by hand
+    doctest-dev libbenchmark-dev openimageio-tools
+    # A second compiler (scripts/test-clang.sh) and the formatter (scripts/check-format.sh)
+    clang clang-format
     # perf/peers: Mesa llvmpipe through EGL surfaceless
     libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
     # Charts (Debian's interpreter: /usr/bin/python3)
     python3-matplotlib
 )
+
+case "${1:-all}" in
+    render) packages=("${render_packages[@]}") ;;
+    all) packages=("${render_packages[@]}" "${test_packages[@]}") ;;
+    *) echo "usage: $0 [render|all]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

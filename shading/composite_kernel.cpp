@@ -53,9 +53,7 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
 }  // namespace
 
 void compositeTile(const CompositeArgs& args, int tile) {
-    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
-    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; x += kW) compositeChunk(args, x, y);
 }

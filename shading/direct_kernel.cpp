@@ -106,9 +106,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
 }  // namespace
 
 void shadeTile(const DirectArgs& args, int tile) {
-    const int tx = tile % args.tilesX, ty = tile / args.tilesX;
-    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    const int x1 = std::min(args.width, x0 + kTileSize), y1 = std::min(args.height, y0 + kTileSize);
+    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     // Row buffer, streamed out in whole cache lines (see raster/resolve_kernel.cpp); lane
     // groups past the right edge land in the rows' 64-byte padding.
     alignas(64) float rowBuf[7][kTileSize];

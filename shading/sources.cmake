@@ -1,5 +1,5 @@
 
-list(APPEND SSRT_KERNEL_SOURCES shading/sampling_kernels.cpp)
+list(APPEND SSRT_KERNEL_SOURCES shading/sampling_kernel.cpp)
 list(APPEND SSRT_KERNEL_SOURCES shading/direct_kernel.cpp)
 list(APPEND SSRT_SOURCES shading/energy_tables.cpp)
 list(APPEND SSRT_SOURCES shading/environment.cpp)

@@ -108,7 +108,7 @@ struct TileScratch {
 // paths, so a lane group's rays end after similar step counts (fewer idle lanes) and read
 // nearby cells. Only the order of the rays changes: each lane's path depends on its own ray
 // alone, so no result bit does (tests/trace/march_test.cpp holds every ray to the same ray
-// marched alone). The keys come from marchSortKeys (trace/march_keys.cpp): the screen
+// marched alone). The keys come from marchSortKeys (trace/march_keys_kernel.cpp): the screen
 // direction of a view point's motion along the ray (origin o, direction d) is (sx (o.x d.z -
 // d.x o.z), sy (d.y o.z - o.y d.z)) up to a positive factor (the derivative of x/(-z), y/(-z)
 // along the ray); its angle is binned by the "diamond angle" in [0, 4), monotonic in the

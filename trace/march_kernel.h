@@ -1,6 +1,7 @@
-// The marcher kernels, one copy per ISA (trace/march_linear.cpp, march_dda.cpp,
-// march_hiz.cpp): each marches a packed list of rays (one tile's) kWidth at a time and
-// writes one result per ray. Plain pointers and values only (no GLM, no xsimd).
+// The marcher kernels, one copy per ISA (trace/march_linear_kernel.cpp,
+// march_dda_kernel.cpp, march_hiz_kernel.cpp): each marches a packed list of rays (one tile's)
+// kWidth at a time and writes one result per ray. Plain pointers and values only (no GLM, no
+// xsimd).
 #pragma once
 
 #include <cstddef>

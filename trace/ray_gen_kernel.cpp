@@ -176,9 +176,7 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
 
 template <RayGenLobe K>
 void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
-    const int tx = tile % a.tilesX, ty = tile / a.tilesX;
-    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    const int x1 = std::min(a.width, x0 + kTileSize), y1 = std::min(a.height, y0 + kTileSize);
+    const auto [x0, y0, x1, y1] = tileRect(tile, a.tilesX, a.width, a.height);
     // Lane groups past the right edge read and write the rows' 64-byte padding and are
     // left out of the counts. Rows go through a buffer and are streamed out in whole cache
     // lines (written once per pass; see raster/resolve_kernel.cpp).

@@ -252,9 +252,7 @@ void resolveChunk(const SsrResolveArgs& a, int x, int y) {
 
 template <class F>
 SSRT_INLINE void forTile(const SsrResolveArgs& a, int tile, F&& f) {
-    const int tx = tile % a.tilesX, ty = tile / a.tilesX;
-    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    const int x1 = std::min(a.width, x0 + kTileSize), y1 = std::min(a.height, y0 + kTileSize);
+    const auto [x0, y0, x1, y1] = tileRect(tile, a.tilesX, a.width, a.height);
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; x += kW) f(x, y);
 }

@@ -129,7 +129,10 @@ TEST_CASE("cli: every bad number is one error line naming the option and value, 
         {"--thickness", {"0", "nan", "-0.1"}},
         {"--ssr-resolve", {"blur"}},
         {"--hit-radiance", {"previous"}}};
-    for (const auto& [option, values] : bad) {
+    // (no structured binding: clang 14 cannot capture one in CAPTURE's lambda)
+    for (const auto& entry : bad) {
+        const std::string& option = entry.first;
+        const std::vector<std::string>& values = entry.second;
         for (const std::string& value : values) {
             CAPTURE(option);
             CAPTURE(value);

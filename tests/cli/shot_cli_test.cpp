@@ -120,7 +120,10 @@ TEST_CASE("cli shot: a bad shot is one line naming file and field, exit 1, no fi
         {R"({"camera": {"position": [0, 1, 0], "target": [0, 1, 0]}})",
          "camera: position and target are the same point"},
     };
-    for (const auto& [text, expected] : cases) {
+    // (no structured binding: clang 14 cannot capture one in CAPTURE's lambda)
+    for (const auto& entry : cases) {
+        const std::string& text = entry.first;
+        const std::string& expected = entry.second;
         CAPTURE(text);
         writeFile(shot, text);
         const Result r = run({"render", "--shot", shot, "-o", dir.file("out.png")});

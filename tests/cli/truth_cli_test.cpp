@@ -25,7 +25,7 @@ using test::TempDir;
 
 namespace {
 
-// Small and quick: the point is the plumbing, the physics is tested in tests/reference/.
+// Small and quick: the point is the plumbing, the physics is tested in tests/truth/.
 std::vector<std::string> tiny(std::vector<std::string> args, const TempDir& dir) {
     for (const char* a : {"--width", "64", "--height", "36", "--reference-spp", "4", "--repeats",
                           "1", "--shadow-map-size", "256", "-j", "2"})

@@ -161,7 +161,10 @@ TEST_CASE("every ISA and thread count renders the same bits") {
 
 TEST_CASE("built-in scenes keep their golden hashes") {
     const bool print = std::getenv("SSRT_PRINT_GOLDEN") != nullptr;
-    for (const auto& [scene, golden] : kGolden) {
+    // (no structured binding: clang 14 cannot capture one in CAPTURE's lambda)
+    for (const auto& entry : kGolden) {
+        const std::string& scene = entry.first;
+        const uint64_t golden = entry.second;
         CAPTURE(scene);
         const uint64_t h = frameHash(renderSmall(scene, Isa::Scalar, 2));
         if (print)

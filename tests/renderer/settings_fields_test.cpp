@@ -15,7 +15,7 @@
 #include "cli/options.h"
 #include "cli/shot_settings.h"
 #include "scenes/builtin_scenes.h"
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 using namespace ssrt;
 

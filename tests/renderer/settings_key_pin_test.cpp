@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "scenes/builtin_scenes.h"
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 using namespace ssrt;
 

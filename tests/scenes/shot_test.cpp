@@ -233,7 +233,10 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         {R"({"camera": {"path": {"keys": [{"time": 0}, {"time": 1, "time": 2}]}}})",
          "camera.path.keys[1].time: duplicate key"},
     };
-    for (const auto& [text, expected] : cases) {
+    // (no structured binding: clang 14 cannot capture one in CAPTURE's lambda)
+    for (const auto& entry : cases) {
+        const std::string& text = entry.first;
+        const std::string& expected = entry.second;
         CAPTURE(text);
         writeFile(file, text);
         std::string message;

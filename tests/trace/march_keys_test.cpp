@@ -1,4 +1,4 @@
-// The packing keys of the march (trace/march_keys.cpp): which rays are marched at all, and
+// The packing keys of the march (trace/march_keys_kernel.cpp): which rays are marched at all, and
 // which screen-direction bucket each falls in. The keys only order the rays (no result bit
 // depends on them), so a wrong key would show only as slower marching: tested here directly.
 #include <doctest/doctest.h>

@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "renderer/renderer.h"
-#include "trace/reference/embree_scene.h"
-#include "trace/reference/image_error.h"
-#include "trace/reference/ray_check.h"
-#include "trace/reference/reference_image.h"
+#include "truth/embree_scene.h"
+#include "truth/image_error.h"
+#include "truth/ray_check.h"
+#include "truth/reference_image.h"
 
 namespace ssrt {
 

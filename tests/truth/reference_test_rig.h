@@ -5,8 +5,8 @@
 
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
-#include "trace/reference/embree_scene.h"
-#include "trace/reference/reference_image.h"
+#include "truth/embree_scene.h"
+#include "truth/reference_image.h"
 
 namespace ssrt::test {
 

@@ -1,4 +1,4 @@
-#include "trace/reference/reference_shading.h"
+#include "truth/reference_shading.h"
 
 #include <limits>
 

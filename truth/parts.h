@@ -1,10 +1,10 @@
 // The parts of an image (direct, specular, diffuse) for the per-component error, and the
-// reference's composite. Internal to trace/reference/.
+// reference's composite. Internal to truth/.
 #pragma once
 
 #include "core/isa.h"
 #include "renderer/renderer.h"
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 namespace ssrt {
 

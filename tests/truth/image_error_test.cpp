@@ -1,6 +1,6 @@
 // imageError against hand-computed values: the relMSE and RMSE conventions, a non-finite
 // pixel counted, and the refusals.
-#include "trace/reference/image_error.h"
+#include "truth/image_error.h"
 
 #include <doctest/doctest.h>
 

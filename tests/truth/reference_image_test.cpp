@@ -1,6 +1,6 @@
 // The reference image: the frame's parts add up, the cache key, determinism over threads,
 // Monte Carlo convergence; and (skipped by default) the measurements for the issue report.
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 #include <doctest/doctest.h>
 
@@ -9,8 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "tests/reference/reference_test_rig.h"
-#include "trace/reference/image_error.h"
+#include "tests/truth/reference_test_rig.h"
+#include "truth/image_error.h"
 
 using namespace ssrt;
 using test::ReferenceRig;

@@ -1,15 +1,15 @@
-// The reference image's shading (trace/reference/reference_image.h), one point at a time:
+// The reference image's shading (truth/reference_image.h), one point at a time:
 // the direct pass's model (shading/direct_lanes.h, L = float: the very template the kernel
 // runs) at any world point and view direction, with the sun's visibility from an Embree shadow
-// ray or the frame's shadow map. Internal to trace/reference/ (and its tests).
+// ray or the frame's shadow map. Internal to truth/ (and its tests).
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include "shading/direct_kernel.h"
 #include "shading/direct_lanes.h"
-#include "trace/reference/embree_scene.h"
-#include "trace/reference/reference_image.h"
+#include "truth/embree_scene.h"
+#include "truth/reference_image.h"
 
 namespace ssrt::reference {
 

@@ -1,6 +1,6 @@
 // The world-space truth: the scene's instances in an Embree 3 BVH, built once per scene, and
 // what a hit on it means (the surface point, its normals and material). Everything under
-// trace/reference/ links Embree; the core library never does (DESIGN.md: Embree at the edges).
+// truth/ links Embree; the core library never does (DESIGN.md: Embree at the edges).
 //
 // Embree answers are a measurement, not part of the determinism contract: Embree picks its
 // own ISA kernels at run time and builds its BVH on its own threads. A hit distance can differ

@@ -12,7 +12,7 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/march.h"
-#include "trace/reference/ray_check.h"
+#include "truth/ray_check.h"
 
 using namespace ssrt;
 

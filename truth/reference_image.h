@@ -33,7 +33,7 @@
 
 #include "core/image.h"
 #include "renderer/renderer.h"
-#include "trace/reference/embree_scene.h"
+#include "truth/embree_scene.h"
 
 namespace ssrt {
 

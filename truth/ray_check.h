@@ -34,8 +34,8 @@
 #include <vector>
 
 #include "core/image.h"
-#include "trace/reference/embree_scene.h"
 #include "trace/trace_types.h"
+#include "truth/embree_scene.h"
 
 namespace ssrt {
 

@@ -1,6 +1,6 @@
 // The reference's shading against the direct pass: the same model at the G-buffer's points
 // and at Embree's hits, and what changes with Embree's visibility.
-#include "trace/reference/reference_shading.h"
+#include "truth/reference_shading.h"
 
 #include <doctest/doctest.h>
 
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "renderer/direct_lighting.h"
-#include "tests/reference/reference_test_rig.h"
-#include "trace/reference/reference_image.h"
+#include "tests/truth/reference_test_rig.h"
+#include "truth/reference_image.h"
 
 using namespace ssrt;
 using test::ReferenceRig;

@@ -1,4 +1,4 @@
-#include "trace/reference/embree_scene.h"
+#include "truth/embree_scene.h"
 
 #include <embree3/rtcore.h>
 

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "renderer/renderer.h"
-#include "trace/reference/embree_scene.h"
-#include "trace/reference/reference_image.h"
+#include "truth/embree_scene.h"
+#include "truth/reference_image.h"
 
 using namespace ssrt;
 

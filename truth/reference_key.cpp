@@ -1,11 +1,11 @@
-// referenceKey (trace/reference/reference_image.h): FNV-1a 64 over everything the reference
+// referenceKey (truth/reference_image.h): FNV-1a 64 over everything the reference
 // depends on, field by field in a fixed order (never over struct bytes: padding is undefined).
 #include <cstring>
 #include <string_view>
 #include <vector>
 
 #include "renderer/settings_fields.h"
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 namespace ssrt {
 

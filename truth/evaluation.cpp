@@ -1,4 +1,4 @@
-#include "trace/reference/evaluation.h"
+#include "truth/evaluation.h"
 
 #include <algorithm>
 #include <stdexcept>

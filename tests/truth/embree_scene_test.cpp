@@ -1,8 +1,8 @@
-// The Embree BVH of a scene (trace/reference/embree_scene.h) against analytic answers: a plane
+// The Embree BVH of a scene (truth/embree_scene.h) against analytic answers: a plane
 // and a box face at the exact distance, a tessellated sphere within its sagitta, one mesh
 // instanced twice, packets against single rays, shadow rays, the surface at a hit and the
 // build statistics.
-#include "trace/reference/embree_scene.h"
+#include "truth/embree_scene.h"
 
 #include <doctest/doctest.h>
 
@@ -19,7 +19,10 @@ using namespace ssrt::helpers;
 
 namespace {
 
-// A small counter-based generator: the tests' random rays are the same on every run.
+// A small counter-based generator: the tests' random rays are the same on every run. Several
+// draws in one vector are written in braces, glm::vec3{...}, which evaluate left to right;
+// a constructor's parenthesised arguments are evaluated in an unspecified order (gcc and
+// clang differ, and so did the rays).
 struct TestRng {
     uint64_t state;
     float next() {
@@ -62,9 +65,9 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
     TestRng rng{7};
     for (int i = 0; i < 200; ++i) {
         // Down onto the floor from 2 m above it, at random slants that stay on the quad.
-        const glm::vec3 o(2.0f * rng.next() - 1.0f, 2.5f, 2.0f * rng.next() - 1.0f);
+        const glm::vec3 o{2.0f * rng.next() - 1.0f, 2.5f, 2.0f * rng.next() - 1.0f};
         const glm::vec3 d =
-            glm::normalize(glm::vec3(0.8f * rng.next() - 0.4f, -1.0f, 0.8f * rng.next() - 0.4f));
+            glm::normalize(glm::vec3{0.8f * rng.next() - 0.4f, -1.0f, 0.8f * rng.next() - 0.4f});
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 0);
@@ -73,9 +76,9 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
     }
     for (int i = 0; i < 200; ++i) {
         // Along -X onto the box's +X face (x = 6) from x = 9.
-        const glm::vec3 o(9.0f, 0.4f * rng.next() - 0.2f, 3.0f * rng.next() - 1.5f);
+        const glm::vec3 o{9.0f, 0.4f * rng.next() - 0.2f, 3.0f * rng.next() - 1.5f};
         const glm::vec3 d =
-            glm::normalize(glm::vec3(-1.0f, 0.1f * rng.next() - 0.05f, 0.1f * rng.next() - 0.05f));
+            glm::normalize(glm::vec3{-1.0f, 0.1f * rng.next() - 0.05f, 0.1f * rng.next() - 0.05f});
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 1);
@@ -105,7 +108,7 @@ TEST_CASE("embree scene: a tessellated sphere is hit within its sagitta of the t
         // From 4 m out, aimed at a random point near the centre.
         const glm::vec3 o = centre + 4.0f * rng.unitVector();
         const glm::vec3 aim =
-            centre + 0.5f * r * (glm::vec3(rng.next(), rng.next(), rng.next()) - 0.5f);
+            centre + 0.5f * r * (glm::vec3{rng.next(), rng.next(), rng.next()} - 0.5f);
         const glm::vec3 d = glm::normalize(aim - o);
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
@@ -138,7 +141,7 @@ TEST_CASE("embree scene: a mesh instanced twice names the instance and triangle 
         const int which = i % 2;
         const glm::vec3 c = which == 0 ? glm::vec3(-3.0f, 0, 0) : glm::vec3(3.0f, 1.0f, 0);
         const glm::vec3 o = c + 2.5f * rng.unitVector();
-        const glm::vec3 aim = c + 0.4f * (glm::vec3(rng.next(), rng.next(), rng.next()) - 0.5f);
+        const glm::vec3 aim = c + 0.4f * (glm::vec3{rng.next(), rng.next(), rng.next()} - 0.5f);
         const glm::vec3 d = glm::normalize(aim - o);
         const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
         REQUIRE(h.hit);
@@ -163,7 +166,7 @@ TEST_CASE("embree scene: 16-ray packets give the single-ray answers") {
         const int n = 1 + packet % 16;  // every packet size
         glm::vec3 o[16], d[16];
         for (int k = 0; k < n; ++k) {
-            o[k] = glm::vec3(8.0f * rng.next() - 4.0f, 3.0f * rng.next(), 8.0f * rng.next() - 4.0f);
+            o[k] = glm::vec3{8.0f * rng.next() - 4.0f, 3.0f * rng.next(), 8.0f * rng.next() - 4.0f};
             d[k] = rng.unitVector();
         }
         EmbreeHit packed[16];
@@ -178,7 +181,7 @@ TEST_CASE("embree scene: 16-ray packets give the single-ray answers") {
             CHECK(packed[k].t == doctest::Approx(one.t).epsilon(1e-6));
         }
     }
-    CHECK(hitCount > 300);  // the rays met geometry, not only the sky
+    CHECK(hitCount > 250);  // the rays met geometry, not only the sky (286 of 1668 hit)
     glm::vec3 o{0, 2.5f, 0}, d{0, -1, 0};
     EmbreeHit h;
     CHECK_THROWS_AS(e.intersect16(0, &o, &d, 0.0f, 1.0f, &h), std::invalid_argument);

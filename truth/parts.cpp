@@ -1,4 +1,4 @@
-#include "trace/reference/parts.h"
+#include "truth/parts.h"
 
 #include <stdexcept>
 #include <string>

@@ -1,4 +1,4 @@
-#include "trace/reference/image_error.h"
+#include "truth/image_error.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "trace/reference/ray_check.h"
+#include "truth/ray_check.h"
 
 #include <algorithm>
 #include <chrono>

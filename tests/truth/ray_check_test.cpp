@@ -1,8 +1,8 @@
-// Ray checks (trace/reference/ray_check.h): every class pinned on a hand-made analytic scene,
+// Ray checks (truth/ray_check.h): every class pinned on a hand-made analytic scene,
 // the error values and planes, the same results for every thread count; then the failure
 // scenes (`thin`, `offscreen`, `occluded`) rendered with each marcher, their SSR and SSGI rays
 // checked, and the failures each scene was built for found.
-#include "trace/reference/ray_check.h"
+#include "truth/ray_check.h"
 
 #include <doctest/doctest.h>
 

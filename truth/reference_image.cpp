@@ -1,7 +1,7 @@
-// The reference image (trace/reference/reference_image.h): the direct pass's sun with Embree's
+// The reference image (truth/reference_image.h): the direct pass's sun with Embree's
 // (or the shadow map's) visibility, and the frame's own SSR and SSGI sample sequences, many
 // samples of them, traced by Embree.
-#include "trace/reference/reference_image.h"
+#include "truth/reference_image.h"
 
 #include <algorithm>
 #include <array>
@@ -13,8 +13,8 @@
 #include "core/tiles.h"
 #include "renderer/direct_lighting.h"
 #include "shading/brdf.h"
-#include "trace/reference/parts.h"
-#include "trace/reference/reference_shading.h"
+#include "truth/parts.h"
+#include "truth/reference_shading.h"
 
 namespace ssrt {
 
