@@ -33,7 +33,7 @@ struct FrameContext {
     int threads;
     TileGrid grid;
     glm::mat4 view, proj, prevViewProj;
-    float tanHalfX, tanHalfY;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
+    TraceCamera trace;  // the camera as the kernels take it (tanHalf*, near, far, rotation)
 
     FrameContext(const RenderSettings& s, const FrameInput& input)
         : settings(s),
@@ -45,8 +45,15 @@ struct FrameContext {
         view = camera.view();
         proj = camera.projection(aspect);
         prevViewProj = input.previousCamera.projection(aspect) * input.previousCamera.view();
-        tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
-        tanHalfX = tanHalfY * aspect;
+        trace.width = s.width;
+        trace.height = s.height;
+        trace.tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
+        trace.tanHalfX = trace.tanHalfY * aspect;
+        trace.nearZ = camera.nearZ;
+        trace.farZ = camera.farZ;
+        const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
+        std::copy_n(glm::value_ptr(viewToWorld), 9, trace.viewToWorld);
+        std::copy_n(glm::value_ptr(camera.position), 3, trace.position);
     }
     RasterOptions raster() const {
         RasterOptions ro;
@@ -115,10 +122,10 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
     ra.width = c.grid.width;
     ra.height = c.grid.height;
     ra.tilesX = c.grid.tilesX;
-    ra.tanHalfX = c.tanHalfX;
-    ra.tanHalfY = c.tanHalfY;
-    ra.nearZ = c.camera.nearZ;
-    ra.farZ = c.camera.farZ;
+    ra.tanHalfX = c.trace.tanHalfX;
+    ra.tanHalfY = c.trace.tanHalfY;
+    ra.nearZ = c.trace.nearZ;
+    ra.farZ = c.trace.farZ;
     // The kernel's output order (raster/resolve_kernel.h), every plane with one stride.
     PlaneF* const out[kResolveOutputs] = {&g.viewZ,     &g.normal[0],  &g.normal[1], &g.normal[2],
                                           &g.albedo[0], &g.albedo[1],  &g.albedo[2], &g.metallic,
@@ -189,11 +196,10 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     da.width = c.grid.width;
     da.height = c.grid.height;
     da.tilesX = c.grid.tilesX;
-    da.tanHalfX = c.tanHalfX;
-    da.tanHalfY = c.tanHalfY;
-    const glm::mat3 viewToWorld = glm::mat3(glm::inverse(c.view));
-    std::copy_n(glm::value_ptr(viewToWorld), 9, da.viewToWorld);
-    std::copy_n(glm::value_ptr(c.camera.position), 3, da.camPos);
+    da.tanHalfX = c.trace.tanHalfX;
+    da.tanHalfY = c.trace.tanHalfY;
+    std::copy_n(c.trace.viewToWorld, 9, da.viewToWorld);
+    std::copy_n(c.trace.position, 3, da.camPos);
     ImagePlanes& im = frame.image;
     // The kernel's output order: colour, display, shadow, all with one stride.
     PlaneF* const out[7] = {&im.color[0],   &im.color[1],   &im.color[2], &im.display[0],
@@ -214,20 +220,6 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     }
     const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { shade(da, tile); });
-}
-
-// The camera as the trace passes see it.
-TraceCamera traceCamera(const FrameContext& c, const DirectArgs& da) {
-    TraceCamera tc;
-    tc.width = c.grid.width;
-    tc.height = c.grid.height;
-    tc.tanHalfX = c.tanHalfX;
-    tc.tanHalfY = c.tanHalfY;
-    tc.nearZ = c.camera.nearZ;
-    tc.farZ = c.camera.farZ;
-    std::copy_n(da.viewToWorld, 9, tc.viewToWorld);
-    std::copy_n(da.camPos, 3, tc.position);
-    return tc;
 }
 
 }  // namespace
@@ -299,7 +291,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     if (settings_.idPlanes) idPass(c, tables.triangles, frame);
     DirectLighting lighting;
     directPass(c, scene, environmentPass(c, scene, frame), frame, lighting);
-    frame.camera = traceCamera(c, lighting.args);
+    frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (!settings_.trace.any()) return;
     const FrameHistory* previous =
