@@ -18,6 +18,7 @@
 #include <limits>
 #include <new>
 #include <optional>
+#include <set>
 
 #include "scenes/gltf_textures.h"
 #include "scenes/mesh_builders.h"
@@ -41,11 +42,23 @@ std::string oneLine(const std::string& text) {
     return out;
 }
 
-// Everything the conversion needs to name the file in its errors.
+// What the conversion drops, counted as it goes; warningLines() turns it into one line per
+// kind at the end.
+struct Notes {
+    std::size_t skippedPrimitives = 0;  // POINTS, LINES, LINE_LOOP, LINE_STRIP
+    std::size_t pointLights = 0, spotLights = 0, otherLights = 0, extraDirectional = 0;
+    int usedCamera = -1;
+    std::set<int> extraCameras, orthographicCameras;
+    std::vector<std::size_t> emissiveTextures, normalTextures, occlusionTextures, alphaModes;
+    std::size_t vertexColours = 0, morphTargets = 0;
+};
+
+// Everything the conversion needs to name the file in its errors, and what it drops.
 struct Context {
     std::string path;
     const tinygltf::Model& model;
     gltf::TextureTable& textures;
+    Notes& notes;
 
     [[noreturn]] void fail(const std::string& problem) const {
         throw SceneLoadError(path + ": " + oneLine(problem));
@@ -53,6 +66,29 @@ struct Context {
 };
 
 std::string str(std::size_t n) { return std::to_string(n); }
+
+// "a", "a and b", "a, b and c".
+std::string joined(const std::vector<std::string>& items) {
+    std::string out;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (i > 0) out += i + 1 == items.size() ? " and " : ", ";
+        out += items[i];
+    }
+    return out;
+}
+
+// "1 point light", "2 point lights".
+std::string counted(std::size_t n, const std::string& noun) {
+    return str(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// "material 2", "materials 0, 1 and 3".
+template <class Indices>
+std::string named(const std::string& noun, const Indices& indices) {
+    std::vector<std::string> items;
+    for (auto i : indices) items.push_back(std::to_string(i));
+    return noun + (items.size() == 1 ? " " : "s ") + joined(items);
+}
 
 // ---------------------------------------------------------------------------------------
 // tinygltf silently skips a top-level member of the wrong JSON type ("meshes": 5 reads as
@@ -310,12 +346,23 @@ int attribute(const tinygltf::Primitive& p, const char* key) {
     return it == p.attributes.end() ? -1 : it->second;
 }
 
+int primitiveMode(const tinygltf::Primitive& p) {
+    return p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+}
+
+bool isPointOrLine(int mode) {
+    return mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+           mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP;
+}
+
 Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinygltf::Primitive& p) {
-    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    const int mode = primitiveMode(p);
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
         ctx.fail(name + ": mode " + modeName(mode) +
                  " is not supported (only triangles, strips and fans)");
+    if (attribute(p, "COLOR_0") >= 0) ++ctx.notes.vertexColours;
+    if (!p.targets.empty()) ++ctx.notes.morphTargets;
     const int pos = attribute(p, "POSITION");
     if (pos < 0) ctx.fail(name + ": no POSITION attribute");
 
@@ -418,6 +465,10 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     checkTexture(ctx, name, g.emissiveTexture.index);
     checkTexture(ctx, name, g.normalTexture.index);
     checkTexture(ctx, name, g.occlusionTexture.index);
+    if (g.emissiveTexture.index >= 0) ctx.notes.emissiveTextures.push_back(index);
+    if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
+    if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
+    if (g.alphaMode != "OPAQUE") ctx.notes.alphaModes.push_back(index);
     m.baseColorTexture = texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb);
     m.metallicRoughnessTexture =
         texture(ctx, name, pbr.metallicRoughnessTexture, TextureEncoding::Linear);
@@ -459,6 +510,10 @@ std::vector<std::vector<Part>> convertMeshes(const Context& ctx, Scene& scene) {
             if (mat < 0 && !fallback) {
                 fallback = uint32_t(scene.materials.size());
                 scene.materials.push_back(defaultMaterial());
+            }
+            if (isPointOrLine(primitiveMode(prims[k]))) {  // skipped: a warning, not an error
+                ++ctx.notes.skippedPrimitives;
+                continue;
             }
             scene.meshes.push_back(convertPrimitive(ctx, name, prims[k]));
             parts[i].push_back(
@@ -511,7 +566,9 @@ struct Walk {
 
     void visitNode(std::size_t index, const glm::mat4& world);
     void takeCamera(std::size_t node, int camera, const glm::mat4& world);
-    void takeLight(std::size_t node, const glm::mat4& world);
+    void visitLight(std::size_t node, const glm::mat4& world);
+    void takeLight(std::size_t node, const tinygltf::Light& light, int index,
+                   const glm::mat4& world);
 };
 
 glm::vec3 worldDirection(const glm::mat4& world, glm::vec3 local) {
@@ -523,8 +580,18 @@ void Walk::visitNode(std::size_t index, const glm::mat4& world) {
     if (n.mesh >= 0)
         for (const Part& part : parts[n.mesh])
             scene.instances.push_back({part.mesh, part.material, world, world});
-    if (n.camera >= 0 && !haveCamera) takeCamera(index, n.camera, world);
-    if (!haveLight) takeLight(index, world);
+    if (n.camera >= 0) {
+        Notes& notes = ctx.notes;
+        if (ctx.model.cameras[n.camera].type != "perspective") {
+            notes.orthographicCameras.insert(n.camera);
+        } else if (!haveCamera) {
+            takeCamera(index, n.camera, world);
+            notes.usedCamera = n.camera;
+        } else if (n.camera != notes.usedCamera) {
+            notes.extraCameras.insert(n.camera);
+        }
+    }
+    visitLight(index, world);
 }
 
 void Walk::takeCamera(std::size_t node, int camera, const glm::mat4& world) {
@@ -547,7 +614,8 @@ void Walk::takeCamera(std::size_t node, int camera, const glm::mat4& world) {
     haveCamera = true;
 }
 
-void Walk::takeLight(std::size_t node, const glm::mat4& world) {
+// The first directional light is the scene's; every other light a node places is counted.
+void Walk::visitLight(std::size_t node, const glm::mat4& world) {
     const auto ext = ctx.model.nodes[node].extensions.find("KHR_lights_punctual");
     if (ext == ctx.model.nodes[node].extensions.end() || !ext->second.Has("light")) return;
     const tinygltf::Value& v = ext->second.Get("light");
@@ -555,7 +623,16 @@ void Walk::takeLight(std::size_t node, const glm::mat4& world) {
     if (index < 0 || std::size_t(index) >= ctx.model.lights.size())
         ctx.fail("node " + str(node) + ": light " + std::to_string(index) + " does not exist");
     const tinygltf::Light& l = ctx.model.lights[index];
-    if (l.type != "directional") return;
+    Notes& notes = ctx.notes;
+    if (l.type == "directional" && !haveLight) takeLight(node, l, index, world);
+    else if (l.type == "directional") ++notes.extraDirectional;
+    else if (l.type == "point") ++notes.pointLights;
+    else if (l.type == "spot") ++notes.spotLights;
+    else ++notes.otherLights;
+}
+
+void Walk::takeLight(std::size_t node, const tinygltf::Light& l, int index,
+                     const glm::mat4& world) {
     const std::string name = "light " + std::to_string(index);
     DirectionalLight& out = scene.light;
     out.direction = worldDirection(world, {0.0f, 0.0f, -1.0f});  // lights shine along -Z
@@ -671,13 +748,107 @@ void fitCamera(Scene& scene, float fileFar, bool haveCamera) {
     scene.previousCamera = cam;
 }
 
+bool isSupportedExtension(const std::string& name) {
+    return std::find(kSupportedGltfExtensions.begin(), kSupportedGltfExtensions.end(), name) !=
+           kSupportedGltfExtensions.end();
+}
+
+// An extension the file requires and ssrt cannot honour is an error naming it (all of them).
+void checkRequiredExtensions(const Context& ctx) {
+    std::vector<std::string> missing;
+    for (const std::string& e : ctx.model.extensionsRequired)
+        if (!isSupportedExtension(e)) missing.push_back(e);
+    if (missing.size() == 1) ctx.fail("extension " + missing[0] + " is required but not supported");
+    if (!missing.empty())
+        ctx.fail("extensions " + joined(missing) + " are required but not supported");
+}
+
+// "1 point or line primitive skipped", "3 point and line primitives skipped".
+std::string skippedPrimitives(const Notes& n) {
+    return counted(n.skippedPrimitives, n.skippedPrimitives == 1 ? "point or line primitive"
+                                                                 : "point and line primitive") +
+           " skipped";
+}
+
+// Each of the warnings, in a fixed order, one line per kind, each naming the file.
+std::vector<std::string> warningLines(const Context& ctx) {
+    const tinygltf::Model& m = ctx.model;
+    const Notes& n = ctx.notes;
+    std::vector<std::string> lines;
+    std::vector<std::string> unsupported;
+    for (const std::string& e : m.extensionsUsed)
+        if (!isSupportedExtension(e)) unsupported.push_back(e);
+    if (!unsupported.empty())
+        lines.push_back((unsupported.size() == 1 ? "extension " : "extensions ") +
+                        joined(unsupported) + (unsupported.size() == 1 ? " is" : " are") +
+                        " used but not supported: ignored");
+    if (n.skippedPrimitives > 0)
+        lines.push_back(skippedPrimitives(n) + " (only triangles, strips and fans are rendered)");
+    std::vector<std::string> lights;
+    if (n.pointLights > 0) lights.push_back(counted(n.pointLights, "point light"));
+    if (n.spotLights > 0) lights.push_back(counted(n.spotLights, "spot light"));
+    if (n.otherLights > 0) lights.push_back(counted(n.otherLights, "light") + " of unknown type");
+    if (!lights.empty()) lights.back() += " ignored (only directional lights are supported)";
+    if (!lights.empty()) lines.push_back(joined(lights));
+    if (n.extraDirectional > 0)
+        lines.push_back(counted(n.extraDirectional, "directional light") +
+                        " after the first ignored (one directional light is used)");
+    if (!n.extraCameras.empty())
+        lines.push_back(named("camera", n.extraCameras) + " ignored (the first perspective " +
+                        "camera, camera " + std::to_string(n.usedCamera) + ", is used)");
+    if (!n.orthographicCameras.empty())
+        lines.push_back(named("orthographic camera", n.orthographicCameras) +
+                        " ignored (only perspective cameras are supported)");
+    const auto notApplied = [&](const std::vector<std::size_t>& materials, const char* what) {
+        if (!materials.empty())
+            lines.push_back(std::string(what) + " are not applied yet (" +
+                            named("material", materials) + ")");
+    };
+    notApplied(n.emissiveTextures, "emissive textures");
+    notApplied(n.normalTextures, "normal textures");
+    notApplied(n.occlusionTextures, "occlusion textures");
+    if (!n.alphaModes.empty())
+        lines.push_back("alphaMode MASK and BLEND are not applied (" +
+                        named("material", n.alphaModes) +
+                        (n.alphaModes.size() == 1 ? " is" : " are") + " drawn opaque)");
+    std::vector<std::size_t> samplers;
+    for (std::size_t i = 0; i < m.samplers.size(); ++i) {
+        const tinygltf::Sampler& s = m.samplers[i];
+        const bool trilinear =
+            (s.minFilter == -1 || s.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR) &&
+            (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR);
+        if (!trilinear) samplers.push_back(i);
+    }
+    if (!samplers.empty())
+        lines.push_back("sampler filters are ignored (" + named("sampler", samplers) +
+                        "; textures are always sampled trilinearly)");
+    if (n.vertexColours > 0)
+        lines.push_back("vertex colours (COLOR_0) are not applied (" +
+                        counted(n.vertexColours, "primitive") + ")");
+    if (n.morphTargets > 0)
+        lines.push_back("morph targets are not applied (" + counted(n.morphTargets, "primitive") +
+                        ")");
+    if (!m.skins.empty())
+        lines.push_back("skins are not applied (" + counted(m.skins.size(), "skin") + ")");
+    if (!m.animations.empty())
+        lines.push_back("animations are not played (" + counted(m.animations.size(), "animation") +
+                        ")");
+    for (std::string& line : lines) line = ctx.path + ": " + line;
+    return lines;
+}
+
 void convert(const Context& ctx, Scene& scene) {
     scene.name = fs::path(ctx.path).stem().string();
+    checkRequiredExtensions(ctx);
     const std::vector<std::vector<Part>> parts = convertMeshes(ctx, scene);
     checkNodes(ctx);
     Walk walk{ctx, parts, scene};
     walkNodes(ctx, walk);
-    if (scene.triangleCount() == 0) ctx.fail("the scene has no triangles");
+    if (scene.triangleCount() == 0)
+        ctx.fail(ctx.notes.skippedPrimitives == 0
+                     ? "the scene has no triangles"
+                     : "the scene has no triangles (" + skippedPrimitives(ctx.notes) +
+                           ": only triangles, strips and fans are rendered)");
     fitCamera(scene, scene.camera.farZ, walk.haveCamera);
     try {
         scene.validate();
@@ -688,13 +859,22 @@ void convert(const Context& ctx, Scene& scene) {
 
 }  // namespace
 
-Scene loadGltf(const std::string& path) {
+Scene loadGltf(const std::string& path) { return loadGltf(path, GltfLoadOptions{}, nullptr); }
+
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report) {
+    if (report) report->warnings.clear();
     try {
         gltf::DataUriImages dataUris;
         const tinygltf::Model model = readModel(path, dataUris);
         Scene scene;
         gltf::TextureTable textures(model, path, dataUris, scene.textures);
-        convert(Context{path, model, textures}, scene);
+        Notes notes;
+        const Context ctx{path, model, textures, notes};
+        convert(ctx, scene);
+        std::vector<std::string> warnings = warningLines(ctx);
+        if (options.strict && !warnings.empty())
+            throw SceneLoadError(warnings.front() + " (strict: every warning is an error)");
+        if (report) report->warnings = std::move(warnings);
         return scene;
     } catch (const SceneLoadError&) {
         throw;

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "scenes/scene.h"
 
@@ -30,7 +31,26 @@ public:
 // samplers' wrap modes (scenes/gltf_textures.h); TEXCOORD_0 only. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
 //
+// What the file holds beyond this is a warning, never a silent drop (one line per kind, in
+// a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
+// file with nothing else has no triangles and is an error), extensions in extensionsUsed that
+// ssrt does not support, point and spot lights and directional lights after the first,
+// cameras other than the one used and orthographic cameras, emissive, normal and occlusion
+// textures, alphaMode MASK and BLEND, sampler filters other than trilinear, COLOR_0, skins,
+// animations and morph targets. kSupportedGltfExtensions are the extensions ssrt honours; one
+// in extensionsRequired that is not among them is an error naming it.
+//
 // Throws SceneLoadError for anything malformed: it never returns a partial scene.
-Scene loadGltf(const std::string& path);
+struct GltfLoadOptions {
+    bool strict = false;  // every warning is an error: the first is thrown as SceneLoadError
+};
+struct GltfLoadReport {
+    std::vector<std::string> warnings;  // one line each, naming the file
+};
+inline const std::vector<std::string> kSupportedGltfExtensions = {"KHR_lights_punctual"};
+
+// `report` (may be null) is cleared, then receives the warnings of a successful load.
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);
+Scene loadGltf(const std::string& path);  // not strict, warnings discarded
 
 }  // namespace ssrt

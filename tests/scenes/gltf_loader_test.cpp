@@ -317,13 +317,15 @@ TEST_CASE("gltf: malformed files each give one clear error naming the file and t
         k.nodes = "[{}]";
         checkRefused(writeGltf(dir, "empty.gltf", k), "no meshes");
     }
-    SUBCASE("POINTS") {
+    SUBCASE("only POINTS: no triangles") {
         k.mode = 0;
-        checkRefused(writeGltf(dir, "points.gltf", k), "POINTS is not supported");
+        checkRefused(writeGltf(dir, "points.gltf", k),
+                     "no triangles (1 point or line primitive skipped");
     }
-    SUBCASE("LINES") {
+    SUBCASE("only LINES: no triangles") {
         k.mode = 1;
-        checkRefused(writeGltf(dir, "lines.gltf", k), "LINES is not supported");
+        checkRefused(writeGltf(dir, "lines.gltf", k),
+                     "no triangles (1 point or line primitive skipped");
     }
     SUBCASE("a texture whose image file does not exist is refused") {
         k.extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "nope.png"}])";
@@ -345,4 +347,186 @@ TEST_CASE("gltf: malformed files each give one clear error naming the file and t
             loadError(dir.file("cut.glb"));
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Warnings: what a file holds beyond what ssrt renders is one line per kind, never a silent
+// drop; --strict (GltfLoadOptions::strict) makes the first an error.
+
+namespace {
+
+std::vector<std::string> warningsOf(const std::string& path) {
+    ssrt::GltfLoadReport report;
+    loadGltf(path, {}, &report);
+    return report.warnings;
+}
+
+// The triangle, then a POINTS and a LINES primitive over the same vertices.
+Knobs mixedPrimitives() {
+    Knobs k;
+    k.meshes = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0},)"
+               R"( {"attributes": {"POSITION": 0}, "mode": 0},)"
+               R"( {"attributes": {"POSITION": 0}, "indices": 1, "mode": 1}]}])";
+    return k;
+}
+
+// Node 0 the mesh; nodes 1.. each place one light (of `lights`) or camera (of `cameras`).
+Knobs withLights(const std::string& lights, int count) {
+    Knobs k;
+    k.nodes = R"([{"mesh": 0})";
+    k.scenes = R"([{"nodes": [0)";
+    for (int i = 0; i < count; ++i) {
+        k.nodes +=
+            R"(, {"extensions": {"KHR_lights_punctual": {"light": )" + std::to_string(i) + "}}}";
+        k.scenes += ", " + std::to_string(i + 1);
+    }
+    k.nodes += "]";
+    k.scenes += "]}]";
+    k.extra = R"(, "extensionsUsed": ["KHR_lights_punctual"], "extensions": )"
+              R"({"KHR_lights_punctual": {"lights": )" +
+              lights + "}}";
+    return k;
+}
+
+}  // namespace
+
+TEST_CASE("gltf warnings: a plain file, or one with everything ssrt supports, warns of nothing") {
+    TempDir dir("gltf-warn");
+    CHECK(warningsOf(writeGltf(dir, "plain.gltf", Knobs{})).empty());
+    CHECK(warningsOf(writeGltf(dir, "rich.gltf", richKnobs())).empty());
+    Knobs k = richKnobs();
+    k.extra += R"(, "extensionsRequired": ["KHR_lights_punctual"])";
+    CHECK(warningsOf(writeGltf(dir, "required.gltf", k)).empty());
+}
+
+TEST_CASE("gltf warnings: points and lines are skipped with one line, the triangles load") {
+    TempDir dir("gltf-warn");
+    const std::string path = writeGltf(dir, "mixed.gltf", mixedPrimitives());
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene s = loadGltf(path, {}, &report);
+    REQUIRE(s.meshes.size() == 1);
+    CHECK(s.meshes[0].indices == std::vector<uint32_t>{0, 1, 2});
+    CHECK(s.instances.size() == 1);
+    CHECK(s.triangleCount() == 1);
+    CHECK(report.warnings ==
+          std::vector<std::string>{path + ": 2 point and line primitives skipped (only triangles, "
+                                          "strips and fans are rendered)"});
+    // The old entry point loads the same scene and says nothing.
+    CHECK(loadGltf(path).triangleCount() == 1);
+}
+
+TEST_CASE("gltf warnings: a required extension ssrt cannot honour is an error naming it") {
+    TempDir dir("gltf-warn");
+    Knobs k;
+    k.extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"],)"
+              R"( "extensionsRequired": ["KHR_draco_mesh_compression"])";
+    checkRefused(writeGltf(dir, "draco.gltf", k),
+                 "extension KHR_draco_mesh_compression is required but not supported");
+    // Emissive strength is not applied, so a file that requires it is refused too.
+    k.extra =
+        R"(, "extensionsUsed": ["KHR_materials_emissive_strength", "EXT_meshopt_compression"],)"
+        R"( "extensionsRequired": ["KHR_materials_emissive_strength", )"
+        R"("EXT_meshopt_compression"])";
+    checkRefused(writeGltf(dir, "two.gltf", k),
+                 "extensions KHR_materials_emissive_strength and EXT_meshopt_compression are "
+                 "required but not supported");
+}
+
+TEST_CASE("gltf warnings: an extension used but not supported is one line naming each") {
+    TempDir dir("gltf-warn");
+    Knobs k;
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_clearcoat"])";
+    std::string path = writeGltf(dir, "clearcoat.gltf", k);
+    CHECK(warningsOf(path) ==
+          std::vector<std::string>{path + ": extension KHR_materials_clearcoat is used but not "
+                                          "supported: ignored"});
+    k.extra = R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_lights_punctual",)"
+              R"( "KHR_materials_clearcoat"])";
+    path = writeGltf(dir, "two.gltf", k);
+    CHECK(warningsOf(path) ==
+          std::vector<std::string>{path + ": extensions KHR_texture_transform and "
+                                          "KHR_materials_clearcoat are used but not supported: "
+                                          "ignored"});
+}
+
+TEST_CASE("gltf warnings: point and spot lights are one line; the directional light is used") {
+    TempDir dir("gltf-warn");
+    const std::string path = writeGltf(
+        dir, "lights.gltf",
+        withLights(R"([{"type": "point"}, {"type": "spot", "spot": {}}, {"type": "point"},)"
+                   R"( {"type": "directional", "intensity": 3}, {"type": "directional"}])",
+                   5));
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene s = loadGltf(path, {}, &report);
+    CHECK(s.light.intensity == doctest::Approx(3));
+    CHECK(report.warnings ==
+          std::vector<std::string>{
+              path + ": 2 point lights and 1 spot light ignored (only directional lights are "
+                     "supported)",
+              path + ": 1 directional light after the first ignored (one directional light is "
+                     "used)"});
+}
+
+TEST_CASE("gltf warnings: cameras other than the first perspective one are named") {
+    TempDir dir("gltf-warn");
+    Knobs k;
+    k.nodes = R"([{"mesh": 0}, {"camera": 0, "translation": [0, 0, 5]}, {"camera": 1},)"
+              R"( {"camera": 2}, {"camera": 3}])";
+    k.scenes = R"([{"nodes": [0, 1, 2, 3, 4]}])";
+    const std::string persp =
+        R"({"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}})";
+    k.extra = R"(, "cameras": [{"type": "orthographic", "orthographic": )"
+              R"({"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}, )" +
+              persp + ", " + persp + ", " + persp + "]";
+    const std::string path = writeGltf(dir, "cameras.gltf", k);
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene s = loadGltf(path, {}, &report);
+    closeTo(s.camera.position, {0, 0, 0});  // camera 1's node, not camera 0's
+    CHECK(report.warnings ==
+          std::vector<std::string>{
+              path + ": cameras 2 and 3 ignored (the first perspective camera, camera 1, is used)",
+              path + ": orthographic camera 0 ignored (only perspective cameras are supported)"});
+}
+
+TEST_CASE("gltf warnings: textures, alpha modes and filters that are not applied are named") {
+    TempDir dir("gltf-warn");
+    writeFile(dir.file("n.png"), "not read: only checked to exist");
+    Knobs k;
+    k.extra = R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}],)"
+              R"( "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+    std::string json = jsonOf(k, "");
+    const std::string at = R"("doubleSided")";
+    json.replace(json.find(at), 0,
+                 R"("normalTexture": {"index": 0}, "occlusionTexture": {"index": 0},)"
+                 R"( "emissiveTexture": {"index": 0}, "alphaMode": "MASK", )");
+    const std::string path = dir.file("material.gltf");
+    writeFile(path, json);
+    CHECK(warningsOf(path) ==
+          std::vector<std::string>{
+              path + ": emissive textures are not applied yet (material 0)",
+              path + ": normal textures are not applied yet (material 0)",
+              path + ": occlusion textures are not applied yet (material 0)",
+              path + ": alphaMode MASK and BLEND are not applied (material 0 is drawn opaque)",
+              path + ": sampler filters are ignored (sampler 0; textures are always sampled "
+                     "trilinearly)"});
+}
+
+TEST_CASE("gltf warnings: strict makes the first warning an error, with no scene") {
+    TempDir dir("gltf-warn");
+    const std::string path = writeGltf(dir, "mixed.gltf", mixedPrimitives());
+    ssrt::GltfLoadReport report;
+    report.warnings = {"stale"};
+    try {
+        loadGltf(path, ssrt::GltfLoadOptions{true}, &report);
+        FAIL("strict mode loaded a file with a warning");
+    } catch (const SceneLoadError& e) {
+        const std::string msg = e.what();
+        INFO(msg);
+        CHECK(msg.rfind(path + ": 2 point and line primitives skipped", 0) == 0);
+        CHECK(msg.find("strict") != std::string::npos);
+    }
+    CHECK(report.warnings.empty());
+    // A file without warnings loads the same in strict mode.
+    CHECK(loadGltf(writeGltf(dir, "plain.gltf", Knobs{}), ssrt::GltfLoadOptions{true}, nullptr)
+              .triangleCount() == 1);
 }
