@@ -153,7 +153,7 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
         ->group("Truth");
     cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
         ->group("Truth");
-    cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
+    cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
 ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const RenderSettings& render) {
@@ -202,7 +202,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
-    loadScene(request);
+    loadScene(request, err);
     const Scene& scene = request.scene;
     const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;

@@ -228,6 +228,9 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
                   "Frame index (seeds the per-pixel random numbers); of a sequence's first frame, "
                   "frame i getting this + i",
                   "0");
+    cmd.add_flag("--strict", o.strict,
+                 "Every warning about a glTF file (points and lines skipped, lights, cameras, "
+                 "extensions or textures ignored) is an error: exit 1, nothing written");
 }
 
 std::vector<std::string> splitList(const std::string& option, const std::string& text) {
@@ -262,12 +265,19 @@ SceneRequest loadSceneRequest(const RenderOptions& o, const RenderSettings& defa
         r.name = *r.shot->scene;  // checked by the shot's parser
     }
     r.isa = resolveIsaFor(r.settings.isa);
+    r.strict = o.strict;
     return r;
 }
 
-void loadScene(SceneRequest& r) {
+void loadScene(SceneRequest& r, std::ostream& err) {
     // A glTF file or an environment image that cannot be loaded is a runtime error (exit 1).
-    r.scene = isSceneFile(r.name) ? loadGltf(r.name) : makeBuiltinScene(r.name);
+    if (isSceneFile(r.name)) {
+        GltfLoadReport report;
+        r.scene = loadGltf(r.name, GltfLoadOptions{r.strict}, &report);
+        for (const std::string& w : report.warnings) err << "ssrt: warning: " << w << "\n";
+    } else {
+        r.scene = makeBuiltinScene(r.name);
+    }
     if (r.shot) {
         applyShot(*r.shot, r.scene);
         if (r.shot->environment.file)

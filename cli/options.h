@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,8 +63,8 @@ int threadsFor(const RenderSettings& settings);  // 0 -> every core
 std::string plural(int n, const std::string& noun);
 
 // --shot, --scene, one option per RenderSettings field of the table (--width, --height,
-// --threads, --shadow-map-size, --shadow-bias, ...), --isa, --frame; help shows `defaults`
-// (the command's own) where neither a shot nor a flag decides.
+// --threads, --shadow-map-size, --shadow-bias, ...), --isa, --frame, --strict; help shows
+// `defaults` (the command's own) where neither a shot nor a flag decides.
 void addSceneOptions(CLI::App& cmd, RenderOptions& options, const RenderSettings& defaults);
 
 // The "Screen-space tracing" group: one option per TraceSettings field of the table
@@ -78,14 +79,17 @@ struct SceneRequest {
     std::string name;         // built-in scene or glTF file
     uint32_t firstFrame = 0;  // FrameInput::frameIndex of the first frame (--frame, the shot)
     Isa isa = Isa::Scalar;
-    Scene scene;      // after loadScene
-    CameraPath path;  // the shot's camera path (empty: the scene's still camera)
+    bool strict = false;  // --strict
+    Scene scene;          // after loadScene
+    CameraPath path;      // the shot's camera path (empty: the scene's still camera)
 };
 // Parses and checks everything; throws std::invalid_argument for bad flags, runtime errors
 // for a bad shot file. `defaults` are the command's own defaults under the shot and flags.
 SceneRequest loadSceneRequest(const RenderOptions& options, const RenderSettings& defaults = {});
-// Loads the scene (glTF, shot's light, sky image, camera path); throws on a bad file.
-void loadScene(SceneRequest& request);
+// Loads the scene (glTF, shot's light, sky image, camera path); throws on a bad file. A glTF
+// file's warnings go to `err`, one "ssrt: warning: " line each, even under --quiet (they are
+// not progress); with --strict the first is an error instead.
+void loadScene(SceneRequest& request, std::ostream& err);
 // The input of a single-frame command (compare, sweep): the first frame index, the path's
 // first key or the scene's camera; previous = the scene's previous camera without a path,
 // else the camera itself.

@@ -89,7 +89,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
                   "counters (per frame)");
-    cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr");
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
     return cmd;
 }
 
@@ -136,7 +136,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                                     std::to_string(kMaxFrame));
     checkWritable(sequenceFileName(o.output, 0, frames));
     // Loaded before anything is written.
-    loadScene(request);
+    loadScene(request, err);
     const Scene& scene = request.scene;
     const CameraPath& path = request.path;
     if (!o.quiet) {

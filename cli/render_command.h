@@ -30,6 +30,7 @@ struct RenderOptions {
     std::string output = "ssrt.png";
     bool stats = false;
     bool quiet = false;
+    bool strict = false;  // --strict: a glTF file's warnings are errors
 
     RenderOptions();  // isa defaults to RenderSettings{}'s
 };

@@ -285,7 +285,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings);
     checkCsvPath(o.output);
-    loadScene(request);
+    loadScene(request, err);
     const Scene& scene = request.scene;
     const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;

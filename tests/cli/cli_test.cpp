@@ -173,6 +173,76 @@ TEST_CASE("cli: a glTF scene that cannot be loaded is one error line, exit 1, no
     }
 }
 
+namespace {
+
+// A triangle and a POINTS primitive over the same three vertices (tri.bin beside it), in a
+// file that also lists an extension ssrt does not support: two warnings.
+std::string writeWarningGltf(const TempDir& dir) {
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::FILE* bin = std::fopen(dir.file("tri.bin").c_str(), "wb");
+    REQUIRE(bin);
+    std::fwrite(positions, sizeof positions, 1, bin);
+    std::fclose(bin);
+    const std::string path = dir.file("warn.gltf");
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    REQUIRE(f);
+    std::fputs(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}},
+                                   {"attributes": {"POSITION": 0}, "mode": 0}]}],
+        "buffers": [{"uri": "tri.bin", "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 3}],
+        "extensionsUsed": ["KHR_materials_clearcoat"]})",
+               f);
+    std::fclose(f);
+    return path;
+}
+
+}  // namespace
+
+TEST_CASE("cli: a glTF file's warnings are 'ssrt: warning:' lines, even with --quiet") {
+    TempDir dir;
+    const std::string scene = writeWarningGltf(dir);
+    const Result r = run({"render", "--scene", scene, "--width", "8", "--height", "8", "--threads",
+                          "1", "-o", dir.file("out.png"), "-q"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK(r.err == "ssrt: warning: " + scene +
+                       ": extension KHR_materials_clearcoat is used but not supported: ignored\n"
+                       "ssrt: warning: " +
+                       scene +
+                       ": 1 point or line primitive skipped (only triangles, strips and fans are "
+                       "rendered)\n");
+    CHECK(fs::exists(dir.file("out.png")));
+    // A built-in scene warns of nothing.
+    const Result plain = run({"render", "--width", "8", "--height", "8", "--threads", "1", "-o",
+                              dir.file("plain.png"), "-q", "--strict"});
+    CHECK(plain.code == 0);
+    CHECK(plain.err.empty());
+}
+
+TEST_CASE("cli: --strict makes a glTF warning an error: exit 1, one line, no file") {
+    TempDir dir;
+    const std::string scene = writeWarningGltf(dir);
+    const std::string shot = dir.file("shot.json");
+    std::FILE* f = std::fopen(shot.c_str(), "w");
+    REQUIRE(f);
+    std::fputs(("{\"scene\": \"" + scene + "\"}").c_str(), f);
+    std::fclose(f);
+    const std::vector<std::vector<std::string>> commands = {
+        {"render", "--scene", scene}, {"render", "--shot", shot}, {"compare", "--scene", scene}};
+    for (std::vector<std::string> args : commands) {
+        args.insert(args.end(), {"--width", "8", "--height", "8", "--threads", "1", "--strict",
+                                 "-o", dir.file("out.exr")});
+        CAPTURE(args[2]);
+        const Result r = run(args);
+        CHECK(r.code == cli::kExitFailure);
+        CHECK(isOneErrorLine(r.err));
+        CHECK(contains(r.err, scene + ": extension KHR_materials_clearcoat is used"));
+        CHECK(contains(r.err, "strict"));
+        CHECK_FALSE(fs::exists(dir.file("out.exr")));
+    }
+}
+
 TEST_CASE("cli: a bad output path fails before rendering and leaves no file") {
     TempDir dir;
     Result r = run({"render", "-o", dir.file("out.jpg")});
