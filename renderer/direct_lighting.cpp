@@ -45,6 +45,8 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
     da.pcfRadius = s.pcfRadius;
     da.exposure = s.exposure;
+    // The GGX energy tables of the specular (multiple scattering, DFG).
+    da.energy = &energyTables();
 }
 
 void setDirectGBuffer(const GBuffer& g, DirectArgs& a) {

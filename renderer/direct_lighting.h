@@ -28,8 +28,9 @@ struct DirectLighting {
 
 // Fills out.args' sun, sky (analytic, or the image's levels and irradiance from `sky`, which
 // must be cachedSkyLighting(scene.sky.image) for an image sky), emission and shadow-map fields
-// from the scene, the render settings and the frame's shadow map (which must outlive `out`).
-// Camera, G-buffer, outputs, parts and compensation are the caller's.
+// from the scene, the render settings and the frame's shadow map (which must outlive `out`),
+// and the stored energy tables (args.energy). Camera, G-buffer, outputs and parts are the
+// caller's.
 void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
                        std::shared_ptr<const SkyLighting> sky, DirectLighting& out);
 

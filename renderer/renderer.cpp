@@ -208,7 +208,6 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     da.outStride = im.color[0].stride();
     if (c.settings.trace.any()) {
         DirectParts& p = frame.direct;
-        da.compensation = &energyTables();
         for (int ch = 0; ch < 3; ++ch) {
             da.direct[ch] = p.direct[ch].row(0);
             da.emission[ch] = p.emission[ch].row(0);

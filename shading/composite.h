@@ -3,8 +3,7 @@
 //   diffuse  = SSGI on:  albedo (1 - metallic) ssgi   (replaces envDiffuse; 0 on background)
 //              SSGI off: envDiffuse
 //   specular = SSR on:   specWeight (ssr opacity + envSpecular (1 - opacity))
-//              (the renderer has the direct pass fold Kulla-Conty energy compensation into
-//              specWeight: DirectArgs::compensation)
+//              (specWeight holds Kulla-Conty's multiple scattering, as `color` does)
 //              SSR off:  specWeight envSpecular
 //   color    = (((direct + diffuse) + specular) + emission) exposure
 //   display  = sRGB(ACES(color))

@@ -76,7 +76,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
         visibility = ln::select(background, visibility, vis);
         sun = ln::select(background, sun, parts.sun);
         envDiffuse = ln::select(background, envDiffuse, parts.envDiffuse);
-        specWeight = ln::select(background, specWeight, parts.specWeight * parts.compensation);
+        specWeight = ln::select(background, specWeight, parts.specWeight);
         envSpecular = ln::select(background, envSpecular, parts.envSpecular);
     }
     // The optional parts, straight into their planes (scene-linear, before the exposure).

@@ -50,17 +50,19 @@ struct DirectArgs {
     // either way). Scene-linear: BEFORE the exposure, which the composite applies. Per pixel
     //   color = (((direct + envDiffuse) + specWeight * envSpecular) + emission) * exposure
     // to the bit, in that order (so the composite can rebuild it exactly).
-    //   direct:      sun light, Lambert + GGX, shadowed; on background pixels the sky seen
-    //                through the pixel (the whole of `color` there, the other parts 0).
-    //                Emission is NOT in it (a separate plane, to keep the order above).
+    //   direct:      sun light, Lambert + GGX with Kulla-Conty's multiple-scattering lobe,
+    //                shadowed; on background pixels the sky seen through the pixel (the whole
+    //                of `color` there, the other parts 0). Emission is NOT in it (a separate
+    //                plane, to keep the order above).
     //   emission:    the material's emission (0 where none, and on background).
     //   envDiffuse:  sky irradiance times the diffuse colour albedo (1 - metallic) / pi (the
     //                term SSGI replaces).
     //   envSpecular: the prefiltered sky radiance along the reflection, before the BRDF
     //                factor (the term SSR replaces where it finds a hit).
-    //   specWeight:  the split-sum BRDF factor F0 scale + bias (Karis' analytic fit), times
-    //                the Kulla-Conty compensation below when `compensation` is set (`color`
-    //                never applies it, so with it the sum above no longer holds exactly).
+    //   specWeight:  the sky's BRDF factor: the split sum's DFG table, F0 A + F90 B, plus
+    //                Kulla-Conty's multiple scattering, T(F_avg, E_avg) (1 - E(n.v)) (the
+    //                derivation over shade::shadeSurface, shading/direct_lanes.h). `color`
+    //                holds the same factor, so the sum above holds in every pixel.
     float* direct[3];
     float* emission[3];
     float* envDiffuse[3];
@@ -72,14 +74,10 @@ struct DirectArgs {
     // the radiance SSGI reads at its hits (trace/ssgi.h), by the function SSGI's G-buffer path
     // uses (shade::lambertSunLight), so reading it gives the same bits; 0 on background.
     float* hitLight[3];
-    // Kulla-Conty energy compensation of the specWeight part (null: none, the part is the
-    // single-scattering factor above). With the tables, the part is multiplied by
-    //   1 + F0 (1 / E(n.v, roughness) - 1)
-    // (Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
-    // Lighting": the energy single scattering loses, tinted by F0; E is Kulla and Conty's
-    // directional albedo, shading/multiscatter.h), so the composite's specular light does not
-    // darken as roughness grows. `color` is never compensated (its bits stay as they were).
-    const EnergyTables* compensation;
+    // The GGX energy tables (E, E_avg, DFG; shading/energy_tables.h) that shade the
+    // specular of every surface pixel, sun and sky: required (setDirectLighting sets the
+    // stored ones, energyTables()).
+    const EnergyTables* energy;
 };
 
 SSRT_DECLARE_KERNEL(void, shadeTile, (const DirectArgs& args, int tile))

@@ -103,17 +103,16 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, L bias) {
     return ln::select(inMap, lit / taps, L(1.0f));
 }
 
-// Karis 2014, "Physically Based Shading on Mobile": analytic fit of the split-sum
-// environment BRDF, scale and bias on F0. (Stands in until the DFG table of shading/.)
+// Kulla and Conty 2017, "Revisiting Physically Based Shading at Imageworks": the tint of the
+// multiple-scattering lobe for one channel's F0 (Schlick, F90 = 1): F_avg^2 E_avg /
+// (1 - F_avg (1 - E_avg)), F_avg = 20/21 F0 + 1/21 (shading/multiscatter.h).
 template <class L>
-SSRT_INLINE void envBrdfApprox(L NoV, L roughness, L& scale, L& bias) {
-    const L rx = roughness * L(-1.0f) + L(1.0f);
-    const L ry = roughness * L(-0.0275f) + L(0.0425f);
-    const L rz = roughness * L(-0.572f) + L(1.04f);
-    const L rw = roughness * L(0.022f) + L(-0.04f);
-    const L a004 = ln::min(rx * rx, ln::exp2(L(-9.28f) * NoV)) * rx + ry;
-    scale = a004 * L(-1.04f) + rz;
-    bias = a004 * L(1.04f) + rw;
+SSRT_INLINE V3<L> multiScatterTint(V3<L> f0, L eAvg) {
+    using namespace ssrt::multiscatter;
+    const L one(1.0f);
+    return {fMsFresnelTint(fresnelAvg(f0.x, one), eAvg),
+            fMsFresnelTint(fresnelAvg(f0.y, one), eAvg),
+            fMsFresnelTint(fresnelAvg(f0.z, one), eAvg)};
 }
 
 // A surface point to shade, world space.
@@ -127,7 +126,6 @@ struct Surface {
 template <class L>
 struct Parts {
     V3<L> sun, envDiffuse, specWeight, envSpecular;
-    V3<L> compensation;  // Kulla-Conty factor of the specWeight part (1 without the tables)
 };
 
 // The sun's visibility at s by the shadow map, with the slope-scaled bias: 0 facing away.
@@ -156,9 +154,26 @@ SSRT_INLINE V3<L> lambertSunLight(const DirectArgs& a, V3<L> n, V3<L> albedo, L 
 
 // The direct pass's model at one surface point seen along s.view, with the sun's
 // `visibility` given (the shadow map's above, or a traced one: the reference image).
+//
+// Specular with multiple scattering, Kulla and Conty 2017, "Revisiting Physically Based
+// Shading at Imageworks". E(mu) is the GGX directional albedo with F = 1 and E_avg its
+// cosine-weighted average (shading/energy_tables.h, over perceptual roughness). The lobe
+//   f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg))
+// integrates over wi, cosine-weighted, to 1 - E(mu_o), since 2 pi int (1 - E(mu)) mu dmu =
+// pi (1 - E_avg); a coloured Fresnel tints it by T = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)).
+// So, per channel,
+//   sun:        (F D V + T f_ms(l, v)) E_sun n.l visibility
+//   specWeight: (F0 A(n.v) + F90 B(n.v)) + T (1 - E(n.v)),
+// specWeight being the sky's BRDF factor of the split sum (Karis 2013, shading/
+// prefiltered_env.h): its single-scattering part the stored DFG table (F0 A + F90 B is the
+// albedo of Schlick's F; F90 = 1 as F_Schlick is called here), its multiple-scattering part
+// f_ms T integrated. White furnace: F0 = 1 gives F_avg = T = 1 and A + B = E, so specWeight
+// = E + (1 - E) = 1 (tests/renderer/white_furnace_test.cpp).
 template <class L>
 SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L visibility) {
     using namespace ssrt::brdf;
+    namespace ms = ssrt::multiscatter;
+    const EnergyTables& tables = *a.energy;
     const L one(1.0f);
     const V3<L> l = splat3<L>(a.toLight);
     const L NoL = ln::saturate(ln::dot(s.n, l));
@@ -169,9 +184,13 @@ SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L vi
     const L alpha = roughnessToAlpha(s.roughness);
     // F0 = mix(0.04, baseColor, metallic)
     const V3<L> f0 = mix3(V3<L>{L(0.04f), L(0.04f), L(0.04f)}, s.albedo, s.metallic);
+    // Multiple scattering: the tint T and, for the sun, f_ms(l, v) (0 where n.l = 0).
+    const V3<L> tint = multiScatterTint(f0, ms::albedoAvg(tables, s.roughness));
+    const L fMs = ms::fMs(tables, NoL, NoV, s.roughness);
     const L dv = D_GGX(NoH, alpha) * V_SmithGGXCorrelated(NoV, NoL, alpha);
-    const V3<L> spec{F_Schlick(VoH, f0.x, one) * dv, F_Schlick(VoH, f0.y, one) * dv,
-                     F_Schlick(VoH, f0.z, one) * dv};
+    const V3<L> spec{F_Schlick(VoH, f0.x, one) * dv + tint.x * fMs,
+                     F_Schlick(VoH, f0.y, one) * dv + tint.y * fMs,
+                     F_Schlick(VoH, f0.z, one) * dv + tint.z * fMs};
     const V3<L> diffuse = s.albedo * ((one - s.metallic) * Fd_Lambert<L>());
     const V3<L> direct = (diffuse + spec) * splat3<L>(a.lightRadiance) * (NoL * visibility);
     const V3<L> refl = s.n * (L(2.0f) * ln::dot(s.n, s.view)) - s.view;
@@ -191,18 +210,13 @@ SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L vi
         irradiance = mix3(splat3<L>(a.skyGround), up, L(0.5f) + L(0.5f) * s.n.y);
         specSky = mix3(skyRadiance(a, refl), skyAvg, s.roughness);
     }
-    L envScale, envBias;
-    envBrdfApprox(NoV, s.roughness, envScale, envBias);
+    // The sky's BRDF factor: the DFG split sum plus the multiple scattering, T (1 - E(n.v)).
+    const L dfgA = ms::lookup2d(tables.dfgA.data(), NoV, s.roughness);
+    const L dfgB = ms::lookup2d(tables.dfgB.data(), NoV, s.roughness);
+    const L lost = one - ms::albedo(tables, NoV, s.roughness);
+    const V3<L> specWeight = (f0 * dfgA + V3<L>{dfgB, dfgB, dfgB}) + tint * lost;
     // color = (sun + envDiffuse) + specWeight envSpecular, as shadeChunk sums it.
-    V3<L> compensation{one, one, one};
-    if (a.compensation) {
-        // 1 + F0 (1 / E - 1), E the GGX directional albedo with F = 1 (see direct_kernel.h).
-        const L e = ln::max(multiscatter::albedo(*a.compensation, NoV, s.roughness), L(1e-3f));
-        const L lost = one / e - one;
-        compensation = {one + f0.x * lost, one + f0.y * lost, one + f0.z * lost};
-    }
-    return {direct, irradiance * diffuse * L(ln::kPi),
-            f0 * envScale + V3<L>{envBias, envBias, envBias}, specSky, compensation};
+    return {direct, irradiance * diffuse * L(ln::kPi), specWeight, specSky};
 }
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"

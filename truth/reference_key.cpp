@@ -12,7 +12,8 @@ namespace ssrt {
 namespace {
 
 // Bump whenever the reference's model or sampling changes: old cached images then miss.
-constexpr uint64_t kReferenceVersion = 1;
+// 2: the specular with the DFG table and Kulla-Conty multiple scattering (shade::shadeSurface).
+constexpr uint64_t kReferenceVersion = 2;
 
 // Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
 class Fnv1a {
