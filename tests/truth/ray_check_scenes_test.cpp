@@ -286,3 +286,31 @@ TEST_CASE("ray check: occluded scene") {
                 << countWhere(c, RayClass::FalseHit, ssrSphere) << ")");
     });
 }
+
+// `corridor`: 30 m long, seen down its axis, so the floor and walls are met at grazing angles
+// and the far end's reflection needs a ray across most of the depth range. Every marcher
+// must find some of the far end's reflections on the floor and walls, and the open sky gives
+// true misses; rays that leave through the sides or the camera's back are off-screen truths.
+TEST_CASE("ray check: corridor scene") {
+    const Scene scene = makeBuiltinScene("corridor");
+    const std::vector<int> end = instancesOf(scene, "corridor_end");
+    REQUIRE(end.size() == 1);
+    forEachMarcher(scene, [&](Marcher m, const SceneCheck& c) {
+        auto farEnd = [&](const RayRecord& r) {
+            return r.pass == TracePass::Ssr && r.trueHit &&
+                   insideInstance(scene, end[0], r.truePoint);
+        };
+        const uint64_t agreedFar = countWhere(c, RayClass::Agreed, farEnd);
+        const uint64_t missedFar = countWhere(c, RayClass::MissedOnScreen, farEnd);
+        MESSAGE(marcherName(m) << ": SSR rays whose truth is the far end: agreed " << agreedFar
+                               << ", missed on screen " << missedFar << ", false hit "
+                               << countWhere(c, RayClass::FalseHit, farEnd));
+        // Mostly found, and rarely confused with something else.
+        CHECK(agreedFar > 100);
+        CHECK(agreedFar > 2 * missedFar);
+        CHECK(countWhere(c, RayClass::FalseHit, farEnd) * 10 < agreedFar);
+        CHECK(c.tables.ssr.count[int(RayClass::TrueMiss)] > 0);
+        CHECK(c.tables.ssgi.count[int(RayClass::TrueMiss)] > 0);
+        CHECK(c.tables.ssr.count[int(RayClass::OffScreenTruth)] > 0);
+    });
+}
