@@ -6,6 +6,14 @@ namespace ssrt {
 
 namespace {
 
+// The slot's UV transform on the UV and, linear part only, on its screen derivatives, so
+// the level of detail sees the transformed footprint. The identity is skipped (same bits).
+glm::vec4 sample(const Texture& tex, const UvTransform& t, glm::vec2 uv, glm::vec2 dx,
+                 glm::vec2 dy) {
+    if (t.identity()) return tex.sample(uv, dx, dy);
+    return tex.sample(t.apply(uv), t.linear(dx), t.linear(dy));
+}
+
 void texturePixel(const Scene& scene, const TexturePlanes& p, int x, int y) {
     const float id = p.materialId->at(x, y);
     if (!(id >= 0.0f)) return;  // background
@@ -15,11 +23,12 @@ void texturePixel(const Scene& scene, const TexturePlanes& p, int x, int y) {
     const glm::vec2 dx(p.uv[2]->at(x, y), p.uv[3]->at(x, y));
     const glm::vec2 dy(p.uv[4]->at(x, y), p.uv[5]->at(x, y));
     if (m.baseColorTexture >= 0) {
-        const glm::vec4 t = scene.textures[m.baseColorTexture].sample(uv, dx, dy);
+        const glm::vec4 t = sample(scene.textures[m.baseColorTexture], m.baseColorUv, uv, dx, dy);
         for (int c = 0; c < 3; ++c) p.albedo[c]->at(x, y) *= t[c];
     }
     if (m.metallicRoughnessTexture >= 0) {
-        const glm::vec4 t = scene.textures[m.metallicRoughnessTexture].sample(uv, dx, dy);
+        const glm::vec4 t =
+            sample(scene.textures[m.metallicRoughnessTexture], m.metallicRoughnessUv, uv, dx, dy);
         p.metallic->at(x, y) = std::clamp(p.metallic->at(x, y) * t.b, 0.0f, 1.0f);
         p.roughness->at(x, y) = std::clamp(p.roughness->at(x, y) * t.g, 0.0f, 1.0f);
     }

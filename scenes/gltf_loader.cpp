@@ -438,12 +438,15 @@ float unitFactor(const Context& ctx, const std::string& name, const char* what, 
     return float(std::clamp(v, 0.0, 1.0));
 }
 
-// The scene texture for a material's texture slot, or -1 when the slot is empty.
+// The scene texture for a material's texture slot, or -1 when the slot is empty, and the
+// slot's UV transform (KHR_texture_transform).
 int32_t texture(const Context& ctx, const std::string& name, const tinygltf::TextureInfo& info,
-                TextureEncoding encoding) {
+                TextureEncoding encoding, UvTransform* uv) {
     if (info.index < 0) return -1;
     try {
-        return ctx.textures.get(info.index, info.texCoord, encoding);
+        int texCoord = 0;
+        *uv = gltf::textureTransform(info, &texCoord);
+        return ctx.textures.get(info.index, texCoord, encoding);
     } catch (const std::runtime_error& e) {
         ctx.fail(name + ": " + e.what());
     }
@@ -469,9 +472,10 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
     if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
     if (g.alphaMode != "OPAQUE") ctx.notes.alphaModes.push_back(index);
-    m.baseColorTexture = texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb);
-    m.metallicRoughnessTexture =
-        texture(ctx, name, pbr.metallicRoughnessTexture, TextureEncoding::Linear);
+    m.baseColorTexture =
+        texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb, &m.baseColorUv);
+    m.metallicRoughnessTexture = texture(ctx, name, pbr.metallicRoughnessTexture,
+                                         TextureEncoding::Linear, &m.metallicRoughnessUv);
     return m;
 }
 

@@ -28,7 +28,8 @@ public:
 // Light: the first directional KHR_lights_punctual light met in the walk, else the default.
 // Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
 // OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
-// samplers' wrap modes (scenes/gltf_textures.h); TEXCOORD_0 only. Emissive, normal and
+// samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
+// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 only. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
@@ -47,7 +48,8 @@ struct GltfLoadOptions {
 struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
-inline const std::vector<std::string> kSupportedGltfExtensions = {"KHR_lights_punctual"};
+inline const std::vector<std::string> kSupportedGltfExtensions = {"KHR_lights_punctual",
+                                                                  "KHR_texture_transform"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);

@@ -440,11 +440,11 @@ TEST_CASE("gltf warnings: an extension used but not supported is one line naming
     CHECK(warningsOf(path) ==
           std::vector<std::string>{path + ": extension KHR_materials_clearcoat is used but not "
                                           "supported: ignored"});
-    k.extra = R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_lights_punctual",)"
-              R"( "KHR_materials_clearcoat"])";
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_sheen", "KHR_lights_punctual",)"
+              R"( "KHR_texture_transform", "KHR_materials_clearcoat"])";
     path = writeGltf(dir, "two.gltf", k);
     CHECK(warningsOf(path) ==
-          std::vector<std::string>{path + ": extensions KHR_texture_transform and "
+          std::vector<std::string>{path + ": extensions KHR_materials_sheen and "
                                           "KHR_materials_clearcoat are used but not supported: "
                                           "ignored"});
 }

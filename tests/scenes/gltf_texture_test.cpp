@@ -258,3 +258,49 @@ TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
         checkRefused(writeGltf(dir, "index.gltf", q), "texture 9 does not exist");
     }
 }
+
+TEST_CASE("gltf textures: KHR_texture_transform is read per texture reference") {
+    TempDir dir("gltf-tex-uv");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    // The extension's own example: the lower-left quadrant, rotated 90 degrees.
+    q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+            R"( {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}}},)"
+            R"( "metallicRoughnessTexture": {"index": 1})";
+    const Scene s = loadGltf(writeGltf(dir, "transform.gltf", q));
+    const Material& m = s.materials[0];
+    CHECK(m.baseColorUv.row0.x == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(m.baseColorUv.row0.y == doctest::Approx(0.5).epsilon(1e-6));
+    CHECK(m.baseColorUv.row1.x == doctest::Approx(-0.5).epsilon(1e-6));
+    CHECK(m.baseColorUv.row1.y == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(m.baseColorUv.offset == glm::vec2(0.0f, 1.0f));
+    // UV (0, 0) lands on (0, 1) and (1, 1) on (0.5, 0.5): u in [0, 0.5], v in [0.5, 1].
+    const glm::vec2 a = m.baseColorUv.apply({0.0f, 0.0f}), b = m.baseColorUv.apply({1.0f, 1.0f});
+    CHECK(a.x == doctest::Approx(0.0));
+    CHECK(a.y == doctest::Approx(1.0));
+    CHECK(b.x == doctest::Approx(0.5));
+    CHECK(b.y == doctest::Approx(0.5));
+    CHECK(m.metallicRoughnessUv.identity());
+
+    SUBCASE("the defaults are exactly the identity") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {}}})";
+        CHECK(loadGltf(writeGltf(dir, "empty.gltf", q)).materials[0].baseColorUv.identity());
+    }
+    SUBCASE("its texCoord overrides the reference's (TEXCOORD_1 is refused)") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"texCoord": 1}}})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_1");
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1, "extensions":)"
+                R"( {"KHR_texture_transform": {"texCoord": 0}}})";
+        CHECK(loadGltf(writeGltf(dir, "override.gltf", q)).materials[0].baseColorTexture == 0);
+    }
+    SUBCASE("a malformed transform is an error naming the member") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"scale": [2]}}})";
+        checkRefused(writeGltf(dir, "scale.gltf", q), "KHR_texture_transform scale");
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"rotation": "half"}}})";
+        checkRefused(writeGltf(dir, "rotation.gltf", q), "KHR_texture_transform rotation");
+    }
+}
