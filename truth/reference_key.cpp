@@ -54,6 +54,15 @@ void hashMaterial(Fnv1a& h, const Material& m) {
     h.value(m.doubleSided);
     h.value(m.baseColorTexture);
     h.value(m.metallicRoughnessTexture);
+    // A slot's UV transform only when it is not the identity: the keys of scenes without
+    // one stay as they were.
+    const UvTransform* slots[] = {&m.baseColorUv, &m.metallicRoughnessUv};
+    for (uint32_t slot = 0; slot < 2; ++slot) {
+        if (slots[slot]->identity()) continue;
+        h.value(slot);
+        const UvTransform& t = *slots[slot];
+        for (float f : {t.row0.x, t.row0.y, t.row1.x, t.row1.y, t.offset.x, t.offset.y}) h.value(f);
+    }
 }
 
 void hashTexture(Fnv1a& h, const Texture& t) {
