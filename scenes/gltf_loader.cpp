@@ -396,6 +396,12 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
         if (mesh.uvs.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_0 count differs from POSITION count");
     }
+    const int uv1 = attribute(p, "TEXCOORD_1");
+    if (uv1 >= 0) {
+        mesh.uvs1 = readVectors<2>(ctx, uv1, "TEXCOORD_1", false);
+        if (mesh.uvs1.size() != mesh.positions.size())
+            ctx.fail(name + ": TEXCOORD_1 count differs from POSITION count");
+    }
     return mesh;
 }
 
@@ -446,6 +452,7 @@ int32_t texture(const Context& ctx, const std::string& name, const tinygltf::Tex
     try {
         int texCoord = 0;
         *uv = gltf::textureTransform(info, &texCoord);
+        uv->set = texCoord;
         return ctx.textures.get(info.index, texCoord, encoding);
     } catch (const std::runtime_error& e) {
         ctx.fail(name + ": " + e.what());

@@ -29,7 +29,7 @@ public:
 // Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
 // OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
 // samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
-// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 only. Emissive, normal and
+// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in

@@ -117,9 +117,9 @@ TextureTable::TextureTable(const tinygltf::Model& model, std::string gltfPath,
     : model_(model), path_(std::move(gltfPath)), dataUris_(dataUris), out_(out) {}
 
 int32_t TextureTable::get(int textureIndex, int texCoord, TextureEncoding encoding) {
-    if (texCoord != 0)
+    if (texCoord != 0 && texCoord != 1)
         fail("texture " + std::to_string(textureIndex) + " uses TEXCOORD_" +
-             std::to_string(texCoord) + " (only TEXCOORD_0 is supported)");
+             std::to_string(texCoord) + " (TEXCOORD_0 and TEXCOORD_1 are supported)");
     const auto key = std::make_pair(textureIndex, encoding);
     if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
     out_.push_back(load(textureIndex, encoding));

@@ -49,7 +49,8 @@ public:
 
     // The index in `out` of glTF texture `textureIndex` decoded with `encoding`. Throws
     // std::runtime_error (one line, without the file's path) for a texture or image that is
-    // missing, out of range, uses a texture coordinate set other than 0, or cannot be decoded.
+    // missing, out of range, uses a texture coordinate set other than 0 and 1, or cannot be
+    // decoded.
     int32_t get(int textureIndex, int texCoord, TextureEncoding encoding);
 
 private:

@@ -11,18 +11,21 @@
 
 namespace ssrt {
 
-// Indexed triangles; normals per vertex (same count as positions), UVs optional.
+// Indexed triangles; normals per vertex (same count as positions), UVs optional: two sets
+// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position.
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec2> uvs1;    // the second set, for textures with UvTransform::set 1
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
 
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// How one texture slot maps the mesh's UVs (glTF's KHR_texture_transform):
+// How one texture slot maps the mesh's UVs: which set (glTF's texCoord), then glTF's
+// KHR_texture_transform:
 // uv' = linear * uv + offset, with linear = R(rotation) S(scale) and
 //   R = [ cos  sin ]   (rows; counter-clockwise in UV space, whose v points down the image,
 //       [-sin  cos ]    as the extension's worked example reads: offset (0, 1), rotation
@@ -32,6 +35,7 @@ struct UvTransform {
     glm::vec2 row0{1.0f, 0.0f};  // u' = dot(row0, uv) + offset.x
     glm::vec2 row1{0.0f, 1.0f};  // v' = dot(row1, uv) + offset.y
     glm::vec2 offset{0.0f};
+    int set = 0;  // 0: Mesh::uvs, 1: Mesh::uvs1 (not part of the transform)
 
     bool identity() const {
         return row0 == glm::vec2(1.0f, 0.0f) && row1 == glm::vec2(0.0f, 1.0f) &&
@@ -57,6 +61,11 @@ struct Material {
     UvTransform baseColorUv, metallicRoughnessUv;  // identity: the mesh's UVs as they are
 
     bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
+    // Whether a texture of this material reads the second UV set.
+    bool usesUvSet1() const {
+        return (baseColorTexture >= 0 && baseColorUv.set == 1) ||
+               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1);
+    }
 };
 
 // A mesh placed in the world; previousTransform gives rigid motion for motion vectors.

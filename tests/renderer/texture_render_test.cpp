@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "plane_compare.h"
+#include "raster/resolve_kernel.h"
 #include "renderer/renderer.h"
 
 using namespace ssrt;
@@ -196,4 +198,46 @@ TEST_CASE("texture render: a UV scale scales the derivatives, so the level of de
             CAPTURE(y);
             REQUIRE(scaled.gbuffer.albedo[0].at(x, y) == doctest::Approx(0.5).epsilon(1e-4));
         }
+}
+
+TEST_CASE("texture render: a texture on the second UV set samples by it, on every ISA") {
+    // Set 1 is set 0 transposed: the base colour (set 1) shows texel (ty, tx), the
+    // metallic-roughness texture (set 0) texel (tx, ty).
+    Scene scene = quadScene();
+    scene.meshes[0].uvs1 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) texels.push_back(texel(x, y));
+    scene.textures.emplace_back("colours", kTexels, kTexels, texels);
+    scene.materials[0].baseColorTexture = 0;
+    scene.materials[0].baseColorUv.set = 1;
+    scene.materials[0].metallicRoughnessTexture = 0;
+    const Frame ref = render(scene, kSize);
+    for (Isa isa : supportedIsas()) {
+        CAPTURE(isaName(isa));
+        const Frame f = render(scene, kSize, isa);
+        for (int ty = 0; ty < kTexels; ++ty)
+            for (int tx = 0; tx < kTexels; ++tx) {
+                CAPTURE(tx);
+                CAPTURE(ty);
+                const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const glm::vec4 t = texel(ty, tx);
+                CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[2].at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+                CHECK(f.gbuffer.roughness.at(px, py) ==
+                      doctest::Approx(texel(tx, ty).g).epsilon(1e-4));
+            }
+        // The same bits as the scalar copy.
+        for (int c = 0; c < 3; ++c)
+            CHECK(test::sameBits(f.gbuffer.albedo[c], ref.gbuffer.albedo[c]));
+        CHECK(test::sameBits(f.gbuffer.roughness, ref.gbuffer.roughness));
+        for (int i = 0; i < 2 * kResolveUvOutputs; ++i)
+            CHECK(test::sameBits(f.scratch.uv[i], ref.scratch.uv[i]));
+    }
+    CHECK(ref.scratch.uv[kResolveUvOutputs].width() == kSize);
+    // Without a texture on set 1, set 1 is neither resolved nor given planes.
+    scene.materials[0].baseColorUv.set = 0;
+    CHECK(render(scene, kSize).scratch.uv[kResolveUvOutputs].width() == 0);
 }

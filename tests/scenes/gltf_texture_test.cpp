@@ -64,6 +64,7 @@ struct Quad {
     std::string samplers = R"([{"wrapS": 33071, "wrapT": 33648}])";
     std::string pbr =
         R"("baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1})";
+    std::string attributes = R"({"POSITION": 0, "TEXCOORD_0": 1})";
     std::size_t imageBytes = 0;  // > 0: the image is buffer view 3, after the quad (GLB)
 };
 
@@ -80,8 +81,9 @@ std::string quadJson(const Quad& q, const std::string& bufferUri, std::size_t bi
                  std::to_string(q.imageBytes) + "}";
     views += "]";
     return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],)"
-           R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes":)"
-           R"( {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],)"
+           R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": )" +
+           q.attributes +
+           R"(, "indices": 2, "material": 0}]}],)"
            R"( "materials": [{"pbrMetallicRoughness": {)" +
            q.pbr +
            R"(}}],)"
@@ -232,9 +234,9 @@ TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
     const std::vector<unsigned char> png = pngBytes(dir);
     writeFile(dir.file("tex.png"), png);
     Quad q;
-    SUBCASE("a second texture coordinate set") {
-        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1})";
-        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_1");
+    SUBCASE("a third texture coordinate set") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 2})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_2");
     }
     SUBCASE("an image file that is not an image") {
         writeFile(dir.file("tex.png"), std::string("this is not a PNG"));
@@ -287,13 +289,15 @@ TEST_CASE("gltf textures: KHR_texture_transform is read per texture reference") 
                 R"( {}}})";
         CHECK(loadGltf(writeGltf(dir, "empty.gltf", q)).materials[0].baseColorUv.identity());
     }
-    SUBCASE("its texCoord overrides the reference's (TEXCOORD_1 is refused)") {
+    SUBCASE("its texCoord overrides the reference's") {
         q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
-                R"( {"texCoord": 1}}})";
-        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_1");
-        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1, "extensions":)"
-                R"( {"KHR_texture_transform": {"texCoord": 0}}})";
-        CHECK(loadGltf(writeGltf(dir, "override.gltf", q)).materials[0].baseColorTexture == 0);
+                R"( {"texCoord": 2}}})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_2");
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 2, "extensions":)"
+                R"( {"KHR_texture_transform": {"texCoord": 1}}})";
+        const Scene s1 = loadGltf(writeGltf(dir, "override.gltf", q));
+        CHECK(s1.materials[0].baseColorTexture == 0);
+        CHECK(s1.materials[0].baseColorUv.set == 1);
     }
     SUBCASE("a malformed transform is an error naming the member") {
         q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
@@ -303,4 +307,22 @@ TEST_CASE("gltf textures: KHR_texture_transform is read per texture reference") 
                 R"( {"rotation": "half"}}})";
         checkRefused(writeGltf(dir, "rotation.gltf", q), "KHR_texture_transform rotation");
     }
+}
+
+TEST_CASE("gltf textures: TEXCOORD_1 is read, and a texture may sample it") {
+    TempDir dir("gltf-tex-uv1");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    q.attributes = R"({"POSITION": 0, "TEXCOORD_1": 1})";
+    q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1},)"
+            R"( "metallicRoughnessTexture": {"index": 1})";
+    const Scene s = loadGltf(writeGltf(dir, "uv1.gltf", q));
+    REQUIRE(s.meshes.size() == 1);
+    CHECK(s.meshes[0].uvs.empty());
+    REQUIRE(s.meshes[0].uvs1.size() == 4);
+    for (int i = 0; i < 4; ++i)
+        CHECK(s.meshes[0].uvs1[i] == glm::vec2(kUvs[2 * i], kUvs[2 * i + 1]));
+    CHECK(s.materials[0].baseColorUv.set == 1);
+    CHECK(s.materials[0].metallicRoughnessUv.set == 0);
+    CHECK(s.materials[0].usesUvSet1());
 }

@@ -295,4 +295,13 @@ TEST_CASE("embree scene: a texture slot's UV transform moves where the texel is 
     REQUIRE(h.hit);
     const SurfacePoint p = e.surface(o, d, h);
     CHECK(glm::length(p.baseColor - glm::vec3(1.0f, 0.0f, 0.0f)) <= 1e-4f);
+    // On the second UV set, (0.75, 0.25) everywhere, no offset: texel (1, 0).
+    Scene s1 = s;
+    s1.meshes[0].uvs1.assign(s1.meshes[0].positions.size(), glm::vec2(0.75f, 0.25f));
+    s1.materials[mat].baseColorUv = UvTransform{};
+    s1.materials[mat].baseColorUv.set = 1;
+    const EmbreeScene e1(s1);
+    const SurfacePoint p1 = e1.surface(o, d, e1.intersect(o, d, 0.0f, 100.0f));
+    CHECK(p1.uv1 == glm::vec2(0.75f, 0.25f));
+    CHECK(glm::length(p1.baseColor - glm::vec3(0.0f, 1.0f, 0.0f)) <= 1e-4f);
 }
