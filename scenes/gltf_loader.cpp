@@ -459,6 +459,19 @@ int32_t texture(const Context& ctx, const std::string& name, const tinygltf::Tex
     }
 }
 
+// KHR_materials_emissive_strength's factor on emissiveFactor (1 when absent).
+float emissiveStrength(const Context& ctx, const std::string& name, const tinygltf::Material& g) {
+    const auto it = g.extensions.find("KHR_materials_emissive_strength");
+    if (it == g.extensions.end()) return 1.0f;
+    const tinygltf::Value& ext = it->second;
+    if (!ext.IsObject()) ctx.fail(name + ": KHR_materials_emissive_strength must be an object");
+    if (!ext.Has("emissiveStrength")) return 1.0f;
+    const tinygltf::Value& v = ext.Get("emissiveStrength");
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()) || v.GetNumberAsDouble() < 0.0)
+        ctx.fail(name + ": emissiveStrength must be a finite number, not negative");
+    return float(v.GetNumberAsDouble());
+}
+
 Material convertMaterial(const Context& ctx, std::size_t index) {
     const tinygltf::Material& g = ctx.model.materials[index];
     const std::string name = "material " + str(index);
@@ -469,6 +482,7 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     m.metallic = unitFactor(ctx, name, "metallicFactor", pbr.metallicFactor);
     m.roughness = unitFactor(ctx, name, "roughnessFactor", pbr.roughnessFactor);
     m.emissive = finiteColor(ctx, name, "emissiveFactor", g.emissiveFactor, 3);
+    m.emissive *= emissiveStrength(ctx, name, g);
     m.doubleSided = g.doubleSided;
     checkTexture(ctx, name, pbr.baseColorTexture.index);
     checkTexture(ctx, name, pbr.metallicRoughnessTexture.index);
