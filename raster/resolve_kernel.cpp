@@ -121,8 +121,8 @@ SSRT_INLINE void interpolateUv(const Fields& g, int set, Lane b1, Lane b2, Lane&
 
 // UV at the pixel centre and its differences to the rays through the next pixel right and
 // the next pixel down, on the same plane: exact screen-space derivatives for a planar
-// triangle, which the texture pass turns into a level of detail.
-// Each used set from the same three sets of barycentrics.
+// triangle, which the texture pass turns into a level of detail. Every set in use is
+// interpolated with the same three pairs of barycentrics.
 SSRT_INLINE void uvAndDerivatives(const ResolveArgs& a, const Fields& g, const V3& dir, Lane b1,
                                   Lane b2, Lane* out) {
     Lane bx1, bx2, by1, by2;

@@ -6,9 +6,9 @@ namespace ssrt {
 
 namespace {
 
-// The slot's UV set, and its UV transform on the UV and, linear part only, on its screen
-// derivatives, so the level of detail sees the transformed footprint. The identity is skipped (same
-// bits).
+// The slot's UV set, then its UV transform on the UV and, linear part only, on the screen
+// derivatives, so the level of detail sees the transformed footprint. The identity is
+// skipped (the same bits as without one).
 glm::vec4 sample(const Texture& tex, const UvTransform& t, const TexturePlanes& p, int x, int y) {
     const PlaneF* const* s = p.uv[t.set];
     const glm::vec2 uv(s[0]->at(x, y), s[1]->at(x, y));
