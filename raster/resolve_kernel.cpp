@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kOutputs = kResolveOutputs;
-constexpr int kMaxOutputs = kResolveOutputs + kResolveUvOutputs;
+constexpr int kMaxOutputs = kResolveOutputs + kResolveUvSets * kResolveUvOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
@@ -25,9 +25,19 @@ enum Field {
     kP0 = 0, kN = 3, kD = 6, kG1 = 7, kG2 = 10,
     kN0 = 13, kN1 = 16, kN2 = 19,
     kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27,
-    kUv0 = 28, kUv1 = 30, kUv2 = 32, kFieldCount = 34
+    kUv0 = 28, kUv1 = 30, kUv2 = 32,
+    kSet1 = 34,  // the second UV set's three vertices, as kUv0..kUv2
+    kFieldCount = 40
 };
 // clang-format on
+
+// The rows a frame gathers: the second UV set's only when it is used.
+SSRT_INLINE int fieldCount(const ResolveArgs& a) { return a.u1 ? kFieldCount : kSet1; }
+
+// The planes a frame writes.
+SSRT_INLINE int outputCount(const ResolveArgs& a) {
+    return kOutputs + (a.u ? kResolveUvOutputs : 0) + (a.u1 ? kResolveUvOutputs : 0);
+}
 
 // Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
 // same on every ISA).
@@ -58,6 +68,11 @@ SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& 
         g.f[kUv0 + 2 * v][l] = a.u ? a.u[t.v[v]] : 0.0f;
         g.f[kUv0 + 2 * v + 1][l] = a.v ? a.v[t.v[v]] : 0.0f;
     }
+    if (a.u1)
+        for (int v = 0; v < 3; ++v) {
+            g.f[kSet1 + 2 * v][l] = a.u1[t.v[v]];
+            g.f[kSet1 + 2 * v + 1][l] = a.v1[t.v[v]];
+        }
     for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
 }
 
@@ -72,7 +87,8 @@ SSRT_INLINE void broadcastFields(const ResolveArgs& a, uint32_t id, Fields& out)
     Gathered g;
     alignas(64) float m[16 * kW];
     gatherLane(a, id, 0, g, m);
-    for (int k = 0; k < kFieldCount; ++k) out.f[k] = Lane(g.f[k][0]);
+    const int nf = fieldCount(a);
+    for (int k = 0; k < nf; ++k) out.f[k] = Lane(g.f[k][0]);
     for (int k = 0; k < 16; ++k) out.m[k] = Lane(m[k * kW]);
 }
 
@@ -96,31 +112,39 @@ SSRT_INLINE void barycentrics(const ResolveArgs& a, const Fields& g, const V3& d
     b2 = ln::dot(r, field3(g, kG2));
 }
 
-SSRT_INLINE void interpolateUv(const Fields& g, Lane b1, Lane b2, Lane& u, Lane& v) {
+// The UV set whose three vertices start at field row `set` (kUv0 or kSet1).
+SSRT_INLINE void interpolateUv(const Fields& g, int set, Lane b1, Lane b2, Lane& u, Lane& v) {
     const Lane b0 = Lane(1.0f) - b1 - b2;
-    u = (g.f[kUv0] * b0 + g.f[kUv1] * b1) + g.f[kUv2] * b2;
-    v = (g.f[kUv0 + 1] * b0 + g.f[kUv1 + 1] * b1) + g.f[kUv2 + 1] * b2;
+    u = (g.f[set] * b0 + g.f[set + 2] * b1) + g.f[set + 4] * b2;
+    v = (g.f[set + 1] * b0 + g.f[set + 3] * b1) + g.f[set + 5] * b2;
 }
 
 // UV at the pixel centre and its differences to the rays through the next pixel right and
 // the next pixel down, on the same plane: exact screen-space derivatives for a planar
-// triangle, which the texture pass turns into a level of detail.
+// triangle, which the texture pass turns into a level of detail. Every set in use is
+// interpolated with the same three pairs of barycentrics.
 SSRT_INLINE void uvAndDerivatives(const ResolveArgs& a, const Fields& g, const V3& dir, Lane b1,
                                   Lane b2, Lane* out) {
-    Lane u, v, ux, vx, uy, vy, c1, c2;
-    interpolateUv(g, b1, b2, u, v);
+    Lane bx1, bx2, by1, by2;
     const V3 dirX{dir.x + Lane(2.0f / float(a.width) * a.tanHalfX), dir.y, dir.z};
-    barycentrics(a, g, dirX, c1, c2);
-    interpolateUv(g, c1, c2, ux, vx);
+    barycentrics(a, g, dirX, bx1, bx2);
     const V3 dirY{dir.x, dir.y - Lane(2.0f / float(a.height) * a.tanHalfY), dir.z};
-    barycentrics(a, g, dirY, c1, c2);
-    interpolateUv(g, c1, c2, uy, vy);
-    out[0] = u;
-    out[1] = v;
-    out[2] = ux - u;
-    out[3] = vx - v;
-    out[4] = uy - u;
-    out[5] = vy - v;
+    barycentrics(a, g, dirY, by1, by2);
+    const int sets = a.u1 ? 2 : 1;
+    for (int s = 0; s < sets; ++s) {
+        Lane u, v, ux, vx, uy, vy;
+        const int row = s == 0 ? int(kUv0) : int(kSet1);
+        interpolateUv(g, row, b1, b2, u, v);
+        interpolateUv(g, row, bx1, bx2, ux, vx);
+        interpolateUv(g, row, by1, by2, uy, vy);
+        Lane* o = out + s * kResolveUvOutputs;
+        o[0] = u;
+        o[1] = v;
+        o[2] = ux - u;
+        o[3] = vx - v;
+        o[4] = uy - u;
+        o[5] = vy - v;
+    }
 }
 
 // Writes lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
@@ -138,7 +162,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
     const bool uniform = ln::all(ids == ILane(int32_t(id[0])));
     const int o = x - x0;
     const Lane zero(0.0f);
-    const int outputs = a.u ? kMaxOutputs : kOutputs;
+    const int outputs = outputCount(a);
     if (!any) {
         for (int p = 0; p < outputs; ++p)
             ln::store(out[p] + o, p == kMaterialOut ? Lane(-1.0f) : zero);
@@ -156,15 +180,16 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
         Fields& g = local;
         Gathered ga;
         alignas(64) float m[16 * kW];
+        const int nf = fieldCount(a);
         for (int l = 0; l < kW; ++l) {
             if (id[l] != kNoPrimitive) {
                 gatherLane(a, id[l], l, ga, m);
             } else {
-                for (auto& row : ga.f) row[l] = 0.0f;
+                for (int k = 0; k < nf; ++k) ga.f[k][l] = 0.0f;
                 for (int k = 0; k < 16; ++k) m[k * kW + l] = k % 5 == 0 ? 1.0f : 0.0f;
             }
         }
-        for (int k = 0; k < kFieldCount; ++k) g.f[k] = ln::load<Lane>(ga.f[k]);
+        for (int k = 0; k < nf; ++k) g.f[k] = ln::load<Lane>(ga.f[k]);
         for (int k = 0; k < 16; ++k) g.m[k] = ln::load<Lane>(m + k * kW);
     }
     const Fields& g = *fields;
@@ -222,7 +247,7 @@ void resolveTile(const ResolveArgs& args, int tile) {
     alignas(64) float rowBuf[kMaxOutputs][kTileSize];
     float* bufPtr[kMaxOutputs];
     for (int p = 0; p < kMaxOutputs; ++p) bufPtr[p] = rowBuf[p];
-    const int outputs = args.u ? kMaxOutputs : kOutputs;
+    const int outputs = outputCount(args);
     // Lane groups past the right edge land in the rows' 64-byte padding.
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     FieldCache cache;

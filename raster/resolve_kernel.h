@@ -25,9 +25,10 @@ struct ResolveInstance {
 };
 
 inline constexpr int kResolveOutputs = 12;
-// With texturing on (ResolveArgs::u set): u, v and their screen derivatives du/dx, dv/dx,
-// du/dy, dv/dy (per pixel, x right and y down), for the texture pass.
+// With texturing on (ResolveArgs::u set), per UV set: u, v and their screen derivatives
+// du/dx, dv/dx, du/dy, dv/dy (per pixel, x right and y down), for the texture pass.
 inline constexpr int kResolveUvOutputs = 6;
+inline constexpr int kResolveUvSets = 2;  // TEXCOORD_0, and TEXCOORD_1 when u1 is set
 
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
@@ -44,9 +45,13 @@ struct ResolveArgs {
     // no UV outputs are written.
     const float* u = nullptr;
     const float* v = nullptr;
-    float* out[kResolveOutputs + kResolveUvOutputs];  // viewZ, normal XYZ, albedo RGB,
-                                                      // metallic, roughness, materialId, motion XY,
-                                                      // then the UV outputs (all with outStride)
+    // The second set (TEXCOORD_1) likewise, or null: then only the first set's outputs.
+    // Needs u.
+    const float* u1 = nullptr;
+    const float* v1 = nullptr;
+    // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId, motion XY, then the
+    // UV outputs of set 0 and of set 1 (all with outStride)
+    float* out[kResolveOutputs + kResolveUvSets * kResolveUvOutputs];
     std::size_t outStride;
 };
 

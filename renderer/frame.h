@@ -219,7 +219,8 @@ struct Frame {
     struct Scratch {
         VisibilityBuffer visibility;
         ShadowMap shadow;
-        PlaneF uv[6];  // UV and its screen derivatives, for textured scenes
+        // UV and its screen derivatives, for textured scenes: set 0, then set 1 when read
+        PlaneF uv[12];  // kResolveUvSets * kResolveUvOutputs (asserted in renderer.cpp)
         HiZPyramid hiz;
         RayBatch rays;
         MarchResult march;

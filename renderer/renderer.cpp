@@ -106,6 +106,8 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     frame.stats.passes.push_back({"visibility", rt.rasterMs});
 }
 
+static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
+
 // The G-buffer of the visible pixels (and their UVs for the texture pass).
 ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
     const ScopedPass timer(frame.stats, "resolve");
@@ -135,7 +137,12 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
     if (textured) {
         ra.u = tables.u.data();
         ra.v = tables.v.data();
-        for (int i = 0; i < kResolveUvOutputs; ++i) {
+        if (!tables.u1.empty()) {
+            ra.u1 = tables.u1.data();
+            ra.v1 = tables.v1.data();
+        }
+        const int planes = (ra.u1 ? 2 : 1) * kResolveUvOutputs;
+        for (int i = 0; i < planes; ++i) {
             PlaneF& p = frame.scratch.uv[i];
             p.ensureSize(c.grid.width, c.grid.height);
             ra.out[kResolveOutputs + i] = p.row(0);
@@ -151,7 +158,10 @@ void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const ScopedPass timer(frame.stats, "textures");
     GBuffer& g = frame.gbuffer;
     TexturePlanes tp;
-    for (int i = 0; i < kResolveUvOutputs; ++i) tp.uv[i] = &frame.scratch.uv[i];
+    const int sets = anyUvSet1(scene) ? 2 : 1;
+    for (int s = 0; s < sets; ++s)
+        for (int i = 0; i < kResolveUvOutputs; ++i)
+            tp.uv[s][i] = &frame.scratch.uv[s * kResolveUvOutputs + i];
     tp.materialId = &g.materialId;
     for (int i = 0; i < 3; ++i) tp.albedo[i] = &g.albedo[i];
     tp.metallic = &g.metallic;

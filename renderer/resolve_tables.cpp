@@ -15,6 +15,11 @@ bool anyTextured(const Scene& scene) {
                        [](const Material& m) { return m.textured(); });
 }
 
+bool anyUvSet1(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.usesUvSet1(); });
+}
+
 namespace {
 
 ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
@@ -66,9 +71,14 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
     t.nx.resize(nv);
     t.ny.resize(nv);
     t.nz.resize(nv);
+    const bool set1 = textured && anyUvSet1(scene);
     if (textured) {
         t.u.resize(nv);
         t.v.resize(nv);
+    }
+    if (set1) {
+        t.u1.resize(nv);
+        t.v1.resize(nv);
     }
     std::vector<glm::vec3> viewPos(nv);
     auto meshOf = [&](uint32_t i) -> const Mesh& { return scene.meshes[scene.instances[i].mesh]; };
@@ -94,6 +104,11 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
                     const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
                     t.u[g] = uv.x;
                     t.v[g] = uv.y;
+                }
+                if (set1) {
+                    const glm::vec2 uv = mesh.uvs1.empty() ? glm::vec2(0.0f) : mesh.uvs1[v];
+                    t.u1[g] = uv.x;
+                    t.v1[g] = uv.y;
                 }
             }
         });

@@ -18,10 +18,12 @@ struct ResolveTables {
     std::vector<ResolveTriangle> triangles;
     std::vector<ResolveInstance> instances;
     std::vector<float> nx, ny, nz;
-    std::vector<float> u, v;  // texture coordinates per vertex, only for textured scenes
+    std::vector<float> u, v;    // texture coordinates per vertex, only for textured scenes
+    std::vector<float> u1, v1;  // the second set, only when a material reads it
 };
 
 bool anyTextured(const Scene& scene);
+bool anyUvSet1(const Scene& scene);  // a material's texture reads the second UV set
 
 // `view` is the camera's, `prevViewProj` the previous camera's (motion vectors).
 ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,

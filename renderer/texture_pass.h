@@ -14,7 +14,9 @@
 namespace ssrt {
 
 struct TexturePlanes {
-    const PlaneF* uv[6] = {};  // u, v, du/dx, dv/dx, du/dy, dv/dy (raster/resolve_kernel.h)
+    // Per UV set: u, v, du/dx, dv/dx, du/dy, dv/dy (raster/resolve_kernel.h); set 1 only
+    // when a material reads it.
+    const PlaneF* uv[2][6] = {};
     const PlaneF* materialId = nullptr;
     PlaneF* albedo[3] = {};
     PlaneF* metallic = nullptr;

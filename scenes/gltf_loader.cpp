@@ -396,6 +396,12 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
         if (mesh.uvs.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_0 count differs from POSITION count");
     }
+    const int uv1 = attribute(p, "TEXCOORD_1");
+    if (uv1 >= 0) {
+        mesh.uvs1 = readVectors<2>(ctx, uv1, "TEXCOORD_1", false);
+        if (mesh.uvs1.size() != mesh.positions.size())
+            ctx.fail(name + ": TEXCOORD_1 count differs from POSITION count");
+    }
     return mesh;
 }
 
@@ -438,15 +444,32 @@ float unitFactor(const Context& ctx, const std::string& name, const char* what, 
     return float(std::clamp(v, 0.0, 1.0));
 }
 
-// The scene texture for a material's texture slot, or -1 when the slot is empty.
+// The scene texture for a material's texture slot, or -1 when the slot is empty, and the
+// slot's UV transform (KHR_texture_transform).
 int32_t texture(const Context& ctx, const std::string& name, const tinygltf::TextureInfo& info,
-                TextureEncoding encoding) {
+                TextureEncoding encoding, UvTransform* uv) {
     if (info.index < 0) return -1;
     try {
-        return ctx.textures.get(info.index, info.texCoord, encoding);
+        int texCoord = 0;
+        *uv = gltf::textureTransform(info, &texCoord);
+        uv->set = texCoord;
+        return ctx.textures.get(info.index, texCoord, encoding);
     } catch (const std::runtime_error& e) {
         ctx.fail(name + ": " + e.what());
     }
+}
+
+// KHR_materials_emissive_strength's factor on emissiveFactor (1 when absent).
+float emissiveStrength(const Context& ctx, const std::string& name, const tinygltf::Material& g) {
+    const auto it = g.extensions.find("KHR_materials_emissive_strength");
+    if (it == g.extensions.end()) return 1.0f;
+    const tinygltf::Value& ext = it->second;
+    if (!ext.IsObject()) ctx.fail(name + ": KHR_materials_emissive_strength must be an object");
+    if (!ext.Has("emissiveStrength")) return 1.0f;
+    const tinygltf::Value& v = ext.Get("emissiveStrength");
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()) || v.GetNumberAsDouble() < 0.0)
+        ctx.fail(name + ": emissiveStrength must be a finite number, not negative");
+    return float(v.GetNumberAsDouble());
 }
 
 Material convertMaterial(const Context& ctx, std::size_t index) {
@@ -459,6 +482,7 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     m.metallic = unitFactor(ctx, name, "metallicFactor", pbr.metallicFactor);
     m.roughness = unitFactor(ctx, name, "roughnessFactor", pbr.roughnessFactor);
     m.emissive = finiteColor(ctx, name, "emissiveFactor", g.emissiveFactor, 3);
+    m.emissive *= emissiveStrength(ctx, name, g);
     m.doubleSided = g.doubleSided;
     checkTexture(ctx, name, pbr.baseColorTexture.index);
     checkTexture(ctx, name, pbr.metallicRoughnessTexture.index);
@@ -469,9 +493,10 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
     if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
     if (g.alphaMode != "OPAQUE") ctx.notes.alphaModes.push_back(index);
-    m.baseColorTexture = texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb);
-    m.metallicRoughnessTexture =
-        texture(ctx, name, pbr.metallicRoughnessTexture, TextureEncoding::Linear);
+    m.baseColorTexture =
+        texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb, &m.baseColorUv);
+    m.metallicRoughnessTexture = texture(ctx, name, pbr.metallicRoughnessTexture,
+                                         TextureEncoding::Linear, &m.metallicRoughnessUv);
     return m;
 }
 

@@ -20,6 +20,7 @@ public:
 // Loads every triangle primitive reachable from the file's scene (the default scene, else
 // the first; a file without scenes uses every root node) as one Mesh and one Instance per
 // primitive, with the node's world transform as both transform and previousTransform.
+// Materials: emissiveFactor times KHR_materials_emissive_strength's emissiveStrength.
 //
 // Camera: the first perspective camera met in a depth-first walk of the node tree. Without
 // one, a camera fitted to the bounds: it looks at the centre of the bounding sphere from
@@ -28,7 +29,8 @@ public:
 // Light: the first directional KHR_lights_punctual light met in the walk, else the default.
 // Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
 // OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
-// samplers' wrap modes (scenes/gltf_textures.h); TEXCOORD_0 only. Emissive, normal and
+// samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
+// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
@@ -47,7 +49,8 @@ struct GltfLoadOptions {
 struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
-inline const std::vector<std::string> kSupportedGltfExtensions = {"KHR_lights_punctual"};
+inline const std::vector<std::string> kSupportedGltfExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);

@@ -2,8 +2,11 @@
 
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
+
+#include "scenes/scene.h"
 
 namespace ssrt::gltf {
 
@@ -47,7 +50,57 @@ TextureWrap wrapMode(int gl) {
     }
 }
 
+// A finite number, or a finite pair, of the extension `ext` named `key`; `fallback` when
+// the member is absent.
+double finiteNumber(const tinygltf::Value& ext, const char* key, double fallback) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
+        fail(std::string("KHR_texture_transform ") + key + " must be a finite number");
+    return v.GetNumberAsDouble();
+}
+
+glm::dvec2 finitePair(const tinygltf::Value& ext, const char* key, glm::dvec2 fallback) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    const auto bad = [&] {
+        fail(std::string("KHR_texture_transform ") + key + " must be two finite numbers");
+    };
+    if (!v.IsArray() || v.ArrayLen() != 2) bad();
+    glm::dvec2 out;
+    for (int i = 0; i < 2; ++i) {
+        if (!v.Get(i).IsNumber() || !std::isfinite(v.Get(i).GetNumberAsDouble())) bad();
+        out[i] = v.Get(i).GetNumberAsDouble();
+    }
+    return out;
+}
+
 }  // namespace
+
+UvTransform textureTransform(const tinygltf::TextureInfo& info, int* texCoord) {
+    *texCoord = info.texCoord;
+    const auto it = info.extensions.find("KHR_texture_transform");
+    if (it == info.extensions.end()) return {};
+    const tinygltf::Value& ext = it->second;
+    if (!ext.IsObject()) fail("KHR_texture_transform must be an object");
+    if (ext.Has("texCoord")) {
+        const tinygltf::Value& t = ext.Get("texCoord");
+        if (!t.IsInt() || t.GetNumberAsInt() < 0)
+            fail("KHR_texture_transform texCoord must be a non-negative integer");
+        *texCoord = t.GetNumberAsInt();
+    }
+    const glm::dvec2 offset = finitePair(ext, "offset", {0.0, 0.0});
+    const glm::dvec2 scale = finitePair(ext, "scale", {1.0, 1.0});
+    const double rotation = finiteNumber(ext, "rotation", 0.0);
+    // linear = R S, R = [cos sin; -sin cos] (rows), in double, rounded once to float. The
+    // extension's defaults give exactly the identity (cos 0 = 1, sin 0 = 0).
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    UvTransform out;
+    out.row0 = glm::vec2(float(c * scale.x), float(s * scale.y));
+    out.row1 = glm::vec2(float(-s * scale.x), float(c * scale.y));
+    out.offset = glm::vec2(offset);
+    return out;
+}
 
 bool keepDataUriImage(tinygltf::Image* image, int imageIndex, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void* dataUriImages) {
@@ -64,9 +117,9 @@ TextureTable::TextureTable(const tinygltf::Model& model, std::string gltfPath,
     : model_(model), path_(std::move(gltfPath)), dataUris_(dataUris), out_(out) {}
 
 int32_t TextureTable::get(int textureIndex, int texCoord, TextureEncoding encoding) {
-    if (texCoord != 0)
+    if (texCoord != 0 && texCoord != 1)
         fail("texture " + std::to_string(textureIndex) + " uses TEXCOORD_" +
-             std::to_string(texCoord) + " (only TEXCOORD_0 is supported)");
+             std::to_string(texCoord) + " (TEXCOORD_0 and TEXCOORD_1 are supported)");
     const auto key = std::make_pair(textureIndex, encoding);
     if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
     out_.push_back(load(textureIndex, encoding));

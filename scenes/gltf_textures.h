@@ -15,7 +15,12 @@
 namespace tinygltf {
 class Model;
 struct Image;
+struct TextureInfo;
 }  // namespace tinygltf
+
+namespace ssrt {
+struct UvTransform;
+}
 
 namespace ssrt::gltf {
 
@@ -31,6 +36,12 @@ bool keepDataUriImage(tinygltf::Image* image, int imageIndex, std::string* err, 
 // A URI with its %XX escapes decoded (glTF URIs are percent-encoded).
 std::string percentDecoded(const std::string& uri);
 
+// A texture reference's KHR_texture_transform (offset, rotation, scale; the identity when
+// absent) as a UvTransform (scenes/scene.h), and the texture coordinate set it samples: the
+// extension's texCoord overrides the reference's. Throws std::runtime_error (one line) for
+// a malformed extension (a member of the wrong type or size, or not finite).
+UvTransform textureTransform(const tinygltf::TextureInfo& info, int* texCoord);
+
 class TextureTable {
 public:
     TextureTable(const tinygltf::Model& model, std::string gltfPath, const DataUriImages& dataUris,
@@ -38,7 +49,8 @@ public:
 
     // The index in `out` of glTF texture `textureIndex` decoded with `encoding`. Throws
     // std::runtime_error (one line, without the file's path) for a texture or image that is
-    // missing, out of range, uses a texture coordinate set other than 0, or cannot be decoded.
+    // missing, out of range, uses a texture coordinate set other than 0 and 1, or cannot be
+    // decoded.
     int32_t get(int textureIndex, int texCoord, TextureEncoding encoding);
 
 private:

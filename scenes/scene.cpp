@@ -81,6 +81,9 @@ void Scene::validate() const {
         if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
             throw std::invalid_argument("mesh " + std::to_string(m) +
                                         ": UV count differs from position count");
+        if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size())
+            throw std::invalid_argument("mesh " + std::to_string(m) +
+                                        ": second UV set's count differs from position count");
         for (uint32_t i : mesh.indices)
             if (i >= mesh.positions.size())
                 throw std::invalid_argument("mesh " + std::to_string(m) + ": index " +
@@ -94,12 +97,17 @@ void Scene::validate() const {
             throw std::invalid_argument("instance " + std::to_string(i) + ": no material " +
                                         std::to_string(instances[i].material));
     }
-    for (std::size_t m = 0; m < materials.size(); ++m)
+    for (std::size_t m = 0; m < materials.size(); ++m) {
         for (int32_t t : {materials[m].baseColorTexture, materials[m].metallicRoughnessTexture})
             if (t < -1 ||
                 (t >= 0 && (std::size_t(t) >= textures.size() || textures[t].levels.empty())))
                 throw std::invalid_argument("material " + std::to_string(m) + ": no texture " +
                                             std::to_string(t));
+        for (int set : {materials[m].baseColorUv.set, materials[m].metallicRoughnessUv.set})
+            if (set != 0 && set != 1)
+                throw std::invalid_argument("material " + std::to_string(m) + ": no UV set " +
+                                            std::to_string(set));
+    }
 }
 
 }  // namespace ssrt

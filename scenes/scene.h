@@ -11,15 +11,38 @@
 
 namespace ssrt {
 
-// Indexed triangles; normals per vertex (same count as positions), UVs optional.
+// Indexed triangles; normals per vertex (same count as positions), UVs optional: two sets
+// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position.
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec2> uvs1;    // the second set, for textures with UvTransform::set 1
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
 
     std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// How one texture slot maps the mesh's UVs: which set (glTF's texCoord), then glTF's
+// KHR_texture_transform:
+// uv' = linear * uv + offset, with linear = R(rotation) S(scale) and
+//   R = [ cos  sin ]   (rows; counter-clockwise in UV space, whose v points down the image,
+//       [-sin  cos ]    as the extension's worked example reads: offset (0, 1), rotation
+//                       90 degrees and scale 0.5 pick the lower-left quadrant).
+// The screen derivatives of the UV go through `linear` alone, before the level of detail.
+struct UvTransform {
+    glm::vec2 row0{1.0f, 0.0f};  // u' = dot(row0, uv) + offset.x
+    glm::vec2 row1{0.0f, 1.0f};  // v' = dot(row1, uv) + offset.y
+    glm::vec2 offset{0.0f};
+    int set = 0;  // 0: Mesh::uvs, 1: Mesh::uvs1 (not part of the transform)
+
+    bool identity() const {
+        return row0 == glm::vec2(1.0f, 0.0f) && row1 == glm::vec2(0.0f, 1.0f) &&
+               offset == glm::vec2(0.0f);
+    }
+    glm::vec2 linear(glm::vec2 d) const { return {glm::dot(row0, d), glm::dot(row1, d)}; }
+    glm::vec2 apply(glm::vec2 uv) const { return linear(uv) + offset; }
 };
 
 // glTF 2.0 metallic-roughness; roughness is perceptual (alpha = roughness^2).
@@ -35,8 +58,14 @@ struct Material {
     // the mesh's (a mesh without UVs samples at (0, 0)).
     int32_t baseColorTexture = -1;
     int32_t metallicRoughnessTexture = -1;
+    UvTransform baseColorUv, metallicRoughnessUv;  // identity: the mesh's UVs as they are
 
     bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
+    // Whether a texture of this material reads the second UV set.
+    bool usesUvSet1() const {
+        return (baseColorTexture >= 0 && baseColorUv.set == 1) ||
+               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1);
+    }
 };
 
 // A mesh placed in the world; previousTransform gives rigid motion for motion vectors.

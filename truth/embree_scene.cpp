@@ -52,9 +52,14 @@ void initRay(RTCRayHit& rh, glm::vec3 o, glm::vec3 d, float tnear, float tfar) {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-glm::vec3 texel(const Scene& scene, int32_t texture, glm::vec2 uv, glm::vec3 fallback) {
+// The slot's texel at the mesh's `uv` through its UV transform (skipped when the identity,
+// as in the texture pass).
+glm::vec3 texel(const Scene& scene, int32_t texture, const UvTransform& t, const SurfacePoint& s,
+                glm::vec3 fallback) {
     if (texture < 0) return fallback;
-    return glm::vec3(scene.textures[std::size_t(texture)].sampleLevel(0, uv));
+    const glm::vec2 uv = t.set == 1 ? s.uv1 : s.uv;
+    const glm::vec2 st = t.identity() ? uv : t.apply(uv);
+    return glm::vec3(scene.textures[std::size_t(texture)].sampleLevel(0, st));
 }
 
 // Embree's memory monitor: bytes it holds (ptr: an std::atomic<int64_t>).
@@ -205,8 +210,12 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
     s.shadingNormal = nl > 0.0f && std::isfinite(nl) ? n / nl : s.geometricNormal;
     if (!mesh.uvs.empty())
         s.uv = w0 * mesh.uvs[idx[0]] + h.u * mesh.uvs[idx[1]] + h.v * mesh.uvs[idx[2]];
-    s.baseColor = mat.baseColor * texel(scene_, mat.baseColorTexture, s.uv, glm::vec3(1.0f));
-    const glm::vec3 mr = texel(scene_, mat.metallicRoughnessTexture, s.uv, glm::vec3(1.0f));
+    if (!mesh.uvs1.empty())
+        s.uv1 = w0 * mesh.uvs1[idx[0]] + h.u * mesh.uvs1[idx[1]] + h.v * mesh.uvs1[idx[2]];
+    s.baseColor =
+        mat.baseColor * texel(scene_, mat.baseColorTexture, mat.baseColorUv, s, glm::vec3(1.0f));
+    const glm::vec3 mr =
+        texel(scene_, mat.metallicRoughnessTexture, mat.metallicRoughnessUv, s, glm::vec3(1.0f));
     s.metallic = std::clamp(mat.metallic * mr.b, 0.0f, 1.0f);
     s.roughness = std::clamp(mat.roughness * mr.g, 0.0f, 1.0f);
     s.emissive = mat.emissive;

@@ -47,6 +47,7 @@ struct SurfacePoint {
     glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f};  // unit, the triangle's front side (CCW)
     glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};    // unit, interpolated vertex normals
     glm::vec2 uv{0.0f};                           // (0, 0) for a mesh without UVs
+    glm::vec2 uv1{0.0f};                          // the second set, likewise
     uint32_t instance = 0, material = 0;
     glm::vec3 baseColor{0.0f};  // material factor times its texture (level 0, bilinear)
     float metallic = 0.0f, roughness = 0.0f;

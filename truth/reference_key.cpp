@@ -54,6 +54,16 @@ void hashMaterial(Fnv1a& h, const Material& m) {
     h.value(m.doubleSided);
     h.value(m.baseColorTexture);
     h.value(m.metallicRoughnessTexture);
+    // A slot's UV set and transform only when not set 0 and the identity: the keys of
+    // scenes without them stay as they were.
+    const UvTransform* slots[] = {&m.baseColorUv, &m.metallicRoughnessUv};
+    for (uint32_t slot = 0; slot < 2; ++slot) {
+        if (slots[slot]->identity() && slots[slot]->set == 0) continue;
+        h.value(slot);
+        const UvTransform& t = *slots[slot];
+        for (float f : {t.row0.x, t.row0.y, t.row1.x, t.row1.y, t.offset.x, t.offset.y}) h.value(f);
+        h.value(t.set);
+    }
 }
 
 void hashTexture(Fnv1a& h, const Texture& t) {
@@ -97,6 +107,7 @@ void hashScene(Fnv1a& h, const Scene& scene) {
         h.array(m.positions);
         h.array(m.normals);
         h.array(m.uvs);
+        if (!m.uvs1.empty()) h.array(m.uvs1);  // only then: keys without it unchanged
         h.array(m.indices);
     }
     h.value(uint64_t(scene.materials.size()));

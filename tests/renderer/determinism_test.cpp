@@ -67,8 +67,25 @@ void addTestTextures(Scene& scene) {
     }
 }
 
+// addTestTextures(), the base colour read through a second UV set (from the positions)
+// with a rotated, scaled and offset UV transform.
+void addSecondUvSet(Scene& scene) {
+    addTestTextures(scene);
+    for (Mesh& mesh : scene.meshes) {
+        mesh.uvs1.clear();
+        for (const glm::vec3& p : mesh.positions)
+            mesh.uvs1.emplace_back(0.7f * p.x + 0.3f * p.z, 0.9f * p.y - 0.2f * p.z);
+    }
+    for (Material& m : scene.materials) {
+        m.baseColorUv.set = 1;
+        m.baseColorUv.row0 = {0.6f * 1.5f, 0.8f * 2.0f};
+        m.baseColorUv.row1 = {-0.8f * 1.5f, 0.6f * 2.0f};
+        m.baseColorUv.offset = {0.25f, -0.5f};
+    }
+}
+
 // A built-in scene by name; "NAME+sky" lights it with testSky() instead, "NAME+tex" gives
-// every material addTestTextures().
+// every material addTestTextures(), "NAME+uv1" addSecondUvSet().
 Scene sceneNamed(const std::string& name) {
     const std::size_t plus = name.find('+');
     Scene scene = makeBuiltinScene(name.substr(0, plus));
@@ -79,6 +96,8 @@ Scene sceneNamed(const std::string& name) {
         scene.sky.intensity = 0.7f;
     } else if (variant == "+tex") {
         addTestTextures(scene);
+    } else if (variant == "+uv1") {
+        addSecondUvSet(scene);
     }
     return scene;
 }
@@ -146,7 +165,7 @@ const std::map<std::string, uint64_t> kGolden = {
 TEST_CASE("every ISA and thread count renders the same bits") {
     for (const std::string scene :
          {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex", "cornell@hiz",
-          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz"}) {
+          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "plane_compare.h"
+#include "raster/resolve_kernel.h"
 #include "renderer/renderer.h"
 
 using namespace ssrt;
@@ -109,4 +111,133 @@ TEST_CASE("texture render: a minified checker averages to grey; without a textur
     const Frame plain = render(scene, kImage);
     CHECK(plain.gbuffer.albedo[0].at(kImage / 2, kImage / 2) == 1.0f);
     CHECK(plain.gbuffer.roughness.at(kImage / 2, kImage / 2) == 1.0f);
+}
+
+namespace {
+
+// The magnified quad with its base colour through `uv` and its metallic-roughness texture
+// (the same texels) untransformed, checked at each screen texel's centre: albedo shows
+// texel expected(tx, ty), roughness the untransformed texel (tx, ty).
+template <class Expected>
+void checkTransformed(const UvTransform& uv, Expected expected) {
+    Scene scene = quadScene();
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) texels.push_back(texel(x, y));
+    scene.textures.emplace_back("colours", kTexels, kTexels, texels);
+    scene.materials[0].baseColorTexture = 0;
+    scene.materials[0].baseColorUv = uv;
+    scene.materials[0].metallicRoughnessTexture = 0;
+    const Frame f = render(scene, kSize);
+    for (int ty = 0; ty < kTexels; ++ty)
+        for (int tx = 0; tx < kTexels; ++tx) {
+            CAPTURE(tx);
+            CAPTURE(ty);
+            const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
+            const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+            const glm::ivec2 e = expected(tx, ty);
+            const glm::vec4 t = texel(e.x, e.y);
+            CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
+            CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
+            CHECK(f.gbuffer.albedo[2].at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+            CHECK(f.gbuffer.roughness.at(px, py) == doctest::Approx(texel(tx, ty).g).epsilon(1e-4));
+        }
+}
+
+int wrap8(int i) { return ((i % kTexels) + kTexels) % kTexels; }
+
+}  // namespace
+
+// KHR_texture_transform, hand-computed: uv' = R S uv + offset with R = [cos sin; -sin cos]
+// (rows), texels repeating. A screen texel (tx, ty) has uv = ((tx + 0.5) / 8, (ty + 0.5) / 8).
+TEST_CASE("texture render: a UV transform moves the texels, per texture slot") {
+    SUBCASE("rotation 90 degrees: uv' = (v, -u), texel (ty, 7 - tx)") {
+        UvTransform t;
+        t.row0 = {0.0f, 1.0f};
+        t.row1 = {-1.0f, 0.0f};
+        checkTransformed(t, [](int tx, int ty) { return glm::ivec2(ty, kTexels - 1 - tx); });
+    }
+    SUBCASE("scale 3 and offset (0.25, 0.5): texel (3 tx + 1 + 2, 3 ty + 1 + 4) mod 8") {
+        UvTransform t;
+        t.row0 = {3.0f, 0.0f};
+        t.row1 = {0.0f, 3.0f};
+        t.offset = {0.25f, 0.5f};
+        checkTransformed(
+            t, [](int tx, int ty) { return glm::ivec2(wrap8(3 * tx + 3), wrap8(3 * ty + 5)); });
+    }
+    SUBCASE("all three: uv' = (3 v + 0.25, -3 u + 0.5), texel (3 ty + 3, 2 - 3 tx) mod 8") {
+        UvTransform t;
+        t.row0 = {0.0f, 3.0f};
+        t.row1 = {-3.0f, 0.0f};
+        t.offset = {0.25f, 0.5f};
+        checkTransformed(
+            t, [](int tx, int ty) { return glm::ivec2(wrap8(3 * ty + 3), wrap8(2 - 3 * tx)); });
+    }
+}
+
+TEST_CASE("texture render: a UV scale scales the derivatives, so the level of detail") {
+    // One checker texel per pixel, centres on centres: level 0 reads black or white. Scaled
+    // by 9, nine texels per pixel: grey from the mips (untransformed derivatives would read
+    // level 0 at uv * 9, a texel centre again, black or white).
+    constexpr int kChecker = 32;
+    Scene scene = quadScene();
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kChecker; ++y)
+        for (int x = 0; x < kChecker; ++x) texels.emplace_back(glm::vec4(float((x + y) % 2)));
+    scene.textures.emplace_back("checker", kChecker, kChecker, texels);
+    scene.materials[0].baseColorTexture = 0;
+    const Frame plain = render(scene, kChecker);
+    CHECK(plain.gbuffer.albedo[0].at(3, 4) == doctest::Approx(1.0).epsilon(1e-4));
+    CHECK(plain.gbuffer.albedo[0].at(4, 4) == doctest::Approx(0.0).epsilon(1e-4));
+    scene.materials[0].baseColorUv.row0 = {9.0f, 0.0f};
+    scene.materials[0].baseColorUv.row1 = {0.0f, 9.0f};
+    const Frame scaled = render(scene, kChecker);
+    for (int y = 0; y < kChecker; ++y)
+        for (int x = 0; x < kChecker; ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            REQUIRE(scaled.gbuffer.albedo[0].at(x, y) == doctest::Approx(0.5).epsilon(1e-4));
+        }
+}
+
+TEST_CASE("texture render: a texture on the second UV set samples by it, on every ISA") {
+    // Set 1 is set 0 transposed: the base colour (set 1) shows texel (ty, tx), the
+    // metallic-roughness texture (set 0) texel (tx, ty).
+    Scene scene = quadScene();
+    scene.meshes[0].uvs1 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) texels.push_back(texel(x, y));
+    scene.textures.emplace_back("colours", kTexels, kTexels, texels);
+    scene.materials[0].baseColorTexture = 0;
+    scene.materials[0].baseColorUv.set = 1;
+    scene.materials[0].metallicRoughnessTexture = 0;
+    const Frame ref = render(scene, kSize);
+    for (Isa isa : supportedIsas()) {
+        CAPTURE(isaName(isa));
+        const Frame f = render(scene, kSize, isa);
+        for (int ty = 0; ty < kTexels; ++ty)
+            for (int tx = 0; tx < kTexels; ++tx) {
+                CAPTURE(tx);
+                CAPTURE(ty);
+                const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const glm::vec4 t = texel(ty, tx);
+                CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
+                CHECK(f.gbuffer.albedo[2].at(px, py) == doctest::Approx(t.b).epsilon(1e-4));
+                CHECK(f.gbuffer.roughness.at(px, py) ==
+                      doctest::Approx(texel(tx, ty).g).epsilon(1e-4));
+            }
+        // The same bits as the scalar copy.
+        for (int c = 0; c < 3; ++c)
+            CHECK(test::sameBits(f.gbuffer.albedo[c], ref.gbuffer.albedo[c]));
+        CHECK(test::sameBits(f.gbuffer.roughness, ref.gbuffer.roughness));
+        for (int i = 0; i < 2 * kResolveUvOutputs; ++i)
+            CHECK(test::sameBits(f.scratch.uv[i], ref.scratch.uv[i]));
+    }
+    CHECK(ref.scratch.uv[kResolveUvOutputs].width() == kSize);
+    // Without a texture on set 1, set 1 is neither resolved nor given planes.
+    scene.materials[0].baseColorUv.set = 0;
+    CHECK(render(scene, kSize).scratch.uv[kResolveUvOutputs].width() == 0);
 }

@@ -422,13 +422,12 @@ TEST_CASE("gltf warnings: a required extension ssrt cannot honour is an error na
               R"( "extensionsRequired": ["KHR_draco_mesh_compression"])";
     checkRefused(writeGltf(dir, "draco.gltf", k),
                  "extension KHR_draco_mesh_compression is required but not supported");
-    // Emissive strength is not applied, so a file that requires it is refused too.
-    k.extra =
-        R"(, "extensionsUsed": ["KHR_materials_emissive_strength", "EXT_meshopt_compression"],)"
-        R"( "extensionsRequired": ["KHR_materials_emissive_strength", )"
-        R"("EXT_meshopt_compression"])";
+    // Volume is not applied, so a file that requires it is refused too.
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_volume", "EXT_meshopt_compression"],)"
+              R"( "extensionsRequired": ["KHR_materials_volume", "EXT_meshopt_compression",)"
+              R"( "KHR_materials_emissive_strength", "KHR_texture_transform"])";
     checkRefused(writeGltf(dir, "two.gltf", k),
-                 "extensions KHR_materials_emissive_strength and EXT_meshopt_compression are "
+                 "extensions KHR_materials_volume and EXT_meshopt_compression are "
                  "required but not supported");
 }
 
@@ -440,11 +439,11 @@ TEST_CASE("gltf warnings: an extension used but not supported is one line naming
     CHECK(warningsOf(path) ==
           std::vector<std::string>{path + ": extension KHR_materials_clearcoat is used but not "
                                           "supported: ignored"});
-    k.extra = R"(, "extensionsUsed": ["KHR_texture_transform", "KHR_lights_punctual",)"
-              R"( "KHR_materials_clearcoat"])";
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_sheen", "KHR_lights_punctual",)"
+              R"( "KHR_texture_transform", "KHR_materials_clearcoat"])";
     path = writeGltf(dir, "two.gltf", k);
     CHECK(warningsOf(path) ==
-          std::vector<std::string>{path + ": extensions KHR_texture_transform and "
+          std::vector<std::string>{path + ": extensions KHR_materials_sheen and "
                                           "KHR_materials_clearcoat are used but not supported: "
                                           "ignored"});
 }
@@ -529,4 +528,22 @@ TEST_CASE("gltf warnings: strict makes the first warning an error, with no scene
     // A file without warnings loads the same in strict mode.
     CHECK(loadGltf(writeGltf(dir, "plain.gltf", Knobs{}), ssrt::GltfLoadOptions{true}, nullptr)
               .triangleCount() == 1);
+}
+
+TEST_CASE("gltf materials: KHR_materials_emissive_strength multiplies emissiveFactor") {
+    TempDir dir("gltf-emissive");
+    const auto withStrength = [&](const std::string& ext) {
+        std::string json = jsonOf(Knobs{}, "");
+        const std::string at = R"("doubleSided")";
+        json.replace(json.find(at), 0,
+                     R"("extensions": {"KHR_materials_emissive_strength": )" + ext + "}, ");
+        const std::string path = dir.file("strength.gltf");
+        writeFile(path, json);
+        return path;
+    };
+    const ssrt::Scene s = loadGltf(withStrength(R"({"emissiveStrength": 4})"));
+    CHECK(s.materials[s.instances[0].material].emissive == glm::vec3(4.0f, 2.0f, 0.0f));
+    const ssrt::Scene d = loadGltf(withStrength("{}"));
+    CHECK(d.materials[d.instances[0].material].emissive == glm::vec3(1.0f, 0.5f, 0.0f));
+    checkRefused(withStrength(R"({"emissiveStrength": -1})"), "emissiveStrength");
 }

@@ -64,6 +64,7 @@ struct Quad {
     std::string samplers = R"([{"wrapS": 33071, "wrapT": 33648}])";
     std::string pbr =
         R"("baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1})";
+    std::string attributes = R"({"POSITION": 0, "TEXCOORD_0": 1})";
     std::size_t imageBytes = 0;  // > 0: the image is buffer view 3, after the quad (GLB)
 };
 
@@ -80,8 +81,9 @@ std::string quadJson(const Quad& q, const std::string& bufferUri, std::size_t bi
                  std::to_string(q.imageBytes) + "}";
     views += "]";
     return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],)"
-           R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes":)"
-           R"( {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],)"
+           R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": )" +
+           q.attributes +
+           R"(, "indices": 2, "material": 0}]}],)"
            R"( "materials": [{"pbrMetallicRoughness": {)" +
            q.pbr +
            R"(}}],)"
@@ -232,9 +234,9 @@ TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
     const std::vector<unsigned char> png = pngBytes(dir);
     writeFile(dir.file("tex.png"), png);
     Quad q;
-    SUBCASE("a second texture coordinate set") {
-        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1})";
-        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_1");
+    SUBCASE("a third texture coordinate set") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 2})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_2");
     }
     SUBCASE("an image file that is not an image") {
         writeFile(dir.file("tex.png"), std::string("this is not a PNG"));
@@ -257,4 +259,70 @@ TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
         q.pbr = R"("metallicRoughnessTexture": {"index": 9})";
         checkRefused(writeGltf(dir, "index.gltf", q), "texture 9 does not exist");
     }
+}
+
+TEST_CASE("gltf textures: KHR_texture_transform is read per texture reference") {
+    TempDir dir("gltf-tex-uv");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    // The extension's own example: the lower-left quadrant, rotated 90 degrees.
+    q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+            R"( {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}}},)"
+            R"( "metallicRoughnessTexture": {"index": 1})";
+    const Scene s = loadGltf(writeGltf(dir, "transform.gltf", q));
+    const Material& m = s.materials[0];
+    CHECK(m.baseColorUv.row0.x == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(m.baseColorUv.row0.y == doctest::Approx(0.5).epsilon(1e-6));
+    CHECK(m.baseColorUv.row1.x == doctest::Approx(-0.5).epsilon(1e-6));
+    CHECK(m.baseColorUv.row1.y == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(m.baseColorUv.offset == glm::vec2(0.0f, 1.0f));
+    // UV (0, 0) lands on (0, 1) and (1, 1) on (0.5, 0.5): u in [0, 0.5], v in [0.5, 1].
+    const glm::vec2 a = m.baseColorUv.apply({0.0f, 0.0f}), b = m.baseColorUv.apply({1.0f, 1.0f});
+    CHECK(a.x == doctest::Approx(0.0));
+    CHECK(a.y == doctest::Approx(1.0));
+    CHECK(b.x == doctest::Approx(0.5));
+    CHECK(b.y == doctest::Approx(0.5));
+    CHECK(m.metallicRoughnessUv.identity());
+
+    SUBCASE("the defaults are exactly the identity") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {}}})";
+        CHECK(loadGltf(writeGltf(dir, "empty.gltf", q)).materials[0].baseColorUv.identity());
+    }
+    SUBCASE("its texCoord overrides the reference's") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"texCoord": 2}}})";
+        checkRefused(writeGltf(dir, "texcoord.gltf", q), "TEXCOORD_2");
+        q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 2, "extensions":)"
+                R"( {"KHR_texture_transform": {"texCoord": 1}}})";
+        const Scene s1 = loadGltf(writeGltf(dir, "override.gltf", q));
+        CHECK(s1.materials[0].baseColorTexture == 0);
+        CHECK(s1.materials[0].baseColorUv.set == 1);
+    }
+    SUBCASE("a malformed transform is an error naming the member") {
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"scale": [2]}}})";
+        checkRefused(writeGltf(dir, "scale.gltf", q), "KHR_texture_transform scale");
+        q.pbr = R"("baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+                R"( {"rotation": "half"}}})";
+        checkRefused(writeGltf(dir, "rotation.gltf", q), "KHR_texture_transform rotation");
+    }
+}
+
+TEST_CASE("gltf textures: TEXCOORD_1 is read, and a texture may sample it") {
+    TempDir dir("gltf-tex-uv1");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    q.attributes = R"({"POSITION": 0, "TEXCOORD_1": 1})";
+    q.pbr = R"("baseColorTexture": {"index": 0, "texCoord": 1},)"
+            R"( "metallicRoughnessTexture": {"index": 1})";
+    const Scene s = loadGltf(writeGltf(dir, "uv1.gltf", q));
+    REQUIRE(s.meshes.size() == 1);
+    CHECK(s.meshes[0].uvs.empty());
+    REQUIRE(s.meshes[0].uvs1.size() == 4);
+    for (int i = 0; i < 4; ++i)
+        CHECK(s.meshes[0].uvs1[i] == glm::vec2(kUvs[2 * i], kUvs[2 * i + 1]));
+    CHECK(s.materials[0].baseColorUv.set == 1);
+    CHECK(s.materials[0].metallicRoughnessUv.set == 0);
+    CHECK(s.materials[0].usesUvSet1());
 }

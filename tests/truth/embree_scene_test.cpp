@@ -272,3 +272,36 @@ TEST_CASE("embree scene: build statistics count instances, meshes and triangles"
     MESSAGE("BVH: " << b.instances << " instances, " << b.meshes << " meshes, " << b.triangles
                     << " triangles, " << b.bytes << " bytes, " << b.buildMs << " ms");
 }
+
+TEST_CASE("embree scene: a texture slot's UV transform moves where the texel is read") {
+    Scene s;
+    // 2x2 texels, clamped: texel (0, 0) centred at UV (0.25, 0.25).
+    s.textures.emplace_back(
+        "tex", 2, 2,
+        std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}});
+    s.textures[0].wrapU = s.textures[0].wrapV = TextureWrap::ClampToEdge;
+    const uint32_t mat = addMaterial(s, "tex", {1.0f, 1.0f, 1.0f}, 0.0f, 0.5f, true);
+    s.materials[mat].baseColorTexture = 0;
+    addInstance(
+        s, addMesh(s, makeQuad({1.0f, 1.0f}, 1)), mat,
+        translate({0, 0, -2.0f}) * rotate(90.0f, {1, 0, 0}) *
+            glm::mat4(glm::mat3(glm::vec3(2, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1))));
+    // The hit's UV is (0.8, 0.7) (as above); the offset takes it to (0.25, 0.25).
+    s.materials[mat].baseColorUv.offset = {-0.55f, -0.45f};
+    const EmbreeScene e(s);
+    const glm::vec3 o(0.0f, 0.0f, 1.0f);
+    const glm::vec3 d = glm::normalize(glm::vec3(1.2f, -0.4f, -2.0f) - o);
+    const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+    REQUIRE(h.hit);
+    const SurfacePoint p = e.surface(o, d, h);
+    CHECK(glm::length(p.baseColor - glm::vec3(1.0f, 0.0f, 0.0f)) <= 1e-4f);
+    // On the second UV set, (0.75, 0.25) everywhere, no offset: texel (1, 0).
+    Scene s1 = s;
+    s1.meshes[0].uvs1.assign(s1.meshes[0].positions.size(), glm::vec2(0.75f, 0.25f));
+    s1.materials[mat].baseColorUv = UvTransform{};
+    s1.materials[mat].baseColorUv.set = 1;
+    const EmbreeScene e1(s1);
+    const SurfacePoint p1 = e1.surface(o, d, e1.intersect(o, d, 0.0f, 100.0f));
+    CHECK(p1.uv1 == glm::vec2(0.75f, 0.25f));
+    CHECK(glm::length(p1.baseColor - glm::vec3(0.0f, 1.0f, 0.0f)) <= 1e-4f);
+}

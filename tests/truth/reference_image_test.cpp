@@ -144,6 +144,9 @@ TEST_CASE("reference: the key follows the scene, the settings and the spp, nothi
     CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
         s.instances[0].transform[3][0] += 0.5f;
     }));
+    CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.materials[0].baseColorUv.offset.x = 0.5f;
+    }));
     CHECK(changed(
         [](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) { s.light.intensity *= 2; }));
     CHECK(changed(
