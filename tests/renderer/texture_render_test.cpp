@@ -17,6 +17,8 @@ namespace {
 constexpr int kTexels = 8;          // per side of the magnified texture
 constexpr int kPixelsPerTexel = 9;  // odd, so a pixel centre falls on each texel centre
 constexpr int kSize = kTexels * kPixelsPerTexel;
+// The pixel whose centre is texel t's centre (along either axis).
+constexpr int texelCentre(int t) { return t * kPixelsPerTexel + kPixelsPerTexel / 2; }
 
 // A texel value that differs from every neighbour's by at least 1/8 in some channel.
 glm::vec4 texel(int x, int y) {
@@ -77,8 +79,8 @@ TEST_CASE("texture render: a magnified texture shows its texels at the pixels th
             for (int tx = 0; tx < kTexels; ++tx) {
                 CAPTURE(tx);
                 CAPTURE(ty);
-                const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
-                const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const int px = texelCentre(tx);
+                const int py = texelCentre(ty);
                 const glm::vec4 t = texel(tx, ty);
                 CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
                 CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(0.5 * t.g).epsilon(1e-4));
@@ -133,8 +135,8 @@ void checkTransformed(const UvTransform& uv, Expected expected) {
         for (int tx = 0; tx < kTexels; ++tx) {
             CAPTURE(tx);
             CAPTURE(ty);
-            const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
-            const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+            const int px = texelCentre(tx);
+            const int py = texelCentre(ty);
             const glm::ivec2 e = expected(tx, ty);
             const glm::vec4 t = texel(e.x, e.y);
             CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
@@ -220,8 +222,8 @@ TEST_CASE("texture render: a texture on the second UV set samples by it, on ever
             for (int tx = 0; tx < kTexels; ++tx) {
                 CAPTURE(tx);
                 CAPTURE(ty);
-                const int px = tx * kPixelsPerTexel + kPixelsPerTexel / 2;
-                const int py = ty * kPixelsPerTexel + kPixelsPerTexel / 2;
+                const int px = texelCentre(tx);
+                const int py = texelCentre(ty);
                 const glm::vec4 t = texel(ty, tx);
                 CHECK(f.gbuffer.albedo[0].at(px, py) == doctest::Approx(t.r).epsilon(1e-4));
                 CHECK(f.gbuffer.albedo[1].at(px, py) == doctest::Approx(t.g).epsilon(1e-4));
