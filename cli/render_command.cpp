@@ -38,6 +38,8 @@ constexpr Counter kCounters[] = {
     {"triangles outside", &RasterStats::trianglesOutside},
     {"triangles clipped", &RasterStats::trianglesClipped},
     {"triangles set up", &RasterStats::trianglesSetUp},
+    {"triangles masked", &RasterStats::trianglesMasked},
+    {"triangles cut out", &RasterStats::trianglesCutOut},
     {"bin entries", &RasterStats::binEntries},
     {"blocks rejected", &RasterStats::blocksRejected},
     {"blocks accepted", &RasterStats::blocksAccepted},
@@ -45,6 +47,7 @@ constexpr Counter kCounters[] = {
     {"pixels tested", &RasterStats::pixelsTested},
     {"pixels covered", &RasterStats::pixelsCovered},
     {"pixels written", &RasterStats::pixelsWritten},
+    {"pixels cut out", &RasterStats::pixelsCutOut},
 };
 
 constexpr int kLabelWidth = 20;

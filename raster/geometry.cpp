@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/tiles.h"
+#include "scenes/material_alpha.h"
 
 namespace ssrt {
 
@@ -245,6 +247,70 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
     return tv;
 }
 
+namespace {
+
+constexpr uint32_t kNoAlphaSlot = 0xffffffffu;
+
+// Per instance, what its material's alpha does (scenes/material_alpha.h) and, for one tested
+// per point, its first slot in SetupChunks::alpha; empty when no material cuts out anything,
+// so such a pass sets up every triangle as before.
+struct AlphaPlan {
+    std::vector<AlphaCoverage> coverage;
+    std::vector<uint32_t> firstSlot;  // kNoAlphaSlot unless PerPoint
+    uint32_t slots = 0;
+};
+
+AlphaPlan alphaPlan(const Scene& scene) {
+    AlphaPlan plan;
+    const bool any = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                 [](const Material& m) { return m.alphaTested(); });
+    if (!any) return plan;
+    uint64_t slots = 0;
+    for (const Instance& inst : scene.instances) {
+        const AlphaCoverage c = alphaCoverage(scene.materials[inst.material]);
+        plan.coverage.push_back(c);
+        plan.firstSlot.push_back(c == AlphaCoverage::PerPoint ? uint32_t(slots) : kNoAlphaSlot);
+        if (c == AlphaCoverage::PerPoint) slots += scene.meshes[inst.mesh].triangleCount();
+    }
+    // Slots and global ids must leave kAlphaTestedBit free (raster/alpha_test.h).
+    if (scene.triangleCount() >= kAlphaTestedBit)
+        throw std::length_error(
+            "rasterizer: alpha-tested scenes are limited to 2^31 - 1 triangles");
+    plan.slots = uint32_t(slots);
+    return plan;
+}
+
+// The UVs an alpha-tested triangle's base colour reads, (0, 0) for a mesh without them.
+void baseColorUvs(const Mesh& mesh, const Material& m, uint32_t local, glm::vec2 uv[3]) {
+    const std::vector<glm::vec2>& set = m.baseColorUv.set == 1 ? mesh.uvs1 : mesh.uvs;
+    for (int k = 0; k < 3; ++k)
+        uv[k] = set.empty() ? glm::vec2(0.0f) : set[mesh.indices[3 * local + k]];
+}
+
+// A triangle of an instance whose material cuts out (not Opaque): none of it when Invisible;
+// else set up as any other under a marked id, and given its UV planes in its slot when some
+// piece of it was set up.
+void setupAlphaTested(const Scene& scene, const TransformedVertices& tv, const RasterView& view,
+                      const AlphaPlan& alpha, std::size_t inst, uint32_t prim, const uint32_t v[3],
+                      bool cull, std::vector<TriangleSetup>& out, std::vector<AlphaTriangle>& slots,
+                      RasterStats& stats) {
+    if (alpha.coverage[inst] == AlphaCoverage::Invisible) {
+        ++stats.trianglesCutOut;
+        return;
+    }
+    const uint32_t local = prim - tv.triangleOffset[inst];
+    const uint32_t slot = alpha.firstSlot[inst] + local;
+    const glm::vec4 clip[3] = {tv.clip[v[0]], tv.clip[v[1]], tv.clip[v[2]]};
+    if (!setupTriangle(clip, kAlphaTestedBit | slot, cull, view, out, stats)) return;
+    const Instance& instance = scene.instances[inst];
+    glm::vec2 uv[3];
+    baseColorUvs(scene.meshes[instance.mesh], scene.materials[instance.material], local, uv);
+    slots[slot] = alphaTriangle(clip, uv, view, prim, instance.material);
+    ++stats.trianglesMasked;
+}
+
+}  // namespace
+
 SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
                            const RasterView& view, int threads) {
     SetupChunks result;
@@ -252,6 +318,8 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
     const uint32_t chunkCount = (n + SetupChunks::kChunkSize - 1) / SetupChunks::kChunkSize;
     result.chunks.resize(chunkCount);
     result.stats.resize(chunkCount);
+    const AlphaPlan alpha = alphaPlan(scene);
+    result.alpha.resize(alpha.slots);
     parallelFor(int(chunkCount), threads, [&](int c) {
         const uint32_t begin = uint32_t(c) * SetupChunks::kChunkSize;
         const uint32_t end = std::min(n, begin + SetupChunks::kChunkSize);
@@ -273,6 +341,12 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
             const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];
             const uint32_t i2 = tv.instanceOffset[inst] + mesh.indices[3 * local + 2];
             ++stats.trianglesIn;
+            if (!alpha.coverage.empty() && alpha.coverage[inst] != AlphaCoverage::Opaque) {
+                const uint32_t v[3] = {i0, i1, i2};
+                setupAlphaTested(scene, tv, view, alpha, inst, prim, v, cull, out, result.alpha,
+                                 stats);
+                continue;
+            }
             const ScreenVertex &s0 = tv.screen[i0], &s1 = tv.screen[i1], &s2 = tv.screen[i2];
             if (s0.inside && s1.inside && s2.inside) {
                 // Common case: no clipping, vertices snapped once and shared.

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "raster/alpha_test.h"
 #include "raster/raster_stats.h"
 #include "raster/setup.h"
 #include "scenes/scene.h"
@@ -46,10 +47,18 @@ struct SetupChunks {
     static constexpr uint32_t kChunkSize = 2048;
     std::vector<std::vector<TriangleSetup>> chunks;
     std::vector<RasterStats> stats;  // per chunk, combined in chunk order
+    // The alpha-tested triangles' slots (raster/alpha_test.h): the triangles of each instance
+    // whose material is tested per point, in instance order; empty when there are none.
+    std::vector<AlphaTriangle> alpha;
 };
 
 SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& vertices,
                            const RasterView& view, int threads);
+
+// The UV planes of an alpha-tested triangle from its unclipped clip-space vertices and the
+// UVs its base colour reads (raster/alpha_test.h).
+AlphaTriangle alphaTriangle(const glm::vec4 clip[3], const glm::vec2 uv[3], const RasterView& view,
+                            uint32_t primId, uint32_t material);
 
 // Clips one clip-space triangle and appends its screen triangles to `out`; exposed for the
 // tests. Returns false when nothing of it can be seen.

@@ -31,6 +31,8 @@ void rasterize(const Scene& scene, const TransformedVertices& vertices, const Ra
     const TileGrid grid(view.width, view.height);
     SetupChunks chunks = setupTriangles(scene, vertices, view, options.threads);
     for (const RasterStats& s : chunks.stats) stats += s;
+    const std::vector<AlphaTriangle> alpha = std::move(chunks.alpha);
+    const AlphaTestArgs alphaArgs{alpha.data(), &scene};
     Bins bins = binTriangles(std::move(chunks), grid, options.threads);
     stats.binEntries += bins.items.size();
     if (times) times->geometryMs += msSince(t0);
@@ -49,7 +51,8 @@ void rasterize(const Scene& scene, const TransformedVertices& vertices, const Ra
                               vb.depth.row(0),
                               options.writeIds ? vb.ids.row(0) : nullptr,
                               vb.depth.stride(),
-                              options.writeIds ? vb.ids.stride() : 0};
+                              options.writeIds ? vb.ids.stride() : 0,
+                              alpha.empty() ? nullptr : &alphaArgs};
     // Counters per tile, summed in tile order afterwards.
     std::vector<RasterStats> tileStats(grid.count());
     const auto kernel = SSRT_DISPATCH(options.isa, rasterTile);

@@ -31,12 +31,14 @@ struct LaneLayout {
     alignas(64) int32_t dj[kW] = {};
     alignas(64) float fdi[kW] = {};
     alignas(64) float fdj[kW] = {};
+    alignas(64) int32_t bit[kW] = {};  // 1 << l: a lane mask from a bit mask
     constexpr LaneLayout() {
         for (int l = 0; l < kW; ++l) {
             di[l] = l % kBlockSize;
             dj[l] = l / kBlockSize;
             fdi[l] = float(di[l]);
             fdj[l] = float(dj[l]);
+            bit[l] = int32_t(1) << l;
         }
     }
 };
@@ -76,6 +78,9 @@ int classifyEdge(const TriangleSetup& t, int k, int64_t sx, int64_t sy, int32_t&
     return hi < 0 ? -1 : (lo >= 0 ? 1 : 0);
 }
 
+// kAlphaTested: t is an alpha-tested triangle (raster/alpha_test.h); the pixels that pass the
+// depth test are then kept only where alphaTestPixels says so, before anything is written.
+template <bool kAlphaTested>
 void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeLanes& edges,
                  int blockX, int blockY, float* depth, int32_t* ids, RasterStats& stats) {
     const int64_t sx = int64_t(blockX) * kSubPixel + kSubPixel / 2;
@@ -94,7 +99,8 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
     const bool border = blockX + kBlockSize > args.width || blockY + kBlockSize > args.height;
     const Lane zBase(t.zBase), zdx(t.zdx), zdy(t.zdy);
     const Lane fdi = ln::load<Lane>(kLayout.fdi), fdj = ln::load<Lane>(kLayout.fdj);
-    const ILane prim(int32_t(t.primId));
+    const uint32_t slot = t.primId & ~kAlphaTestedBit;  // kAlphaTested only
+    const ILane prim(int32_t(kAlphaTested ? args.alpha->triangles[slot].primId : t.primId));
     // Only the lane groups that meet the triangle's pixel bounds (small triangles touch a
     // few rows of a block, not all eight).
     const int rowLo = std::max(t.minY - blockY, 0),
@@ -126,9 +132,18 @@ void rasterBlock(const TileRasterArgs& args, const TriangleSetup& t, const EdgeL
             (zBase + zdx * (px - Lane(float(t.minX)))) + zdy * (py - Lane(float(t.minY)));
         float* dp = depth + c * kW;
         const Lane zb = ln::load<Lane>(dp);
-        const auto pass = covered & (z > zb);
-        const uint64_t passBits = ln::maskBits(pass);
+        auto pass = covered & (z > zb);
+        uint64_t passBits = ln::maskBits(pass);
         if (!passBits) continue;
+        if constexpr (kAlphaTested) {
+            const uint64_t kept =
+                alphaTestPixels(*args.alpha, slot, blockX, blockY, c * kW, passBits);
+            stats.pixelsCutOut += popcount(passBits & ~kept);
+            if (!kept) continue;
+            const ILane bits = ILane(int32_t(kept)) & ln::loadInt<Lane>(kLayout.bit);
+            pass = ln::toFloatMask(bits != ILane(0));
+            passBits = kept;
+        }
         stats.pixelsWritten += popcount(passBits);
         ln::store(dp, ln::select(pass, z, zb));
         if (ids) {
@@ -179,15 +194,15 @@ void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& 
     ln::streamFence();
 }
 
-}  // namespace
-
-void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
-    const TileRect r = tileRect(tile, args.tilesX, args.width, args.height);
-    static thread_local TileBuffers buf;
-    buf.touched = 0;
+// The tile's triangles in bin order. kAnyAlphaTested: the pass has alpha-tested triangles,
+// told apart by their id; without, the loop never looks at an id.
+template <bool kAnyAlphaTested>
+void rasterTriangles(const TileRasterArgs& args, const TileRect& r, int tile, TileBuffers& buf,
+                     RasterStats& stats) {
     for (uint32_t n = args.binStart[tile]; n < args.binStart[tile + 1]; ++n) {
         const TriangleSetup& t = args.triangles[args.binItems[n]];
         const EdgeLanes edges = edgeLanes(t);
+        const bool tested = kAnyAlphaTested && (t.primId & kAlphaTestedBit);
         // Blocks of this tile that the triangle's pixel bounds touch.
         const int bx0 = (std::max(t.minX, r.x0) - r.x0) / kBlockSize;
         const int by0 = (std::max(t.minY, r.y0) - r.y0) / kBlockSize;
@@ -201,11 +216,26 @@ void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
                     std::fill_n(buf.depth + b * kBlockPixels, kBlockPixels, args.clearDepth);
                     std::fill_n(buf.ids + b * kBlockPixels, kBlockPixels, int32_t(-1));
                 }
-                rasterBlock(args, t, edges, r.x0 + bx * kBlockSize, r.y0 + by * kBlockSize,
-                            buf.depth + b * kBlockPixels,
-                            args.ids ? buf.ids + b * kBlockPixels : nullptr, stats);
+                const int x = r.x0 + bx * kBlockSize, y = r.y0 + by * kBlockSize;
+                int32_t* ids = args.ids ? buf.ids + b * kBlockPixels : nullptr;
+                if (tested)
+                    rasterBlock<true>(args, t, edges, x, y, buf.depth + b * kBlockPixels, ids,
+                                      stats);
+                else
+                    rasterBlock<false>(args, t, edges, x, y, buf.depth + b * kBlockPixels, ids,
+                                       stats);
             }
     }
+}
+
+}  // namespace
+
+void rasterTile(const TileRasterArgs& args, int tile, RasterStats& stats) {
+    const TileRect r = tileRect(tile, args.tilesX, args.width, args.height);
+    static thread_local TileBuffers buf;
+    buf.touched = 0;
+    if (args.alpha) rasterTriangles<true>(args, r, tile, buf, stats);
+    else rasterTriangles<false>(args, r, tile, buf, stats);
     writeOut(args, r, buf);
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "raster/alpha_test.h"
 #include "raster/raster_stats.h"
 #include "raster/setup.h"
 
@@ -19,6 +20,9 @@ struct TileRasterArgs {
     float* depth;                       // plane rows
     uint32_t* ids;                      // nullptr for depth-only
     std::size_t depthStride, idStride;  // elements per row
+    // The pass's alpha-tested triangles (TriangleSetup::primId with kAlphaTestedBit), or null
+    // when it has none: then no triangle's id is looked at.
+    const AlphaTestArgs* alpha;
 };
 
 SSRT_DECLARE_KERNEL(void, rasterTile, (const TileRasterArgs& args, int tile, RasterStats& stats))

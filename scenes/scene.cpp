@@ -108,6 +108,11 @@ void Scene::validate() const {
                 throw std::invalid_argument("material " + std::to_string(m) + ": no UV set " +
                                             std::to_string(set));
     }
+    // A NaN cutoff would cut out everything without a word.
+    for (std::size_t m = 0; m < materials.size(); ++m)
+        if (!std::isfinite(materials[m].baseColorAlpha) || !std::isfinite(materials[m].alphaCutoff))
+            throw std::invalid_argument("material " + std::to_string(m) +
+                                        ": alpha and alpha cutoff must be finite");
 }
 
 }  // namespace ssrt

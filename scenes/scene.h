@@ -60,6 +60,17 @@ struct Material {
     int32_t metallicRoughnessTexture = -1;
     UvTransform baseColorUv, metallicRoughnessUv;  // identity: the mesh's UVs as they are
 
+    // Alpha coverage (glTF 2.0 section 3.9.4, alphaMode and alphaCutoff): alpha is
+    // baseColorAlpha (baseColorFactor's fourth component) times the base colour texel's
+    // alpha. OPAQUE ignores it; MASK draws a point where alpha >= alphaCutoff and cuts it out
+    // elsewhere, in the camera's view, the shadow map and the truth alike; BLEND is drawn as
+    // MASK (the loader warns). scenes/material_alpha.h evaluates it.
+    enum class AlphaMode { Opaque, Mask, Blend };
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float baseColorAlpha = 1.0f;
+    float alphaCutoff = 0.5f;
+    bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
+
     bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
     // Whether a texture of this material reads the second UV set.
     bool usesUvSet1() const {
