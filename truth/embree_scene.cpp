@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/material_alpha.h"
+
 namespace ssrt {
 
 namespace {
@@ -20,7 +22,35 @@ void check(RTCDevice device, const char* what) {
                                  std::to_string(int(e)) + ")");
 }
 
-RTCScene buildMeshScene(RTCDevice device, const Mesh& mesh) {
+// The mesh's `uvs` at Embree's barycentrics (u, v) of triangle `idx`; (0, 0) without UVs.
+glm::vec2 hitUv(const std::vector<glm::vec2>& uvs, const uint32_t* idx, float u, float v) {
+    if (uvs.empty()) return glm::vec2(0.0f);
+    const float w0 = 1.0f - u - v;
+    return w0 * uvs[idx[0]] + u * uvs[idx[1]] + v * uvs[idx[2]];
+}
+
+// The alpha cut-out as Embree's intersect and occlusion filter (Embree 3 API, "Filter
+// Callback Functions"): a candidate hit that its instance's material cuts out at the hit's
+// UV is dropped (valid = 0) and traversal goes on, so rays pass through the holes the
+// rasterizer leaves, by the same rule (level 0, bilinear).
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* f = static_cast<const std::pair<const Scene*, uint32_t>*>(args->geometryUserPtr);
+    const Scene& scene = *f->first;
+    const Mesh& mesh = scene.meshes[f->second];
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
+        const Material& m = scene.materials[scene.instances[inst].material];
+        if (!m.alphaTested()) continue;  // an opaque instance of a mesh another cuts out
+        const uint32_t* idx = &mesh.indices[3 * std::size_t(RTCHitN_primID(args->hit, args->N, i))];
+        const std::vector<glm::vec2>& uvs = m.baseColorUv.set == 1 ? mesh.uvs1 : mesh.uvs;
+        const glm::vec2 uv =
+            hitUv(uvs, idx, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+        if (!alphaPasses(scene, m, uv)) args->valid[i] = 0;
+    }
+}
+
+RTCScene buildMeshScene(RTCDevice device, const Mesh& mesh, void* alphaFilterData) {
     RTCScene s = rtcNewScene(device);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -32,6 +62,11 @@ RTCScene buildMeshScene(RTCDevice device, const Mesh& mesh) {
     auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
     std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+    if (alphaFilterData) {
+        rtcSetGeometryUserData(g, alphaFilterData);
+        rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+        rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);
@@ -77,13 +112,29 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
     const auto t0 = std::chrono::steady_clock::now();
     meshScenes_.assign(scene.meshes.size(), nullptr);
+    // Meshes some instance draws with a cut-out material get the alpha filter; the others
+    // are built as before.
+    std::vector<bool> cutOut(scene.meshes.size(), false);
+    for (const Instance& inst : scene.instances)
+        if (scene.materials[inst.material].alphaTested()) cutOut[inst.mesh] = true;
+    const bool anyCutOut = std::find(cutOut.begin(), cutOut.end(), true) != cutOut.end();
+    if (anyCutOut &&
+        !rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
+        rtcReleaseDevice(device_);  // the destructor does not run for a throwing constructor
+        device_ = nullptr;
+        throw std::runtime_error(
+            "Embree: this build has no filter functions, which alpha cut-outs (alphaMode MASK, "
+            "BLEND) need");
+    }
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) alphaFilters_.emplace_back(&scene, m);
     top_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& inst = scene.instances[i];
         RTCScene& ms = meshScenes_[inst.mesh];
         if (!ms) {
-            ms = buildMeshScene(device_, scene.meshes[inst.mesh]);
+            ms = buildMeshScene(device_, scene.meshes[inst.mesh],
+                                cutOut[inst.mesh] ? &alphaFilters_[inst.mesh] : nullptr);
             ++stats_.meshes;
         }
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -208,10 +259,8 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
                                         h.v * mesh.normals[idx[2]]);
     const float nl = glm::length(n);
     s.shadingNormal = nl > 0.0f && std::isfinite(nl) ? n / nl : s.geometricNormal;
-    if (!mesh.uvs.empty())
-        s.uv = w0 * mesh.uvs[idx[0]] + h.u * mesh.uvs[idx[1]] + h.v * mesh.uvs[idx[2]];
-    if (!mesh.uvs1.empty())
-        s.uv1 = w0 * mesh.uvs1[idx[0]] + h.u * mesh.uvs1[idx[1]] + h.v * mesh.uvs1[idx[2]];
+    s.uv = hitUv(mesh.uvs, idx, h.u, h.v);
+    s.uv1 = hitUv(mesh.uvs1, idx, h.u, h.v);
     s.baseColor =
         mat.baseColor * texel(scene_, mat.baseColorTexture, mat.baseColorUv, s, glm::vec3(1.0f));
     const glm::vec3 mr =

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <utility>
 #include <vector>
 
 #include "scenes/scene.h"
@@ -69,7 +70,8 @@ public:
     const Scene& scene() const { return scene_; }
 
     // First hit with t in [tnear, tfar]; direction unit. Both faces of every triangle count
-    // (the caller decides what a back face means). Thread-safe.
+    // (the caller decides what a back face means); a point an alpha cut-out removes
+    // (scenes/material_alpha.h) does not, here nor in intersect16 and occluded. Thread-safe.
     EmbreeHit intersect(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) const;
     // The same for up to 16 rays at once (Embree's packets; n in [1, 16]); equal answers to
     // intersect(), faster on coherent rays.
@@ -92,6 +94,9 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     std::vector<RTCScene> meshScenes_;  // per mesh (null where no instance uses it)
+    // Per mesh, what its geometry's alpha filter reads (its user data): the scene and the
+    // mesh's index. Filled before any build, never resized after.
+    std::vector<std::pair<const Scene*, uint32_t>> alphaFilters_;
     BvhStats stats_;
     std::atomic<int64_t> bytes_{0};
 };

@@ -64,6 +64,13 @@ void hashMaterial(Fnv1a& h, const Material& m) {
         for (float f : {t.row0.x, t.row0.y, t.row1.x, t.row1.y, t.offset.x, t.offset.y}) h.value(f);
         h.value(t.set);
     }
+    // The alpha cut-out only where it cuts (MASK, BLEND): the keys of every other scene stay
+    // as they were.
+    if (m.alphaTested()) {
+        h.value(m.alphaMode);
+        h.value(m.baseColorAlpha);
+        h.value(m.alphaCutoff);
+    }
 }
 
 void hashTexture(Fnv1a& h, const Texture& t) {

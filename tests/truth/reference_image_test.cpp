@@ -147,6 +147,19 @@ TEST_CASE("reference: the key follows the scene, the settings and the spp, nothi
     CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
         s.materials[0].baseColorUv.offset.x = 0.5f;
     }));
+    CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.materials[0].alphaMode = Material::AlphaMode::Mask;
+    }));
+    // Alpha and its cutoff shape nothing where the material is opaque.
+    CHECK_FALSE(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.materials[0].baseColorAlpha = 0.25f;
+        s.materials[0].alphaCutoff = 0.75f;
+    }));
+    Scene masked = scene;
+    masked.materials[0].alphaMode = Material::AlphaMode::Mask;
+    const uint64_t maskKey = referenceKey(masked, scene.camera, 0, rs, ref);
+    masked.materials[0].alphaCutoff = 0.75f;
+    CHECK(referenceKey(masked, scene.camera, 0, rs, ref) != maskKey);
     CHECK(changed(
         [](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) { s.light.intensity *= 2; }));
     CHECK(changed(
