@@ -49,7 +49,8 @@ struct Notes {
     std::size_t pointLights = 0, spotLights = 0, otherLights = 0, extraDirectional = 0;
     int usedCamera = -1;
     std::set<int> extraCameras, orthographicCameras;
-    std::vector<std::size_t> emissiveTextures, normalTextures, occlusionTextures, alphaModes;
+    std::vector<std::size_t> emissiveTextures, normalTextures, occlusionTextures;
+    std::vector<std::size_t> blendMaterials;  // alphaMode BLEND, drawn as MASK
     std::size_t vertexColours = 0, morphTargets = 0;
 };
 
@@ -472,6 +473,27 @@ float emissiveStrength(const Context& ctx, const std::string& name, const tinygl
     return float(v.GetNumberAsDouble());
 }
 
+// alphaMode and alphaCutoff (glTF 2.0 section 3.9.4), and baseColorFactor's alpha. BLEND is
+// drawn as MASK at the default cutoff 0.5 (the specification has the cutoff ignored outside
+// MASK): a cut where coverage is one half, which keeps the holes' sizes.
+void convertAlpha(const Context& ctx, std::size_t index, const std::string& name,
+                  const tinygltf::Material& g, Material& m) {
+    m.baseColorAlpha =
+        unitFactor(ctx, name, "baseColorFactor's alpha", g.pbrMetallicRoughness.baseColorFactor[3]);
+    if (g.alphaMode == "OPAQUE") return;
+    if (g.alphaMode == "BLEND") {
+        m.alphaMode = Material::AlphaMode::Blend;
+        ctx.notes.blendMaterials.push_back(index);
+        return;
+    }
+    if (g.alphaMode != "MASK")
+        ctx.fail(name + ": alphaMode '" + g.alphaMode + "' is not OPAQUE, MASK or BLEND");
+    if (!std::isfinite(g.alphaCutoff) || g.alphaCutoff < 0.0)
+        ctx.fail(name + ": alphaCutoff must be a finite number, not negative");
+    m.alphaMode = Material::AlphaMode::Mask;
+    m.alphaCutoff = float(g.alphaCutoff);
+}
+
 Material convertMaterial(const Context& ctx, std::size_t index) {
     const tinygltf::Material& g = ctx.model.materials[index];
     const std::string name = "material " + str(index);
@@ -492,7 +514,7 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     if (g.emissiveTexture.index >= 0) ctx.notes.emissiveTextures.push_back(index);
     if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
     if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
-    if (g.alphaMode != "OPAQUE") ctx.notes.alphaModes.push_back(index);
+    convertAlpha(ctx, index, name, g, m);
     m.baseColorTexture =
         texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb, &m.baseColorUv);
     m.metallicRoughnessTexture = texture(ctx, name, pbr.metallicRoughnessTexture,
@@ -832,10 +854,9 @@ std::vector<std::string> warningLines(const Context& ctx) {
     notApplied(n.emissiveTextures, "emissive textures");
     notApplied(n.normalTextures, "normal textures");
     notApplied(n.occlusionTextures, "occlusion textures");
-    if (!n.alphaModes.empty())
-        lines.push_back("alphaMode MASK and BLEND are not applied (" +
-                        named("material", n.alphaModes) +
-                        (n.alphaModes.size() == 1 ? " is" : " are") + " drawn opaque)");
+    if (!n.blendMaterials.empty())
+        lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
+                        named("material", n.blendMaterials) + ")");
     std::vector<std::size_t> samplers;
     for (std::size_t i = 0; i < m.samplers.size(); ++i) {
         const tinygltf::Sampler& s = m.samplers[i];

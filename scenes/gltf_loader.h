@@ -32,13 +32,16 @@ public:
 // samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
 // Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
+// alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
+// BLEND is drawn as MASK at the default cutoff 0.5, with a warning); an alphaMode other than
+// OPAQUE, MASK or BLEND, or a negative or non-finite cutoff, is an error.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
 // cameras other than the one used and orthographic cameras, emissive, normal and occlusion
-// textures, alphaMode MASK and BLEND, sampler filters other than trilinear, COLOR_0, skins,
+// textures, alphaMode BLEND, sampler filters other than trilinear, COLOR_0, skins,
 // animations and morph targets. kSupportedGltfExtensions are the extensions ssrt honours; one
 // in extensionsRequired that is not among them is an error naming it.
 //

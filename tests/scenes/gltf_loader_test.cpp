@@ -497,7 +497,7 @@ TEST_CASE("gltf warnings: textures, alpha modes and filters that are not applied
     const std::string at = R"("doubleSided")";
     json.replace(json.find(at), 0,
                  R"("normalTexture": {"index": 0}, "occlusionTexture": {"index": 0},)"
-                 R"( "emissiveTexture": {"index": 0}, "alphaMode": "MASK", )");
+                 R"( "emissiveTexture": {"index": 0}, "alphaMode": "BLEND", )");
     const std::string path = dir.file("material.gltf");
     writeFile(path, json);
     CHECK(warningsOf(path) ==
@@ -505,7 +505,7 @@ TEST_CASE("gltf warnings: textures, alpha modes and filters that are not applied
               path + ": emissive textures are not applied yet (material 0)",
               path + ": normal textures are not applied yet (material 0)",
               path + ": occlusion textures are not applied yet (material 0)",
-              path + ": alphaMode MASK and BLEND are not applied (material 0 is drawn opaque)",
+              path + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (material 0)",
               path + ": sampler filters are ignored (sampler 0; textures are always sampled "
                      "trilinearly)"});
 }
@@ -546,4 +546,52 @@ TEST_CASE("gltf materials: KHR_materials_emissive_strength multiplies emissiveFa
     const ssrt::Scene d = loadGltf(withStrength("{}"));
     CHECK(d.materials[d.instances[0].material].emissive == glm::vec3(1.0f, 0.5f, 0.0f));
     checkRefused(withStrength(R"({"emissiveStrength": -1})"), "emissiveStrength");
+}
+
+TEST_CASE("gltf materials: alphaMode, alphaCutoff and baseColorFactor's alpha are read") {
+    TempDir dir("gltf-alpha");
+    // The one-triangle file with `members` in its material and baseColorFactor's alpha `a`.
+    const auto withAlpha = [&](const std::string& members, const std::string& a = "1") {
+        std::string json = jsonOf(Knobs{}, "");
+        const std::string factor = "[0.2, 0.4, 0.6, 1]";
+        json.replace(json.find(factor), factor.size(), "[0.2, 0.4, 0.6, " + a + "]");
+        json.replace(json.find(R"("doubleSided")"), 0, members);
+        const std::string path = dir.file("alpha.gltf");
+        writeFile(path, json);
+        return path;
+    };
+    const auto materialOf = [](const ssrt::Scene& s) {
+        return s.materials[s.instances[0].material];
+    };
+    using Mode = ssrt::Material::AlphaMode;
+
+    const ssrt::Scene opaque = loadGltf(withAlpha("", "0.25"));
+    CHECK(materialOf(opaque).alphaMode == Mode::Opaque);
+    CHECK(materialOf(opaque).baseColorAlpha == 0.25f);
+    CHECK(materialOf(opaque).alphaCutoff == 0.5f);
+
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene mask =
+        loadGltf(withAlpha(R"("alphaMode": "MASK", "alphaCutoff": 0.75, )"), {}, &report);
+    CHECK(materialOf(mask).alphaMode == Mode::Mask);
+    CHECK(materialOf(mask).alphaCutoff == 0.75f);
+    CHECK(materialOf(mask).baseColorAlpha == 1.0f);
+    CHECK(report.warnings.empty());  // MASK is honoured: no warning
+    // The cutoff defaults to 0.5.
+    CHECK(materialOf(loadGltf(withAlpha(R"("alphaMode": "MASK", )"))).alphaCutoff == 0.5f);
+
+    // BLEND: drawn as MASK at 0.5 whatever alphaCutoff says (the spec has it ignored), with
+    // one warning line.
+    const std::string blend = withAlpha(R"("alphaMode": "BLEND", "alphaCutoff": 0.9, )");
+    const ssrt::Scene b = loadGltf(blend, {}, &report);
+    CHECK(materialOf(b).alphaMode == Mode::Blend);
+    CHECK(materialOf(b).alphaTested());
+    CHECK(materialOf(b).alphaCutoff == 0.5f);
+    CHECK(report.warnings == std::vector<std::string>{
+                                 blend + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 "
+                                         "(material 0)"});
+
+    checkRefused(withAlpha(R"("alphaMode": "ADD", )"),
+                 "alphaMode 'ADD' is not OPAQUE, MASK or BLEND");
+    checkRefused(withAlpha(R"("alphaMode": "MASK", "alphaCutoff": -0.5, )"), "alphaCutoff");
 }
