@@ -84,8 +84,34 @@ void addSecondUvSet(Scene& scene) {
     }
 }
 
+// addTestTextures() with alpha cut-outs (cornell's materials): the base colour's alpha a
+// checker of noise, the back wall MASK at 0.5, the red wall BLEND, the box MASK at 0.3 through
+// a scaled and offset UV transform, the green wall MASK without a texture below its cutoff
+// (not drawn); the floor and the mirror opaque.
+void addCutOuts(Scene& scene) {
+    addTestTextures(scene);
+    std::vector<glm::vec4> colour = scene.textures[0].levels[0].texels;
+    for (uint32_t i = 0; i < colour.size(); ++i) {
+        const float check = ((i % 32) / 4 + (i / 32) / 4) % 2 ? 0.9f : 0.1f;
+        colour[i].a = check * (0.5f + randomFloat(i, 23, 0, 0));
+    }
+    scene.textures[0] = Texture("colour+alpha", 32, 32, colour);
+    const auto cut = [&](uint32_t m, Material::AlphaMode mode, float cutoff) {
+        scene.materials[m].alphaMode = mode;
+        scene.materials[m].alphaCutoff = cutoff;
+    };
+    cut(1, Material::AlphaMode::Mask, 0.5f);
+    cut(2, Material::AlphaMode::Blend, 0.5f);
+    cut(4, Material::AlphaMode::Mask, 0.3f);
+    scene.materials[4].baseColorUv.row0 = {1.7f, 0.0f};
+    scene.materials[4].baseColorUv.offset = {0.1f, -0.3f};
+    cut(3, Material::AlphaMode::Mask, 0.5f);
+    scene.materials[3].baseColorTexture = -1;
+    scene.materials[3].baseColorAlpha = 0.2f;
+}
+
 // A built-in scene by name; "NAME+sky" lights it with testSky() instead, "NAME+tex" gives
-// every material addTestTextures(), "NAME+uv1" addSecondUvSet().
+// every material addTestTextures(), "NAME+uv1" addSecondUvSet(), "NAME+alpha" addCutOuts().
 Scene sceneNamed(const std::string& name) {
     const std::size_t plus = name.find('+');
     Scene scene = makeBuiltinScene(name.substr(0, plus));
@@ -98,6 +124,8 @@ Scene sceneNamed(const std::string& name) {
         addTestTextures(scene);
     } else if (variant == "+uv1") {
         addSecondUvSet(scene);
+    } else if (variant == "+alpha") {
+        addCutOuts(scene);
     }
     return scene;
 }
@@ -143,6 +171,7 @@ const std::map<std::string, uint64_t> kGolden = {
     {"offscreen", 0x79bd01dc37e7ec8bull},
     {"occluded", 0x75538a1775c85dfaull},
     {"cornell+tex", 0x9522f5d1752591fcull},
+    {"cornell+alpha", 0x604109282281ba74ull},
     {"cornell@hiz", 0xe96362f354b7b340ull},
     {"spheres@dda", 0x95b6c8a11647d058ull},
     {"corridor@linear", 0x79653267d635fc72ull},
@@ -165,7 +194,8 @@ const std::map<std::string, uint64_t> kGolden = {
 TEST_CASE("every ISA and thread count renders the same bits") {
     for (const std::string scene :
          {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex", "cornell@hiz",
-          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1"}) {
+          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1",
+          "cornell+alpha"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
