@@ -309,6 +309,43 @@ void setupAlphaTested(const Scene& scene, const TransformedVertices& tv, const R
     ++stats.trianglesMasked;
 }
 
+// The triangles [begin, end) in order. kAlpha: the pass has cut-out materials (AlphaPlan not
+// empty); without, the loop is the one it was before there were any.
+template <bool kAlpha>
+void setupRange(const Scene& scene, const TransformedVertices& tv, const RasterView& view,
+                const AlphaPlan& alpha, uint32_t begin, uint32_t end,
+                std::vector<TriangleSetup>& out, std::vector<AlphaTriangle>& slots,
+                RasterStats& stats) {
+    // Instance holding `begin`: the last whose first triangle is <= begin.
+    std::size_t inst = std::upper_bound(tv.triangleOffset.begin(), tv.triangleOffset.end(), begin) -
+                       tv.triangleOffset.begin() - 1;
+    for (uint32_t prim = begin; prim < end; ++prim) {
+        while (inst + 1 < tv.triangleOffset.size() && tv.triangleOffset[inst + 1] <= prim) ++inst;
+        const Instance& instance = scene.instances[inst];
+        const Mesh& mesh = scene.meshes[instance.mesh];
+        const bool cull = view.cullBackFaces && !scene.materials[instance.material].doubleSided;
+        const uint32_t local = prim - tv.triangleOffset[inst];
+        const uint32_t i0 = tv.instanceOffset[inst] + mesh.indices[3 * local];
+        const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];
+        const uint32_t i2 = tv.instanceOffset[inst] + mesh.indices[3 * local + 2];
+        ++stats.trianglesIn;
+        if (kAlpha && alpha.coverage[inst] != AlphaCoverage::Opaque) {
+            const uint32_t v[3] = {i0, i1, i2};
+            setupAlphaTested(scene, tv, view, alpha, inst, prim, v, cull, out, slots, stats);
+            continue;
+        }
+        const ScreenVertex &s0 = tv.screen[i0], &s1 = tv.screen[i1], &s2 = tv.screen[i2];
+        if (s0.inside && s1.inside && s2.inside) {
+            // Common case: no clipping, vertices snapped once and shared.
+            TriangleSetup t;
+            if (setupScreenTriangle(s0, s1, s2, prim, cull, view, t, stats)) out.push_back(t);
+            continue;
+        }
+        const glm::vec4 clip[3] = {tv.clip[i0], tv.clip[i1], tv.clip[i2]};
+        setupTriangle(clip, prim, cull, view, out, stats);
+    }
+}
+
 }  // namespace
 
 SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
@@ -323,40 +360,14 @@ SetupChunks setupTriangles(const Scene& scene, const TransformedVertices& tv,
     parallelFor(int(chunkCount), threads, [&](int c) {
         const uint32_t begin = uint32_t(c) * SetupChunks::kChunkSize;
         const uint32_t end = std::min(n, begin + SetupChunks::kChunkSize);
-        // Instance holding `begin`: the last whose first triangle is <= begin.
-        std::size_t inst =
-            std::upper_bound(tv.triangleOffset.begin(), tv.triangleOffset.end(), begin) -
-            tv.triangleOffset.begin() - 1;
         auto& out = result.chunks[c];
-        auto& stats = result.stats[c];
         out.reserve(end - begin);
-        for (uint32_t prim = begin; prim < end; ++prim) {
-            while (inst + 1 < tv.triangleOffset.size() && tv.triangleOffset[inst + 1] <= prim)
-                ++inst;
-            const Instance& instance = scene.instances[inst];
-            const Mesh& mesh = scene.meshes[instance.mesh];
-            const bool cull = view.cullBackFaces && !scene.materials[instance.material].doubleSided;
-            const uint32_t local = prim - tv.triangleOffset[inst];
-            const uint32_t i0 = tv.instanceOffset[inst] + mesh.indices[3 * local];
-            const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];
-            const uint32_t i2 = tv.instanceOffset[inst] + mesh.indices[3 * local + 2];
-            ++stats.trianglesIn;
-            if (!alpha.coverage.empty() && alpha.coverage[inst] != AlphaCoverage::Opaque) {
-                const uint32_t v[3] = {i0, i1, i2};
-                setupAlphaTested(scene, tv, view, alpha, inst, prim, v, cull, out, result.alpha,
-                                 stats);
-                continue;
-            }
-            const ScreenVertex &s0 = tv.screen[i0], &s1 = tv.screen[i1], &s2 = tv.screen[i2];
-            if (s0.inside && s1.inside && s2.inside) {
-                // Common case: no clipping, vertices snapped once and shared.
-                TriangleSetup t;
-                if (setupScreenTriangle(s0, s1, s2, prim, cull, view, t, stats)) out.push_back(t);
-                continue;
-            }
-            const glm::vec4 clip[3] = {tv.clip[i0], tv.clip[i1], tv.clip[i2]};
-            setupTriangle(clip, prim, cull, view, out, stats);
-        }
+        if (alpha.coverage.empty())
+            setupRange<false>(scene, tv, view, alpha, begin, end, out, result.alpha,
+                              result.stats[c]);
+        else
+            setupRange<true>(scene, tv, view, alpha, begin, end, out, result.alpha,
+                             result.stats[c]);
     });
     return result;
 }
