@@ -32,19 +32,22 @@ struct FrameContext {
     Isa isa;
     int threads;
     TileGrid grid;
+    glm::vec3 origin;  // Scene::origin(): every world position below is measured from it
     glm::mat4 view, proj, prevViewProj;
     TraceCamera trace;  // the camera as the kernels take it (tanHalf*, near, far, rotation)
 
-    FrameContext(const RenderSettings& s, const FrameInput& input)
+    FrameContext(const RenderSettings& s, const Scene& scene, const FrameInput& input)
         : settings(s),
           camera(input.camera),
           isa(resolveIsa(s.isa)),
           threads(s.threads),
           grid(s.width, s.height) {
         const float aspect = float(s.width) / float(s.height);
-        view = camera.view();
+        origin = scene.origin();
+        view = camera.viewFrom(origin);
         proj = camera.projection(aspect);
-        prevViewProj = input.previousCamera.projection(aspect) * input.previousCamera.view();
+        prevViewProj =
+            input.previousCamera.projection(aspect) * input.previousCamera.viewFrom(origin);
         trace.width = s.width;
         trace.height = s.height;
         trace.tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
@@ -53,7 +56,10 @@ struct FrameContext {
         trace.farZ = camera.farZ;
         const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
         std::copy_n(glm::value_ptr(viewToWorld), 9, trace.viewToWorld);
-        std::copy_n(glm::value_ptr(camera.position), 3, trace.position);
+        const glm::vec3 position(glm::dvec3(camera.position) - glm::dvec3(origin));
+        std::copy_n(glm::value_ptr(position), 3, trace.position);
+        std::copy_n(glm::value_ptr(origin), 3, trace.origin);
+        trace.sceneDiagonal = scene.diagonal();
     }
     RasterOptions raster() const {
         RasterOptions ro;
@@ -94,6 +100,7 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const auto t0 = PassClock::now();
     RasterView rv;
     rv.viewProj = c.proj * c.view;
+    rv.origin = c.origin;
     rv.width = c.grid.width;
     rv.height = c.grid.height;
     rv.nearW = c.camera.nearZ;
@@ -111,7 +118,8 @@ static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kR
 // The G-buffer of the visible pixels (and their UVs for the texture pass).
 ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
     const ScopedPass timer(frame.stats, "resolve");
-    ResolveTables tables = buildResolveTables(scene, c.view, c.prevViewProj, textured, c.threads);
+    ResolveTables tables =
+        buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
     GBuffer& g = frame.gbuffer;
     ResolveArgs ra{};
     ra.triangles = tables.triangles.data();
@@ -286,7 +294,7 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
     scene.validate();
-    const FrameContext c(settings_, input);
+    const FrameContext c(settings_, scene, input);
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();

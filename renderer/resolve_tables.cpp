@@ -22,8 +22,8 @@ bool anyUvSet1(const Scene& scene) {
 
 namespace {
 
-ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
-                                const glm::mat4& prevViewProj) {
+ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, glm::vec3 origin,
+                                const glm::mat4& view, const glm::mat4& prevViewProj) {
     const Material& m = scene.materials[inst.material];
     ResolveInstance r;
     r.albedo[0] = m.baseColor.r;
@@ -33,8 +33,10 @@ ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const 
     r.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     r.materialId = float(inst.material);
     // current view -> world -> object (current) -> world (previous) -> previous clip
-    const glm::mat4 toPrev =
-        prevViewProj * inst.previousTransform * glm::inverse(inst.transform) * glm::inverse(view);
+    // (every world here measured from the origin)
+    const glm::mat4 toPrev = prevViewProj * transformFrom(inst.previousTransform, origin) *
+                             glm::inverse(transformFrom(inst.transform, origin)) *
+                             glm::inverse(view);
     std::copy_n(glm::value_ptr(toPrev), 16, r.viewToPrevClip);
     return r;
 }
@@ -55,7 +57,7 @@ void forInstanceChunks(std::size_t instances, int threads, CountFn count, Fn fn)
 
 }  // namespace
 
-ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm::mat4& view,
                                  const glm::mat4& prevViewProj, bool textured, int threads) {
     ResolveTables t;
     std::vector<uint32_t> vertexOffset, triOffset;
@@ -65,7 +67,7 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
         triOffset.push_back(nt);
         nv += uint32_t(scene.meshes[inst.mesh].positions.size());
         nt += uint32_t(scene.meshes[inst.mesh].triangleCount());
-        t.instances.push_back(resolveInstance(scene, inst, view, prevViewProj));
+        t.instances.push_back(resolveInstance(scene, inst, origin, view, prevViewProj));
     }
     t.triangles.resize(nt);
     t.nx.resize(nv);
@@ -89,7 +91,7 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
         [&](uint32_t i, uint32_t first, uint32_t end) {
             const Instance& inst = scene.instances[i];
             const Mesh& mesh = meshOf(i);
-            const glm::mat4 modelView = view * inst.transform;
+            const glm::mat4 modelView = view * transformFrom(inst.transform, origin);
             const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(inst.transform));
             for (uint32_t v = first; v < end; ++v) {
                 const uint32_t g = vertexOffset[i] + v;

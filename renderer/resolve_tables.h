@@ -25,8 +25,9 @@ struct ResolveTables {
 bool anyTextured(const Scene& scene);
 bool anyUvSet1(const Scene& scene);  // a material's texture reads the second UV set
 
-// `view` is the camera's, `prevViewProj` the previous camera's (motion vectors).
-ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+// `view` is the camera's, `prevViewProj` the previous camera's (motion vectors), both of
+// points measured from `origin` (Scene::origin(); Camera::viewFrom).
+ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm::mat4& view,
                                  const glm::mat4& prevViewProj, bool textured, int threads);
 
 }  // namespace ssrt

@@ -30,6 +30,17 @@ glm::vec3 Sky::radiance(glm::vec3 dir) const {
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
+glm::mat4 Camera::viewFrom(glm::vec3 origin) const {
+    const glm::dvec3 o(origin);
+    return glm::mat4(glm::lookAt(glm::dvec3(position) - o, glm::dvec3(target) - o, glm::dvec3(up)));
+}
+
+glm::mat4 transformFrom(const glm::mat4& m, glm::vec3 origin) {
+    glm::dmat4 d(m);
+    for (int c = 0; c < 4; ++c) d[c] -= glm::dvec4(glm::dvec3(origin) * d[c].w, 0.0);
+    return glm::mat4(d);
+}
+
 glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fovY), aspect, nearZ, farZ);
 }
@@ -52,6 +63,19 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
     }
     if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+}
+
+glm::vec3 Scene::origin() const {
+    glm::vec3 lo, hi;
+    bounds(lo, hi);
+    return 0.5f * (lo + hi);
+}
+
+float Scene::diagonal() const {
+    glm::vec3 lo, hi;
+    bounds(lo, hi);
+    const float d = glm::length(hi - lo);
+    return d > 0.0f && std::isfinite(d) ? d : 1.0f;  // a point: no length to measure against
 }
 
 void Scene::validate() const {

@@ -76,6 +76,11 @@ struct Instance {
     glm::mat4 previousTransform{1.0f};
 };
 
+// translate(-origin) * m, formed in double: a transform whose points are measured from
+// `origin` (Scene::origin()). Far from 0, a float product would round the translation to
+// the float spacing there (about 1e-3 at 1e4) before anything cancels.
+glm::mat4 transformFrom(const glm::mat4& m, glm::vec3 origin);
+
 struct DirectionalLight {
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (unit)
     glm::vec3 color{1.0f};
@@ -118,6 +123,9 @@ struct Camera {
     float farZ = 100.0f;
 
     glm::mat4 view() const;
+    // The view matrix of points measured from `origin` (Scene::origin()): the same camera,
+    // its translation formed in double so that a scene far from 0 keeps its precision.
+    glm::mat4 viewFrom(glm::vec3 origin) const;
     glm::mat4 projection(float aspect) const;  // OpenGL clip space: w = -z_view
 };
 
@@ -135,6 +143,13 @@ struct Scene {
     std::size_t triangleCount() const;
     // World-space bounds of every instance (finite vertices only).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
+    // Where the renderer and the truth measure world positions from: the bounds' centre.
+    // Every pass works on positions relative to it (transformFrom, Camera::viewFrom), so a
+    // scene 1e4 units from 0 is as precise as one at 0 (issue 16).
+    glm::vec3 origin() const;
+    // The length of the bounds' diagonal: the unit of the tracer's relative lengths (1 where
+    // the bounds are a point).
+    float diagonal() const;
     // Throws std::invalid_argument naming the first broken reference (mesh, material, index,
     // texture).
     void validate() const;

@@ -70,8 +70,10 @@ bool countBytes(void* ptr, ssize_t bytes, bool /*post*/) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene), origin_(scene.origin()) {
     scene.validate();
+    for (const Instance& inst : scene.instances)
+        transforms_.push_back(transformFrom(inst.transform, origin_));
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
     rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
@@ -88,7 +90,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
         }
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, ms);
-        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transform[0][0]);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transforms_[i][0][0]);
         rtcCommitGeometry(g);
         // The instance's geometry id is its index in the scene: hits name it directly.
         rtcAttachGeometryByID(top_, g, unsigned(i));
@@ -104,6 +106,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     scene.bounds(stats_.lo, stats_.hi);
     stats_.diagonal = glm::length(stats_.hi - stats_.lo);
     if (!(stats_.diagonal > 0.0f) || !std::isfinite(stats_.diagonal)) stats_.diagonal = 1.0f;
+}
+
+void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& c, const char* who) {
+    const glm::vec3 o = embree.origin();
+    if (c.origin[0] != o.x || c.origin[1] != o.y || c.origin[2] != o.z)
+        throw std::invalid_argument(std::string(who) +
+                                    ": the camera's origin is not the scene's (TraceCamera::origin "
+                                    "must be Scene::origin(), as the renderer sets it)");
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -199,7 +209,7 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
     // under instancing).
     glm::vec3 p[3];
     for (int c = 0; c < 3; ++c)
-        p[c] = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[c]], 1.0f));
+        p[c] = glm::vec3(transforms_[h.instance] * glm::vec4(mesh.positions[idx[c]], 1.0f));
     const glm::vec3 ng = glm::cross(p[1] - p[0], p[2] - p[0]);
     const float ngl = glm::length(ng);
     s.geometricNormal = ngl > 0.0f ? ng / ngl : glm::vec3(0.0f, 1.0f, 0.0f);

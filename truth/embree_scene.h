@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scenes/scene.h"
+#include "trace/trace_types.h"
 
 // Embree's handles, without its header in ours.
 typedef struct RTCDeviceTy* RTCDevice;
@@ -55,6 +56,11 @@ struct SurfacePoint {
     bool doubleSided = false;
 };
 
+class EmbreeScene;
+// Throws std::invalid_argument (naming `who`) unless the camera's positions are measured from
+// the Embree scene's origin (TraceCamera::origin == EmbreeScene::origin()).
+void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& camera, const char* who);
+
 class EmbreeScene {
 public:
     // Builds the BVHs (RTC_BUILD_QUALITY_HIGH): one per mesh, one over the instances. Keeps a
@@ -67,6 +73,9 @@ public:
 
     const BvhStats& stats() const { return stats_; }
     const Scene& scene() const { return scene_; }
+    // Every position in and out (ray origins, hit points) is measured from here: the
+    // scene's origin (Scene::origin()), as the renderer's passes and TraceCamera::position.
+    glm::vec3 origin() const { return origin_; }
 
     // First hit with t in [tnear, tfar]; direction unit. Both faces of every triangle count
     // (the caller decides what a back face means). Thread-safe.
@@ -89,6 +98,8 @@ public:
 
 private:
     const Scene& scene_;
+    glm::vec3 origin_;
+    std::vector<glm::mat4> transforms_;  // per instance, from the origin (transformFrom)
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     std::vector<RTCScene> meshScenes_;  // per mesh (null where no instance uses it)

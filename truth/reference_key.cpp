@@ -13,7 +13,9 @@ namespace {
 
 // Bump whenever the reference's model or sampling changes: old cached images then miss.
 // 2: the specular with the DFG table and Kulla-Conty multiple scattering (shade::shadeSurface).
-constexpr uint64_t kReferenceVersion = 2;
+// 3: positions measured from the scene's origin (Scene::origin()), and the march's relative
+//    maxDistance (the same image to within float rounding, not to the bit).
+constexpr uint64_t kReferenceVersion = 3;
 
 // Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
 class Fnv1a {
