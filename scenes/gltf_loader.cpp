@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 
+#include "scenes/gltf_compression.h"
 #include "scenes/gltf_textures.h"
 #include "scenes/mesh_builders.h"
 
@@ -150,9 +151,7 @@ std::string topLevelTypeProblem(const std::string& json) {
 }
 
 // The JSON text of a .gltf, or the JSON chunk of a .glb (already validated by tinygltf).
-std::string jsonText(const std::string& path, bool binary) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+std::string jsonText(const std::string& bytes, bool binary) {
     if (!binary) return bytes;
     if (bytes.size() < 20) return "";
     uint32_t length = 0;
@@ -160,25 +159,48 @@ std::string jsonText(const std::string& path, bool binary) {
     return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
 }
 
+// tinygltf's own base directory for a file's relative URIs (GetBaseDir in tiny_gltf.h), so a
+// file parsed from memory resolves them as one read from disk.
+std::string baseDir(const std::string& path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    return slash == std::string::npos ? "" : path.substr(0, slash);
+}
+
+// Compressed files (scenes/gltf_compression.h) are parsed from their adjusted bytes; every
+// other file as tinygltf reads it from disk. Then compressed data is decoded.
 tinygltf::Model readModel(const std::string& path, gltf::DataUriImages& dataUris) {
-    char magic[4] = {};
+    std::string bytes;
     {
         std::ifstream in(path, std::ios::binary);
         if (!in) throw SceneLoadError(path + ": cannot open file");
-        in.read(magic, 4);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(gltf::keepDataUriImage, &dataUris);
     tinygltf::Model model;
     std::string err, warn;
     // The container is chosen by content, not by extension: a renamed file still loads.
-    const bool binary = std::memcmp(magic, "glTF", 4) == 0;
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    gltf::CompressionFixups fixups;
+    const std::optional<std::string> fixed = gltf::withCompressionFixups(bytes, binary, &fixups);
+    if (fixed && fixed->size() > std::numeric_limits<unsigned>::max())
+        throw SceneLoadError(path + ": file too large (tinygltf reads at most 4 GiB)");
+    bool ok = false;
+    if (fixed && binary)
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                         reinterpret_cast<const unsigned char*>(fixed->data()),
+                                         unsigned(fixed->size()), baseDir(path));
+    else if (fixed)
+        ok = loader.LoadASCIIFromString(&model, &err, &warn, fixed->data(), unsigned(fixed->size()),
+                                        baseDir(path));
+    else
+        ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                    : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok || !err.empty())
         throw SceneLoadError(path + ": " + oneLine(err.empty() ? "cannot parse glTF" : err));
-    const std::string problem = topLevelTypeProblem(jsonText(path, binary));
+    const std::string problem = topLevelTypeProblem(jsonText(bytes, binary));
     if (!problem.empty()) throw SceneLoadError(path + ": wrong JSON type: " + problem);
+    gltf::decompress(model, fixups);
     return model;
 }
 

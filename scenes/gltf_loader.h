@@ -32,6 +32,8 @@ public:
 // samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
 // Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
 // occlusion textures are checked (indices in range, image files exist) but not used.
+// Geometry: plain, or compressed with KHR_draco_mesh_compression or EXT_meshopt_compression
+// (decoded first, then checked as plain data: scenes/gltf_compression.h).
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
@@ -50,7 +52,8 @@ struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
 inline const std::vector<std::string> kSupportedGltfExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);

@@ -418,16 +418,17 @@ TEST_CASE("gltf warnings: points and lines are skipped with one line, the triang
 TEST_CASE("gltf warnings: a required extension ssrt cannot honour is an error naming it") {
     TempDir dir("gltf-warn");
     Knobs k;
-    k.extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"],)"
-              R"( "extensionsRequired": ["KHR_draco_mesh_compression"])";
-    checkRefused(writeGltf(dir, "draco.gltf", k),
-                 "extension KHR_draco_mesh_compression is required but not supported");
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_sheen"],)"
+              R"( "extensionsRequired": ["KHR_materials_sheen"])";
+    checkRefused(writeGltf(dir, "sheen.gltf", k),
+                 "extension KHR_materials_sheen is required but not supported");
     // Volume is not applied, so a file that requires it is refused too.
-    k.extra = R"(, "extensionsUsed": ["KHR_materials_volume", "EXT_meshopt_compression"],)"
-              R"( "extensionsRequired": ["KHR_materials_volume", "EXT_meshopt_compression",)"
-              R"( "KHR_materials_emissive_strength", "KHR_texture_transform"])";
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_volume", "KHR_materials_transmission"],)"
+              R"( "extensionsRequired": ["KHR_materials_volume", "KHR_materials_transmission",)"
+              R"( "KHR_materials_emissive_strength", "KHR_texture_transform",)"
+              R"( "KHR_draco_mesh_compression", "EXT_meshopt_compression"])";
     checkRefused(writeGltf(dir, "two.gltf", k),
-                 "extensions KHR_materials_volume and EXT_meshopt_compression are "
+                 "extensions KHR_materials_volume and KHR_materials_transmission are "
                  "required but not supported");
 }
 
