@@ -30,15 +30,16 @@ public:
 // Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
 // OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
 // samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
-// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
-// occlusion textures are checked (indices in range, image files exist) but not used.
+// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Normal (linear, with
+// its scale), occlusion (linear, with its strength) and emissive (sRGB) textures likewise,
+// each with its own texCoord and transform; TANGENT into Mesh::tangents (generated where a
+// normal map needs them and the file has none, scenes/tangents.h).
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
-// cameras other than the one used and orthographic cameras, emissive, normal and occlusion
-// textures, alphaMode MASK and BLEND, sampler filters other than trilinear, COLOR_0, skins,
+// cameras other than the one used and orthographic cameras, alphaMode MASK and BLEND, sampler filters other than trilinear, COLOR_0, skins,
 // animations and morph targets. kSupportedGltfExtensions are the extensions ssrt honours; one
 // in extensionsRequired that is not among them is an error naming it.
 //
