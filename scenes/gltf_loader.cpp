@@ -265,11 +265,10 @@ float readComponent(const AccessorView& v, std::size_t element, int component) {
 template <int N>
 std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
                                             bool floatOnly) {
-    const AccessorView v =
-        viewAccessor(ctx, index, role,
-                     N == 2   ? TINYGLTF_TYPE_VEC2
-                     : N == 3 ? TINYGLTF_TYPE_VEC3
-                              : TINYGLTF_TYPE_VEC4);
+    const AccessorView v = viewAccessor(ctx, index, role,
+                                        N == 2   ? TINYGLTF_TYPE_VEC2
+                                        : N == 3 ? TINYGLTF_TYPE_VEC3
+                                                 : TINYGLTF_TYPE_VEC4);
     const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
     const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
@@ -509,15 +508,14 @@ float finiteFactor(const Context& ctx, const std::string& name, const char* what
 // and the emissive texture (sRGB), each with its texCoord and KHR_texture_transform.
 void convertMaterialMaps(const Context& ctx, const std::string& name, const tinygltf::Material& g,
                          Material& m) {
-    m.normalTexture = texture(ctx, name, plainTextureInfo(g.normalTexture),
-                              TextureEncoding::Linear, &m.normalUv);
+    m.normalTexture =
+        texture(ctx, name, plainTextureInfo(g.normalTexture), TextureEncoding::Linear, &m.normalUv);
     m.normalScale = finiteFactor(ctx, name, "normalTexture.scale", g.normalTexture.scale);
     m.occlusionTexture = texture(ctx, name, plainTextureInfo(g.occlusionTexture),
                                  TextureEncoding::Linear, &m.occlusionUv);
     m.occlusionStrength =
         unitFactor(ctx, name, "occlusionTexture.strength", g.occlusionTexture.strength);
-    m.emissiveTexture =
-        texture(ctx, name, g.emissiveTexture, TextureEncoding::Srgb, &m.emissiveUv);
+    m.emissiveTexture = texture(ctx, name, g.emissiveTexture, TextureEncoding::Srgb, &m.emissiveUv);
 }
 
 Material convertMaterial(const Context& ctx, std::size_t index) {

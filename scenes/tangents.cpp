@@ -73,9 +73,8 @@ glm::vec4 worldTangent(const glm::mat4& transform, glm::vec4 t) {
 }
 
 glm::vec3 perturbNormal(glm::vec3 n, glm::vec4 tangent, glm::vec3 texel, float scale) {
-    const glm::vec3 m = glm::normalize(
-        glm::vec3((texel.x * 2.0f - 1.0f) * scale, (texel.y * 2.0f - 1.0f) * scale,
-                  texel.z * 2.0f - 1.0f));
+    const glm::vec3 m = glm::normalize(glm::vec3(
+        (texel.x * 2.0f - 1.0f) * scale, (texel.y * 2.0f - 1.0f) * scale, texel.z * 2.0f - 1.0f));
     const glm::vec3 t0 = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
     if (!usable(t0)) return n;
     const glm::vec3 t = glm::normalize(t0);

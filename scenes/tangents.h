@@ -20,8 +20,8 @@ namespace ssrt {
 // image, so glTF's bitangent is -dP/dv: a plain quad with u right and v down gets w = +1, as
 // its TANGENT attribute (1, 0, 0, 1) would say.)
 // Where this differs from MikkTSpace, which the glTF specification recommends: MikkTSpace
-// weights each corner by its angle and normalises the triangles' vectors first, and splits a vertex whose
-// triangles disagree in handedness (mirrored UVs) into two; here such a vertex keeps the
+// weights each corner by its angle and normalises the triangles' vectors first, and splits a vertex
+// whose triangles disagree in handedness (mirrored UVs) into two; here such a vertex keeps the
 // sum's direction and handedness. On meshes without mirrored UV seams the directions agree
 // up to the weighting; a file that needs MikkTSpace's exact tangents should carry TANGENT.
 // A vertex without usable UVs (no UV set, or degenerate triangles only) gets a tangent

@@ -495,8 +495,7 @@ TEST_CASE("gltf warnings: alpha modes and filters that are not applied are named
               R"( "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
     std::string json = jsonOf(k, "");
     const std::string at = R"("doubleSided")";
-    json.replace(json.find(at), 0,
-                 R"("alphaMode": "MASK", )");
+    json.replace(json.find(at), 0, R"("alphaMode": "MASK", )");
     const std::string path = dir.file("material.gltf");
     writeFile(path, json);
     CHECK(warningsOf(path) ==

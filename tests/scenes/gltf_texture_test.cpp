@@ -69,8 +69,8 @@ struct Quad {
     std::string pbr =
         R"("baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1})";
     std::string attributes = R"({"POSITION": 0, "TEXCOORD_0": 1})";
-    std::string maps;            // more members of the material, each starting with a comma
-    std::size_t imageBytes = 0;  // > 0: the image is buffer view 3, after the quad (GLB)
+    std::string maps;             // more members of the material, each starting with a comma
+    std::size_t imageBytes = 0;   // > 0: the image is buffer view 3, after the quad (GLB)
     std::vector<float> tangents;  // non-empty: accessor 3 (VEC4) in buffer view 3 (.gltf)
 };
 
@@ -101,9 +101,9 @@ std::string quadJson(const Quad& q, const std::string& bufferUri, std::size_t bi
            R"( "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 4},)"
            R"( {"bufferView": 1, "componentType": 5126, "type": "VEC2", "count": 4},)"
            R"( {"bufferView": 2, "componentType": 5123, "type": "SCALAR", "count": 6})" +
-           tangents + R"(], "bufferViews": )" +
-           views + R"(, "buffers": [)" + buffer + "]" + R"(, "images": )" + q.images +
-           R"(, "textures": )" + q.textures + R"(, "samplers": )" + q.samplers + "}";
+           tangents + R"(], "bufferViews": )" + views + R"(, "buffers": [)" + buffer + "]" +
+           R"(, "images": )" + q.images + R"(, "textures": )" + q.textures + R"(, "samplers": )" +
+           q.samplers + "}";
 }
 
 void writeFile(const std::string& path, const std::vector<unsigned char>& bytes) {
