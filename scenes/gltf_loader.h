@@ -41,8 +41,8 @@ public:
 // ssrt does not support, point and spot lights and directional lights after the first,
 // cameras other than the one used and orthographic cameras, alphaMode MASK and BLEND, sampler
 // filters other than trilinear, COLOR_0, skins, animations and morph targets.
-// kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is not
-// among them is an error naming it.
+// kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is
+// not among them is an error naming it.
 //
 // Throws SceneLoadError for anything malformed: it never returns a partial scene.
 struct GltfLoadOptions {

@@ -15,15 +15,17 @@ namespace ssrt {
 // `uvSet` (0: Mesh::uvs, 1: Mesh::uvs1), after Lengyel 2001, "Computing Tangent Space Basis
 // Vectors for an Arbitrary Mesh": each triangle's dP/du and dP/dv, from its edges and UV
 // differences, summed per vertex unnormalised (as Lengyel does), then Gram-Schmidt against
-// the normal; w says whether the bitangent w cross(n, t)
-// points along -dP/dv. (glTF's v runs down the image while a normal map's +Y is up the
-// image, so glTF's bitangent is -dP/dv: a plain quad with u right and v down gets w = +1, as
-// its TANGENT attribute (1, 0, 0, 1) would say.)
+// the normal; w says whether the bitangent w cross(n, t) points along -dP/dv. (glTF's v runs
+// down the image while a normal map's +Y is up the image, so glTF's bitangent is -dP/dv: a
+// plain quad with u right and v down gets w = +1, as its TANGENT (1, 0, 0, 1) would say.)
+//
 // Where this differs from MikkTSpace, which the glTF specification recommends: MikkTSpace
-// weights each corner by its angle and normalises the triangles' vectors first, and splits a vertex
-// whose triangles disagree in handedness (mirrored UVs) into two; here such a vertex keeps the
-// sum's direction and handedness. On meshes without mirrored UV seams the directions agree
-// up to the weighting; a file that needs MikkTSpace's exact tangents should carry TANGENT.
+// weights each corner by its angle and normalises the triangles' vectors first, and splits a
+// vertex whose triangles disagree in handedness (mirrored UVs) into two; here such a vertex
+// keeps the sum's direction and handedness. On meshes without mirrored UV seams the
+// directions agree up to the weighting; a file that needs MikkTSpace's exact tangents should
+// carry TANGENT.
+//
 // A vertex without usable UVs (no UV set, or degenerate triangles only) gets a tangent
 // perpendicular to its normal, w = +1.
 std::vector<glm::vec4> generateTangents(const Mesh& mesh, int uvSet);
