@@ -114,6 +114,7 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
 }
 
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
+static_assert(sizeof(Frame::Scratch::tangent) / sizeof(PlaneF) == kResolveTangentOutputs);
 
 // The G-buffer of the visible pixels (and their UVs for the texture pass).
 ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
@@ -155,13 +156,34 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
             p.ensureSize(c.grid.width, c.grid.height);
             ra.out[kResolveOutputs + i] = p.row(0);
         }
+        // The tangent frame after the UV planes, for the normal maps.
+        if (!tables.tangent[0].empty())
+            for (int i = 0; i < kResolveTangentOutputs; ++i) {
+                ra.tangent[i] = tables.tangent[i].data();
+                PlaneF& p = frame.scratch.tangent[i];
+                p.ensureSize(c.grid.width, c.grid.height);
+                ra.out[kResolveOutputs + planes + i] = p.row(0);
+            }
     }
     const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
     return tables;
 }
 
-// Base colour, metallic and roughness texels into the G-buffer.
+// The material planes the scene needs (emission, occlusion) at the frame's size; the others
+// emptied.
+void ensureMaterialPlanes(const FrameContext& c, const Scene& scene, MaterialPlanes& m) {
+    const auto keepIf = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(c.grid.width, c.grid.height);
+        else p = PlaneF();
+    };
+    const bool emissive = anyEmissiveTextured(scene);
+    for (PlaneF& p : m.emission) keepIf(emissive, p);
+    keepIf(anyOcclusionTextured(scene), m.occlusion);
+}
+
+// Base colour, metallic-roughness and normal-map texels into the G-buffer; emission and
+// occlusion into the material planes.
 void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const ScopedPass timer(frame.stats, "textures");
     GBuffer& g = frame.gbuffer;
@@ -174,6 +196,15 @@ void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     for (int i = 0; i < 3; ++i) tp.albedo[i] = &g.albedo[i];
     tp.metallic = &g.metallic;
     tp.roughness = &g.roughness;
+    if (anyNormalMapped(scene))
+        for (int i = 0; i < 4; ++i) {
+            tp.tangent[i] = &frame.scratch.tangent[i];
+            if (i < 3) tp.normal[i] = &g.normal[i];
+        }
+    MaterialPlanes& m = frame.material;
+    if (!m.emission[0].empty())
+        for (int i = 0; i < 3; ++i) tp.emission[i] = &m.emission[i];
+    if (!m.occlusion.empty()) tp.occlusion = &m.occlusion;
     applyTextures(scene, tp, c.grid, c.threads);
 }
 
@@ -211,6 +242,7 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
+    setDirectMaterialPlanes(frame.material, da);
     da.width = c.grid.width;
     da.height = c.grid.height;
     da.tilesX = c.grid.tilesX;
@@ -248,6 +280,7 @@ std::vector<PlaneRef> Frame::layers() const {
     };
     image.forEachPlane(add);
     gbuffer.forEachPlane(add);
+    material.forEachPlane(add);
     ids.forEachPlane(add);
     trace.ssr.forEachPlane(add);
     trace.ssgi.forEachPlane(add);
@@ -303,6 +336,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);
     const bool textured = anyTextured(scene);
+    ensureMaterialPlanes(c, scene, frame.material);
     const ResolveTables tables = resolvePass(c, scene, textured, frame);
     if (textured) texturePass(c, scene, frame);
     if (settings_.idPlanes) idPass(c, tables.triangles, frame);

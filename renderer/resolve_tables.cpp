@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/tiles.h"
+#include "scenes/tangents.h"
 
 namespace ssrt {
 
@@ -20,7 +21,49 @@ bool anyUvSet1(const Scene& scene) {
                        [](const Material& m) { return m.usesUvSet1(); });
 }
 
+bool anyNormalMapped(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.normalTexture >= 0; });
+}
+
+bool anyOcclusionTextured(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.occlusionTexture >= 0; });
+}
+
+bool anyEmissiveTextured(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.emissiveTexture >= 0; });
+}
+
 namespace {
+
+// Per instance, the object-space tangents its normal map reads (the mesh's, or generated
+// from the map's UV set once per mesh and set), or null for instances without a normal map.
+std::vector<const std::vector<glm::vec4>*> instanceTangents(
+    const Scene& scene, std::vector<std::vector<glm::vec4>>& generated) {
+    std::vector<const std::vector<glm::vec4>*> out(scene.instances.size(), nullptr);
+    // Generated sets by (mesh, UV set): index into `generated`.
+    std::vector<int> slot(2 * scene.meshes.size(), -1);
+    generated.reserve(scene.instances.size());  // pointers into it stay valid
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        const Material& m = scene.materials[inst.material];
+        if (m.normalTexture < 0) continue;
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        if (!mesh.tangents.empty()) {
+            out[i] = &mesh.tangents;
+            continue;
+        }
+        int& s = slot[2 * inst.mesh + (m.normalUv.set == 1 ? 1 : 0)];
+        if (s < 0) {
+            s = int(generated.size());
+            generated.push_back(generateTangents(mesh, m.normalUv.set));
+        }
+        out[i] = &generated[std::size_t(s)];
+    }
+    return out;
+}
 
 ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, glm::vec3 origin,
                                 const glm::mat4& view, const glm::mat4& prevViewProj) {
@@ -82,6 +125,13 @@ ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm
         t.u1.resize(nv);
         t.v1.resize(nv);
     }
+    const bool tangents = textured && anyNormalMapped(scene);
+    std::vector<std::vector<glm::vec4>> generated;
+    std::vector<const std::vector<glm::vec4>*> objectTangents;
+    if (tangents) {
+        objectTangents = instanceTangents(scene, generated);
+        for (std::vector<float>& c : t.tangent) c.assign(nv, 0.0f);
+    }
     std::vector<glm::vec3> viewPos(nv);
     auto meshOf = [&](uint32_t i) -> const Mesh& { return scene.meshes[scene.instances[i].mesh]; };
     // View-space positions and world-space unit normals per vertex.
@@ -111,6 +161,10 @@ ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm
                     const glm::vec2 uv = mesh.uvs1.empty() ? glm::vec2(0.0f) : mesh.uvs1[v];
                     t.u1[g] = uv.x;
                     t.v1[g] = uv.y;
+                }
+                if (tangents && objectTangents[i]) {
+                    const glm::vec4 tw = worldTangent(inst.transform, (*objectTangents[i])[v]);
+                    for (int c = 0; c < 4; ++c) t.tangent[c][g] = tw[c];
                 }
             }
         });

@@ -50,7 +50,7 @@ struct Notes {
     std::size_t pointLights = 0, spotLights = 0, otherLights = 0, extraDirectional = 0;
     int usedCamera = -1;
     std::set<int> extraCameras, orthographicCameras;
-    std::vector<std::size_t> emissiveTextures, normalTextures, occlusionTextures, alphaModes;
+    std::vector<std::size_t> alphaModes;
     std::size_t vertexColours = 0, morphTargets = 0;
 };
 
@@ -287,8 +287,10 @@ float readComponent(const AccessorView& v, std::size_t element, int component) {
 template <int N>
 std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
                                             bool floatOnly) {
-    const AccessorView v =
-        viewAccessor(ctx, index, role, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3);
+    const AccessorView v = viewAccessor(ctx, index, role,
+                                        N == 2   ? TINYGLTF_TYPE_VEC2
+                                        : N == 3 ? TINYGLTF_TYPE_VEC3
+                                                 : TINYGLTF_TYPE_VEC4);
     const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
     const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
@@ -424,14 +426,27 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
         if (mesh.uvs1.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_1 count differs from POSITION count");
     }
+    const int tan = attribute(p, "TANGENT");
+    if (tan >= 0) {
+        mesh.tangents = readVectors<4>(ctx, tan, "TANGENT", true);
+        if (mesh.tangents.size() != mesh.positions.size())
+            ctx.fail(name + ": TANGENT count differs from POSITION count");
+        // xyz unit and w = +-1, as the specification requires of the file (lenient on
+        // rounding: w's sign is what counts).
+        for (glm::vec4& t : mesh.tangents) {
+            const glm::vec3 d(t);
+            const float len = glm::length(d);
+            t = glm::vec4(len > 0.0f ? d / len : d, t.w < 0.0f ? -1.0f : 1.0f);
+        }
+    }
     return mesh;
 }
 
 // ---------------------------------------------------------------------------------------
 // Materials and textures
 
-// Every texture a material names must exist, even those ssrt does not use (emissive,
-// normal, occlusion): a scene never renders silently without its textures.
+// Every texture a material names must exist: a scene never renders silently without its
+// textures.
 void checkTexture(const Context& ctx, const std::string& name, int textureIndex) {
     if (textureIndex < 0) return;
     const tinygltf::Model& m = ctx.model;
@@ -494,6 +509,37 @@ float emissiveStrength(const Context& ctx, const std::string& name, const tinygl
     return float(v.GetNumberAsDouble());
 }
 
+// The normal and occlusion references as plain texture references (index, texCoord and
+// extensions: what textureTransform and the texture table read).
+template <class Info>
+tinygltf::TextureInfo plainTextureInfo(const Info& info) {
+    tinygltf::TextureInfo t;
+    t.index = info.index;
+    t.texCoord = info.texCoord;
+    t.extensions = info.extensions;
+    return t;
+}
+
+float finiteFactor(const Context& ctx, const std::string& name, const char* what, double v) {
+    if (!std::isfinite(v)) ctx.fail(name + ": " + what + " is not finite");
+    return float(v);
+}
+
+// glTF 2.0 sections 3.9.3-3.9.5: the normal texture with its scale (linear), the occlusion
+// texture with its strength (linear, R; clamped to [0, 1] as the specification bounds it)
+// and the emissive texture (sRGB), each with its texCoord and KHR_texture_transform.
+void convertMaterialMaps(const Context& ctx, const std::string& name, const tinygltf::Material& g,
+                         Material& m) {
+    m.normalTexture =
+        texture(ctx, name, plainTextureInfo(g.normalTexture), TextureEncoding::Linear, &m.normalUv);
+    m.normalScale = finiteFactor(ctx, name, "normalTexture.scale", g.normalTexture.scale);
+    m.occlusionTexture = texture(ctx, name, plainTextureInfo(g.occlusionTexture),
+                                 TextureEncoding::Linear, &m.occlusionUv);
+    m.occlusionStrength =
+        unitFactor(ctx, name, "occlusionTexture.strength", g.occlusionTexture.strength);
+    m.emissiveTexture = texture(ctx, name, g.emissiveTexture, TextureEncoding::Srgb, &m.emissiveUv);
+}
+
 Material convertMaterial(const Context& ctx, std::size_t index) {
     const tinygltf::Material& g = ctx.model.materials[index];
     const std::string name = "material " + str(index);
@@ -511,14 +557,12 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     checkTexture(ctx, name, g.emissiveTexture.index);
     checkTexture(ctx, name, g.normalTexture.index);
     checkTexture(ctx, name, g.occlusionTexture.index);
-    if (g.emissiveTexture.index >= 0) ctx.notes.emissiveTextures.push_back(index);
-    if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
-    if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
     if (g.alphaMode != "OPAQUE") ctx.notes.alphaModes.push_back(index);
     m.baseColorTexture =
         texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb, &m.baseColorUv);
     m.metallicRoughnessTexture = texture(ctx, name, pbr.metallicRoughnessTexture,
                                          TextureEncoding::Linear, &m.metallicRoughnessUv);
+    convertMaterialMaps(ctx, name, g, m);
     return m;
 }
 
@@ -846,14 +890,6 @@ std::vector<std::string> warningLines(const Context& ctx) {
     if (!n.orthographicCameras.empty())
         lines.push_back(named("orthographic camera", n.orthographicCameras) +
                         " ignored (only perspective cameras are supported)");
-    const auto notApplied = [&](const std::vector<std::size_t>& materials, const char* what) {
-        if (!materials.empty())
-            lines.push_back(std::string(what) + " are not applied yet (" +
-                            named("material", materials) + ")");
-    };
-    notApplied(n.emissiveTextures, "emissive textures");
-    notApplied(n.normalTextures, "normal textures");
-    notApplied(n.occlusionTextures, "occlusion textures");
     if (!n.alphaModes.empty())
         lines.push_back("alphaMode MASK and BLEND are not applied (" +
                         named("material", n.alphaModes) +

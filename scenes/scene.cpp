@@ -108,6 +108,9 @@ void Scene::validate() const {
         if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size())
             throw std::invalid_argument("mesh " + std::to_string(m) +
                                         ": second UV set's count differs from position count");
+        if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size())
+            throw std::invalid_argument("mesh " + std::to_string(m) +
+                                        ": tangent count differs from position count");
         for (uint32_t i : mesh.indices)
             if (i >= mesh.positions.size())
                 throw std::invalid_argument("mesh " + std::to_string(m) + ": index " +
@@ -122,15 +125,21 @@ void Scene::validate() const {
                                         std::to_string(instances[i].material));
     }
     for (std::size_t m = 0; m < materials.size(); ++m) {
-        for (int32_t t : {materials[m].baseColorTexture, materials[m].metallicRoughnessTexture})
+        const Material& mat = materials[m];
+        for (int32_t t : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture,
+                          mat.occlusionTexture, mat.emissiveTexture})
             if (t < -1 ||
                 (t >= 0 && (std::size_t(t) >= textures.size() || textures[t].levels.empty())))
                 throw std::invalid_argument("material " + std::to_string(m) + ": no texture " +
                                             std::to_string(t));
-        for (int set : {materials[m].baseColorUv.set, materials[m].metallicRoughnessUv.set})
+        for (int set : {mat.baseColorUv.set, mat.metallicRoughnessUv.set, mat.normalUv.set,
+                        mat.occlusionUv.set, mat.emissiveUv.set})
             if (set != 0 && set != 1)
                 throw std::invalid_argument("material " + std::to_string(m) + ": no UV set " +
                                             std::to_string(set));
+        if (!std::isfinite(mat.normalScale) || !std::isfinite(mat.occlusionStrength))
+            throw std::invalid_argument("material " + std::to_string(m) +
+                                        ": normal scale or occlusion strength not finite");
     }
 }
 

@@ -12,13 +12,17 @@
 namespace ssrt {
 
 // Indexed triangles; normals per vertex (same count as positions), UVs optional: two sets
-// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position.
+// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position; tangents optional too.
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
-    std::vector<glm::vec2> uvs1;    // the second set, for textures with UvTransform::set 1
+    std::vector<glm::vec2> uvs1;  // the second set, for textures with UvTransform::set 1
+    // glTF's TANGENT: xyz the unit tangent (along +u), w = +-1 the handedness, bitangent =
+    // w cross(normal, tangent). Empty: generated where a normal map needs them
+    // (scenes/tangents.h).
+    std::vector<glm::vec4> tangents;
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
 
     std::size_t triangleCount() const { return indices.size() / 3; }
@@ -59,12 +63,30 @@ struct Material {
     int32_t baseColorTexture = -1;
     int32_t metallicRoughnessTexture = -1;
     UvTransform baseColorUv, metallicRoughnessUv;  // identity: the mesh's UVs as they are
+    // Normal, occlusion and emissive textures (glTF 2.0 section 3.9.3-3.9.5), -1 when absent.
+    //   normal:    linear tangent-space normals, n = normalize((2 texel - 1) (scale, scale, 1))
+    //              in the frame (tangent, bitangent, normal) of Mesh::tangents;
+    //   occlusion: linear, R: occlusion = 1 + strength (R - 1), on indirect light only (the
+    //              sky's diffuse and specular, SSR and SSGI; not the sun, not emission);
+    //   emissive:  sRGB decoded (as base colour), RGB multiplies `emissive`.
+    int32_t normalTexture = -1;
+    int32_t occlusionTexture = -1;
+    int32_t emissiveTexture = -1;
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    UvTransform normalUv, occlusionUv, emissiveUv;
 
-    bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
+    bool textured() const {
+        return baseColorTexture >= 0 || metallicRoughnessTexture >= 0 || normalTexture >= 0 ||
+               occlusionTexture >= 0 || emissiveTexture >= 0;
+    }
     // Whether a texture of this material reads the second UV set.
     bool usesUvSet1() const {
         return (baseColorTexture >= 0 && baseColorUv.set == 1) ||
-               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1);
+               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1) ||
+               (normalTexture >= 0 && normalUv.set == 1) ||
+               (occlusionTexture >= 0 && occlusionUv.set == 1) ||
+               (emissiveTexture >= 0 && emissiveUv.set == 1);
     }
 };
 

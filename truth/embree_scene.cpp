@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/tangents.h"
+
 namespace ssrt {
 
 namespace {
@@ -79,6 +81,13 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene), origin_(scene.orig
     rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
     const auto t0 = std::chrono::steady_clock::now();
     meshScenes_.assign(scene.meshes.size(), nullptr);
+    for (auto& t : tangents_) t.assign(scene.meshes.size(), {});
+    for (const Instance& inst : scene.instances) {
+        const Material& m = scene.materials[inst.material];
+        const int set = m.normalUv.set == 1 ? 1 : 0;
+        if (m.normalTexture >= 0 && tangents_[set][inst.mesh].empty())
+            tangents_[set][inst.mesh] = meshTangents(scene.meshes[inst.mesh], set);
+    }
     top_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
@@ -228,7 +237,23 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
         texel(scene_, mat.metallicRoughnessTexture, mat.metallicRoughnessUv, s, glm::vec3(1.0f));
     s.metallic = std::clamp(mat.metallic * mr.b, 0.0f, 1.0f);
     s.roughness = std::clamp(mat.roughness * mr.g, 0.0f, 1.0f);
-    s.emissive = mat.emissive;
+    s.emissive =
+        mat.emissive * texel(scene_, mat.emissiveTexture, mat.emissiveUv, s, glm::vec3(1.0f));
+    if (mat.occlusionTexture >= 0)
+        s.occlusion =
+            1.0f +
+            mat.occlusionStrength *
+                (texel(scene_, mat.occlusionTexture, mat.occlusionUv, s, glm::vec3(1.0f)).r - 1.0f);
+    if (mat.normalTexture >= 0) {
+        // The world tangents at the corners, interpolated, as the resolve interpolates them.
+        const std::vector<glm::vec4>& t = tangents_[mat.normalUv.set == 1 ? 1 : 0][inst.mesh];
+        const glm::vec4 tangent = w0 * worldTangent(inst.transform, t[idx[0]]) +
+                                  h.u * worldTangent(inst.transform, t[idx[1]]) +
+                                  h.v * worldTangent(inst.transform, t[idx[2]]);
+        const glm::vec3 map =
+            texel(scene_, mat.normalTexture, mat.normalUv, s, glm::vec3(0.5f, 0.5f, 1.0f));
+        s.shadingNormal = perturbNormal(s.shadingNormal, tangent, map, mat.normalScale);
+    }
     s.doubleSided = mat.doubleSided;
     return s;
 }

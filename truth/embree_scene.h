@@ -46,13 +46,15 @@ struct EmbreeHit {
 struct SurfacePoint {
     glm::vec3 position{0.0f};
     glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f};  // unit, the triangle's front side (CCW)
-    glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};    // unit, interpolated vertex normals
-    glm::vec2 uv{0.0f};                           // (0, 0) for a mesh without UVs
-    glm::vec2 uv1{0.0f};                          // the second set, likewise
+    // unit, interpolated vertex normals, bent by the material's normal map (level 0)
+    glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};
+    glm::vec2 uv{0.0f};   // (0, 0) for a mesh without UVs
+    glm::vec2 uv1{0.0f};  // the second set, likewise
     uint32_t instance = 0, material = 0;
     glm::vec3 baseColor{0.0f};  // material factor times its texture (level 0, bilinear)
     float metallic = 0.0f, roughness = 0.0f;
-    glm::vec3 emissive{0.0f};
+    glm::vec3 emissive{0.0f};  // factor times its texture (level 0, bilinear)
+    float occlusion = 1.0f;    // 1 + strength (R - 1) of the occlusion texture, 1 without
     bool doubleSided = false;
 };
 
@@ -103,6 +105,9 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     std::vector<RTCScene> meshScenes_;  // per mesh (null where no instance uses it)
+    // Per mesh and UV set, the object-space tangents a normal map reads (scenes/tangents.h,
+    // meshTangents), filled only where an instance's material has a normal map.
+    std::vector<std::vector<glm::vec4>> tangents_[2];
     BvhStats stats_;
     std::atomic<int64_t> bytes_{0};
 };

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "material_maps.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -85,7 +86,8 @@ void addSecondUvSet(Scene& scene) {
 }
 
 // A built-in scene by name; "NAME+sky" lights it with testSky() instead, "NAME+tex" gives
-// every material addTestTextures(), "NAME+uv1" addSecondUvSet().
+// every material addTestTextures(), "NAME+uv1" addSecondUvSet(), "NAME+maps" the test
+// textures and normal, occlusion and emissive maps (tests/material_maps.h).
 Scene sceneNamed(const std::string& name) {
     const std::size_t plus = name.find('+');
     Scene scene = makeBuiltinScene(name.substr(0, plus));
@@ -98,6 +100,9 @@ Scene sceneNamed(const std::string& name) {
         addTestTextures(scene);
     } else if (variant == "+uv1") {
         addSecondUvSet(scene);
+    } else if (variant == "+maps") {
+        addTestTextures(scene);
+        test::addMaterialMaps(scene);
     }
     return scene;
 }
@@ -165,7 +170,8 @@ const std::map<std::string, uint64_t> kGolden = {
 TEST_CASE("every ISA and thread count renders the same bits") {
     for (const std::string scene :
          {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex", "cornell@hiz",
-          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1"}) {
+          "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1",
+          "cornell+maps", "cornell+maps@hiz", "spheres+maps@dda/mip"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
@@ -195,9 +201,9 @@ TEST_CASE("built-in scenes keep their golden hashes") {
 TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky, textured") {
     std::vector<std::string> names;
     for (const auto& info : builtinScenes())
-        names.insert(names.end(),
-                     {info.name, info.name + "+sky", info.name + "+tex", info.name + "@hiz",
-                      info.name + "+sky@dda/mip", info.name + "+tex@linear"});
+        names.insert(names.end(), {info.name, info.name + "+sky", info.name + "+tex",
+                                   info.name + "@hiz", info.name + "+sky@dda/mip",
+                                   info.name + "+tex@linear", info.name + "+maps@hiz"});
     for (const std::string& name : names) {
         CAPTURE(name);
         const Frame f = renderSmall(name, defaultIsa(), 2);
