@@ -156,11 +156,10 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
-ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const RenderSettings& render) {
+ReferenceSettings referenceSettingsFrom(const TruthOptions& o) {
     ReferenceSettings r;
     r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
     r.visibility = parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
-    r.maxDistance = render.trace.march.maxDistance;
     r.validate();
     return r;
 }
@@ -199,11 +198,12 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
-    const ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings);
+    ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
     loadScene(request, err);
     const Scene& scene = request.scene;
+    refSettings.maxDistance = marchLengths(settings.trace.march, scene.diagonal()).maxDistance;
     const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
     if (progress)

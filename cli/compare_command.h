@@ -44,7 +44,9 @@ ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& e
 
 // Registers the reference, check and cache options (shared with sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);
-ReferenceSettings referenceSettingsFrom(const TruthOptions& options, const RenderSettings& render);
+// The reference's settings from the options; its maxDistance is the march's, which the
+// caller sets once the scene (its diagonal) is known.
+ReferenceSettings referenceSettingsFrom(const TruthOptions& options);
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& options);
 
 CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);

@@ -262,7 +262,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     list("--ssr-methods", o.ssrMethods, "SSR samplers: " + renderField("ssrMethod").choiceList());
     list("--ssr-spp", o.ssrSpp, "SSR rays per pixel");
     list("--ssgi-spp", o.ssgiSpp, "SSGI rays per pixel");
-    list("--thickness", o.thickness, "Depth-buffer thickness (view-space units)");
+    list("--thickness", o.thickness,
+         "Depth-buffer thickness (fractions of view depth, as --thickness)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
     cmd->add_flag("--trace-hidden", o.traceHidden,
                   "Every setting also traces the rays the composite hides (SSR past the "
@@ -283,7 +284,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     std::vector<RenderSettings> settings;
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
     checkCsvPath(o.output);
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -311,7 +312,8 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                       << describe(points[i]) << "\n";
         // The reference follows the setting's SSR sampler (cached per sampler).
         ReferenceSettings refSettings = refBase;
-        refSettings.maxDistance = settings[i].trace.march.maxDistance;
+        refSettings.maxDistance =
+            marchLengths(settings[i].trace.march, scene.diagonal()).maxDistance;
         bool fromCache = false;
         RenderSettings refRender = settings[i];
         if (!points[i].traced) refRender.trace = request.settings.trace;

@@ -221,8 +221,9 @@ const RayKind& rayKind(Workload& w, SsrMethod method) {
     k = std::make_unique<RayKind>();
     const RayGenGBuffer rg{&w.viewZ, {&w.normal[0], &w.normal[1], &w.normal[2]}, &w.roughness};
     generateSpecularRays(defaultIsa(), method, 0, 0, w.camera, rg, k->rays, 0);
-    k->world = toWorld(k->rays, w.viewToWorld(), w.scene.camera.position, w.embree->epsilon(),
-                       MarchSettings{}.maxDistance);
+    k->world =
+        toWorld(k->rays, w.viewToWorld(), w.scene.camera.position - w.embree->origin(),
+                w.embree->epsilon(), marchLengths(MarchSettings{}, w.scene.diagonal()).maxDistance);
     k->embreeT.resize(k->world.valid.size());
     traceEmbree(*w.embree, k->world, EmbreeMode::Single, 0, k->embreeT.data());
     for (float t : k->embreeT) k->embreeHits += t != kNoHit;

@@ -227,6 +227,11 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
     tv.triangleCount = triCount;
     tv.clip.resize(vertexCount);
     tv.screen.resize(vertexCount);
+    // Each instance's object-to-clip matrix, its translation taken relative to the origin in
+    // double first (transformFrom).
+    std::vector<glm::mat4> objectToClip;
+    for (const Instance& inst : scene.instances)
+        objectToClip.push_back(view.viewProj * transformFrom(inst.transform, view.origin));
     // Chunks of vertices across all instances, so one big mesh still uses every thread.
     constexpr uint32_t kChunk = 4096;
     parallelFor(int((vertexCount + kChunk - 1) / kChunk), threads, [&](int c) {
@@ -237,7 +242,7 @@ TransformedVertices transformVertices(const Scene& scene, const RasterView& view
         for (uint32_t v = begin; v < end; ++v) {
             while (i + 1 < tv.instanceOffset.size() && tv.instanceOffset[i + 1] <= v) ++i;
             const Instance& inst = scene.instances[i];
-            const glm::mat4 m = view.viewProj * inst.transform;
+            const glm::mat4& m = objectToClip[i];
             const glm::vec3& p = scene.meshes[inst.mesh].positions[v - tv.instanceOffset[i]];
             tv.clip[v] = m * glm::vec4(p, 1.0f);
             tv.screen[v] = insideClipVolume(tv.clip[v], view) ? toScreen(tv.clip[v], view)

@@ -15,7 +15,8 @@ namespace ssrt {
 
 // How the pass sees the scene.
 struct RasterView {
-    glm::mat4 viewProj{1.0f};
+    glm::mat4 viewProj{1.0f};  // of points measured from `origin`
+    glm::vec3 origin{0.0f};    // Scene::origin() for the frame's passes (transformFrom)
     int width = 0, height = 0;
     bool perspective = true;    // depth key 1/w (perspective) or 1 - z01 (orthographic)
     float nearW = 0.05f;        // near plane as clip-space w (perspective only)

@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kOutputs = kResolveOutputs;
-constexpr int kMaxOutputs = kResolveOutputs + kResolveUvSets * kResolveUvOutputs;
+constexpr int kMaxOutputs = kResolveMaxOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
@@ -27,16 +27,23 @@ enum Field {
     kAlbedo = 22, kMetallic = 25, kRoughness = 26, kMaterial = 27,
     kUv0 = 28, kUv1 = 30, kUv2 = 32,
     kSet1 = 34,  // the second UV set's three vertices, as kUv0..kUv2
-    kFieldCount = 40
+    kTangent = 40,  // three vertices' tangents, x y z w each
+    kFieldCount = 52
 };
 // clang-format on
 
-// The rows a frame gathers: the second UV set's only when it is used.
-SSRT_INLINE int fieldCount(const ResolveArgs& a) { return a.u1 ? kFieldCount : kSet1; }
+// The rows a frame gathers: the second UV set's only when it is used, the tangents only with
+// a normal map (then the second set's rows too, zero when unused).
+SSRT_INLINE int fieldCount(const ResolveArgs& a) {
+    return a.tangent[0] ? kFieldCount : a.u1 ? kTangent : kSet1;
+}
 
-// The planes a frame writes.
+// The UV planes a frame writes, and all of its planes.
+SSRT_INLINE int uvOutputCount(const ResolveArgs& a) {
+    return (a.u ? kResolveUvOutputs : 0) + (a.u1 ? kResolveUvOutputs : 0);
+}
 SSRT_INLINE int outputCount(const ResolveArgs& a) {
-    return kOutputs + (a.u ? kResolveUvOutputs : 0) + (a.u1 ? kResolveUvOutputs : 0);
+    return kOutputs + uvOutputCount(a) + (a.tangent[0] ? kResolveTangentOutputs : 0);
 }
 
 // Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
@@ -73,6 +80,12 @@ SSRT_INLINE void gatherLane(const ResolveArgs& a, uint32_t id, int l, Gathered& 
             g.f[kSet1 + 2 * v][l] = a.u1[t.v[v]];
             g.f[kSet1 + 2 * v + 1][l] = a.v1[t.v[v]];
         }
+    if (a.tangent[0]) {
+        if (!a.u1)
+            for (int k = kSet1; k < kTangent; ++k) g.f[k][l] = 0.0f;
+        for (int v = 0; v < 3; ++v)
+            for (int c = 0; c < 4; ++c) g.f[kTangent + 4 * v + c][l] = a.tangent[c][t.v[v]];
+    }
     for (int k = 0; k < 16; ++k) m[k * kW + l] = in.viewToPrevClip[k];
 }
 
@@ -144,6 +157,19 @@ SSRT_INLINE void uvAndDerivatives(const ResolveArgs& a, const Fields& g, const V
         o[3] = vx - v;
         o[4] = uy - u;
         o[5] = vy - v;
+    }
+}
+
+// The tangent frame at barycentrics (b1, b2): x y z w, each interpolated like the normal
+// (not normalised: the texture pass orthonormalises against the normal), negated with it on
+// a back face (`flip`).
+SSRT_INLINE void interpolateTangent(const Fields& g, Lane b1, Lane b2, ln::MaskOf<Lane> flip,
+                                    Lane* out) {
+    const Lane b0 = Lane(1.0f) - b1 - b2;
+    for (int c = 0; c < 4; ++c) {
+        const Lane t =
+            (g.f[kTangent + c] * b0 + g.f[kTangent + 4 + c] * b1) + g.f[kTangent + 8 + c] * b2;
+        out[c] = ln::select(flip, Lane(0.0f) - t, t);
     }
 }
 
@@ -231,6 +257,7 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
                               motionX, motionY};
     // clang-format on
     if (a.u) uvAndDerivatives(a, g, dir, b1, b2, outs + kOutputs);
+    if (a.tangent[0]) interpolateTangent(g, b1, b2, nd > zero, outs + kOutputs + uvOutputCount(a));
     for (int p = 0; p < outputs; ++p) {
         const Lane background = p == kMaterialOut ? Lane(-1.0f) : zero;
         ln::store(out[p] + o, ln::select(vis, outs[p], background));

@@ -29,6 +29,12 @@ inline constexpr int kResolveOutputs = 12;
 // du/dx, dv/dx, du/dy, dv/dy (per pixel, x right and y down), for the texture pass.
 inline constexpr int kResolveUvOutputs = 6;
 inline constexpr int kResolveUvSets = 2;  // TEXCOORD_0, and TEXCOORD_1 when u1 is set
+// With normal maps (ResolveArgs::tangent set): the interpolated world tangent xyz (not unit)
+// and its handedness w (between -1 and 1 where a triangle's vertices disagree), all four
+// negated where the normal is (a back face seen), so the whole tangent frame turns over.
+inline constexpr int kResolveTangentOutputs = 4;
+inline constexpr int kResolveMaxOutputs =
+    kResolveOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
 
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
@@ -49,9 +55,14 @@ struct ResolveArgs {
     // Needs u.
     const float* u1 = nullptr;
     const float* v1 = nullptr;
+    // World tangents per global vertex (x, y, z, w: Mesh::tangents through the instance's
+    // transform; zero for instances without a normal map), or all null: then no tangent
+    // outputs (a scene without normal maps gathers and writes nothing more).
+    const float* tangent[4] = {};
     // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId, motion XY, then the
-    // UV outputs of set 0 and of set 1 (all with outStride)
-    float* out[kResolveOutputs + kResolveUvSets * kResolveUvOutputs];
+    // UV outputs of set 0 (with u) and of set 1 (with u1), then the tangent outputs (with
+    // tangent), packed in that order (all with outStride)
+    float* out[kResolveMaxOutputs];
     std::size_t outStride;
 };
 

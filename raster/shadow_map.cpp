@@ -9,17 +9,20 @@ namespace ssrt {
 RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float& texelSize) {
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
-    const glm::vec3 center = 0.5f * (lo + hi);
+    const glm::vec3 center = 0.5f * (lo + hi);  // Scene::origin()
     const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     glm::vec3 dir = scene.light.direction;
     dir = glm::length(dir) > 0.0f ? glm::normalize(dir) : glm::vec3(0.0f, -1.0f, 0.0f);
     const glm::vec3 up = std::fabs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    const glm::mat4 view = glm::lookAt(center - dir * (2.0f * radius), center, up);
+    // Light view space about the centre, which is Scene::origin(): the map takes points
+    // measured from it (RasterView::origin), precise wherever the scene is.
+    const glm::mat4 view = glm::lookAt(-dir * (2.0f * radius), glm::vec3(0.0f), up);
     // Bounds of the box corners in light view space.
     glm::vec3 vlo(1e30f), vhi(-1e30f);
     for (int i = 0; i < 8; ++i) {
         const glm::vec3 corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-        const glm::vec3 v = glm::vec3(view * glm::vec4(corner, 1.0f));
+        const glm::vec3 v =
+            glm::vec3(view * glm::vec4(glm::vec3(glm::dvec3(corner) - glm::dvec3(center)), 1.0f));
         vlo = glm::min(vlo, v);
         vhi = glm::max(vhi, v);
     }
@@ -32,6 +35,7 @@ RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float&
     texelSize = std::max(vhi.x - vlo.x, vhi.y - vlo.y) / float(size);
     RasterView rv;
     rv.viewProj = proj * view;
+    rv.origin = center;
     rv.width = rv.height = size;
     rv.perspective = false;
     rv.cullBackFaces = false;  // every face casts a shadow

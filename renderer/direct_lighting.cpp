@@ -57,4 +57,10 @@ void setDirectGBuffer(const GBuffer& g, DirectArgs& a) {
     a.gStride = g.viewZ.stride();
 }
 
+void setDirectMaterialPlanes(const MaterialPlanes& m, DirectArgs& a) {
+    for (int c = 0; c < 3; ++c)
+        a.emissivePlane[c] = m.emission[c].empty() ? nullptr : m.emission[c].row(0);
+    a.occlusion = m.occlusion.empty() ? nullptr : m.occlusion.row(0);
+}
+
 }  // namespace ssrt

@@ -38,4 +38,9 @@ void setDirectLighting(const Scene& scene, const RenderSettings& settings, const
 // albedo RGB, metallic, roughness, materialId).
 void setDirectGBuffer(const GBuffer& gbuffer, DirectArgs& args);
 
+// Points args.emissivePlane and args.occlusion at the material planes the frame has (its
+// emission with emissive textures, its occlusion with occlusion textures), null where they
+// are empty; same stride as the G-buffer.
+void setDirectMaterialPlanes(const MaterialPlanes& planes, DirectArgs& args);
+
 }  // namespace ssrt

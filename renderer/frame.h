@@ -89,6 +89,23 @@ struct GBuffer : PlaneTable<GBuffer> {
     }
 };
 
+// Per-pixel material terms the texture pass writes when some material needs them, each
+// empty (and no layer) otherwise: emission with emissive textures (every surface pixel's,
+// the material's factor alone where it has no texture; 0 on background), which the direct
+// pass reads instead of its per-material table; occlusion with occlusion textures (1 where a
+// material has none, and on background), which scales indirect light only (shading/
+// direct_kernel.h, DirectArgs::occlusion).
+struct MaterialPlanes : PlaneTable<MaterialPlanes> {
+    PlaneF emission[3];  // scene-linear radiance
+    PlaneF occlusion;
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("emissive.R", g.emission[0]), fn("emissive.G", g.emission[1]);
+        fn("emissive.B", g.emission[2]), fn("occlusion", g.occlusion);
+    }
+};
+
 // Instance and triangle of each pixel as floats (RenderSettings::idPlanes); -1 on background.
 struct IdPlanes : PlaneTable<IdPlanes> {
     PlaneF instanceId;
@@ -207,6 +224,7 @@ struct Frame {
     uint32_t index = 0;  // the FrameInput::frameIndex it was rendered with
     ImagePlanes image;
     GBuffer gbuffer;
+    MaterialPlanes material;  // only what the scene's materials need
     IdPlanes ids;
     DirectParts direct;  // only when a trace pass runs
     TraceOutputs trace;
@@ -221,6 +239,8 @@ struct Frame {
         ShadowMap shadow;
         // UV and its screen derivatives, for textured scenes: set 0, then set 1 when read
         PlaneF uv[12];  // kResolveUvSets * kResolveUvOutputs (asserted in renderer.cpp)
+        // The tangent frame (x, y, z, w) for normal maps (raster/resolve_kernel.h)
+        PlaneF tangent[4];
         HiZPyramid hiz;
         RayBatch rays;
         MarchResult march;
@@ -228,7 +248,7 @@ struct Frame {
         SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent trace.ssr's
     } scratch;
 
-    // Every non-empty plane of image, gbuffer, ids and trace, in that order, then
+    // Every non-empty plane of image, gbuffer, material, ids and trace, in that order, then
     // extraLayers: the file's layers.
     std::vector<PlaneRef> layers() const;
     // The layer called `name`; throws std::out_of_range if there is none.

@@ -32,19 +32,22 @@ struct FrameContext {
     Isa isa;
     int threads;
     TileGrid grid;
+    glm::vec3 origin;  // Scene::origin(): every world position below is measured from it
     glm::mat4 view, proj, prevViewProj;
     TraceCamera trace;  // the camera as the kernels take it (tanHalf*, near, far, rotation)
 
-    FrameContext(const RenderSettings& s, const FrameInput& input)
+    FrameContext(const RenderSettings& s, const Scene& scene, const FrameInput& input)
         : settings(s),
           camera(input.camera),
           isa(resolveIsa(s.isa)),
           threads(s.threads),
           grid(s.width, s.height) {
         const float aspect = float(s.width) / float(s.height);
-        view = camera.view();
+        origin = scene.origin();
+        view = camera.viewFrom(origin);
         proj = camera.projection(aspect);
-        prevViewProj = input.previousCamera.projection(aspect) * input.previousCamera.view();
+        prevViewProj =
+            input.previousCamera.projection(aspect) * input.previousCamera.viewFrom(origin);
         trace.width = s.width;
         trace.height = s.height;
         trace.tanHalfY = std::tan(glm::radians(camera.fovY) * 0.5f);
@@ -53,7 +56,10 @@ struct FrameContext {
         trace.farZ = camera.farZ;
         const glm::mat3 viewToWorld = glm::mat3(glm::inverse(view));
         std::copy_n(glm::value_ptr(viewToWorld), 9, trace.viewToWorld);
-        std::copy_n(glm::value_ptr(camera.position), 3, trace.position);
+        const glm::vec3 position(glm::dvec3(camera.position) - glm::dvec3(origin));
+        std::copy_n(glm::value_ptr(position), 3, trace.position);
+        std::copy_n(glm::value_ptr(origin), 3, trace.origin);
+        trace.sceneDiagonal = scene.diagonal();
     }
     RasterOptions raster() const {
         RasterOptions ro;
@@ -94,6 +100,7 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const auto t0 = PassClock::now();
     RasterView rv;
     rv.viewProj = c.proj * c.view;
+    rv.origin = c.origin;
     rv.width = c.grid.width;
     rv.height = c.grid.height;
     rv.nearW = c.camera.nearZ;
@@ -107,11 +114,13 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
 }
 
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
+static_assert(sizeof(Frame::Scratch::tangent) / sizeof(PlaneF) == kResolveTangentOutputs);
 
 // The G-buffer of the visible pixels (and their UVs for the texture pass).
 ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
     const ScopedPass timer(frame.stats, "resolve");
-    ResolveTables tables = buildResolveTables(scene, c.view, c.prevViewProj, textured, c.threads);
+    ResolveTables tables =
+        buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
     GBuffer& g = frame.gbuffer;
     ResolveArgs ra{};
     ra.triangles = tables.triangles.data();
@@ -147,13 +156,34 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
             p.ensureSize(c.grid.width, c.grid.height);
             ra.out[kResolveOutputs + i] = p.row(0);
         }
+        // The tangent frame after the UV planes, for the normal maps.
+        if (!tables.tangent[0].empty())
+            for (int i = 0; i < kResolveTangentOutputs; ++i) {
+                ra.tangent[i] = tables.tangent[i].data();
+                PlaneF& p = frame.scratch.tangent[i];
+                p.ensureSize(c.grid.width, c.grid.height);
+                ra.out[kResolveOutputs + planes + i] = p.row(0);
+            }
     }
     const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
     return tables;
 }
 
-// Base colour, metallic and roughness texels into the G-buffer.
+// The material planes the scene needs (emission, occlusion) at the frame's size; the others
+// emptied.
+void ensureMaterialPlanes(const FrameContext& c, const Scene& scene, MaterialPlanes& m) {
+    const auto keepIf = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(c.grid.width, c.grid.height);
+        else p = PlaneF();
+    };
+    const bool emissive = anyEmissiveTextured(scene);
+    for (PlaneF& p : m.emission) keepIf(emissive, p);
+    keepIf(anyOcclusionTextured(scene), m.occlusion);
+}
+
+// Base colour, metallic-roughness and normal-map texels into the G-buffer; emission and
+// occlusion into the material planes.
 void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const ScopedPass timer(frame.stats, "textures");
     GBuffer& g = frame.gbuffer;
@@ -166,6 +196,15 @@ void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     for (int i = 0; i < 3; ++i) tp.albedo[i] = &g.albedo[i];
     tp.metallic = &g.metallic;
     tp.roughness = &g.roughness;
+    if (anyNormalMapped(scene))
+        for (int i = 0; i < 4; ++i) {
+            tp.tangent[i] = &frame.scratch.tangent[i];
+            if (i < 3) tp.normal[i] = &g.normal[i];
+        }
+    MaterialPlanes& m = frame.material;
+    if (!m.emission[0].empty())
+        for (int i = 0; i < 3; ++i) tp.emission[i] = &m.emission[i];
+    if (!m.occlusion.empty()) tp.occlusion = &m.occlusion;
     applyTextures(scene, tp, c.grid, c.threads);
 }
 
@@ -203,6 +242,7 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
+    setDirectMaterialPlanes(frame.material, da);
     da.width = c.grid.width;
     da.height = c.grid.height;
     da.tilesX = c.grid.tilesX;
@@ -240,6 +280,7 @@ std::vector<PlaneRef> Frame::layers() const {
     };
     image.forEachPlane(add);
     gbuffer.forEachPlane(add);
+    material.forEachPlane(add);
     ids.forEachPlane(add);
     trace.ssr.forEachPlane(add);
     trace.ssgi.forEachPlane(add);
@@ -286,7 +327,7 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
     scene.validate();
-    const FrameContext c(settings_, input);
+    const FrameContext c(settings_, scene, input);
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
@@ -295,6 +336,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);
     const bool textured = anyTextured(scene);
+    ensureMaterialPlanes(c, scene, frame.material);
     const ResolveTables tables = resolvePass(c, scene, textured, frame);
     if (textured) texturePass(c, scene, frame);
     if (settings_.idPlanes) idPass(c, tables.triangles, frame);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/tiles.h"
+#include "scenes/tangents.h"
 
 namespace ssrt {
 
@@ -20,10 +21,52 @@ bool anyUvSet1(const Scene& scene) {
                        [](const Material& m) { return m.usesUvSet1(); });
 }
 
+bool anyNormalMapped(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.normalTexture >= 0; });
+}
+
+bool anyOcclusionTextured(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.occlusionTexture >= 0; });
+}
+
+bool anyEmissiveTextured(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.emissiveTexture >= 0; });
+}
+
 namespace {
 
-ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const glm::mat4& view,
-                                const glm::mat4& prevViewProj) {
+// Per instance, the object-space tangents its normal map reads (the mesh's, or generated
+// from the map's UV set once per mesh and set), or null for instances without a normal map.
+std::vector<const std::vector<glm::vec4>*> instanceTangents(
+    const Scene& scene, std::vector<std::vector<glm::vec4>>& generated) {
+    std::vector<const std::vector<glm::vec4>*> out(scene.instances.size(), nullptr);
+    // Generated sets by (mesh, UV set): index into `generated`.
+    std::vector<int> slot(2 * scene.meshes.size(), -1);
+    generated.reserve(scene.instances.size());  // pointers into it stay valid
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        const Material& m = scene.materials[inst.material];
+        if (m.normalTexture < 0) continue;
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        if (!mesh.tangents.empty()) {
+            out[i] = &mesh.tangents;
+            continue;
+        }
+        int& s = slot[2 * inst.mesh + (m.normalUv.set == 1 ? 1 : 0)];
+        if (s < 0) {
+            s = int(generated.size());
+            generated.push_back(generateTangents(mesh, m.normalUv.set));
+        }
+        out[i] = &generated[std::size_t(s)];
+    }
+    return out;
+}
+
+ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, glm::vec3 origin,
+                                const glm::mat4& view, const glm::mat4& prevViewProj) {
     const Material& m = scene.materials[inst.material];
     ResolveInstance r;
     r.albedo[0] = m.baseColor.r;
@@ -33,8 +76,10 @@ ResolveInstance resolveInstance(const Scene& scene, const Instance& inst, const 
     r.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     r.materialId = float(inst.material);
     // current view -> world -> object (current) -> world (previous) -> previous clip
-    const glm::mat4 toPrev =
-        prevViewProj * inst.previousTransform * glm::inverse(inst.transform) * glm::inverse(view);
+    // (every world here measured from the origin)
+    const glm::mat4 toPrev = prevViewProj * transformFrom(inst.previousTransform, origin) *
+                             glm::inverse(transformFrom(inst.transform, origin)) *
+                             glm::inverse(view);
     std::copy_n(glm::value_ptr(toPrev), 16, r.viewToPrevClip);
     return r;
 }
@@ -55,7 +100,7 @@ void forInstanceChunks(std::size_t instances, int threads, CountFn count, Fn fn)
 
 }  // namespace
 
-ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm::mat4& view,
                                  const glm::mat4& prevViewProj, bool textured, int threads) {
     ResolveTables t;
     std::vector<uint32_t> vertexOffset, triOffset;
@@ -65,7 +110,7 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
         triOffset.push_back(nt);
         nv += uint32_t(scene.meshes[inst.mesh].positions.size());
         nt += uint32_t(scene.meshes[inst.mesh].triangleCount());
-        t.instances.push_back(resolveInstance(scene, inst, view, prevViewProj));
+        t.instances.push_back(resolveInstance(scene, inst, origin, view, prevViewProj));
     }
     t.triangles.resize(nt);
     t.nx.resize(nv);
@@ -80,6 +125,13 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
         t.u1.resize(nv);
         t.v1.resize(nv);
     }
+    const bool tangents = textured && anyNormalMapped(scene);
+    std::vector<std::vector<glm::vec4>> generated;
+    std::vector<const std::vector<glm::vec4>*> objectTangents;
+    if (tangents) {
+        objectTangents = instanceTangents(scene, generated);
+        for (std::vector<float>& c : t.tangent) c.assign(nv, 0.0f);
+    }
     std::vector<glm::vec3> viewPos(nv);
     auto meshOf = [&](uint32_t i) -> const Mesh& { return scene.meshes[scene.instances[i].mesh]; };
     // View-space positions and world-space unit normals per vertex.
@@ -89,7 +141,7 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
         [&](uint32_t i, uint32_t first, uint32_t end) {
             const Instance& inst = scene.instances[i];
             const Mesh& mesh = meshOf(i);
-            const glm::mat4 modelView = view * inst.transform;
+            const glm::mat4 modelView = view * transformFrom(inst.transform, origin);
             const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(inst.transform));
             for (uint32_t v = first; v < end; ++v) {
                 const uint32_t g = vertexOffset[i] + v;
@@ -109,6 +161,10 @@ ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
                     const glm::vec2 uv = mesh.uvs1.empty() ? glm::vec2(0.0f) : mesh.uvs1[v];
                     t.u1[g] = uv.x;
                     t.v1[g] = uv.y;
+                }
+                if (tangents && objectTangents[i]) {
+                    const glm::vec4 tw = worldTangent(inst.transform, (*objectTangents[i])[v]);
+                    for (int c = 0; c < 4; ++c) t.tangent[c][g] = tw[c];
                 }
             }
         });

@@ -20,13 +20,20 @@ struct ResolveTables {
     std::vector<float> nx, ny, nz;
     std::vector<float> u, v;    // texture coordinates per vertex, only for textured scenes
     std::vector<float> u1, v1;  // the second set, only when a material reads it
+    // World tangents (x, y, z, w) per vertex, only when a material has a normal map (zero
+    // for the instances of other materials)
+    std::vector<float> tangent[4];
 };
 
 bool anyTextured(const Scene& scene);
 bool anyUvSet1(const Scene& scene);  // a material's texture reads the second UV set
+bool anyNormalMapped(const Scene& scene);
+bool anyOcclusionTextured(const Scene& scene);
+bool anyEmissiveTextured(const Scene& scene);
 
-// `view` is the camera's, `prevViewProj` the previous camera's (motion vectors).
-ResolveTables buildResolveTables(const Scene& scene, const glm::mat4& view,
+// `view` is the camera's, `prevViewProj` the previous camera's (motion vectors), both of
+// points measured from `origin` (Scene::origin(); Camera::viewFrom).
+ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm::mat4& view,
                                  const glm::mat4& prevViewProj, bool textured, int threads);
 
 }  // namespace ssrt

@@ -1,10 +1,11 @@
 // The texture pass: after the resolve, multiplies the G-buffer's material factors by the
 // textures of each pixel's material (base colour into albedo, metallic-roughness into
-// metallic and roughness), sampled trilinearly at the pixel's UV with its screen
-// derivatives (scenes/texture.h has the conventions).
+// metallic and roughness), bends its normal by the normal map, and writes the per-pixel
+// emission and occlusion planes (frame.h, MaterialPlanes), each texture sampled trilinearly
+// at the pixel's UV with its screen derivatives (scenes/texture.h has the conventions).
 //
 // Scalar code compiled once (not per ISA): the G-buffer it leaves is the same bits for
-// every ISA and thread count, and pixels of untextured materials are not touched.
+// every ISA and thread count, and pixels of untextured materials keep their G-buffer values.
 #pragma once
 
 #include "core/image.h"
@@ -21,6 +22,15 @@ struct TexturePlanes {
     PlaneF* albedo[3] = {};
     PlaneF* metallic = nullptr;
     PlaneF* roughness = nullptr;
+    // With normal maps: the resolve's tangent frame (x, y, z, w) and the G-buffer normal it
+    // bends (scenes/tangents.h, perturbNormal); all null otherwise.
+    const PlaneF* tangent[4] = {};
+    PlaneF* normal[3] = {};
+    // Written for every pixel when set: emission (the material's factor times its emissive
+    // texel, 0 on background) and occlusion (1 + strength (R - 1), 1 without a texture and
+    // on background).
+    PlaneF* emission[3] = {};
+    PlaneF* occlusion = nullptr;
 };
 
 void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,

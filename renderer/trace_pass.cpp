@@ -197,6 +197,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
     if (ts.ssgi) {
         ci.viewZ = &g.viewZ;
         ci.metallic = &g.metallic;
+        if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     }
     if (ts.ssr) ci.ssrOpacity = &frame.trace.ssr.opacity;
     ci.exposure = c.args.settings.exposure;

@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 
+#include "scenes/gltf_compression.h"
 #include "scenes/gltf_textures.h"
 #include "scenes/mesh_builders.h"
 
@@ -49,7 +50,6 @@ struct Notes {
     std::size_t pointLights = 0, spotLights = 0, otherLights = 0, extraDirectional = 0;
     int usedCamera = -1;
     std::set<int> extraCameras, orthographicCameras;
-    std::vector<std::size_t> emissiveTextures, normalTextures, occlusionTextures;
     std::vector<std::size_t> blendMaterials;  // alphaMode BLEND, drawn as MASK
     std::size_t vertexColours = 0, morphTargets = 0;
 };
@@ -151,9 +151,7 @@ std::string topLevelTypeProblem(const std::string& json) {
 }
 
 // The JSON text of a .gltf, or the JSON chunk of a .glb (already validated by tinygltf).
-std::string jsonText(const std::string& path, bool binary) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+std::string jsonText(const std::string& bytes, bool binary) {
     if (!binary) return bytes;
     if (bytes.size() < 20) return "";
     uint32_t length = 0;
@@ -161,25 +159,48 @@ std::string jsonText(const std::string& path, bool binary) {
     return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
 }
 
+// tinygltf's own base directory for a file's relative URIs (GetBaseDir in tiny_gltf.h), so a
+// file parsed from memory resolves them as one read from disk.
+std::string baseDir(const std::string& path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    return slash == std::string::npos ? "" : path.substr(0, slash);
+}
+
+// Compressed files (scenes/gltf_compression.h) are parsed from their adjusted bytes; every
+// other file as tinygltf reads it from disk. Then compressed data is decoded.
 tinygltf::Model readModel(const std::string& path, gltf::DataUriImages& dataUris) {
-    char magic[4] = {};
+    std::string bytes;
     {
         std::ifstream in(path, std::ios::binary);
         if (!in) throw SceneLoadError(path + ": cannot open file");
-        in.read(magic, 4);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(gltf::keepDataUriImage, &dataUris);
     tinygltf::Model model;
     std::string err, warn;
     // The container is chosen by content, not by extension: a renamed file still loads.
-    const bool binary = std::memcmp(magic, "glTF", 4) == 0;
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    gltf::CompressionFixups fixups;
+    const std::optional<std::string> fixed = gltf::withCompressionFixups(bytes, binary, &fixups);
+    if (fixed && fixed->size() > std::numeric_limits<unsigned>::max())
+        throw SceneLoadError(path + ": file too large (tinygltf reads at most 4 GiB)");
+    bool ok = false;
+    if (fixed && binary)
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                         reinterpret_cast<const unsigned char*>(fixed->data()),
+                                         unsigned(fixed->size()), baseDir(path));
+    else if (fixed)
+        ok = loader.LoadASCIIFromString(&model, &err, &warn, fixed->data(), unsigned(fixed->size()),
+                                        baseDir(path));
+    else
+        ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                    : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok || !err.empty())
         throw SceneLoadError(path + ": " + oneLine(err.empty() ? "cannot parse glTF" : err));
-    const std::string problem = topLevelTypeProblem(jsonText(path, binary));
+    const std::string problem = topLevelTypeProblem(jsonText(bytes, binary));
     if (!problem.empty()) throw SceneLoadError(path + ": wrong JSON type: " + problem);
+    gltf::decompress(model, fixups);
     return model;
 }
 
@@ -266,8 +287,10 @@ float readComponent(const AccessorView& v, std::size_t element, int component) {
 template <int N>
 std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
                                             bool floatOnly) {
-    const AccessorView v =
-        viewAccessor(ctx, index, role, N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3);
+    const AccessorView v = viewAccessor(ctx, index, role,
+                                        N == 2   ? TINYGLTF_TYPE_VEC2
+                                        : N == 3 ? TINYGLTF_TYPE_VEC3
+                                                 : TINYGLTF_TYPE_VEC4);
     const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
     const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
@@ -403,14 +426,27 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
         if (mesh.uvs1.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_1 count differs from POSITION count");
     }
+    const int tan = attribute(p, "TANGENT");
+    if (tan >= 0) {
+        mesh.tangents = readVectors<4>(ctx, tan, "TANGENT", true);
+        if (mesh.tangents.size() != mesh.positions.size())
+            ctx.fail(name + ": TANGENT count differs from POSITION count");
+        // xyz unit and w = +-1, as the specification requires of the file (lenient on
+        // rounding: w's sign is what counts).
+        for (glm::vec4& t : mesh.tangents) {
+            const glm::vec3 d(t);
+            const float len = glm::length(d);
+            t = glm::vec4(len > 0.0f ? d / len : d, t.w < 0.0f ? -1.0f : 1.0f);
+        }
+    }
     return mesh;
 }
 
 // ---------------------------------------------------------------------------------------
 // Materials and textures
 
-// Every texture a material names must exist, even those ssrt does not use (emissive,
-// normal, occlusion): a scene never renders silently without its textures.
+// Every texture a material names must exist: a scene never renders silently without its
+// textures.
 void checkTexture(const Context& ctx, const std::string& name, int textureIndex) {
     if (textureIndex < 0) return;
     const tinygltf::Model& m = ctx.model;
@@ -494,6 +530,37 @@ void convertAlpha(const Context& ctx, std::size_t index, const std::string& name
     m.alphaCutoff = float(g.alphaCutoff);
 }
 
+// The normal and occlusion references as plain texture references (index, texCoord and
+// extensions: what textureTransform and the texture table read).
+template <class Info>
+tinygltf::TextureInfo plainTextureInfo(const Info& info) {
+    tinygltf::TextureInfo t;
+    t.index = info.index;
+    t.texCoord = info.texCoord;
+    t.extensions = info.extensions;
+    return t;
+}
+
+float finiteFactor(const Context& ctx, const std::string& name, const char* what, double v) {
+    if (!std::isfinite(v)) ctx.fail(name + ": " + what + " is not finite");
+    return float(v);
+}
+
+// glTF 2.0 sections 3.9.3-3.9.5: the normal texture with its scale (linear), the occlusion
+// texture with its strength (linear, R; clamped to [0, 1] as the specification bounds it)
+// and the emissive texture (sRGB), each with its texCoord and KHR_texture_transform.
+void convertMaterialMaps(const Context& ctx, const std::string& name, const tinygltf::Material& g,
+                         Material& m) {
+    m.normalTexture =
+        texture(ctx, name, plainTextureInfo(g.normalTexture), TextureEncoding::Linear, &m.normalUv);
+    m.normalScale = finiteFactor(ctx, name, "normalTexture.scale", g.normalTexture.scale);
+    m.occlusionTexture = texture(ctx, name, plainTextureInfo(g.occlusionTexture),
+                                 TextureEncoding::Linear, &m.occlusionUv);
+    m.occlusionStrength =
+        unitFactor(ctx, name, "occlusionTexture.strength", g.occlusionTexture.strength);
+    m.emissiveTexture = texture(ctx, name, g.emissiveTexture, TextureEncoding::Srgb, &m.emissiveUv);
+}
+
 Material convertMaterial(const Context& ctx, std::size_t index) {
     const tinygltf::Material& g = ctx.model.materials[index];
     const std::string name = "material " + str(index);
@@ -511,14 +578,12 @@ Material convertMaterial(const Context& ctx, std::size_t index) {
     checkTexture(ctx, name, g.emissiveTexture.index);
     checkTexture(ctx, name, g.normalTexture.index);
     checkTexture(ctx, name, g.occlusionTexture.index);
-    if (g.emissiveTexture.index >= 0) ctx.notes.emissiveTextures.push_back(index);
-    if (g.normalTexture.index >= 0) ctx.notes.normalTextures.push_back(index);
-    if (g.occlusionTexture.index >= 0) ctx.notes.occlusionTextures.push_back(index);
     convertAlpha(ctx, index, name, g, m);
     m.baseColorTexture =
         texture(ctx, name, pbr.baseColorTexture, TextureEncoding::Srgb, &m.baseColorUv);
     m.metallicRoughnessTexture = texture(ctx, name, pbr.metallicRoughnessTexture,
                                          TextureEncoding::Linear, &m.metallicRoughnessUv);
+    convertMaterialMaps(ctx, name, g, m);
     return m;
 }
 
@@ -846,14 +911,6 @@ std::vector<std::string> warningLines(const Context& ctx) {
     if (!n.orthographicCameras.empty())
         lines.push_back(named("orthographic camera", n.orthographicCameras) +
                         " ignored (only perspective cameras are supported)");
-    const auto notApplied = [&](const std::vector<std::size_t>& materials, const char* what) {
-        if (!materials.empty())
-            lines.push_back(std::string(what) + " are not applied yet (" +
-                            named("material", materials) + ")");
-    };
-    notApplied(n.emissiveTextures, "emissive textures");
-    notApplied(n.normalTextures, "normal textures");
-    notApplied(n.occlusionTextures, "occlusion textures");
     if (!n.blendMaterials.empty())
         lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
                         named("material", n.blendMaterials) + ")");

@@ -30,8 +30,12 @@ public:
 // Textures: base-colour (sRGB) and metallic-roughness (linear) textures are decoded through
 // OpenImageIO, from files, data URIs or buffer views, into Scene::textures with their
 // samplers' wrap modes (scenes/gltf_textures.h) and their KHR_texture_transform (into
-// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Emissive, normal and
-// occlusion textures are checked (indices in range, image files exist) but not used.
+// Material::baseColorUv, metallicRoughnessUv); TEXCOORD_0 and TEXCOORD_1. Normal (linear, with
+// its scale), occlusion (linear, with its strength) and emissive (sRGB) textures likewise,
+// each with its own texCoord and transform; TANGENT into Mesh::tangents (generated where a
+// normal map needs them and the file has none, scenes/tangents.h).
+// Geometry: plain, or compressed with KHR_draco_mesh_compression or EXT_meshopt_compression
+// (decoded first, then checked as plain data: scenes/gltf_compression.h).
 // alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
 // BLEND is drawn as MASK at the default cutoff 0.5, with a warning); an alphaMode other than
 // OPAQUE, MASK or BLEND, or a negative or non-finite cutoff, is an error.
@@ -40,10 +44,10 @@ public:
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
-// cameras other than the one used and orthographic cameras, emissive, normal and occlusion
-// textures, alphaMode BLEND, sampler filters other than trilinear, COLOR_0, skins,
-// animations and morph targets. kSupportedGltfExtensions are the extensions ssrt honours; one
-// in extensionsRequired that is not among them is an error naming it.
+// cameras other than the one used and orthographic cameras, alphaMode BLEND, sampler
+// filters other than trilinear, COLOR_0, skins, animations and morph targets.
+// kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is
+// not among them is an error naming it.
 //
 // Throws SceneLoadError for anything malformed: it never returns a partial scene.
 struct GltfLoadOptions {
@@ -53,7 +57,8 @@ struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
 inline const std::vector<std::string> kSupportedGltfExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);

@@ -30,6 +30,17 @@ glm::vec3 Sky::radiance(glm::vec3 dir) const {
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
+glm::mat4 Camera::viewFrom(glm::vec3 origin) const {
+    const glm::dvec3 o(origin);
+    return glm::mat4(glm::lookAt(glm::dvec3(position) - o, glm::dvec3(target) - o, glm::dvec3(up)));
+}
+
+glm::mat4 transformFrom(const glm::mat4& m, glm::vec3 origin) {
+    glm::dmat4 d(m);
+    for (int c = 0; c < 4; ++c) d[c] -= glm::dvec4(glm::dvec3(origin) * d[c].w, 0.0);
+    return glm::mat4(d);
+}
+
 glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fovY), aspect, nearZ, farZ);
 }
@@ -52,6 +63,19 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
     }
     if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+}
+
+glm::vec3 Scene::origin() const {
+    glm::vec3 lo, hi;
+    bounds(lo, hi);
+    return 0.5f * (lo + hi);
+}
+
+float Scene::diagonal() const {
+    glm::vec3 lo, hi;
+    bounds(lo, hi);
+    const float d = glm::length(hi - lo);
+    return d > 0.0f && std::isfinite(d) ? d : 1.0f;  // a point: no length to measure against
 }
 
 void Scene::validate() const {
@@ -84,6 +108,9 @@ void Scene::validate() const {
         if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size())
             throw std::invalid_argument("mesh " + std::to_string(m) +
                                         ": second UV set's count differs from position count");
+        if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size())
+            throw std::invalid_argument("mesh " + std::to_string(m) +
+                                        ": tangent count differs from position count");
         for (uint32_t i : mesh.indices)
             if (i >= mesh.positions.size())
                 throw std::invalid_argument("mesh " + std::to_string(m) + ": index " +
@@ -98,15 +125,21 @@ void Scene::validate() const {
                                         std::to_string(instances[i].material));
     }
     for (std::size_t m = 0; m < materials.size(); ++m) {
-        for (int32_t t : {materials[m].baseColorTexture, materials[m].metallicRoughnessTexture})
+        const Material& mat = materials[m];
+        for (int32_t t : {mat.baseColorTexture, mat.metallicRoughnessTexture, mat.normalTexture,
+                          mat.occlusionTexture, mat.emissiveTexture})
             if (t < -1 ||
                 (t >= 0 && (std::size_t(t) >= textures.size() || textures[t].levels.empty())))
                 throw std::invalid_argument("material " + std::to_string(m) + ": no texture " +
                                             std::to_string(t));
-        for (int set : {materials[m].baseColorUv.set, materials[m].metallicRoughnessUv.set})
+        for (int set : {mat.baseColorUv.set, mat.metallicRoughnessUv.set, mat.normalUv.set,
+                        mat.occlusionUv.set, mat.emissiveUv.set})
             if (set != 0 && set != 1)
                 throw std::invalid_argument("material " + std::to_string(m) + ": no UV set " +
                                             std::to_string(set));
+        if (!std::isfinite(mat.normalScale) || !std::isfinite(mat.occlusionStrength))
+            throw std::invalid_argument("material " + std::to_string(m) +
+                                        ": normal scale or occlusion strength not finite");
     }
     // A NaN cutoff would cut out everything without a word.
     for (std::size_t m = 0; m < materials.size(); ++m)

@@ -12,13 +12,17 @@
 namespace ssrt {
 
 // Indexed triangles; normals per vertex (same count as positions), UVs optional: two sets
-// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position.
+// (glTF's TEXCOORD_0 and TEXCOORD_1), each empty or one per position; tangents optional too.
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;
-    std::vector<glm::vec2> uvs1;    // the second set, for textures with UvTransform::set 1
+    std::vector<glm::vec2> uvs1;  // the second set, for textures with UvTransform::set 1
+    // glTF's TANGENT: xyz the unit tangent (along +u), w = +-1 the handedness, bitangent =
+    // w cross(normal, tangent). Empty: generated where a normal map needs them
+    // (scenes/tangents.h).
+    std::vector<glm::vec4> tangents;
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
 
     std::size_t triangleCount() const { return indices.size() / 3; }
@@ -59,6 +63,18 @@ struct Material {
     int32_t baseColorTexture = -1;
     int32_t metallicRoughnessTexture = -1;
     UvTransform baseColorUv, metallicRoughnessUv;  // identity: the mesh's UVs as they are
+    // Normal, occlusion and emissive textures (glTF 2.0 section 3.9.3-3.9.5), -1 when absent.
+    //   normal:    linear tangent-space normals, n = normalize((2 texel - 1) (scale, scale, 1))
+    //              in the frame (tangent, bitangent, normal) of Mesh::tangents;
+    //   occlusion: linear, R: occlusion = 1 + strength (R - 1), on indirect light only (the
+    //              sky's diffuse and specular, SSR and SSGI; not the sun, not emission);
+    //   emissive:  sRGB decoded (as base colour), RGB multiplies `emissive`.
+    int32_t normalTexture = -1;
+    int32_t occlusionTexture = -1;
+    int32_t emissiveTexture = -1;
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    UvTransform normalUv, occlusionUv, emissiveUv;
 
     // Alpha coverage (glTF 2.0 section 3.9.4, alphaMode and alphaCutoff): alpha is
     // baseColorAlpha (baseColorFactor's fourth component) times the base colour texel's
@@ -71,11 +87,17 @@ struct Material {
     float alphaCutoff = 0.5f;
     bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
 
-    bool textured() const { return baseColorTexture >= 0 || metallicRoughnessTexture >= 0; }
+    bool textured() const {
+        return baseColorTexture >= 0 || metallicRoughnessTexture >= 0 || normalTexture >= 0 ||
+               occlusionTexture >= 0 || emissiveTexture >= 0;
+    }
     // Whether a texture of this material reads the second UV set.
     bool usesUvSet1() const {
         return (baseColorTexture >= 0 && baseColorUv.set == 1) ||
-               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1);
+               (metallicRoughnessTexture >= 0 && metallicRoughnessUv.set == 1) ||
+               (normalTexture >= 0 && normalUv.set == 1) ||
+               (occlusionTexture >= 0 && occlusionUv.set == 1) ||
+               (emissiveTexture >= 0 && emissiveUv.set == 1);
     }
 };
 
@@ -86,6 +108,11 @@ struct Instance {
     glm::mat4 transform{1.0f};
     glm::mat4 previousTransform{1.0f};
 };
+
+// translate(-origin) * m, formed in double: a transform whose points are measured from
+// `origin` (Scene::origin()). Far from 0, a float product would round the translation to
+// the float spacing there (about 1e-3 at 1e4) before anything cancels.
+glm::mat4 transformFrom(const glm::mat4& m, glm::vec3 origin);
 
 struct DirectionalLight {
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (unit)
@@ -129,6 +156,9 @@ struct Camera {
     float farZ = 100.0f;
 
     glm::mat4 view() const;
+    // The view matrix of points measured from `origin` (Scene::origin()): the same camera,
+    // its translation formed in double so that a scene far from 0 keeps its precision.
+    glm::mat4 viewFrom(glm::vec3 origin) const;
     glm::mat4 projection(float aspect) const;  // OpenGL clip space: w = -z_view
 };
 
@@ -146,6 +176,13 @@ struct Scene {
     std::size_t triangleCount() const;
     // World-space bounds of every instance (finite vertices only).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
+    // Where the renderer and the truth measure world positions from: the bounds' centre.
+    // Every pass works on positions relative to it (transformFrom, Camera::viewFrom), so a
+    // scene 1e4 units from 0 is as precise as one at 0 (issue 16).
+    glm::vec3 origin() const;
+    // The length of the bounds' diagonal: the unit of the tracer's relative lengths (1 where
+    // the bounds are a point).
+    float diagonal() const;
     // Throws std::invalid_argument naming the first broken reference (mesh, material, index,
     // texture).
     void validate() const;

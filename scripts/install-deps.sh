@@ -14,13 +14,17 @@ render_packages=(
     g++ cmake ninja-build pkg-config
     # Core library
     libglm-dev libxsimd-dev libtbb-dev
-    # Edges: image files, world-space truth, glTF, shot files (JSON), command line
-    libopenimageio-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+    # Edges: image files, world-space truth, glTF (and its Draco and meshopt compressed
+    # meshes), shot files (JSON), command line
+    libopenimageio-dev libembree-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
+    nlohmann-json3-dev libcli11-dev
 )
 # Tests, benchmarks, peers and charts, on top of the render's.
 test_packages=(
     # Tests and benchmarks; OpenImageIO's tools (idiff) for comparing images by hand
     doctest-dev libbenchmark-dev openimageio-tools
+    # Real glTF 2.0 files the loader is tested on (/usr/share/assimp/models/glTF2)
+    assimp-testmodels
     # A second compiler (scripts/test-clang.sh) and the formatter (scripts/check-format.sh)
     clang clang-format
     # perf/peers: Mesa llvmpipe through EGL surfaceless

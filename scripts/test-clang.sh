@@ -30,7 +30,8 @@ cmake --build build-clang --target ssrt_cli ssrt_tests --parallel "$jobs"
     -tc='built-in scenes keep their golden hashes,every ISA and thread count*,*the same bits*'
 
 # The same EXR bytes from both compilers: every built-in scene, an image sky (a shot file),
-# and a textured glTF (a data-URI PNG, and the same quad as a .glb).
+# textured glTFs (a data-URI PNG, the same quad as a .glb, and the quad with normal, occlusion
+# and emissive maps), and compressed meshes (the Draco box, the meshopt sphere).
 out=build-clang/compare
 rm -rf "$out"
 mkdir -p "$out/gcc" "$out/clang"
@@ -38,7 +39,10 @@ inputs=()
 for scene in $(./build/ssrt scenes | awk '{print $1}'); do inputs+=("scene:$scene"); done
 inputs+=(shot:examples/shots/spheres_sky.json
          scene:tests/fuzz/seeds/textured_quad_datauri.gltf
-         scene:tests/fuzz/seeds/textured_quad.glb)
+         scene:tests/fuzz/seeds/textured_quad.glb
+         scene:tests/fuzz/seeds/material_maps_datauri.gltf
+         scene:tests/scenes/data/draco_box.gltf
+         scene:tests/fuzz/seeds/meshopt_sphere.glb)
 [ ${#inputs[@]} -ge 10 ] || { echo "test-clang: too few inputs: ${inputs[*]}" >&2; exit 1; }
 
 status=0

@@ -55,6 +55,7 @@ void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF displ
     if (ssgi) {
         a.viewZ = need(in.viewZ, w, h, "viewZ");
         a.metallic = need(in.metallic, w, h, "metallic");
+        if (in.occlusion) a.occlusion = need(in.occlusion, w, h, "occlusion");
     }
     if (ssr) a.ssrOpacity = need(in.ssrOpacity, w, h, "ssrOpacity");
     a.exposure = in.exposure;

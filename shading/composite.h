@@ -1,6 +1,7 @@
 // The composite: the direct pass's parts (DirectArgs::direct etc., shading/direct_kernel.h)
 // with the screen-space indirect light, then the tone map of `display`. Per pixel
 //   diffuse  = SSGI on:  albedo (1 - metallic) ssgi   (replaces envDiffuse; 0 on background)
+//                        times the occlusion where there is one (envDiffuse has it already)
 //              SSGI off: envDiffuse
 //   specular = SSR on:   specWeight (ssr opacity + envSpecular (1 - opacity))
 //              (specWeight holds Kulla-Conty's multiple scattering, as `color` does)
@@ -28,6 +29,9 @@ struct CompositeInputs {
     const PlaneF* viewZ = nullptr;
     const PlaneF* albedo[3] = {};
     const PlaneF* metallic = nullptr;
+    // MaterialPlanes::occlusion (null: none), read with SSGI on; envDiffuse and specWeight
+    // hold it already (DirectArgs::occlusion).
+    const PlaneF* occlusion = nullptr;
     // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): null = off.
     const PlaneF* ssrColor[3] = {};
     const PlaneF* ssrOpacity = nullptr;

@@ -29,7 +29,9 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
         const Lane metallic = ln::load<Lane>(a.metallic + o);
         const V3 colour = load3(a.albedo, o) * (one - metallic);
         const auto background = ln::load<Lane>(a.viewZ + o) <= zero;
-        diffuse = ln::select(background, V3{zero, zero, zero}, colour * load3(a.ssgi, o));
+        V3 bounce = colour * load3(a.ssgi, o);
+        if (a.occlusion) bounce = bounce * ln::load<Lane>(a.occlusion + o);
+        diffuse = ln::select(background, V3{zero, zero, zero}, bounce);
     } else {
         diffuse = load3(a.envDiffuse, o);
     }

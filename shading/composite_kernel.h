@@ -22,6 +22,7 @@ struct CompositeArgs {
     const float* viewZ;
     const float* albedo[3];
     const float* metallic;
+    const float* occlusion;    // null: none (SSGI on only)
     const float* ssrColor[3];  // null: SSR off
     const float* ssrOpacity;
     float exposure;

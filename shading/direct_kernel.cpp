@@ -54,16 +54,25 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
         const V3 toCam = ln::normalize(dirWorld);
         s.view = {Lane(0.0f) - toCam.x, Lane(0.0f) - toCam.y, Lane(0.0f) - toCam.z};
         const Lane vis = shade::shadowMapVisibility(a, s);
-        const Parts parts = shade::shadeSurface(a, s, vis);
+        Parts parts = shade::shadeSurface(a, s, vis);
+        if (a.occlusion) shade::occludeIndirect(parts, ln::load<Lane>(a.occlusion + go));
         V3 lit = (parts.sun + parts.envDiffuse) + parts.specWeight * parts.envSpecular;
-        // Emission by material id (a scalar gather), when any material emits.
+        // Emission when any material emits: the texture pass's per-pixel plane, or by material
+        // id (a scalar gather).
         if (a.anyEmissive) {
-            alignas(64) float mat[kW], em[3][kW];
-            ln::store(mat, ln::load<Lane>(a.g[9] + go));
-            for (int l = 0; l < kW; ++l)
-                for (int c = 0; c < 3; ++c)
-                    em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
-            const V3 e{ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+            V3 e;
+            if (a.emissivePlane[0]) {
+                e = {ln::load<Lane>(a.emissivePlane[0] + go),
+                     ln::load<Lane>(a.emissivePlane[1] + go),
+                     ln::load<Lane>(a.emissivePlane[2] + go)};
+            } else {
+                alignas(64) float mat[kW], em[3][kW];
+                ln::store(mat, ln::load<Lane>(a.g[9] + go));
+                for (int l = 0; l < kW; ++l)
+                    for (int c = 0; c < 3; ++c)
+                        em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;
+                e = {ln::load<Lane>(em[0]), ln::load<Lane>(em[1]), ln::load<Lane>(em[2])};
+            }
             lit = lit + e;
             emission = ln::select(background, emission, e);
         }

@@ -34,6 +34,14 @@ struct DirectArgs {
     float envIntensity;
     const float* emissive;  // 3 per material id
     bool anyEmissive;       // false: skip the emission lookup
+    // Per-pixel emission RGB (gStride; the texture pass's, with emissive textures), read
+    // instead of the per-material table when set (with anyEmissive); null otherwise.
+    const float* emissivePlane[3];
+    // Per-pixel occlusion (gStride; occlusion textures), or null (1). Indirect light only:
+    // it multiplies envDiffuse and specWeight (so the sky's specular and SSR, which the
+    // composite weighs by specWeight) and, in the composite, SSGI; never the sun or the
+    // emission (shade::occludeIndirect).
+    const float* occlusion;
     // Shadow map: depth key 1 - z01 (larger = nearer the light)
     const float* shadow;
     std::size_t shadowStride;
@@ -56,13 +64,14 @@ struct DirectArgs {
     //                plane, to keep the order above).
     //   emission:    the material's emission (0 where none, and on background).
     //   envDiffuse:  sky irradiance times the diffuse colour albedo (1 - metallic) / pi (the
-    //                term SSGI replaces).
+    //                term SSGI replaces), times the occlusion where there is one.
     //   envSpecular: the prefiltered sky radiance along the reflection, before the BRDF
     //                factor (the term SSR replaces where it finds a hit).
     //   specWeight:  the sky's BRDF factor: the split sum's DFG table, F0 A + F90 B, plus
     //                Kulla-Conty's multiple scattering, T(F_avg, E_avg) (1 - E(n.v)) (the
-    //                derivation over shade::shadeSurface, shading/direct_lanes.h). `color`
-    //                holds the same factor, so the sum above holds in every pixel.
+    //                derivation over shade::shadeSurface, shading/direct_lanes.h), times the
+    //                occlusion where there is one. `color` holds the same factor, so the sum
+    //                above holds in every pixel.
     float* direct[3];
     float* emission[3];
     float* envDiffuse[3];

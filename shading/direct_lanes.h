@@ -219,6 +219,15 @@ SSRT_INLINE Parts<L> shadeSurface(const DirectArgs& a, const Surface<L>& s, L vi
     return {direct, irradiance * diffuse * L(ln::kPi), specWeight, specSky};
 }
 
+// glTF 2.0 section 3.9.4: the occlusion texture "indicates areas that receive less indirect
+// lighting". So it scales the sky's diffuse term and the specular factor (which weighs the
+// sky's specular and SSR alike), never the sun; emission is not in Parts.
+template <class L>
+SSRT_INLINE void occludeIndirect(Parts<L>& p, L occlusion) {
+    p.envDiffuse = p.envDiffuse * occlusion;
+    p.specWeight = p.specWeight * occlusion;
+}
+
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"
 template <class L>
 SSRT_INLINE L tonemapAces(L x) {

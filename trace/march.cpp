@@ -38,6 +38,25 @@ void MarchSettings::validate() const {
             std::to_string(hizMostDetailedLevel) + "), got " + std::to_string(hizStartLevel));
 }
 
+MarchLengths marchLengths(const MarchSettings& s, float sceneDiagonal) {
+    MarchLengths l{};
+    if (s.maxDistanceAbsolute > 0.0f) {
+        l.maxDistance = s.maxDistanceAbsolute;
+    } else {
+        if (!std::isfinite(sceneDiagonal) || !(sceneDiagonal > 0.0f))
+            throw std::invalid_argument(
+                "marchRays: a relative maxDistance needs the camera's sceneDiagonal (finite, > 0)");
+        l.maxDistance = s.maxDistance * sceneDiagonal;
+    }
+    const bool absStep = s.linearStepAbsolute > 0.0f;
+    l.stepScale = absStep ? 0.0f : s.linearStep;
+    l.stepBias = absStep ? s.linearStepAbsolute : 0.0f;
+    const bool absThick = s.thicknessAbsolute > 0.0f;
+    l.thicknessScale = absThick ? 0.0f : s.thickness;
+    l.thicknessBias = absThick ? s.thicknessAbsolute : 0.0f;
+    return l;
+}
+
 // ---- Statistics -------------------------------------------------------------------------
 
 void MarchStats::add(const MarchStats& o) {
@@ -158,9 +177,12 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
     for (int c = 0; c < 3; ++c) proto.normal[c] = g.normal[c]->row(0);
     proto.nStride = g.normal[0]->stride();
     proto.maxSteps = settings.maxSteps;
-    proto.maxDistance = settings.maxDistance;
-    proto.linearStep = settings.linearStep;
-    proto.thickness = settings.thickness;
+    const MarchLengths lengths = marchLengths(settings, camera.sceneDiagonal);
+    proto.maxDistance = lengths.maxDistance;
+    proto.stepScale = lengths.stepScale;
+    proto.stepBias = lengths.stepBias;
+    proto.thicknessScale = lengths.thicknessScale;
+    proto.thicknessBias = lengths.thicknessBias;
     proto.ddaStride = settings.ddaStride;
     proto.refineSteps = settings.refineSteps;
     if (marcher == Marcher::HiZ) {

@@ -30,15 +30,26 @@ std::optional<Marcher> parseMarcher(std::string_view name);
 struct MarchSettings {
     // Linear and DDA: most steps per ray; Hi-Z: most traversal iterations per ray.
     int maxSteps = 512;
-    // View-space length (scene units) after which a ray ends (MarchEnd::StepCap).
-    float maxDistance = 30.0f;
-    // Linear: view-space step length (scene units).
-    float linearStep = 0.05f;
-    // Depth (view Z, scene units) a ray may be behind the depth buffer and still hit it. The
-    // linear marcher adds the ray's depth change over one step (linearStep |dir.z|), so the
-    // threshold grows with the step; DDA tests the ray's depth interval of one step against
-    // [z, z + thickness]; Hi-Z validates its hit with it.
-    float thickness = 0.1f;
+    // Lengths are relative by default, so that a scene in millimetres or kilometres, or far
+    // from the origin, traces the same rays (issue 16): each has an absolute twin in scene
+    // units that replaces it when > 0 (see marchLengths()).
+    //
+    // Ray length after which a ray ends (MarchEnd::StepCap), as a multiple of the scene's
+    // bounding-box diagonal (TraceCamera::sceneDiagonal). 1 loses nothing: from a point
+    // inside the bounds every surface is nearer than the diagonal.
+    float maxDistance = 1.0f;
+    float maxDistanceAbsolute = 0.0f;  // view-space length (scene units); 0: use maxDistance
+    // Linear: step length as a fraction of the ray origin's view depth (a constant step on
+    // screen wherever the surface is).
+    float linearStep = 0.015f;
+    float linearStepAbsolute = 0.0f;  // view-space step (scene units); 0: use linearStep
+    // Depth a ray may be behind the depth buffer and still hit it, as a fraction of the depth
+    // buffer's view depth there (a depth pyramid's footprint grows with depth, and so does
+    // the depth error of what it stores). The linear marcher adds the ray's depth change over
+    // one step (step |dir.z|), so the threshold grows with the step; DDA tests the ray's
+    // depth interval of one step against [z, z + thickness]; Hi-Z validates its hit with it.
+    float thickness = 0.03f;
+    float thicknessAbsolute = 0.0f;  // view-space depth (scene units); 0: use thickness
     // DDA: pixels per step along the major axis (>= 1).
     float ddaStride = 2.0f;
     // DDA: the first step is offset by ddaJitter * u strides, u = randomFloat(pixel, frame,
@@ -54,6 +65,18 @@ struct MarchSettings {
     // Throws std::invalid_argument naming the first bad field.
     void validate() const;
 };
+
+// The march's lengths for one frame: each absolute setting where it is > 0, else the
+// relative one resolved. thickness(z) = z * thicknessScale + thicknessBias and the linear
+// step of a ray from depth d is d * stepScale + stepBias (one of each pair is 0).
+struct MarchLengths {
+    float maxDistance;  // view-space length (scene units)
+    float stepScale, stepBias;
+    float thicknessScale, thicknessBias;
+};
+// Throws std::invalid_argument when a relative maxDistance meets a sceneDiagonal that is
+// not finite and > 0.
+MarchLengths marchLengths(const MarchSettings& settings, float sceneDiagonal);
 
 struct MarchStats {
     uint64_t rays = 0;  // rays traced: pdf > 0, finite non-zero direction, origin in front of

@@ -68,6 +68,12 @@ SSRT_INLINE Lane sceneDepth(const MarchKernelArgs& a, Lane ix, Lane iy) {
     return ln::select(z > Lane(0.0f), z, Lane(__builtin_inff()));
 }
 
+// How far behind the depth buffer's z a ray may pass and still hit it (MarchLengths). Only
+// read where z is a surface (finite): the callers' masks rule the background out first.
+SSRT_INLINE Lane thicknessAt(const MarchKernelArgs& a, Lane z) {
+    return z * Lane(a.thicknessScale) + Lane(a.thicknessBias);
+}
+
 // The ray clipped to the near plane and to maxDistance, its two ends projected: pixel
 // positions and k = 1/depth, all three linear in screen space (perspective correct).
 struct ScreenSegment {

@@ -104,7 +104,7 @@ struct DdaGroup {
         const Lane sceneZ = sceneDepth(a, ix, iy);
         const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
         const Mask cross = (zMax > sceneZ) & !own;
-        const Mask accept = cross & (zMin <= sceneZ + Lane(a.thickness));
+        const Mask accept = cross & (zMin <= sceneZ + thicknessAt(a, sceneZ));
         // Ends, first match wins: end of the segment, off screen, hit, step cap.
         const Mask past = (s.M0 + s.dM * u - s.M1) * s.stepDir > zero;
         const Mask left = !onScreen(a, px, py);

@@ -18,15 +18,29 @@ inline constexpr std::array kMarchFields = {
         .ints(1, kMaxMarchSteps),
     field<&MarchSettings::maxDistance>(
         "maxDistance", kMarchUse,
-        "View-space length (scene units) after which a ray ends; the reference's rays too")
+        "Ray length after which a ray ends, in scene bounding-box diagonals; the reference's "
+        "rays too")
         .floats(0.0, true),
-    field<&MarchSettings::linearStep>("linearStep", kMarchUse,
-                                      "Linear marcher: view-space step length (scene units)")
+    field<&MarchSettings::maxDistanceAbsolute>(
+        "maxDistanceAbsolute", kMarchUse,
+        "Ray length in scene units, replacing --max-distance when > 0")
+        .floats(0.0, false),
+    field<&MarchSettings::linearStep>(
+        "linearStep", kMarchUse,
+        "Linear marcher: step length as a fraction of the ray origin's depth")
         .floats(0.0, true),
+    field<&MarchSettings::linearStepAbsolute>(
+        "linearStepAbsolute", kMarchUse,
+        "Linear marcher: step length in scene units, replacing --linear-step when > 0")
+        .floats(0.0, false),
     field<&MarchSettings::thickness>(
         "thickness", kMarchUse,
-        "Depth a surface is assumed to have behind the depth buffer (view-space units)")
+        "Depth a surface is assumed to have behind the depth buffer, as a fraction of its depth")
         .floats(0.0, true),
+    field<&MarchSettings::thicknessAbsolute>(
+        "thicknessAbsolute", kMarchUse,
+        "Surface thickness in scene units (view depth), replacing --thickness when > 0")
+        .floats(0.0, false),
     field<&MarchSettings::ddaStride>("ddaStride", kMarchUse,
                                      "DDA marcher: pixels per step along the major axis")
         .floats(1.0, false),

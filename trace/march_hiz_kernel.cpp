@@ -195,7 +195,7 @@ struct Group {
             // depth (k ~ 0, where k * inf is no test): no surface there, it reached the end of
             // its length (StepCap covers maxDistance).
             const Mask background = !(sceneZ < Lane(__builtin_inff()));
-            const Mask valid = (!own) & (!background) & (rayZ <= sceneZ + Lane(a.thickness));
+            const Mask valid = (!own) & (!background) & (rayZ <= sceneZ + thicknessAt(a, sceneZ));
             e.cause = ln::select(hit & background, endCode(MarchEnd::StepCap), e.cause);
             e.cause = ln::select(hit & !background & !valid, endCode(MarchEnd::Thickness), e.cause);
             const Mask ok = hit & valid;

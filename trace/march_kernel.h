@@ -41,7 +41,9 @@ struct MarchKernelArgs {
         hizTilesX[kMaxHiZLevels];
     // Settings.
     int maxSteps;
-    float maxDistance, linearStep, thickness, ddaStride;
+    float maxDistance, ddaStride;
+    float stepScale, stepBias;            // linear step = origin depth * scale + bias
+    float thicknessScale, thicknessBias;  // thickness at depth z = z * scale + bias
     int refineSteps, mostDetailedLevel, startLevel;
     // Packed rays: count, then arrays of at least count rounded up to kMarchPad.
     int count;

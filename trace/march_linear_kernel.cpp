@@ -1,7 +1,8 @@
-// The linear marcher: fixed view-space steps along the ray, each sample projected to its
-// pixel and compared with the depth buffer. A sample behind the surface by at most
-// thickness + linearStep |dir.z| (the ray's depth change over one step) is a hit; one behind
-// by more is a thickness rejection and the march goes on behind the surface.
+// The linear marcher: fixed view-space steps along the ray (a length per ray: a fraction of
+// its origin's depth, or absolute; MarchLengths), each sample projected to its pixel and
+// compared with the depth buffer. A sample behind the surface by at most
+// thickness(z) + step |dir.z| (the ray's depth change over one step) is a hit; one behind by
+// more is a thickness rejection and the march goes on behind the surface.
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
 #include "trace/march_common.h"
@@ -13,7 +14,7 @@ namespace {
 // One lane group of rays in flight.
 struct LinearGroup {
     RayLanes r;
-    Lane depth0, depthRate, thresh;
+    Lane depth0, depthRate, stepLength, stepDepth;
     LaneEnds e;
     int base;
 
@@ -24,7 +25,8 @@ struct LinearGroup {
         r = loadRays(a, base);
         depth0 = zero - r.o.z;
         depthRate = zero - r.d.z;
-        thresh = Lane(a.thickness) + Lane(a.linearStep) * ln::abs(r.d.z);
+        stepLength = depth0 * Lane(a.stepScale) + Lane(a.stepBias);
+        stepDepth = stepLength * ln::abs(r.d.z);
         e = startEnds(a, base);
     }
 
@@ -35,7 +37,7 @@ struct LinearGroup {
         if (!ln::any(active)) return false;
         countLanes(a, active);
         e.steps = ln::select(active, e.steps + one, e.steps);
-        const Lane t = e.steps * Lane(a.linearStep);
+        const Lane t = e.steps * stepLength;
         // The sample and its pixel.
         const Lane depth = depth0 + depthRate * t;
         const Lane k = one / ln::max(depth, nearZ);
@@ -46,6 +48,7 @@ struct LinearGroup {
         const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
         const Mask behind = (depth > sceneZ) & !own;
         const Lane diff = depth - sceneZ;
+        const Lane thresh = thicknessAt(a, sceneZ) + stepDepth;
         const Mask accept = behind & (diff <= thresh);
         // Ends, first match wins: distance cap, near plane, off screen, hit, step cap.
         const Mask past = t > Lane(a.maxDistance);

@@ -28,8 +28,14 @@ struct TraceCamera {
     float tanHalfX = 1.0f, tanHalfY = 1.0f;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
     float nearZ = 0.05f, farZ = 100.0f;      // positive distances
     float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rotation, column-major
-    float position[3] = {0, 0, 0};  // the camera in world space (world = position +
-                                    // viewToWorld * view); the marchers never read it
+    // World positions in the passes and the truth are measured from `origin` (the scene's
+    // bounds centre, Scene::origin()): a point is origin + position + viewToWorld * view.
+    // The marchers read neither.
+    float position[3] = {0, 0, 0};  // the camera, from the origin
+    float origin[3] = {0, 0, 0};
+    // The diagonal of the scene's bounding box (world units): the unit of the march's
+    // relative lengths (MarchSettings::maxDistance); 0 where nobody set it.
+    float sceneDiagonal = 0.0f;
 };
 
 // One ray per pixel, view space, planes of the frame's size. A pixel without a ray

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "scenes/material_alpha.h"
+#include "scenes/tangents.h"
 
 namespace ssrt {
 
@@ -105,8 +106,10 @@ bool countBytes(void* ptr, ssize_t bytes, bool /*post*/) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene), origin_(scene.origin()) {
     scene.validate();
+    for (const Instance& inst : scene.instances)
+        transforms_.push_back(transformFrom(inst.transform, origin_));
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
     rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
@@ -127,6 +130,13 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
             "BLEND) need");
     }
     for (uint32_t m = 0; m < scene.meshes.size(); ++m) alphaFilters_.emplace_back(&scene, m);
+    for (auto& t : tangents_) t.assign(scene.meshes.size(), {});
+    for (const Instance& inst : scene.instances) {
+        const Material& m = scene.materials[inst.material];
+        const int set = m.normalUv.set == 1 ? 1 : 0;
+        if (m.normalTexture >= 0 && tangents_[set][inst.mesh].empty())
+            tangents_[set][inst.mesh] = meshTangents(scene.meshes[inst.mesh], set);
+    }
     top_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
@@ -139,7 +149,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
         }
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, ms);
-        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transform[0][0]);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transforms_[i][0][0]);
         rtcCommitGeometry(g);
         // The instance's geometry id is its index in the scene: hits name it directly.
         rtcAttachGeometryByID(top_, g, unsigned(i));
@@ -155,6 +165,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     scene.bounds(stats_.lo, stats_.hi);
     stats_.diagonal = glm::length(stats_.hi - stats_.lo);
     if (!(stats_.diagonal > 0.0f) || !std::isfinite(stats_.diagonal)) stats_.diagonal = 1.0f;
+}
+
+void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& c, const char* who) {
+    const glm::vec3 o = embree.origin();
+    if (c.origin[0] != o.x || c.origin[1] != o.y || c.origin[2] != o.z)
+        throw std::invalid_argument(std::string(who) +
+                                    ": the camera's origin is not the scene's (TraceCamera::origin "
+                                    "must be Scene::origin(), as the renderer sets it)");
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -250,7 +268,7 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
     // under instancing).
     glm::vec3 p[3];
     for (int c = 0; c < 3; ++c)
-        p[c] = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[c]], 1.0f));
+        p[c] = glm::vec3(transforms_[h.instance] * glm::vec4(mesh.positions[idx[c]], 1.0f));
     const glm::vec3 ng = glm::cross(p[1] - p[0], p[2] - p[0]);
     const float ngl = glm::length(ng);
     s.geometricNormal = ngl > 0.0f ? ng / ngl : glm::vec3(0.0f, 1.0f, 0.0f);
@@ -267,7 +285,23 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
         texel(scene_, mat.metallicRoughnessTexture, mat.metallicRoughnessUv, s, glm::vec3(1.0f));
     s.metallic = std::clamp(mat.metallic * mr.b, 0.0f, 1.0f);
     s.roughness = std::clamp(mat.roughness * mr.g, 0.0f, 1.0f);
-    s.emissive = mat.emissive;
+    s.emissive =
+        mat.emissive * texel(scene_, mat.emissiveTexture, mat.emissiveUv, s, glm::vec3(1.0f));
+    if (mat.occlusionTexture >= 0)
+        s.occlusion =
+            1.0f +
+            mat.occlusionStrength *
+                (texel(scene_, mat.occlusionTexture, mat.occlusionUv, s, glm::vec3(1.0f)).r - 1.0f);
+    if (mat.normalTexture >= 0) {
+        // The world tangents at the corners, interpolated, as the resolve interpolates them.
+        const std::vector<glm::vec4>& t = tangents_[mat.normalUv.set == 1 ? 1 : 0][inst.mesh];
+        const glm::vec4 tangent = w0 * worldTangent(inst.transform, t[idx[0]]) +
+                                  h.u * worldTangent(inst.transform, t[idx[1]]) +
+                                  h.v * worldTangent(inst.transform, t[idx[2]]);
+        const glm::vec3 map =
+            texel(scene_, mat.normalTexture, mat.normalUv, s, glm::vec3(0.5f, 0.5f, 1.0f));
+        s.shadingNormal = perturbNormal(s.shadingNormal, tangent, map, mat.normalScale);
+    }
     s.doubleSided = mat.doubleSided;
     return s;
 }

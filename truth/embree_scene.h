@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scenes/scene.h"
+#include "trace/trace_types.h"
 
 // Embree's handles, without its header in ours.
 typedef struct RTCDeviceTy* RTCDevice;
@@ -46,15 +47,22 @@ struct EmbreeHit {
 struct SurfacePoint {
     glm::vec3 position{0.0f};
     glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f};  // unit, the triangle's front side (CCW)
-    glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};    // unit, interpolated vertex normals
-    glm::vec2 uv{0.0f};                           // (0, 0) for a mesh without UVs
-    glm::vec2 uv1{0.0f};                          // the second set, likewise
+    // unit, interpolated vertex normals, bent by the material's normal map (level 0)
+    glm::vec3 shadingNormal{0.0f, 1.0f, 0.0f};
+    glm::vec2 uv{0.0f};   // (0, 0) for a mesh without UVs
+    glm::vec2 uv1{0.0f};  // the second set, likewise
     uint32_t instance = 0, material = 0;
     glm::vec3 baseColor{0.0f};  // material factor times its texture (level 0, bilinear)
     float metallic = 0.0f, roughness = 0.0f;
-    glm::vec3 emissive{0.0f};
+    glm::vec3 emissive{0.0f};  // factor times its texture (level 0, bilinear)
+    float occlusion = 1.0f;    // 1 + strength (R - 1) of the occlusion texture, 1 without
     bool doubleSided = false;
 };
+
+class EmbreeScene;
+// Throws std::invalid_argument (naming `who`) unless the camera's positions are measured from
+// the Embree scene's origin (TraceCamera::origin == EmbreeScene::origin()).
+void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& camera, const char* who);
 
 class EmbreeScene {
 public:
@@ -68,6 +76,9 @@ public:
 
     const BvhStats& stats() const { return stats_; }
     const Scene& scene() const { return scene_; }
+    // Every position in and out (ray origins, hit points) is measured from here: the
+    // scene's origin (Scene::origin()), as the renderer's passes and TraceCamera::position.
+    glm::vec3 origin() const { return origin_; }
 
     // First hit with t in [tnear, tfar]; direction unit. Both faces of every triangle count
     // (the caller decides what a back face means); a point an alpha cut-out removes
@@ -91,12 +102,17 @@ public:
 
 private:
     const Scene& scene_;
+    glm::vec3 origin_;
+    std::vector<glm::mat4> transforms_;  // per instance, from the origin (transformFrom)
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     std::vector<RTCScene> meshScenes_;  // per mesh (null where no instance uses it)
     // Per mesh, what its geometry's alpha filter reads (its user data): the scene and the
     // mesh's index. Filled before any build, never resized after.
     std::vector<std::pair<const Scene*, uint32_t>> alphaFilters_;
+    // Per mesh and UV set, the object-space tangents a normal map reads (scenes/tangents.h,
+    // meshTangents), filled only where an instance's material has a normal map.
+    std::vector<std::vector<glm::vec4>> tangents_[2];
     BvhStats stats_;
     std::atomic<int64_t> bytes_{0};
 };

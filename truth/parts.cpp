@@ -25,6 +25,9 @@ void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const Plane
     const DirectParts& parts = frame.direct;
     const PlaneF& viewZ = frame.gbuffer.viewZ;
     const PlaneF& metallic = frame.gbuffer.metallic;
+    // The occlusion texture's share of the SSGI term (envDiffuse has it already).
+    const PlaneF* occlusion =
+        frame.material.occlusion.empty() ? nullptr : &frame.material.occlusion;
     for (int c = 0; c < 3; ++c) {
         specular[c].ensureSize(frame.width, frame.height);
         diffuse[c].ensureSize(frame.width, frame.height);
@@ -37,7 +40,9 @@ void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const Plane
                     ssr[c]->at(x, y) * o + parts.envSpecular[c].at(x, y) * (1.0f - o);
                 specular[c].at(x, y) = parts.specWeight[c].at(x, y) * incoming;
                 const float colour = albedo.at(x, y) * (1.0f - metallic.at(x, y));
-                diffuse[c].at(x, y) = viewZ.at(x, y) <= 0.0f ? 0.0f : colour * ssgi[c]->at(x, y);
+                float bounce = colour * ssgi[c]->at(x, y);
+                if (occlusion) bounce *= occlusion->at(x, y);
+                diffuse[c].at(x, y) = viewZ.at(x, y) <= 0.0f ? 0.0f : bounce;
             }
     }
 }
@@ -85,6 +90,7 @@ void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmiss
     }
     ci.viewZ = &frame.gbuffer.viewZ;
     ci.metallic = &frame.gbuffer.metallic;
+    if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     ci.ssrOpacity = &opacity;
     ci.exposure = exposure;
     PlaneF display[3];

@@ -243,6 +243,7 @@ RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& cam, const
                         const RayBatch& rays, const MarchResult& march,
                         const RayCheckSettings& settings, RayCheckPlanes* planes, int threads) {
     requireSizes(cam, viewZ, rays, march);
+    requireSameOrigin(embree, cam, "checkRays");
     if (!(settings.maxDistance > 0.0f))
         throw std::invalid_argument("checkRays: maxDistance must be > 0");
     // Embree first, alone, so that its wall clock is its own; the true distances go to the

@@ -47,7 +47,7 @@ std::string_view rayClassName(RayClass c);
 struct RayCheckSettings {
     float pixelTolerance = 2.0f;   // pixels, for Agreed
     float depthTolerance = 0.02f;  // relative view Z, for Agreed and for "visible on screen"
-    float maxDistance = 30.0f;     // MarchSettings::maxDistance of the pass checked
+    float maxDistance = 30.0f;     // scene units: marchLengths().maxDistance of the pass checked
 };
 
 // Counts and error distributions over every ray checked (several samples add up).

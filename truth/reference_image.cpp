@@ -91,6 +91,7 @@ void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
     a.tanHalfX = f.camera.tanHalfX;
     a.tanHalfY = f.camera.tanHalfY;
     std::copy_n(f.camera.viewToWorld, 9, a.viewToWorld);
+    requireSameOrigin(embree, f.camera, "the reference");
     std::copy_n(f.camera.position, 3, a.camPos);
     s.ctx = {&a, &embree, settings.visibility};
     const GBuffer& g = f.gbuffer;

@@ -41,7 +41,7 @@ struct ReferenceSettings {
     enum class Visibility { Embree, ShadowMap };
     Visibility visibility = Visibility::Embree;
     int spp = 64;               // rays per pixel for each of SSR and SSGI
-    float maxDistance = 30.0f;  // as MarchSettings::maxDistance
+    float maxDistance = 30.0f;  // scene units: the march's (marchLengths().maxDistance)
     void validate() const;      // throws std::invalid_argument naming the field
 };
 

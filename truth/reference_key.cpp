@@ -13,7 +13,9 @@ namespace {
 
 // Bump whenever the reference's model or sampling changes: old cached images then miss.
 // 2: the specular with the DFG table and Kulla-Conty multiple scattering (shade::shadeSurface).
-constexpr uint64_t kReferenceVersion = 2;
+// 3: positions measured from the scene's origin (Scene::origin()), and the march's relative
+//    maxDistance (the same image to within float rounding, not to the bit).
+constexpr uint64_t kReferenceVersion = 3;
 
 // Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
 class Fnv1a {
@@ -56,8 +58,20 @@ void hashMaterial(Fnv1a& h, const Material& m) {
     h.value(m.metallicRoughnessTexture);
     // A slot's UV set and transform only when not set 0 and the identity: the keys of
     // scenes without them stay as they were.
-    const UvTransform* slots[] = {&m.baseColorUv, &m.metallicRoughnessUv};
-    for (uint32_t slot = 0; slot < 2; ++slot) {
+    // The normal, occlusion and emissive slots only when some is used, likewise.
+    if (m.normalTexture >= 0 || m.occlusionTexture >= 0 || m.emissiveTexture >= 0) {
+        h.value(m.normalTexture);
+        h.value(m.occlusionTexture);
+        h.value(m.emissiveTexture);
+        h.value(m.normalScale);
+        h.value(m.occlusionStrength);
+    }
+    const UvTransform* slots[] = {&m.baseColorUv, &m.metallicRoughnessUv, &m.normalUv,
+                                  &m.occlusionUv, &m.emissiveUv};
+    const int32_t textures[] = {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture,
+                                m.occlusionTexture, m.emissiveTexture};
+    for (uint32_t slot = 0; slot < 5; ++slot) {
+        if (slot >= 2 && textures[slot] < 0) continue;  // an unused new slot: nothing to say
         if (slots[slot]->identity() && slots[slot]->set == 0) continue;
         h.value(slot);
         const UvTransform& t = *slots[slot];
@@ -114,7 +128,8 @@ void hashScene(Fnv1a& h, const Scene& scene) {
         h.array(m.positions);
         h.array(m.normals);
         h.array(m.uvs);
-        if (!m.uvs1.empty()) h.array(m.uvs1);  // only then: keys without it unchanged
+        if (!m.uvs1.empty()) h.array(m.uvs1);          // only then: keys without it unchanged
+        if (!m.tangents.empty()) h.array(m.tangents);  // likewise
         h.array(m.indices);
     }
     h.value(uint64_t(scene.materials.size()));

@@ -73,7 +73,8 @@ glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
     const float vis = sunVisibility(c, s, sp.position + ng * c.embree->epsilon());
     const DirectArgs& a = *c.lighting;
     if (full) {
-        const shade::Parts<float> p = shade::shadeSurface(a, s, vis);
+        shade::Parts<float> p = shade::shadeSurface(a, s, vis);
+        if (sp.occlusion != 1.0f) shade::occludeIndirect(p, sp.occlusion);
         // The direct pass's `color` order: ((sun + envDiffuse) + specWeight envSpecular) +
         // emission.
         const V3f lit = (p.sun + p.envDiffuse) + p.specWeight * p.envSpecular;

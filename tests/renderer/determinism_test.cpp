@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "material_maps.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -111,7 +112,9 @@ void addCutOuts(Scene& scene) {
 }
 
 // A built-in scene by name; "NAME+sky" lights it with testSky() instead, "NAME+tex" gives
-// every material addTestTextures(), "NAME+uv1" addSecondUvSet(), "NAME+alpha" addCutOuts().
+// every material addTestTextures(), "NAME+uv1" addSecondUvSet(), "NAME+maps" the test
+// textures and normal, occlusion and emissive maps (tests/material_maps.h), "NAME+alpha"
+// addCutOuts().
 Scene sceneNamed(const std::string& name) {
     const std::size_t plus = name.find('+');
     Scene scene = makeBuiltinScene(name.substr(0, plus));
@@ -126,6 +129,9 @@ Scene sceneNamed(const std::string& name) {
         addSecondUvSet(scene);
     } else if (variant == "+alpha") {
         addCutOuts(scene);
+    } else if (variant == "+maps") {
+        addTestTextures(scene);
+        test::addMaterialMaps(scene);
     }
     return scene;
 }
@@ -162,30 +168,30 @@ Frame renderSmall(std::string name, Isa isa, int threads) {
 // purpose: re-record with SSRT_PRINT_GOLDEN=1 and say why in the commit.
 // clang-format off
 const std::map<std::string, uint64_t> kGolden = {
-    {"cornell", 0x962a4c5ac6fdcb08ull},
-    {"spheres", 0xce7b82c187aa84dbull},
-    {"bunny", 0x5d883bedf88f352bull},
-    {"spheres+sky", 0xb715b765cd7ec9e5ull},
-    {"thin", 0x0f62fff307f9e683ull},
-    {"corridor", 0xdc82b53b4b4e7895ull},
-    {"offscreen", 0x79bd01dc37e7ec8bull},
-    {"occluded", 0x75538a1775c85dfaull},
-    {"cornell+tex", 0x9522f5d1752591fcull},
-    {"cornell+alpha", 0x604109282281ba74ull},
-    {"cornell@hiz", 0xe96362f354b7b340ull},
-    {"spheres@dda", 0x95b6c8a11647d058ull},
-    {"corridor@linear", 0x79653267d635fc72ull},
-    {"thin@hiz/mip", 0x781f76665a4b6ccbull},
-    {"offscreen@hiz", 0xcf64b1e40c3a65bbull},
-    {"occluded@dda", 0xc9676c623cf434f0ull},
+    {"cornell", 0x437ee23d1cdcf635ull},
+    {"spheres", 0xecf85cb580bb50e1ull},
+    {"bunny", 0x86e3be095417a3eeull},
+    {"spheres+sky", 0x199cb7043f0f30a5ull},
+    {"thin", 0x7dd5643e16f73738ull},
+    {"corridor", 0xa61538c6e76cfe7bull},
+    {"offscreen", 0xe973850dc456ee37ull},
+    {"occluded", 0xe1ca44fb22356163ull},
+    {"cornell+tex", 0x9ba8cfa0a4624ae9ull},
+    {"cornell+alpha", 0x32de899a14c3c97eull},
+    {"cornell@hiz", 0x44329c4cad9b2099ull},
+    {"spheres@dda", 0x7eb08391cfad4e7full},
+    {"corridor@linear", 0xf1f99883ec8b48efull},
+    {"thin@hiz/mip", 0x1c59c6160975a95dull},
+    {"offscreen@hiz", 0xbced5762bb297a33ull},
+    {"occluded@dda", 0xf8e9fd60c8630a9aull},
     // Tracing every pixel, as before the hidden-ray cuts (commit 2f2b9a1 kept those scenes'
     // hashes then, so the Hi-Z tiles and the lane-wise validation changed no bit).
-    {"cornell@hiz!all", 0x9c158682dc285edcull},
-    {"spheres@dda!all", 0x9ed743fefd756e7cull},
-    {"corridor@linear!all", 0x8903c3b9759b2cabull},
-    {"thin@hiz/mip!all", 0x7130d1f329693886ull},
-    {"offscreen@hiz!all", 0xd2dd87029d978593ull},
-    {"occluded@dda!all", 0xb39c2042981332c2ull},
+    {"cornell@hiz!all", 0x5e62ea3c0c3fe926ull},
+    {"spheres@dda!all", 0x7a9f0658a85a40caull},
+    {"corridor@linear!all", 0x7c6497f4fabf6accull},
+    {"thin@hiz/mip!all", 0x01998f833add73d5ull},
+    {"offscreen@hiz!all", 0x0636b73cee2b594eull},
+    {"occluded@dda!all", 0x03d3bd5c4d9cf1c3ull},
 };
 // clang-format on
 
@@ -195,7 +201,7 @@ TEST_CASE("every ISA and thread count renders the same bits") {
     for (const std::string scene :
          {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex", "cornell@hiz",
           "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1",
-          "cornell+alpha"}) {
+          "cornell+maps", "cornell+maps@hiz", "spheres+maps@dda/mip", "cornell+alpha"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
@@ -225,9 +231,9 @@ TEST_CASE("built-in scenes keep their golden hashes") {
 TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either sky, textured") {
     std::vector<std::string> names;
     for (const auto& info : builtinScenes())
-        names.insert(names.end(),
-                     {info.name, info.name + "+sky", info.name + "+tex", info.name + "@hiz",
-                      info.name + "+sky@dda/mip", info.name + "+tex@linear"});
+        names.insert(names.end(), {info.name, info.name + "+sky", info.name + "+tex",
+                                   info.name + "@hiz", info.name + "+sky@dda/mip",
+                                   info.name + "+tex@linear", info.name + "+maps@hiz"});
     for (const std::string& name : names) {
         CAPTURE(name);
         const Frame f = renderSmall(name, defaultIsa(), 2);

@@ -1,46 +1,20 @@
 // Any unit and any position (DESIGN.md; issue 16 item 1): a built-in scene scaled by 1e-3 and
 // 1e3, or moved 1e4 units from the origin (camera too), renders the same image as the
-// original, for every marcher: no length in the renderer is absolute.
+// original, for every marcher: no length in the renderer is absolute (the march's lengths
+// are relative to depth and to the scene's diagonal; world positions are measured from the
+// scene's centre).
 #include <doctest/doctest.h>
 
-#include <cstdio>
-#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
 #include "renderer/renderer.h"
-#include "scenes/builtin_scenes.h"
+#include "scene_transforms.h"
 #include "truth/image_error.h"
 
 using namespace ssrt;
+using namespace ssrt::test;
 
 namespace {
-
-// Every instance (and its previous pose) and both cameras through `m`, a similarity (a
-// uniform scale s and a translation); the cameras' near and far planes scaled by s.
-void transformScene(Scene& scene, const glm::mat4& m, float s) {
-    for (Instance& inst : scene.instances) {
-        inst.transform = m * inst.transform;
-        inst.previousTransform = m * inst.previousTransform;
-    }
-    for (Camera* cam : {&scene.camera, &scene.previousCamera}) {
-        cam->position = glm::vec3(m * glm::vec4(cam->position, 1.0f));
-        cam->target = glm::vec3(m * glm::vec4(cam->target, 1.0f));
-        cam->nearZ *= s;
-        cam->farZ *= s;
-    }
-}
-
-Scene scaledScene(const std::string& name, float s) {
-    Scene scene = makeBuiltinScene(name);
-    transformScene(scene, glm::scale(glm::mat4(1.0f), glm::vec3(s)), s);
-    return scene;
-}
-
-Scene movedScene(const std::string& name, glm::vec3 offset) {
-    Scene scene = makeBuiltinScene(name);
-    transformScene(scene, glm::translate(glm::mat4(1.0f), offset), 1.0f);
-    return scene;
-}
 
 RenderSettings small(Marcher m) {
     RenderSettings rs;
@@ -58,6 +32,8 @@ double colourError(const Frame& f, const Frame& ref) {
     return imageError(img, r).relMse;
 }
 
+constexpr double kBar = 1e-3;  // issue 16: relMSE of the colour
+
 }  // namespace
 
 TEST_CASE("renderer: scale invariance, scenes scaled by 1e-3 and 1e3 and moved 1e4") {
@@ -67,40 +43,40 @@ TEST_CASE("renderer: scale invariance, scenes scaled by 1e-3 and 1e3 and moved 1
             CAPTURE(marcherName(m));
             const Renderer r(small(m));
             const Frame base = r.renderWithoutHistory(makeBuiltinScene(name));
-            struct Case {
-                const char* label;
-                Scene scene;
-            };
-            const Case cases[] = {{"scaled 1e-3", scaledScene(name, 1e-3f)},
-                                  {"scaled 1e3", scaledScene(name, 1e3f)},
-                                  {"moved 1e4", movedScene(name, glm::vec3(1e4f, -1e4f, 1e4f))}};
-            for (const Case& c : cases) {
-                const double e = colourError(r.renderWithoutHistory(c.scene), base);
-                // Figures only, not checked: the tracer's lengths are absolute (issue 16).
-                MESSAGE(name << " " << marcherName(m) << " " << std::string(c.label)
-                             << ": colour relMSE " << e);
-            }
+            const double small =
+                colourError(r.renderWithoutHistory(scaledScene(name, 1e-3f)), base);
+            const double large = colourError(r.renderWithoutHistory(scaledScene(name, 1e3f)), base);
+            CHECK(small <= kBar);
+            CHECK(large <= kBar);
+            // Moved: against the same scene brought back to 0 exactly (what the renderer
+            // adds), and against the unmoved one (adding the input's own rounding).
+            const Scene moved = movedScene(name);
+            const Frame far = r.renderWithoutHistory(moved);
+            const double added = colourError(far, r.renderWithoutHistory(movedBack(moved)));
+            const double total = colourError(far, base);
+            CHECK(added <= kBar);
+            MESSAGE(name << " " << marcherName(m) << ": colour relMSE scaled 1e-3 " << small
+                         << ", 1e3 " << large << "; moved 1e4 " << added
+                         << " (against the unmoved scene " << total
+                         << ", of which the move's float rounding is the rest)");
         }
     }
 }
 
 TEST_CASE("renderer: scale invariance of the direct light alone (no trace)") {
     for (const std::string name : {"cornell", "spheres", "corridor"}) {
+        CAPTURE(name);
         RenderSettings rs = small(Marcher::HiZ);
         rs.trace.ssr = rs.trace.ssgi = false;
         const Renderer r(rs);
         const Frame base = r.renderWithoutHistory(makeBuiltinScene(name));
-        const double e3 = colourError(r.renderWithoutHistory(scaledScene(name, 1e-3f)), base);
-        const double E3 = colourError(r.renderWithoutHistory(scaledScene(name, 1e3f)), base);
-        const double m4 = colourError(
-            r.renderWithoutHistory(movedScene(name, glm::vec3(1e4f, -1e4f, 1e4f))), base);
-        // Scaled: only rounding moves (relMSE ~1e-11). Moved: float positions at 1e4 carry
-        // ~1e-3 units of rounding, a visible share of these 4-30 unit scenes (not checked).
-        CHECK(e3 <= 1e-3);
-        CHECK(E3 <= 1e-3);
-        glm::vec3 lo, hi;
-        makeBuiltinScene(name).bounds(lo, hi);
-        MESSAGE(name << " direct only: relMSE scaled 1e-3 " << e3 << ", 1e3 " << E3
-                     << ", moved 1e4 " << m4 << " (diagonal " << glm::length(hi - lo) << ")");
+        // Scaled: only rounding moves (relMSE ~1e-11).
+        CHECK(colourError(r.renderWithoutHistory(scaledScene(name, 1e-3f)), base) <= 1e-9);
+        CHECK(colourError(r.renderWithoutHistory(scaledScene(name, 1e3f)), base) <= 1e-9);
+        const Scene moved = movedScene(name);
+        const double added =
+            colourError(r.renderWithoutHistory(moved), r.renderWithoutHistory(movedBack(moved)));
+        CHECK(added <= 1e-4);
+        MESSAGE(name << " direct only, moved 1e4: relMSE " << added);
     }
 }

@@ -418,16 +418,17 @@ TEST_CASE("gltf warnings: points and lines are skipped with one line, the triang
 TEST_CASE("gltf warnings: a required extension ssrt cannot honour is an error naming it") {
     TempDir dir("gltf-warn");
     Knobs k;
-    k.extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"],)"
-              R"( "extensionsRequired": ["KHR_draco_mesh_compression"])";
-    checkRefused(writeGltf(dir, "draco.gltf", k),
-                 "extension KHR_draco_mesh_compression is required but not supported");
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_sheen"],)"
+              R"( "extensionsRequired": ["KHR_materials_sheen"])";
+    checkRefused(writeGltf(dir, "sheen.gltf", k),
+                 "extension KHR_materials_sheen is required but not supported");
     // Volume is not applied, so a file that requires it is refused too.
-    k.extra = R"(, "extensionsUsed": ["KHR_materials_volume", "EXT_meshopt_compression"],)"
-              R"( "extensionsRequired": ["KHR_materials_volume", "EXT_meshopt_compression",)"
-              R"( "KHR_materials_emissive_strength", "KHR_texture_transform"])";
+    k.extra = R"(, "extensionsUsed": ["KHR_materials_volume", "KHR_materials_transmission"],)"
+              R"( "extensionsRequired": ["KHR_materials_volume", "KHR_materials_transmission",)"
+              R"( "KHR_materials_emissive_strength", "KHR_texture_transform",)"
+              R"( "KHR_draco_mesh_compression", "EXT_meshopt_compression"])";
     checkRefused(writeGltf(dir, "two.gltf", k),
-                 "extensions KHR_materials_volume and EXT_meshopt_compression are "
+                 "extensions KHR_materials_volume and KHR_materials_transmission are "
                  "required but not supported");
 }
 
@@ -487,24 +488,19 @@ TEST_CASE("gltf warnings: cameras other than the first perspective one are named
               path + ": orthographic camera 0 ignored (only perspective cameras are supported)"});
 }
 
-TEST_CASE("gltf warnings: textures, alpha modes and filters that are not applied are named") {
+TEST_CASE("gltf warnings: alpha modes and filters that are not applied are named") {
     TempDir dir("gltf-warn");
-    writeFile(dir.file("n.png"), "not read: only checked to exist");
+    writeFile(dir.file("n.png"), "not read: no material uses it");
     Knobs k;
     k.extra = R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}],)"
               R"( "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
     std::string json = jsonOf(k, "");
     const std::string at = R"("doubleSided")";
-    json.replace(json.find(at), 0,
-                 R"("normalTexture": {"index": 0}, "occlusionTexture": {"index": 0},)"
-                 R"( "emissiveTexture": {"index": 0}, "alphaMode": "BLEND", )");
+    json.replace(json.find(at), 0, R"("alphaMode": "BLEND", )");
     const std::string path = dir.file("material.gltf");
     writeFile(path, json);
     CHECK(warningsOf(path) ==
           std::vector<std::string>{
-              path + ": emissive textures are not applied yet (material 0)",
-              path + ": normal textures are not applied yet (material 0)",
-              path + ": occlusion textures are not applied yet (material 0)",
               path + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (material 0)",
               path + ": sampler filters are ignored (sampler 0; textures are always sampled "
                      "trilinearly)"});

@@ -30,8 +30,10 @@ std::vector<uint8_t> texelBytes() {
 
 const float kUvs[] = {0, 1, 1, 1, 1, 0, 0, 0};
 
-// Positions, TEXCOORD_0 and indices of a unit quad, then `image` (4-byte aligned).
-std::vector<unsigned char> quadBin(const std::vector<unsigned char>& image = {}) {
+// Positions, TEXCOORD_0 and indices of a unit quad, then `image` (4-byte aligned), then
+// `tangents` (four VEC4, for buffer view 3 without an image).
+std::vector<unsigned char> quadBin(const std::vector<unsigned char>& image = {},
+                                   const std::vector<float>& tangents = {}) {
     const float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
     const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
     std::vector<unsigned char> bin(sizeof pos + sizeof kUvs + sizeof idx);
@@ -40,6 +42,8 @@ std::vector<unsigned char> quadBin(const std::vector<unsigned char>& image = {})
     std::memcpy(bin.data() + sizeof pos + sizeof kUvs, idx, sizeof idx);
     bin.insert(bin.end(), image.begin(), image.end());
     while (bin.size() % 4) bin.push_back(0);
+    const auto* t = reinterpret_cast<const unsigned char*>(tangents.data());
+    bin.insert(bin.end(), t, t + tangents.size() * sizeof(float));
     return bin;
 }
 
@@ -65,7 +69,9 @@ struct Quad {
     std::string pbr =
         R"("baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1})";
     std::string attributes = R"({"POSITION": 0, "TEXCOORD_0": 1})";
-    std::size_t imageBytes = 0;  // > 0: the image is buffer view 3, after the quad (GLB)
+    std::string maps;             // more members of the material, each starting with a comma
+    std::size_t imageBytes = 0;   // > 0: the image is buffer view 3, after the quad (GLB)
+    std::vector<float> tangents;  // non-empty: accessor 3 (VEC4) in buffer view 3 (.gltf)
 };
 
 // buffer: "" for GLB (the BIN chunk), else the buffer's URI.
@@ -79,20 +85,25 @@ std::string quadJson(const Quad& q, const std::string& bufferUri, std::size_t bi
     if (q.imageBytes > 0)
         views += R"(, {"buffer": 0, "byteOffset": 92, "byteLength": )" +
                  std::to_string(q.imageBytes) + "}";
+    std::string tangents;
+    if (!q.tangents.empty()) {
+        views += R"(, {"buffer": 0, "byteOffset": 92, "byteLength": 64})";
+        tangents = R"(, {"bufferView": 3, "componentType": 5126, "type": "VEC4", "count": 4})";
+    }
     views += "]";
     return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],)"
            R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": )" +
            q.attributes +
            R"(, "indices": 2, "material": 0}]}],)"
            R"( "materials": [{"pbrMetallicRoughness": {)" +
-           q.pbr +
-           R"(}}],)"
+           q.pbr + "}" + q.maps +
+           R"(}],)"
            R"( "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 4},)"
            R"( {"bufferView": 1, "componentType": 5126, "type": "VEC2", "count": 4},)"
-           R"( {"bufferView": 2, "componentType": 5123, "type": "SCALAR", "count": 6}],)"
-           R"( "bufferViews": )" +
-           views + R"(, "buffers": [)" + buffer + "]" + R"(, "images": )" + q.images +
-           R"(, "textures": )" + q.textures + R"(, "samplers": )" + q.samplers + "}";
+           R"( {"bufferView": 2, "componentType": 5123, "type": "SCALAR", "count": 6})" +
+           tangents + R"(], "bufferViews": )" + views + R"(, "buffers": [)" + buffer + "]" +
+           R"(, "images": )" + q.images + R"(, "textures": )" + q.textures + R"(, "samplers": )" +
+           q.samplers + "}";
 }
 
 void writeFile(const std::string& path, const std::vector<unsigned char>& bytes) {
@@ -104,7 +115,7 @@ void writeFile(const std::string& path, const std::string& text) { std::ofstream
 
 // A .gltf with the quad's buffer as quad.bin beside it.
 std::string writeGltf(const TempDir& dir, const std::string& name, const Quad& q) {
-    const std::vector<unsigned char> bin = quadBin();
+    const std::vector<unsigned char> bin = quadBin({}, q.tangents);
     writeFile(dir.file("quad.bin"), bin);
     writeFile(dir.file(name), quadJson(q, "quad.bin", bin.size()));
     return dir.file(name);
@@ -325,4 +336,63 @@ TEST_CASE("gltf textures: TEXCOORD_1 is read, and a texture may sample it") {
     CHECK(s.materials[0].baseColorUv.set == 1);
     CHECK(s.materials[0].metallicRoughnessUv.set == 0);
     CHECK(s.materials[0].usesUvSet1());
+}
+
+TEST_CASE("gltf textures: normal, occlusion and emissive textures are read with their fields") {
+    TempDir dir("gltf-tex-maps");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    q.pbr = R"("baseColorTexture": {"index": 0})";
+    q.maps = R"(, "normalTexture": {"index": 1, "scale": 0.5},)"
+             R"( "occlusionTexture": {"index": 1, "texCoord": 1, "strength": 0.25},)"
+             R"( "emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform":)"
+             R"( {"offset": [0.5, 0]}}}, "emissiveFactor": [1, 1, 1])";
+    q.attributes = R"({"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 1})";
+    ssrt::GltfLoadReport report;
+    const Scene s = loadGltf(writeGltf(dir, "maps.gltf", q), {}, &report);
+    CHECK(report.warnings.empty());  // nothing about these textures any more
+    const Material& m = s.materials[0];
+    REQUIRE(m.normalTexture >= 0);
+    REQUIRE(m.occlusionTexture >= 0);
+    REQUIRE(m.emissiveTexture >= 0);
+    CHECK(m.normalScale == 0.5f);
+    CHECK(m.occlusionStrength == 0.25f);
+    CHECK(m.occlusionUv.set == 1);
+    CHECK(m.normalUv.identity());
+    CHECK(m.emissiveUv.offset == glm::vec2(0.5f, 0.0f));
+    // Normal and occlusion maps are linear, the emissive one sRGB like base colour (one
+    // texture per encoding).
+    CHECK(m.emissiveTexture == m.baseColorTexture);
+    CHECK(m.normalTexture == m.occlusionTexture);
+    const std::vector<uint8_t> v = texelBytes();
+    CHECK(s.textures[m.normalTexture].levels[0].texels[0].r == float(v[0]) / 255.0f);
+    CHECK(s.textures[m.emissiveTexture].levels[0].texels[0].r ==
+          srgbToLinear(float(v[0]) / 255.0f));
+    CHECK(s.meshes[0].tangents.empty());  // no TANGENT: generated where needed
+
+    SUBCASE("the defaults: scale 1, strength 1") {
+        q.maps = R"(, "normalTexture": {"index": 1}, "occlusionTexture": {"index": 1})";
+        const Material d = loadGltf(writeGltf(dir, "defaults.gltf", q)).materials[0];
+        CHECK(d.normalScale == 1.0f);
+        CHECK(d.occlusionStrength == 1.0f);
+        CHECK(d.emissiveTexture == -1);
+    }
+    SUBCASE("a missing texture is an error naming it") {
+        q.maps = R"(, "normalTexture": {"index": 7})";
+        checkRefused(writeGltf(dir, "missing.gltf", q), "texture 7 does not exist");
+    }
+}
+
+TEST_CASE("gltf textures: TANGENT is read, xyz made unit and w a sign") {
+    TempDir dir("gltf-tex-tangent");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    Quad q;
+    q.tangents = {2, 0, 0, 1, 0, 3, 0, -1, 1, 0, 0, 0.9f, 0, 0, 1, -0.5f};
+    q.attributes = R"({"POSITION": 0, "TEXCOORD_0": 1, "TANGENT": 3})";
+    const Scene s = loadGltf(writeGltf(dir, "tangent.gltf", q));
+    REQUIRE(s.meshes[0].tangents.size() == 4);
+    CHECK(s.meshes[0].tangents[0] == glm::vec4(1, 0, 0, 1));
+    CHECK(s.meshes[0].tangents[1] == glm::vec4(0, 1, 0, -1));
+    CHECK(s.meshes[0].tangents[2] == glm::vec4(1, 0, 0, 1));
+    CHECK(s.meshes[0].tangents[3] == glm::vec4(0, 0, 1, -1));
 }

@@ -28,6 +28,7 @@ inline TraceCamera makeCamera(int w, int h, float fovYDeg) {
     c.height = h;
     c.tanHalfY = std::tan(glm::radians(fovYDeg) * 0.5f);
     c.tanHalfX = c.tanHalfY * float(w) / float(h);
+    c.sceneDiagonal = 30.0f;  // the default maxDistance (1 diagonal) is then 30 units
     return c;
 }
 

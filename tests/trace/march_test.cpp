@@ -84,6 +84,35 @@ TEST_CASE("march: names, parsing and settings validation") {
     bad([](MarchSettings& t) { t.refineSteps = -1; }, "refineSteps");
     bad([](MarchSettings& t) { t.hizMostDetailedLevel = -1; }, "hizMostDetailedLevel");
     bad([](MarchSettings& t) { t.hizStartLevel = 1, t.hizMostDetailedLevel = 2; }, "hizStartLevel");
+    bad([](MarchSettings& t) { t.thicknessAbsolute = -0.1f; }, "thicknessAbsolute");
+    bad([](MarchSettings& t) { t.maxDistanceAbsolute = INFINITY; }, "maxDistanceAbsolute");
+}
+
+TEST_CASE("march: relative lengths resolve per frame, absolute ones replace them") {
+    MarchSettings s;
+    s.maxDistance = 2.0f;
+    s.linearStep = 0.01f;
+    s.thickness = 0.05f;
+    const MarchLengths rel = marchLengths(s, 8.0f);
+    CHECK(rel.maxDistance == 16.0f);  // two diagonals
+    CHECK(rel.stepScale == 0.01f);
+    CHECK(rel.stepBias == 0.0f);
+    CHECK(rel.thicknessScale == 0.05f);
+    CHECK(rel.thicknessBias == 0.0f);
+    s.maxDistanceAbsolute = 3.0f;
+    s.linearStepAbsolute = 0.2f;
+    s.thicknessAbsolute = 0.1f;
+    const MarchLengths abs = marchLengths(s, 8.0f);
+    CHECK(abs.maxDistance == 3.0f);
+    CHECK(abs.stepScale == 0.0f);
+    CHECK(abs.stepBias == 0.2f);
+    CHECK(abs.thicknessScale == 0.0f);
+    CHECK(abs.thicknessBias == 0.1f);
+    // Absolute lengths need no scene; a relative maxDistance does.
+    CHECK(marchLengths(s, 0.0f).maxDistance == 3.0f);
+    s.maxDistanceAbsolute = 0.0f;
+    CHECK_THROWS_AS(marchLengths(s, 0.0f), std::invalid_argument);
+    CHECK_THROWS_AS(marchLengths(s, NAN), std::invalid_argument);
 }
 
 TEST_CASE("march: stats percentiles, mean and combination") {

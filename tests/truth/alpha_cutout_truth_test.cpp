@@ -82,13 +82,14 @@ TEST_CASE("alpha truth: rays pass through the holes, an opaque instance of the m
             CAPTURE(ty);
             // Straight down -Z through texel (tx, ty)'s centre.
             const glm::vec3 o(-2.0f + 0.5f * (tx + 0.5f), 2.0f - 0.5f * (ty + 0.5f), 1.0f);
-            const EmbreeHit h = e.intersect(o, {0, 0, -1}, 0.0f, 100.0f);
+            const EmbreeHit h = e.intersect(o - e.origin(), {0, 0, -1}, 0.0f, 100.0f);
             REQUIRE(h.hit);
             CHECK(h.instance == (solid(tx, ty) ? 0u : 1u));
             CHECK(h.t == doctest::Approx(solid(tx, ty) ? 3.0 : 5.0));
             // A shadow ray from between the quads toward +Z: blocked by the solid texels only.
-            CHECK(e.occluded(o - glm::vec3(0, 0, 4), {0, 0, 1}, 0.0f, 100.0f) == solid(tx, ty));
-            origins.push_back(o);
+            CHECK(e.occluded(o - glm::vec3(0, 0, 4) - e.origin(), {0, 0, 1}, 0.0f, 100.0f) ==
+                  solid(tx, ty));
+            origins.push_back(o - e.origin());
             dirs.emplace_back(0, 0, -1);
             expected.push_back(solid(tx, ty) ? 0u : 1u);
         }
@@ -123,8 +124,8 @@ TEST_CASE("alpha truth: camera rays over a slanted cut-out plane agree with the 
     int counts[2] = {0, 0}, wrong = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
-            const EmbreeHit h =
-                e.intersect(s.camera.position, cameraRay(s.camera, x, y, kSize), 0.0f, 1e4f);
+            const EmbreeHit h = e.intersect(s.camera.position - e.origin(),
+                                            cameraRay(s.camera, x, y, kSize), 0.0f, 1e4f);
             const float truth = h.hit ? float(h.instance) : -1.0f;
             const float raster = f.ids.instanceId.at(x, y);
             wrong += !(truth == raster);
@@ -164,7 +165,7 @@ TEST_CASE("alpha truth: sun rays through a cut-out roof agree with the shadow ma
             lit += shadow == 1.0f;
             const glm::vec3 d = cameraRay(s.camera, x, y, kSize);
             const glm::vec3 p = s.camera.position + d * (-s.camera.position.y / d.y);
-            const bool blocked = e.occluded(p, -s.light.direction, e.epsilon(), 1e4f);
+            const bool blocked = e.occluded(p - e.origin(), -s.light.direction, e.epsilon(), 1e4f);
             wrong += blocked == (shadow == 1.0f);
         }
     MESSAGE("floor pixels fully lit or shadowed " << exact << " (lit " << lit << "), disagree "

@@ -68,7 +68,7 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
         const glm::vec3 o{2.0f * rng.next() - 1.0f, 2.5f, 2.0f * rng.next() - 1.0f};
         const glm::vec3 d =
             glm::normalize(glm::vec3{0.8f * rng.next() - 0.4f, -1.0f, 0.8f * rng.next() - 0.4f});
-        const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+        const EmbreeHit h = e.intersect(o - e.origin(), d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 0);
         const float t = 2.0f / -d.y;
@@ -79,16 +79,17 @@ TEST_CASE("embree scene: a ray to a plane and to a box face hits at the analytic
         const glm::vec3 o{9.0f, 0.4f * rng.next() - 0.2f, 3.0f * rng.next() - 1.5f};
         const glm::vec3 d =
             glm::normalize(glm::vec3{-1.0f, 0.1f * rng.next() - 0.05f, 0.1f * rng.next() - 0.05f});
-        const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+        const EmbreeHit h = e.intersect(o - e.origin(), d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == 1);
         const float t = 3.0f / -d.x;
         CHECK(std::abs(h.t - t) <= 1e-5f * t);
     }
     // Beyond tfar or before tnear: no hit.
-    CHECK_FALSE(e.intersect({0, 2.5f, 0}, {0, -1, 0}, 0.0f, 1.99f).hit);
-    CHECK_FALSE(e.intersect({0, 2.5f, 0}, {0, -1, 0}, 2.01f, 100.0f).hit);
-    CHECK_FALSE(e.intersect({0, 2.5f, 0}, {0, 1, 0}, 0.0f, 100.0f).hit);
+    const glm::vec3 above = glm::vec3(0, 2.5f, 0) - e.origin();
+    CHECK_FALSE(e.intersect(above, {0, -1, 0}, 0.0f, 1.99f).hit);
+    CHECK_FALSE(e.intersect(above, {0, -1, 0}, 2.01f, 100.0f).hit);
+    CHECK_FALSE(e.intersect(above, {0, 1, 0}, 0.0f, 100.0f).hit);
 }
 
 TEST_CASE("embree scene: a tessellated sphere is hit within its sagitta of the true sphere") {
@@ -110,7 +111,7 @@ TEST_CASE("embree scene: a tessellated sphere is hit within its sagitta of the t
         const glm::vec3 aim =
             centre + 0.5f * r * (glm::vec3{rng.next(), rng.next(), rng.next()} - 0.5f);
         const glm::vec3 d = glm::normalize(aim - o);
-        const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+        const EmbreeHit h = e.intersect(o - e.origin(), d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         // The true sphere along the same ray.
         const glm::vec3 oc = o - centre;
@@ -143,7 +144,7 @@ TEST_CASE("embree scene: a mesh instanced twice names the instance and triangle 
         const glm::vec3 o = c + 2.5f * rng.unitVector();
         const glm::vec3 aim = c + 0.4f * (glm::vec3{rng.next(), rng.next(), rng.next()} - 0.5f);
         const glm::vec3 d = glm::normalize(aim - o);
-        const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+        const EmbreeHit h = e.intersect(o - e.origin(), d, 0.0f, 100.0f);
         REQUIRE(h.hit);
         CHECK(h.instance == uint32_t(which));
         CHECK(h.triangle < 12);
@@ -191,14 +192,16 @@ TEST_CASE("embree scene: 16-ray packets give the single-ray answers") {
 TEST_CASE("embree scene: occluded() sees what lies within [tnear, tfar]") {
     const Scene s = planeAndBoxScene();
     const EmbreeScene e(s);
-    const glm::vec3 o(0.2f, 2.5f, -0.3f), down(0, -1, 0);
+    // Positions go in measured from the scene's origin.
+    const glm::vec3 o = glm::vec3(0.2f, 2.5f, -0.3f) - e.origin(), down(0, -1, 0);
     CHECK(e.occluded(o, down, 0.0f, 2.01f));
     CHECK_FALSE(e.occluded(o, down, 0.0f, 1.99f));
     CHECK_FALSE(e.occluded(o, down, 2.01f, 100.0f));
     CHECK_FALSE(e.occluded(o, -down, 0.0f, 100.0f));
     // Back faces count: from under the floor, upward.
-    CHECK(e.occluded({0.2f, 0.0f, -0.3f}, -down, 0.0f, 1.0f));
-    CHECK(e.intersect({0.2f, 0.0f, -0.3f}, -down, 0.0f, 1.0f).hit);
+    const glm::vec3 below = glm::vec3(0.2f, 0.0f, -0.3f) - e.origin();
+    CHECK(e.occluded(below, -down, 0.0f, 1.0f));
+    CHECK(e.intersect(below, -down, 0.0f, 1.0f).hit);
 }
 
 TEST_CASE("embree scene: the surface at a hit (position, normals, uv, textured material)") {
@@ -222,10 +225,10 @@ TEST_CASE("embree scene: the surface at a hit (position, normals, uv, textured m
     const glm::vec3 o(0.0f, 0.0f, 1.0f);
     const glm::vec3 target(1.2f, -0.4f, -2.0f);
     const glm::vec3 d = glm::normalize(target - o);
-    const EmbreeHit h = e.intersect(o, d, 0.0f, 100.0f);
+    const EmbreeHit h = e.intersect(o - e.origin(), d, 0.0f, 100.0f);
     REQUIRE(h.hit);
-    const SurfacePoint p = e.surface(o, d, h);
-    CHECK(glm::length(p.position - target) <= 1e-5f);
+    const SurfacePoint p = e.surface(o - e.origin(), d, h);
+    CHECK(glm::length(p.position + e.origin() - target) <= 1e-5f);  // from the origin
     CHECK(glm::length(p.geometricNormal - glm::vec3(0, 0, 1)) <= 1e-6f);
     CHECK(glm::length(p.shadingNormal - glm::vec3(0, 0, 1)) <= 1e-6f);
     CHECK(glm::dot(p.geometricNormal, d) < 0.0f);  // faces the ray: it is the front side

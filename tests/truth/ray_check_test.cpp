@@ -47,6 +47,12 @@ TraceCamera wallCamera(int w, int h) {
     c.height = h;
     c.tanHalfX = kTanHalf;
     c.tanHalfY = kTanHalf * float(h) / float(w);
+    // At the world's 0, measured from the scene's origin (as the renderer's cameras are).
+    const glm::vec3 origin = wallScene().origin();
+    for (int i = 0; i < 3; ++i) {
+        c.origin[i] = origin[i];
+        c.position[i] = -origin[i];
+    }
     return c;
 }
 

@@ -160,6 +160,29 @@ TEST_CASE("reference: the key follows the scene, the settings and the spp, nothi
     const uint64_t maskKey = referenceKey(masked, scene.camera, 0, rs, ref);
     masked.materials[0].alphaCutoff = 0.75f;
     CHECK(referenceKey(masked, scene.camera, 0, rs, ref) != maskKey);
+    // The normal, occlusion and emissive slots and tangents, once a material has such a map.
+    CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.materials[0].normalTexture = 0;
+    }));
+    CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.materials[0].emissiveTexture = 0;
+        s.materials[0].emissiveUv.offset.x = 0.5f;
+    }));
+    CHECK(changed([](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) {
+        s.meshes[0].tangents.assign(s.meshes[0].positions.size(), glm::vec4(1, 0, 0, 1));
+    }));
+    {
+        Scene s = scene;
+        s.materials[0].occlusionTexture = 0;
+        const uint64_t occluded = referenceKey(s, scene.camera, 0, rs, ref);
+        s.materials[0].occlusionStrength = 0.5f;
+        CHECK(referenceKey(s, scene.camera, 0, rs, ref) != occluded);
+        // Without a map, its fields say nothing: the keys of scenes without maps stay.
+        Scene unused = scene;
+        unused.materials[0].normalScale = 2.0f;
+        unused.materials[0].occlusionUv.offset.x = 0.5f;
+        CHECK(referenceKey(unused, scene.camera, 0, rs, ref) == key);
+    }
     CHECK(changed(
         [](Scene& s, Camera&, RenderSettings&, ReferenceSettings&) { s.light.intensity *= 2; }));
     CHECK(changed(

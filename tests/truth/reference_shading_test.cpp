@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "material_maps.h"
 #include "renderer/direct_lighting.h"
 #include "tests/truth/reference_test_rig.h"
 #include "truth/reference_image.h"
@@ -118,4 +119,67 @@ TEST_CASE("reference: Embree's visibility differs from the shadow map's only whe
     CHECK(bothLit > hard / 10);
     CHECK(bothDark > 0);
     CHECK(hardDisagree < hard / 20);
+}
+
+TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the raster's pixels") {
+    // cornell with every material's maps (tests/material_maps.h), traced passes on so the
+    // frame hands out its parts. At Embree's hit through each pixel the truth reads the maps
+    // itself (level 0, bilinear; the maps are magnified so the raster reads level 0 too) and
+    // bends its own normal with its own tangents: its full radiance must be the pixel's
+    // direct-pass sum, and its SSGI radiance (Lambert sun + emission) the pixel's hitLight.
+    Scene scene = makeBuiltinScene("cornell");
+    test::addMaterialMaps(scene);
+    const Renderer renderer(test::referenceRigSettings(96, 54, 0, true));
+    const Frame frame = renderer.renderWithoutHistory(scene);
+    const EmbreeScene embree(scene);
+    DirectLighting lighting;
+    setDirectLighting(scene, renderer.settings(), frame.scratch.shadow, nullptr, lighting);
+    DirectArgs& a = lighting.args;
+    setDirectGBuffer(frame.gbuffer, a);
+    a.width = frame.width;
+    a.height = frame.height;
+    a.tanHalfX = frame.camera.tanHalfX;
+    a.tanHalfY = frame.camera.tanHalfY;
+    std::copy_n(frame.camera.viewToWorld, 9, a.viewToWorld);
+    std::copy_n(frame.camera.position, 3, a.camPos);
+    const reference::ShadingContext ctx{&a, &embree, ReferenceSettings::Visibility::ShadowMap};
+    const glm::vec3 cam(frame.camera.position[0], frame.camera.position[1],
+                        frame.camera.position[2]);
+    const DirectParts& p = frame.direct;
+    std::vector<float> full, bounce;
+    int occluded = 0, emitting = 0;
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+            if (!(frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
+            const reference::PointSurface ps = reference::pixelSurface(a, x, y);
+            const glm::vec3 dir = -glm::vec3(ps.view.x, ps.view.y, ps.view.z);
+            const EmbreeHit hit = embree.intersect(cam, dir, 0.0f, 1e30f);
+            REQUIRE(hit.hit);
+            const glm::vec3 lf = reference::hitRadiance(ctx, cam, dir, hit, true);
+            const glm::vec3 lb = reference::hitRadiance(ctx, cam, dir, hit, false);
+            float ef = 0.0f, eb = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float sum = ((p.direct[c].at(x, y) + p.envDiffuse[c].at(x, y)) +
+                                   p.specWeight[c].at(x, y) * p.envSpecular[c].at(x, y)) +
+                                  p.emission[c].at(x, y);
+                ef = std::max(ef, relDiff(lf[c], sum));
+                eb = std::max(eb, relDiff(lb[c], p.hitLight[c].at(x, y)));
+            }
+            full.push_back(ef);
+            bounce.push_back(eb);
+            occluded += frame.material.occlusion.at(x, y) < 0.9f;
+            emitting += frame.material.emission[0].at(x, y) > 0.0f;
+        }
+    for (std::vector<float>* e : {&full, &bounce}) {
+        std::sort(e->begin(), e->end());
+        const float median = (*e)[e->size() / 2], p99 = (*e)[e->size() * 99 / 100];
+        MESSAGE((e == &full ? "full" : "SSGI")
+                << " radiance, relative error: median " << median << ", 99th percentile " << p99
+                << " over " << e->size() << " pixels");
+        CHECK(median < 1e-4f);
+        CHECK(p99 < 1e-3f);
+    }
+    MESSAGE(occluded << " pixels occluded below 0.9, " << emitting << " emitting");
+    CHECK(occluded > int(full.size()) / 4);
+    CHECK(emitting > int(full.size()) / 4);
 }
