@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "renderer/renderer.h"
@@ -234,4 +235,15 @@ TEST_CASE("alpha cut-out: the sun through the cut-out lights the floor under the
     const Frame opaque = render(scene, kImage);
     for (int y = 0; y < kImage; ++y)
         for (int x = 0; x < kImage; ++x) REQUIRE(opaque.image.shadow.at(x, y) == 0.0f);
+}
+
+TEST_CASE("alpha cut-out: a non-finite alpha or cutoff is refused, not drawn as nothing") {
+    Scene scene = cutOutScene();
+    CHECK_NOTHROW(scene.validate());
+    scene.materials[0].alphaCutoff = std::nanf("");
+    CHECK_THROWS_AS(scene.validate(), std::invalid_argument);
+    CHECK_THROWS_AS(render(scene, 8), std::invalid_argument);
+    scene.materials[0].alphaCutoff = 0.5f;
+    scene.materials[0].baseColorAlpha = INFINITY;
+    CHECK_THROWS_AS(scene.validate(), std::invalid_argument);
 }
