@@ -2,7 +2,8 @@
 # The glTF loader, shot files, image I/O and command-line tests (issue 4: the loader must run
 # clean on malformed files) and the screen-space tracer's tests (marchers, ray generation,
 # resolve, SSGI, composite, the renderer's trace passes, the frame's name tables, the settings
-# field tables), the Embree scene, ray checks,
+# field tables), the material maps and alpha cut-outs (raster and truth), the Embree scene,
+# ray checks,
 # reference image, image error and the compare and sweep commands,
 # under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Builds in build-asan/; CI runs it after scripts/test.sh.
@@ -18,4 +19,4 @@ export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # One known leak inside OpenImageIO on corrupt PNGs (see the file).
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
-./build-asan/tests/ssrt_tests -tc='frame:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'
+./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'

@@ -13,6 +13,7 @@
 #include "renderer/renderer.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
+#include "screen_quad.h"
 
 using namespace ssrt;
 using namespace ssrt::helpers;
@@ -36,15 +37,11 @@ Texture checker(float solidAlpha = 1.0f, float holeAlpha = 0.0f) {
 }
 
 // A quad at z = -2 that fills the 90-degree view of a camera at the origin looking down -Z
-// (UV (0, 0) top-left, as texture_render_test.cpp's), material 0: white, MASK, the checker;
+// (screen_quad.h), material 0: white, MASK, the checker;
 // a red wall at z = -4 behind it, material 1.
 Scene cutOutScene() {
     Scene s;
-    Mesh quad;
-    quad.positions = {{-2, 2, -2}, {-2, -2, -2}, {2, -2, -2}, {2, 2, -2}};
-    quad.normals.assign(4, {0, 0, 1});
-    quad.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const Mesh quad = test::screenQuadMesh();
     Mesh wall = quad;
     for (glm::vec3& p : wall.positions) p = {p.x * 3.0f, p.y * 3.0f, -4.0f};
     s.meshes = {quad, wall};

@@ -10,6 +10,7 @@
 
 #include "plane_compare.h"
 #include "renderer/renderer.h"
+#include "screen_quad.h"
 
 using namespace ssrt;
 using test::sameBits;
@@ -18,27 +19,14 @@ namespace {
 
 constexpr int kSize = 48;
 
-// A camera at the origin looking down -Z with a 90-degree field of view, and a quad at
-// z = -2 that fills it exactly: UV (0, 0) at the top-left of the image (u along +x, v along
-// -y), normal +z. A rough dielectric lit by the sun from the right (+x) and in front.
+// The screen-filling quad (screen_quad.h), a rough dielectric lit by the sun from the right
+// (+x) and in front.
 Scene quadScene() {
-    Scene s;
-    Mesh quad;
-    quad.positions = {{-2, 2, -2}, {-2, -2, -2}, {2, -2, -2}, {2, 2, -2}};
-    quad.normals.assign(4, {0, 0, 1});
-    quad.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
-    s.meshes.push_back(quad);
     Material m;
     m.baseColor = glm::vec3(0.8f);
     m.metallic = 0.0f;
     m.roughness = 1.0f;
-    s.materials.push_back(m);
-    s.instances.push_back(Instance{});
-    s.camera.position = {0, 0, 0};
-    s.camera.target = {0, 0, -1};
-    s.camera.fovY = 90.0f;
-    s.previousCamera = s.camera;
+    Scene s = test::screenQuadScene(m);
     s.light.direction = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));  // towards -x, -z
     s.sky.kind = Sky::Kind::Constant;
     s.sky.zenith = glm::vec3(1.0f);

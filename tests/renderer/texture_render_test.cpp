@@ -9,6 +9,7 @@
 #include "plane_compare.h"
 #include "raster/resolve_kernel.h"
 #include "renderer/renderer.h"
+#include "screen_quad.h"
 
 using namespace ssrt;
 
@@ -25,28 +26,13 @@ glm::vec4 texel(int x, int y) {
     return {0.05f + x / 8.0f, 0.05f + y / 8.0f, 0.05f + float((3 * x + 5 * y) % 8) / 8.0f, 1.0f};
 }
 
-// A camera at the origin looking down -Z with a 90-degree field of view, and a quad at
-// z = -2 that fills it exactly: UV (0, 0) at the top-left of the image, (1, 1) at the
-// bottom-right.
+// The screen-filling quad (screen_quad.h), white metal.
 Scene quadScene() {
-    Scene s;
-    Mesh quad;
-    quad.positions = {{-2, 2, -2}, {-2, -2, -2}, {2, -2, -2}, {2, 2, -2}};
-    quad.normals.assign(4, {0, 0, 1});
-    quad.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
-    s.meshes.push_back(quad);
     Material m;
     m.baseColor = glm::vec3(1.0f);
     m.metallic = 1.0f;
     m.roughness = 1.0f;
-    s.materials.push_back(m);
-    s.instances.push_back(Instance{});
-    s.camera.position = {0, 0, 0};
-    s.camera.target = {0, 0, -1};
-    s.camera.fovY = 90.0f;
-    s.previousCamera = s.camera;
-    return s;
+    return test::screenQuadScene(m);
 }
 
 Frame render(const Scene& scene, int size, Isa isa = Isa::Scalar) {

@@ -19,19 +19,12 @@ using ssrt::loadGltf;
 using ssrt::SceneLoadError;
 using ssrt::test::TempDir;
 
+using ssrt::test::checkRefused;
+using ssrt::test::loadError;
+
 namespace {
 
 const std::string kBox = SSRT_SOURCE_DIR "/tests/scenes/data/draco_box.gltf";
-
-std::string loadError(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneLoadError& e) {
-        return e.what();
-    }
-    FAIL("no SceneLoadError for " << path);
-    return "";
-}
 
 // The box file with `from` replaced by `to` (which must occur once), written to `dir`.
 std::string editedBox(const TempDir& dir, const std::string& from, const std::string& to) {
@@ -43,14 +36,6 @@ std::string editedBox(const TempDir& dir, const std::string& from, const std::st
     const std::string path = dir.file("edited.gltf");
     ssrt::test::writeFile(path, text);
     return path;
-}
-
-void checkRefused(const std::string& path, const std::string& keyword) {
-    const std::string msg = loadError(path);
-    INFO(msg);
-    CHECK(msg.find(path) != std::string::npos);
-    CHECK(msg.find(keyword) != std::string::npos);
-    CHECK(msg.find('\n') == std::string::npos);
 }
 
 // Instanced triangles with three different vertex indices.

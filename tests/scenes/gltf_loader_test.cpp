@@ -13,11 +13,17 @@
 #include <string>
 #include <vector>
 
+#include "gltf_test_files.h"
 #include "temp_dir.h"
 
 using ssrt::loadGltf;
 using ssrt::SceneLoadError;
 using ssrt::test::TempDir;
+
+using ssrt::test::base64;
+using ssrt::test::checkRefused;
+using ssrt::test::loadError;
+using ssrt::test::writeFile;
 
 namespace {
 
@@ -41,20 +47,6 @@ std::vector<unsigned char> binOf(const Knobs& k) {
     std::memcpy(bin.data() + k.positions.size() * 4, k.indices.data(), k.indices.size() * 2);
     while (bin.size() % 4) bin.push_back(0);
     return bin;
-}
-
-std::string base64(const std::vector<unsigned char>& in) {
-    static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < in.size(); i += 3) {
-        const uint32_t n = in[i] << 16 | (i + 1 < in.size() ? in[i + 1] << 8 : 0) |
-                           (i + 2 < in.size() ? in[i + 2] : 0);
-        out += abc[n >> 18 & 63];
-        out += abc[n >> 12 & 63];
-        out += i + 1 < in.size() ? abc[n >> 6 & 63] : '=';
-        out += i + 2 < in.size() ? abc[n & 63] : '=';
-    }
-    return out;
 }
 
 // uri: "" embeds the buffer, "-" leaves it out (GLB), anything else names a file.
@@ -93,10 +85,6 @@ std::string jsonOf(const Knobs& k, const std::string& uri) {
            k.extra + "}";
 }
 
-void writeFile(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
-
 std::string writeGltf(const TempDir& dir, const std::string& name, const Knobs& k) {
     const std::string path = dir.file(name);
     if (!k.bufferUri.empty()) {
@@ -107,24 +95,8 @@ std::string writeGltf(const TempDir& dir, const std::string& name, const Knobs& 
     return path;
 }
 
-void appendU32(std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
-
-// GLB: 12-byte header, then a JSON chunk padded with spaces and a BIN chunk padded with zeros.
-std::string glbOf(const Knobs& k) {
-    std::string json = jsonOf(k, "-");
-    while (json.size() % 4) json += ' ';
-    const std::vector<unsigned char> bin = binOf(k);
-    std::string out = "glTF";
-    appendU32(out, 2);
-    appendU32(out, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
-    appendU32(out, uint32_t(json.size()));
-    appendU32(out, 0x4E4F534A);  // "JSON"
-    out += json;
-    appendU32(out, uint32_t(bin.size()));
-    appendU32(out, 0x004E4942);  // "BIN\0"
-    out.append(bin.begin(), bin.end());
-    return out;
-}
+// The knobs' file as a GLB (the buffer in its BIN chunk).
+std::string glbOf(const Knobs& k) { return ssrt::test::glbOf(jsonOf(k, "-"), binOf(k)); }
 
 // The hierarchy, material, camera and light that the round trips check.
 Knobs richKnobs() {
@@ -176,25 +148,6 @@ void checkRichScene(const ssrt::Scene& s) {
     closeTo(s.light.direction, {0, -1, 0});
     closeTo(s.light.color, {1, 0.9f, 0.8f});
     CHECK(s.light.intensity == doctest::Approx(4));
-}
-
-// Loads a file that must fail, and returns the one-line message.
-std::string loadError(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneLoadError& e) {
-        return e.what();
-    }
-    FAIL("no SceneLoadError for ", path);
-    return {};
-}
-
-void checkRefused(const std::string& path, const std::string& keyword) {
-    const std::string msg = loadError(path);
-    INFO(msg);
-    CHECK(msg.find(path) != std::string::npos);
-    CHECK(msg.find(keyword) != std::string::npos);
-    CHECK(msg.find('\n') == std::string::npos);
 }
 
 }  // namespace

@@ -22,6 +22,9 @@ using ssrt::loadGltf;
 using ssrt::SceneLoadError;
 using ssrt::test::TempDir;
 
+using ssrt::test::checkRefused;
+using ssrt::test::loadError;
+
 namespace {
 
 template <class T>
@@ -160,24 +163,6 @@ std::string edited(const std::string& path, const std::string& from, const std::
     text.replace(at, from.size(), to);
     ssrt::test::writeFile(path, text);
     return path;
-}
-
-std::string loadError(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneLoadError& e) {
-        return e.what();
-    }
-    FAIL("no SceneLoadError for " << path);
-    return "";
-}
-
-void checkRefused(const std::string& path, const std::string& keyword) {
-    const std::string msg = loadError(path);
-    INFO(msg);
-    CHECK(msg.find(path) != std::string::npos);
-    CHECK(msg.find(keyword) != std::string::npos);
-    CHECK(msg.find('\n') == std::string::npos);
 }
 
 // The same triangles in the same order, each maybe starting at another of its vertices.

@@ -1,11 +1,17 @@
-// Writing glTF test files: base64 for data URIs, the GLB container, whole files.
+// Writing glTF test files (base64 for data URIs, the GLB container, whole files) and checking
+// that the loader refuses one.
 #pragma once
 
+#include <doctest/doctest.h>
+
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "scenes/gltf_loader.h"
 
 namespace ssrt::test {
 
@@ -55,6 +61,26 @@ inline void writeFile(const std::string& path, const std::string& bytes) {
 inline std::string readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The loader's message for a file it must refuse (a test failure when it loads).
+inline std::string loadError(const std::string& path) {
+    try {
+        loadGltf(path);
+    } catch (const SceneLoadError& e) {
+        return e.what();
+    }
+    FAIL("no SceneLoadError for " << path);
+    return {};
+}
+
+// Refused with one line that names the file and holds `keyword`.
+inline void checkRefused(const std::string& path, const std::string& keyword) {
+    const std::string msg = loadError(path);
+    INFO(msg);
+    CHECK(msg.find(path) != std::string::npos);
+    CHECK(msg.find(keyword) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
 }
 
 }  // namespace ssrt::test

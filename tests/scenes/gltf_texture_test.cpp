@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gltf_test_files.h"
 #include "image_files.h"
 #include "io/texture_io.h"
 #include "scenes/gltf_loader.h"
@@ -16,6 +17,10 @@
 
 using namespace ssrt;
 using test::TempDir;
+
+using test::base64;
+using test::checkRefused;
+using test::loadError;
 
 namespace {
 
@@ -45,20 +50,6 @@ std::vector<unsigned char> quadBin(const std::vector<unsigned char>& image = {},
     const auto* t = reinterpret_cast<const unsigned char*>(tangents.data());
     bin.insert(bin.end(), t, t + tangents.size() * sizeof(float));
     return bin;
-}
-
-std::string base64(const std::vector<unsigned char>& in) {
-    static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < in.size(); i += 3) {
-        const uint32_t n = in[i] << 16 | (i + 1 < in.size() ? in[i + 1] << 8 : 0) |
-                           (i + 2 < in.size() ? in[i + 2] : 0);
-        out += abc[n >> 18 & 63];
-        out += abc[n >> 12 & 63];
-        out += i + 1 < in.size() ? abc[n >> 6 & 63] : '=';
-        out += i + 2 < in.size() ? abc[n & 63] : '=';
-    }
-    return out;
 }
 
 struct Quad {
@@ -182,24 +173,6 @@ void checkTexturedQuad(const Scene& s) {
     REQUIRE(s.meshes[0].uvs.size() == 4);
     for (int i = 0; i < 4; ++i)
         CHECK(s.meshes[0].uvs[i] == glm::vec2(kUvs[2 * i], kUvs[2 * i + 1]));
-}
-
-std::string loadError(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneLoadError& e) {
-        return e.what();
-    }
-    FAIL("no SceneLoadError for ", path);
-    return {};
-}
-
-void checkRefused(const std::string& path, const std::string& keyword) {
-    const std::string msg = loadError(path);
-    INFO(msg);
-    CHECK(msg.find(path) != std::string::npos);
-    CHECK(msg.find(keyword) != std::string::npos);
-    CHECK(msg.find('\n') == std::string::npos);
 }
 
 }  // namespace
