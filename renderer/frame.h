@@ -161,14 +161,16 @@ struct SsrPlanes : PlaneTable<SsrPlanes> {
 
 // What SSGI hands out (TraceSettings::ssgi).
 struct SsgiPlanes : PlaneTable<SsgiPlanes> {
-    PlaneF color[3];  // incoming diffuse radiance
-    PlaneF hit;
+    PlaneF color[3];     // incoming diffuse radiance
+    PlaneF hit;          // share of the pixel's rays that hit
+    PlaneF hitDistance;  // view-space distance to the hit, mean over hits (0 without one): the
+                         // denoiser's guide (REBLUR weighs and blurs by it, issue 17)
     PlaneF steps;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("ssgi.R", g.color[0]), fn("ssgi.G", g.color[1]), fn("ssgi.B", g.color[2]);
-        fn("ssgiHit", g.hit), fn("ssgiSteps", g.steps);
+        fn("ssgiHit", g.hit), fn("ssgiHitDistance", g.hitDistance), fn("ssgiSteps", g.steps);
     }
 };
 

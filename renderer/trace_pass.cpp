@@ -154,7 +154,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     in.metallic = &g.metallic;
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
-    const HitStatsPlanes hp{&planes.hit, &planes.steps, nullptr};
+    const HitStatsPlanes hp{&planes.hit, &planes.steps, &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;

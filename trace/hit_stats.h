@@ -1,7 +1,7 @@
 // Per-pixel statistics of one trace pass over its samples (the renderer's "ssrHit",
-// "ssrSteps", "ssrHitDistance", "ssgiHit", "ssgiSteps" planes): the fraction of rays that hit,
-// the mean march steps and, optionally, the mean view-space distance from the ray's origin to
-// its hit (over the hits; 0 without any). A kernel over the lane type, one copy per ISA:
+// "ssrSteps", "ssrHitDistance", "ssgiHit", "ssgiHitDistance", "ssgiSteps" planes): the fraction of
+// rays that hit, the mean march steps and, optionally, the mean view-space distance from the ray's
+// origin to its hit (over the hits; 0 without any). A kernel over the lane type, one copy per ISA:
 // every pixel gets the same bits on every ISA and thread count, and the same as the scalar
 // loops it replaces (renderer/trace_pass.cpp before it).
 #pragma once

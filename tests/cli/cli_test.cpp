@@ -354,7 +354,7 @@ TEST_CASE("cli: the screen-space passes write their layers and counters, and can
         CHECK(contains(r.out, part));
     auto channels = readChannelNames(path);
     for (const char* name : {"ssr.R", "ssrOpacity", "ssrHit", "ssrHitDistance", "ssrSteps",
-                             "ssgi.G", "ssgiHit", "ssgiSteps"})
+                             "ssgi.G", "ssgiHit", "ssgiHitDistance", "ssgiSteps"})
         CHECK(std::find(channels.begin(), channels.end(), name) != channels.end());
 
     r = run({"render", "--width", "48", "--height", "32", "--no-ssr", "--no-ssgi", "-o", path,

@@ -37,12 +37,12 @@ TEST_CASE("frame: the layers are the groups' tables in file order, each found by
     const Frame f = Renderer(tiny()).renderWithoutHistory(scene);
     // The EXR channel order ssrt has always written (golden files depend on it).
     const std::vector<std::string> want = {
-        "color.R",    "color.G",    "color.B",        "display.R", "display.G",  "display.B",
-        "shadow",     "viewZ",      "normal.X",       "normal.Y",  "normal.Z",   "albedo.R",
-        "albedo.G",   "albedo.B",   "metallic",       "roughness", "materialId", "motion.X",
-        "motion.Y",   "instanceId", "triangleId",     "ssr.R",     "ssr.G",      "ssr.B",
-        "ssrOpacity", "ssrHit",     "ssrHitDistance", "ssrSteps",  "ssgi.R",     "ssgi.G",
-        "ssgi.B",     "ssgiHit",    "ssgiSteps"};
+        "color.R",    "color.G",    "color.B",         "display.R", "display.G",  "display.B",
+        "shadow",     "viewZ",      "normal.X",        "normal.Y",  "normal.Z",   "albedo.R",
+        "albedo.G",   "albedo.B",   "metallic",        "roughness", "materialId", "motion.X",
+        "motion.Y",   "instanceId", "triangleId",      "ssr.R",     "ssr.G",      "ssr.B",
+        "ssrOpacity", "ssrHit",     "ssrHitDistance",  "ssrSteps",  "ssgi.R",     "ssgi.G",
+        "ssgi.B",     "ssgiHit",    "ssgiHitDistance", "ssgiSteps"};
     CHECK(layerNames(f) == want);
     // plane(name) is the member the table names.
     CHECK(&f.plane("viewZ") == &f.gbuffer.viewZ);

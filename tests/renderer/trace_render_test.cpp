@@ -40,6 +40,9 @@ TEST_CASE("renderer: trace planes agree with the trace counters") {
                 const float opacity = f.trace.ssr.opacity.at(x, y);
                 bounded &= hit >= 0.0f && hit <= 1.0f && opacity >= 0.0f && opacity <= 1.0f;
                 distanceOnlyOnHits &= (hit > 0.0f) == (f.trace.ssr.hitDistance.at(x, y) > 0.0f);
+                const float ssgiHit = f.trace.ssgi.hit.at(x, y);
+                distanceOnlyOnHits &=
+                    (ssgiHit > 0.0f) == (f.trace.ssgi.hitDistance.at(x, y) > 0.0f);
                 ssrHits += double(hit) * rs.trace.ssrSpp;
                 ssgiHits += double(f.trace.ssgi.hit.at(x, y)) * rs.trace.ssgiSpp;
                 ssrSteps += double(f.trace.ssr.steps.at(x, y)) * rs.trace.ssrSpp;
