@@ -379,7 +379,7 @@ TEST_CASE("gltf textures: a MASK material's transparent texels are cut out of th
     std::vector<uint8_t> texels;
     for (int y = 0; y < kTexH; ++y)
         for (int x = 0; x < kTexW; ++x)
-            texels.insert(texels.end(), {200, 120, 60, x < 2 ? 0 : 255});
+            texels.insert(texels.end(), {200, 120, 60, uint8_t(x < 2 ? 0 : 255)});
     test::writeImage(dir.file("tex.png"), kTexW, kTexH, 4, texels);
     Quad q;
     q.pbr = R"("baseColorTexture": {"index": 0})";
