@@ -7,9 +7,9 @@
 namespace ssrt {
 
 RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float& texelSize) {
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi);
-    const glm::vec3 center = 0.5f * (lo + hi);  // Scene::origin()
+    const Bounds bounds = scene.bounds();
+    const glm::vec3 lo = bounds.lo, hi = bounds.hi;
+    const glm::vec3 center = bounds.centre();  // Scene::origin()
     const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     glm::vec3 dir = scene.light.direction;
     dir = glm::length(dir) > 0.0f ? glm::normalize(dir) : glm::vec3(0.0f, -1.0f, 0.0f);

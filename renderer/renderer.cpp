@@ -43,7 +43,8 @@ struct FrameContext {
           threads(s.threads),
           grid(s.width, s.height) {
         const float aspect = float(s.width) / float(s.height);
-        origin = scene.origin();
+        const Bounds bounds = scene.bounds();  // one pass over the vertices for both facts
+        origin = bounds.centre();
         view = camera.viewFrom(origin);
         proj = camera.projection(aspect);
         prevViewProj =
@@ -59,7 +60,7 @@ struct FrameContext {
         const glm::vec3 position(glm::dvec3(camera.position) - glm::dvec3(origin));
         std::copy_n(glm::value_ptr(position), 3, trace.position);
         std::copy_n(glm::value_ptr(origin), 3, trace.origin);
-        trace.sceneDiagonal = scene.diagonal();
+        trace.sceneDiagonal = bounds.diagonal();
     }
     RasterOptions raster() const {
         RasterOptions ro;

@@ -51,6 +51,17 @@ std::size_t Scene::triangleCount() const {
     return n;
 }
 
+float Bounds::diagonal() const {
+    const float d = glm::length(hi - lo);
+    return d > 0.0f && std::isfinite(d) ? d : 1.0f;
+}
+
+Bounds Scene::bounds() const {
+    Bounds b;
+    bounds(b.lo, b.hi);
+    return b;
+}
+
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(-std::numeric_limits<float>::max());
@@ -63,19 +74,6 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
     }
     if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
-}
-
-glm::vec3 Scene::origin() const {
-    glm::vec3 lo, hi;
-    bounds(lo, hi);
-    return 0.5f * (lo + hi);
-}
-
-float Scene::diagonal() const {
-    glm::vec3 lo, hi;
-    bounds(lo, hi);
-    const float d = glm::length(hi - lo);
-    return d > 0.0f && std::isfinite(d) ? d : 1.0f;  // a point: no length to measure against
 }
 
 void Scene::validate() const {

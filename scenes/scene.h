@@ -114,6 +114,17 @@ struct Instance {
 // the float spacing there (about 1e-3 at 1e4) before anything cancels.
 glm::mat4 transformFrom(const glm::mat4& m, glm::vec3 origin);
 
+// An axis-aligned box (Scene::bounds) and the two facts the passes and the truth take from
+// it, in one place so that every user derives them alike.
+struct Bounds {
+    glm::vec3 lo{0.0f}, hi{0.0f};
+    // Where the renderer and the truth measure world positions from (Scene::origin()).
+    glm::vec3 centre() const { return 0.5f * (lo + hi); }
+    // The unit of the tracer's relative lengths; 1 where the box is a point (no length to
+    // measure against).
+    float diagonal() const;
+};
+
 struct DirectionalLight {
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels (unit)
     glm::vec3 color{1.0f};
@@ -174,15 +185,16 @@ struct Scene {
     Camera previousCamera;  // the pose one frame earlier (equal to camera for a still frame)
 
     std::size_t triangleCount() const;
-    // World-space bounds of every instance (finite vertices only).
+    // World-space bounds of every instance (finite vertices only; all 0 without any). One
+    // pass over every vertex: callers that need several of the facts below take it once.
+    Bounds bounds() const;
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
     // Where the renderer and the truth measure world positions from: the bounds' centre.
     // Every pass works on positions relative to it (transformFrom, Camera::viewFrom), so a
     // scene 1e4 units from 0 is as precise as one at 0 (issue 16).
-    glm::vec3 origin() const;
-    // The length of the bounds' diagonal: the unit of the tracer's relative lengths (1 where
-    // the bounds are a point).
-    float diagonal() const;
+    glm::vec3 origin() const { return bounds().centre(); }
+    // The bounds' diagonal: the unit of the tracer's relative lengths (Bounds::diagonal).
+    float diagonal() const { return bounds().diagonal(); }
     // Throws std::invalid_argument naming the first broken reference (mesh, material, index,
     // texture).
     void validate() const;

@@ -106,8 +106,13 @@ bool countBytes(void* ptr, ssize_t bytes, bool /*post*/) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene), origin_(scene.origin()) {
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     scene.validate();
+    const Bounds bounds = scene.bounds();
+    origin_ = bounds.centre();
+    stats_.lo = bounds.lo;
+    stats_.hi = bounds.hi;
+    stats_.diagonal = bounds.diagonal();
     for (const Instance& inst : scene.instances)
         transforms_.push_back(transformFrom(inst.transform, origin_));
     device_ = rtcNewDevice(nullptr);
@@ -162,9 +167,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene), origin_(scene.orig
     check(device_, "the scene build");
     stats_.bytes = std::size_t(std::max<int64_t>(0, bytes_.load()));
     stats_.instances = scene.instances.size();
-    scene.bounds(stats_.lo, stats_.hi);
-    stats_.diagonal = glm::length(stats_.hi - stats_.lo);
-    if (!(stats_.diagonal > 0.0f) || !std::isfinite(stats_.diagonal)) stats_.diagonal = 1.0f;
 }
 
 void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& c, const char* who) {

@@ -92,7 +92,7 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameIn
 
     // The checked render: Embree sees each sample's rays as they were marched.
     RayCheckSettings check = es.check;
-    check.maxDistance = marchLengths(settings.trace.march, scene.diagonal()).maxDistance;
+    check.maxDistance = marchLengths(settings.trace.march, frame.camera.sceneDiagonal).maxDistance;
     const PlaneF* viewZ = nullptr;
     const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
                                        const MarchResult& march) {

@@ -169,11 +169,7 @@ bool contains(const std::vector<int>& v, int x) {
     return std::find(v.begin(), v.end(), x) != v.end();
 }
 
-struct Bounds {
-    glm::vec3 lo, hi;
-};
-
-// World bounds of one instance.
+// World bounds of one instance (scenes/scene.h's Bounds).
 Bounds instanceBounds(const Scene& s, int instance) {
     const Instance& inst = s.instances[std::size_t(instance)];
     Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
