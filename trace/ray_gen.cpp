@@ -35,6 +35,7 @@ void RayGenStats::add(const RayGenStats& o) {
     belowSurface += o.belowSurface;
     background += o.background;
     hidden += o.hidden;
+    cut += o.cut;
 }
 
 namespace {
@@ -55,7 +56,7 @@ void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam, std::
 // Set-up shared by both passes: checks, arguments, the tile loop, counters in tile order.
 RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays, int threads,
-                float maxRoughness, bool onlyDiffuse) {
+                float maxRoughness, bool onlyDiffuse, RayGenCheckerboard checkerboard) {
     if (std::isnan(maxRoughness))
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
@@ -94,6 +95,9 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
     a.sample = sample;
     a.dim = dim;
     a.maxRoughness = maxRoughness;
+    a.checkerboard = checkerboard.on;
+    a.checkerPhase = checkerboard.phase & 1u;
+    a.cutPdf = kPdfLayoutCut;
     if (onlyDiffuse) {
         for (int c = 0; c < 3; ++c) a.diffuse[c] = g.albedo[c]->row(0);
         a.diffuse[3] = g.metallic->row(0);
@@ -105,7 +109,7 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
                      [&](int tile) { kernel(a, tile, counts[std::size_t(tile)]); });
     RayGenStats stats;
     for (const RayGenCounts& c : counts)
-        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.hidden});
+        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.hidden, c.cut});
     return stats;
 }
 
@@ -113,16 +117,17 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
 
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
                                  const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
-                                 int threads, float maxRoughness) {
+                                 int threads, float maxRoughness, RayGenCheckerboard checkerboard) {
     return run(isa, RayGenLobe(int(method)), frame, sample, kRayGenSpecularDim, camera, g, rays,
-               threads, maxRoughness, false);
+               threads, maxRoughness, false, checkerboard);
 }
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
-                                const RayGenGBuffer& g, RayBatch& rays, int threads,
-                                DiffuseCut cut) {
+                                const RayGenGBuffer& g, RayBatch& rays, int threads, DiffuseCut cut,
+                                RayGenCheckerboard checkerboard) {
     return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays, threads,
-               std::numeric_limits<float>::infinity(), cut == DiffuseCut::NoDiffuseColour);
+               std::numeric_limits<float>::infinity(), cut == DiffuseCut::NoDiffuseColour,
+               checkerboard);
 }
 
 }  // namespace ssrt

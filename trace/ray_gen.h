@@ -81,7 +81,19 @@ struct RayGenStats {
     // (specular: roughness at or past the cut; diffuse: no diffuse colour); not in
     // belowSurface
     uint64_t hidden = 0;
+    // surface pixels the trace layout leaves without a ray (trace/trace_layout.h: the
+    // checkerboard's other phase, a half-resolution frame's unchosen pixels); not hidden
+    uint64_t cut = 0;
     void add(const RayGenStats&);
+};
+
+// The checkerboard cut (trace/trace_layout.h): when `on`, only pixels with ((x ^ y ^ frame)
+// & 1) == phase get rays; a surface pixel of the other phase that would have had one (not
+// hidden) is left with pdf kPdfLayoutCut, direction 0, and counted as `cut`. The random
+// numbers, and so the rays, of the traced pixels are those of the full layout.
+struct RayGenCheckerboard {
+    bool on = false;
+    uint32_t phase = 0;
 };
 
 // Specular (SSR) rays: one per pixel for sample index `sample` of frame `frame`; origin = the
@@ -98,7 +110,8 @@ struct RayGenStats {
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
                                  const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
                                  int threads,
-                                 float maxRoughness = std::numeric_limits<float>::infinity());
+                                 float maxRoughness = std::numeric_limits<float>::infinity(),
+                                 RayGenCheckerboard checkerboard = {});
 
 // Which pixels generateDiffuseRays leaves without a ray besides the background.
 enum class DiffuseCut {
@@ -115,6 +128,7 @@ enum class DiffuseCut {
 // change a bit.
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
                                 const RayGenGBuffer& g, RayBatch& rays, int threads,
-                                DiffuseCut cut = DiffuseCut::None);
+                                DiffuseCut cut = DiffuseCut::None,
+                                RayGenCheckerboard checkerboard = {});
 
 }  // namespace ssrt

@@ -153,6 +153,17 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
                              (ln::load<Lane>(a.diffuse[2] + go) * keep == zero));
     }
     c.hidden += surfaceCount - popcount(wanted, valid);
+    // The checkerboard's other phase: no ray, marked for the reconstruction. Pixel x is
+    // traced when (x & 1) == ((y ^ frame ^ phase) & 1) (x's parity as an exact float).
+    Mask cut = zero > zero;
+    if (a.checkerboard) {
+        const Lane xi = px - Lane(0.5f);
+        const Lane parity = xi - Lane(2.0f) * ln::floor(xi * Lane(0.5f));
+        const uint32_t want = (uint32_t(y) ^ a.frame ^ a.checkerPhase) & 1u;
+        cut = wanted & !(parity == Lane(float(want)));
+        wanted = wanted & !cut;
+        c.cut += popcount(cut, valid);
+    }
     V3 dir{zero, zero, zero};
     Lane pdf = zero;
     Mask ok = wanted;
@@ -171,7 +182,7 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     ln::store(out[3] + oo, ln::select(ok, dir.x, zero));
     ln::store(out[4] + oo, ln::select(ok, dir.y, zero));
     ln::store(out[5] + oo, ln::select(ok, dir.z, zero));
-    ln::store(out[6] + oo, ln::select(ok, pdf, zero));
+    ln::store(out[6] + oo, ln::select(ok, pdf, ln::select(cut, Lane(a.cutPdf), zero)));
 }
 
 template <RayGenLobe K>

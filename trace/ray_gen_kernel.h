@@ -38,11 +38,16 @@ struct RayGenArgs {
     // Diffuse lobe: albedo R, G, B and metallic (gStride), or all null. Where given, pixels
     // whose albedo (1 - metallic) is 0 in every channel get no ray ("hidden").
     const float* diffuse[4];
+    // The checkerboard cut (RayGenCheckerboard): pixels with ((x ^ y ^ frame) & 1) !=
+    // checkerPhase get no ray (pdf kPdfLayoutCut where they would have had one).
+    bool checkerboard;
+    uint32_t checkerPhase;
+    float cutPdf;  // kPdfLayoutCut (trace/trace_types.h)
 };
 
 // Counters of one tile (RayGenStats, as plain numbers).
 struct RayGenCounts {
-    uint64_t pixels, rays, belowSurface, background, hidden;
+    uint64_t pixels, rays, belowSurface, background, hidden, cut;
 };
 
 SSRT_DECLARE_KERNEL(void, generateRaysTile,

@@ -39,7 +39,11 @@ struct TraceCamera {
 };
 
 // One ray per pixel, view space, planes of the frame's size. A pixel without a ray
-// (background, or a sample the method rejects) has pdf 0 and direction (0, 0, 0).
+// (background, or a sample the method rejects) has pdf 0 and direction (0, 0, 0); one the
+// trace layout leaves out (trace/trace_layout.h) has pdf kPdfLayoutCut. Every reader takes
+// pdf > 0 as "a ray".
+inline constexpr float kPdfLayoutCut = -1.0f;
+
 struct RayBatch {
     PlaneF ox, oy, oz;  // origin: the pixel's surface point (no offset; marchers skip their
                         // own pixel)

@@ -1,0 +1,120 @@
+#include "denoise/reconstruct.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/tiles.h"
+#include "denoise/reconstruct_kernel.h"
+
+namespace ssrt {
+
+namespace {
+
+// A plane of w x h with the stride of the others of its group (0: the first sets it).
+const float* need(const PlaneF* p, int w, int h, std::size_t& stride, const char* what) {
+    if (!p || p->width() != w || p->height() != h)
+        throw std::invalid_argument(std::string("reconstruction: ") + what +
+                                    " missing or not of the expected size");
+    if (stride != 0 && p->stride() != stride)
+        throw std::invalid_argument(std::string("reconstruction: ") + what +
+                                    " has a different row stride");
+    stride = p->stride();
+    return p->row(0);
+}
+
+template <class P>
+void planes(const ReconstructPlanesOf<P>& s, int w, int h, std::size_t& stride, const char* what,
+            const float* (&to)[kRecN]) {
+    P* const all[kRecN] = {s.color[0], s.color[1],    s.color[2], s.opacity,
+                           s.hit,      s.hitDistance, s.steps};
+    const bool color = s.color[0] || s.color[1] || s.color[2];
+    for (int k = 0; k < kRecN; ++k) {
+        to[k] = nullptr;
+        if (all[k] || (k < 3 && color)) to[k] = need(all[k], w, h, stride, what);
+    }
+}
+
+// The arguments both share: guides and camera.
+ReconstructArgs guideArgs(const ReconstructGuides& g, std::size_t& stride) {
+    const int w = g.camera.width, h = g.camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("reconstruction: empty camera");
+    ReconstructArgs a{};
+    a.width = w;
+    a.height = h;
+    a.tilesX = TileGrid(w, h).tilesX;
+    a.viewZ = need(g.viewZ, w, h, stride, "viewZ");
+    for (int c = 0; c < 3; ++c) a.normal[c] = need(g.normal[c], w, h, stride, "normal");
+    a.scaleX = 2.0f * g.camera.tanHalfX / float(w);
+    a.scaleY = 2.0f * g.camera.tanHalfY / float(h);
+    a.tanHalfX = g.camera.tanHalfX;
+    a.tanHalfY = g.camera.tanHalfY;
+    for (int i = 0; i < 9; ++i) a.viewToWorld[i] = g.camera.viewToWorld[i];
+    a.invTolerance = 1.0f / kReconstructPlaneTolerance;
+    a.cutMark = kPdfLayoutCut;
+    a.stride = stride;
+    return a;
+}
+
+uint64_t run(Isa isa, const ReconstructArgs& a, int threads) {
+    const TileGrid grid(a.width, a.height);
+    std::vector<uint64_t> filled(std::size_t(grid.count()), 0);
+    const auto kernel = SSRT_DISPATCH(isa, reconstructTile);
+    parallelForTiles(grid.count(), threads,
+                     [&](int tile) { kernel(a, tile, filled[std::size_t(tile)]); });
+    uint64_t total = 0;
+    for (uint64_t n : filled) total += n;
+    return total;
+}
+
+}  // namespace
+
+uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf,
+                          const ReconstructPlanes& out, int threads) {
+    std::size_t stride = 0;
+    ReconstructArgs a = guideArgs(g, stride);
+    a.half = false;
+    a.pdf = need(&pdf, a.width, a.height, stride, "ray pdf");
+    if (out.steps) throw std::invalid_argument("fillCheckerboard: steps are not filled");
+    const float* in[kRecN];
+    planes(ReconstructSource{{out.color[0], out.color[1], out.color[2]},
+                             out.opacity,
+                             out.hit,
+                             out.hitDistance,
+                             nullptr},
+           a.width, a.height, stride, "output", in);
+    for (int k = 0; k < kRecN; ++k) {
+        a.in[k] = in[k];
+        a.out[k] = const_cast<float*>(in[k]);  // the same planes: filled in place
+    }
+    a.srcWidth = a.width;
+    a.srcHeight = a.height;
+    a.srcStride = stride;
+    return run(isa, a, threads);
+}
+
+uint64_t upsampleHalf(Isa isa, const ReconstructGuides& g, PixelOffset offset,
+                      const PlaneF& halfPdf, const ReconstructSource& in,
+                      const ReconstructPlanes& out, int threads) {
+    std::size_t stride = 0;
+    ReconstructArgs a = guideArgs(g, stride);
+    a.half = true;
+    a.offsetX = offset.x & 1;
+    a.offsetY = offset.y & 1;
+    a.srcWidth = (a.width + 1) / 2;
+    a.srcHeight = (a.height + 1) / 2;
+    a.srcStride = 0;
+    a.pdf = need(&halfPdf, a.srcWidth, a.srcHeight, a.srcStride, "half-resolution ray pdf");
+    planes(in, a.srcWidth, a.srcHeight, a.srcStride, "half-resolution input", a.in);
+    for (PlaneF* p : {out.color[0], out.color[1], out.color[2], out.opacity, out.hit,
+                      out.hitDistance, out.steps})
+        if (p) p->ensureSize(a.width, a.height);
+    const float* o[kRecN];
+    planes(out, a.width, a.height, stride, "output", o);
+    for (int k = 0; k < kRecN; ++k) a.out[k] = const_cast<float*>(o[k]);
+    // (An input without an output is not read; an output without an input is written 0,
+    // opacity 1.)
+    return run(isa, a, threads);
+}
+
+}  // namespace ssrt

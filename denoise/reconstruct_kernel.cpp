@@ -1,0 +1,242 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include <algorithm>
+
+#include "core/lane_vec.h"
+#include "core/tiles.h"
+#include "denoise/reconstruct_kernel.h"
+#include "trace/screen_lanes.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+using V3 = ln::V3<Lane>;
+using Mask = ln::MaskOf<Lane>;
+using ILane = ln::IntOf<Lane>;
+
+namespace {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+constexpr int kValues = 6;  // colour, opacity, hit, distance
+
+// The pixel being filled.
+struct Target {
+    V3 p, n, nView;
+    Lane invTolerance;
+};
+
+// A lane group's candidate: where its values and its guide are read, its w_space, whether
+// it is a traced sample.
+struct Candidate {
+    ILane src, guide;
+    Lane px, py, space;
+    Mask ok;
+};
+
+struct Sums {
+    Lane w, wo, wh, whd, c[3];
+};
+
+SSRT_INLINE V3 gather3(const float* const* p, ILane i) {
+    return {ln::gather(p[0], i), ln::gather(p[1], i), ln::gather(p[2], i)};
+}
+
+// The values of a candidate (absent planes: opacity 1, the others 0).
+SSRT_INLINE void readValues(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) {
+    const Lane zero(0.0f);
+    for (int k = 0; k < 3; ++k) v[k] = a.in[kRecR] ? ln::gather(a.in[kRecR + k], i) : zero;
+    v[3] = a.in[kRecOpacity] ? ln::gather(a.in[kRecOpacity], i) : Lane(1.0f);
+    v[4] = a.in[kRecHit] ? ln::gather(a.in[kRecHit], i) : zero;
+    v[5] = a.in[kRecDistance] ? ln::gather(a.in[kRecDistance], i) : zero;
+}
+
+// w_plane w_normal (denoise/reconstruct.h) and the relative plane distance.
+SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const Candidate& c,
+                                Lane& dist) {
+    const Lane zero(0.0f), one(1.0f);
+    const Lane z = ln::gather(a.viewZ, c.guide);
+    // The view ray through the sample's pixel centre times its depth (trace/trace_types.h)
+    const V3 s{(c.px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
+               (Lane(a.tanHalfY) - c.py * Lane(a.scaleY)) * z, zero - z};
+    const V3 n = gather3(a.normal, c.guide);
+    dist = ln::abs(ln::dot(t.nView, s - t.p)) * t.invTolerance;
+    const Lane wPlane = ln::max(one - dist, zero);  // (NaN -> 0: max keeps the second)
+    Lane cosN = ln::max(ln::dot(t.n, n), zero);
+    cosN = cosN * cosN, cosN = cosN * cosN, cosN = cosN * cosN;  // ^8
+    return ln::select(c.ok & (z > zero), wPlane * cosN, zero);
+}
+
+// The blend of up to four candidates, with the nearest traced one where no weight is left.
+SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidate* cand, int count,
+                       Lane (&out)[kValues]) {
+    const Lane zero(0.0f), one(1.0f);
+    Sums s{zero, zero, zero, zero, {zero, zero, zero}};
+    Lane best[kValues] = {zero, zero, zero, zero, zero, zero};
+    Lane bestSpace(-1.0f), bestDist(0.0f);
+    for (int i = 0; i < count; ++i) {
+        const Candidate& c = cand[i];
+        if (!ln::any(c.ok)) continue;
+        Lane dist;
+        const Lane w = c.space * geometryWeight(a, t, c, dist);
+        Lane v[kValues];
+        readValues(a, c.src, v);
+        const Lane wo = w * v[3], wh = w * v[4];
+        s.w = s.w + w;
+        s.wo = s.wo + wo;
+        for (int k = 0; k < 3; ++k) s.c[k] = s.c[k] + wo * v[k];
+        s.wh = s.wh + wh;
+        s.whd = s.whd + wh * v[5];
+        // The nearest: larger w_space, then smaller distance (a NaN distance never wins).
+        const Mask nearer = c.ok & (dist == dist) &
+                            ((c.space > bestSpace) | ((c.space == bestSpace) & (dist < bestDist)));
+        for (int k = 0; k < kValues; ++k) best[k] = ln::select(nearer, v[k], best[k]);
+        bestSpace = ln::select(nearer, c.space, bestSpace);
+        bestDist = ln::select(nearer, dist, bestDist);
+    }
+    // Ratio estimates; the nearest sample alone where every weight vanished; zeros (opacity
+    // 0) without a traced candidate.
+    const Mask any = s.w > zero, none = !any & (bestSpace >= zero);
+    const Lane invW = one / ln::select(any, s.w, one);
+    const Lane invO = one / ln::select(s.wo > zero, s.wo, one);
+    const Lane invH = one / ln::select(s.wh > zero, s.wh, one);
+    for (int k = 0; k < 3; ++k) out[k] = ln::select(s.wo > zero, s.c[k] * invO, zero);
+    out[3] = s.wo * invW;
+    out[4] = s.wh * invW;
+    out[5] = ln::select(s.wh > zero, s.whd * invH, zero);
+    for (int k = 0; k < 3; ++k)
+        out[k] = ln::select(none, ln::select(best[3] > zero, best[k], zero), out[k]);
+    out[3] = ln::select(none, best[3], out[3]);
+    out[4] = ln::select(none, best[4], out[4]);
+    out[5] = ln::select(none, ln::select(best[4] > zero, best[5], zero), out[5]);
+}
+
+SSRT_INLINE Target target(const ReconstructArgs& a, std::size_t o, Lane px, Lane py, Lane z) {
+    const float* r = a.viewToWorld;
+    Target t;
+    t.p = {(px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
+           (Lane(a.tanHalfY) - py * Lane(a.scaleY)) * z, Lane(0.0f) - z};
+    t.n = {ln::load<Lane>(a.normal[0] + o), ln::load<Lane>(a.normal[1] + o),
+           ln::load<Lane>(a.normal[2] + o)};
+    // World normal to view space: the transpose of viewToWorld
+    t.nView = {(Lane(r[0]) * t.n.x + Lane(r[1]) * t.n.y) + Lane(r[2]) * t.n.z,
+               (Lane(r[3]) * t.n.x + Lane(r[4]) * t.n.y) + Lane(r[5]) * t.n.z,
+               (Lane(r[6]) * t.n.x + Lane(r[7]) * t.n.y) + Lane(r[8]) * t.n.z};
+    t.invTolerance = Lane(a.invTolerance) / ln::select(z > Lane(0.0f), z, Lane(1.0f));
+    return t;
+}
+
+// Checkerboard: the marked lanes of one group from their edge neighbours, written lane by
+// lane (the traced pixels beside them, which other tiles read, are never stored to).
+void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& filled) {
+    const std::size_t o = std::size_t(y) * a.stride + std::size_t(x);
+    const Lane zero(0.0f);
+    const Lane xi = Lane(float(x)) + ln::laneIndex<Lane>();
+    const Mask cut = (ln::load<Lane>(a.pdf + o) == Lane(a.cutMark)) & (xi < Lane(float(x1)));
+    if (!ln::any(cut)) return;
+    const Lane px = xi + Lane(0.5f), py(float(y) + 0.5f);
+    const Lane z = ln::load<Lane>(a.viewZ + o);
+    const Target t = target(a, o, px, py, z);
+    Candidate cand[4];
+    const float dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+    for (int i = 0; i < 4; ++i) {
+        const Lane nx = xi + Lane(dx[i]), ny(float(y) + dy[i]);
+        const Mask inFrame = (nx >= zero) & (nx < Lane(float(a.width))) & (ny >= zero) &
+                             (ny < Lane(float(a.height)));
+        const ILane idx = screen::pixelIndex(nx, ny, a.width, a.height, a.stride);
+        const Mask traced = inFrame & (ln::gather(a.pdf, idx) > zero) & cut;
+        cand[i] = {idx, idx, nx + Lane(0.5f), ny + Lane(0.5f), Lane(1.0f), traced};
+    }
+    Lane v[kValues];
+    blend(a, t, cand, 4, v);
+    alignas(64) float buf[kValues][kW];
+    alignas(64) float mask[kW];
+    for (int k = 0; k < kValues; ++k) ln::store(buf[k], v[k]);
+    ln::store(mask, ln::select(cut, Lane(1.0f), zero));
+    for (int l = 0; l < kW; ++l) {
+        if (mask[l] == 0.0f) continue;
+        const std::size_t at = o + std::size_t(l);
+        for (int k = 0; k < kValues; ++k)
+            if (a.out[k]) a.out[k][at] = buf[k][l];
+        ++filled;
+    }
+}
+
+// Half: every lane of one group: its chosen pixel's values as they are, the others blended
+// from the four nearest half pixels, background zeros.
+void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
+    const std::size_t o = std::size_t(y) * a.stride + std::size_t(x);
+    const Lane zero(0.0f), one(1.0f), halfL(0.5f);
+    const Lane xi = Lane(float(x)) + ln::laneIndex<Lane>();
+    const Lane z = ln::load<Lane>(a.viewZ + o);
+    const Mask surface = (z > zero) & (xi < Lane(float(a.width)));
+    Lane v[kValues] = {zero, zero, zero, zero, zero, zero};
+    Lane steps = zero;
+    if (ln::any(surface)) {
+        // The lattice of chosen pixels 2 h + offset around (x, y): bilinear weights 1 - t, t
+        // with t in {0, 1/2}.
+        const Lane ex = xi - Lane(float(a.offsetX));
+        const Lane hx0 = ln::floor(ex * halfL);
+        const Lane tx = (ex - Lane(2.0f) * hx0) * halfL;
+        const int ey = y - a.offsetY;
+        const int hy0 = ey >= 0 ? ey / 2 : -1;
+        const float ty = float(ey - 2 * hy0) * 0.5f;
+        Candidate cand[4];
+        Mask own = zero > zero;
+        Lane ownX = zero, ownY = zero;
+        int count = 0;
+        for (int j = 0; j < 2; ++j) {
+            const int hy = hy0 + j;
+            const float wy = j ? ty : 1.0f - ty;
+            if (hy < 0 || hy >= a.srcHeight || !(wy > 0.0f)) continue;
+            const int sy = std::min(2 * hy + a.offsetY, a.height - 1);
+            for (int i = 0; i < 2; ++i) {
+                const Lane hx = hx0 + Lane(float(i));
+                const Lane space = (i ? tx : one - tx) * Lane(wy);
+                const Mask in = (hx >= zero) & (hx < Lane(float(a.srcWidth))) & (space > zero);
+                const Lane sx =
+                    ln::min(Lane(2.0f) * hx + Lane(float(a.offsetX)), Lane(float(a.width - 1)));
+                const ILane src =
+                    screen::pixelIndex(hx, Lane(float(hy)), a.srcWidth, a.srcHeight, a.srcStride);
+                const ILane guide =
+                    screen::pixelIndex(sx, Lane(float(sy)), a.width, a.height, a.stride);
+                const Mask isOwn = in & (sx == xi) & (Lane(sy == y ? 1.0f : 0.0f) > zero);
+                own = own | isOwn;
+                ownX = ln::select(isOwn, hx, ownX);
+                ownY = ln::select(isOwn, Lane(float(hy)), ownY);
+                const Mask traced = in & !isOwn & (ln::gather(a.pdf, src) > zero) & surface;
+                cand[count++] = {src, guide, sx + halfL, Lane(float(sy) + 0.5f), space, traced};
+            }
+        }
+        const Target t = target(a, o, xi + halfL, Lane(float(y) + 0.5f), z);
+        blend(a, t, cand, count, v);
+        if (ln::any(own)) {
+            const ILane ownIdx =
+                screen::pixelIndex(ownX, ownY, a.srcWidth, a.srcHeight, a.srcStride);
+            Lane mine[kValues];
+            readValues(a, ownIdx, mine);
+            for (int k = 0; k < kValues; ++k) v[k] = ln::select(own, mine[k], v[k]);
+            if (a.in[kRecSteps]) steps = ln::select(own, ln::gather(a.in[kRecSteps], ownIdx), zero);
+        }
+        for (int k = 0; k < kValues; ++k) v[k] = ln::select(surface, v[k], zero);
+        filled += uint64_t(__builtin_popcountll(ln::maskBits(surface & !own)));
+    }
+    for (int k = 0; k < kValues; ++k)
+        if (a.out[k]) ln::store(a.out[k] + o, v[k]);
+    if (a.out[kRecSteps]) ln::store(a.out[kRecSteps] + o, steps);
+}
+
+}  // namespace
+
+void reconstructTile(const ReconstructArgs& args, int tile, uint64_t& filled) {
+    filled = 0;
+    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
+    // (Lane groups past the right edge read and, for the half upsample, write the rows'
+    // padding; the checkerboard writes only marked lanes inside the tile.)
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) {
+            if (args.half) halfChunk(args, x, y, filled);
+            else checkerChunk(args, x, y, x1, filled);
+        }
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

@@ -1,0 +1,41 @@
+// The reconstruction's kernel, one copy per ISA (denoise/reconstruct_kernel.cpp); the
+// method is in denoise/reconstruct.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dispatch.h"
+
+namespace ssrt {
+
+// The signal planes, in this order; null where absent (colour: all three or none).
+enum ReconstructPlane { kRecR, kRecG, kRecB, kRecOpacity, kRecHit, kRecDistance, kRecSteps, kRecN };
+
+// Plain values and pointers only: this crosses into code compiled with other ISA flags.
+struct ReconstructArgs {
+    bool half;  // upsampleHalf (else fillCheckerboard)
+    int width, height, tilesX;
+    std::size_t stride;  // every full-resolution plane: guides, outputs, the checkerboard's pdf
+    const float* viewZ;
+    const float* normal[3];  // world space
+    float scaleX, scaleY, tanHalfX,
+        tanHalfY;          // pixel centre to view ray: (x + 0.5) scale - tanHalf
+    float viewToWorld[9];  // column-major
+    float invTolerance;    // 1 / kReconstructPlaneTolerance
+    // Checkerboard: the full-resolution pdf (marks and traced samples); half: the half
+    // frame's (traced samples), with its size and stride.
+    const float* pdf;
+    float cutMark;  // kPdfLayoutCut: the checkerboard's pixels to fill
+    int srcWidth, srcHeight;
+    std::size_t srcStride;
+    const float* in[kRecN];  // half: the half frame's planes (srcStride); checkerboard: = out
+    float* out[kRecN];
+    int offsetX, offsetY;  // half: the chosen pixel of each block
+};
+
+// Returns through `filled` the pixels the tile filled (checkerboard) or blended (half).
+SSRT_DECLARE_KERNEL(void, reconstructTile,
+                    (const ReconstructArgs& args, int tile, uint64_t& filled))
+
+}  // namespace ssrt

@@ -1,0 +1,6 @@
+list(APPEND SSRT_SOURCES
+     denoise/reconstruct.cpp
+)
+list(APPEND SSRT_KERNEL_SOURCES
+     denoise/reconstruct_kernel.cpp
+)

@@ -1,0 +1,89 @@
+#include "trace/trace_layout.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/tiles.h"
+
+namespace ssrt {
+
+std::string_view traceLayoutName(TraceLayout layout) {
+    switch (layout) {
+        case TraceLayout::Full: return "full";
+        case TraceLayout::Checkerboard: return "checkerboard";
+        case TraceLayout::Half: return "half";
+    }
+    return "?";
+}
+
+std::optional<TraceLayout> parseTraceLayout(std::string_view name) {
+    for (TraceLayout l : {TraceLayout::Full, TraceLayout::Checkerboard, TraceLayout::Half})
+        if (traceLayoutName(l) == name) return l;
+    return std::nullopt;
+}
+
+TraceCamera halfCamera(const TraceCamera& full) {
+    TraceCamera c = full;
+    c.width = (full.width + 1) / 2;
+    c.height = (full.height + 1) / 2;
+    c.tanHalfX = full.tanHalfX * (float(2 * c.width) / float(full.width));
+    c.tanHalfY = full.tanHalfY * (float(2 * c.height) / float(full.height));
+    return c;
+}
+
+namespace {
+
+void checkSource(const PlaneF* p, const TraceCamera& cam, const char* what) {
+    if (!p || p->width() != cam.width || p->height() != cam.height)
+        throw std::invalid_argument(std::string("buildHalfFrame: ") + what +
+                                    " missing or not of the camera's size");
+}
+
+}  // namespace
+
+void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_t frame,
+                    HalfFrame& out, int threads) {
+    if (full.width <= 0 || full.height <= 0)
+        throw std::invalid_argument("buildHalfFrame: the camera has no pixels");
+    checkSource(src.viewZ, full, "viewZ");
+    checkSource(src.metallic, full, "metallic");
+    for (int c = 0; c < 3; ++c) {
+        checkSource(src.normal[c], full, "normal");
+        checkSource(src.albedo[c], full, "albedo");
+        checkSource(src.hitLight[c], full, "hitLight");
+    }
+    out.camera = halfCamera(full);
+    out.offset = halfOffset(frame);
+    const int hw = out.camera.width, hh = out.camera.height;
+    const int w = full.width, h = full.height;
+    PlaneF* dst[11] = {&out.viewZ,       &out.normal[0],   &out.normal[1],  &out.normal[2],
+                       &out.albedo[0],   &out.albedo[1],   &out.albedo[2],  &out.metallic,
+                       &out.hitLight[0], &out.hitLight[1], &out.hitLight[2]};
+    const PlaneF* from[11] = {src.viewZ,       src.normal[0],   src.normal[1],  src.normal[2],
+                              src.albedo[0],   src.albedo[1],   src.albedo[2],  src.metallic,
+                              src.hitLight[0], src.hitLight[1], src.hitLight[2]};
+    for (PlaneF* p : dst) p->ensureSize(hw, hh);
+    // Rows of half pixels, each row's count of full-resolution surface pixels left out,
+    // summed in row order (the same total for every thread count).
+    std::vector<uint64_t> rowCut(std::size_t(hh), 0);
+    const PixelOffset o = out.offset;
+    parallelFor(hh, threads, [&](int hy) {
+        for (int hx = 0; hx < hw; ++hx) {
+            const PixelOffset s = halfSource(hx, hy, o, w, h);
+            for (int p = 0; p < 11; ++p) dst[p]->at(hx, hy) = from[p]->at(s.x, s.y);
+        }
+        uint64_t cut = 0;
+        for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y)
+            for (int x = 0; x < w; ++x) {
+                const PixelOffset s = halfSource(x / 2, hy, o, w, h);
+                if (src.viewZ->at(x, y) > 0.0f && !(x == s.x && y == s.y)) ++cut;
+            }
+        rowCut[std::size_t(hy)] = cut;
+    });
+    out.cutPixels = 0;
+    for (uint64_t c : rowCut) out.cutPixels += c;
+}
+
+}  // namespace ssrt

@@ -1,0 +1,96 @@
+// Trace layouts (issue 17, item 2): which pixels get rays in a frame. Full traces every
+// pixel; the other two trace fewer and leave the rest to a reconstruction
+// (denoise/reconstruct.h) that fills them from the traced pixels before anything reads the
+// planes, and to the denoiser's history, which sees every pixel over a few frames.
+//
+// - Checkerboard (NRD's CheckerboardMode, SSR and SSGI): pixel (x, y) of frame f gets rays
+//   when ((x ^ y ^ f) & 1) == phase; SSR takes phase 0 and SSGI phase 1, so each pixel
+//   traces one of the two per frame and every pixel both over two frames. The others keep
+//   their place in the full-resolution RayBatch with pdf kPdfLayoutCut: the march packs only
+//   pdf > 0, so they cost no march time; RayGenStats::cut counts them.
+// - Half (SSGI): one ray-pixel per 2x2 block, the chosen pixel rotating over the block's
+//   four positions by frame (halfOffset), traced on a half-resolution frame built from the
+//   chosen pixels (buildHalfFrame): its G-buffer, its depth and a Hi-Z pyramid of that
+//   depth. The march, the resolve and the hit statistics run at half resolution; the
+//   upsample (denoise/reconstruct.h) brings them back.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "core/image.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+enum class TraceLayout { Full, Checkerboard, Half };
+
+// "full", "checkerboard", "half".
+std::string_view traceLayoutName(TraceLayout layout);
+std::optional<TraceLayout> parseTraceLayout(std::string_view name);
+
+// (A pixel the layout leaves without a ray has pdf kPdfLayoutCut, trace/trace_types.h: the
+// mark the reconstruction fills by.)
+
+// The checkerboard phases of the two passes (opposite, as NRD pairs them).
+inline constexpr uint32_t kSsrCheckerboardPhase = 0;
+inline constexpr uint32_t kSsgiCheckerboardPhase = 1;
+
+// Whether pixel (x, y) gets rays in frame `frame` of a checkerboard of phase `phase`.
+constexpr bool checkerboardTraced(int x, int y, uint32_t frame, uint32_t phase) {
+    return ((uint32_t(x) ^ uint32_t(y) ^ frame) & 1u) == (phase & 1u);
+}
+
+// The chosen pixel of each 2x2 block in frame `frame` (Half): the 2x2 Bayer order
+// (0,0), (1,1), (1,0), (0,1) by frame & 3, so that two consecutive frames take diagonal
+// opposites and four cover the block.
+struct PixelOffset {
+    int x = 0, y = 0;
+};
+constexpr PixelOffset halfOffset(uint32_t frame) {
+    constexpr PixelOffset kOrder[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    return kOrder[frame & 3u];
+}
+
+// The half-resolution camera: ceil(w / 2) x ceil(h / 2) pixels over the same field of view
+// (tanHalf scaled by 2 ceil(w / 2) / w: 1 for an even size; an odd size widens the view by
+// half a pixel, so a half pixel sits up to half a full pixel from its block's centre).
+TraceCamera halfCamera(const TraceCamera& full);
+
+// What the half-resolution trace reads: the chosen pixel of every 2x2 block (a block at the
+// right or bottom edge of an odd size whose chosen pixel is outside takes the nearest one
+// inside). The depth is the chosen pixel's own, not a min or max of the block (FidelityFX's
+// Hi-Z mip 1, HDRP's checkerboard min/max pick): the ray leaves from that pixel's surface
+// point with that pixel's normal, so the half-resolution depth buffer holds the ray's own
+// origin (the marchers skip it as their own pixel) and no surface of the block stands in
+// front of it to be hit by mistake; the rotation shows every full-resolution depth over four
+// frames.
+struct HalfFrame {
+    TraceCamera camera;  // halfCamera of the full one
+    PixelOffset offset;  // the frame's chosen pixel in each block
+    PlaneF viewZ, normal[3], albedo[3], metallic, hitLight[3];
+    // Full-resolution surface pixels that are not chosen (RayGenStats::cut).
+    uint64_t cutPixels = 0;
+};
+
+struct HalfFrameSource {
+    const PlaneF* viewZ = nullptr;
+    const PlaneF* normal[3] = {};
+    const PlaneF* albedo[3] = {};
+    const PlaneF* metallic = nullptr;
+    const PlaneF* hitLight[3] = {};  // DirectArgs::hitLight (SSGI's radiance at a hit)
+};
+
+// Fills `out` (planes reused when the size matches) for frame `frame`. Throws
+// std::invalid_argument on a missing plane or one not of the camera's size.
+void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_t frame,
+                    HalfFrame& out, int threads);
+
+// The full-resolution pixel that half pixel (hx, hy) of a w x h frame stands for.
+constexpr PixelOffset halfSource(int hx, int hy, PixelOffset o, int w, int h) {
+    const int x = 2 * hx + o.x, y = 2 * hy + o.y;
+    return {x < w ? x : w - 1, y < h ? y : h - 1};
+}
+
+}  // namespace ssrt
