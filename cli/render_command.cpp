@@ -211,6 +211,7 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
     row("rays traced", [](const TraceStats& t) { return t.march.rays; });
     row("below surface", [](const TraceStats& t) { return t.rays.belowSurface; });
     row("hidden, no ray", [](const TraceStats& t) { return t.rays.hidden; });
+    row("layout cut, no ray", [](const TraceStats& t) { return t.rays.cut; });
     for (int e = 0; e < kMarchEndCount; ++e) {
         if (MarchEnd(e) == MarchEnd::NoRay) continue;
         const std::string label = MarchEnd(e) == MarchEnd::Hit

@@ -23,6 +23,7 @@
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/ssr_resolve.h"
+#include "trace/trace_layout.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -248,6 +249,15 @@ struct Frame {
         MarchResult march;
         ColorPyramid colorPyramid;
         SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent trace.ssr's
+        // SSGI's half-resolution trace (TraceLayout::Half): the chosen pixels' frame, its
+        // depth pyramid, rays, march and resolved planes before the upsample.
+        struct HalfTrace {
+            HalfFrame frame;
+            HiZPyramid hiz;
+            RayBatch rays;
+            MarchResult march;
+            PlaneF color[3], hit, hitDistance, steps;
+        } half;
     } scratch;
 
     // Every non-empty plane of image, gbuffer, material, ids and trace, in that order, then

@@ -15,6 +15,11 @@ void RenderSettings::validate() const {
 
 void TraceSettings::validate() const {
     checkFields(kTraceOwnFields, *this, "TraceSettings");
+    // (The table lets ssrLayout take full and checkerboard only; a struct set in code may
+    // still hold half, which has no SSR march at half resolution.)
+    if (ssrLayout == TraceLayout::Half)
+        throw std::invalid_argument(
+            "TraceSettings.ssrLayout: expected one of full, checkerboard (half is SSGI's only)");
     march.validate();
     checkFields(kResolveFields, resolve, "SsrResolveSettings");
 }

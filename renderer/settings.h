@@ -8,6 +8,7 @@
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/ssr_resolve.h"
+#include "trace/trace_layout.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -31,6 +32,12 @@ struct TraceSettings {
     // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
     // misses their rays.
     bool traceHidden = false;
+    // Which pixels get rays (trace/trace_layout.h): every one (full), half of them in a
+    // checkerboard that alternates per frame, SSR and SSGI on opposite phases, or (SSGI only)
+    // one per 2x2 block on a half-resolution frame. The others are reconstructed from the
+    // traced ones (denoise/reconstruct.h) before anything reads the planes.
+    TraceLayout ssrLayout = TraceLayout::Full;
+    TraceLayout ssgiLayout = TraceLayout::Full;
 
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }

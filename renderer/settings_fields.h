@@ -66,6 +66,19 @@ inline constexpr std::array kTraceOwnFields = {
         "does (perceptual roughness >= 0.7), SSGI on metals (no diffuse colour). The image is "
         "the same at those pixels; the counters and hit planes then cover them too. By default "
         "they get no ray"),
+    field<&TraceSettings::ssrLayout>(
+        "ssrLayout", kCliShot,
+        "Which pixels get SSR rays: full (every one), checkerboard (half, alternating per frame, "
+        "opposite to SSGI's); the others are reconstructed from their traced neighbours")
+        .choices(2, [](int i) { return traceLayoutName(TraceLayout(i)); })
+        .withTypeName("LAYOUT"),
+    field<&TraceSettings::ssgiLayout>(
+        "ssgiLayout", kCliShot,
+        "Which pixels get SSGI rays: full, checkerboard (half, alternating per frame, opposite "
+        "to SSR's) or half (one per 2x2 block, rotating per frame, marched on a half-resolution "
+        "depth buffer); the others are reconstructed from the traced ones")
+        .choices(3, [](int i) { return traceLayoutName(TraceLayout(i)); })
+        .withTypeName("LAYOUT"),
 };
 // Every member is in the table, march and resolve through their own tables.
 static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 2,

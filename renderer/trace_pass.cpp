@@ -4,6 +4,7 @@
 #include <limits>
 #include <utility>
 
+#include "denoise/reconstruct.h"
 #include "renderer/pass_timer.h"
 #include "shading/composite.h"
 #include "trace/hit_stats.h"
@@ -34,11 +35,18 @@ struct TraceContext {
                   &g.metallic};
     }
     int threads() const { return args.settings.threads; }
+    // What the reconstruction of a layout's untraced pixels is guided by.
+    ReconstructGuides guides(const Frame& f) const {
+        const GBuffer& g = f.gbuffer;
+        return {camera, &g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}};
+    }
 };
 
 // Hi-Z pyramid of the depth buffer, shared by both passes.
 void hiZPass(TraceContext& c, Frame& frame) {
     if (c.ts.marcher != Marcher::HiZ) return;
+    // (Half-resolution SSGI marches on its own pyramid.)
+    if (!c.ts.ssr && c.ts.ssgiLayout == TraceLayout::Half) return;
     const ScopedPass timer(frame.stats, "hi-z");
     buildHiZ(frame.gbuffer.viewZ, frame.scratch.hiz, c.threads());
     c.hiz = &frame.scratch.hiz;
@@ -47,11 +55,13 @@ void hiZPass(TraceContext& c, Frame& frame) {
 // Times of one trace pass's stages, summed over its samples.
 struct StageTimes {
     double rays = 0.0, march = 0.0, resolve = 0.0;
+    double reconstruct = -1.0;  // reported when a layout other than full ran (>= 0)
     void report(FrameStats& stats, const char* pass) const {
         const std::string p(pass);
         stats.passes.push_back({p + " rays", rays});
         stats.passes.push_back({p + " march", march});
         stats.passes.push_back({p + " resolve", resolve});
+        if (reconstruct >= 0.0) stats.passes.push_back({p + " reconstruct", reconstruct});
     }
 };
 
@@ -117,12 +127,14 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     st.spp = ts.ssrSpp;
     const float maxRoughness =
         ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
+    const RayGenCheckerboard checker{ts.ssrLayout == TraceLayout::Checkerboard,
+                                     kSsrCheckerboardPhase};
     swapSsrOutput(planes, sc.ssr);
     for (int s = 0; s < ts.ssrSpp; ++s) {
         addTime(times.rays, [&] {
             st.rays.add(generateSpecularRays(isa, ts.ssrMethod, c.args.frameIndex, uint32_t(s),
-                                             c.camera, c.rayGen, sc.rays, c.threads(),
-                                             maxRoughness));
+                                             c.camera, c.rayGen, sc.rays, c.threads(), maxRoughness,
+                                             checker));
         });
         marchSample(c, TracePass::Ssr, s, frame, st, times);
         addTime(times.resolve, [&] {
@@ -131,7 +143,86 @@ void ssrPass(const TraceContext& c, Frame& frame) {
         });
     }
     swapSsrOutput(planes, sc.ssr);
+    // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
+    if (checker.on) {
+        times.reconstruct = 0.0;
+        addTime(times.reconstruct, [&] {
+            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                       &planes.opacity,
+                                       &planes.hit,
+                                       &planes.hitDistance};
+            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+        });
+    }
     times.report(frame.stats, "ssr");
+}
+
+// SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a
+// half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
+// run on it, and the upsample brings them to the frame's planes. (The observer is not
+// called: the truth's ray checks expect the frame's camera.)
+void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, DiffuseCut cut,
+              TraceStats& st, StageTimes& times) {
+    const TraceSettings& ts = c.ts;
+    const Isa isa = c.args.isa;
+    const GBuffer& g = frame.gbuffer;
+    Frame::Scratch::HalfTrace& ht = frame.scratch.half;
+    HalfFrame& hf = ht.frame;
+    addTime(times.rays, [&] {
+        const HalfFrameSource src{
+            &g.viewZ,
+            {&g.normal[0], &g.normal[1], &g.normal[2]},
+            {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
+            &g.metallic,
+            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]}};
+        buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
+        if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
+    });
+    const RayGenGBuffer rayGen{&hf.viewZ,
+                               {&hf.normal[0], &hf.normal[1], &hf.normal[2]},
+                               nullptr,
+                               {&hf.albedo[0], &hf.albedo[1], &hf.albedo[2]},
+                               &hf.metallic};
+    const MarchGBuffer march{&hf.viewZ, {&hf.normal[0], &hf.normal[1], &hf.normal[2]}};
+    SsgiInputs in = full;
+    in.camera = hf.camera;
+    in.viewZ = &hf.viewZ;
+    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
+    const HitStatsPlanes hp{&ht.hit, &ht.steps, &ht.hitDistance};
+    const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
+    for (int s = 0; s < ts.ssgiSpp; ++s) {
+        addTime(times.rays, [&] {
+            RayGenStats rs = generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), hf.camera,
+                                                 rayGen, ht.rays, c.threads(), cut);
+            // The frame's surface pixels: the chosen ones traced here, the others cut.
+            rs.pixels += hf.cutPixels;
+            rs.cut += hf.cutPixels;
+            st.rays.add(rs);
+        });
+        addTime(times.march, [&] {
+            st.march.add(marchRays(isa, ts.marcher, ts.march, {c.args.frameIndex, uint32_t(s)},
+                                   hf.camera, march, hiz, ht.rays, ht.march, c.threads()));
+        });
+        addTime(times.resolve, [&] {
+            resolveSsgi(isa, in, ht.rays, ht.march, ht.color, s, ts.ssgiSpp, c.threads());
+            accumulateHitStats(isa, hf.camera, ht.rays, ht.march, hp, s, ts.ssgiSpp, c.threads());
+        });
+    }
+    SsgiPlanes& planes = frame.trace.ssgi;
+    times.reconstruct = 0.0;
+    addTime(times.reconstruct, [&] {
+        const ReconstructSource from{{&ht.color[0], &ht.color[1], &ht.color[2]},
+                                     nullptr,
+                                     &ht.hit,
+                                     &ht.hitDistance,
+                                     &ht.steps};
+        const ReconstructPlanes to{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                   nullptr,
+                                   &planes.hit,
+                                   &planes.hitDistance,
+                                   &planes.steps};
+        upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
+    });
 }
 
 void ssgiPass(const TraceContext& c, Frame& frame) {
@@ -160,15 +251,32 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     st.spp = ts.ssgiSpp;
     StageTimes times;
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
+    if (ts.ssgiLayout == TraceLayout::Half) {
+        ssgiHalf(c, frame, in, cut, st, times);
+        times.report(frame.stats, "ssgi");
+        return;
+    }
+    const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
+                                     kSsgiCheckerboardPhase};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {
             st.rays.add(generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), c.camera, c.rayGen,
-                                            sc.rays, c.threads(), cut));
+                                            sc.rays, c.threads(), cut, checker));
         });
         marchSample(c, TracePass::Ssgi, s, frame, st, times);
         addTime(times.resolve, [&] {
             resolveSsgi(isa, in, sc.rays, sc.march, planes.color, s, ts.ssgiSpp, c.threads());
             accumulateHitStats(isa, c.camera, sc.rays, sc.march, hp, s, ts.ssgiSpp, c.threads());
+        });
+    }
+    if (checker.on) {
+        times.reconstruct = 0.0;
+        addTime(times.reconstruct, [&] {
+            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                       nullptr,
+                                       &planes.hit,
+                                       &planes.hitDistance};
+            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
     times.report(frame.stats, "ssgi");
