@@ -1,6 +1,7 @@
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
 #include <algorithm>
+#include <limits>
 
 #include "core/lane_vec.h"
 #include "core/tiles.h"
@@ -63,6 +64,8 @@ SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const
     const Lane wPlane = ln::max(one - dist, zero);  // (NaN -> 0: max keeps the second)
     Lane cosN = ln::max(ln::dot(t.n, n), zero);
     cosN = cosN * cosN, cosN = cosN * cosN, cosN = cosN * cosN;  // ^8
+    // (A sample on the background is no sample: its distance is infinite, never nearest.)
+    dist = ln::select(z > zero, dist, Lane(std::numeric_limits<float>::infinity()));
     return ln::select(c.ok & (z > zero), wPlane * cosN, zero);
 }
 
@@ -80,14 +83,17 @@ SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidat
         const Lane w = c.space * geometryWeight(a, t, c, dist);
         Lane v[kValues];
         readValues(a, c.src, v);
+        // (Lanes without this candidate add nothing, whatever their reads held: 0 x NaN.)
+        for (int k = 0; k < kValues; ++k) v[k] = ln::select(c.ok, v[k], zero);
         const Lane wo = w * v[3], wh = w * v[4];
         s.w = s.w + w;
         s.wo = s.wo + wo;
         for (int k = 0; k < 3; ++k) s.c[k] = s.c[k] + wo * v[k];
         s.wh = s.wh + wh;
         s.whd = s.whd + wh * v[5];
-        // The nearest: larger w_space, then smaller distance (a NaN distance never wins).
-        const Mask nearer = c.ok & (dist == dist) &
+        // The nearest: larger w_space, then smaller distance (a NaN or infinite one, the
+        // background's, never wins).
+        const Mask nearer = c.ok & (dist < Lane(std::numeric_limits<float>::infinity())) &
                             ((c.space > bestSpace) | ((c.space == bestSpace) & (dist < bestDist)));
         for (int k = 0; k < kValues; ++k) best[k] = ln::select(nearer, v[k], best[k]);
         bestSpace = ln::select(nearer, c.space, bestSpace);
@@ -142,8 +148,13 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
         const Lane nx = xi + Lane(dx[i]), ny(float(y) + dy[i]);
         const Mask inFrame = (nx >= zero) & (nx < Lane(float(a.width))) & (ny >= zero) &
                              (ny < Lane(float(a.height)));
-        const ILane idx = screen::pixelIndex(nx, ny, a.width, a.height, a.stride);
-        const Mask traced = inFrame & (ln::gather(a.pdf, idx) > zero) & cut;
+        const ILane at = screen::pixelIndex(nx, ny, a.width, a.height, a.stride);
+        const Mask traced = inFrame & (ln::gather(a.pdf, at) > zero) & cut;
+        // Lanes without a traced neighbour read their own pixel instead: a cut neighbour may
+        // be another tile's, written meanwhile.
+        const ILane idx =
+            screen::pixelIndex(ln::select(traced, nx, xi), ln::select(traced, ny, Lane(float(y))),
+                               a.width, a.height, a.stride);
         cand[i] = {idx, idx, nx + Lane(0.5f), ny + Lane(0.5f), Lane(1.0f), traced};
     }
     Lane v[kValues];

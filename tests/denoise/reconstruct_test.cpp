@@ -46,6 +46,12 @@ struct Signal {
         for (PlaneF& c : color) c = PlaneF(w, h);
         opacity = PlaneF(w, h), hit = PlaneF(w, h), dist = PlaneF(w, h);
     }
+    Signal clone() const {
+        Signal s(1, 1);
+        for (int c = 0; c < 3; ++c) s.color[c] = color[c].clone();
+        s.opacity = opacity.clone(), s.hit = hit.clone(), s.dist = dist.clone();
+        return s;
+    }
     ReconstructPlanes planes(bool withOpacity) {
         return {{&color[0], &color[1], &color[2]}, withOpacity ? &opacity : nullptr, &hit, &dist};
     }
@@ -106,4 +112,99 @@ TEST_CASE("reconstruct: checkerboard fill keeps a constant signal and every cut 
         CHECK(filled == cut);
         CHECK(constant);
     }
+}
+
+TEST_CASE("reconstruct: checkerboard fill does not bleed across a depth edge") {
+    const int w = 64, h = 32, edge = 29;
+    const Scene2 s(w, h, edge, 2.0f, 3.0f);  // two planes facing the camera, 50% apart
+    PlaneF pdf;
+    Signal sig(w, h);
+    makeCheckerboard(s, edge, 0, pdf, sig);
+    fillCheckerboard(Isa::Scalar, s.guides(), pdf, sig.planes(true), 1);
+    bool separate = true;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool nearSide = x < edge;
+            for (int c = 0; c < 3; ++c)
+                separate &= near(sig.color[c].at(x, y), valueOf(nearSide, c));
+            separate &= near(sig.dist.at(x, y), nearSide ? 2.0f : 5.0f);
+        }
+    CHECK(separate);
+}
+
+TEST_CASE("reconstruct: half-resolution upsample keeps constants and depth edges") {
+    for (int w : {64, 61}) {
+        const int h = w == 64 ? 34 : 33, hw = (w + 1) / 2, hh = (h + 1) / 2, edge = 30;
+        const Scene2 s(w, h, edge, 2.0f, 3.0f);
+        for (uint32_t frame = 0; frame < 4; ++frame) {
+            CAPTURE(w);
+            CAPTURE(frame);
+            const PixelOffset o = halfOffset(frame);
+            // The half frame as buildHalfFrame leaves it: each half pixel its chosen pixel's.
+            PlaneF pdf(hw, hh, 0.5f), col[3] = {PlaneF(hw, hh), PlaneF(hw, hh), PlaneF(hw, hh)};
+            PlaneF hit(hw, hh), dist(hw, hh), steps(hw, hh);
+            for (int hy = 0; hy < hh; ++hy)
+                for (int hx = 0; hx < hw; ++hx) {
+                    const PixelOffset src = halfSource(hx, hy, o, w, h);
+                    const bool nearSide = src.x < edge;
+                    for (int c = 0; c < 3; ++c) col[c].at(hx, hy) = valueOf(nearSide, c);
+                    hit.at(hx, hy) = 1.0f;
+                    dist.at(hx, hy) = nearSide ? 2.0f : 5.0f;
+                    steps.at(hx, hy) = 7.0f;
+                }
+            Signal out(1, 1);
+            PlaneF outSteps;
+            const ReconstructSource in{{&col[0], &col[1], &col[2]}, nullptr, &hit, &dist, &steps};
+            ReconstructPlanes to = out.planes(false);
+            to.steps = &outSteps;
+            const uint64_t blended = upsampleHalf(Isa::Scalar, s.guides(), o, pdf, in, to, 1);
+            bool separate = true, stepsAtChosen = true;
+            uint64_t chosen = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const bool nearSide = x < edge;
+                    for (int c = 0; c < 3; ++c)
+                        separate &= near(out.color[c].at(x, y), valueOf(nearSide, c));
+                    separate &= near(out.dist.at(x, y), nearSide ? 2.0f : 5.0f) &&
+                                near(out.hit.at(x, y), 1.0f);
+                    const PixelOffset src = halfSource(x / 2, y / 2, o, w, h);
+                    const bool own = src.x == x && src.y == y;
+                    chosen += own;
+                    stepsAtChosen &= outSteps.at(x, y) == (own ? 7.0f : 0.0f);
+                }
+            CHECK(separate);
+            CHECK(stepsAtChosen);
+            CHECK(blended == uint64_t(w * h) - chosen);
+        }
+    }
+}
+
+TEST_CASE("reconstruct: the same bits for every ISA and thread count") {
+    const int w = 150, h = 70;
+    Scene2 s(w, h, 77, 2.0f, 2.5f);
+    // Some structure: a tilted second plane and noisy normals, a hole of background.
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (x >= 77) s.viewZ.at(x, y) = 2.5f + 0.01f * float(x - 77);
+            s.normal[0].at(x, y) = 0.2f * std::sin(0.37f * float(x * y));
+            s.normal[2].at(x, y) = std::sqrt(1.0f - s.normal[0].at(x, y) * s.normal[0].at(x, y));
+            if (x > 20 && x < 26 && y > 10 && y < 40) s.viewZ.at(x, y) = 0.0f;
+        }
+    PlaneF pdf;
+    Signal ref(w, h);
+    makeCheckerboard(s, 77, 1, pdf, ref);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (pdf.at(x, y) > 0.0f) ref.color[1].at(x, y) += 0.01f * float((x * 7 + y * 3) % 11);
+    const Signal base = ref.clone();
+    fillCheckerboard(Isa::Scalar, s.guides(), pdf, ref.planes(true), 1);
+    for (Isa isa : supportedIsas())
+        for (int threads : {1, 2, 8}) {
+            const std::string isaStr(isaName(isa));
+            CAPTURE(isaStr);
+            CAPTURE(threads);
+            Signal got = base.clone();
+            fillCheckerboard(isa, s.guides(), pdf, got.planes(true), threads);
+            CHECK(samePlanes(got, ref));
+        }
 }

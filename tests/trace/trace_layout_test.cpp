@@ -1,0 +1,277 @@
+// The trace layouts (trace/trace_layout.h, TraceSettings::ssrLayout / ssgiLayout): which
+// pixels get rays, that the others cost no march, and that the reconstructed frames keep the
+// determinism contract and stay finite where methods fail.
+#include "trace/trace_layout.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/isa.h"
+#include "renderer/renderer.h"
+#include "renderer/screen_quad.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+
+namespace {
+
+RenderSettings smallSettings(TraceLayout ssr, TraceLayout ssgi, int w = 240, int h = 136) {
+    RenderSettings rs;
+    rs.width = w;
+    rs.height = h;
+    rs.shadowMapSize = 512;
+    rs.threads = 2;
+    rs.trace.ssrLayout = ssr;
+    rs.trace.ssgiLayout = ssgi;
+    return rs;
+}
+
+// Each pass's ray pdf and direction planes, as the observer saw them (last sample).
+struct Batches {
+    PlaneF pdf[2], dx[2];
+};
+
+Frame renderObserved(const RenderSettings& rs, const Scene& scene, uint32_t frameIndex,
+                     Batches& b) {
+    const TraceObserver observer = [&](TracePass pass, int, const RayBatch& rays,
+                                       const MarchResult&) {
+        const int p = pass == TracePass::Ssr ? 0 : 1;
+        b.pdf[p] = PlaneF(rays.width(), rays.height());
+        b.dx[p] = PlaneF(rays.width(), rays.height());
+        for (int y = 0; y < rays.height(); ++y)
+            for (int x = 0; x < rays.width(); ++x) {
+                b.pdf[p].at(x, y) = rays.pdf.at(x, y);
+                b.dx[p].at(x, y) = rays.dx.at(x, y);
+            }
+    };
+    Frame f;
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene, frameIndex), f, &observer);
+    return f;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, 4) == 0; }
+
+uint64_t frameHash(const Frame& f) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const PlaneRef& p : f.layers()) {
+        for (char c : p.name) h = (h ^ uint8_t(c)) * 0x100000001b3ull;
+        h = hashPlane(*p.plane, h);
+    }
+    return h;
+}
+
+Scene quadScene() {
+    Material m;
+    m.roughness = 0.2f;  // below the SSR cut: every pixel wants both rays
+    return test::screenQuadScene(m);
+}
+
+}  // namespace
+
+TEST_CASE("checkerboard: one phase traced with the full layout's rays, the other cut and counted") {
+    const Scene scene = makeBuiltinScene("cornell");
+    for (uint32_t frame : {0u, 1u}) {
+        CAPTURE(frame);
+        Batches full, cb;
+        const Frame ff =
+            renderObserved(smallSettings(TraceLayout::Full, TraceLayout::Full), scene, frame, full);
+        const Frame fc = renderObserved(
+            smallSettings(TraceLayout::Checkerboard, TraceLayout::Checkerboard), scene, frame, cb);
+        const TraceStats* stats[2] = {&fc.stats.ssr, &fc.stats.ssgi};
+        const uint32_t phase[2] = {kSsrCheckerboardPhase, kSsgiCheckerboardPhase};
+        for (int p = 0; p < 2; ++p) {
+            CAPTURE(p);
+            uint64_t traced = 0, cut = 0;
+            bool sameRays = true, cutMarked = true, noRayElsewhere = true;
+            for (int y = 0; y < ff.height; ++y)
+                for (int x = 0; x < ff.width; ++x) {
+                    const float a = full.pdf[p].at(x, y), c = cb.pdf[p].at(x, y);
+                    if (checkerboardTraced(x, y, frame, phase[p])) {
+                        sameRays &=
+                            sameBits(a, c) && sameBits(full.dx[p].at(x, y), cb.dx[p].at(x, y));
+                        traced += c > 0.0f;
+                    } else {
+                        if (a > 0.0f) cutMarked &= c == kPdfLayoutCut;
+                        noRayElsewhere &= !(c > 0.0f);
+                        cut += c == kPdfLayoutCut;
+                    }
+                }
+            CHECK(sameRays);
+            CHECK(cutMarked);
+            CHECK(noRayElsewhere);
+            // Only the traced phase reaches the march; the cut pixels are counted.
+            CHECK(stats[p]->march.rays == traced);
+            CHECK(stats[p]->rays.cut == cut);
+            CHECK(stats[p]->rays.rays == traced);
+            CHECK(cut > 0);
+        }
+        // SSR and SSGI opposite: no pixel gets both rays in one frame.
+        bool disjoint = true;
+        for (int y = 0; y < ff.height; ++y)
+            for (int x = 0; x < ff.width; ++x)
+                disjoint &= !(cb.pdf[0].at(x, y) > 0.0f && cb.pdf[1].at(x, y) > 0.0f);
+        CHECK(disjoint);
+    }
+    // The phases alternate per frame.
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y) {
+            CHECK(checkerboardTraced(x, y, 0, kSsrCheckerboardPhase) !=
+                  checkerboardTraced(x, y, 1, kSsrCheckerboardPhase));
+            CHECK(checkerboardTraced(x, y, 7, kSsrCheckerboardPhase) !=
+                  checkerboardTraced(x, y, 7, kSsgiCheckerboardPhase));
+        }
+}
+
+TEST_CASE("checkerboard marches half the pixels, half resolution a quarter (screen-filling quad)") {
+    const Scene scene = quadScene();
+    const int w = 64, h = 64;  // (the quad fills a square view)
+    const uint64_t pixels = uint64_t(w * h);
+    for (uint32_t frame : {0u, 1u, 2u, 3u}) {
+        CAPTURE(frame);
+        Batches b;
+        const Frame full = renderObserved(smallSettings(TraceLayout::Full, TraceLayout::Full, w, h),
+                                          scene, frame, b);
+        REQUIRE(full.stats.ssgi.rays.pixels == pixels);
+        CHECK(full.stats.ssgi.march.rays == pixels);
+        CHECK(full.stats.ssr.march.rays + full.stats.ssr.rays.belowSurface == pixels);
+        const Frame cb = renderObserved(
+            smallSettings(TraceLayout::Checkerboard, TraceLayout::Checkerboard, w, h), scene, frame,
+            b);
+        CHECK(cb.stats.ssgi.march.rays == pixels / 2);
+        CHECK(cb.stats.ssgi.rays.cut == pixels / 2);
+        CHECK(cb.stats.ssr.march.rays + cb.stats.ssr.rays.belowSurface == pixels / 2);
+        CHECK(cb.stats.ssr.rays.cut == pixels / 2);
+        const Frame half = renderObserved(
+            smallSettings(TraceLayout::Checkerboard, TraceLayout::Half, w, h), scene, frame, b);
+        CHECK(half.stats.ssgi.march.rays == pixels / 4);
+        CHECK(half.stats.ssgi.rays.cut == pixels - pixels / 4);
+        CHECK(half.stats.ssgi.rays.pixels == pixels);
+    }
+}
+
+TEST_CASE("half resolution: the chosen pixel of each block rotates over the four, picked exactly") {
+    bool seen[2][2] = {};
+    for (uint32_t f = 0; f < 4; ++f) seen[halfOffset(f).y][halfOffset(f).x] = true;
+    CHECK((seen[0][0] && seen[0][1] && seen[1][0] && seen[1][1]));
+    CHECK(halfOffset(5).x == halfOffset(1).x);
+    // Odd sizes: the edge blocks take the nearest pixel inside.
+    const int w = 7, h = 5;
+    TraceCamera cam;
+    cam.width = w, cam.height = h;
+    PlaneF z(w, h), n[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)}, alb[3], met(w, h);
+    PlaneF light[3];
+    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneF(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) z.at(x, y) = 1.0f + float(y * w + x);
+    const HalfFrameSource src{&z,
+                              {&n[0], &n[1], &n[2]},
+                              {&alb[0], &alb[1], &alb[2]},
+                              &met,
+                              {&light[0], &light[1], &light[2]}};
+    for (uint32_t f = 0; f < 4; ++f) {
+        HalfFrame hf;
+        buildHalfFrame(cam, src, f, hf, 2);
+        REQUIRE(hf.camera.width == 4);
+        REQUIRE(hf.camera.height == 3);
+        const PixelOffset o = halfOffset(f);
+        bool picked = true;
+        for (int hy = 0; hy < 3; ++hy)
+            for (int hx = 0; hx < 4; ++hx) {
+                const int x = std::min(2 * hx + o.x, w - 1), y = std::min(2 * hy + o.y, h - 1);
+                picked &= hf.viewZ.at(hx, hy) == z.at(x, y);
+            }
+        CHECK(picked);
+        // Every pixel is a surface: the cut ones are all but the distinct chosen ones.
+        uint64_t chosen = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const PixelOffset s = halfSource(x / 2, y / 2, o, w, h);
+                chosen += s.x == x && s.y == y;
+            }
+        CHECK(hf.cutPixels == uint64_t(w * h) - chosen);
+    }
+}
+
+TEST_CASE("trace layouts: the same bits for every ISA and thread count, frame after frame") {
+    struct Case {
+        const char* scene;
+        TraceLayout ssr, ssgi;
+        Marcher marcher;
+    };
+    const Case cases[] = {
+        {"cornell", TraceLayout::Checkerboard, TraceLayout::Checkerboard, Marcher::HiZ},
+        {"cornell", TraceLayout::Checkerboard, TraceLayout::Half, Marcher::HiZ},
+        {"spheres", TraceLayout::Full, TraceLayout::Half, Marcher::Dda},
+        {"corridor", TraceLayout::Checkerboard, TraceLayout::Half, Marcher::Linear},
+    };
+    for (const Case& c : cases) {
+        const std::string ssr(traceLayoutName(c.ssr)), ssgi(traceLayoutName(c.ssgi));
+        const std::string scene = c.scene;
+        CAPTURE(scene);
+        CAPTURE(ssr);
+        CAPTURE(ssgi);
+        const Scene s = makeBuiltinScene(c.scene);
+        for (uint32_t frame : {0u, 1u}) {
+            CAPTURE(frame);
+            RenderSettings rs = smallSettings(c.ssr, c.ssgi);
+            rs.trace.marcher = c.marcher;
+            rs.trace.ssgiSpp = 2;  // the half frame's accumulation too
+            rs.isa = Isa::Scalar;
+            rs.threads = 1;
+            const uint64_t ref =
+                frameHash(Renderer(rs).renderWithoutHistory(s, FrameInput::still(s, frame)));
+            for (Isa isa : supportedIsas())
+                for (int threads : {1, 2, 8}) {
+                    const std::string isaStr(isaName(isa));
+                    CAPTURE(isaStr);
+                    CAPTURE(threads);
+                    rs.isa = isa;
+                    rs.threads = threads;
+                    CHECK(frameHash(Renderer(rs).renderWithoutHistory(
+                              s, FrameInput::still(s, frame))) == ref);
+                }
+        }
+    }
+}
+
+TEST_CASE("trace layouts: every plane finite on the failure scenes, odd sizes included") {
+    for (const auto& info : builtinScenes()) {
+        const Scene scene = makeBuiltinScene(info.name);
+        for (TraceLayout ssgi : {TraceLayout::Checkerboard, TraceLayout::Half})
+            for (Marcher m : {Marcher::HiZ, Marcher::Dda})
+                for (int w : {240, 161}) {
+                    const std::string name = info.name, layout(traceLayoutName(ssgi));
+                    CAPTURE(name);
+                    CAPTURE(layout);
+                    CAPTURE(w);
+                    RenderSettings rs =
+                        smallSettings(TraceLayout::Checkerboard, ssgi, w, w == 240 ? 136 : 91);
+                    rs.trace.marcher = m;
+                    const Frame f =
+                        Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene, 1));
+                    for (const PlaneRef& p : f.layers()) {
+                        CAPTURE(p.name);
+                        bool finite = true;
+                        for (int y = 0; y < f.height; ++y)
+                            for (int x = 0; x < f.width; ++x)
+                                finite &= std::isfinite(p.plane->at(x, y));
+                        CHECK(finite);
+                    }
+                    // The reconstructed planes stay in their ranges.
+                    bool inRange = true;
+                    for (int y = 0; y < f.height; ++y)
+                        for (int x = 0; x < f.width; ++x) {
+                            const float o = f.trace.ssr.opacity.at(x, y);
+                            const float hs = f.trace.ssgi.hit.at(x, y);
+                            inRange &= o >= 0.0f && o <= 1.0f && hs >= 0.0f && hs <= 1.0f &&
+                                       f.trace.ssgi.hitDistance.at(x, y) >= 0.0f &&
+                                       f.trace.ssgi.color[0].at(x, y) >= 0.0f;
+                        }
+                    CHECK(inRange);
+                }
+    }
+}
