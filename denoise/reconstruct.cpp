@@ -56,12 +56,23 @@ ReconstructArgs guideArgs(const ReconstructGuides& g, std::size_t& stride) {
     return a;
 }
 
+// The tiles in parallel. The checkerboard fill writes in place and reads each cut pixel's edge
+// neighbours, up to one pixel into the next tile: it runs in two colours of tiles ((tx + ty)
+// & 1), so that no tile is written while an edge neighbour reads it. (What it reads there is
+// traced pixels, never written; the colours keep the loads of the lanes it drops race-free.)
 uint64_t run(Isa isa, const ReconstructArgs& a, int threads) {
     const TileGrid grid(a.width, a.height);
     std::vector<uint64_t> filled(std::size_t(grid.count()), 0);
     const auto kernel = SSRT_DISPATCH(isa, reconstructTile);
-    parallelForTiles(grid.count(), threads,
-                     [&](int tile) { kernel(a, tile, filled[std::size_t(tile)]); });
+    for (int colour = 0; colour < (a.half ? 1 : 2); ++colour) {
+        std::vector<int> tiles;
+        for (int t = 0; t < grid.count(); ++t)
+            if (a.half || ((t % grid.tilesX + t / grid.tilesX) & 1) == colour) tiles.push_back(t);
+        parallelForTiles(int(tiles.size()), threads, [&](int i) {
+            const int tile = tiles[std::size_t(i)];
+            kernel(a, tile, filled[std::size_t(tile)]);
+        });
+    }
     uint64_t total = 0;
     for (uint64_t n : filled) total += n;
     return total;

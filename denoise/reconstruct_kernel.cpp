@@ -32,34 +32,47 @@ struct Candidate {
     ILane src, guide;
     Lane px, py, space;
     Mask ok;
+    // Checkerboard, away from the frame's left and right edges: the candidate's pixels sit side
+    // by side at `off` (values and guide alike), read with one load instead of a gather.
+    bool contiguous = false;
+    std::size_t off = 0;
 };
+
+// A plane's value at a candidate's values (src) or guide.
+SSRT_INLINE Lane readAt(const float* plane, const Candidate& c, ILane idx) {
+    return c.contiguous ? ln::load<Lane>(plane + c.off) : ln::gather(plane, idx);
+}
 
 struct Sums {
     Lane w, wo, wh, whd, c[3];
 };
 
-SSRT_INLINE V3 gather3(const float* const* p, ILane i) {
-    return {ln::gather(p[0], i), ln::gather(p[1], i), ln::gather(p[2], i)};
+// The values of a candidate (absent planes: opacity 1, the others 0).
+SSRT_INLINE void readValues(const ReconstructArgs& a, const Candidate& c, Lane (&v)[kValues]) {
+    const Lane zero(0.0f);
+    for (int k = 0; k < 3; ++k) v[k] = a.in[kRecR] ? readAt(a.in[kRecR + k], c, c.src) : zero;
+    v[3] = a.in[kRecOpacity] ? readAt(a.in[kRecOpacity], c, c.src) : Lane(1.0f);
+    v[4] = a.in[kRecHit] ? readAt(a.in[kRecHit], c, c.src) : zero;
+    v[5] = a.in[kRecDistance] ? readAt(a.in[kRecDistance], c, c.src) : zero;
 }
 
-// The values of a candidate (absent planes: opacity 1, the others 0).
-SSRT_INLINE void readValues(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) {
-    const Lane zero(0.0f);
-    for (int k = 0; k < 3; ++k) v[k] = a.in[kRecR] ? ln::gather(a.in[kRecR + k], i) : zero;
-    v[3] = a.in[kRecOpacity] ? ln::gather(a.in[kRecOpacity], i) : Lane(1.0f);
-    v[4] = a.in[kRecHit] ? ln::gather(a.in[kRecHit], i) : zero;
-    v[5] = a.in[kRecDistance] ? ln::gather(a.in[kRecDistance], i) : zero;
+// The own pixel's values in the half frame (a gather).
+SSRT_INLINE void readOwn(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) {
+    Candidate c{};
+    c.src = i;
+    readValues(a, c, v);
 }
 
 // w_plane w_normal (denoise/reconstruct.h) and the relative plane distance.
 SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const Candidate& c,
                                 Lane& dist) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane z = ln::gather(a.viewZ, c.guide);
+    const Lane z = readAt(a.viewZ, c, c.guide);
     // The view ray through the sample's pixel centre times its depth (trace/trace_types.h)
     const V3 s{(c.px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
                (Lane(a.tanHalfY) - c.py * Lane(a.scaleY)) * z, zero - z};
-    const V3 n = gather3(a.normal, c.guide);
+    const V3 n{readAt(a.normal[0], c, c.guide), readAt(a.normal[1], c, c.guide),
+               readAt(a.normal[2], c, c.guide)};
     dist = ln::abs(ln::dot(t.nView, s - t.p)) * t.invTolerance;
     const Lane wPlane = ln::max(one - dist, zero);  // (NaN -> 0: max keeps the second)
     Lane cosN = ln::max(ln::dot(t.n, n), zero);
@@ -82,7 +95,7 @@ SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidat
         Lane dist;
         const Lane w = c.space * geometryWeight(a, t, c, dist);
         Lane v[kValues];
-        readValues(a, c.src, v);
+        readValues(a, c, v);
         // (Lanes without this candidate add nothing, whatever their reads held: 0 x NaN.)
         for (int k = 0; k < kValues; ++k) v[k] = ln::select(c.ok, v[k], zero);
         const Lane wo = w * v[3], wh = w * v[4];
@@ -146,16 +159,26 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
     const float dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
     for (int i = 0; i < 4; ++i) {
         const Lane nx = xi + Lane(dx[i]), ny(float(y) + dy[i]);
+        const int yy = y + int(dy[i]);
+        Candidate& c = cand[i];
+        c.px = nx + Lane(0.5f), c.py = ny + Lane(0.5f), c.space = Lane(1.0f);
+        if (yy >= 0 && yy < a.height && x + int(dx[i]) >= 0 && x + int(dx[i]) + kW <= a.width) {
+            // Every lane's neighbour is in the frame, side by side in memory. (Lanes whose
+            // neighbour is not traced read a pixel that may be filled meanwhile, by this
+            // thread or, in the other tile colour, never at once: their values are dropped.)
+            c.contiguous = true;
+            c.off = std::size_t(yy) * a.stride + std::size_t(x + int(dx[i]));
+            c.ok = (ln::load<Lane>(a.pdf + c.off) > zero) & cut;
+            continue;
+        }
         const Mask inFrame = (nx >= zero) & (nx < Lane(float(a.width))) & (ny >= zero) &
                              (ny < Lane(float(a.height)));
         const ILane at = screen::pixelIndex(nx, ny, a.width, a.height, a.stride);
-        const Mask traced = inFrame & (ln::gather(a.pdf, at) > zero) & cut;
-        // Lanes without a traced neighbour read their own pixel instead: a cut neighbour may
-        // be another tile's, written meanwhile.
-        const ILane idx =
-            screen::pixelIndex(ln::select(traced, nx, xi), ln::select(traced, ny, Lane(float(y))),
+        c.ok = inFrame & (ln::gather(a.pdf, at) > zero) & cut;
+        // Lanes without a traced neighbour read their own pixel instead.
+        c.src = c.guide =
+            screen::pixelIndex(ln::select(c.ok, nx, xi), ln::select(c.ok, ny, Lane(float(y))),
                                a.width, a.height, a.stride);
-        cand[i] = {idx, idx, nx + Lane(0.5f), ny + Lane(0.5f), Lane(1.0f), traced};
     }
     Lane v[kValues];
     blend(a, t, cand, 4, v);
@@ -215,7 +238,8 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
                 ownX = ln::select(isOwn, hx, ownX);
                 ownY = ln::select(isOwn, Lane(float(hy)), ownY);
                 const Mask traced = in & !isOwn & (ln::gather(a.pdf, src) > zero) & surface;
-                cand[count++] = {src, guide, sx + halfL, Lane(float(sy) + 0.5f), space, traced};
+                Candidate& c = cand[count++];
+                c = {src, guide, sx + halfL, Lane(float(sy) + 0.5f), space, traced};
             }
         }
         const Target t = target(a, o, xi + halfL, Lane(float(y) + 0.5f), z);
@@ -224,7 +248,7 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
             const ILane ownIdx =
                 screen::pixelIndex(ownX, ownY, a.srcWidth, a.srcHeight, a.srcStride);
             Lane mine[kValues];
-            readValues(a, ownIdx, mine);
+            readOwn(a, ownIdx, mine);
             for (int k = 0; k < kValues; ++k) v[k] = ln::select(own, mine[k], v[k]);
             if (a.in[kRecSteps]) steps = ln::select(own, ln::gather(a.in[kRecSteps], ownIdx), zero);
         }
@@ -239,15 +263,16 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
 }  // namespace
 
 void reconstructTile(const ReconstructArgs& args, int tile, uint64_t& filled) {
-    filled = 0;
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     // (Lane groups past the right edge read and, for the half upsample, write the rows'
     // padding; the checkerboard writes only marked lanes inside the tile.)
+    uint64_t n = 0;  // (a local: a store per pixel through the reference otherwise)
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; x += kW) {
-            if (args.half) halfChunk(args, x, y, filled);
-            else checkerChunk(args, x, y, x1, filled);
+            if (args.half) halfChunk(args, x, y, n);
+            else checkerChunk(args, x, y, x1, n);
         }
+    filled = n;
 }
 
 }  // namespace ssrt::SSRT_ISA_NS
