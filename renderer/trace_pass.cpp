@@ -194,7 +194,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
         addTime(times.rays, [&] {
             RayGenStats rs = generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), hf.camera,
                                                  rayGen, ht.rays, c.threads(), cut);
-            // The frame's surface pixels: the chosen ones traced here, the others cut.
+            // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
+            // and background stay counts of half pixels).
             rs.pixels += hf.cutPixels;
             rs.cut += hf.cutPixels;
             st.rays.add(rs);
