@@ -65,7 +65,9 @@ TraceCamera halfCamera(const TraceCamera& full);
 // point with that pixel's normal, so the half-resolution depth buffer holds the ray's own
 // origin (the marchers skip it as their own pixel) and no surface of the block stands in
 // front of it to be hit by mistake; the rotation shows every full-resolution depth over four
-// frames.
+// frames. (The half frame puts that depth at its own pixel centre, the block's centre, so a
+// ray leaves up to half a full pixel beside the chosen pixel in each axis: the price of a
+// plain camera for the half frame; the upsample places the result at the chosen pixel.)
 struct HalfFrame {
     TraceCamera camera;  // halfCamera of the full one
     PixelOffset offset;  // the frame's chosen pixel in each block
