@@ -44,15 +44,23 @@ inputs+=(shot:examples/shots/spheres_sky.json
          scene:tests/scenes/data/draco_box.gltf
          scene:tests/fuzz/seeds/meshopt_sphere.glb)
 [ ${#inputs[@]} -ge 10 ] || { echo "test-clang: too few inputs: ${inputs[*]}" >&2; exit 1; }
+# The trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and
+# the half-resolution pick are not frame 0's: "layout:SCENE".
+inputs+=(layout:cornell layout:corridor)
 
 status=0
 for input in "${inputs[@]}"; do
     kind=${input%%:*} what=${input#*:}
     name=$(basename "$what" | tr '.' '_')
+    extra=()
+    if [ "$kind" = layout ]; then
+        kind=scene name="${what}_layouts"
+        extra=(--ssr-layout checkerboard --ssgi-layout half --frame 3)
+    fi
     for build in gcc clang; do
         bin=build/ssrt
         [ $build = clang ] && bin=build-clang/ssrt
-        "$bin" render "--$kind" "$what" --width 160 --height 90 --quiet \
+        "$bin" render "--$kind" "$what" --width 160 --height 90 --quiet "${extra[@]}" \
             -o "$out/$build/$name.exr"
     done
     if cmp "$out/gcc/$name.exr" "$out/clang/$name.exr"; then
