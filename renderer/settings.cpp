@@ -17,6 +17,7 @@ void TraceSettings::validate() const {
     checkFields(kTraceOwnFields, *this, "TraceSettings");
     march.validate();
     checkFields(kResolveFields, resolve, "SsrResolveSettings");
+    denoise.validate();
 }
 
 }  // namespace ssrt

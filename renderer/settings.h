@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/isa.h"
+#include "denoise/denoise_settings.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/ssr_resolve.h"
@@ -31,6 +32,7 @@ struct TraceSettings {
     // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
     // misses their rays.
     bool traceHidden = false;
+    DenoiseSettings denoise;  // REBLUR over both signals (denoise/denoise.h)
 
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }

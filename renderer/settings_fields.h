@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/fields.h"
+#include "denoise/denoise_fields.h"
 #include "renderer/settings.h"
 #include "trace/march_fields.h"
 
@@ -67,14 +68,15 @@ inline constexpr std::array kTraceOwnFields = {
         "the same at those pixels; the counters and hit planes then cover them too. By default "
         "they get no ray"),
 };
-// Every member is in the table, march and resolve through their own tables.
-static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 2,
+// Every member is in the table, march, resolve and denoise through their own tables.
+static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 3,
               "a TraceSettings member is missing from kTraceOwnFields");
 
 // Every tracing setting, as fields of TraceSettings.
 inline constexpr auto kTraceFields =
     concatFields(kTraceOwnFields, nestedFields<&TraceSettings::march, kMarchFields>(),
-                 nestedFields<&TraceSettings::resolve, kResolveFields>());
+                 nestedFields<&TraceSettings::resolve, kResolveFields>(),
+                 nestedFields<&TraceSettings::denoise, kDenoiseFields>());
 
 // RenderSettings' own members (trace follows in kRenderFields).
 inline constexpr std::array kRenderOwnFields = {

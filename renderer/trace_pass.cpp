@@ -174,6 +174,44 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssgi");
 }
 
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
+// composite then reads; the traced planes stay as they were (the undenoised layers).
+void denoisePass(const TraceContext& c, Frame& frame) {
+    const TraceSettings& ts = c.ts;
+    const GBuffer& g = frame.gbuffer;
+    DenoiseInputs in;
+    in.camera = c.camera;
+    in.frameIndex = c.args.frameIndex;
+    in.viewZ = &g.viewZ;
+    in.roughness = &g.roughness;
+    in.metallic = &g.metallic;
+    for (int i = 0; i < 3; ++i) {
+        in.normal[i] = &g.normal[i];
+        in.albedo[i] = &g.albedo[i];
+    }
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    if (ts.ssgi) {
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
+        in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;
+    }
+    if (ts.ssr) {
+        for (int ch = 0; ch < 3; ++ch) {
+            in.ssr[ch] = &frame.trace.ssr.color[ch];
+            in.envSpecular[ch] = &frame.direct.envSpecular[ch];
+        }
+        in.ssrOpacity = &frame.trace.ssr.opacity;
+        in.specularHitDistance = &frame.trace.ssr.hitDistance;
+        // Where SSR has faded out the blend is the environment alone: nothing to denoise.
+        in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
+    }
+    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
+    std::vector<DenoisePassTime> times;
+    denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
+            frame.trace.denoise.out, c.threads(), &times);
+    for (const DenoisePassTime& t : times) frame.stats.passes.push_back({t.name, t.ms});
+}
+
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone
 // mapped; replaces the direct pass's colour and display.
 void compositePass(const TraceContext& c, Frame& frame) {
@@ -188,11 +226,15 @@ void compositePass(const TraceContext& c, Frame& frame) {
         ci.envDiffuse[ch] = &parts.envDiffuse[ch];
         ci.envSpecular[ch] = &parts.envSpecular[ch];
         ci.specWeight[ch] = &parts.specWeight[ch];
+        const DenoiseOutputs& d = frame.trace.denoise.out;
         if (ts.ssgi) {
-            ci.ssgi[ch] = &frame.trace.ssgi.color[ch];
+            ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
             ci.albedo[ch] = &g.albedo[ch];
         }
-        if (ts.ssr) ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+        if (ts.ssr) {
+            ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+            if (ts.denoise.enabled) ci.specular[ch] = &d.specular[ch];
+        }
     }
     if (ts.ssgi) {
         ci.viewZ = &g.viewZ;
@@ -213,6 +255,7 @@ void runTracePasses(const TracePassArgs& args, Frame& frame) {
     hiZPass(c, frame);
     if (c.ts.ssr) ssrPass(c, frame);
     if (c.ts.ssgi) ssgiPass(c, frame);
+    if (c.ts.denoise.enabled) denoisePass(c, frame);
     compositePass(c, frame);
 }
 
