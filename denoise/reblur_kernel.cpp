@@ -223,6 +223,14 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         const Lane f = spec ? p.r * hitFactor : hitFactor;
         radius = Lane(a.radius) * ln::sqrt(ln::saturate(f * alphaBlur));
     }
+    if (spec) {
+        // No wider than the lobe's footprint on the surface, seen from the camera (NRD's
+        // lobe radius; the dominant direction's N.D taken as N.V).
+        const Lane dominant = rb::dominantFactor(p.noV, p.r);
+        const Lane footprint = hitWorld * p.noV * rb::lobeTanHalfAngle(p.r, Lane(0.3f));
+        const Lane pixel = Lane(2.0f * v.tanHalfY / float(v.height)) * (p.z + hitWorld * dominant);
+        radius = ln::min(radius, footprint / pixel);
+    }
     radius = ln::max(radius, Lane(a.minRadius) * smc);
     // Edge-stopping parameters.
     const Lane invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
@@ -297,6 +305,7 @@ struct History {
     Lane fast;
     Lane quality;  // sqrt of the bilinear weight that survived (REBLUR's footprint quality)
     Mask found;
+    V3 normal;  // the surviving taps' mean normal (not normalised)
 };
 
 // The previous frame's view-space point of its pixel (tx, ty) at depth zp, in this camera's
@@ -359,6 +368,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     const Lane bw[2][2] = {{(one - fx) * (one - fy), fx * (one - fy)}, {(one - fx) * fy, fx * fy}};
     Lane wsum = zero, frames = zero, fast = zero;
     Lane bil[4] = {zero, zero, zero, zero};
+    V3 normal{zero, zero, zero};
     Lane w[2][2];
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
@@ -373,12 +383,16 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
             const Lane wn = w[j][i] * inv;
             frames = frames + wn * ln::gather(a.prevFrames, idx);
             fast = fast + wn * ln::gather(a.prevFast, idx);
+            normal = normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
+                                 ln::gather(a.prevNormal[2], idx)} *
+                                  wn;
             for (int ch = 0; ch < 4; ++ch)
                 bil[ch] = bil[ch] + wn * ln::gather(a.prevSignal[ch], idx);
         }
     h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
     h.frames = ln::select(h.found, frames, zero);
     h.fast = fast;
+    h.normal = normal;
     for (int ch = 0; ch < 4; ++ch) h.signal[ch] = bil[ch];
     if (surface && ln::any(allOk)) {
         // Catmull-Rom where every tap passed (sharper history: less blur over 30 frames).
@@ -401,6 +415,34 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
     h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
     return h;
+}
+
+// The surface's curvature at the centre from its right (or left) and lower (or upper)
+// neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
+// 0 across a depth edge.
+SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
+    const Lane zero(0.0f);
+    Lane sum = zero;
+    for (int axis = 0; axis < 2; ++axis) {
+        Lane tx = p.px, ty = p.py;
+        if (axis == 0)
+            tx = ln::select(tx + Lane(1.0f) < Lane(float(v.width)), tx + Lane(1.0f),
+                            tx - Lane(1.0f));
+        else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
+        const Tap t = tapAt(v, tx, ty);
+        const Lane zs = ln::gather(v.viewZ, t.index);
+        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 ns = screen::worldToView(
+            v.viewToWorld, V3{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
+                              ln::gather(v.normal[2], t.index)});
+        const V3 d = xs - p.x;
+        const Lane d2 = ln::dot(d, d);
+        const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);
+        const Lane k = ln::dot(ns - p.nv, d) / ln::select(same, d2, Lane(1.0f));
+        sum = sum + ln::select(same, k, zero);
+    }
+    (void)x;
+    return sum * Lane(0.5f);
 }
 
 void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
@@ -435,14 +477,35 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
     History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
 
+    // Specular history is only as good as the reflection it saw: the surface's history saw
+    // it from a direction the parallax angle away, which a lobe narrower than that angle
+    // cannot hide (REBLUR's surface-motion confidence: a mirror on a moving camera keeps
+    // few frames).
+    Lane lobe = one;
+    if (spec) {
+        lobe = ln::max(ln::atan(rb::lobeTanHalfAngle(p.r, Lane(0.75f))), Lane(kNormalUlp));
+        const V3 from = ln::normalize(xw);
+        const V3 fromBefore =
+            ln::normalize(V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
+                             xw.z + Lane(a.cameraDelta[2])});
+        const Lane parallax = rb::acosApprox(ln::dot(from, fromBefore));
+        Lane conf = ln::saturate(one - parallax / lobe);
+        conf = conf * conf;
+        h.frames = ln::min(h.frames, Lane(a.maxFrames) * conf * conf);
+    }
+
     if (spec && a.virtualMotion) {
         // Virtual motion: the reflection seen in a mirror sits the hit distance behind it,
         // along the view ray; reproject that point (NRD's virtual motion, flat-mirror form,
         // leaning to the surface as the lobe widens: the dominant factor).
         const Lane dominant = rb::dominantFactor(p.noV, p.r);
         const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+        // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
+        // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
+        const Lane kappa = ln::max(curvature(v, p, x, y), zero);
+        const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
         const V3 dir = ln::normalize(xw);
-        const V3 xv = xw + dir * (hitWorld * dominant);
+        const V3 xv = xw + dir * (virtualDistance * dominant);
         const V3 pv = screen::worldToView(
             a.prevViewToWorld, V3{xv.x + Lane(a.cameraDelta[0]), xv.y + Lane(a.cameraDelta[1]),
                                   xv.z + Lane(a.cameraDelta[2])});
@@ -451,7 +514,13 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         const Lane safe = ln::select(front, depth, one);
         const Lane vx = ((pv.x / safe) / Lane(a.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
         const Lane vy = (one - (pv.y / safe) / Lane(a.prevTanHalfY)) * Lane(0.5f * float(v.height));
-        const History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+        History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+        // The virtual point is exact for a flat mirror only: where the history's normal
+        // turned, the reflection turned twice as far (REBLUR's normal confidence).
+        const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
+        Lane conf = ln::saturate(one - Lane(2.0f) * turn / lobe);
+        conf = conf * conf;
+        hv.frames = ln::min(hv.frames, Lane(a.maxFrames) * conf * conf);
         const Lane amount =
             ln::select(hv.found, rb::smoothstep(0.05f, 0.95f, dominant) * hv.quality, zero);
         for (int ch = 0; ch < 4; ++ch) h.signal[ch] = rb::lerp(h.signal[ch], hv.signal[ch], amount);
