@@ -604,14 +604,29 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     if (a.fast && ln::any(valid)) {
         // The fast history's 5x5 moments bound the slow history's luma (REBLUR's "fast
         // history" clamp), more firmly the older the pixel.
+        // (The mask is 0 off surfaces, so it alone says which taps count. Where the whole
+        // window lies in the frame for every lane, its rows are plain loads.)
+        const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
+        const float* mask = v.mask[spec ? 1 : 0];
         Lane m1 = zero, m2 = zero, count = zero;
         for (int j = -2; j <= 2; ++j)
             for (int i = -2; i <= 2; ++i) {
-                const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
-                const Lane zs = ln::gather(v.viewZ, t.index);
-                const Lane ms = ln::gather(v.mask[spec ? 1 : 0], t.index);
-                const Mask ok = valid & t.inside & (zs > zero) & (ms > zero);
-                const Lane f = ln::select(ok, ln::gather(a.fast, t.index), zero);
+                Lane ms, f;
+                Mask inside;
+                if (interior) {
+                    const std::size_t at =
+                        std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
+                    ms = loadAt(mask, at);
+                    f = loadAt(a.fast, at);
+                    inside = valid;
+                } else {
+                    const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
+                    ms = ln::gather(mask, t.index);
+                    f = ln::gather(a.fast, t.index);
+                    inside = valid & t.inside;
+                }
+                const Mask ok = inside & (ms > zero);
+                f = ln::select(ok, f, zero);
                 m1 = m1 + f;
                 m2 = m2 + f * f;
                 count = count + ln::select(ok, one, zero);
