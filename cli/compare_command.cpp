@@ -9,6 +9,8 @@
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
+#include "cli/sequence.h"
+#include "cli/sequence_evaluation.h"
 #include "io/image_io.h"
 
 namespace ssrt::cli {
@@ -105,6 +107,11 @@ void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation
 
 }  // namespace
 
+std::string sequenceText(const SequencePlan& plan) {
+    return plural(plan.frames, "frame") +
+           (plan.warmup > 0 ? " after " + plural(plan.warmup, "warm-up frame") : std::string());
+}
+
 RenderSettings truthDefaults() {
     RenderSettings d;
     d.width = 640;
@@ -153,6 +160,12 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
         ->group("Truth");
     cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
         ->group("Truth");
+    cmd.add_option_function<std::string>(
+           "--per-frame", [&o](const std::string& v) { o.perFrame = v; },
+           "Also write each frame's colour relMSE and flicker to this CSV (columns frame, "
+           "frame_index, cut, relmse, flicker; sweep adds setting, its CSV's row from 0)")
+        ->type_name("FILE.csv")
+        ->group("Truth");
     cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
@@ -183,6 +196,11 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
     addSceneOptions(*cmd, o.render, truthDefaults());
     addTraceOptions(*cmd, o.render);
     addTruthOptions(*cmd, o.truth);
+    addSequenceOptions(*cmd, o.render,
+                       "a sequence along the shot's camera path (or of the still camera), "
+                       "history carried; the last frame is evaluated in full, each frame's "
+                       "colour relMSE and flicker reported (a reference per camera: use a low "
+                       "--reference-spp on a moving path)");
     cmd->add_option_function<std::string>(
            "-o,--output", [&o](const std::string& v) { o.output = v; },
            "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
@@ -198,30 +216,29 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
+    const SequencePlan plan = sequencePlanFrom(o.render, request);
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
+    if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
     const Scene& scene = request.scene;
     refSettings.maxDistance = marchLengths(settings.trace.march, scene.diagonal()).maxDistance;
-    const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
+    const bool sequenceRun = plan.frames > 1 || plan.warmup > 0;
     if (progress)
         *progress << "comparing " << request.name << " " << settings.width << "x" << settings.height
-                  << " on " << isaName(request.isa) << ", "
-                  << plural(threadsFor(settings), "thread") << "...\n";
+                  << (sequenceRun ? ", " + sequenceText(plan) : std::string()) << " on "
+                  << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread")
+                  << "...\n";
 
     const EmbreeScene embree(scene);
-    const ReferenceSource source = referenceSourceFrom(o.truth, err);
-    bool fromCache = false;
-    const ReferenceImage reference =
-        referenceFor(embree, scene, input, settings, refSettings, source, fromCache);
-    if (progress)
-        *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
-                  << refSettings.spp << " spp)\n";
-
+    const TruthContext truth{embree,       scene,   refSettings, referenceSourceFrom(o.truth, err),
+                             evalSettings, progress};
+    const FrameSequence sequence(request, plan);
     Frame frame;
-    const Evaluation ev = evaluate(embree, scene, input, settings, reference, evalSettings, frame);
+    const SequenceEvaluation result = evaluateSequence(truth, sequence, settings, settings, frame);
+    const Evaluation& ev = result.last;
     out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
         << marcherName(settings.trace.marcher) << ", ssr "
         << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +
@@ -229,10 +246,22 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                                : std::string("off"))
         << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
         << (settings.trace.traceHidden ? ", hidden rays traced" : "") << ", reference "
-        << refSettings.spp << " spp\n\n";
+        << refSettings.spp << " spp"
+        << (sequenceRun ? "; frame " + std::to_string(plan.frames - 1) + " of " + sequenceText(plan)
+                        : std::string())
+        << "\n\n";
     printEvaluation(out, embree.stats(), ev);
+    if (sequenceRun) {
+        out << "\nper frame\n";
+        printFrameErrors(out, result.frames);
+    }
+    if (o.truth.perFrame) {
+        writeTextFile(*o.truth.perFrame,
+                      frameErrorsCsvHeader(false) + frameErrorsCsvRows(result.frames));
+        if (progress) *progress << "wrote " << *o.truth.perFrame << "\n";
+    }
     if (o.output) {
-        appendTruthPlanes(frame, reference, ev);
+        appendTruthPlanes(frame, result.reference, ev);
         writeImage(*o.output, frame);
         if (progress) *progress << "wrote " << *o.output << "\n";
     }
