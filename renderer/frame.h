@@ -183,13 +183,19 @@ struct TraceOutputs {
 // frame (Renderer::render); the renderer reads it, then commits the new frame's into it after
 // the composite.
 struct FrameHistory : PlaneTable<FrameHistory> {
-    PlaneF color[3];     // the last frame's final colour (exposed), for reprojected SSR hits
+    PlaneF color[3];  // the last frame's final colour (exposed), for reprojected SSR hits
+    // The last frame's incoming diffuse radiance (scene-linear, before the diffuse colour:
+    // what the composite multiplied by it), for SSGI hits with TraceSettings::ssgiFeedback;
+    // empty without it.
+    PlaneF diffuse[3];
     bool valid = false;  // a frame has committed it (false: nothing to reproject)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("history.color.R", g.color[0]), fn("history.color.G", g.color[1]);
         fn("history.color.B", g.color[2]);
+        fn("history.diffuse.R", g.diffuse[0]), fn("history.diffuse.G", g.diffuse[1]);
+        fn("history.diffuse.B", g.diffuse[2]);
     }
     // Usable by a frame of this size.
     bool usableAt(int width, int height) const {

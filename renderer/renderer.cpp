@@ -350,7 +350,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
         history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
                                                                                        : nullptr;
     runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, observer}, frame);
-    if (history && readsHistory(settings_.trace)) commitHistory(frame, *history);
+    if (history && readsHistory(settings_.trace)) commitHistory(settings_.trace, frame, *history);
 }
 
 }  // namespace ssrt

@@ -134,6 +134,19 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssr");
 }
 
+// Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
+// radiance where the history has it at this size; none (one bounce) otherwise.
+void feedbackInputs(const TraceContext& c, const Frame& frame, SsgiInputs& in) {
+    const FrameHistory* h = c.args.history;
+    if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
+        h->diffuse[0].height() != frame.height)
+        return;
+    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
+    in.motion[0] = &frame.gbuffer.motion[0];
+    in.motion[1] = &frame.gbuffer.motion[1];
+    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+}
+
 void ssgiPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
@@ -154,6 +167,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     in.metallic = &g.metallic;
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
+    feedbackInputs(c, frame, in);
     const HitStatsPlanes hp{&planes.hit, &planes.steps, &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
@@ -217,17 +231,31 @@ void runTracePasses(const TracePassArgs& args, Frame& frame) {
 }
 
 bool readsHistory(const TraceSettings& s) {
-    return s.ssr && s.resolve.radiance == HitRadiance::Reprojected;
+    return (s.ssr && s.resolve.radiance == HitRadiance::Reprojected) || (s.ssgi && s.ssgiFeedback);
 }
 
-void commitHistory(const Frame& frame, FrameHistory& history) {
-    const int w = frame.width, h = frame.height;
+namespace {
+
+// The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
+// planes the composite multiplied by the diffuse colour. Today SSGI's own; the one place to
+// point at the denoised diffuse instead.
+const PlaneF* committedDiffuse(const Frame& frame) { return frame.trace.ssgi.color; }
+
+void copyPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
-        const PlaneF& src = frame.image.color[ch];
-        PlaneF& dst = history.color[ch];
-        dst.ensureSize(w, h);  // kept across frames: no allocation once sized
-        for (int y = 0; y < h; ++y) std::copy_n(src.row(y), w, dst.row(y));
+        dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
+        for (int y = 0; y < h; ++y) std::copy_n(src[ch].row(y), w, dst[ch].row(y));
     }
+}
+
+}  // namespace
+
+void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& history) {
+    const int w = frame.width, h = frame.height;
+    // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
+    // feedback only.
+    copyPlanes(frame.image.color, history.color, w, h);
+    if (s.ssgi && s.ssgiFeedback) copyPlanes(committedDiffuse(frame), history.diffuse, w, h);
     history.valid = true;
 }
 

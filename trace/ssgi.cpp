@@ -46,6 +46,16 @@ void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const Marc
         if (in.emission[0] || in.emission[1] || in.emission[2])
             for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], w, h, "emission");
     }
+    if (in.prevDiffuse[0] || in.prevDiffuse[1] || in.prevDiffuse[2]) {
+        for (int c = 0; c < 3; ++c) {
+            a.prevDiffuse[c] = need(in.prevDiffuse[c], w, h, "previous diffuse radiance");
+            a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+        }
+        a.metallic = need(in.metallic, w, h, "metallic");
+        a.motion[0] = need(in.motion[0], w, h, "motion");
+        a.motion[1] = need(in.motion[1], w, h, "motion");
+        if (in.occlusion) a.occlusion = need(in.occlusion, w, h, "occlusion");
+    }
     const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
     for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
     a.pdf = need(&rays.pdf, w, h, "ray pdf");

@@ -15,6 +15,19 @@
 // prefiltered irradiance, so that N samples converge to the sky's share of the hemisphere
 // (which screen space cannot see beyond the frame, GAMES202 returns black there instead).
 // A pixel without a ray (pdf 0: background, rejected sample) contributes 0 for that sample.
+//
+// Multi-bounce feedback (TraceSettings::ssgiFeedback, issue 17): given the previous frame's
+// incoming diffuse radiance E' (what this resolve output a frame ago, or what replaced it in
+// the composite), a hit also sends on the light it received then,
+//   L(x1 -> x0) += albedo1 (1 - metallic1) occlusion1  E'(reproject(x1)),
+// reproject(x1) = (hitX, hitY) + motion at the hit pixel, read at the NEAREST pixel (as the
+// hit's G-buffer attributes: a bilinear read would blend the light of two surfaces across a
+// depth edge; on a still camera it is the hit pixel's own estimate, so the series is not
+// blurred), nothing where it falls off the frame. With cosine rays the Lambert reflection of
+// E' is exactly that (f_r cos / pdf = albedo (1 - metallic)); so each frame adds a bounce and
+// a still camera converges to all of them, the geometric series of the path tracer's
+// (truth/reference_image.h, ReferenceSettings::bounces). E' is not tested for disocclusion:
+// a pixel that showed another surface a frame ago lends that surface's light for a frame.
 #pragma once
 
 #include "core/image.h"
@@ -37,6 +50,13 @@ struct SsgiInputs {
     // by the direct pass; when given, normal, albedo, metallic, shadow and emission are not
     // read (the same bits, fewer gathers).
     const PlaneF* hitLight[3] = {};
+    // Multi-bounce feedback (above), all null without it: the previous frame's incoming
+    // diffuse radiance (FrameHistory::diffuse) and this frame's "motion.X/Y"; with them
+    // albedo and metallic are read too (hitLight or not), and occlusion where given
+    // (MaterialPlanes::occlusion; null: 1).
+    const PlaneF* prevDiffuse[3] = {};
+    const PlaneF* motion[2] = {};
+    const PlaneF* occlusion = nullptr;
     // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
     // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
     // renderer fills them; their plane pointers are not used.

@@ -30,6 +30,21 @@ SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
     return a.emission[0] ? lit + gather3(a.emission, i) : lit;
 }
 
+// Multi-bounce feedback (trace/ssgi.h): the hit's diffuse colour, occluded, times the
+// incoming diffuse radiance at the nearest pixel of its reprojected position a frame ago;
+// 0 where that falls off the frame.
+SSRT_INLINE V3 feedbackAt(const SsgiArgs& a, Lane hx, Lane hy, ILane i) {
+    const Lane zero(0.0f);
+    const Lane px = hx + ln::gather(a.motion[0], i), py = hy + ln::gather(a.motion[1], i);
+    const auto inFrame =
+        (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) & (py < Lane(float(a.height)));
+    const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
+    Lane keep = Lane(1.0f) - ln::gather(a.metallic, i);
+    if (a.occlusion) keep = keep * ln::gather(a.occlusion, i);
+    const V3 reflected = gather3(a.albedo, i) * keep * gather3(a.prevDiffuse, j);
+    return ln::select(inFrame, reflected, V3{zero, zero, zero});
+}
+
 void ssgiChunk(const SsgiArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const Lane zero(0.0f);
@@ -39,12 +54,14 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
     if (ln::any(hasRay)) {
         const auto hit = hasRay & (ln::load<Lane>(a.hit + o) > Lane(0.5f));
         // The hit pixel's G-buffer (nearest; clamped, so unused lanes read inside the frame).
-        const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + o), ln::load<Lane>(a.hitY + o),
-                                             a.width, a.height, a.stride);
+        const Lane hx = ln::load<Lane>(a.hitX + o), hy = ln::load<Lane>(a.hitY + o);
+        const ILane i = screen::nearestIndex(hx, hy, a.width, a.height, a.stride);
         const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
-        if (ln::any(surface))
-            radiance = ln::select(surface, a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i),
-                                  radiance);
+        if (ln::any(surface)) {
+            V3 lit = a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i);
+            if (a.prevDiffuse[0]) lit = lit + feedbackAt(a, hx, hy, i);
+            radiance = ln::select(surface, lit, radiance);
+        }
         // Misses: the sky along the ray, in world space.
         const auto miss = hasRay & !surface;
         if (ln::any(miss)) {

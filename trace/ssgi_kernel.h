@@ -21,7 +21,12 @@ struct SsgiArgs {
     const float* shadow;
     const float* emission[3];  // all null: no emission
     const float* hitLight[3];  // all null: computed from the planes above (SsgiInputs)
-    const float* rayDir[3];    // view space
+    // Feedback (SsgiInputs::prevDiffuse): all null without; then albedo and metallic are set
+    // and motion; occlusion null: 1.
+    const float* prevDiffuse[3];
+    const float* motion[2];
+    const float* occlusion;
+    const float* rayDir[3];  // view space
     const float* pdf;
     const float* hit;
     const float* hitX;

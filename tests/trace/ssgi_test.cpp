@@ -296,3 +296,127 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         }
     }
 }
+
+namespace {
+
+// The feedback's inputs: the previous frame's incoming diffuse radiance (a ramp over the
+// pixels, so that which pixel is read shows), motion and occlusion planes of the frame's size.
+struct Feedback {
+    PlaneF prev[3] = {PlaneF(kW, kH), PlaneF(kW, kH), PlaneF(kW, kH)};
+    PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
+    PlaneF occlusion{kW, kH, 0.5f};
+    Feedback() {
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
+    }
+    static float prevAt(int x, int y, int c) { return 0.01f * float(x + 1) + 0.1f * float(c + y); }
+    void attach(SsgiInputs& in) {
+        for (int c = 0; c < 3; ++c) in.prevDiffuse[c] = &prev[c];
+        in.motion[0] = &motion[0];
+        in.motion[1] = &motion[1];
+    }
+};
+
+}  // namespace
+
+TEST_CASE("ssgi: feedback adds the hit's diffuse colour times last frame's light at the hit") {
+    Furnace f;
+    Feedback fb;
+    const float albedo[3] = {0.5f, 0.6f, 0.7f};
+    PlaneF one[3], out[3];
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, one, 0, 1, 2);
+    fb.attach(f.in);
+    // The nearest pixel of the hit; a still camera (motion 0) reads the hit pixel itself.
+    const auto expect = [&](int x, int y, int c, int dx, float occlusion) {
+        const int hx = int(std::floor(f.march.hitX.at(x, y))) + dx;
+        const int hy = int(std::floor(f.march.hitY.at(x, y)));
+        const double prev = hx < kW ? Feedback::prevAt(hx, hy, c) : 0.0;
+        return double(one[c].at(x, y)) + albedo[c] * 0.8 * occlusion * prev;
+    };
+    int off = 0;
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c)
+                off +=
+                    !(out[c].at(x, y) == doctest::Approx(expect(x, y, c, 0, 1.0f)).epsilon(1e-6));
+    CHECK(off == 0);
+    // Moved one pixel right since the last frame (motion = previous - current = +1): the pixel
+    // right of the hit, nothing past the frame's edge; the occlusion scales the bounce.
+    fb.motion[0].fill(1.0f);
+    f.in.occlusion = &fb.occlusion;
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
+    int edge = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                edge += int(std::floor(f.march.hitX.at(x, y))) + 1 >= kW;
+                off +=
+                    !(out[c].at(x, y) == doctest::Approx(expect(x, y, c, 1, 0.5f)).epsilon(1e-6));
+            }
+    CHECK(edge > 0);
+    CHECK(off == 0);
+    // All off the frame: one bounce, to the bit.
+    fb.motion[0].fill(float(kW));
+    resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
+    for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], one[c]));
+    // A missing plane is refused.
+    f.in.motion[1] = nullptr;
+    CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
+                    std::invalid_argument);
+}
+
+TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA and thread count") {
+    RenderSettings rs;
+    rs.width = 133;
+    rs.height = 77;
+    rs.shadowMapSize = 128;
+    rs.threads = 2;
+    const Scene scene = makeBuiltinScene("cornell");
+    Frame frame;
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
+    const int w = frame.width, h = frame.height;
+    DirectLighting dl;
+    setDirectLighting(scene, rs, frame.scratch.shadow, nullptr, dl);
+    SsgiInputs in;
+    in.camera = frame.camera;
+    gbufferInputs(frame, in);
+    in.lighting = &dl.args;
+    for (int c = 0; c < 3; ++c) {
+        in.hitLight[c] = &frame.direct.hitLight[c];
+        in.prevDiffuse[c] = &frame.trace.ssgi.color[c];  // a frame's own light stands in
+    }
+    // Motion that moves some hits off the frame.
+    PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t i = uint32_t(y * w + x);
+            motion[0].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 0) - 0.5f);
+            motion[1].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 1) - 0.5f);
+        }
+    in.motion[0] = &motion[0];
+    in.motion[1] = &motion[1];
+    RayBatch rays;
+    MarchResult march;
+    randomRaysAndHits(*in.viewZ, rays, march);
+    PlaneF ref[3], single[3];
+    for (int k = 0; k < 2; ++k) resolveSsgi(Isa::Scalar, in, rays, march, ref, k, 2, 1);
+    bool finite = true;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(ref[c].at(x, y));
+    CHECK(finite);
+    SsgiInputs oneBounce = in;
+    for (int c = 0; c < 3; ++c) oneBounce.prevDiffuse[c] = nullptr;
+    for (int k = 0; k < 2; ++k) resolveSsgi(Isa::Scalar, oneBounce, rays, march, single, k, 2, 1);
+    CHECK_FALSE(sameBits(ref[0], single[0]));  // the feedback adds something
+    for (Isa isa : supportedIsas())
+        for (int threads : {1, 2, 8}) {
+            CAPTURE(isaName(isa));
+            CAPTURE(threads);
+            PlaneF out[3];
+            for (int k = 0; k < 2; ++k) resolveSsgi(isa, in, rays, march, out, k, 2, threads);
+            for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], ref[c]));
+        }
+}
