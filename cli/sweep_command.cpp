@@ -129,7 +129,7 @@ double passMs(const Evaluation& ev, const char* name) {
 
 // One CSV row (the values of sweepColumns(), in order).
 std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
-                   int referenceSpp, const Evaluation& ev) {
+                   const ReferenceSettings& reference, const Evaluation& ev) {
     std::ostringstream r;
     r << std::setprecision(6);
     const auto cell = [&](auto v) { r << ',' << v; };
@@ -145,7 +145,8 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     optional(p.traced, p.thickness);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
-    cell(referenceSpp);
+    cell(reference.spp);
+    cell(reference.bounces);
     cell(ev.frameMs);
     for (const char* pass : kPasses) {
         const double ms = passMs(ev, pass);
@@ -223,10 +224,10 @@ SweepOptions::SweepOptions() {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"scene",         "width",      "height",  "threads",
-                                      "marcher",       "ssr_method", "ssr_spp", "ssgi_spp",
-                                      "max_steps",     "thickness",  "resolve", "trace_hidden",
-                                      "reference_spp", "frame_ms"};
+        std::vector<std::string> c = {
+            "scene",      "width",        "height",        "threads",           "marcher",
+            "ssr_method", "ssr_spp",      "ssgi_spp",      "max_steps",         "thickness",
+            "resolve",    "trace_hidden", "reference_spp", "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -284,7 +285,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     std::vector<RenderSettings> settings;
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings.trace);
     checkCsvPath(o.output);
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -321,7 +322,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
             referenceFor(embree, scene, input, refRender, refSettings, source, fromCache);
         const Evaluation ev =
             evaluate(embree, scene, input, settings[i], reference, evalSettings, frame);
-        csv << csvRow(request.name, settings[i], points[i], refSettings.spp, ev) << "\n";
+        csv << csvRow(request.name, settings[i], points[i], refSettings, ev) << "\n";
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific
             << std::setprecision(3) << std::setw(12) << ev.error.color.relMse << std::defaultfloat
