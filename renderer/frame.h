@@ -125,7 +125,8 @@ struct DirectParts : PlaneTable<DirectParts> {
     PlaneF envDiffuse[3];
     PlaneF envSpecular[3];
     PlaneF specWeight[3];
-    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI
+    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
+                         // pass adds the reflected last frame's light: addSsgiFeedback)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {

@@ -135,16 +135,26 @@ void ssrPass(const TraceContext& c, Frame& frame) {
 }
 
 // Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
-// radiance where the history has it at this size; none (one bounce) otherwise.
-void feedbackInputs(const TraceContext& c, const Frame& frame, SsgiInputs& in) {
+// radiance, where the history has it at this size, reflected into the hit light SSGI reads
+// (trace/ssgi.h); none (one bounce) otherwise.
+void feedbackPass(const TraceContext& c, Frame& frame) {
     const FrameHistory* h = c.args.history;
     if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
         h->diffuse[0].height() != frame.height)
         return;
-    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
-    in.motion[0] = &frame.gbuffer.motion[0];
-    in.motion[1] = &frame.gbuffer.motion[1];
+    const GBuffer& g = frame.gbuffer;
+    SsgiFeedbackInputs in;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.albedo[ch] = &g.albedo[ch];
+        in.prevDiffuse[ch] = &h->diffuse[ch];
+    }
+    in.metallic = &g.metallic;
     if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    const ScopedPass timer(frame.stats, "ssgi feedback");
+    addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
 }
 
 void ssgiPass(const TraceContext& c, Frame& frame) {
@@ -167,12 +177,12 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     in.metallic = &g.metallic;
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
-    feedbackInputs(c, frame, in);
     const HitStatsPlanes hp{&planes.hit, &planes.steps, &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;
     StageTimes times;
+    feedbackPass(c, frame);
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {

@@ -30,21 +30,6 @@ SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
     return a.emission[0] ? lit + gather3(a.emission, i) : lit;
 }
 
-// Multi-bounce feedback (trace/ssgi.h): the hit's diffuse colour, occluded, times the
-// incoming diffuse radiance at the nearest pixel of its reprojected position a frame ago;
-// 0 where that falls off the frame.
-SSRT_INLINE V3 feedbackAt(const SsgiArgs& a, Lane hx, Lane hy, ILane i) {
-    const Lane zero(0.0f);
-    const Lane px = hx + ln::gather(a.motion[0], i), py = hy + ln::gather(a.motion[1], i);
-    const auto inFrame =
-        (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) & (py < Lane(float(a.height)));
-    const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
-    Lane keep = Lane(1.0f) - ln::gather(a.metallic, i);
-    if (a.occlusion) keep = keep * ln::gather(a.occlusion, i);
-    const V3 reflected = gather3(a.albedo, i) * keep * gather3(a.prevDiffuse, j);
-    return ln::select(inFrame, reflected, V3{zero, zero, zero});
-}
-
 void ssgiChunk(const SsgiArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const Lane zero(0.0f);
@@ -54,14 +39,12 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
     if (ln::any(hasRay)) {
         const auto hit = hasRay & (ln::load<Lane>(a.hit + o) > Lane(0.5f));
         // The hit pixel's G-buffer (nearest; clamped, so unused lanes read inside the frame).
-        const Lane hx = ln::load<Lane>(a.hitX + o), hy = ln::load<Lane>(a.hitY + o);
-        const ILane i = screen::nearestIndex(hx, hy, a.width, a.height, a.stride);
+        const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + o), ln::load<Lane>(a.hitY + o),
+                                             a.width, a.height, a.stride);
         const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
-        if (ln::any(surface)) {
-            V3 lit = a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i);
-            if (a.prevDiffuse[0]) lit = lit + feedbackAt(a, hx, hy, i);
-            radiance = ln::select(surface, lit, radiance);
-        }
+        if (ln::any(surface))
+            radiance = ln::select(surface, a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i),
+                                  radiance);
         // Misses: the sky along the ray, in world space.
         const auto miss = hasRay & !surface;
         if (ln::any(miss)) {
@@ -85,7 +68,38 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
     ln::store(a.out[2] + o, acc.z);
 }
 
+// Feedback (trace/ssgi.h) for one lane group: hitLight += diffuse colour x occlusion x the
+// previous frame's incoming diffuse light at the nearest pixel of the reprojected centre.
+void feedbackChunk(const SsgiFeedbackArgs& a, int x, int y) {
+    const std::size_t o = std::size_t(y) * a.stride + x;
+    const Lane zero(0.0f);
+    const auto surface = ln::load<Lane>(a.viewZ + o) > zero;
+    if (!ln::any(surface)) return;
+    const Lane cx = (Lane(float(x)) + ln::laneIndex<Lane>()) + Lane(0.5f);
+    const Lane px = cx + ln::load<Lane>(a.motion[0] + o);
+    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.motion[1] + o);
+    const auto use = surface & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
+                     (py < Lane(float(a.height)));
+    const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
+    Lane keep = Lane(1.0f) - ln::load<Lane>(a.metallic + o);
+    if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion + o);
+    const V3 albedo{ln::load<Lane>(a.albedo[0] + o), ln::load<Lane>(a.albedo[1] + o),
+                    ln::load<Lane>(a.albedo[2] + o)};
+    const V3 reflected = albedo * keep * gather3(a.prevDiffuse, j);
+    const Lane add[3] = {reflected.x, reflected.y, reflected.z};
+    for (int c = 0; c < 3; ++c) {
+        const Lane lit = ln::load<Lane>(a.hitLight[c] + o);
+        ln::store(a.hitLight[c] + o, ln::select(use, lit + add[c], lit));
+    }
+}
+
 }  // namespace
+
+void ssgiFeedbackTile(const SsgiFeedbackArgs& args, int tile) {
+    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) feedbackChunk(args, x, y);
+}
 
 void ssgiTile(const SsgiArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);

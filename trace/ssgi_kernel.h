@@ -21,12 +21,7 @@ struct SsgiArgs {
     const float* shadow;
     const float* emission[3];  // all null: no emission
     const float* hitLight[3];  // all null: computed from the planes above (SsgiInputs)
-    // Feedback (SsgiInputs::prevDiffuse): all null without; then albedo and metallic are set
-    // and motion; occlusion null: 1.
-    const float* prevDiffuse[3];
-    const float* motion[2];
-    const float* occlusion;
-    const float* rayDir[3];  // view space
+    const float* rayDir[3];    // view space
     const float* pdf;
     const float* hit;
     const float* hitX;
@@ -37,5 +32,20 @@ struct SsgiArgs {
 };
 
 SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
+
+// addSsgiFeedback's (trace/ssgi.h), likewise plain: one size and stride for every plane.
+struct SsgiFeedbackArgs {
+    int width, height, tilesX;
+    std::size_t stride;
+    const float* viewZ;
+    const float* albedo[3];
+    const float* metallic;
+    const float* occlusion;  // null: 1
+    const float* motion[2];
+    const float* prevDiffuse[3];
+    float* hitLight[3];  // read and written in place
+};
+
+SSRT_DECLARE_KERNEL(void, ssgiFeedbackTile, (const SsgiFeedbackArgs& args, int tile))
 
 }  // namespace ssrt
