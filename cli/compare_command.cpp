@@ -143,6 +143,11 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     add("--reference-spp", o.referenceSpp, "INT",
         "Rays per pixel of the reference image for each of SSR and SSGI, 1 to " +
             std::to_string(kMaxReferenceSpp));
+    add("--reference-bounces", o.referenceBounces, "INT|auto",
+        "Diffuse bounces of the reference's SSGI paths, 1 to " +
+            std::to_string(ReferenceSettings::kMaxBounces) + "; auto: 1, or " +
+            std::to_string(kFeedbackReferenceBounces) +
+            " with --ssgi-feedback (which adds a bounce per frame of a still camera)");
     add("--visibility", o.visibility, "KIND",
         "Sun visibility in the reference: embree (shadow rays, the truth) or shadowmap (the "
         "frame's own shadow map, to isolate the tracing errors)");
@@ -169,12 +174,26 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
-ReferenceSettings referenceSettingsFrom(const TruthOptions& o) {
+int defaultReferenceBounces(const TraceSettings& trace) {
+    return trace.ssgi && trace.ssgiFeedback ? kFeedbackReferenceBounces : 1;
+}
+
+ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const TraceSettings& trace) {
     ReferenceSettings r;
     r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
+    r.bounces = o.referenceBounces == "auto"
+                    ? defaultReferenceBounces(trace)
+                    : int(parseInteger("--reference-bounces", o.referenceBounces, 1,
+                                       ReferenceSettings::kMaxBounces));
     r.visibility = parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
     r.validate();
     return r;
+}
+
+std::string describeReference(const ReferenceSettings& r) {
+    std::string s = std::to_string(r.spp) + " spp";
+    if (r.bounces != 1) s += ", " + std::to_string(r.bounces) + " bounces";
+    return s;
 }
 
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& o) {
@@ -217,7 +236,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
     const SequencePlan plan = sequencePlanFrom(o.render, request);
-    ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
+    ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
     if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
@@ -245,8 +264,9 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                                      std::to_string(settings.trace.ssrSpp)
                                : std::string("off"))
         << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
-        << (settings.trace.traceHidden ? ", hidden rays traced" : "") << ", reference "
-        << refSettings.spp << " spp"
+        << (settings.trace.traceHidden ? ", hidden rays traced" : "")
+        << (settings.trace.ssgiFeedback ? ", ssgi feedback" : "") << ", reference "
+        << describeReference(refSettings)
         << (sequenceRun ? "; frame " + std::to_string(plan.frames - 1) + " of " + sequenceText(plan)
                         : std::string())
         << "\n\n";

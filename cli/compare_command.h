@@ -24,6 +24,7 @@ namespace ssrt::cli {
 // What compare and sweep add to the render options: the reference, the checks, the cache.
 struct TruthOptions {
     std::string referenceSpp = "64";
+    std::string referenceBounces = "auto";  // a count, or auto (defaultReferenceBounces)
     std::string visibility = "embree";
     std::string pixelTolerance, depthTolerance;  // filled from RayCheckSettings{}
     std::string repeats = "3";
@@ -50,9 +51,17 @@ ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& e
 
 // Registers the reference, check and cache options and --per-frame (shared with sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);
-// The reference's settings from the options; its maxDistance is the march's, which the
-// caller sets once the scene (its diagonal) is known.
-ReferenceSettings referenceSettingsFrom(const TruthOptions& options);
+// The reference's diffuse bounces that --reference-bounces auto gives: 1, or with SSGI
+// feedback kFeedbackReferenceBounces (what a still camera's feedback converges to, within
+// about 1 % of its energy on cornell).
+inline constexpr int kFeedbackReferenceBounces = 8;
+int defaultReferenceBounces(const TraceSettings& trace);
+// The reference's settings from the options and the frame's tracing settings (the bounce
+// count's default follows ssgiFeedback); its maxDistance is the march's, which the caller
+// sets once the scene (its diagonal) is known.
+ReferenceSettings referenceSettingsFrom(const TruthOptions& options, const TraceSettings& trace);
+// " spp" or " spp, N bounces" after the count: how compare and sweep name a reference.
+std::string describeReference(const ReferenceSettings& settings);
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& options);
 
 CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <utility>
 
+#include "cli/compare_command.h"
+
 namespace ssrt::cli {
 
 namespace {
@@ -41,7 +43,7 @@ void updateReference(const TruthContext& t, const FrameInput& input,
     current.valid = true;
     if (!t.progress) return;
     *t.progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
-                << t.reference.spp << " spp)";
+                << describeReference(t.reference) << ")";
     if (frame)
         *t.progress << " for frame " << *frame << " (frame index " << input.frameIndex << ")";
     *t.progress << "\n";

@@ -127,7 +127,7 @@ double passMs(const Evaluation& ev, const char* name) {
 
 // One CSV row (the values of sweepColumns(), in order).
 std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
-                   int referenceSpp, const SequencePlan& plan, const SequenceEvaluation& result) {
+                   const ReferenceSettings& reference, const SequencePlan& plan, const SequenceEvaluation& result) {
     const Evaluation& ev = result.last;
     std::ostringstream r;
     r << std::setprecision(6);
@@ -144,7 +144,8 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     optional(p.traced, p.thickness);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
-    cell(referenceSpp);
+    cell(reference.spp);
+    cell(reference.bounces);
     cell(ev.frameMs);
     for (const char* pass : kPasses) {
         const double ms = passMs(ev, pass);
@@ -198,10 +199,10 @@ SweepOptions::SweepOptions() {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"scene",         "width",      "height",  "threads",
-                                      "marcher",       "ssr_method", "ssr_spp", "ssgi_spp",
-                                      "max_steps",     "thickness",  "resolve", "trace_hidden",
-                                      "reference_spp", "frame_ms"};
+        std::vector<std::string> c = {
+            "scene",      "width",        "height",        "threads",           "marcher",
+            "ssr_method", "ssr_spp",      "ssgi_spp",      "max_steps",         "thickness",
+            "resolve",    "trace_hidden", "reference_spp", "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -265,7 +266,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings.trace);
     checkCsvPath("-o", o.output);
     if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
@@ -305,7 +306,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         const SequenceEvaluation result =
             evaluateSequence(truth, sequence, settings[i], refRender, frame);
         const Evaluation& ev = result.last;
-        csv << csvRow(request.name, settings[i], points[i], refSettings.spp, plan, result) << "\n";
+        csv << csvRow(request.name, settings[i], points[i], refSettings, plan, result) << "\n";
         perFrame << frameErrorsCsvRows(result.frames, int(i));
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific

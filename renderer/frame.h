@@ -126,7 +126,8 @@ struct DirectParts : PlaneTable<DirectParts> {
     PlaneF envDiffuse[3];
     PlaneF envSpecular[3];
     PlaneF specWeight[3];
-    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI
+    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
+                         // pass adds the reflected last frame's light: addSsgiFeedback)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -201,7 +202,11 @@ struct TraceOutputs {
 // frame (Renderer::render); the renderer reads it, then commits the new frame's into it after
 // the composite.
 struct FrameHistory : PlaneTable<FrameHistory> {
-    PlaneF color[3];         // the last frame's final colour (exposed), for reprojected SSR hits
+    PlaneF color[3];  // the last frame's final colour (exposed), for reprojected SSR hits
+    // The last frame's incoming diffuse radiance (scene-linear, before the diffuse colour:
+    // what the composite multiplied by it), for SSGI hits with TraceSettings::ssgiFeedback;
+    // empty without it.
+    PlaneF diffuse[3];
     bool valid = false;      // a frame has committed colour (false: nothing to reproject)
     DenoiseHistory denoise;  // the denoiser's own (it says when it is usable)
 
@@ -209,6 +214,8 @@ struct FrameHistory : PlaneTable<FrameHistory> {
     static void table(G& g, Fn& fn) {
         fn("history.color.R", g.color[0]), fn("history.color.G", g.color[1]);
         fn("history.color.B", g.color[2]);
+        fn("history.diffuse.R", g.diffuse[0]), fn("history.diffuse.G", g.diffuse[1]);
+        fn("history.diffuse.B", g.diffuse[2]);
     }
     // Usable by a frame of this size.
     bool usableAt(int width, int height) const {

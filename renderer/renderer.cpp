@@ -355,7 +355,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, history,
                     input.resetHistory, observer},
                    frame);
-    if (history && readsHistory(settings_.trace)) commitHistory(frame, *history);
+    if (history && readsHistory(settings_.trace)) commitHistory(settings_.trace, frame, *history);
 }
 
 }  // namespace ssrt

@@ -32,6 +32,12 @@ struct TraceSettings {
     // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
     // misses their rays.
     bool traceHidden = false;
+    // Multi-bounce diffuse (issue 17): an SSGI hit also sends on the light it received the
+    // frame before, its diffuse colour times the previous frame's incoming diffuse radiance
+    // at the hit (FrameHistory::diffuse, reprojected), so every frame of a sequence adds one
+    // bounce. Off (and on a sequence's first frame, after a reset or a size change): one
+    // bounce, as trace/ssgi.h describes.
+    bool ssgiFeedback = false;
     DenoiseSettings denoise;  // REBLUR over both signals (denoise/denoise.h)
 
     static constexpr int kMaxSpp = 64;

@@ -67,6 +67,11 @@ inline constexpr std::array kTraceOwnFields = {
         "does (perceptual roughness >= 0.7), SSGI on metals (no diffuse colour). The image is "
         "the same at those pixels; the counters and hit planes then cover them too. By default "
         "they get no ray"),
+    field<&TraceSettings::ssgiFeedback>(
+        "ssgiFeedback", kCliShot,
+        "Multi-bounce diffuse: SSGI hits also reflect the previous frame's incoming diffuse "
+        "light (reprojected), so each frame of a sequence adds a bounce (a sequence's first "
+        "frame, or one after a reset, has one)"),
 };
 // Every member is in the table, march, resolve and denoise through their own tables.
 static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 3,

@@ -134,6 +134,29 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssr");
 }
 
+// Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
+// radiance, where the history has it at this size, reflected into the hit light SSGI reads
+// (trace/ssgi.h); none (one bounce) otherwise.
+void feedbackPass(const TraceContext& c, Frame& frame) {
+    const FrameHistory* h = c.args.history;
+    if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
+        h->diffuse[0].height() != frame.height)
+        return;
+    const GBuffer& g = frame.gbuffer;
+    SsgiFeedbackInputs in;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.albedo[ch] = &g.albedo[ch];
+        in.prevDiffuse[ch] = &h->diffuse[ch];
+    }
+    in.metallic = &g.metallic;
+    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    const ScopedPass timer(frame.stats, "ssgi feedback");
+    addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
+}
+
 void ssgiPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
@@ -159,6 +182,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     st.ran = true;
     st.spp = ts.ssgiSpp;
     StageTimes times;
+    feedbackPass(c, frame);
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {
@@ -260,17 +284,36 @@ void runTracePasses(const TracePassArgs& args, Frame& frame) {
 }
 
 bool readsHistory(const TraceSettings& s) {
-    return s.ssr && s.resolve.radiance == HitRadiance::Reprojected;
+    return (s.ssr && s.resolve.radiance == HitRadiance::Reprojected) || (s.ssgi && s.ssgiFeedback);
 }
 
-void commitHistory(const Frame& frame, FrameHistory& history) {
-    const int w = frame.width, h = frame.height;
+namespace {
+
+// The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
+// planes the composite multiplied by the diffuse colour. Today SSGI's own; the one place to
+// point at the denoised diffuse instead.
+// The incoming diffuse radiance the composite read: the denoiser's where it ran (a bounce
+// of one-ray noise fed back would come back as noise), else SSGI's.
+const PlaneF* committedDiffuse(const Frame& frame) {
+    const DenoiseOutputs& d = frame.trace.denoise.out;
+    return d.diffuse[0].empty() ? frame.trace.ssgi.color : d.diffuse;
+}
+
+void copyPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
-        const PlaneF& src = frame.image.color[ch];
-        PlaneF& dst = history.color[ch];
-        dst.ensureSize(w, h);  // kept across frames: no allocation once sized
-        for (int y = 0; y < h; ++y) std::copy_n(src.row(y), w, dst.row(y));
+        dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
+        for (int y = 0; y < h; ++y) std::copy_n(src[ch].row(y), w, dst[ch].row(y));
     }
+}
+
+}  // namespace
+
+void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& history) {
+    const int w = frame.width, h = frame.height;
+    // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
+    // feedback only.
+    copyPlanes(frame.image.color, history.color, w, h);
+    if (s.ssgi && s.ssgiFeedback) copyPlanes(committedDiffuse(frame), history.diffuse, w, h);
     history.valid = true;
 }
 

@@ -29,10 +29,11 @@ struct TracePassArgs {
 // appends pass times and stats to frame.stats.
 void runTracePasses(const TracePassArgs& args, Frame& frame);
 
-// Whether the next frame reads the colour this one commits (SSR hits with
-// HitRadiance::Reprojected). The denoiser's history is its own (denoise/denoise.h).
+// Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected,
+// SSGI with ssgiFeedback). The denoiser's history is its own (denoise/denoise.h).
 bool readsHistory(const TraceSettings& settings);
-// The frame's final colour into `history`, for the next frame.
-void commitHistory(const Frame& frame, FrameHistory& history);
+// The frame's final colour into `history` and, with SSGI feedback, its incoming diffuse
+// radiance, for the next frame.
+void commitHistory(const TraceSettings& settings, const Frame& frame, FrameHistory& history);
 
 }  // namespace ssrt

@@ -172,7 +172,7 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         {R"({"render": {"samples": 4}})",
          "render.samples: unknown key (expected one of: width, height, shadowMapSize, "
          "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, ssr, ssgi, ssrMethod, "
-         "marcher, ssrSpp, ssgiSpp, traceHidden, maxSteps, "},
+         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, maxSteps, "},
         // Wrong types
         {R"([1, 2])", "expected a JSON object at the top level"},
         {R"({"camera": "front"})", "camera: expected an object"},
