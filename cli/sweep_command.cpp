@@ -127,7 +127,8 @@ double passMs(const Evaluation& ev, const char* name) {
 
 // One CSV row (the values of sweepColumns(), in order).
 std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
-                   const ReferenceSettings& reference, const SequencePlan& plan, const SequenceEvaluation& result) {
+                   const ReferenceSettings& reference, const SequencePlan& plan,
+                   const SequenceEvaluation& result) {
     const Evaluation& ev = result.last;
     std::ostringstream r;
     r << std::setprecision(6);
