@@ -9,6 +9,8 @@
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
+#include "cli/sequence.h"
+#include "cli/sequence_evaluation.h"
 #include "io/image_io.h"
 
 namespace ssrt::cli {
@@ -105,6 +107,11 @@ void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation
 
 }  // namespace
 
+std::string sequenceText(const SequencePlan& plan) {
+    return plural(plan.frames, "frame") +
+           (plan.warmup > 0 ? " after " + plural(plan.warmup, "warm-up frame") : std::string());
+}
+
 RenderSettings truthDefaults() {
     RenderSettings d;
     d.width = 640;
@@ -136,6 +143,11 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     add("--reference-spp", o.referenceSpp, "INT",
         "Rays per pixel of the reference image for each of SSR and SSGI, 1 to " +
             std::to_string(kMaxReferenceSpp));
+    add("--reference-bounces", o.referenceBounces, "INT|auto",
+        "Diffuse bounces of the reference's SSGI paths, 1 to " +
+            std::to_string(ReferenceSettings::kMaxBounces) + "; auto: 1, or " +
+            std::to_string(kFeedbackReferenceBounces) +
+            " with --ssgi-feedback (which adds a bounce per frame of a still camera)");
     add("--visibility", o.visibility, "KIND",
         "Sun visibility in the reference: embree (shadow rays, the truth) or shadowmap (the "
         "frame's own shadow map, to isolate the tracing errors)");
@@ -153,15 +165,35 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
         ->group("Truth");
     cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
         ->group("Truth");
+    cmd.add_option_function<std::string>(
+           "--per-frame", [&o](const std::string& v) { o.perFrame = v; },
+           "Also write each frame's colour relMSE and flicker to this CSV (columns frame, "
+           "frame_index, cut, relmse, flicker; sweep adds setting, its CSV's row from 0)")
+        ->type_name("FILE.csv")
+        ->group("Truth");
     cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
-ReferenceSettings referenceSettingsFrom(const TruthOptions& o) {
+int defaultReferenceBounces(const TraceSettings& trace) {
+    return trace.ssgi && trace.ssgiFeedback ? kFeedbackReferenceBounces : 1;
+}
+
+ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const TraceSettings& trace) {
     ReferenceSettings r;
     r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
+    r.bounces = o.referenceBounces == "auto"
+                    ? defaultReferenceBounces(trace)
+                    : int(parseInteger("--reference-bounces", o.referenceBounces, 1,
+                                       ReferenceSettings::kMaxBounces));
     r.visibility = parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
     r.validate();
     return r;
+}
+
+std::string describeReference(const ReferenceSettings& r) {
+    std::string s = std::to_string(r.spp) + " spp";
+    if (r.bounces != 1) s += ", " + std::to_string(r.bounces) + " bounces";
+    return s;
 }
 
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& o) {
@@ -183,6 +215,11 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
     addSceneOptions(*cmd, o.render, truthDefaults());
     addTraceOptions(*cmd, o.render);
     addTruthOptions(*cmd, o.truth);
+    addSequenceOptions(*cmd, o.render,
+                       "a sequence along the shot's camera path (or of the still camera), "
+                       "history carried; the last frame is evaluated in full, each frame's "
+                       "colour relMSE and flicker reported (a reference per camera: use a low "
+                       "--reference-spp on a moving path)");
     cmd->add_option_function<std::string>(
            "-o,--output", [&o](const std::string& v) { o.output = v; },
            "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
@@ -198,41 +235,53 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
-    ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
+    const SequencePlan plan = sequencePlanFrom(o.render, request);
+    ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
+    if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
     const Scene& scene = request.scene;
     refSettings.maxDistance = marchLengths(settings.trace.march, scene.diagonal()).maxDistance;
-    const FrameInput input = requestInput(request);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
+    const bool sequenceRun = plan.frames > 1 || plan.warmup > 0;
     if (progress)
         *progress << "comparing " << request.name << " " << settings.width << "x" << settings.height
-                  << " on " << isaName(request.isa) << ", "
-                  << plural(threadsFor(settings), "thread") << "...\n";
+                  << (sequenceRun ? ", " + sequenceText(plan) : std::string()) << " on "
+                  << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread")
+                  << "...\n";
 
     const EmbreeScene embree(scene);
-    const ReferenceSource source = referenceSourceFrom(o.truth, err);
-    bool fromCache = false;
-    const ReferenceImage reference =
-        referenceFor(embree, scene, input, settings, refSettings, source, fromCache);
-    if (progress)
-        *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
-                  << refSettings.spp << " spp)\n";
-
+    const TruthContext truth{embree,       scene,   refSettings, referenceSourceFrom(o.truth, err),
+                             evalSettings, progress};
+    const FrameSequence sequence(request, plan);
     Frame frame;
-    const Evaluation ev = evaluate(embree, scene, input, settings, reference, evalSettings, frame);
+    const SequenceEvaluation result = evaluateSequence(truth, sequence, settings, settings, frame);
+    const Evaluation& ev = result.last;
     out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
         << marcherName(settings.trace.marcher) << ", ssr "
         << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +
                                      std::to_string(settings.trace.ssrSpp)
                                : std::string("off"))
         << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
-        << (settings.trace.traceHidden ? ", hidden rays traced" : "") << ", reference "
-        << refSettings.spp << " spp\n\n";
+        << (settings.trace.traceHidden ? ", hidden rays traced" : "")
+        << (settings.trace.ssgiFeedback ? ", ssgi feedback" : "") << ", reference "
+        << describeReference(refSettings)
+        << (sequenceRun ? "; frame " + std::to_string(plan.frames - 1) + " of " + sequenceText(plan)
+                        : std::string())
+        << "\n\n";
     printEvaluation(out, embree.stats(), ev);
+    if (sequenceRun) {
+        out << "\nper frame\n";
+        printFrameErrors(out, result.frames);
+    }
+    if (o.truth.perFrame) {
+        writeTextFile(*o.truth.perFrame,
+                      frameErrorsCsvHeader(false) + frameErrorsCsvRows(result.frames));
+        if (progress) *progress << "wrote " << *o.truth.perFrame << "\n";
+    }
     if (o.output) {
-        appendTruthPlanes(frame, reference, ev);
+        appendTruthPlanes(frame, result.reference, ev);
         writeImage(*o.output, frame);
         if (progress) *progress << "wrote " << *o.output << "\n";
     }

@@ -2,6 +2,8 @@
 // BVH build, the classification of every traced ray per pass with its hit-position error,
 // the image error against the reference (overall and per component) and the pass times;
 // optionally writes the frame with the reference and the per-pixel checks as EXR layers.
+// With --frames or --warmup-frames it renders a sequence (cli/sequence.h), evaluates its last
+// frame so, and reports each frame's colour error and flicker (cli/sequence_evaluation.h).
 #pragma once
 
 #include <iosfwd>
@@ -10,6 +12,7 @@
 
 #include "cli/reference_cache.h"
 #include "cli/render_command.h"
+#include "cli/sequence.h"
 #include "truth/evaluation.h"
 
 namespace CLI {
@@ -21,10 +24,12 @@ namespace ssrt::cli {
 // What compare and sweep add to the render options: the reference, the checks, the cache.
 struct TruthOptions {
     std::string referenceSpp = "64";
+    std::string referenceBounces = "auto";  // a count, or auto (defaultReferenceBounces)
     std::string visibility = "embree";
     std::string pixelTolerance, depthTolerance;  // filled from RayCheckSettings{}
     std::string repeats = "3";
     std::optional<std::string> cacheDir;
+    std::optional<std::string> perFrame;  // --per-frame: the per-frame CSV of a sequence
     bool noCache = false;
     bool quiet = false;
     TruthOptions();
@@ -36,17 +41,27 @@ struct CompareOptions {
     std::optional<std::string> output;  // .exr (frame + reference + checks) or .png
 };
 
+// "3 frames after 2 warm-up frames", for progress and headings.
+std::string sequenceText(const SequencePlan& plan);
 // The render settings compare and sweep start from: 640x360 (a reference renders in seconds).
 RenderSettings truthDefaults();
 // Where the reference comes from: the cache (--cache-dir, else defaultCacheDir(); none with
 // --no-cache) and progress on `err` unless quiet.
 ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& err);
 
-// Registers the reference, check and cache options (shared with sweep).
+// Registers the reference, check and cache options and --per-frame (shared with sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);
-// The reference's settings from the options; its maxDistance is the march's, which the
-// caller sets once the scene (its diagonal) is known.
-ReferenceSettings referenceSettingsFrom(const TruthOptions& options);
+// The reference's diffuse bounces that --reference-bounces auto gives: 1, or with SSGI
+// feedback kFeedbackReferenceBounces (what a still camera's feedback converges to, within
+// about 1 % of its energy on cornell).
+inline constexpr int kFeedbackReferenceBounces = 8;
+int defaultReferenceBounces(const TraceSettings& trace);
+// The reference's settings from the options and the frame's tracing settings (the bounce
+// count's default follows ssgiFeedback); its maxDistance is the march's, which the caller
+// sets once the scene (its diagonal) is known.
+ReferenceSettings referenceSettingsFrom(const TruthOptions& options, const TraceSettings& trace);
+// " spp" or " spp, N bounces" after the count: how compare and sweep name a reference.
+std::string describeReference(const ReferenceSettings& settings);
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& options);
 
 CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);

@@ -7,6 +7,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +19,8 @@
 #include "scenes/shot.h"
 
 namespace ssrt::cli {
+
+namespace fs = std::filesystem;
 
 // ---------------------------------------------------------------------------------------
 // Numbers from text
@@ -245,6 +249,33 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
     return items;
 }
 
+void writeTextFile(const std::string& path, const std::string& text) {
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp");
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        f << text;
+        f.close();
+        if (!f) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(path + ": cannot write");
+        }
+    }
+    fs::rename(tmp, target);
+}
+
+void checkCsvPath(const std::string& option, const std::string& path) {
+    const fs::path p(path);
+    if (p.extension() != ".csv")
+        throw std::invalid_argument(option + ": '" + path + "' must end in .csv");
+    const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw std::runtime_error(path + ": directory '" + dir.string() + "' does not exist");
+    if (fs::is_directory(p, ec)) throw std::runtime_error(path + ": is a directory");
+}
+
 SceneRequest loadSceneRequest(const RenderOptions& o, const RenderSettings& defaults) {
     // Everything that can be wrong with the request fails here, before any rendering and
     // before any file exists: flags (exit 2), then the shot file (exit 1).
@@ -285,18 +316,6 @@ void loadScene(SceneRequest& r, std::ostream& err) {
                 std::make_shared<const SkyImage>(readSkyImage(*r.shot->environment.file));
         r.path = shotCameraPath(*r.shot, r.scene.camera);
     }
-}
-
-FrameInput requestInput(const SceneRequest& r) {
-    FrameInput in;
-    in.frameIndex = r.firstFrame;
-    if (r.path.empty()) {
-        in.camera = r.scene.camera;
-        in.previousCamera = r.scene.previousCamera;
-    } else {
-        in.camera = in.previousCamera = r.path.at(r.path.frameTime(0, 1), r.scene.camera);
-    }
-    return in;
 }
 
 }  // namespace ssrt::cli

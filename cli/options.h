@@ -72,6 +72,12 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& options, const RenderSettings
 // --max-steps, --thickness, ..., --ssr-resolve, --hit-radiance, ...).
 void addTraceOptions(CLI::App& cmd, RenderOptions& options);
 
+// A CSV file to write later: the name must end in .csv (std::invalid_argument naming
+// `option`), its folder must exist and it must not be a folder (std::runtime_error).
+void checkCsvPath(const std::string& option, const std::string& path);
+// Writes `text` whole or not at all: a temporary beside the target, renamed over it.
+void writeTextFile(const std::string& path, const std::string& text);
+
 // A request checked (flags, shot file, scene name, ISA) but not yet loaded.
 struct SceneRequest {
     std::optional<Shot> shot;
@@ -90,9 +96,5 @@ SceneRequest loadSceneRequest(const RenderOptions& options, const RenderSettings
 // file's warnings go to `err`, one "ssrt: warning: " line each, even under --quiet (they are
 // not progress); with --strict the first is an error instead.
 void loadScene(SceneRequest& request, std::ostream& err);
-// The input of a single-frame command (compare, sweep): the first frame index, the path's
-// first key or the scene's camera; previous = the scene's previous camera without a path,
-// else the camera itself.
-FrameInput requestInput(const SceneRequest& request);
 
 }  // namespace ssrt::cli

@@ -36,15 +36,20 @@ std::string cachePath(const std::string& dir, uint64_t key) {
 bool readCached(const std::string& path, int width, int height, ReferenceImage& ref) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return false;
+    std::vector<std::string> names;
+    for (const RefPlane& g : kGroups)
+        for (int c = 0; c < 3; ++c) names.push_back(std::string(g.name) + kSuffix[c]);
     try {
+        // One read for every plane: the file is decompressed once.
+        int w = 0, h = 0;
+        const std::vector<std::vector<float>> channels = readChannels(path, names, w, h);
+        if (w != width || h != height) return false;
+        std::size_t k = 0;
         for (const RefPlane& g : kGroups)
-            for (int c = 0; c < 3; ++c) {
-                int w = 0, h = 0;
-                const std::vector<float> v =
-                    readChannel(path, std::string(g.name) + kSuffix[c], w, h);
-                if (w != width || h != height) return false;
+            for (int c = 0; c < 3; ++c, ++k) {
                 PlaneF& p = (ref.*g.group)[c];
                 p = PlaneF(w, h);
+                const std::vector<float>& v = channels[k];
                 for (int y = 0; y < h; ++y) std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
             }
     } catch (const std::exception&) {

@@ -13,6 +13,7 @@
 
 #include "cli/cli.h"
 #include "cli/options.h"
+#include "cli/sequence.h"
 #include "io/image_io.h"
 #include "renderer/settings_fields.h"
 #include "scenes/shot.h"
@@ -65,25 +66,15 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "render",
         "Render a frame, or a sequence along a shot's camera path, of a built-in scene or a glTF "
         "file to PNG or EXR files");
-    const auto addShotOption = [&](const std::string& flags, std::optional<std::string>& value,
-                                   const std::string& type, const std::string& help,
-                                   const std::string& defaultText) {
-        cmd->add_option_function<std::string>(
-               flags, [&value](const std::string& v) { value = v; }, help)
-            ->type_name(type)
-            ->default_str(defaultText);
-    };
     addSceneOptions(*cmd, o, RenderSettings{});
     const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
                          const std::string& help) {
         cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
     };
-    addShotOption("--frames", o.frames, "INT",
-                  "Frames to render, 1 to " + std::to_string(kMaxShotFrames) +
-                      ": evenly along the shot's camera path from its first key to its last "
-                      "(Catmull-Rom or linear, as the shot says), or N frames of the still "
-                      "camera without a path",
-                  "1");
+    addSequenceOptions(*cmd, o,
+                       "evenly along the shot's camera path from its first key to its last "
+                       "(Catmull-Rom or linear, as the shot says; history restarts at a key "
+                       "marked cut), or N frames of the still camera without a path");
     add("-o,--output", o.output, "FILE",
         "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
@@ -130,48 +121,45 @@ std::string sequenceFileName(const std::string& output, int index, int count) {
 int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o);
     const RenderSettings& settings = request.settings;
-    const std::optional<Shot>& shot = request.shot;
-    int frames = shot && shot->render.frames ? *shot->render.frames : 1;
-    if (o.frames) frames = int(parseInteger("--frames", *o.frames, 1, kMaxShotFrames));
-    if (request.firstFrame + uint64_t(frames - 1) > uint64_t(kMaxFrame))
-        throw std::invalid_argument("--frame: " + std::to_string(request.firstFrame) + " + " +
-                                    std::to_string(frames) + " frames passes " +
-                                    std::to_string(kMaxFrame));
+    const SequencePlan plan = sequencePlanFrom(o, request);
+    const int frames = plan.frames;
     checkWritable(sequenceFileName(o.output, 0, frames));
     // Loaded before anything is written.
     loadScene(request, err);
     const Scene& scene = request.scene;
-    const CameraPath& path = request.path;
     if (!o.quiet) {
         err << "rendering " << request.name << " " << settings.width << "x" << settings.height
-            << (frames > 1 ? ", " + plural(frames, "frame") : std::string()) << " on "
-            << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread") << "...\n";
+            << (frames > 1 ? ", " + plural(frames, "frame") : std::string())
+            << (plan.warmup > 0 ? " after " + plural(plan.warmup, "warm-up frame") : std::string())
+            << " on " << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread")
+            << "...\n";
     }
 
     // One Renderer, one Frame and one history for the whole sequence: planes and scratch
-    // buffers are reused. Frame i looks from the path at frameTime(i, frames) and its previous
-    // camera is frame i - 1's (frame 0's is itself), so motion vectors follow the path.
+    // buffers are reused, and each frame reads what the one before committed (cli/sequence.h:
+    // the cameras, frame indices and cuts).
+    const FrameSequence sequence(request, plan);
     const Renderer renderer(settings);
     Frame frame;
     FrameHistory history;
-    FrameInput input;
-    for (int i = 0; i < frames; ++i) {
-        const Camera camera =
-            path.empty() ? scene.camera : path.at(path.frameTime(i, frames), scene.camera);
-        input.previousCamera =
-            i > 0 ? input.camera : (path.empty() ? scene.previousCamera : camera);
-        input.camera = camera;
-        input.frameIndex = request.firstFrame + uint32_t(i);
+    for (int step = 0; step < sequence.steps(); ++step) {
+        const FrameInput input = sequence.input(step);
         const auto start = std::chrono::steady_clock::now();
         renderer.render(scene, input, history, frame);
         const std::chrono::duration<double, std::milli> wall =
             std::chrono::steady_clock::now() - start;
+        if (sequence.isWarmup(step)) {
+            if (!o.quiet) err << "warm-up " << (step + 1) << "/" << plan.warmup << "\n";
+            continue;
+        }
 
+        const int i = sequence.frameOf(step);
         const std::string file = sequenceFileName(o.output, i, frames);
         writeImage(file, frame);
         if (!o.quiet) {
             if (frames > 1)
-                err << "frame " << (i + 1) << "/" << frames << ": wrote " << file << "\n";
+                err << "frame " << (i + 1) << "/" << frames << ": wrote " << file
+                    << (input.resetHistory ? " (camera cut: history restarted)" : "") << "\n";
             else err << "wrote " << file << "\n";
         }
         if (o.stats) {

@@ -22,7 +22,7 @@ namespace ssrt::cli {
 struct RenderOptions {
     std::optional<std::string> shot;   // a shot file (scenes/shot.h)
     std::optional<std::string> scene;  // a built-in scene or a .gltf/.glb file
-    std::optional<std::string> frame, frames;
+    std::optional<std::string> frame, frames, warmupFrames;
     // The settings' fields given (renderer/settings_fields.h): key -> the value as typed; a
     // bool's flag stores "true" or "false". A key not here is not on the command line.
     std::map<std::string, std::string, std::less<>> settings;
@@ -49,10 +49,11 @@ RenderSettings settingsFrom(const RenderOptions& options, const RenderSettings& 
 std::string sequenceFileName(const std::string& output, int index, int count);
 
 // Validates everything (flags, the shot file, the output path) before any work, then renders
-// each frame into one reused Frame and writes it (whole, through a temporary and a rename)
-// before the next; progress to `err` unless quiet (one line per frame of a sequence), the
-// --stats table of each frame to `out`. Returns the exit status; throws on errors (see
-// reportErrors).
+// the warm-up frames and each frame of the sequence (cli/sequence.h) into one reused Frame
+// and one history, and writes each frame of the sequence (whole, through a temporary and a
+// rename) before the next; progress to `err` unless quiet (one line per frame, warm-up frames
+// included, when there is more than one), the --stats table of each written frame to `out`.
+// Returns the exit status; throws on errors (see reportErrors).
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for

@@ -48,7 +48,7 @@ std::string shotRenderKeys() {
     std::string out;
     for (const auto& f : kRenderFields)
         if (f.has(kFieldShot)) out.append(out.empty() ? "" : ", ").append(f.key);
-    return out + ", frames, frame";
+    return out + ", frames, frame, warmupFrames";
 }
 
 void applyShot(const Shot& shot, RenderSettings& s) {

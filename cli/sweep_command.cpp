@@ -2,8 +2,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -12,11 +10,11 @@
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
+#include "cli/sequence.h"
+#include "cli/sequence_evaluation.h"
 #include "io/image_io.h"
 
 namespace ssrt::cli {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -129,7 +127,9 @@ double passMs(const Evaluation& ev, const char* name) {
 
 // One CSV row (the values of sweepColumns(), in order).
 std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
-                   int referenceSpp, const Evaluation& ev) {
+                   const ReferenceSettings& reference, const SequencePlan& plan,
+                   const SequenceEvaluation& result) {
+    const Evaluation& ev = result.last;
     std::ostringstream r;
     r << std::setprecision(6);
     const auto cell = [&](auto v) { r << ',' << v; };
@@ -145,7 +145,8 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     optional(p.traced, p.thickness);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
-    cell(referenceSpp);
+    cell(reference.spp);
+    cell(reference.bounces);
     cell(ev.frameMs);
     for (const char* pass : kPasses) {
         const double ms = passMs(ev, pass);
@@ -168,34 +169,10 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     optional(traced, ev.marchMraysPerSecond);
     optional(traced, ev.embreeMraysPerSecond);
     optional(traced, ev.marchVsEmbree());
+    cell(plan.frames), cell(plan.warmup);
+    const std::optional<double>& flicker = result.frames.back().flicker;
+    optional(flicker.has_value(), flicker.value_or(0.0));
     return r.str();
-}
-
-// Written whole or not at all: a temporary beside the target, renamed over it.
-void writeText(const std::string& path, const std::string& text) {
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp");
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        f << text;
-        f.close();
-        if (!f) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw std::runtime_error(path + ": cannot write");
-        }
-    }
-    fs::rename(tmp, target);
-}
-
-void checkCsvPath(const std::string& path) {
-    const fs::path p(path);
-    if (p.extension() != ".csv") throw std::invalid_argument("-o: '" + path + "' must end in .csv");
-    const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        throw std::runtime_error(path + ": directory '" + dir.string() + "' does not exist");
-    if (fs::is_directory(p, ec)) throw std::runtime_error(path + ": is a directory");
 }
 
 std::string describe(const Point& p) {
@@ -223,10 +200,10 @@ SweepOptions::SweepOptions() {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"scene",         "width",      "height",  "threads",
-                                      "marcher",       "ssr_method", "ssr_spp", "ssgi_spp",
-                                      "max_steps",     "thickness",  "resolve", "trace_hidden",
-                                      "reference_spp", "frame_ms"};
+        std::vector<std::string> c = {
+            "scene",      "width",        "height",        "threads",           "marcher",
+            "ssr_method", "ssr_spp",      "ssgi_spp",      "max_steps",         "thickness",
+            "resolve",    "trace_hidden", "reference_spp", "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -235,9 +212,10 @@ const std::vector<std::string>& sweepColumns() {
                 c.push_back(p + "_" + std::string(rayClassName(RayClass(k))));
             c.insert(c.end(), {p + "_err_px_p50", p + "_err_px_p95", p + "_err_depth_p50"});
         }
-        c.insert(c.end(), {"relmse", "rmse", "relmse_direct", "relmse_specular", "relmse_diffuse",
-                           "rmse_direct", "rmse_specular", "rmse_diffuse", "march_mrays_s",
-                           "embree_mrays_s", "march_vs_embree"});
+        c.insert(c.end(),
+                 {"relmse", "rmse", "relmse_direct", "relmse_specular", "relmse_diffuse",
+                  "rmse_direct", "rmse_specular", "rmse_diffuse", "march_mrays_s", "embree_mrays_s",
+                  "march_vs_embree", "frames", "warmup_frames", "flicker"});
         return c;
     }();
     return columns;
@@ -271,6 +249,10 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
                   "checks leave those pixels out (column trace_hidden)")
         ->group("Grid");
     addTruthOptions(*cmd, o.truth);
+    addSequenceOptions(*cmd, o.render,
+                       "each setting renders a sequence along the shot's camera path (or of the "
+                       "still camera), history carried, and its row is the last frame's "
+                       "(columns frames, warmup_frames, flicker; --per-frame for every frame)");
     cmd->add_option("-o,--output", o.output, "CSV file to write (whole, when the sweep ends)")
         ->type_name("FILE")
         ->capture_default_str();
@@ -283,25 +265,30 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     const std::vector<Point> points = grid(o);
     std::vector<RenderSettings> settings;
     for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
+    const SequencePlan plan = sequencePlanFrom(o.render, request);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
-    checkCsvPath(o.output);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings.trace);
+    checkCsvPath("-o", o.output);
+    if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
     const Scene& scene = request.scene;
-    const FrameInput input = requestInput(request);
+    const FrameSequence sequence(request, plan);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
     if (progress)
         *progress << "sweeping " << request.name << " " << request.settings.width << "x"
                   << request.settings.height << ": " << plural(int(points.size()), "setting")
+                  << (plan.frames > 1 || plan.warmup > 0 ? " of " + sequenceText(plan)
+                                                         : std::string())
                   << " on " << isaName(request.isa) << ", "
                   << plural(threadsFor(request.settings), "thread") << "\n";
 
     const EmbreeScene embree(scene);
     const ReferenceSource source = referenceSourceFrom(o.truth, err);
-    std::ostringstream csv;
+    std::ostringstream csv, perFrame;
     const auto& columns = sweepColumns();
     for (std::size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
     csv << "\n";
+    perFrame << frameErrorsCsvHeader(true);
     out << std::left << std::setw(56) << "setting" << std::right << std::setw(12) << "frame ms"
         << std::setw(12) << "relMSE"
         << "\n";
@@ -314,21 +301,25 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         ReferenceSettings refSettings = refBase;
         refSettings.maxDistance =
             marchLengths(settings[i].trace.march, scene.diagonal()).maxDistance;
-        bool fromCache = false;
         RenderSettings refRender = settings[i];
         if (!points[i].traced) refRender.trace = request.settings.trace;
-        const ReferenceImage reference =
-            referenceFor(embree, scene, input, refRender, refSettings, source, fromCache);
-        const Evaluation ev =
-            evaluate(embree, scene, input, settings[i], reference, evalSettings, frame);
-        csv << csvRow(request.name, settings[i], points[i], refSettings.spp, ev) << "\n";
+        const TruthContext truth{embree, scene, refSettings, source, evalSettings, progress};
+        const SequenceEvaluation result =
+            evaluateSequence(truth, sequence, settings[i], refRender, frame);
+        const Evaluation& ev = result.last;
+        csv << csvRow(request.name, settings[i], points[i], refSettings, plan, result) << "\n";
+        perFrame << frameErrorsCsvRows(result.frames, int(i));
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific
             << std::setprecision(3) << std::setw(12) << ev.error.color.relMse << std::defaultfloat
             << "\n";
     }
-    writeText(o.output, csv.str());
+    writeTextFile(o.output, csv.str());
     if (progress) *progress << "wrote " << o.output << "\n";
+    if (o.truth.perFrame) {
+        writeTextFile(*o.truth.perFrame, perFrame.str());
+        if (progress) *progress << "wrote " << *o.truth.perFrame << "\n";
+    }
     return kExitOk;
 }
 

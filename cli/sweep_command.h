@@ -2,7 +2,9 @@
 // per pixel, thickness, resolve modes) on one scene, each measured on both axes as
 // `ssrt compare` does, one CSV row per setting: time per pass, every ray-check share, the
 // hit-error quantiles, the image errors, and the march's rate against Embree's on the same
-// rays. perf/plot.py turns the CSV into the error-against-time chart.
+// rays. perf/plot.py turns the CSV into the error-against-time chart. With --frames or
+// --warmup-frames each setting renders a sequence (cli/sequence.h) and its row is the last
+// frame's, with the sequence's length and that frame's flicker (cli/sequence_evaluation.h).
 #pragma once
 
 #include <iosfwd>

@@ -320,4 +320,31 @@ std::vector<float> readChannel(const std::string& path, const std::string& chann
     return data;
 }
 
+std::vector<std::vector<float>> readChannels(const std::string& path,
+                                             const std::vector<std::string>& channels, int& width,
+                                             int& height) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) failRead(path, OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const auto& names = spec.channelnames;
+    std::vector<int> index;
+    for (const std::string& channel : channels) {
+        const auto it = std::find(names.begin(), names.end(), channel);
+        if (it == names.end()) failRead(path, "it has no channel '" + channel + "'");
+        index.push_back(int(it - names.begin()));
+    }
+    // Every channel interleaved, in one read.
+    const std::size_t pixels = std::size_t(spec.width) * spec.height;
+    const std::size_t n = std::size_t(spec.nchannels);
+    std::vector<float> all(pixels * n);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+        failRead(path, in->geterror());
+    std::vector<std::vector<float>> out(channels.size(), std::vector<float>(pixels));
+    for (std::size_t k = 0; k < channels.size(); ++k)
+        for (std::size_t p = 0; p < pixels; ++p) out[k][p] = all[p * n + std::size_t(index[k])];
+    width = spec.width;
+    height = spec.height;
+    return out;
+}
+
 }  // namespace ssrt

@@ -57,4 +57,11 @@ std::vector<std::string> readChannelNames(const std::string& path);
 std::vector<float> readChannel(const std::string& path, const std::string& channel, int& width,
                                int& height);
 
+// Several channels of one file, read and decompressed once (readChannel per channel would
+// decode the whole file each time): result[i] is channels[i], row by row without padding.
+// Throws as readChannel does.
+std::vector<std::vector<float>> readChannels(const std::string& path,
+                                             const std::vector<std::string>& channels, int& width,
+                                             int& height);
+
 }  // namespace ssrt

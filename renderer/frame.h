@@ -15,6 +15,7 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "denoise/denoise.h"
 #include "raster/hiz.h"
 #include "raster/raster.h"
 #include "raster/raster_stats.h"
@@ -126,7 +127,8 @@ struct DirectParts : PlaneTable<DirectParts> {
     PlaneF envDiffuse[3];
     PlaneF envSpecular[3];
     PlaneF specWeight[3];
-    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI
+    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
+                         // pass adds the reflected last frame's light: addSsgiFeedback)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -175,22 +177,46 @@ struct SsgiPlanes : PlaneTable<SsgiPlanes> {
     }
 };
 
+// What the denoiser hands out (TraceSettings::denoise): the composite reads these in place of
+// the traced signals (which stay layers, undenoised).
+struct DenoisePlanes : PlaneTable<DenoisePlanes> {
+    DenoiseOutputs out;
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        auto& o = g.out;
+        fn("denoisedDiffuse.R", o.diffuse[0]), fn("denoisedDiffuse.G", o.diffuse[1]);
+        fn("denoisedDiffuse.B", o.diffuse[2]);
+        fn("denoisedSpecular.R", o.specular[0]), fn("denoisedSpecular.G", o.specular[1]);
+        fn("denoisedSpecular.B", o.specular[2]);
+        fn("diffuseFrames", o.diffuseFrames), fn("specularFrames", o.specularFrames);
+    }
+};
+
 struct TraceOutputs {
     SsrPlanes ssr;
     SsgiPlanes ssgi;
+    DenoisePlanes denoise;
 };
 
 // What a frame leaves the next one of a sequence. The caller owns it and hands it to every
 // frame (Renderer::render); the renderer reads it, then commits the new frame's into it after
 // the composite.
 struct FrameHistory : PlaneTable<FrameHistory> {
-    PlaneF color[3];     // the last frame's final colour (exposed), for reprojected SSR hits
-    bool valid = false;  // a frame has committed it (false: nothing to reproject)
+    PlaneF color[3];  // the last frame's final colour (exposed), for reprojected SSR hits
+    // The last frame's incoming diffuse radiance (scene-linear, before the diffuse colour:
+    // what the composite multiplied by it), for SSGI hits with TraceSettings::ssgiFeedback;
+    // empty without it.
+    PlaneF diffuse[3];
+    bool valid = false;      // a frame has committed colour (false: nothing to reproject)
+    DenoiseHistory denoise;  // the denoiser's own (it says when it is usable)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("history.color.R", g.color[0]), fn("history.color.G", g.color[1]);
         fn("history.color.B", g.color[2]);
+        fn("history.diffuse.R", g.diffuse[0]), fn("history.diffuse.G", g.diffuse[1]);
+        fn("history.diffuse.B", g.diffuse[2]);
     }
     // Usable by a frame of this size.
     bool usableAt(int width, int height) const {
@@ -249,6 +275,7 @@ struct Frame {
         MarchResult march;
         ColorPyramid colorPyramid;
         SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent trace.ssr's
+        DenoiseScratch denoise;
         // SSGI's half-resolution trace (TraceLayout::Half): the chosen pixels' frame, its
         // depth pyramid, rays, march and resolved planes before the upsample.
         struct HalfTrace {

@@ -88,6 +88,8 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
     keepIf(s.trace.any(), f.direct);
     if (!s.trace.ssgi)
         for (PlaneF& p : f.direct.hitLight) p = PlaneF();
+    // (the denoiser sizes its own outputs, per signal)
+    if (!s.trace.any() || !s.trace.denoise.enabled) f.trace.denoise.release();
 }
 
 void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {
@@ -285,6 +287,7 @@ std::vector<PlaneRef> Frame::layers() const {
     ids.forEachPlane(add);
     trace.ssr.forEachPlane(add);
     trace.ssgi.forEachPlane(add);
+    trace.denoise.forEachPlane(add);
     for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane});
     return out;
 }
@@ -349,8 +352,10 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     const FrameHistory* previous =
         history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
                                                                                        : nullptr;
-    runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, observer}, frame);
-    if (history && readsHistory(settings_.trace)) commitHistory(frame, *history);
+    runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, history,
+                    input.resetHistory, observer},
+                   frame);
+    if (history && readsHistory(settings_.trace)) commitHistory(settings_.trace, frame, *history);
 }
 
 }  // namespace ssrt

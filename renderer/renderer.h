@@ -43,10 +43,10 @@ public:
 
     // One frame of a sequence. Reads `history` (unless input.resetHistory, or it is not of
     // this frame's size) and, after the composite, commits this frame's into it when the
-    // settings read it again (SSR with HitRadiance::Reprojected). Renders into `frame`,
-    // reusing its planes and scratch buffers when their sizes match. Safe to call from several
-    // threads at once with different frames and histories. `observer` (optional) sees every
-    // traced sample. The planes: renderer/frame.h.
+    // settings read it again (SSR with HitRadiance::Reprojected, SSGI with ssgiFeedback). Renders
+    // into `frame`, reusing its planes and scratch buffers when their sizes match. Safe to call
+    // from several threads at once with different frames and histories. `observer` (optional) sees
+    // every traced sample. The planes: renderer/frame.h.
     void render(const Scene& scene, const FrameInput& input, FrameHistory& history, Frame& frame,
                 const TraceObserver* observer = nullptr) const;
     Frame render(const Scene& scene, const FrameInput& input, FrameHistory& history) const;

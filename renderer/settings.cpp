@@ -22,6 +22,7 @@ void TraceSettings::validate() const {
             "TraceSettings.ssrLayout: expected one of full, checkerboard (half is SSGI's only)");
     march.validate();
     checkFields(kResolveFields, resolve, "SsrResolveSettings");
+    denoise.validate();
 }
 
 }  // namespace ssrt

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/isa.h"
+#include "denoise/denoise_settings.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/ssr_resolve.h"
@@ -32,12 +33,19 @@ struct TraceSettings {
     // passes' outputs being finite), and only the SSR reuse resolve of a smoother neighbour
     // misses their rays.
     bool traceHidden = false;
+    // Multi-bounce diffuse (issue 17): an SSGI hit also sends on the light it received the
+    // frame before, its diffuse colour times the previous frame's incoming diffuse radiance
+    // at the hit (FrameHistory::diffuse, reprojected), so every frame of a sequence adds one
+    // bounce. Off (and on a sequence's first frame, after a reset or a size change): one
+    // bounce, as trace/ssgi.h describes.
+    bool ssgiFeedback = false;
     // Which pixels get rays (trace/trace_layout.h): every one (full), half of them in a
     // checkerboard that alternates per frame, SSR and SSGI on opposite phases, or (SSGI only)
     // one per 2x2 block on a half-resolution frame. The others are reconstructed from the
     // traced ones (denoise/reconstruct.h) before anything reads the planes.
     TraceLayout ssrLayout = TraceLayout::Full;
     TraceLayout ssgiLayout = TraceLayout::Full;
+    DenoiseSettings denoise;  // REBLUR over both signals (denoise/denoise.h)
 
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/fields.h"
+#include "denoise/denoise_fields.h"
 #include "renderer/settings.h"
 #include "trace/march_fields.h"
 
@@ -66,6 +67,11 @@ inline constexpr std::array kTraceOwnFields = {
         "does (perceptual roughness >= 0.7), SSGI on metals (no diffuse colour). The image is "
         "the same at those pixels; the counters and hit planes then cover them too. By default "
         "they get no ray"),
+    field<&TraceSettings::ssgiFeedback>(
+        "ssgiFeedback", kCliShot,
+        "Multi-bounce diffuse: SSGI hits also reflect the previous frame's incoming diffuse "
+        "light (reprojected), so each frame of a sequence adds a bounce (a sequence's first "
+        "frame, or one after a reset, has one)"),
     field<&TraceSettings::ssrLayout>(
         "ssrLayout", kCliShot,
         "Which pixels get SSR rays: full (every one), checkerboard (half, alternating per frame, "
@@ -80,14 +86,15 @@ inline constexpr std::array kTraceOwnFields = {
         .choices(3, [](int i) { return traceLayoutName(TraceLayout(i)); })
         .withTypeName("LAYOUT"),
 };
-// Every member is in the table, march and resolve through their own tables.
-static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 2,
+// Every member is in the table, march, resolve and denoise through their own tables.
+static_assert(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 3,
               "a TraceSettings member is missing from kTraceOwnFields");
 
 // Every tracing setting, as fields of TraceSettings.
 inline constexpr auto kTraceFields =
     concatFields(kTraceOwnFields, nestedFields<&TraceSettings::march, kMarchFields>(),
-                 nestedFields<&TraceSettings::resolve, kResolveFields>());
+                 nestedFields<&TraceSettings::resolve, kResolveFields>(),
+                 nestedFields<&TraceSettings::denoise, kDenoiseFields>());
 
 // RenderSettings' own members (trace follows in kRenderFields).
 inline constexpr std::array kRenderOwnFields = {

@@ -226,6 +226,29 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     });
 }
 
+// Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
+// radiance, where the history has it at this size, reflected into the hit light SSGI reads
+// (trace/ssgi.h); none (one bounce) otherwise.
+void feedbackPass(const TraceContext& c, Frame& frame) {
+    const FrameHistory* h = c.args.history;
+    if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
+        h->diffuse[0].height() != frame.height)
+        return;
+    const GBuffer& g = frame.gbuffer;
+    SsgiFeedbackInputs in;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.albedo[ch] = &g.albedo[ch];
+        in.prevDiffuse[ch] = &h->diffuse[ch];
+    }
+    in.metallic = &g.metallic;
+    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    const ScopedPass timer(frame.stats, "ssgi feedback");
+    addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
+}
+
 void ssgiPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
@@ -251,6 +274,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     st.ran = true;
     st.spp = ts.ssgiSpp;
     StageTimes times;
+    feedbackPass(c, frame);
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
     if (ts.ssgiLayout == TraceLayout::Half) {
         ssgiHalf(c, frame, in, cut, st, times);
@@ -283,6 +307,44 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssgi");
 }
 
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
+// composite then reads; the traced planes stay as they were (the undenoised layers).
+void denoisePass(const TraceContext& c, Frame& frame) {
+    const TraceSettings& ts = c.ts;
+    const GBuffer& g = frame.gbuffer;
+    DenoiseInputs in;
+    in.camera = c.camera;
+    in.frameIndex = c.args.frameIndex;
+    in.viewZ = &g.viewZ;
+    in.roughness = &g.roughness;
+    in.metallic = &g.metallic;
+    for (int i = 0; i < 3; ++i) {
+        in.normal[i] = &g.normal[i];
+        in.albedo[i] = &g.albedo[i];
+    }
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    if (ts.ssgi) {
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
+        in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;
+    }
+    if (ts.ssr) {
+        for (int ch = 0; ch < 3; ++ch) {
+            in.ssr[ch] = &frame.trace.ssr.color[ch];
+            in.envSpecular[ch] = &frame.direct.envSpecular[ch];
+        }
+        in.ssrOpacity = &frame.trace.ssr.opacity;
+        in.specularHitDistance = &frame.trace.ssr.hitDistance;
+        // Where SSR has faded out the blend is the environment alone: nothing to denoise.
+        in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
+    }
+    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
+    std::vector<DenoisePassTime> times;
+    denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
+            frame.trace.denoise.out, c.threads(), &times);
+    for (const DenoisePassTime& t : times) frame.stats.passes.push_back({t.name, t.ms});
+}
+
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone
 // mapped; replaces the direct pass's colour and display.
 void compositePass(const TraceContext& c, Frame& frame) {
@@ -297,11 +359,15 @@ void compositePass(const TraceContext& c, Frame& frame) {
         ci.envDiffuse[ch] = &parts.envDiffuse[ch];
         ci.envSpecular[ch] = &parts.envSpecular[ch];
         ci.specWeight[ch] = &parts.specWeight[ch];
+        const DenoiseOutputs& d = frame.trace.denoise.out;
         if (ts.ssgi) {
-            ci.ssgi[ch] = &frame.trace.ssgi.color[ch];
+            ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
             ci.albedo[ch] = &g.albedo[ch];
         }
-        if (ts.ssr) ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+        if (ts.ssr) {
+            ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+            if (ts.denoise.enabled) ci.specular[ch] = &d.specular[ch];
+        }
     }
     if (ts.ssgi) {
         ci.viewZ = &g.viewZ;
@@ -322,21 +388,41 @@ void runTracePasses(const TracePassArgs& args, Frame& frame) {
     hiZPass(c, frame);
     if (c.ts.ssr) ssrPass(c, frame);
     if (c.ts.ssgi) ssgiPass(c, frame);
+    if (c.ts.denoise.enabled) denoisePass(c, frame);
     compositePass(c, frame);
 }
 
 bool readsHistory(const TraceSettings& s) {
-    return s.ssr && s.resolve.radiance == HitRadiance::Reprojected;
+    return (s.ssr && s.resolve.radiance == HitRadiance::Reprojected) || (s.ssgi && s.ssgiFeedback);
 }
 
-void commitHistory(const Frame& frame, FrameHistory& history) {
-    const int w = frame.width, h = frame.height;
+namespace {
+
+// The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
+// planes the composite multiplied by the diffuse colour. Today SSGI's own; the one place to
+// point at the denoised diffuse instead.
+// The incoming diffuse radiance the composite read: the denoiser's where it ran (a bounce
+// of one-ray noise fed back would come back as noise), else SSGI's.
+const PlaneF* committedDiffuse(const Frame& frame) {
+    const DenoiseOutputs& d = frame.trace.denoise.out;
+    return d.diffuse[0].empty() ? frame.trace.ssgi.color : d.diffuse;
+}
+
+void copyPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
-        const PlaneF& src = frame.image.color[ch];
-        PlaneF& dst = history.color[ch];
-        dst.ensureSize(w, h);  // kept across frames: no allocation once sized
-        for (int y = 0; y < h; ++y) std::copy_n(src.row(y), w, dst.row(y));
+        dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
+        for (int y = 0; y < h; ++y) std::copy_n(src[ch].row(y), w, dst[ch].row(y));
     }
+}
+
+}  // namespace
+
+void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& history) {
+    const int w = frame.width, h = frame.height;
+    // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
+    // feedback only.
+    copyPlanes(frame.image.color, history.color, w, h);
+    if (s.ssgi && s.ssgiFeedback) copyPlanes(committedDiffuse(frame), history.diffuse, w, h);
     history.valid = true;
 }
 

@@ -17,7 +17,11 @@ struct TracePassArgs {
     // The direct pass's argument block (sky, light, shadow map), as it ran; its parts went
     // to frame.direct.
     const DirectArgs& direct;
-    const FrameHistory* history;    // the last frame's, usable at this size; null: none
+    const FrameHistory* history;  // the last frame's colour, usable at this size; null: none
+    // The sequence's history for the denoiser, which reads and replaces its own part
+    // (DenoiseHistory); null: no history (each pixel starts afresh, nothing is kept).
+    FrameHistory* sequence;
+    bool resetHistory;              // a cut: the denoiser's history is not read
     const TraceObserver* observer;  // optional: sees each sample's rays and march result
 };
 
@@ -25,9 +29,11 @@ struct TracePassArgs {
 // appends pass times and stats to frame.stats.
 void runTracePasses(const TracePassArgs& args, Frame& frame);
 
-// Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected).
+// Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected,
+// SSGI with ssgiFeedback). The denoiser's history is its own (denoise/denoise.h).
 bool readsHistory(const TraceSettings& settings);
-// The frame's final colour into `history`, for the next frame.
-void commitHistory(const Frame& frame, FrameHistory& history);
+// The frame's final colour into `history` and, with SSGI feedback, its incoming diffuse
+// radiance, for the next frame.
+void commitHistory(const TraceSettings& settings, const Frame& frame, FrameHistory& history);
 
 }  // namespace ssrt

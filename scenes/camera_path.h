@@ -9,12 +9,16 @@
 namespace ssrt {
 
 // One keyframe: where the camera is, what it looks at and its vertical field of view
-// (degrees) at `time` (any unit: only the ratios between key times matter).
+// (degrees) at `time` (any unit: only the ratios between key times matter). `cut`: the
+// camera jumps to this key (an edit between two shots): the path before it ends at the
+// previous key and holds still there until this key's time, the path from it on starts here,
+// and nothing is interpolated across (the first key cannot be one).
 struct CameraKey {
     double time = 0.0;
     glm::vec3 position{0.0f, 1.0f, 5.0f};
     glm::vec3 target{0.0f};
     float fovY = 45.0f;
+    bool cut = false;
 };
 
 enum class PathInterpolation {
@@ -34,6 +38,8 @@ enum class PathInterpolation {
 // Evaluated in double from the float keys and rounded to float once, with no fused
 // operations: the same bits on every machine. At a key's time the result is that key exactly
 // (s = 0 zeroes every other term); before the first key and after the last it holds still.
+// Cuts split the keys into pieces, each a path of its own as above (its end keys' tangents
+// one-sided): a path without cuts is one piece.
 struct CameraPath {
     std::vector<CameraKey> keys;
     PathInterpolation interpolation = PathInterpolation::CatmullRom;
@@ -49,8 +55,13 @@ struct CameraPath {
     // key, frame n - 1 at the last, and a single frame at the first.
     double frameTime(int i, int n) const;
 
+    // Whether a cut lies in (t0, t1]: a frame at t1 whose previous frame was at t0 is the
+    // first of a new shot (its history must not be read, its motion not taken from t0).
+    bool cutBetween(double t0, double t1) const;
+
     // Throws std::invalid_argument naming the first bad key (times not finite or not
-    // increasing, non-finite vectors, position equal to target, fovY outside (0, 180)).
+    // increasing, non-finite vectors, position equal to target, fovY outside (0, 180), a cut
+    // on the first key).
     void validate() const;
 };
 

@@ -287,7 +287,7 @@ Shot parseShot(const std::string& text, const std::string& file) {
             const json& keys = path["keys"];
             for (std::size_t k = 0; k < keys.size(); ++k) {
                 const std::string kp = pp + ".keys[" + std::to_string(k) + "]";
-                r.object(keys[k], kp, {"time", "position", "target", "fovY"});
+                r.object(keys[k], kp, {"time", "position", "target", "fovY", "cut"});
                 ShotKey key;
                 key.time = r.number(keys[k], kp, "time", -Reader::kFloatMax, true,
                                     Reader::kFloatMax, true, "a finite number");
@@ -300,6 +300,14 @@ Shot parseShot(const std::string& text, const std::string& file) {
                 if (const auto v = r.number(keys[k], kp, "fovY", 0.0, false, 180.0, false,
                                             "a number in (0, 180)"))
                     key.fovY = float(*v);
+                if (keys[k].contains("cut")) {
+                    if (!keys[k]["cut"].is_boolean()) r.fail(kp + ".cut", "expected true or false");
+                    key.cut = keys[k]["cut"].get<bool>();
+                    if (k == 0 && key.cut)
+                        r.fail(kp + ".cut",
+                               "the first key cannot be a cut (nothing comes before "
+                               "it to cut from)");
+                }
                 shot.path.push_back(key);
             }
         }
@@ -356,8 +364,11 @@ Shot parseShot(const std::string& text, const std::string& file) {
         auto& s = shot.render;
         if (const auto f = r.integer(rd, p, "frames", 1, kMaxShotFrames)) s.frames = int(*f);
         if (const auto f = r.integer(rd, p, "frame", 0, 4294967295ll)) s.frame = uint32_t(*f);
+        if (const auto f = r.integer(rd, p, "warmupFrames", 0, kMaxShotFrames))
+            s.warmupFrames = int(*f);
         for (const auto& item : rd.items()) {
-            if (item.key() == "frames" || item.key() == "frame") continue;
+            if (item.key() == "frames" || item.key() == "frame" || item.key() == "warmupFrames")
+                continue;
             const json& j = item.value();
             ShotValue v;
             if (j.is_boolean()) {
@@ -445,6 +456,7 @@ CameraPath shotCameraPath(const Shot& shot, const Camera& camera) {
         key.position = sk.position.value_or(camera.position);
         key.target = sk.target.value_or(camera.target);
         key.fovY = sk.fovY.value_or(camera.fovY);
+        key.cut = sk.cut;
         Camera c = camera;
         c.position = key.position;
         c.target = key.target;

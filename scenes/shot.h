@@ -12,8 +12,10 @@
 //                file's folder)
 //   camera       object: position, target, up [3 numbers]; fovY (0, 180) degrees; near > 0;
 //                far > near; path: { interpolation: "catmull-rom" (default) or "linear",
-//                keys: [ { time, position, target, fovY }, ... ] } (scenes/camera_path.h;
-//                a key's time defaults to its index, its other fields to the camera's)
+//                keys: [ { time, position, target, fovY, cut }, ... ] }
+//                (scenes/camera_path.h; a key's time defaults to its index, its position,
+//                target and fovY to the camera's; cut: true/false, default false, the camera
+//                jumps to this key and history restarts there; not on the first key)
 //   light        object: direction [3 numbers, not all 0] (the way the light travels),
 //                color [3 numbers >= 0], intensity >= 0
 //   environment  object: type "constant" (color), "gradient" (zenith, horizon, ground) or
@@ -21,7 +23,9 @@
 //                shot file's folder; required), intensity >= 0. Without a type only the
 //                intensity may be given (it scales the scene's own sky).
 //   render       object: frames (1 to 100000), frame (the first frame's index, 0 to
-//                4294967295), and every render and tracing setting by its field-table key
+//                4294967295), warmupFrames (0 to 100000: frames rendered before the first
+//                written one and not written), and every render and tracing setting by its
+//                field-table key
 //                (renderer/settings_fields.h; README.md, "Shot files", lists them): width,
 //                height, shadowMapSize, shadowBias, shadowSlopeBias, pcfRadius, exposure,
 //                idPlanes, ssr, ssgi, ssrMethod, marcher, ssrSpp, ssgiSpp, traceHidden,
@@ -60,6 +64,7 @@ struct ShotKey {
     std::optional<double> time;  // default: the key's index
     std::optional<glm::vec3> position, target;
     std::optional<float> fovY;
+    bool cut = false;  // CameraKey::cut
 };
 
 // A value of the render object as the JSON wrote it.
@@ -96,6 +101,7 @@ struct Shot {
     struct RenderFields {
         std::optional<int> frames;
         std::optional<uint32_t> frame;
+        std::optional<int> warmupFrames;  // frames rendered and not written before frame 0
         // Every other key of the render object, in key order: a setting for the caller to
         // look up in its field table (cli/shot_settings.h), as pbrt-v4's ParameterDictionary
         // holds parameters for the plugin that reads them.

@@ -4,7 +4,7 @@
 # resolve, SSGI, composite, the renderer's trace passes, the frame's name tables, the settings
 # field tables), the material maps and alpha cut-outs (raster and truth), the Embree scene,
 # ray checks,
-# reference image, image error and the compare and sweep commands,
+# reference image, image error, the compare and sweep commands and their sequences,
 # under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Builds in build-asan/; CI runs it after scripts/test.sh.
 set -euo pipefail
@@ -19,4 +19,4 @@ export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # One known leak inside OpenImageIO on corrupt PNGs (see the file).
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
-./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*'
+./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*'

@@ -49,6 +49,7 @@ void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF displ
             a.envDiffuse[c] = need(in.envDiffuse[c], w, h, "envDiffuse");
         }
         if (ssr) a.ssrColor[c] = need(in.ssrColor[c], w, h, "ssrColor");
+        if (anyOf(in.specular)) a.specular[c] = need(in.specular[c], w, h, "specular");
         a.color[c] = color[c].row(0);
         a.display[c] = display[c].row(0);
     }

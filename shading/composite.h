@@ -4,6 +4,7 @@
 //                        times the occlusion where there is one (envDiffuse has it already)
 //              SSGI off: envDiffuse
 //   specular = SSR on:   specWeight (ssr opacity + envSpecular (1 - opacity))
+//              or specWeight specular, where the denoiser hands the blend as a whole
 //              (specWeight holds Kulla-Conty's multiple scattering, as `color` does)
 //              SSR off:  specWeight envSpecular
 //   color    = (((direct + diffuse) + specular) + emission) exposure
@@ -35,6 +36,9 @@ struct CompositeInputs {
     // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): null = off.
     const PlaneF* ssrColor[3] = {};
     const PlaneF* ssrOpacity = nullptr;
+    // The incoming specular radiance as a whole (the denoiser's, denoise/denoise.h), in place
+    // of ssr opacity + envSpecular (1 - opacity); null: that blend.
+    const PlaneF* specular[3] = {};
     float exposure = 1.0f;  // the renderer's exposure (RenderSettings::exposure)
 };
 

@@ -37,7 +37,9 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
     }
     // Specular: the split-sum factor times SSR blended over the prefiltered sky.
     V3 incoming = load3(a.envSpecular, o);
-    if (a.ssrColor[0]) {
+    if (a.specular[0]) {
+        incoming = load3(a.specular, o);  // the denoiser's (denoise/denoise.h)
+    } else if (a.ssrColor[0]) {
         const Lane opacity = ln::load<Lane>(a.ssrOpacity + o);
         incoming = load3(a.ssrColor, o) * opacity + incoming * (one - opacity);
     }

@@ -24,6 +24,7 @@ struct CompositeArgs {
     const float* metallic;
     const float* occlusion;    // null: none (SSGI on only)
     const float* ssrColor[3];  // null: SSR off
+    const float* specular[3];  // null: from ssrColor, ssrOpacity and envSpecular
     const float* ssrOpacity;
     float exposure;
     float* color[3];

@@ -12,12 +12,36 @@ namespace {
 
 const float* need(const PlaneF* p, int w, int h, const char* what) {
     if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("resolveSsgi: ") + what +
+        throw std::invalid_argument(std::string("ssgi: ") + what +
                                     " missing or not of the frame's size");
     return p->row(0);
 }
 
 }  // namespace
+
+void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], int threads) {
+    const int w = hitLight[0].width(), h = hitLight[0].height();
+    if (w <= 0 || h <= 0) throw std::invalid_argument("addSsgiFeedback: empty hitLight");
+    const TileGrid grid(w, h);
+    SsgiFeedbackArgs a{};
+    a.width = w;
+    a.height = h;
+    a.tilesX = grid.tilesX;
+    a.stride = hitLight[0].stride();
+    a.viewZ = need(in.viewZ, w, h, "viewZ");
+    for (int c = 0; c < 3; ++c) {
+        a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+        a.prevDiffuse[c] = need(in.prevDiffuse[c], w, h, "previous diffuse radiance");
+        need(&hitLight[c], w, h, "hitLight");
+        a.hitLight[c] = hitLight[c].row(0);
+    }
+    a.metallic = need(in.metallic, w, h, "metallic");
+    a.motion[0] = need(in.motion[0], w, h, "motion");
+    a.motion[1] = need(in.motion[1], w, h, "motion");
+    if (in.occlusion) a.occlusion = need(in.occlusion, w, h, "occlusion");
+    const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
+    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+}
 
 void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const MarchResult& march,
                  PlaneF out[3], int sample, int sampleCount, int threads) {

@@ -15,6 +15,22 @@
 // prefiltered irradiance, so that N samples converge to the sky's share of the hemisphere
 // (which screen space cannot see beyond the frame, GAMES202 returns black there instead).
 // A pixel without a ray (pdf 0: background, rejected sample) contributes 0 for that sample.
+//
+// Multi-bounce feedback (TraceSettings::ssgiFeedback, issue 17): given the previous frame's
+// incoming diffuse radiance E' (what this resolve output a frame ago, or what replaced it in
+// the composite), a hit also sends on the light it received then,
+//   L(x1 -> x0) += albedo1 (1 - metallic1) occlusion1  E'(reproject(x1)),
+// reproject(x1) = the centre of x1's pixel + its motion, read at the NEAREST pixel (as the
+// hit's G-buffer attributes: a bilinear read would blend the light of two surfaces across a
+// depth edge; on a still camera it is the pixel's own estimate, so the series is not
+// blurred), nothing where it falls off the frame. With cosine rays the Lambert reflection of
+// E' is exactly that (f_r cos / pdf = albedo (1 - metallic)); so each frame adds a bounce and
+// a still camera converges to all of them, the path tracer's geometric series
+// (truth/reference_image.h, ReferenceSettings::bounces). addSsgiFeedback adds it to the
+// hitLight planes once per frame, per pixel, before the samples: the resolve's gathers at
+// the hits stay 3 (per hit it would take 9 more, 4x the resolve's time at 1 ray). E' is not
+// tested for disocclusion: a pixel that showed another surface a frame ago lends that
+// surface's light for a frame.
 #pragma once
 
 #include "core/image.h"
@@ -42,6 +58,21 @@ struct SsgiInputs {
     // renderer fills them; their plane pointers are not used.
     const DirectArgs* lighting = nullptr;
 };
+
+// What the feedback reads, all planes of one size (hitLight's).
+struct SsgiFeedbackInputs {
+    const PlaneF* viewZ = nullptr;      // "viewZ": background pixels (0) are left as they are
+    const PlaneF* albedo[3] = {};       // "albedo.R/G/B"
+    const PlaneF* metallic = nullptr;   // "metallic"
+    const PlaneF* occlusion = nullptr;  // optional: MaterialPlanes::occlusion (null: 1)
+    const PlaneF* motion[2] = {};       // "motion.X/Y" (previous position = current + motion)
+    const PlaneF* prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
+};
+
+// Adds the feedback above to every surface pixel of hitLight[3] (the direct pass's
+// DirectArgs::hitLight, in place), so that resolveSsgi's hits read it. Throws
+// std::invalid_argument when a plane is missing or not of hitLight's size.
+void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneF hitLight[3], int threads);
 
 // One sample's diffuse rays into out[3] (ensured to the frame's size): sample 0 overwrites,
 // later samples accumulate, and after sample == sampleCount - 1 `out` is the average.

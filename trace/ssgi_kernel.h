@@ -33,4 +33,19 @@ struct SsgiArgs {
 
 SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
 
+// addSsgiFeedback's (trace/ssgi.h), likewise plain: one size and stride for every plane.
+struct SsgiFeedbackArgs {
+    int width, height, tilesX;
+    std::size_t stride;
+    const float* viewZ;
+    const float* albedo[3];
+    const float* metallic;
+    const float* occlusion;  // null: 1
+    const float* motion[2];
+    const float* prevDiffuse[3];
+    float* hitLight[3];  // read and written in place
+};
+
+SSRT_DECLARE_KERNEL(void, ssgiFeedbackTile, (const SsgiFeedbackArgs& args, int tile))
+
 }  // namespace ssrt

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace ssrt {
 
@@ -73,26 +74,22 @@ void EvaluationSettings::validate() const {
         throw std::invalid_argument("depth tolerance must be in (0, 1)");
 }
 
-Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
-                    const RenderSettings& settings, const ReferenceImage& reference,
-                    const EvaluationSettings& es, Frame& frame) {
-    es.validate();
+namespace {
+
+// The checked render, with `history` or without one (null), and everything measured from it.
+// The pass times are the median over `runs`, the checked render's own joining them when
+// `timeItToo` (the observer's time is in no pass).
+Evaluation checkedRender(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                         const RenderSettings& settings, const ReferenceImage& reference,
+                         const EvaluationSettings& es, std::vector<std::vector<PassTime>> runs,
+                         bool timeItToo, FrameHistory* history, Frame& frame) {
     const Renderer renderer(settings);
     Evaluation ev;
     ev.ssr = settings.trace.ssr;
     ev.ssgi = settings.trace.ssgi;
 
-    // Timed renders: nothing else runs inside them.
-    std::vector<std::vector<PassTime>> runs;
-    for (int i = 0; i < es.repeats; ++i) {
-        renderer.renderWithoutHistory(scene, input, frame);
-        runs.push_back(frame.stats.passes);
-    }
-    ev.passes = medianPasses(runs, ev.frameMs);
-
-    // The checked render: Embree sees each sample's rays as they were marched.
+    // Embree sees each sample's rays as they were marched.
     RayCheckSettings check = es.check;
-    check.maxDistance = marchLengths(settings.trace.march, frame.camera.sceneDiagonal).maxDistance;
     const PlaneF* viewZ = nullptr;
     const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
                                        const MarchResult& march) {
@@ -100,15 +97,22 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameIn
         RayCheckPlanes* planes =
             es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes) : nullptr;
         // The G-buffer is complete before the trace passes run; the frame's camera too.
-        if (!viewZ) viewZ = &frame.gbuffer.viewZ;
+        if (!viewZ) {
+            viewZ = &frame.gbuffer.viewZ;
+            check.maxDistance =
+                marchLengths(settings.trace.march, frame.camera.sceneDiagonal).maxDistance;
+        }
         const RayCheckTable t =
             checkRays(embree, frame.camera, *viewZ, rays, march, check, planes, settings.threads);
         (ssr ? ev.ssrCheck : ev.ssgiCheck).add(t);
     };
-    renderer.renderWithoutHistory(scene, input, frame, &observer);
+    if (history) renderer.render(scene, input, *history, frame, &observer);
+    else renderer.renderWithoutHistory(scene, input, frame, &observer);
     ev.stats = frame.stats;
     ev.ssrCheck.finish();
     ev.ssgiCheck.finish();
+    if (timeItToo) runs.push_back(frame.stats.passes);
+    ev.passes = medianPasses(runs, ev.frameMs);
 
     const double marchMs = passMs(ev.passes, "ssr march") + passMs(ev.passes, "ssgi march");
     const double rays = double(ev.stats.ssr.march.rays + ev.stats.ssgi.march.rays);
@@ -119,6 +123,33 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameIn
 
     ev.error = imageErrors(frame, reference);
     return ev;
+}
+
+}  // namespace
+
+Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                    const RenderSettings& settings, const ReferenceImage& reference,
+                    const EvaluationSettings& es, Frame& frame) {
+    es.validate();
+    const Renderer renderer(settings);
+    // Timed renders: nothing else runs inside them.
+    std::vector<std::vector<PassTime>> runs;
+    for (int i = 0; i < es.repeats; ++i) {
+        renderer.renderWithoutHistory(scene, input, frame);
+        runs.push_back(frame.stats.passes);
+    }
+    return checkedRender(embree, scene, input, settings, reference, es, std::move(runs), false,
+                         nullptr, frame);
+}
+
+Evaluation evaluateSequenceFrame(const EmbreeScene& embree, const Scene& scene,
+                                 const FrameInput& input, const RenderSettings& settings,
+                                 const ReferenceImage& reference, const EvaluationSettings& es,
+                                 const std::vector<std::vector<PassTime>>& earlierRuns,
+                                 FrameHistory& history, Frame& frame) {
+    es.validate();
+    return checkedRender(embree, scene, input, settings, reference, es, earlierRuns, true, &history,
+                         frame);
 }
 
 }  // namespace ssrt

@@ -49,4 +49,16 @@ Evaluation evaluate(const EmbreeScene& embree, const Scene& scene, const FrameIn
                     const RenderSettings& settings, const ReferenceImage& reference,
                     const EvaluationSettings& evalSettings, Frame& frame);
 
+// The same for one frame of a sequence (ssrt compare --frames): `history` holds what the
+// frames before it committed, and this frame, rendered once with it, commits into it as
+// Renderer::render does. A history cannot be read twice, so there are no timed repeats: the
+// pass times are the median over `earlierRuns` (the pass times of the frames just before, as
+// the caller rendered them) and this frame's own.
+Evaluation evaluateSequenceFrame(const EmbreeScene& embree, const Scene& scene,
+                                 const FrameInput& input, const RenderSettings& settings,
+                                 const ReferenceImage& reference,
+                                 const EvaluationSettings& evalSettings,
+                                 const std::vector<std::vector<PassTime>>& earlierRuns,
+                                 FrameHistory& history, Frame& frame);
+
 }  // namespace ssrt

@@ -58,14 +58,26 @@ FrameParts frameParts(const Frame& frame) {
     // specular alone), SSGI off is the sky's diffuse light.
     const SsrPlanes& ssrPlanes = frame.trace.ssr;
     const bool ssrOn = !ssrPlanes.opacity.empty(), ssgiOn = !frame.trace.ssgi.hit.empty();
-    const PlaneF zero = ssrOn ? PlaneF() : PlaneF(frame.width, frame.height);
+    // Where the denoiser ran, the composite read its planes: the specular one as the whole
+    // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's.
+    const DenoiseOutputs& denoised = frame.trace.denoise.out;
+    const bool specDenoised = !denoised.specular[0].empty();
+    const bool diffDenoised = !denoised.diffuse[0].empty();
+    const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
+                           : specDenoised ? PlaneF(frame.width, frame.height, 1.0f)
+                                          : PlaneF();
     const PlaneF* ssr[3];
     const PlaneF* ssgi[3];
     for (int c = 0; c < 3; ++c) {
-        ssr[c] = ssrOn ? &ssrPlanes.color[c] : &parts.envSpecular[c];
-        ssgi[c] = ssgiOn ? &frame.trace.ssgi.color[c] : &parts.envDiffuse[c];
+        ssr[c] = !ssrOn         ? &parts.envSpecular[c]
+                 : specDenoised ? &denoised.specular[c]
+                                : &ssrPlanes.color[c];
+        ssgi[c] = !ssgiOn        ? &parts.envDiffuse[c]
+                  : diffDenoised ? &denoised.diffuse[c]
+                                 : &frame.trace.ssgi.color[c];
     }
-    specularDiffuse(frame, ssr, ssrOn ? ssrPlanes.opacity : zero, ssgi, fp.specular, fp.diffuse);
+    specularDiffuse(frame, ssr, ssrOn && !specDenoised ? ssrPlanes.opacity : opacity, ssgi,
+                    fp.specular, fp.diffuse);
     for (int c = 0; c < 3; ++c) {
         fp.direct[c] = parts.direct[c].clone();
         if (!ssgiOn) fp.diffuse[c] = parts.envDiffuse[c].clone();

@@ -10,9 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "core/rng.h"
 #include "core/tiles.h"
 #include "renderer/direct_lighting.h"
 #include "shading/brdf.h"
+#include "shading/sampling.h"
 #include "truth/parts.h"
 #include "truth/reference_shading.h"
 
@@ -178,10 +180,10 @@ struct TracedRay {
 };
 
 // Traces one sample's rays (view space, as generated) of one tile with Embree, 16 at a time
-// over 4x4 pixel blocks, and hands each to `use` in pixel order. full: hits shaded with the
-// whole direct model (SSR), else the Lambert bounce (SSGI).
-template <class Use>
-void traceTile(const Setup& s, const RayBatch& rays, int tile, bool full, Use&& use) {
+// over 4x4 pixel blocks, and hands each to `use` in pixel order. shadeHit(ray, origin, hit)
+// gives a hit's radiance (SSR: the whole direct model; SSGI: the diffuse path).
+template <class ShadeHit, class Use>
+void traceTile(const Setup& s, const RayBatch& rays, int tile, ShadeHit&& shadeHit, Use&& use) {
     const DirectArgs& a = s.lighting.args;
     const EmbreeScene& embree = *s.ctx.embree;
     const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
@@ -209,9 +211,8 @@ void traceTile(const Setup& s, const RayBatch& rays, int tile, bool full, Use&& 
             embree.intersect16(n, org.data(), dir.data(), embree.epsilon(), s.maxDistance,
                                hits.data());
             for (int i = 0; i < n; ++i) {
-                out[i].radiance = hits[i].hit
-                                      ? reference::hitRadiance(s.ctx, org[i], dir[i], hits[i], full)
-                                      : reference::missRadiance(s.ctx, dir[i]);
+                out[i].radiance = hits[i].hit ? shadeHit(out[i], org[i], hits[i])
+                                              : reference::missRadiance(s.ctx, dir[i]);
                 use(out[i]);
             }
         }
@@ -257,7 +258,10 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
         generateSpecularRays(s.isa, s.ssrMethod, s.frameIndex, uint32_t(k), f.camera, s.rayGen,
                              rays, s.threads);
         parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
-            traceTile(s, rays, tile, true, [&](const TracedRay& t) {
+            const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
+                return reference::hitRadiance(s.ctx, o, t.dir, h, true);
+            };
+            traceTile(s, rays, tile, shade, [&](const TracedRay& t) {
                 const PointSurface ps = reference::pixelSurface(a, t.x, t.y);
                 sums.add(t.x, t.y, ssrWeight(ps, t.dir, t.pdf), t.radiance);
             });
@@ -276,16 +280,63 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
         }
 }
 
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited": the local direction l (normal
+// on +z) around the unit normal n.
+glm::vec3 aroundNormal(glm::vec3 n, const ln::V3<float>& l) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    const glm::vec3 t(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    const glm::vec3 bt(b, sign + n.y * n.y * a, -n.y);
+    return glm::normalize((t * l.x + bt * l.y) + n * l.z);
+}
+
+// An SSGI ray's radiance as a diffuse path of up to `bounces` hits (reference_image.h):
+// L = L_1 + r_1 (L_2 + r_2 (...)), summed forward with the path's throughput. One bounce is
+// hitRadiance's SSGI light itself: the one-bounce reference to the bit.
+glm::vec3 diffusePath(const Setup& s, const TracedRay& ray, glm::vec3 origin, const EmbreeHit& hit,
+                      uint32_t sample, int bounces) {
+    if (bounces == 1) return reference::hitRadiance(s.ctx, origin, ray.dir, hit, false);
+    const EmbreeScene& embree = *s.ctx.embree;
+    const uint32_t pixel = uint32_t(ray.y) * uint32_t(s.frame.width) + uint32_t(ray.x);
+    reference::DiffuseVertex v = reference::diffuseVertex(s.ctx, origin, ray.dir, hit);
+    glm::vec3 radiance = v.radiance, throughput = v.reflectance;
+    for (int k = 1; k < bounces; ++k) {
+        if (!(std::max({throughput.x, throughput.y, throughput.z}) > 0.0f)) break;
+        // The next direction: cosine-weighted around x_k's shading normal.
+        const uint32_t dim = kReferenceBounceDim + 2u * uint32_t(k - 1);
+        const float u1 = randomFloat(pixel, s.frameIndex, sample, dim);
+        const float u2 = randomFloat(pixel, s.frameIndex, sample, dim + 1u);
+        const glm::vec3 dir = aroundNormal(v.normal, sampling::sampleCosineHemisphere(u1, u2));
+        if (!(glm::dot(dir, v.geometricNormal) > 0.0f)) break;  // into its own surface
+        // From 0: the origin is already epsilon off its surface, and a near start of epsilon
+        // would step through a wall that close (a hit within epsilon of a corner), letting
+        // the path escape; the plane it leaves lies behind it.
+        const EmbreeHit h = embree.intersect(v.origin, dir, 0.0f, s.maxDistance);
+        if (!h.hit) {
+            radiance += throughput * reference::missRadiance(s.ctx, dir);
+            break;
+        }
+        v = reference::diffuseVertex(s.ctx, v.origin, dir, h);
+        radiance += throughput * v.radiance;
+        throughput *= v.reflectance;
+    }
+    return radiance;
+}
+
 // SSGI: the plain mean of `spp` cosine rays' radiance (a pixel without a ray in a sample adds
-// 0 for it, as trace/ssgi.h counts).
-void renderSsgi(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) {
+// 0 for it, as trace/ssgi.h counts), each ray a diffuse path of `bounces` hits.
+void renderSsgi(const Setup& s, int spp, int bounces, ProgressSteps& progress, PlaneF out[3]) {
     const Frame& f = s.frame;
     Sums sums(f.width, f.height);
     RayBatch rays;
     for (int k = 0; k < spp; ++k) {
         generateDiffuseRays(s.isa, s.frameIndex, uint32_t(k), f.camera, s.rayGen, rays, s.threads);
         parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
-            traceTile(s, rays, tile, false,
+            const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
+                return diffusePath(s, t, o, h, uint32_t(k), bounces);
+            };
+            traceTile(s, rays, tile, shade,
                       [&](const TracedRay& t) { sums.add(t.x, t.y, 1.0, t.radiance); });
         });
         progress.step();
@@ -304,6 +355,9 @@ void ReferenceSettings::validate() const {
                                     std::to_string(kMaxSpp));
     if (!std::isfinite(maxDistance) || !(maxDistance > 0.0f))
         throw std::invalid_argument("reference maxDistance must be finite and > 0");
+    if (bounces < 1 || bounces > kMaxBounces)
+        throw std::invalid_argument("reference bounces must be between 1 and " +
+                                    std::to_string(kMaxBounces));
 }
 
 ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
@@ -322,7 +376,7 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
     renderDirect(s, ref.direct);
     steps.step();
     renderSsr(s, settings.spp, steps, ref.ssr);
-    renderSsgi(s, settings.spp, steps, ref.ssgi);
+    renderSsgi(s, settings.spp, settings.bounces, steps, ref.ssgi);
     composeReference(s.isa, frame, renderer.settings().exposure, s.lighting.args.anyEmissive,
                      s.threads, ref);
     return ref;

@@ -18,7 +18,17 @@
 //           opacity 1 (nothing fades).
 //   ssgi    the average incoming radiance of `spp` cosine rays (the SSGI definition,
 //           trace/ssgi.h): at a hit the Lambert part of the hit's direct light with the chosen
-//           visibility plus emission; on a miss the sky along the ray.
+//           visibility plus emission; on a miss the sky along the ray. With `bounces` N > 1
+//           each ray is a diffuse path of up to N hits x_1..x_N (Kajiya's path tracing,
+//           Lambert only),
+//             L = L_1 + r_1 (L_2 + r_2 (... + r_{N-1} L_N)),
+//           L_k the hit's light as above (the same sun, visibility and emission at every
+//           vertex), r_k = albedo (1 - metallic) occlusion its diffuse reflectance, the next
+//           direction cosine-sampled around x_k's shading normal (f_r cos / pdf = r_k), a miss
+//           the sky; a direction below x_k's geometric surface, or a back face of a
+//           single-sided material, ends the path. N frames of SSGI feedback (ssgiFeedback)
+//           estimate the same N bounces. Its random numbers: randomFloat(pixel, frame,
+//           sample, kReferenceBounceDim + 2 (k - 1)) and the next dimension, at x_k.
 // The chosen visibility holds at the hits too, so that ShadowMap differs from the frame only
 // by what was traced. Every ray (and shadow ray) leaves its pixel's point stepped
 // EmbreeScene::epsilon() off the surface along the geometric normal (Embree's primary hit):
@@ -37,12 +47,20 @@
 
 namespace ssrt {
 
+// The random-number dimensions of the SSGI paths' further bounces (past the ray generators'
+// 16..19, trace/ray_gen.h): 2 per vertex.
+inline constexpr uint32_t kReferenceBounceDim = 32;
+
 struct ReferenceSettings {
     enum class Visibility { Embree, ShadowMap };
     Visibility visibility = Visibility::Embree;
     int spp = 64;               // rays per pixel for each of SSR and SSGI
-    float maxDistance = 30.0f;  // scene units: the march's (marchLengths().maxDistance)
-    void validate() const;      // throws std::invalid_argument naming the field
+    float maxDistance = 30.0f;  // scene units: the march's (marchLengths().maxDistance);
+                                // every bounce's rays too
+    int bounces = 1;            // diffuse hits per SSGI path, 1 to kMaxBounces: 1 is the
+                                // one-bounce SSGI model, N matches N frames of feedback
+    static constexpr int kMaxBounces = 256;
+    void validate() const;  // throws std::invalid_argument naming the field
 };
 
 // Planes of the frame's size. Scene-linear (before exposure) except color.

@@ -176,6 +176,8 @@ uint64_t referenceKey(const Scene& scene, const Camera& camera, uint32_t frameIn
     h.value(settings.visibility);
     h.value(settings.spp);
     h.value(settings.maxDistance);
+    // Only when not 1: the one-bounce keys (every cache made before) stay as they were.
+    if (settings.bounces != 1) h.value(settings.bounces);
     return h.digest();
 }
 

@@ -53,38 +53,85 @@ float sunVisibility(const ShadingContext& c, const PointSurface& s, glm::vec3 of
     return embreeSunVisibility(c, offsetOrigin);
 }
 
+namespace {
+
+// A traced hit as the shading sees it: the surface point turned towards the ray.
+struct FacingHit {
+    SurfacePoint sp;
+    glm::vec3 ng{0.0f}, n{0.0f};
+    bool lit = false;  // false: the back face of a single-sided material (black)
+};
+
+FacingHit facingHit(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
+                    const EmbreeHit& hit) {
+    FacingHit f;
+    f.sp = c.embree->surface(origin, dir, hit);
+    f.ng = f.sp.geometricNormal;
+    f.n = f.sp.shadingNormal;
+    // Seen from behind: a double-sided surface turns its normals towards the ray.
+    if (glm::dot(f.ng, dir) > 0.0f) {
+        if (!f.sp.doubleSided) return f;
+        f.ng = -f.ng;
+        f.n = -f.n;
+    }
+    f.lit = true;
+    return f;
+}
+
+PointSurface pointSurface(const FacingHit& f, glm::vec3 dir) {
+    PointSurface s;
+    s.p = toV3(f.sp.position);
+    s.n = toV3(f.n);
+    s.albedo = toV3(f.sp.baseColor);
+    s.view = toV3(-dir);
+    s.metallic = f.sp.metallic;
+    s.roughness = f.sp.roughness;
+    return s;
+}
+
+// The SSGI kernel's Lambert part: albedo (1 - metallic) / pi E_sun n.l visibility, plus
+// emission.
+glm::vec3 lambertHitLight(const ShadingContext& c, const PointSurface& s, const SurfacePoint& sp,
+                          float vis) {
+    const DirectArgs& a = *c.lighting;
+    const float NoL = ln::saturate(ln::dot(s.n, shade::splat3<float>(a.toLight)));
+    const V3f diffuse = s.albedo * ((1.0f - s.metallic) * ln::kInvPi);
+    const V3f lit = diffuse * shade::splat3<float>(a.lightRadiance) * (NoL * vis);
+    return toGlm(lit) + sp.emissive;
+}
+
+}  // namespace
+
 glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
                       const EmbreeHit& hit, bool full) {
-    const SurfacePoint sp = c.embree->surface(origin, dir, hit);
-    glm::vec3 ng = sp.geometricNormal, n = sp.shadingNormal;
-    // Seen from behind: a double-sided surface turns its normals towards the ray.
-    if (glm::dot(ng, dir) > 0.0f) {
-        if (!sp.doubleSided) return glm::vec3(0.0f);
-        ng = -ng;
-        n = -n;
-    }
-    PointSurface s;
-    s.p = toV3(sp.position);
-    s.n = toV3(n);
-    s.albedo = toV3(sp.baseColor);
-    s.view = toV3(-dir);
-    s.metallic = sp.metallic;
-    s.roughness = sp.roughness;
-    const float vis = sunVisibility(c, s, sp.position + ng * c.embree->epsilon());
-    const DirectArgs& a = *c.lighting;
+    const FacingHit f = facingHit(c, origin, dir, hit);
+    if (!f.lit) return glm::vec3(0.0f);
+    const SurfacePoint& sp = f.sp;
+    const PointSurface s = pointSurface(f, dir);
+    const float vis = sunVisibility(c, s, sp.position + f.ng * c.embree->epsilon());
     if (full) {
-        shade::Parts<float> p = shade::shadeSurface(a, s, vis);
+        shade::Parts<float> p = shade::shadeSurface(*c.lighting, s, vis);
         if (sp.occlusion != 1.0f) shade::occludeIndirect(p, sp.occlusion);
         // The direct pass's `color` order: ((sun + envDiffuse) + specWeight envSpecular) +
         // emission.
         const V3f lit = (p.sun + p.envDiffuse) + p.specWeight * p.envSpecular;
         return toGlm(lit) + sp.emissive;
     }
-    // The SSGI kernel's Lambert part: albedo (1 - metallic) / pi E_sun n.l visibility.
-    const float NoL = ln::saturate(ln::dot(s.n, shade::splat3<float>(a.toLight)));
-    const V3f diffuse = s.albedo * ((1.0f - s.metallic) * ln::kInvPi);
-    const V3f lit = diffuse * shade::splat3<float>(a.lightRadiance) * (NoL * vis);
-    return toGlm(lit) + sp.emissive;
+    return lambertHitLight(c, s, sp, vis);
+}
+
+DiffuseVertex diffuseVertex(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
+                            const EmbreeHit& hit) {
+    const FacingHit f = facingHit(c, origin, dir, hit);
+    DiffuseVertex v;
+    if (!f.lit) return v;
+    const PointSurface s = pointSurface(f, dir);
+    v.origin = f.sp.position + f.ng * c.embree->epsilon();
+    v.radiance = lambertHitLight(c, s, f.sp, sunVisibility(c, s, v.origin));
+    v.reflectance = f.sp.baseColor * ((1.0f - f.sp.metallic) * f.sp.occlusion);
+    v.normal = f.n;
+    v.geometricNormal = f.ng;
+    return v;
 }
 
 glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir) {

@@ -44,6 +44,23 @@ float sunVisibility(const ShadingContext& c, const PointSurface& s, glm::vec3 of
 glm::vec3 hitRadiance(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
                       const EmbreeHit& hit, bool full);
 
+// A hit of a diffuse path (the SSGI rays, and the further bounces of ReferenceSettings::
+// bounces): the light it sends back along the ray in the SSGI model (hitRadiance's, full =
+// false: the Lambert part of the sun with the chosen visibility, plus emission), and what the
+// next bounce leaves from. A back face of a single-sided material is black and reflects
+// nothing (reflectance 0 ends the path).
+struct DiffuseVertex {
+    glm::vec3 radiance{0.0f};
+    // albedo (1 - metallic) occlusion: the share of its incoming light it reflects, as the
+    // composite weighs SSGI (with cosine-sampled rays f_r cos / pdf is exactly this)
+    glm::vec3 reflectance{0.0f};
+    glm::vec3 origin{0.0f};                       // the hit stepped epsilon off, on the ray's side
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};           // shading normal, turned to the ray's side
+    glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f};  // likewise
+};
+DiffuseVertex diffuseVertex(const ShadingContext& c, glm::vec3 origin, glm::vec3 dir,
+                            const EmbreeHit& hit);
+
 // The sky along a unit world direction (a ray that missed).
 glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir);
 

@@ -72,6 +72,33 @@ TEST_CASE("compare: tables of ray classes, image error and times; the reference 
     CHECK(relMseLine(first.out) == relMseLine(second.out));
 }
 
+TEST_CASE("compare: the reference's bounces follow --ssgi-feedback and are cached apart") {
+    TempDir dir;
+    const auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {"compare", "--scene", "cornell"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runSsrt(tiny(args, dir));
+    };
+    const test::CliResult one = run({});
+    INFO(one.err);
+    REQUIRE(one.code == 0);
+    CHECK(contains(one.out, "reference 4 spp\n"));
+    // Feedback's default: kFeedbackReferenceBounces, a reference of its own.
+    const test::CliResult fed = run({"--ssgi-feedback"});
+    REQUIRE(fed.code == 0);
+    const std::string bounces = std::to_string(cli::kFeedbackReferenceBounces) + " bounces";
+    CHECK(contains(fed.out, "ssgi feedback, reference 4 spp, " + bounces));
+    CHECK(contains(fed.err, "reference: rendered (4 spp, " + bounces + ")"));
+    // The same count asked for: from the cache; another: rendered.
+    const test::CliResult same =
+        run({"--reference-bounces", std::to_string(cli::kFeedbackReferenceBounces)});
+    REQUIRE(same.code == 0);
+    CHECK(contains(same.err, "reference: from the cache (4 spp, " + bounces + ")"));
+    const test::CliResult three = run({"--ssgi-feedback", "--reference-bounces", "3"});
+    REQUIRE(three.code == 0);
+    CHECK(contains(three.err, "reference: rendered (4 spp, 3 bounces)"));
+}
+
 TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
     TempDir dir;
     const std::string csv = dir.file("s.csv");
@@ -98,6 +125,7 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
         CHECK(std::isfinite(relMse));
         CHECK(relMse >= 0.0);
         CHECK(std::stod(row[col("frame_ms")]) > 0.0);
+        CHECK(row[col("reference_bounces")] == "1");
         // (The rays the composite hides are not traced unless --trace-hidden.)
         CHECK(row[col("trace_hidden")] == (row[col("marcher")] == "off" ? "" : "0"));
         if (row[col("marcher")] == "off") {
@@ -127,6 +155,9 @@ TEST_CASE("compare and sweep: bad input is one error line and nothing is written
                                                {"sweep", "--max-steps", "0", "-o", csv},
                                                {"sweep", "-o", dir.file("s.txt")},
                                                {"sweep", "--reference-spp", "0", "-o", csv},
+                                               {"sweep", "--reference-bounces", "0", "-o", csv},
+                                               {"compare", "--reference-bounces", "257"},
+                                               {"compare", "--reference-bounces", "many"},
                                                {"compare", "--no-ssr", "--no-ssgi"},
                                                {"compare", "--visibility", "raytraced"},
                                                {"compare", "--depth-tolerance", "1.5"},

@@ -82,6 +82,29 @@ TEST_CASE("EXR round trip keeps every plane's name and bits") {
     }
 }
 
+TEST_CASE("readChannels reads several channels at once, each as readChannel would") {
+    TempDir dir;
+    const std::vector<std::string> names{"ref.color.R", "ref.color.G", "ref.ssr.B", "viewZ"};
+    const std::string path = dir.file("frame.exr");
+    writeImage(path, makeFrame(7, 4, names));
+    // In an order of our own, not the file's (sorted) one, and one channel twice.
+    const std::vector<std::string> asked{"viewZ", "ref.color.R", "ref.ssr.B", "viewZ"};
+    int width = 0, height = 0;
+    const std::vector<std::vector<float>> got = readChannels(path, asked, width, height);
+    REQUIRE(width == 7);
+    REQUIRE(height == 4);
+    REQUIRE(got.size() == asked.size());
+    for (std::size_t k = 0; k < asked.size(); ++k) {
+        CAPTURE(asked[k]);
+        int w = 0, h = 0;
+        const std::vector<float> one = readChannel(path, asked[k], w, h);
+        REQUIRE(got[k].size() == one.size());
+        CHECK(std::equal(one.begin(), one.end(), got[k].begin(), sameBits));
+    }
+    CHECK_THROWS_WITH_AS(readChannels(path, {"viewZ", "normal.X"}, width, height),
+                         doctest::Contains("it has no channel 'normal.X'"), std::runtime_error);
+}
+
 TEST_CASE("an EXR file's bytes do not depend on when it was written") {
     // OpenImageIO stamps EXR headers with the current time (capDate) unless told a DateTime;
     // the same frame must give the same file at any hour (golden files compare bytes).

@@ -79,10 +79,12 @@ TEST_CASE("settings fields: each table covers its struct, keys and flags are uni
     // The static_asserts beside the tables say the same at compile time.
     CHECK(fieldCount<MarchSettings>() == kMarchFields.size());
     CHECK(fieldCount<SsrResolveSettings>() == kResolveFields.size());
-    CHECK(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 2);    // + march, resolve
+    CHECK(fieldCount<DenoiseSettings>() == kDenoiseFields.size());
+    CHECK(fieldCount<TraceSettings>() == kTraceOwnFields.size() + 3);  // + march, resolve, denoise
     CHECK(fieldCount<RenderSettings>() == kRenderOwnFields.size() + 2);  // + isa, trace
     CHECK(kRenderFields.size() == kRenderOwnFields.size() + kTraceOwnFields.size() +
-                                      kMarchFields.size() + kResolveFields.size());
+                                      kMarchFields.size() + kResolveFields.size() +
+                                      kDenoiseFields.size());
     // No two entries name one member (with the counts: every member is named once).
     const RenderSettings d;
     std::set<const void*> members;

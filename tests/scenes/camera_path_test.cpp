@@ -129,3 +129,42 @@ TEST_CASE("camera path: bad keys are named") {
     path.keys[0].position.x = NAN;
     CHECK_THROWS_AS(path.validate(), std::invalid_argument);
 }
+
+TEST_CASE("camera path: a cut splits it into paths of their own, the first held up to the cut") {
+    const Camera base;
+    for (PathInterpolation interp : {PathInterpolation::CatmullRom, PathInterpolation::Linear}) {
+        CAPTURE(interp == PathInterpolation::CatmullRom);
+        CameraPath path = testPath(interp);
+        path.keys[2].cut = true;  // at t = 1.1
+        REQUIRE_NOTHROW(path.validate());
+        CameraPath before = testPath(interp), after = testPath(interp);
+        before.keys.erase(before.keys.begin() + 2, before.keys.end());  // keys 0 and 1
+        after.keys.erase(after.keys.begin(), after.keys.begin() + 2);   // keys 2 and 3
+        const auto same = [](const Camera& a, const Camera& b) {
+            return a.position == b.position && a.target == b.target && a.fovY == b.fovY;
+        };
+        for (double t = -0.5; t <= 3.5; t += 0.05) {
+            CAPTURE(t);
+            const Camera c = path.at(t, base);
+            if (t < 1.1) CHECK(same(c, before.at(t, base)));  // held at key 1 after 0.7
+            else CHECK(same(c, after.at(t, base)));           // bit for bit: no tangent crosses
+        }
+        CHECK(same(path.at(1.0, base), before.at(0.7, base)));
+        CHECK(path.at(1.1, base).position == path.keys[2].position);
+        // The whole path without the cut is a different curve near the cut
+        const Camera whole = testPath(interp).at(1.0, base);
+        CHECK(!same(path.at(1.0, base), whole));
+        // Frames between which the cut lies
+        CHECK(path.cutBetween(0.9, 1.1));
+        CHECK(path.cutBetween(1.0, 2.0));
+        CHECK(!path.cutBetween(1.1, 1.5));
+        CHECK(!path.cutBetween(0.0, 1.0));
+        CHECK(!testPath(interp).cutBetween(-10.0, 10.0));
+    }
+    CameraPath path = testPath(PathInterpolation::Linear);
+    path.keys[0].cut = true;
+    CHECK_THROWS_WITH_AS(path.validate(),
+                         "camera path key 0: the first key cannot be a cut (nothing comes before "
+                         "it to cut from)",
+                         std::invalid_argument);
+}

@@ -32,8 +32,8 @@ const char* const kFullShot = R"({
       "interpolation": "linear",
       "keys": [
         { "time": 0.5, "position": [4, 5, 6], "target": [0, 0, 0], "fovY": 20 },
-        { "time": 1.5, "position": [7, 8, 9] },
-        { }
+        { "time": 1.5, "position": [7, 8, 9], "cut": true },
+        { "cut": false }
       ]
     }
   },
@@ -41,7 +41,8 @@ const char* const kFullShot = R"({
   "environment": { "type": "image", "file": "sky/sky.hdr", "intensity": 0.75 },
   "render": {
     "width": 320, "height": 200, "exposure": 1.5, "shadowMapSize": 512, "shadowBias": 0.5,
-    "shadowSlopeBias": 1.25, "pcfRadius": 2, "frames": 12, "frame": 7
+    "shadowSlopeBias": 1.25, "pcfRadius": 2, "frames": 12, "frame": 7,
+    "warmupFrames": 5
   }
 })";
 
@@ -92,6 +93,9 @@ TEST_CASE("shot: every field lands where it is meant to") {
     CHECK(path.keys[1].fovY == 30.0f);
     CHECK(path.keys[2].time == 2.0);  // its index
     CHECK(path.keys[2].position == scene.camera.position);
+    CHECK(!path.keys[0].cut);
+    CHECK(path.keys[1].cut);
+    CHECK(!path.keys[2].cut);
 
     // Render settings
     RenderSettings s;
@@ -105,6 +109,7 @@ TEST_CASE("shot: every field lands where it is meant to") {
     CHECK(s.pcfRadius == 2);
     CHECK(shot.render.frame == 7u);
     CHECK(shot.render.frames == 12);
+    CHECK(shot.render.warmupFrames == 5);
 }
 
 TEST_CASE("shot: an empty shot changes nothing") {
@@ -157,7 +162,8 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
          "camera.fovy: unknown key (expected one of: position, "
          "target, up, fovY, near, far, path)"},
         {R"({"camera": {"path": {"keys": [{"tme": 1}]}}})",
-         "camera.path.keys[0].tme: unknown key (expected one of: time, position, target, fovY)"},
+         "camera.path.keys[0].tme: unknown key (expected one of: time, position, target, fovY, "
+         "cut)"},
         {R"({"environment": {"color": [1, 1, 1]}})",
          "environment.color: unknown key (expected one of: type, intensity)"},
         {R"({"environment": {"type": "gradient", "color": [1, 1, 1]}})",
@@ -166,7 +172,7 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         {R"({"render": {"samples": 4}})",
          "render.samples: unknown key (expected one of: width, height, shadowMapSize, "
          "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, ssr, ssgi, ssrMethod, "
-         "marcher, ssrSpp, ssgiSpp, traceHidden, ssrLayout, ssgiLayout, maxSteps, "},
+         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssgiLayout, maxSteps, "},
         // Wrong types
         {R"([1, 2])", "expected a JSON object at the top level"},
         {R"({"camera": "front"})", "camera: expected an object"},
@@ -204,6 +210,14 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
         {R"({"render": {"width": 99999999999999999999}})",
          "render.width: expected an integer from 1 to 8192"},
         {R"({"render": {"frames": 0}})", "render.frames: expected an integer from 1 to 100000"},
+        {R"({"render": {"warmupFrames": -1}})",
+         "render.warmupFrames: expected an integer from 0 to 100000"},
+        {R"({"render": {"warmupFrames": 2.5}})",
+         "render.warmupFrames: expected an integer from 0 to 100000"},
+        {R"({"camera": {"path": {"keys": [{}, {"cut": 1}]}}})",
+         "camera.path.keys[1].cut: expected true or false"},
+        {R"({"camera": {"path": {"keys": [{"cut": true}, {}]}}})",
+         "camera.path.keys[0].cut: the first key cannot be a cut"},
         {R"({"render": {"frame": 4294967296}})",
          "render.frame: expected an integer from 0 to 4294967295"},
         {R"({"render": {"shadowMapSize": 8}})",

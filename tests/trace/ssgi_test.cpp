@@ -296,3 +296,128 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         }
     }
 }
+
+namespace {
+
+// The feedback's inputs on the furnace frame: the previous frame's incoming diffuse radiance (a
+// ramp over the pixels, so that which pixel is read shows), motion and occlusion planes, and
+// hit light to add to.
+struct Feedback {
+    Furnace f;
+    PlaneF prev[3] = {PlaneF(kW, kH), PlaneF(kW, kH), PlaneF(kW, kH)};
+    PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
+    PlaneF occlusion{kW, kH, 0.5f};
+    PlaneF hitLight[3] = {PlaneF(kW, kH, 0.25f), PlaneF(kW, kH, 0.5f), PlaneF(kW, kH, 1.0f)};
+    SsgiFeedbackInputs in;
+    Feedback() {
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
+        in.viewZ = &f.viewZ;
+        for (int c = 0; c < 3; ++c) {
+            in.albedo[c] = &f.albedo[c];
+            in.prevDiffuse[c] = &prev[c];
+        }
+        in.metallic = &f.metallic;
+        in.motion[0] = &motion[0];
+        in.motion[1] = &motion[1];
+    }
+    static float prevAt(int x, int y, int c) { return 0.01f * float(x + 1) + 0.1f * float(c + y); }
+    // hitLight after the feedback, fresh each time.
+    void run(PlaneF out[3]) const {
+        for (int c = 0; c < 3; ++c) out[c] = hitLight[c].clone();
+        addSsgiFeedback(Isa::Scalar, in, out, 2);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("ssgi: feedback adds each pixel's diffuse colour times last frame's light there") {
+    Feedback fb;
+    const float albedo[3] = {0.5f, 0.6f, 0.7f}, lit[3] = {0.25f, 0.5f, 1.0f};
+    const auto expect = [&](int x, int y, int c, int dx, float occlusion) {
+        const double prev = x + dx < kW ? Feedback::prevAt(x + dx, y, c) : 0.0;
+        return lit[c] + albedo[c] * 0.8 * occlusion * prev;
+    };
+    PlaneF out[3];
+    // A still camera (motion 0) reads the pixel itself.
+    fb.run(out);
+    int off = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c)
+                off +=
+                    !(out[c].at(x, y) == doctest::Approx(expect(x, y, c, 0, 1.0f)).epsilon(1e-6));
+    CHECK(off == 0);
+    // Moved one pixel right since the last frame (motion = previous - current = +1): the pixel
+    // to the right, nothing past the frame's edge; the occlusion scales the bounce; background
+    // pixels are left alone.
+    fb.motion[0].fill(1.0f);
+    fb.in.occlusion = &fb.occlusion;
+    fb.f.viewZ.at(3, 4) = 0.0f;
+    fb.run(out);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double e = x == 3 && y == 4 ? lit[c] : expect(x, y, c, 1, 0.5f);
+                off += !(out[c].at(x, y) == doctest::Approx(e).epsilon(1e-6));
+            }
+    CHECK(off == 0);
+    CHECK(out[0].at(kW - 1, 7) == lit[0]);
+    // All off the frame: the hit light as it was, to the bit.
+    fb.motion[1].fill(-float(kH));
+    fb.run(out);
+    for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], fb.hitLight[c]));
+    // A missing plane is refused.
+    fb.in.motion[1] = nullptr;
+    CHECK_THROWS_AS(fb.run(out), std::invalid_argument);
+}
+
+TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA and thread count") {
+    RenderSettings rs;
+    rs.width = 133;
+    rs.height = 77;
+    rs.shadowMapSize = 128;
+    rs.threads = 2;
+    const Scene scene = makeBuiltinScene("cornell");
+    Frame frame;
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
+    const int w = frame.width, h = frame.height;
+    SsgiFeedbackInputs in;
+    in.viewZ = &frame.gbuffer.viewZ;
+    for (int c = 0; c < 3; ++c) {
+        in.albedo[c] = &frame.gbuffer.albedo[c];
+        in.prevDiffuse[c] = &frame.trace.ssgi.color[c];  // a frame's own light stands in
+    }
+    in.metallic = &frame.gbuffer.metallic;
+    // Motion that moves some pixels off the frame.
+    PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint32_t i = uint32_t(y * w + x);
+            motion[0].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 0) - 0.5f);
+            motion[1].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 1) - 0.5f);
+        }
+    in.motion[0] = &motion[0];
+    in.motion[1] = &motion[1];
+    const auto fed = [&](Isa isa, int threads, PlaneF out[3]) {
+        for (int c = 0; c < 3; ++c) out[c] = frame.direct.hitLight[c].clone();
+        addSsgiFeedback(isa, in, out, threads);
+    };
+    PlaneF ref[3];
+    fed(Isa::Scalar, 1, ref);
+    bool finite = true;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(ref[c].at(x, y));
+    CHECK(finite);
+    CHECK_FALSE(sameBits(ref[0], frame.direct.hitLight[0]));  // the feedback adds something
+    for (Isa isa : supportedIsas())
+        for (int threads : {1, 2, 8}) {
+            CAPTURE(isaName(isa));
+            CAPTURE(threads);
+            PlaneF out[3];
+            fed(isa, threads, out);
+            for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], ref[c]));
+        }
+}

@@ -1,0 +1,375 @@
+#include "denoise/denoise.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "core/tiles.h"
+#include "denoise/denoise_fields.h"
+#include "denoise/reblur_kernel.h"
+
+namespace ssrt {
+
+void DenoiseSettings::validate() const { checkFields(kDenoiseFields, *this, "DenoiseSettings"); }
+
+namespace {
+
+// The rotation draws' sample counters: far above any ray generator's (samples < 64), so the
+// kernels' rotations are not correlated with the rays' directions.
+constexpr uint32_t kRotationStream = 0x10000;
+
+const float* need(const PlaneF* p, int w, int h, const char* what) {
+    if (!p || p->width() != w || p->height() != h)
+        throw std::invalid_argument(std::string("denoise: ") + what +
+                                    " missing or not of the frame's size");
+    return p->row(0);
+}
+
+// Times each pass (over both signals) for --stats.
+class PassTimes {
+public:
+    explicit PassTimes(std::vector<DenoisePassTime>* out) : out_(out) {}
+    template <class Fn>
+    void run(const char* name, Fn&& fn) {
+        const auto t0 = std::chrono::steady_clock::now();
+        fn();
+        if (!out_) return;
+        const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
+        // One entry per pass, summed over the two signals.
+        const std::string key = std::string("denoise ") + name;
+        for (DenoisePassTime& t : *out_)
+            if (t.name == key) return void(t.ms += ms.count());
+        out_->push_back({key, ms.count()});
+    }
+
+private:
+    std::vector<DenoisePassTime>* out_;
+};
+
+// Pointers to four planes of a group.
+struct Four {
+    PlaneF* p[4];
+    explicit Four(PlaneF* group) : p{group, group + 1, group + 2, group + 3} {}
+};
+
+// One signal's planes through the passes: 0-3 diffuse, 4-7 specular of the scratch arrays.
+struct SignalPlanes {
+    bool specular;
+    int base;  // 0 or 4
+    PlaneF* outputs[3];
+    PlaneF* framesOut;
+};
+
+struct Context {
+    const DenoiseSettings& s;
+    const DenoiseInputs& in;
+    DenoiseScratch& sc;
+    DenoiseHistory* history;  // null: no history to write
+    bool readHistory;         // the history holds last frame's, of this size
+    Isa isa;
+    int threads;
+    TileGrid grid;
+    ReblurView view;
+};
+
+ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
+                    const TileGrid& grid) {
+    const TraceCamera& cam = in.camera;
+    ReblurView v;
+    v.width = grid.width;
+    v.height = grid.height;
+    v.tilesX = grid.tilesX;
+    v.stride = in.viewZ->stride();
+    v.tanHalfX = cam.tanHalfX;
+    v.tanHalfY = cam.tanHalfY;
+    std::copy_n(cam.viewToWorld, 9, v.viewToWorld);
+    // NRD's GetFrustumSize: the frustum's short side at depth 1.
+    v.frustum = 2.0f * (grid.width < grid.height ? cam.tanHalfX : cam.tanHalfY);
+    v.viewZ = in.viewZ->row(0);
+    for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
+    v.roughness = in.roughness->row(0);
+    v.mask[0] = sc.mask[0].row(0);
+    v.mask[1] = sc.mask[1].row(0);
+    v.tiles = sc.tiles.data();
+    const float diagonal = cam.sceneDiagonal > 0.0f ? cam.sceneDiagonal : 1.0f;
+    v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
+    return v;
+}
+
+void checkInputs(const DenoiseInputs& in, int w, int h) {
+    need(in.viewZ, w, h, "viewZ");
+    for (int i = 0; i < 3; ++i) need(in.normal[i], w, h, "normal");
+    need(in.roughness, w, h, "roughness");
+    for (int i = 0; i < 2; ++i) need(in.motion[i], w, h, "motion");
+    if (in.diffuse[0]) {
+        for (int i = 0; i < 3; ++i) {
+            need(in.diffuse[i], w, h, "diffuse");
+            need(in.albedo[i], w, h, "albedo");
+        }
+        need(in.metallic, w, h, "metallic");
+        need(in.diffuseHitDistance, w, h, "diffuse hit distance");
+    }
+    if (in.ssr[0]) {
+        for (int i = 0; i < 3; ++i) {
+            need(in.ssr[i], w, h, "ssr");
+            need(in.envSpecular[i], w, h, "envSpecular");
+        }
+        need(in.ssrOpacity, w, h, "ssr opacity");
+        need(in.specularHitDistance, w, h, "specular hit distance");
+    }
+}
+
+void frontEnd(Context& c) {
+    const DenoiseInputs& in = c.in;
+    ReblurFrontEndArgs a;
+    a.view = c.view;
+    if (in.diffuse[0]) {
+        for (int i = 0; i < 3; ++i) {
+            a.diffuse[i] = in.diffuse[i]->row(0);
+            a.albedo[i] = in.albedo[i]->row(0);
+        }
+        a.metallic = in.metallic->row(0);
+        a.diffuseHit = in.diffuseHitDistance->row(0);
+    }
+    if (in.ssr[0]) {
+        for (int i = 0; i < 3; ++i) {
+            a.ssr[i] = in.ssr[i]->row(0);
+            a.envSpecular[i] = in.envSpecular[i]->row(0);
+        }
+        a.ssrOpacity = in.ssrOpacity->row(0);
+        a.specularHit = in.specularHitDistance->row(0);
+    }
+    a.specularMaxRoughness = in.specularMaxRoughness;
+    for (int i = 0; i < 8; ++i) a.noisy[i] = c.sc.noisy[i].row(0);
+    a.mask[0] = c.sc.mask[0].row(0);
+    a.mask[1] = c.sc.mask[1].row(0);
+    // A signal that is off has no pixels.
+    if (!in.diffuse[0]) c.sc.mask[0].fill(0.0f);
+    if (!in.ssr[0]) c.sc.mask[1].fill(0.0f);
+    a.tiles = c.sc.tiles.data();
+    const auto fn = SSRT_DISPATCH(c.isa, reblurFrontEndTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+}
+
+void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in,
+             PlaneF* const out[4], PlaneF* copy, const PlaneF* frames) {
+    const DenoiseSettings& s = c.s;
+    ReblurSpatialArgs a;
+    a.view = c.view;
+    a.pass = pass;
+    a.specular = sig.specular;
+    for (int ch = 0; ch < 4; ++ch) {
+        a.in[ch] = in[ch].row(0);
+        a.out[ch] = out[ch]->row(0);
+        a.copy[ch] = copy ? copy[ch].row(0) : nullptr;
+    }
+    a.frames = frames ? frames->row(0) : nullptr;
+    a.frameIndex = c.in.frameIndex;
+    a.stream = kRotationStream + uint32_t(pass) * 2u + (sig.specular ? 1u : 0u);
+    const float blur = pass == ReblurSpatial::PostBlur ? 2.0f * s.maxBlurRadius : s.maxBlurRadius;
+    a.radius = pass == ReblurSpatial::PreBlur
+                   ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
+                   : blur;
+    a.minRadius = s.minBlurRadius;
+    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+    a.roughnessFraction = s.roughnessFraction;
+    a.planeDistance = s.planeDistanceSensitivity;
+    a.minHitWeight = s.minHitDistanceWeight;
+    a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
+                      : pass == ReblurSpatial::Blur  ? 1.0f
+                                                     : 0.5f;
+    const auto fn = SSRT_DISPATCH(c.isa, reblurSpatialTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+}
+
+void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
+    const DenoiseSettings& s = c.s;
+    const int k = sig.specular ? 1 : 0;
+    ReblurTemporalArgs a;
+    a.view = c.view;
+    a.specular = sig.specular;
+    for (int i = 0; i < 2; ++i) a.motion[i] = c.in.motion[i]->row(0);
+    for (int ch = 0; ch < 4; ++ch) {
+        a.in[ch] = in[ch].row(0);
+        a.out[ch] = out[ch].row(0);
+    }
+    a.outFrames = c.sc.frames[k].row(0);
+    a.outFast = c.sc.fast[k].row(0);
+    if (c.readHistory && s.maxAccumulatedFrames > 0) {
+        const DenoiseHistory& h = *c.history;
+        a.prevViewZ = h.viewZ.row(0);
+        for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
+        a.prevRoughness = h.roughness.row(0);
+        const PlaneF* signal = sig.specular ? h.specular : h.diffuse;
+        for (int ch = 0; ch < 4; ++ch) a.prevSignal[ch] = signal[ch].row(0);
+        a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
+        a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
+        std::copy_n(h.camera.viewToWorld, 9, a.prevViewToWorld);
+        a.prevTanHalfX = h.camera.tanHalfX;
+        a.prevTanHalfY = h.camera.tanHalfY;
+        // Both cameras' positions are measured from the same scene origin.
+        for (int i = 0; i < 3; ++i)
+            a.cameraDelta[i] = c.in.camera.position[i] - h.camera.position[i];
+    }
+    a.maxFrames = float(s.maxAccumulatedFrames);
+    a.maxFastFrames = float(s.maxFastAccumulatedFrames);
+    a.disocclusion = s.disocclusionThreshold;
+    a.fireflyScale = s.fireflyMinRelativeScale;
+    a.virtualMotion = s.virtualMotion;
+    const auto fn = SSRT_DISPATCH(c.isa, reblurTemporalTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+}
+
+void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
+    const DenoiseSettings& s = c.s;
+    const int k = sig.specular ? 1 : 0;
+    ReblurHistoryFixArgs a;
+    a.view = c.view;
+    a.specular = sig.specular;
+    for (int ch = 0; ch < 4; ++ch) {
+        a.in[ch] = in[ch].row(0);
+        a.out[ch] = out[ch].row(0);
+    }
+    a.frames = c.sc.frames[k].row(0);
+    // The fast history clamps the slow one only where it is faster.
+    a.fast = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames ? c.sc.fast[k].row(0) : nullptr;
+    a.fixFrames = float(s.historyFixFrames);
+    a.stride = float(s.historyFixStride);
+    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+    a.planeDistance = s.planeDistanceSensitivity;
+    const auto fn = SSRT_DISPATCH(c.isa, reblurHistoryFixTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+}
+
+// One signal through every pass; the post-blur writes the output and the history.
+void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
+    DenoiseScratch& sc = c.sc;
+    const DenoiseSettings& s = c.s;
+    PlaneF* current = sc.noisy + sig.base;
+    const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
+    if (preRadius > 0.0f) {
+        times.run("pre-blur", [&] {
+            spatial(c, sig, ReblurSpatial::PreBlur, current, Four(sc.pre + sig.base).p, nullptr,
+                    nullptr);
+        });
+        current = sc.pre + sig.base;
+    }
+    times.run("temporal", [&] { temporal(c, sig, current, sc.accumulated + sig.base); });
+    current = sc.accumulated + sig.base;
+    times.run("history fix", [&] { historyFix(c, sig, current, sc.fixed + sig.base); });
+    current = sc.fixed + sig.base;
+    const PlaneF* frames = &sc.frames[sig.specular ? 1 : 0];
+    times.run("blur", [&] {
+        spatial(c, sig, ReblurSpatial::Blur, current, Four(sc.blurred + sig.base).p, nullptr,
+                frames);
+    });
+    current = sc.blurred + sig.base;
+    // The post-blur's result, RGB to the output and all four channels to the history.
+    PlaneF* history = nullptr;
+    if (c.history) history = sig.specular ? c.history->specular : c.history->diffuse;
+    // (The output has no hit distance: that channel goes to the pre-blur's plane, no longer
+    // read.)
+    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2], &sc.pre[sig.base + 3]};
+    times.run("post-blur",
+              [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
+    // The history length the EXR shows: frames behind each pixel.
+    PlaneF& src = sc.frames[sig.specular ? 1 : 0];
+    for (int y = 0; y < c.grid.height; ++y)
+        std::copy_n(src.row(y), c.grid.width, sig.framesOut->row(y));
+}
+
+// The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
+// and fast histories, for the next frame.
+void commitHistory(Context& c) {
+    DenoiseHistory& h = *c.history;
+    const DenoiseInputs& in = c.in;
+    PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
+    const PlaneF* const masks[2] = {&c.sc.mask[0], &c.sc.mask[1]};
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
+        const TileRect r = c.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y) {
+            const auto copyRow = [&](const PlaneF& src, PlaneF& dst) {
+                std::copy(src.row(y) + r.x0, src.row(y) + r.x1, dst.row(y) + r.x0);
+            };
+            copyRow(*in.viewZ, h.viewZ);
+            for (int i = 0; i < 3; ++i) copyRow(*in.normal[i], h.normal[i]);
+            copyRow(*in.roughness, h.roughness);
+            for (int k = 0; k < 2; ++k) {
+                const float* a = c.sc.frames[k].row(y);
+                const float* m = masks[k]->row(y);
+                float* out = frames[k]->row(y);
+                for (int x = r.x0; x < r.x1; ++x) out[x] = m[x] > 0.0f ? a[x] + 1.0f : 0.0f;
+            }
+        }
+    });
+    std::swap(h.diffuseFast, c.sc.fast[0]);
+    std::swap(h.specularFast, c.sc.fast[1]);
+    h.camera = in.camera;
+    h.valid = true;
+}
+
+void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
+                 bool diffuse, bool specular, const TileGrid& grid) {
+    for (PlaneF* group : {sc.noisy, sc.pre, sc.accumulated, sc.fixed, sc.blurred})
+        for (int i = 0; i < 8; ++i) group[i].ensureSize(w, h);
+    for (int i = 0; i < 2; ++i) {
+        sc.mask[i].ensureSize(w, h);
+        sc.frames[i].ensureSize(w, h);
+        sc.fast[i].ensureSize(w, h);
+    }
+    sc.tiles.assign(std::size_t(grid.count()), 0);
+    const auto keepIf = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(w, h);
+        else p = PlaneF();
+    };
+    for (int ch = 0; ch < 3; ++ch) {
+        keepIf(diffuse, out.diffuse[ch]);
+        keepIf(specular, out.specular[ch]);
+    }
+    keepIf(diffuse, out.diffuseFrames);
+    keepIf(specular, out.specularFrames);
+    if (!history) return;
+    history->viewZ.ensureSize(w, h);
+    history->roughness.ensureSize(w, h);
+    for (int i = 0; i < 3; ++i) history->normal[i].ensureSize(w, h);
+    for (int i = 0; i < 4; ++i) {
+        history->diffuse[i].ensureSize(w, h);
+        history->specular[i].ensureSize(w, h);
+    }
+    for (PlaneF* p : {&history->diffuseFrames, &history->specularFrames, &history->diffuseFast,
+                      &history->specularFast})
+        p->ensureSize(w, h);
+}
+
+}  // namespace
+
+void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
+             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, DenoiseOutputs& out,
+             int threads, std::vector<DenoisePassTime>* times) {
+    settings.validate();
+    const int w = in.camera.width, h = in.camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("denoise: empty camera");
+    checkInputs(in, w, h);
+    const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
+    const TileGrid grid(w, h);
+    const bool readHistory = history && !reset && history->usableAt(w, h);
+    if (history && !readHistory) history->valid = false;
+    ensureSizes(w, h, scratch, out, history, diffuse, specular, grid);
+    Context c{settings, in,          scratch,
+              history,  readHistory, isa,
+              threads,  grid,        makeView(in, settings, scratch, grid)};
+    PassTimes pt(times);
+    pt.run("front end", [&] { frontEnd(c); });
+    if (diffuse)
+        denoiseSignal(
+            c, {false, 0, {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]}, &out.diffuseFrames},
+            pt);
+    if (specular)
+        denoiseSignal(
+            c,
+            {true, 4, {&out.specular[0], &out.specular[1], &out.specular[2]}, &out.specularFrames},
+            pt);
+    if (history) pt.run("history", [&] { commitHistory(c); });
+}
+
+}  // namespace ssrt

@@ -1,0 +1,104 @@
+// The denoiser: REBLUR (NVIDIA NRD, "ReBLUR: A Hierarchical Recurrent Denoiser", Ray Tracing
+// Gems II ch. 49; walked through pass by pass in shared/seeds/003) on the CPU, deterministic
+// to the bit. It reads only planes: the G-buffer's guides, the traced signals (SSR's and
+// SSGI's radiance with their hit distances) and a caller-owned history; it writes the
+// denoised diffuse and specular radiance and each pixel's history length.
+//
+// Passes, in order (NRD's names), each a per-tile kernel over lanes across x that writes only
+// its own tile of its own output planes (never the plane it reads):
+//   front end     sanitises the signals (NaN, infinity -> 0), builds the specular radiance
+//                 SSR over the environment, normalises hit distances; classifies tiles (a
+//                 tile without a surface pixel, or without a signal, skips the passes below)
+//   pre-blur      8 taps rotated per frame, radius from the hit distance
+//   temporal      surface-motion reprojection with disocclusion by depth, Catmull-Rom history
+//                 with a bilinear fallback where a tap is occluded, the accumulation speed
+//                 (frames, capped), the fast history, the firefly suppressor; for specular
+//                 also the virtual motion of the reflection, blended by confidence
+//   history fix   a wider reconstruction for pixels younger than historyFixFrames, and the
+//                 fast history's clamp of the slow one (anti-lag)
+//   blur          8 taps, radius shrinking as the history grows
+//   post-blur     twice the radius, stricter weights; writes the history the next frame reads
+// (REBLUR's temporal stabilisation is not built: the accumulation's own window already keeps
+// a still camera's flicker far under the issue's bar; see the closing note of issue 17.)
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "denoise/denoise_settings.h"
+#include "trace/trace_types.h"
+
+namespace ssrt {
+
+// What one frame hands the denoiser; every plane of the frame's size.
+struct DenoiseInputs {
+    TraceCamera camera;
+    uint32_t frameIndex = 0;  // rotates the spatial kernels (counter RNG, core/rng.h)
+    // Guides (the G-buffer, renderer/frame.h): viewZ 0 is background.
+    const PlaneF* viewZ = nullptr;
+    const PlaneF* normal[3] = {};  // world space, unit
+    const PlaneF* roughness = nullptr;
+    const PlaneF* albedo[3] = {};  // with metallic: where the diffuse signal exists
+    const PlaneF* metallic = nullptr;
+    const PlaneF* motion[2] = {};  // previous minus current position, pixels
+    // Diffuse (null: no SSGI): incoming radiance and the mean hit distance (0: no hit).
+    const PlaneF* diffuse[3] = {};
+    const PlaneF* diffuseHitDistance = nullptr;
+    // Specular (null: no SSR): the composite's incoming specular radiance is
+    // opacity ssr + (1 - opacity) environment; the mean hit distance (0: no hit).
+    const PlaneF* ssr[3] = {};
+    const PlaneF* ssrOpacity = nullptr;
+    const PlaneF* envSpecular[3] = {};
+    const PlaneF* specularHitDistance = nullptr;
+    // Pixels this rough or rougher have no specular signal (SSR's roughness fade end).
+    float specularMaxRoughness = 1.0f;
+};
+
+// The denoiser's output, of the frame's size.
+struct DenoiseOutputs {
+    PlaneF diffuse[3];   // incoming diffuse radiance (what the composite multiplies by albedo)
+    PlaneF specular[3];  // incoming specular radiance (what it multiplies by specWeight)
+    PlaneF diffuseFrames, specularFrames;  // frames of history behind each pixel (0: none)
+};
+
+// What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the
+// accumulation speeds, the fast histories, and the guides and camera it was made with.
+struct DenoiseHistory {
+    PlaneF viewZ, normal[3], roughness;
+    PlaneF diffuse[4], specular[4];  // RGB and normalised hit distance
+    PlaneF diffuseFrames, specularFrames;
+    PlaneF diffuseFast, specularFast;  // luma
+    TraceCamera camera;
+    bool valid = false;
+
+    bool usableAt(int width, int height) const {
+        return valid && viewZ.width() == width && viewZ.height() == height;
+    }
+};
+
+// Transient planes, kept between frames so that no pass allocates.
+struct DenoiseScratch {
+    PlaneF noisy[8], pre[8], accumulated[8], fixed[8], blurred[8];  // diffuse 0-3, specular 4-7
+    PlaneF mask[2];              // 1 where the diffuse / specular signal exists, else 0
+    PlaneF frames[2];            // this frame's accumulation speeds
+    PlaneF fast[2];              // this frame's fast luma
+    std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular
+};
+
+struct DenoisePassTime {
+    std::string name;
+    double ms = 0.0;
+};
+
+// Denoises one frame into `out`. `history` (null: none, every pixel starts afresh) is read
+// when usable at this size and `reset` is false, then replaced with this frame's. Throws
+// std::invalid_argument on a missing or mis-sized plane. Appends each pass's time to `times`
+// (optional).
+void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
+             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, DenoiseOutputs& out,
+             int threads, std::vector<DenoisePassTime>* times = nullptr);
+
+}  // namespace ssrt

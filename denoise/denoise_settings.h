@@ -1,0 +1,52 @@
+// The denoiser's settings: NVIDIA NRD's REBLUR (ReblurSettings, NRD v4.14) restated for ssrt,
+// with its defaults. The seed that walks REBLUR pass by pass: shared/seeds/003. Each field's
+// range and help live once, in denoise/denoise_fields.h.
+#pragma once
+
+namespace ssrt {
+
+struct DenoiseSettings {
+    bool enabled = true;  // off: the composite reads the traced signals as they are
+    // Temporal accumulation: frames averaged at most (the history's length), and the fast
+    // history's (REBLUR's maxAccumulatedFrameNum, maxFastAccumulatedFrameNum).
+    int maxAccumulatedFrames = 30;
+    int maxFastAccumulatedFrames = 6;
+    // History fix: pixels younger than this many frames get a wider reconstruction
+    // (historyFixFrameNum), with taps this many pixels apart at age 0 (historyFixBasePixelStride).
+    int historyFixFrames = 3;
+    int historyFixStride = 14;
+    // Spatial radii in pixels (diffusePrepassBlurRadius, specularPrepassBlurRadius,
+    // minBlurRadius, maxBlurRadius).
+    float diffusePrepassRadius = 30.0f;
+    float specularPrepassRadius = 50.0f;
+    float minBlurRadius = 1.0f;
+    float maxBlurRadius = 30.0f;
+    // Edge-stopping: the normal lobe fraction, the roughness fraction, the plane distance as
+    // a fraction of the frustum's height at the pixel's depth, the floor of the hit-distance
+    // weight (lobeAngleFraction, roughnessFraction, planeDistanceSensitivity,
+    // minHitDistanceWeight).
+    float lobeAngleFraction = 0.15f;
+    float roughnessFraction = 0.15f;
+    float planeDistanceSensitivity = 0.02f;
+    float minHitDistanceWeight = 0.1f;
+    // Reprojection: a history tap is occluded when its depth differs from the expected one
+    // by more than this fraction of the frustum's height (CommonSettings::disocclusionThreshold).
+    float disocclusionThreshold = 0.01f;
+    // The firefly suppressor's least allowed ratio to the history's luma
+    // (fireflySuppressorMinRelativeScale).
+    float fireflyMinRelativeScale = 2.0f;
+    // Hit-distance normalisation f(z, r) = (A + B z) lerp(1, C, 2^(D r^2)) (REBLUR's
+    // hitDistanceParameters); A in scene bounding-box diagonals, where NRD has metres, so the
+    // denoiser has no absolute length.
+    float hitDistanceA = 0.25f;
+    float hitDistanceB = 0.1f;
+    float hitDistanceC = 20.0f;
+    float hitDistanceD = -25.0f;
+    // Specular history also follows the reflection's own motion (the virtual point behind the
+    // mirror), not only the surface's (NRD's virtual motion).
+    bool virtualMotion = true;
+
+    void validate() const;  // throws std::invalid_argument naming the field
+};
+
+}  // namespace ssrt

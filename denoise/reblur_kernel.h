@@ -1,0 +1,107 @@
+// The denoiser's per-ISA kernels (denoise/reblur_kernel.cpp, compiled once per ISA) and their
+// argument blocks; denoise/denoise.cpp fills them and runs them per tile.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dispatch.h"
+#include "denoise/reblur_math.h"
+
+namespace ssrt {
+
+// The frame as every pass sees it: its size, camera and guides (planes of one stride).
+struct ReblurView {
+    int width = 0, height = 0, tilesX = 0;
+    std::size_t stride = 0;
+    float tanHalfX = 1.0f, tanHalfY = 1.0f;
+    float viewToWorld[9] = {};
+    float frustum = 1.0f;  // the frustum's short side at view depth 1 (NRD's GetFrustumSize)
+    const float* viewZ = nullptr;
+    const float* normal[3] = {};
+    const float* roughness = nullptr;
+    const float* mask[2] = {};       // 1 where the diffuse / specular signal exists, else 0
+    const uint8_t* tiles = nullptr;  // per tile: bit 0 diffuse, bit 1 specular signal
+    reblur::HitDistanceScale hitScale{};
+};
+
+inline constexpr uint8_t kTileDiffuse = 1, kTileSpecular = 2;
+
+struct ReblurFrontEndArgs {
+    ReblurView view;
+    const float* diffuse[3] = {};  // null: no diffuse signal
+    const float* diffuseHit = nullptr;
+    const float* albedo[3] = {};
+    const float* metallic = nullptr;
+    const float* ssr[3] = {};  // null: no specular signal
+    const float* ssrOpacity = nullptr;
+    const float* envSpecular[3] = {};
+    const float* specularHit = nullptr;
+    float specularMaxRoughness = 1.0f;
+    float* noisy[8] = {};  // diffuse RGB + normalised hit distance, then specular's
+    float* mask[2] = {};
+    uint8_t* tiles = nullptr;
+};
+
+enum class ReblurSpatial { PreBlur, Blur, PostBlur };
+
+struct ReblurSpatialArgs {
+    ReblurView view;
+    ReblurSpatial pass = ReblurSpatial::PreBlur;
+    bool specular = false;
+    const float* in[4] = {};
+    float* out[4] = {};
+    float* copy[4] = {};                  // a second destination (the history), or null
+    const float* frames = nullptr;        // accumulation speed (blur, post-blur); null: pre-blur's
+    uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
+    float radius = 30.0f;                 // pre-blur's radius, or the blur's largest
+    float minRadius = 1.0f;
+    float lobeFraction2 = 0.0225f;  // lobeAngleFraction squared
+    float roughnessFraction = 0.15f;
+    float planeDistance = 0.02f;
+    float minHitWeight = 0.1f;
+    float fractionScale = 1.0f;  // 2 pre-blur (looser), 1 blur, 0.5 post-blur (stricter)
+};
+
+struct ReblurTemporalArgs {
+    ReblurView view;
+    bool specular = false;
+    const float* motion[2] = {};
+    const float* in[4] = {};
+    // The previous frame's (all null: no history).
+    const float* prevViewZ = nullptr;
+    const float* prevNormal[3] = {};
+    const float* prevRoughness = nullptr;
+    const float* prevSignal[4] = {};
+    const float* prevFrames = nullptr;  // accumulation speed + 1 (REBLUR's internal data)
+    const float* prevFast = nullptr;
+    float prevViewToWorld[9] = {};
+    float prevTanHalfX = 1.0f, prevTanHalfY = 1.0f;
+    float cameraDelta[3] = {};  // this camera's position minus the previous one's
+    float maxFrames = 30.0f, maxFastFrames = 6.0f;
+    float disocclusion = 0.01f;
+    float fireflyScale = 2.0f;
+    bool virtualMotion = true;
+    float* out[4] = {};
+    float* outFrames = nullptr;
+    float* outFast = nullptr;
+};
+
+struct ReblurHistoryFixArgs {
+    ReblurView view;
+    bool specular = false;
+    const float* in[4] = {};
+    const float* frames = nullptr;
+    const float* fast = nullptr;  // null: no anti-lag clamp
+    float* out[4] = {};
+    float fixFrames = 3.0f, stride = 14.0f;
+    float lobeFraction2 = 0.0225f;
+    float planeDistance = 0.02f;
+};
+
+SSRT_DECLARE_KERNEL(void, reblurFrontEndTile, (const ReblurFrontEndArgs& args, int tile))
+SSRT_DECLARE_KERNEL(void, reblurSpatialTile, (const ReblurSpatialArgs& args, int tile))
+SSRT_DECLARE_KERNEL(void, reblurTemporalTile, (const ReblurTemporalArgs& args, int tile))
+SSRT_DECLARE_KERNEL(void, reblurHistoryFixTile, (const ReblurHistoryFixArgs& args, int tile))
+
+}  // namespace ssrt
