@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "io/image_io.h"
+#include "renderer/quality.h"
 #include "renderer/settings_fields.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/gltf_loader.h"
@@ -222,6 +223,13 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
     addShotOption("-s,--scene", o.scene, "NAME",
                   "Built-in scene to render (list them: ssrt scenes), or a .gltf/.glb file",
                   defaultSceneName());
+    addShotOption("--quality", o.quality, "PRESET",
+                  "Quality preset: " + std::string(qualityList()) +
+                      " (each a set of the tracing and denoising settings below, which flags "
+                      "given beside it override; the default is " +
+                      std::string(qualityName(kDefaultQuality)) +
+                      "'s values; ultra traces every pixel, as before presets)",
+                  std::string(qualityName(kDefaultQuality)));
     addFieldOptions(cmd, o, d, 0, kRenderOwnFields.size(), "");
     cmd.add_option("--isa", o.isa,
                    "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA "

@@ -15,6 +15,7 @@
 #include "cli/options.h"
 #include "cli/sequence.h"
 #include "io/image_io.h"
+#include "renderer/quality.h"
 #include "renderer/settings_fields.h"
 #include "scenes/shot.h"
 
@@ -90,6 +91,13 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
 RenderSettings settingsFrom(const RenderOptions& o, const RenderSettings& base) {
     RenderSettings s = base;
     for (const auto& [key, text] : o.settings) renderField(key);  // a key the table lacks throws
+    if (o.quality) {
+        const std::optional<Quality> q = parseQuality(*o.quality);
+        if (!q)
+            throw std::invalid_argument("--quality: '" + *o.quality + "' is not one of " +
+                                        std::string(qualityList()));
+        applyQuality(*q, s);  // then the flags given beside it
+    }
     for (const auto& f : kRenderFields) {
         const auto it = o.settings.find(f.key);
         if (it != o.settings.end() && f.has(kFieldCli))

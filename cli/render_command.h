@@ -23,6 +23,7 @@ struct RenderOptions {
     std::optional<std::string> shot;   // a shot file (scenes/shot.h)
     std::optional<std::string> scene;  // a built-in scene or a .gltf/.glb file
     std::optional<std::string> frame, frames, warmupFrames;
+    std::optional<std::string> quality;  // a preset (renderer/quality.h), applied before the fields
     // The settings' fields given (renderer/settings_fields.h): key -> the value as typed; a
     // bool's flag stores "true" or "false". A key not here is not on the command line.
     std::map<std::string, std::string, std::less<>> settings;

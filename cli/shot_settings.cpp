@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "renderer/quality.h"
 #include "renderer/settings_fields.h"
 
 namespace ssrt {
@@ -48,7 +49,7 @@ std::string shotRenderKeys() {
     std::string out;
     for (const auto& f : kRenderFields)
         if (f.has(kFieldShot)) out.append(out.empty() ? "" : ", ").append(f.key);
-    return out + ", frames, frame, warmupFrames";
+    return out + ", quality, frames, frame, warmupFrames";
 }
 
 void applyShot(const Shot& shot, RenderSettings& s) {
@@ -58,7 +59,16 @@ void applyShot(const Shot& shot, RenderSettings& s) {
     const auto& settings = shot.render.settings;
     // Unknown keys first, as the parser reports them at every other level.
     for (const auto& [key, value] : settings)
-        if (!shotField(key)) fail(key, "unknown key (expected one of: " + shotRenderKeys() + ")");
+        if (key != "quality" && !shotField(key))
+            fail(key, "unknown key (expected one of: " + shotRenderKeys() + ")");
+    // A preset first, then the keys given beside it.
+    for (const auto& [key, value] : settings) {
+        if (key != "quality") continue;
+        const std::optional<Quality> q =
+            value.kind == ShotValue::Kind::String ? parseQuality(value.text) : std::nullopt;
+        if (!q) fail(key, "expected one of " + std::string(qualityList()));
+        applyQuality(*q, s);
+    }
     for (const auto& f : kRenderFields) {
         if (!f.has(kFieldShot)) continue;
         const auto it = std::find_if(settings.begin(), settings.end(),

@@ -19,20 +19,17 @@ constexpr double kHalf = double(TraceLayout::Half);
 // and error of each at 1920x1080 and 640x360.
 // ultra: today's full-resolution tracing, denoised.
 constexpr std::array kUltra = {PresetValue{"ssrLayout", kFull}, PresetValue{"ssgiLayout", kFull},
-                               PresetValue{"maxSteps", 512},
-                               PresetValue{"hizMostDetailedLevel", 0}};
+                               PresetValue{"maxSteps", 512}};
 // high: SSGI in a checkerboard, SSR at every pixel.
 constexpr std::array kHigh = {PresetValue{"ssrLayout", kFull},
                               PresetValue{"ssgiLayout", kCheckerboard},
-                              PresetValue{"maxSteps", 512}, PresetValue{"hizMostDetailedLevel", 0}};
+                              PresetValue{"maxSteps", 512}};
 // medium (the default): SSR in a checkerboard, SSGI at half resolution.
 constexpr std::array kMedium = {PresetValue{"ssrLayout", kCheckerboard},
-                                PresetValue{"ssgiLayout", kHalf}, PresetValue{"maxSteps", 512},
-                                PresetValue{"hizMostDetailedLevel", 0}};
-// low: medium with a shorter march that stops a level above full resolution.
+                                PresetValue{"ssgiLayout", kHalf}, PresetValue{"maxSteps", 512}};
+// low: medium with a march of at most 48 Hi-Z iterations.
 constexpr std::array kLow = {PresetValue{"ssrLayout", kCheckerboard},
-                             PresetValue{"ssgiLayout", kHalf}, PresetValue{"maxSteps", 64},
-                             PresetValue{"hizMostDetailedLevel", 1}};
+                             PresetValue{"ssgiLayout", kHalf}, PresetValue{"maxSteps", 48}};
 
 constexpr std::string_view kNames[kQualityCount] = {"low", "medium", "high", "ultra"};
 

@@ -43,8 +43,9 @@ struct TraceSettings {
     // checkerboard that alternates per frame, SSR and SSGI on opposite phases, or (SSGI only)
     // one per 2x2 block on a half-resolution frame. The others are reconstructed from the
     // traced ones (denoise/reconstruct.h) before anything reads the planes.
-    TraceLayout ssrLayout = TraceLayout::Full;
-    TraceLayout ssgiLayout = TraceLayout::Full;
+    // The defaults are the default quality preset's (renderer/quality.h: medium).
+    TraceLayout ssrLayout = TraceLayout::Checkerboard;
+    TraceLayout ssgiLayout = TraceLayout::Half;
     DenoiseSettings denoise;  // REBLUR over both signals (denoise/denoise.h)
 
     static constexpr int kMaxSpp = 64;

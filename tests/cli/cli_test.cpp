@@ -128,7 +128,8 @@ TEST_CASE("cli: every bad number is one error line naming the option and value, 
         {"--max-steps", {"0", "1048577"}},  // MarchSettings's range, 1 to 2^20
         {"--thickness", {"0", "nan", "-0.1"}},
         {"--ssr-resolve", {"blur"}},
-        {"--hit-radiance", {"previous"}}};
+        {"--hit-radiance", {"previous"}},
+        {"--quality", {"extreme", ""}}};
     // (no structured binding: clang 14 cannot capture one in CAPTURE's lambda)
     for (const auto& entry : bad) {
         const std::string& option = entry.first;

@@ -19,6 +19,9 @@ RenderSettings smallTraced() {
     rs.height = 96;
     rs.shadowMapSize = 256;
     rs.threads = 2;
+    // Every pixel traced (the ultra preset): these tests count rays per pixel
+    // (tests/trace/trace_layout_test.cpp has the cut layouts').
+    rs.trace.ssrLayout = rs.trace.ssgiLayout = TraceLayout::Full;
     return rs;
 }
 

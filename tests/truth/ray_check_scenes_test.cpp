@@ -109,6 +109,9 @@ SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher
     rs.height = 180;
     rs.shadowMapSize = 512;
     rs.trace.marcher = marcher;
+    // Every pixel traced: the shares are of every pixel's rays (the half layout's SSGI rays
+    // live on the half frame, which the ray check does not take).
+    rs.trace.ssrLayout = rs.trace.ssgiLayout = TraceLayout::Full;
     std::vector<Sample> samples;
     const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
                                    const MarchResult& march) {
