@@ -183,3 +183,58 @@ TEST_CASE("denoise sequence: a camera cut renders as a fresh history would") {
     CHECK(frameHash(a) == frameHash(b));
     CHECK(a.trace.denoise.out.diffuseFrames.at(80, 45) == 0.0f);
 }
+
+TEST_CASE("denoise sequence: a camera pan reveals background that restarts its history") {
+    // Cornell, panning 3 degrees a frame: a pixel whose previous position showed another
+    // instance nearer the camera (the tall box against the wall behind it) is revealed and
+    // must start afresh (where its whole bilinear footprint did: NRD keeps the taps that
+    // still see the same surface); one that showed its own instance well inside it keeps its frames
+    // (fractions of a frame may go to rounding: the bilinear weights sum to 1 within an ulp).
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings rs = small(defaultIsa(), 2);
+    int revealed = 0, restarted = 0, kept = 0, keptFrames = 0;
+    PlaneF previousIds, previousZ;
+    renderOrbit(scene, rs, 8, 3.0f, [&](int i, const Frame& f) {
+        if (i >= 3) {
+            const PlaneF& ids = f.ids.instanceId;
+            for (int y = 2; y < f.height - 2; ++y)
+                for (int x = 2; x < f.width - 2; ++x) {
+                    if (!(f.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
+                    // The previous position and its bilinear footprint's corner.
+                    const float qx = float(x) + 0.5f + f.gbuffer.motion[0].at(x, y);
+                    const float qy = float(y) + 0.5f + f.gbuffer.motion[1].at(x, y);
+                    const int px = int(std::floor(qx)), py = int(std::floor(qy));
+                    const int fx = int(std::floor(qx - 0.5f)), fy = int(std::floor(qy - 0.5f));
+                    if (fx < 2 || fy < 2 || fx >= f.width - 3 || fy >= f.height - 3) continue;
+                    const float id = ids.at(x, y);
+                    bool same = true;  // the previous 5x5 around it all this instance
+                    for (int dy = -2; dy <= 2; ++dy)
+                        for (int dx = -2; dx <= 2; ++dx)
+                            same &= previousIds.at(px + dx, py + dy) == id;
+                    const float frames = f.trace.denoise.out.diffuseFrames.at(x, y);
+                    // Revealed: the whole footprint showed something nearer.
+                    const float z = f.gbuffer.viewZ.at(x, y);
+                    bool occluded = true;
+                    for (int dy = 0; dy <= 1; ++dy)
+                        for (int dx = 0; dx <= 1; ++dx) {
+                            const float zp = previousZ.at(fx + dx, fy + dy);
+                            occluded &= zp > 0.0f && zp < 0.9f * z;
+                        }
+                    if (occluded && f.gbuffer.metallic.at(x, y) < 1.0f) {
+                        ++revealed;
+                        restarted += frames < 1.0f;
+                    } else if (same) {
+                        ++kept;
+                        keptFrames += frames >= float(i) - 0.5f;  // since frame 0
+                    }
+                }
+        }
+        previousIds = f.ids.instanceId.clone();
+        previousZ = f.gbuffer.viewZ.clone();
+    });
+    MESSAGE("revealed " << revealed << " (restarted " << restarted << "), kept " << kept
+                        << " (full history " << keptFrames << ")");
+    REQUIRE(revealed > 20);
+    CHECK(restarted >= 0.9 * revealed);
+    CHECK(keptFrames >= 0.9 * kept);
+}
