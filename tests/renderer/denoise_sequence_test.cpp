@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "frame_hash.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -35,14 +36,7 @@ RenderSettings small(Isa isa, int threads) {
     return rs;
 }
 
-uint64_t frameHash(const Frame& f) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (const PlaneRef& p : f.layers()) {
-        for (char c : p.name) h = (h ^ uint8_t(c)) * 0x100000001b3ull;
-        h = hashPlane(*p.plane, h);
-    }
-    return h;
-}
+using test::frameHash;
 
 // Renders frames 0..count-1 along an orbit of `degreesPerFrame`, calling fn(i, frame) after
 // each.

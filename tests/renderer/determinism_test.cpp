@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "frame_hash.h"
 #include "material_maps.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
@@ -20,15 +21,7 @@ using namespace ssrt;
 
 namespace {
 
-// One hash over every plane, in order, names included.
-uint64_t frameHash(const Frame& f) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (const PlaneRef& p : f.layers()) {
-        for (char c : p.name) h = (h ^ uint8_t(c)) * 0x100000001b3ull;
-        h = hashPlane(*p.plane, h);
-    }
-    return h;
-}
+using test::frameHash;
 
 // A small HDR sky with structure at every scale: a gradient, a bright sun and per-texel noise
 // (made once, so every render shares one image and its prefiltered levels).

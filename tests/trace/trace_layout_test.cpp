@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/isa.h"
+#include "frame_hash.h"
 #include "renderer/renderer.h"
 #include "renderer/screen_quad.h"
 #include "scenes/builtin_scenes.h"
@@ -55,14 +56,7 @@ Frame renderObserved(const RenderSettings& rs, const Scene& scene, uint32_t fram
 
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, 4) == 0; }
 
-uint64_t frameHash(const Frame& f) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (const PlaneRef& p : f.layers()) {
-        for (char c : p.name) h = (h ^ uint8_t(c)) * 0x100000001b3ull;
-        h = hashPlane(*p.plane, h);
-    }
-    return h;
-}
+using test::frameHash;
 
 Scene quadScene() {
     Material m;
