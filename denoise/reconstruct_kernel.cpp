@@ -114,7 +114,7 @@ SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidat
     }
     // Ratio estimates; the nearest sample alone where every weight vanished; zeros (opacity
     // 0) without a traced candidate.
-    const Mask any = s.w > zero, none = !any & (bestSpace >= zero);
+    const Mask any = s.w > zero, none = (!any) & (bestSpace >= zero);
     const Lane invW = one / ln::select(any, s.w, one);
     const Lane invO = one / ln::select(s.wo > zero, s.wo, one);
     const Lane invH = one / ln::select(s.wh > zero, s.wh, one);
