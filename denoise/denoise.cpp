@@ -310,18 +310,19 @@ void commitHistory(Context& c) {
 
 void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
                  bool diffuse, bool specular, const TileGrid& grid) {
+    const auto keepIf = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(w, h);
+        else p = PlaneF();
+    };
+    // Only the signals present (planes 0-3 diffuse, 4-7 specular).
     for (PlaneF* group : {sc.noisy, sc.pre, sc.accumulated, sc.fixed, sc.blurred})
-        for (int i = 0; i < 8; ++i) group[i].ensureSize(w, h);
+        for (int i = 0; i < 8; ++i) keepIf(i < 4 ? diffuse : specular, group[i]);
     for (int i = 0; i < 2; ++i) {
         sc.mask[i].ensureSize(w, h);
         sc.frames[i].ensureSize(w, h);
         sc.fast[i].ensureSize(w, h);
     }
     sc.tiles.assign(std::size_t(grid.count()), 0);
-    const auto keepIf = [&](bool on, PlaneF& p) {
-        if (on) p.ensureSize(w, h);
-        else p = PlaneF();
-    };
     for (int ch = 0; ch < 3; ++ch) {
         keepIf(diffuse, out.diffuse[ch]);
         keepIf(specular, out.specular[ch]);

@@ -305,7 +305,7 @@ struct History {
     Lane fast;
     Lane quality;  // sqrt of the bilinear weight that survived (REBLUR's footprint quality)
     Mask found;
-    V3 normal;  // the surviving taps' mean normal (not normalised)
+    V3 normal;  // the surviving taps' mean normal (not normalised); virtual reads only
 };
 
 // The previous frame's view-space point of its pixel (tx, ty) at depth zp, in this camera's
@@ -383,9 +383,11 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
             const Lane wn = w[j][i] * inv;
             frames = frames + wn * ln::gather(a.prevFrames, idx);
             fast = fast + wn * ln::gather(a.prevFast, idx);
-            normal = normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
-                                 ln::gather(a.prevNormal[2], idx)} *
-                                  wn;
+            if (!surface)  // (only the virtual read's confidence asks for it)
+                normal =
+                    normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
+                                ln::gather(a.prevNormal[2], idx)} *
+                                 wn;
             for (int ch = 0; ch < 4; ++ch)
                 bil[ch] = bil[ch] + wn * ln::gather(a.prevSignal[ch], idx);
         }
@@ -420,7 +422,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
 // The surface's curvature at the centre from its right (or left) and lower (or upper)
 // neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
 // 0 across a depth edge.
-SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
+SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
     const Lane zero(0.0f);
     Lane sum = zero;
     for (int axis = 0; axis < 2; ++axis) {
@@ -441,7 +443,6 @@ SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
         const Lane k = ln::dot(ns - p.nv, d) / ln::select(same, d2, Lane(1.0f));
         sum = sum + ln::select(same, k, zero);
     }
-    (void)x;
     return sum * Lane(0.5f);
 }
 
@@ -502,7 +503,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
         // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
         // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
-        const Lane kappa = ln::max(curvature(v, p, x, y), zero);
+        const Lane kappa = ln::max(curvature(v, p, y), zero);
         const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
         const V3 dir = ln::normalize(xw);
         const V3 xv = xw + dir * (virtualDistance * dominant);
