@@ -307,7 +307,7 @@ TEST_CASE("compare --frames: one row per frame, flicker on a still camera, the l
     CHECK(!contains(one.out, "per frame"));
 }
 
-TEST_CASE("compare --frames on a moving path: a reference per frame, cached; no flicker") {
+TEST_CASE("compare --frames on a moving path: a reference per frame, cached -- no flicker") {
     TempDir dir;
     writeFile(dir.file("cut.json"), kCutShot);
     const auto args = tinyTruth({"compare", "--shot", dir.file("cut.json"), "--frames", "4",

@@ -45,7 +45,7 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 }  // namespace
 
-TEST_CASE("compare: tables of ray classes, image error and times; the reference is cached") {
+TEST_CASE("compare: tables of ray classes, image error and times -- the reference is cached") {
     TempDir dir;
     // Every pixel traced: the ray check takes full-resolution rays only, and the default
     // preset's SSGI is traced at half resolution (its check layers would be missing).

@@ -54,7 +54,7 @@ TEST_CASE("texture io: 8-bit RGBA PNG, linear and sRGB") {
     }
 }
 
-TEST_CASE("texture io: grey and RGB images fill RGBA; 16-bit keeps its precision") {
+TEST_CASE("texture io: grey and RGB images fill RGBA -- 16-bit keeps its precision") {
     TempDir dir;
     writeImage(dir.file("grey.png"), 2, 1, 1, std::vector<uint8_t>{0, 200});
     const Texture grey = readTexture(dir.file("grey.png"), TextureEncoding::Linear);

@@ -180,7 +180,7 @@ TEST_CASE("NaN and infinite vertices are skipped") {
         }
 }
 
-TEST_CASE("nearer triangles win; equal depth keeps the first submitted") {
+TEST_CASE("nearer triangles win -- equal depth keeps the first submitted") {
     const int w = 32, h = 32;
     const PixelTri farT{{0, 0}, {32, 0}, {0, 32}, 0.8f};
     const PixelTri nearT{{0, 0}, {32, 0}, {0, 32}, 0.2f};

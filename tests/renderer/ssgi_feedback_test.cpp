@@ -52,7 +52,7 @@ bool sameImage(const Frame& a, const Frame& b) {
 
 }  // namespace
 
-TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce; the first has one") {
+TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce -- the first has one") {
     const Scene scene = makeBuiltinScene("cornell");
     FrameInput input = FrameInput::still(scene);
     const Renderer one(smallFeedback(false)), fed(smallFeedback(true));
@@ -91,7 +91,7 @@ TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce; the first 
     CHECK(none.diffuse[0].empty());
 }
 
-TEST_CASE("ssgi feedback: a reset and a size change give one bounce; finite with a sky") {
+TEST_CASE("ssgi feedback: a reset and a size change give one bounce -- finite with a sky") {
     const Scene scene = makeBuiltinScene("cornell");
     const FrameInput input = FrameInput::still(scene);
     const Renderer one(smallFeedback(false)), fed(smallFeedback(true));

@@ -77,7 +77,7 @@ TEST_CASE("texture render: a magnified texture shows its texels at the pixels th
     }
 }
 
-TEST_CASE("texture render: a minified checker averages to grey; without a texture, the factor") {
+TEST_CASE("texture render: a minified checker averages to grey -- without a texture, the factor") {
     Scene scene = quadScene();
     // Nine texels per pixel: lod log2(9), between mip levels 3 and 4, both grey. Level 0
     // alone would read one black or white texel per pixel (centres coincide).

@@ -197,7 +197,7 @@ TEST_CASE("gltf: missing normals are computed, unit length, facing the front sid
     for (const glm::vec3& n : back.meshes[0].normals) closeTo(n, {0, 0, -1});
 }
 
-TEST_CASE("gltf: no material gives glTF's default; no camera gives one fitted to the bounds") {
+TEST_CASE("gltf: no material gives glTF's default -- no camera gives one fitted to the bounds") {
     TempDir dir("gltf");
     Knobs k;
     k.material.clear();
@@ -402,7 +402,7 @@ TEST_CASE("gltf warnings: an extension used but not supported is one line naming
                                           "ignored"});
 }
 
-TEST_CASE("gltf warnings: point and spot lights are one line; the directional light is used") {
+TEST_CASE("gltf warnings: point and spot lights are one line -- the directional light is used") {
     TempDir dir("gltf-warn");
     const std::string path = writeGltf(
         dir, "lights.gltf",

@@ -41,7 +41,7 @@ TEST_CASE("tangents: a plain UV quad gets the tangent (1, 0, 0, +1), as its TANG
     }
 }
 
-TEST_CASE("tangents: the mesh's own are used when present; without UVs any perpendicular") {
+TEST_CASE("tangents: the mesh's own are used when present -- without UVs any perpendicular") {
     Mesh m = quad();
     m.tangents.assign(4, glm::vec4(0, 1, 0, -1));
     CHECK(meshTangents(m, 0) == m.tangents);

@@ -128,7 +128,7 @@ TEST_CASE("texture: the level of detail is log2 of the larger footprint in texel
     }
 }
 
-TEST_CASE("texture: minification averages a checker to grey; magnification keeps its texels") {
+TEST_CASE("texture: minification averages a checker to grey -- magnification keeps its texels") {
     const Texture t = checker(64);
     // Sixteen texels per pixel: level 4, whose texels each average a 16x16 block.
     for (float u : {0.1f, 0.37f, 0.5f, 0.93f}) {

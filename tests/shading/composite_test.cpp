@@ -205,7 +205,7 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("composite: SSR at opacity 0 is the sky; at opacity 1 it replaces envSpecular") {
+TEST_CASE("composite: SSR at opacity 0 is the sky -- at opacity 1 it replaces envSpecular") {
     DirectFixture f("spheres");
     f.shade(Isa::Scalar, true);
     const int w = f.frame.width, h = f.frame.height;

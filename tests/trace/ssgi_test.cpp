@@ -143,7 +143,7 @@ TEST_CASE("ssgi: every hit on a surface of known direct light gives that radianc
     CHECK(out[2].at(7, 7) == doctest::Approx(0.3f).epsilon(1e-6));
 }
 
-TEST_CASE("ssgi: every miss in a constant sky gives the sky; a gradient sky by world direction") {
+TEST_CASE("ssgi: every miss in a constant sky gives the sky -- a gradient sky by world direction") {
     Furnace f;
     f.march.hit.fill(0.0f);
     PlaneF out[3];
@@ -165,7 +165,7 @@ TEST_CASE("ssgi: every miss in a constant sky gives the sky; a gradient sky by w
     }
 }
 
-TEST_CASE("ssgi: samples average; pixels without a ray add 0") {
+TEST_CASE("ssgi: samples average -- pixels without a ray add 0") {
     Furnace f;
     PlaneF out[3];
     resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 2, 2);  // hits

@@ -111,7 +111,7 @@ TEST_CASE("reference bounces: an emitting closed box converges to the geometric 
     CHECK(leaks <= w * h / 1000);
 }
 
-TEST_CASE("reference bounces: more bounces only add diffuse light; the rest keeps its bits") {
+TEST_CASE("reference bounces: more bounces only add diffuse light -- the rest keeps its bits") {
     const ReferenceRig rig("cornell", 96, 54, 2);
     ReferenceSettings s;
     s.spp = 4;
