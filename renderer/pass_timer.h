@@ -61,14 +61,17 @@ public:
         for (std::size_t i = 0; i < tileMs_.size(); ++i)
             busy[i % std::size_t(stages_)] += tileMs_[i];
         double setUp = 0.0, total = 0.0;
+        int ranCount = 0;
         for (int s = 0; s < stages_; ++s) {
             setUp += setUpMs_[std::size_t(s)];
             total += busy[std::size_t(s)];
+            ranCount += ran[s] ? 1 : 0;
         }
         const double loopMs = wallMs - setUp;
         for (int s = 0; s < stages_; ++s) {
             if (!ran[s]) continue;
-            const double share = total > 0.0 ? busy[std::size_t(s)] / total : 0.0;
+            // (A loop too short for the clock to see: equal shares.)
+            const double share = total > 0.0 ? busy[std::size_t(s)] / total : 1.0 / ranCount;
             stats.passes.push_back({names[s], setUpMs_[std::size_t(s)] + loopMs * share});
         }
     }
