@@ -162,13 +162,15 @@ SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
 SSRT_INLINE bool anyNeighbourRay(const SsrResolveArgs& a, int x, int y) {
     if (x < 1 || x + 1 + kW > a.width) return true;
     const Lane zero(0.0f);
-    auto any = zero > zero;
-    for (int yy = std::max(y - 1, 0); yy <= std::min(y + 1, a.height - 1); ++yy) {
+    // The pixel's own row first: where rays are dense the answer comes after one row.
+    for (const int yy : {y, y - 1, y + 1}) {
+        if (yy < 0 || yy >= a.height) continue;
         const std::size_t o = std::size_t(yy) * a.stride + std::size_t(x);
-        any = any | (loadAt(a.pdf, o - 1) > zero) | (loadAt(a.pdf, o) > zero) |
-              (loadAt(a.pdf, o + 1) > zero);
+        if (ln::any((loadAt(a.pdf, o - 1) > zero) | (loadAt(a.pdf, o) > zero) |
+                    (loadAt(a.pdf, o + 1) > zero)))
+            return true;
     }
-    return ln::any(any);
+    return false;
 }
 
 // Stachowiak 2015, "Stochastic Screen-Space Reflections": the 3x3 neighbours' hits, each
