@@ -119,10 +119,11 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
 static_assert(sizeof(Frame::Scratch::tangent) / sizeof(PlaneF) == kResolveTangentOutputs);
 
-// The resolve kernel's arguments: the G-buffer of the visible pixels (and their UVs and
-// tangent frame for the texture pass, whose planes are sized here).
-ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool textured,
-                        Frame& frame) {
+// The G-buffer of the visible pixels (and their UVs for the texture pass).
+ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
+    const ScopedPass timer(frame.stats, "resolve");
+    ResolveTables tables =
+        buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
     GBuffer& g = frame.gbuffer;
     ResolveArgs ra{};
     ra.triangles = tables.triangles.data();
@@ -167,7 +168,9 @@ ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool
                 ra.out[kResolveOutputs + planes + i] = p.row(0);
             }
     }
-    return ra;
+    const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
+    return tables;
 }
 
 // The material planes the scene needs (emission, occlusion) at the frame's size; the others
@@ -182,9 +185,10 @@ void ensureMaterialPlanes(const FrameContext& c, const Scene& scene, MaterialPla
     keepIf(anyOcclusionTextured(scene), m.occlusion);
 }
 
-// What the texture stage reads and writes: base colour, metallic-roughness and normal-map
-// texels into the G-buffer; emission and occlusion into the material planes.
-TexturePlanes texturePlanes(const Scene& scene, Frame& frame) {
+// Base colour, metallic-roughness and normal-map texels into the G-buffer; emission and
+// occlusion into the material planes.
+void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
+    const ScopedPass timer(frame.stats, "textures");
     GBuffer& g = frame.gbuffer;
     TexturePlanes tp;
     const int sets = anyUvSet1(scene) ? 2 : 1;
@@ -204,20 +208,24 @@ TexturePlanes texturePlanes(const Scene& scene, Frame& frame) {
     if (!m.emission[0].empty())
         for (int i = 0; i < 3; ++i) tp.emission[i] = &m.emission[i];
     if (!m.occlusion.empty()) tp.occlusion = &m.occlusion;
-    return tp;
+    applyTextures(scene, tp, c.grid, c.threads);
 }
 
-// Instance and triangle ids of one tile as float planes, from the visibility buffer.
-void idTile(const TileRect& r, const std::vector<ResolveTriangle>& tris, Frame& frame) {
+// Instance and triangle ids as float planes, from the visibility buffer.
+void idPass(const FrameContext& c, const std::vector<ResolveTriangle>& tris, Frame& frame) {
+    const ScopedPass timer(frame.stats, "ids");
     const PlaneU32& ids = frame.scratch.visibility.ids;
     IdPlanes& out = frame.ids;
-    for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x) {
-            const uint32_t id = ids.at(x, y);
-            const bool hit = id != kNoPrimitive;
-            out.instanceId.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
-            out.triangleId.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
-        }
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
+        const TileRect r = c.grid.rect(tile);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const uint32_t id = ids.at(x, y);
+                const bool hit = id != kNoPrimitive;
+                out.instanceId.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
+                out.triangleId.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
+            }
+    });
 }
 
 // An equirect sky's prefiltered levels and irradiance: built on its first frame, then taken
@@ -229,12 +237,12 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
     return cachedSkyLighting(scene.sky.image, c.threads);
 }
 
-// The direct kernel's arguments: direct light, sky and shadow into frame.image; without a
-// trace pass also the tone map (the display), with one the parts the composite rebuilds the
-// colour from (frame.direct; shading/direct_kernel.h) instead, since the composite writes
-// the display.
-void setDirectArgs(const FrameContext& c, const Scene& scene,
-                   std::shared_ptr<const SkyLighting> sky, Frame& frame, DirectLighting& lighting) {
+// Direct light, sky and tone map into frame.image; with a trace pass on, the parts the
+// composite rebuilds the colour from (frame.direct; shading/direct_kernel.h) instead of the
+// tone map, which the composite does.
+void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const SkyLighting> sky,
+                Frame& frame, DirectLighting& lighting) {
+    const ScopedPass timer(frame.stats, "shading");
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
@@ -265,42 +273,8 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
             if (c.settings.trace.ssgi) da.hitLight[ch] = p.hitLight[ch].row(0);
         }
     }
-}
-
-// The stages that read only their own tile's pixels, fused: each tile is resolved into the
-// G-buffer, textured, given its ids and shaded while its planes are in cache, instead of one
-// full-frame pass per stage streaming the G-buffer out and back (issue 18). Timed per stage
-// under the former passes' names (renderer/pass_timer.h, StageClock).
-ResolveTables surfacePass(const FrameContext& c, const Scene& scene,
-                          std::shared_ptr<const SkyLighting> sky, Frame& frame,
-                          DirectLighting& lighting) {
-    enum Stage { kResolve, kTextures, kIds, kShading, kStages };
-    static constexpr const char* kNames[kStages] = {"resolve", "textures", "ids", "shading"};
-    StageClock clock(c.grid.count(), kStages);
-    const auto t0 = PassClock::now();
-    const bool textured = anyTextured(scene);
-    ensureMaterialPlanes(c, scene, frame.material);
-    ResolveTables tables;
-    ResolveArgs ra{};
-    clock.addSetUp(kResolve, [&] {
-        tables = buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
-        ra = resolveArgs(c, tables, textured, frame);
-    });
-    clock.addSetUp(kShading, [&] { setDirectArgs(c, scene, std::move(sky), frame, lighting); });
-    const TexturePlanes tp = textured ? texturePlanes(scene, frame) : TexturePlanes{};
-    const bool ids = c.settings.idPlanes;
-    const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
     const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
-        clock.time(tile, kResolve, [&] { resolve(ra, tile); });
-        if (textured) clock.time(tile, kTextures, [&] { applyTextures(scene, tp, c.grid, tile); });
-        if (ids)
-            clock.time(tile, kIds, [&] { idTile(c.grid.rect(tile), tables.triangles, frame); });
-        clock.time(tile, kShading, [&] { shade(lighting.args, tile); });
-    });
-    const bool ran[kStages] = {true, textured, ids, true};
-    clock.report(msSince(t0), kNames, ran, frame.stats);
-    return tables;
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { shade(da, tile); });
 }
 
 }  // namespace
@@ -368,8 +342,13 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
 
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);
+    const bool textured = anyTextured(scene);
+    ensureMaterialPlanes(c, scene, frame.material);
+    const ResolveTables tables = resolvePass(c, scene, textured, frame);
+    if (textured) texturePass(c, scene, frame);
+    if (settings_.idPlanes) idPass(c, tables.triangles, frame);
     DirectLighting lighting;
-    surfacePass(c, scene, environmentPass(c, scene, frame), frame, lighting);
+    directPass(c, scene, environmentPass(c, scene, frame), frame, lighting);
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (!settings_.trace.any()) return;

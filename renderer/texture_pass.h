@@ -33,7 +33,7 @@ struct TexturePlanes {
     PlaneF* occlusion = nullptr;
 };
 
-// One tile of the grid (the renderer runs it between the tile's resolve and its shading).
-void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid, int tile);
+void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
+                   int threads);
 
 }  // namespace ssrt

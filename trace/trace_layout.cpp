@@ -70,26 +70,17 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     std::vector<uint64_t> rowCut(std::size_t(hh), 0);
     const PixelOffset o = out.offset;
     parallelFor(hh, threads, [&](int hy) {
-        // Plane by plane along the row (the chosen columns once per row), so that each
-        // source row is read in order.
-        std::vector<int> column(static_cast<std::size_t>(hw));
-        for (int hx = 0; hx < hw; ++hx) column[std::size_t(hx)] = halfSource(hx, hy, o, w, h).x;
-        const int sy = halfSource(0, hy, o, w, h).y;
-        for (int p = 0; p < 11; ++p) {
-            const float* in = from[p]->row(sy);
-            float* row = dst[p]->row(hy);
-            for (int hx = 0; hx < hw; ++hx) row[hx] = in[column[std::size_t(hx)]];
+        for (int hx = 0; hx < hw; ++hx) {
+            const PixelOffset s = halfSource(hx, hy, o, w, h);
+            for (int p = 0; p < 11; ++p) dst[p]->at(hx, hy) = from[p]->at(s.x, s.y);
         }
-        // Every block (two rows, two columns, fewer at the edges) holds its chosen pixel, so
-        // the surface pixels left out are the rows' surface pixels less the chosen ones.
-        uint64_t surface = 0;
-        for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y) {
-            const float* z = src.viewZ->row(y);
-            for (int x = 0; x < w; ++x) surface += z[x] > 0.0f ? 1u : 0u;
-        }
-        const float* chosen = out.viewZ.row(hy);
-        for (int hx = 0; hx < hw; ++hx) surface -= chosen[hx] > 0.0f ? 1u : 0u;
-        rowCut[std::size_t(hy)] = surface;
+        uint64_t cut = 0;
+        for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y)
+            for (int x = 0; x < w; ++x) {
+                const PixelOffset s = halfSource(x / 2, hy, o, w, h);
+                if (src.viewZ->at(x, y) > 0.0f && !(x == s.x && y == s.y)) ++cut;
+            }
+        rowCut[std::size_t(hy)] = cut;
     });
     out.cutPixels = 0;
     for (uint64_t c : rowCut) out.cutPixels += c;
