@@ -237,8 +237,9 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
     return cachedSkyLighting(scene.sky.image, c.threads);
 }
 
-// Direct light, sky and tone map into frame.image; with a trace pass on, also the parts the
-// composite rebuilds the colour from (frame.direct; shading/direct_kernel.h).
+// Direct light, sky and tone map into frame.image; with a trace pass on, the parts the
+// composite rebuilds the colour from (frame.direct; shading/direct_kernel.h) instead of the
+// tone map, which the composite does.
 void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const SkyLighting> sky,
                 Frame& frame, DirectLighting& lighting) {
     const ScopedPass timer(frame.stats, "shading");
@@ -260,6 +261,8 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     for (int i = 0; i < 7; ++i) da.out[i] = out[i]->row(0);
     da.outStride = im.color[0].stride();
     if (c.settings.trace.any()) {
+        // The composite overwrites the display (and the colour, which SSR reads before it).
+        for (int i = 3; i < 6; ++i) da.out[i] = nullptr;
         DirectParts& p = frame.direct;
         for (int ch = 0; ch < 3; ++ch) {
             da.direct[ch] = p.direct[ch].row(0);

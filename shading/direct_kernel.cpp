@@ -105,10 +105,9 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};
-    for (int c = 0; c < 3; ++c) {
-        ln::store(out[c] + o, rgb[c]);
-        ln::store(out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
-    }
+    for (int c = 0; c < 3; ++c) ln::store(out[c] + o, rgb[c]);
+    if (out[3])
+        for (int c = 0; c < 3; ++c) ln::store(out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
     ln::store(out[6] + o, visibility);
 }
 
@@ -120,11 +119,12 @@ void shadeTile(const DirectArgs& args, int tile) {
     // groups past the right edge land in the rows' 64-byte padding.
     alignas(64) float rowBuf[7][kTileSize];
     float* bufPtr[7];
-    for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
+    for (int p = 0; p < 7; ++p) bufPtr[p] = args.out[p] ? rowBuf[p] : nullptr;
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
         for (int p = 0; p < 7; ++p) {
+            if (!bufPtr[p]) continue;
             float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW)
                 ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));

@@ -50,7 +50,9 @@ struct DirectArgs {
     float biasConst, biasSlope;  // depth-key units; slope term scales tan(angle to light)
     int pcfRadius;
     float exposure;
-    // Outputs (outStride): color RGB (linear), display RGB (tone mapped, sRGB), shadow.
+    // Outputs (outStride): color RGB (linear), display RGB (tone mapped, sRGB), shadow. The
+    // display triple may be null (not written, its tone map skipped): with a trace pass the
+    // composite writes the display from its own colour.
     float* out[7];
     std::size_t outStride;
     // Optional parts of `color`, for the composite (shading/composite_kernel.h); each an RGB

@@ -155,6 +155,24 @@ SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
     sum.wfl = sum.wfl + L * wf;
 }
 
+// Whether some lane's 3x3 neighbourhood holds a ray (pdf > 0). Without one the reuse sums
+// stay 0 and return colour 0, opacity 0: most rough or checkerboard-cut pixels, whose set-up
+// (view point, normal, the GGX lobe's terms) is then skipped. At the frame's left and right
+// edges it answers yes (the reuse's clamped reads decide there).
+SSRT_INLINE bool anyNeighbourRay(const SsrResolveArgs& a, int x, int y) {
+    if (x < 1 || x + 1 + kW > a.width) return true;
+    const Lane zero(0.0f);
+    // The pixel's own row first: where rays are dense the answer comes after one row.
+    for (const int yy : {y, y - 1, y + 1}) {
+        if (yy < 0 || yy >= a.height) continue;
+        const std::size_t o = std::size_t(yy) * a.stride + std::size_t(x);
+        if (ln::any((loadAt(a.pdf, o - 1) > zero) | (loadAt(a.pdf, o) > zero) |
+                    (loadAt(a.pdf, o + 1) > zero)))
+            return true;
+    }
+    return false;
+}
+
 // Stachowiak 2015, "Stochastic Screen-Space Reflections": the 3x3 neighbours' hits, each
 // weighted by this pixel's GGX lobe (D V n.l) over the neighbour ray's pdf; ratio estimator.
 SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane rough, V3& color,
@@ -210,7 +228,7 @@ void resolveChunk(const SsrResolveArgs& a, int x, int y) {
     Lane opacity = zero;
     if (!ln::all(background)) {
         if (a.reuse) {
-            reuse(a, x, y, viewZ, rough, color, opacity);
+            if (anyNeighbourRay(a, x, y)) reuse(a, x, y, viewZ, rough, color, opacity);
         } else {
             color = {loadAt(a.hitRadiance[0], o), loadAt(a.hitRadiance[1], o),
                      loadAt(a.hitRadiance[2], o)};
