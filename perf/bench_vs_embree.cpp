@@ -205,6 +205,8 @@ Workload& workload(const std::string& name) {
     tc.tanHalfX = tc.tanHalfY * float(kWidth) / float(kHeight);
     tc.nearZ = cam.nearZ;
     tc.farZ = cam.farZ;
+    // The relative march lengths (issue 16) resolve against it, as the world rays' tfar does.
+    tc.sceneDiagonal = w->scene.diagonal();
     const glm::mat3 v2w = glm::mat3(glm::inverse(cam.view()));
     std::copy_n(glm::value_ptr(v2w), 9, tc.viewToWorld);
     buildHiZ(w->viewZ, w->hiz, 0);

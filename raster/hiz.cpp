@@ -75,7 +75,7 @@ bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
     std::size_t total = 0;
     for (std::size_t L = 0; L < minZ.size(); ++L) {
         offset[L] = total;
-        total += std::size_t(hiZPackedTiles(minZ[L].width())) *
+        total += std::size_t(hiZPackedPitch(minZ[L].width())) *
                  std::size_t(hiZPackedTiles(minZ[L].height())) * kHiZPackedTileSize;
     }
     if (total >= kHiZMaxPacked) {
@@ -92,7 +92,7 @@ bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
         const std::size_t L = std::size_t(std::upper_bound(firstRow.begin(), firstRow.end(), job) -
                                           firstRow.begin() - 1);
         const PlaneF& p = minZ[L];
-        const int w = p.width(), h = p.height(), tilesX = hiZPackedTiles(w);
+        const int w = p.width(), h = p.height(), tilesX = hiZPackedPitch(w);
         const int ty = job - firstRow[L];
         float* out =
             packed.data() + offset[L] + std::size_t(ty) * std::size_t(tilesX) * kHiZPackedTileSize;
@@ -111,7 +111,8 @@ bool packInverseMin(const std::vector<PlaneF>& minZ, HiZPacked& packed,
                     dst[std::size_t(tx) * kHiZPackedTileSize + std::size_t(i)] =
                         1.0f / src[tx * kHiZPackedTile + i];
             for (int x = whole * kHiZPackedTile; x < tilesX * kHiZPackedTile; ++x)
-                dst[std::size_t(whole) * kHiZPackedTileSize + std::size_t(x % kHiZPackedTile)] =
+                dst[std::size_t(x / kHiZPackedTile) * kHiZPackedTileSize +
+                    std::size_t(x % kHiZPackedTile)] =
                     x < w ? 1.0f / src[x] : 0.0f;  // padding: background
         }
     });

@@ -22,17 +22,27 @@ namespace ssrt {
 using HiZPacked = std::vector<float, AlignedAllocator<float, 64>>;
 
 // The packed copy's layout: each level in 4x4 tiles of 16 floats (row-major within a tile,
-// tiles row-major), its width and height rounded up to whole tiles (padding 0, background);
-// level L starts at packedOffset[L], a multiple of 16. A ray that moves a few pixels in any
-// direction stays in one cache line more often than with rows (vertical steps cross a line
-// every row there).
+// tiles row-major), its height rounded up to whole tiles and its rows of tiles to a power of
+// two tiles (hiZPackedPitch; padding 0, background); level L starts at packedOffset[L], a
+// multiple of 16. A ray that moves a few pixels in any direction stays in one cache line more
+// often than with rows (vertical steps cross a line every row there), and the power-of-two
+// pitch makes a texel's index shifts and adds (the marcher's multiply was on the path to
+// every depth gather). The padding tiles are written, never read.
 // Tiles across a level of width `size` (or down one of height `size`).
 inline constexpr int hiZPackedTiles(int size) {
     return (size + kHiZPackedTile - 1) / kHiZPackedTile;
 }
-// Index of texel (x, y) of a level within its packed copy.
-inline constexpr std::size_t hiZPackedIndex(int x, int y, int tilesX) {
-    return (std::size_t(y / kHiZPackedTile) * std::size_t(tilesX) +
+// Tiles in a packed row of tiles of a level of width `size`: hiZPackedTiles rounded up to a
+// power of two, 2^hiZPackedPitchLog2.
+inline constexpr int hiZPackedPitchLog2(int size) {
+    int log2 = 0;
+    while ((1 << log2) < hiZPackedTiles(size)) ++log2;
+    return log2;
+}
+inline constexpr int hiZPackedPitch(int size) { return 1 << hiZPackedPitchLog2(size); }
+// Index of texel (x, y) of a level within its packed copy; pitch = hiZPackedPitch(width).
+inline constexpr std::size_t hiZPackedIndex(int x, int y, int pitch) {
+    return (std::size_t(y / kHiZPackedTile) * std::size_t(pitch) +
             std::size_t(x / kHiZPackedTile)) *
                kHiZPackedTileSize +
            std::size_t((y % kHiZPackedTile) * kHiZPackedTile + x % kHiZPackedTile);

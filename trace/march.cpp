@@ -195,6 +195,8 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
             proto.hizStride[L] = p.stride();
             proto.hizWidth[L] = p.width();
             proto.hizHeight[L] = p.height();
+            proto.hizWidthF[L] = float(p.width());
+            proto.hizHeightF[L] = float(p.height());
         }
         // The packed reciprocal copy for the hardware gather: buildHiZ's, or made here for a
         // pyramid without one (of more than kMaxHiZLevels levels, only those are read).
@@ -208,9 +210,8 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
         if (!inv->empty()) {
             for (int L = 0; L < proto.hizLevels; ++L) {
                 proto.hizOffset[L] = float((*offset)[std::size_t(L)]);
-                proto.hizWidthF[L] = float(proto.hizWidth[L]);
-                proto.hizHeightF[L] = float(proto.hizHeight[L]);
-                proto.hizTilesX[L] = float(hiZPackedTiles(proto.hizWidth[L]));
+                proto.hizPitch[L] = float(hiZPackedPitch(proto.hizWidth[L]));
+                proto.hizRowShift[L] = float(hiZPackedPitchLog2(proto.hizWidth[L]) + 4);
             }
             proto.hizInvPacked = inv->data();
         }

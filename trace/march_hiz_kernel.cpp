@@ -41,34 +41,47 @@ SSRT_INLINE Lane levelTable(const float* table, ILane L) {
 SSRT_INLINE Lane levelCellSize(ILane L) { return ln::floatFromBits((L + ILane(127)) << 23); }
 SSRT_INLINE Lane levelInvCellSize(ILane L) { return ln::floatFromBits((ILane(127) - L) << 23); }
 
-// 1/minZ of level L at cell (cx, cy) (background 0), per lane: levels differ between lanes.
-SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, ILane L, Lane level, Lane cx, Lane cy) {
+// The first element of row of tiles ty of level L, relative to the level: ty x the pitch's
+// 16-float tiles, a shift per lane where the ISA has one (the pitch is a power of two), else a
+// multiply. The same integers either way.
+SSRT_INLINE ILane tileRowStart(const MarchKernelArgs& a, ILane L, ILane ty) {
+#if defined(SSRT_ISA_avx512)
+    return ILane(_mm512_sllv_epi32(ty, ln::toIntTrunc(levelTable(a.hizRowShift, L))));
+#elif defined(SSRT_ISA_avx2)
+    return ILane(_mm256_sllv_epi32(ty, ln::toIntTrunc(levelTable(a.hizRowShift, L))));
+#else
+    return (ty * ln::toIntTrunc(levelTable(a.hizPitch, L))) << 4;
+#endif
+}
+
+// 1/minZ of level L at cell (x, y) (background 0), per lane: levels differ between lanes.
+// The cell is already clamped into its level (cellOf).
+SSRT_INLINE Lane loadInvMinZ(const MarchKernelArgs& a, ILane L, ILane x, ILane y) {
     if (a.hizInvPacked) {
         // Packed pyramid in 4x4 tiles (raster/hiz.h, hiZPackedIndex): the level tables from
-        // registers, one gather for the depth. (Lanes already done may point anywhere, NaN
-        // included: the clamps keep every lane inside its level.)
-        const Lane one(1.0f);
-        const ILane x = ln::toIntTrunc(ln::clamp(cx, Lane(0.0f), levelTable(a.hizWidthF, L) - one));
-        const ILane y =
-            ln::toIntTrunc(ln::clamp(cy, Lane(0.0f), levelTable(a.hizHeightF, L) - one));
-        const ILane tilesX = ln::toIntTrunc(levelTable(a.hizTilesX, L));
+        // registers, one gather for the depth.
         static_assert(kHiZPackedTile == 4 && kHiZPackedTileSize == 16);
-        const ILane tile = (y >> 2) * tilesX + (x >> 2);
-        const ILane index = ln::toIntTrunc(levelTable(a.hizOffset, L)) + (tile << 4) +
-                            ((y & ILane(3)) << 2) + (x & ILane(3));
+        const ILane index =
+            (ln::toIntTrunc(levelTable(a.hizOffset, L)) + tileRowStart(a, L, y >> 2)) +
+            (((x >> 2) << 4) + (((y & ILane(3)) << 2) + (x & ILane(3))));
         return ln::gather(a.hizInvPacked, index);
     }
-    alignas(64) float lv[kW], x[kW], y[kW], out[kW];
-    ln::store(lv, level);
-    ln::store(x, cx);
-    ln::store(y, cy);
-    for (int l = 0; l < kW; ++l) {
-        const int L = int(lv[l]);
-        const int ix = clampIndex(int(x[l]), 0, a.hizWidth[L] - 1);
-        const int iy = clampIndex(int(y[l]), 0, a.hizHeight[L] - 1);
-        out[l] = 1.0f / a.hizMin[L][std::size_t(iy) * a.hizStride[L] + std::size_t(ix)];
-    }
+    alignas(64) int32_t lv[kW], ix[kW], iy[kW];
+    alignas(64) float out[kW];
+    ln::store(lv, L);
+    ln::store(ix, x);
+    ln::store(iy, y);
+    for (int l = 0; l < kW; ++l)
+        out[l] =
+            1.0f / a.hizMin[lv[l]][std::size_t(iy[l]) * a.hizStride[lv[l]] + std::size_t(ix[l])];
     return ln::load<Lane>(out);
+}
+
+// The cell of level L (cells of 1 / invSize pixels) under pixel position p, clamped into a
+// level of `cells` cells. For a lane still marching p is on screen (>= 0), where the floor
+// is the truncation; the clamp keeps every other lane (NaN included) inside the level.
+SSRT_INLINE ILane cellOf(Lane p, Lane invSize, Lane cells) {
+    return ln::toIntTrunc(ln::clamp(p * invSize, Lane(0.0f), cells - Lane(1.0f)));
 }
 
 // One lane group of rays in flight: set-up, one traversal iteration, validation.
@@ -139,8 +152,10 @@ struct Group {
         // The cell's minimum depth and the three planes.
         const ILane L = ln::toIntTrunc(level);
         const Lane size = levelCellSize(L), invSize = levelInvCellSize(L);
-        const Lane cellX = ln::floor(px * invSize), cellY = ln::floor(py * invSize);
-        const Lane kSurface = loadInvMinZ(a, L, level, cellX, cellY);  // background: 0
+        const ILane ix = cellOf(px, invSize, levelTable(a.hizWidthF, L));
+        const ILane iy = cellOf(py, invSize, levelTable(a.hizHeightF, L));
+        const Lane kSurface = loadInvMinZ(a, L, ix, iy);  // background: 0
+        const Lane cellX = ln::toFloat(ix), cellY = ln::toFloat(iy);
         const Lane tx = ((cellX + floorX) * size + nudgeX - s.x0) * invDx;
         const Lane ty = ((cellY + floorY) * size + nudgeY - s.y0) * invDy;
         const Lane tz = ln::select(deeper, (kSurface - s.k0) * invDk, big);

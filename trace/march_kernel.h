@@ -32,13 +32,15 @@ struct MarchKernelArgs {
     const float* hizMin[kMaxHiZLevels];
     std::size_t hizStride[kMaxHiZLevels];
     int hizWidth[kMaxHiZLevels], hizHeight[kMaxHiZLevels];
+    // Each level's width and height as floats, for the kernels' lane tables.
+    float hizWidthF[kMaxHiZLevels], hizHeightF[kMaxHiZLevels];
     // The same levels packed as 1/minZ (background 0) in 4x4 tiles (raster/hiz.h,
-    // hiZPackedIndex), with each level's first element, width, height and tiles across as
-    // floats (exact: the whole is < 2^24 elements), for a hardware gather; null when the
-    // pyramid is too large (then the planes are read).
+    // hiZPackedIndex), with each level's first element, tiles per row of tiles (a power of
+    // two) and the shift that is a row of tiles' elements (log2 pitch + 4) as floats (exact:
+    // the whole is < 2^24 elements), for a hardware gather; null when the pyramid is too
+    // large (then the planes are read).
     const float* hizInvPacked;
-    float hizOffset[kMaxHiZLevels], hizWidthF[kMaxHiZLevels], hizHeightF[kMaxHiZLevels],
-        hizTilesX[kMaxHiZLevels];
+    float hizOffset[kMaxHiZLevels], hizPitch[kMaxHiZLevels], hizRowShift[kMaxHiZLevels];
     // Settings.
     int maxSteps;
     float maxDistance, ddaStride;

@@ -176,7 +176,12 @@ TEST_CASE("march: hi-z packs 1/minZ once, and marching from it equals packing pe
     for (int L = 0; L < hiz.levels(); ++L) {
         const PlaneF& lo = hiz.minZ[std::size_t(L)];
         const float* packed = hiz.invMinPacked.data() + hiz.packedOffset[std::size_t(L)];
-        const int tilesX = (lo.width() + 3) / 4, tilesY = (lo.height() + 3) / 4;
+        // Rows of tiles padded to a power of two tiles (101 px: 26 tiles, pitch 32).
+        const int tilesY = (lo.height() + 3) / 4;
+        int tilesX = 1;
+        while (tilesX * 4 < lo.width()) tilesX *= 2;
+        CHECK(hiZPackedPitch(lo.width()) == tilesX);
+        CHECK((1 << hiZPackedPitchLog2(lo.width())) == tilesX);
         for (int y = 0; y < tilesY * 4; ++y)
             for (int x = 0; x < tilesX * 4; ++x) {
                 // 4x4 tiles of 16 floats, row-major within a tile and across tiles; texels past
