@@ -80,6 +80,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
         "out_0001.png, ...)");
+    addImageOutputOptions(*cmd, o);
     addTraceOptions(*cmd, o);
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
@@ -132,6 +133,11 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const SequencePlan plan = sequencePlanFrom(o, request);
     const int frames = plan.frames;
     checkWritable(sequenceFileName(o.output, 0, frames));
+    const WriteOptions writeOptions = writeOptionsFrom(o, settings, o.output, err);
+    if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
+        throw std::invalid_argument(
+            "--layers: a rendered frame has no truth layers (ssrt "
+            "compare adds them), so 'truth' alone writes nothing");
     // Loaded before anything is written.
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -163,7 +169,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
         const int i = sequence.frameOf(step);
         const std::string file = sequenceFileName(o.output, i, frames);
-        writeImage(file, frame);
+        writeImage(file, frame, writeOptions);
         if (!o.quiet) {
             if (frames > 1)
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file

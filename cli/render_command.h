@@ -29,6 +29,8 @@ struct RenderOptions {
     std::map<std::string, std::string, std::less<>> settings;
     std::string isa;
     std::string output = "ssrt.png";
+    // --layers and --exr-compression as typed (unset: every layer, the default compression).
+    std::optional<std::string> layers, exrCompression;
     bool stats = false;
     bool quiet = false;
     bool strict = false;  // --strict: a glTF file's warnings are errors
