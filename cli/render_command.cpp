@@ -169,7 +169,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
         const int i = sequence.frameOf(step);
         const std::string file = sequenceFileName(o.output, i, frames);
+        const auto written = std::chrono::steady_clock::now();
         writeImage(file, frame, writeOptions);
+        const std::chrono::duration<double, std::milli> write =
+            std::chrono::steady_clock::now() - written;
         if (!o.quiet) {
             if (frames > 1)
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file
@@ -181,7 +184,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             // The renderer may report the thread setting (0 = every core) rather than the count.
             FrameStats stats = frame.stats;
             if (stats.threads <= 0) stats.threads = threadsFor(settings);
-            printStats(out, stats, wall.count());
+            printStats(out, stats, wall.count(), write.count());
         }
     }
     return kExitOk;
@@ -233,7 +236,7 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
 
 }  // namespace
 
-void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
+void printStats(std::ostream& out, const FrameStats& stats, double wallMs, double writeMs) {
     std::ios saved(nullptr);  // the caller's stream formatting, restored at the end
     saved.copyfmt(out);
     const auto row = [&](const std::string& label) -> std::ostream& {
@@ -251,7 +254,8 @@ void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
         sum += p.ms;
     }
     row("sum of passes") << std::setw(kValueWidth) << sum << "\n";
-    row("render call") << std::setw(kValueWidth) << wallMs << "\n\n";
+    row("render call") << std::setw(kValueWidth) << wallMs << "\n";
+    row("image write") << std::setw(kValueWidth) << writeMs << "\n\n";
 
     out << std::left << std::setw(kLabelWidth + 2) << "raster counter" << std::right
         << std::setw(kValueWidth) << "visibility" << std::setw(kValueWidth) << "shadow"

@@ -308,12 +308,12 @@ TEST_CASE("cli: --stats prints every pass and every raster counter of both passe
         sha[i] = 2000 + i;
     }
     std::ostringstream out;
-    cli::printStats(out, stats, 4.5);
+    cli::printStats(out, stats, 4.5, 7.25);
     const std::string text = out.str();
     CHECK(contains(text, "sse2"));
     CHECK(contains(text, "3 threads"));
-    for (const char* part :
-         {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875", "4.500"})
+    for (const char* part : {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875",
+                             "4.500", "image write", "7.250"})
         CHECK(contains(text, part));
     for (int i = 0; i < kCounters; ++i) {
         CAPTURE(i);
@@ -332,6 +332,7 @@ TEST_CASE("cli: render writes the file, reports progress and stats") {
     CHECK(contains(r.err, ", 1 thread..."));
     CHECK(contains(r.err, "wrote " + path));
     CHECK(contains(r.out, "pixels written"));
+    CHECK(contains(r.out, "image write"));
     const auto channels = readChannelNames(path);
     for (const char* name : {"display.R", "color.R", "viewZ"})
         CHECK(std::find(channels.begin(), channels.end(), name) != channels.end());
