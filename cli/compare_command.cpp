@@ -227,6 +227,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
            "ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
            "off-screen truth), or .png")
         ->type_name("FILE");
+    addImageOutputOptions(*cmd, o.render);
     return cmd;
 }
 
@@ -239,6 +240,8 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
+    const WriteOptions writeOptions =
+        o.output ? writeOptionsFrom(o.render, settings, *o.output, err) : WriteOptions{};
     if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -282,7 +285,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     }
     if (o.output) {
         appendTruthPlanes(frame, result.reference, ev);
-        writeImage(*o.output, frame);
+        writeImage(*o.output, frame, writeOptions);
         if (progress) *progress << "wrote " << *o.output << "\n";
     }
     return kExitOk;

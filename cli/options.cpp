@@ -245,6 +245,47 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
                  "extensions or textures ignored) is an error: exit 1, nothing written");
 }
 
+void addImageOutputOptions(CLI::App& cmd, RenderOptions& o) {
+    cmd.add_option_function<std::string>(
+           "--layers", [&o](const std::string& v) { o.layers = v; },
+           "EXR layer groups to write, comma-separated: all, or " + layerGroupList() +
+               " (color: color, display, shadow; gbuffer: the G-buffer, material planes and "
+               "ids; trace: SSR, SSGI and the denoiser's; truth: compare's reference and checks)")
+        ->type_name("LIST")
+        ->default_str("all");
+    cmd.add_option_function<std::string>(
+           "--exr-compression", [&o](const std::string& v) { o.exrCompression = v; },
+           "EXR compression, all lossless: " + exrCompressionList() +
+               " (none is fastest and largest; zip and piz the smallest and slowest)")
+        ->type_name("NAME")
+        ->default_str(std::string(exrCompressionName(kDefaultExrCompression)));
+}
+
+WriteOptions writeOptionsFrom(const RenderOptions& o, const RenderSettings& settings,
+                              const std::string& output, std::ostream& err) {
+    WriteOptions w;
+    w.threads = threadsFor(settings);
+    if (o.layers) {
+        w.layers.reset();
+        for (const std::string& item : splitList("--layers", *o.layers))
+            w.layers |=
+                item == "all"
+                    ? allLayerGroups()
+                    : LayerGroups().set(int(parseChoice("--layers", item, parseLayerGroup,
+                                                        "all or one of " + layerGroupList())));
+    }
+    if (o.exrCompression)
+        w.compression = parseChoice("--exr-compression", *o.exrCompression, parseExrCompression,
+                                    exrCompressionList());
+    std::string ext = fs::path(output).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if ((o.layers || o.exrCompression) && ext != ".exr")
+        err << "ssrt: warning: --layers and --exr-compression apply to EXR files only; '" << output
+            << "' is not one, so they are ignored\n";
+    return w;
+}
+
 std::vector<std::string> splitList(const std::string& option, const std::string& text) {
     std::vector<std::string> items;
     std::string item;

@@ -13,6 +13,7 @@
 #include "cli/shot_settings.h"
 #include "core/fields.h"
 #include "core/isa.h"
+#include "io/write_options.h"
 #include "renderer/renderer.h"
 #include "scenes/camera_path.h"
 #include "scenes/scene.h"
@@ -71,6 +72,14 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& options, const RenderSettings
 // (--no-ssr, --no-ssgi, --ssr-method, --marcher, --ssr-spp, --ssgi-spp, --trace-hidden,
 // --max-steps, --thickness, ..., --ssr-resolve, --hit-radiance, ...).
 void addTraceOptions(CLI::App& cmd, RenderOptions& options);
+
+// --layers and --exr-compression (EXR output only).
+void addImageOutputOptions(CLI::App& cmd, RenderOptions& options);
+// How `output` is written: the layer groups and compression given (checked: an unknown name
+// throws std::invalid_argument naming the option), compressed on the render's threads. A PNG
+// output with either option given warns on `err` that it is ignored.
+WriteOptions writeOptionsFrom(const RenderOptions& options, const RenderSettings& settings,
+                              const std::string& output, std::ostream& err);
 
 // A CSV file to write later: the name must end in .csv (std::invalid_argument naming
 // `option`), its folder must exist and it must not be a folder (std::runtime_error).

@@ -80,6 +80,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
         "out_0001.png, ...)");
+    addImageOutputOptions(*cmd, o);
     addTraceOptions(*cmd, o);
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
@@ -132,6 +133,11 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const SequencePlan plan = sequencePlanFrom(o, request);
     const int frames = plan.frames;
     checkWritable(sequenceFileName(o.output, 0, frames));
+    const WriteOptions writeOptions = writeOptionsFrom(o, settings, o.output, err);
+    if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
+        throw std::invalid_argument(
+            "--layers: a rendered frame has no truth layers (ssrt "
+            "compare adds them), so 'truth' alone writes nothing");
     // Loaded before anything is written.
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -163,7 +169,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
         const int i = sequence.frameOf(step);
         const std::string file = sequenceFileName(o.output, i, frames);
-        writeImage(file, frame);
+        const auto written = std::chrono::steady_clock::now();
+        writeImage(file, frame, writeOptions);
+        const std::chrono::duration<double, std::milli> write =
+            std::chrono::steady_clock::now() - written;
         if (!o.quiet) {
             if (frames > 1)
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file
@@ -175,7 +184,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             // The renderer may report the thread setting (0 = every core) rather than the count.
             FrameStats stats = frame.stats;
             if (stats.threads <= 0) stats.threads = threadsFor(settings);
-            printStats(out, stats, wall.count());
+            printStats(out, stats, wall.count(), write.count());
         }
     }
     return kExitOk;
@@ -227,7 +236,7 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
 
 }  // namespace
 
-void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
+void printStats(std::ostream& out, const FrameStats& stats, double wallMs, double writeMs) {
     std::ios saved(nullptr);  // the caller's stream formatting, restored at the end
     saved.copyfmt(out);
     const auto row = [&](const std::string& label) -> std::ostream& {
@@ -245,7 +254,8 @@ void printStats(std::ostream& out, const FrameStats& stats, double wallMs) {
         sum += p.ms;
     }
     row("sum of passes") << std::setw(kValueWidth) << sum << "\n";
-    row("render call") << std::setw(kValueWidth) << wallMs << "\n\n";
+    row("render call") << std::setw(kValueWidth) << wallMs << "\n";
+    row("image write") << std::setw(kValueWidth) << writeMs << "\n\n";
 
     out << std::left << std::setw(kLabelWidth + 2) << "raster counter" << std::right
         << std::setw(kValueWidth) << "visibility" << std::setw(kValueWidth) << "shadow"

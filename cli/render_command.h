@@ -29,6 +29,8 @@ struct RenderOptions {
     std::map<std::string, std::string, std::less<>> settings;
     std::string isa;
     std::string output = "ssrt.png";
+    // --layers and --exr-compression as typed (unset: every layer, the default compression).
+    std::optional<std::string> layers, exrCompression;
     bool stats = false;
     bool quiet = false;
     bool strict = false;  // --strict: a glTF file's warnings are errors
@@ -59,7 +61,8 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for
 // the screen-space passes rays, misses by cause, steps per ray and SIMD lane utilisation.
-// `wallMs` is the whole render call as the CLI timed it.
-void printStats(std::ostream& out, const FrameStats& stats, double wallMs);
+// `wallMs` is the whole render call as the CLI timed it, `writeMs` the image file's write
+// (encoding, compression and the rename), after it.
+void printStats(std::ostream& out, const FrameStats& stats, double wallMs, double writeMs);
 
 }  // namespace ssrt::cli

@@ -1,5 +1,11 @@
 #include "io/image_io.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
 #include <fcntl.h>
@@ -16,6 +22,7 @@
 #include <set>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 
 #include "scenes/texture.h"  // srgbToLinear
 #include "shading/environment.h"
@@ -152,56 +159,77 @@ uint8_t quantise(float v) {
 // ---------------------------------------------------------------------------------------
 // Writers (into an already reserved temporary)
 
-void writeScanlines(const std::string& path, const fs::path& tmp, const OIIO::ImageSpec& spec,
-                    const std::vector<const PlaneF*>& planes, bool toBytes) {
+// 8-bit RGB from the display planes, a row at a time.
+void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
+    const PlaneF* planes[3];
+    for (int c = 0; c < 3; ++c) planes[c] = findPlane(image, kDisplayPlanes[c]);
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("Software", "ssrt");
     auto out = OIIO::ImageOutput::create(tmp.string());
     if (!out) failWrite(path, OIIO::geterror());
     if (!out->open(tmp.string(), spec)) failWrite(path, out->geterror());
-    const std::size_t n = planes.size();
-    std::vector<float> rowF(toBytes ? 0 : std::size_t(spec.width) * n);
-    std::vector<uint8_t> rowB(toBytes ? std::size_t(spec.width) * n : 0);
-    for (int y = 0; y < spec.height; ++y) {
-        // Interleave one row of the planes (each plane is its own array in memory).
-        for (std::size_t c = 0; c < n; ++c) {
+    std::vector<uint8_t> row(std::size_t(image.width) * 3);
+    for (int y = 0; y < image.height; ++y) {
+        for (int c = 0; c < 3; ++c) {
             const float* src = planes[c]->row(y);
-            for (int x = 0; x < spec.width; ++x) {
-                if (toBytes) rowB[x * n + c] = quantise(src[x]);
-                else rowF[x * n + c] = src[x];
-            }
+            for (int x = 0; x < image.width; ++x) row[std::size_t(x) * 3 + c] = quantise(src[x]);
         }
-        const bool ok = toBytes ? out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, rowB.data())
-                                : out->write_scanline(y, 0, OIIO::TypeDesc::FLOAT, rowF.data());
-        if (!ok) failWrite(path, out->geterror());
+        if (!out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, row.data()))
+            failWrite(path, out->geterror());
     }
     if (!out->close()) failWrite(path, out->geterror());
 }
 
-void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
-    std::vector<const PlaneF*> planes;
-    for (const char* name : kDisplayPlanes) planes.push_back(findPlane(image, name));
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("Software", "ssrt");
-    writeScanlines(path, tmp, spec, planes, true);
+// OpenEXR's compression for ours (all lossless).
+Imf::Compression exrCompression(ExrCompression c) {
+    switch (c) {
+        case ExrCompression::None: return Imf::NO_COMPRESSION;
+        case ExrCompression::Rle: return Imf::RLE_COMPRESSION;
+        case ExrCompression::Zips: return Imf::ZIPS_COMPRESSION;
+        case ExrCompression::Zip: return Imf::ZIP_COMPRESSION;
+        case ExrCompression::Piz: return Imf::PIZ_COMPRESSION;
+    }
+    throw std::logic_error("unknown EXR compression");
 }
 
-void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
-    std::vector<const PlaneF*> planes;
-    OIIO::ImageSpec spec(image.width, image.height, int(image.layers.size()),
-                         OIIO::TypeDesc::FLOAT);
-    spec.channelnames.clear();
+// OpenEXR directly rather than through OpenImageIO: its frame buffer reads each plane where it
+// lies (a slice per plane, with the plane's stride), so nothing is interleaved or copied, and
+// one writePixels call over every row lets its thread pool compress blocks of rows in
+// parallel (one scanline at a time, as OpenImageIO hands them over, cannot be).
+void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& image,
+              const WriteOptions& options) {
+    Imf::Header header(image.width, image.height);
+    header.compression() = exrCompression(options.compression);
+    header.insert("software", Imf::StringAttribute("ssrt"));
+    Imf::FrameBuffer buffer;
     for (const PlaneRef& p : image.layers) {
-        spec.channelnames.emplace_back(p.name);
-        planes.push_back(p.plane);
+        const std::string name(p.name);
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        // OpenEXR's slices take a non-const base; an output file only reads through it.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(p.plane->row(0)));
+        buffer.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                       std::size_t(p.plane->stride()) * sizeof(float)));
     }
-    // The constructor guessed RGBA; our fourth plane is not alpha and none is "Z" depth.
-    spec.alpha_channel = -1;
-    spec.z_channel = -1;
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "ssrt");
-    // OpenImageIO writes the current time as capDate unless given a DateTime: an empty one
-    // keeps the file's bytes the same whenever it is written.
-    spec.attribute("DateTime", "");
-    writeScanlines(path, tmp, spec, planes, false);
+    // The pool is OpenEXR's, process-wide; the file's own count is how many blocks of rows it
+    // keeps in flight. Neither changes the bytes written.
+    const int threads =
+        options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
+    try {
+        Imf::OutputFile file(tmp.c_str(), header, threads);
+        file.setFrameBuffer(buffer);
+        file.writePixels(image.height);
+    } catch (const std::exception& e) {
+        failWrite(path, e.what());
+    }
+}
+
+// The layers of the groups asked for, in the frame's order.
+ImageLayers chosenLayers(const ImageLayers& image, const LayerGroups& groups) {
+    ImageLayers out{image.width, image.height, {}};
+    for (const PlaneRef& p : image.layers)
+        if (hasGroup(groups, p.group)) out.layers.push_back(p);
+    return out;
 }
 
 }  // namespace
@@ -222,18 +250,19 @@ void checkWritable(const std::string& path) {
     fs::remove(probe, ec);
 }
 
-void writeImage(const std::string& path, const Frame& frame) {
-    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers()});
+void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options) {
+    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers()}, options);
 }
 
-void writeImage(const std::string& path, const ImageLayers& frame) {
+void writeImage(const std::string& path, const ImageLayers& image, const WriteOptions& options) {
     const std::string ext = checkedExtension(path);
+    const ImageLayers frame = ext == ".exr" ? chosenLayers(image, options.layers) : image;
     checkFrame(path, frame, ext);
     checkDirectory(path);
     const fs::path tmp = reserveTemporary(path, ext);
     try {
         if (ext == ".png") writePng(path, tmp, frame);
-        else writeExr(path, tmp, frame);
+        else writeExr(path, tmp, frame, options);
         // rename() within one directory replaces the target atomically: readers see the old
         // file or the new one, never a half-written one.
         std::error_code ec;

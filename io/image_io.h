@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/write_options.h"
 #include "renderer/frame.h"
 #include "scenes/scene.h"
 
@@ -13,22 +14,26 @@ namespace ssrt {
 // Writes a frame, the format chosen by the extension (case-insensitive):
 //   .png  8-bit RGB from display.{R,G,B} (already tone mapped and sRGB encoded), each value
 //         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0.
-//   .exr  32-bit float, one channel per named plane, channel name = plane name ("color.R",
-//         "viewZ", ...), so viewers show "color", "normal", ... as layers. Float, not half:
-//         ids and view depth need every bit.
+//   .exr  32-bit float, one channel per named plane of the groups options.layers names,
+//         channel name = plane name ("color.R", "viewZ", ...), so viewers show "color",
+//         "normal", ... as layers. Float, not half: ids and view depth need every bit. Written
+//         by OpenEXR with options.compression (lossless) on options.threads threads; the
+//         bytes do not depend on the thread count or on when the file is written.
 // The file appears whole or not at all: it is written to a temporary beside the target and
 // renamed over it only on success. Throws std::invalid_argument for an unsupported extension
 // or a frame without the planes the format needs, std::runtime_error (one line, naming the
-// path and the reason) when the file cannot be written.
+// path and the reason) when the file cannot be written. An EXR whose chosen groups hold no
+// plane is refused (std::invalid_argument).
 // The frame's layers (Frame::layers()).
-void writeImage(const std::string& path, const Frame& frame);
+void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options = {});
 
 // Planes of one size with their names, as files hold them.
 struct ImageLayers {
     int width = 0, height = 0;
     std::vector<PlaneRef> layers;  // in file order
 };
-void writeImage(const std::string& path, const ImageLayers& image);
+void writeImage(const std::string& path, const ImageLayers& image,
+                const WriteOptions& options = {});
 
 // Fails fast, before minutes of rendering, for a path writeImage would reject: throws
 // std::invalid_argument for an unsupported extension and std::runtime_error when the

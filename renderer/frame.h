@@ -29,10 +29,21 @@
 
 namespace ssrt {
 
-// A plane with its layer name.
+// Which part of the frame a file layer belongs to, for choosing what a file holds (`ssrt
+// render --layers`, io/image_io.h). Frame::layers() gives each layer its group.
+enum class LayerGroup : uint8_t {
+    Color,    // ImagePlanes: colour, display, shadow
+    GBuffer,  // GBuffer, MaterialPlanes, IdPlanes
+    Trace,    // TraceOutputs: SSR, SSGI, the denoiser's
+    Truth,    // Frame::extraLayers (`ssrt compare`: the reference and the ray checks)
+};
+inline constexpr int kLayerGroupCount = 4;
+
+// A plane with its layer name and group.
 struct PlaneRef {
     std::string_view name;
     const PlaneF* plane;
+    LayerGroup group = LayerGroup::Color;
 };
 
 // forEachPlane(fn) calls fn(name, plane) for every plane of the group, in table order.
@@ -288,7 +299,7 @@ struct Frame {
     } scratch;
 
     // Every non-empty plane of image, gbuffer, material, ids and trace, in that order, then
-    // extraLayers: the file's layers.
+    // extraLayers: the file's layers, each with its LayerGroup.
     std::vector<PlaneRef> layers() const;
     // The layer called `name`; throws std::out_of_range if there is none.
     const PlaneF& plane(std::string_view name) const;

@@ -281,17 +281,20 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
 
 std::vector<PlaneRef> Frame::layers() const {
     std::vector<PlaneRef> out;
+    LayerGroup group = LayerGroup::Color;
     const auto add = [&](std::string_view name, const PlaneF& p) {
-        if (!p.empty()) out.push_back({name, &p});
+        if (!p.empty()) out.push_back({name, &p, group});
     };
     image.forEachPlane(add);
+    group = LayerGroup::GBuffer;
     gbuffer.forEachPlane(add);
     material.forEachPlane(add);
     ids.forEachPlane(add);
+    group = LayerGroup::Trace;
     trace.ssr.forEachPlane(add);
     trace.ssgi.forEachPlane(add);
     trace.denoise.forEachPlane(add);
-    for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane});
+    for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane, LayerGroup::Truth});
     return out;
 }
 

@@ -16,7 +16,7 @@ render_packages=(
     libglm-dev libxsimd-dev libtbb-dev
     # Edges: image files, world-space truth, glTF (and its Draco and meshopt compressed
     # meshes), shot files (JSON), command line
-    libopenimageio-dev libembree-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
+    libopenimageio-dev libopenexr-dev libembree-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
     nlohmann-json3-dev libcli11-dev
 )
 # Tests, benchmarks, peers and charts, on top of the render's.

@@ -308,12 +308,12 @@ TEST_CASE("cli: --stats prints every pass and every raster counter of both passe
         sha[i] = 2000 + i;
     }
     std::ostringstream out;
-    cli::printStats(out, stats, 4.5);
+    cli::printStats(out, stats, 4.5, 7.25);
     const std::string text = out.str();
     CHECK(contains(text, "sse2"));
     CHECK(contains(text, "3 threads"));
-    for (const char* part :
-         {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875", "4.500"})
+    for (const char* part : {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875",
+                             "4.500", "image write", "7.250"})
         CHECK(contains(text, part));
     for (int i = 0; i < kCounters; ++i) {
         CAPTURE(i);
@@ -332,6 +332,7 @@ TEST_CASE("cli: render writes the file, reports progress and stats") {
     CHECK(contains(r.err, ", 1 thread..."));
     CHECK(contains(r.err, "wrote " + path));
     CHECK(contains(r.out, "pixels written"));
+    CHECK(contains(r.out, "image write"));
     const auto channels = readChannelNames(path);
     for (const char* name : {"display.R", "color.R", "viewZ"})
         CHECK(std::find(channels.begin(), channels.end(), name) != channels.end());
@@ -341,6 +342,70 @@ TEST_CASE("cli: render writes the file, reports progress and stats") {
     CHECK(r.err.empty());
     CHECK(r.out.empty());
     CHECK(fs::exists(dir.file("quiet.png")));
+}
+
+TEST_CASE("cli: --layers writes exactly the groups named, and a bad group writes nothing") {
+    TempDir dir;
+    const std::vector<std::string> size{"render", "--width", "24", "--height",
+                                        "16",     "-j",      "1",  "-q"};
+    const auto render = [&](const std::string& file, std::vector<std::string> extra) {
+        std::vector<std::string> args = size;
+        args.insert(args.end(), extra.begin(), extra.end());
+        args.insert(args.end(), {"-o", dir.file(file)});
+        return run(args);
+    };
+    const auto names = [&](const std::string& file) {
+        std::vector<std::string> n = readChannelNames(dir.file(file));
+        std::sort(n.begin(), n.end());
+        return n;
+    };
+    REQUIRE(render("all.exr", {}).code == 0);
+    const std::vector<std::string> all = names("all.exr");
+    // Each group alone: its own planes, none of another's; together they are every layer.
+    std::vector<std::string> united;
+    const std::pair<const char*, const char*> groups[] = {
+        {"color", "display.R"}, {"gbuffer", "viewZ"}, {"trace", "ssr.R"}};
+    for (const auto& [group, member] : groups) {
+        CAPTURE(group);
+        const Result r = render(std::string(group) + ".exr", {"--layers", group});
+        REQUIRE_MESSAGE(r.code == 0, r.err);
+        const std::vector<std::string> got = names(std::string(group) + ".exr");
+        CHECK(std::find(got.begin(), got.end(), member) != got.end());
+        for (const auto& [other, otherMember] : groups)
+            if (std::string(other) != group)
+                CHECK(std::find(got.begin(), got.end(), otherMember) == got.end());
+        united.insert(united.end(), got.begin(), got.end());
+    }
+    std::sort(united.begin(), united.end());
+    CHECK(united == all);  // disjoint (no name twice) and complete
+    REQUIRE(render("two.exr", {"--layers", "gbuffer,colour"}).code == 0);
+    CHECK(names("two.exr").size() == names("color.exr").size() + names("gbuffer.exr").size());
+    REQUIRE(render("every.exr", {"--layers", "all", "--exr-compression", "none"}).code == 0);
+    CHECK(names("every.exr") == all);
+    CHECK(fs::file_size(dir.file("every.exr")) > fs::file_size(dir.file("all.exr")));
+
+    const auto listing = dir.listing();
+    for (const std::vector<std::string>& bad :
+         {std::vector<std::string>{"--layers", "color,shading"},
+          std::vector<std::string>{"--layers", "color,"},
+          std::vector<std::string>{"--exr-compression", "dwaa"},
+          std::vector<std::string>{"--layers", "truth"}}) {
+        CAPTURE(bad[1]);
+        const Result r = render("bad.exr", bad);
+        CHECK(r.code == cli::kExitUsage);
+        CHECK(isOneErrorLine(r.err));
+        CHECK(contains(r.err, bad[0]));
+        CHECK_FALSE(contains(r.err, "rendering"));
+    }
+    CHECK(contains(render("bad.exr", {"--layers", "shading"}).err,
+                   "one of color, gbuffer, trace, truth"));
+    CHECK(dir.listing() == listing);
+
+    // A PNG is the preview whatever --layers says: written, with a warning.
+    const Result png = render("preview.png", {"--layers", "gbuffer"});
+    CHECK(png.code == 0);
+    CHECK(contains(png.err, "ssrt: warning: --layers and --exr-compression apply to EXR"));
+    CHECK(fs::exists(dir.file("preview.png")));
 }
 
 TEST_CASE("cli: the screen-space passes write their layers and counters, and can be turned off") {

@@ -106,8 +106,9 @@ TEST_CASE("readChannels reads several channels at once, each as readChannel woul
 }
 
 TEST_CASE("an EXR file's bytes do not depend on when it was written") {
-    // OpenImageIO stamps EXR headers with the current time (capDate) unless told a DateTime;
-    // the same frame must give the same file at any hour (golden files compare bytes).
+    // A writer may stamp EXR headers with the current time (capDate, as OpenImageIO does
+    // unless told a DateTime); the same frame must give the same file at any hour (golden
+    // files compare bytes).
     TempDir dir;
     const std::string path = dir.file("frame.exr");
     writeImage(path, makeFrame(4, 2, {"color.R", "viewZ"}));
@@ -122,6 +123,112 @@ TEST_CASE("an EXR file's bytes do not depend on when it was written") {
         std::memcpy(&size, bytes.data() + at + key.size(), sizeof size);
         CHECK(size == 0);
     }
+}
+
+namespace {
+
+std::string fileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("every EXR compression keeps every bit, and its bytes do not depend on the threads") {
+    TempDir dir;
+    // Rows enough for many blocks of every compression (zip and piz take 16 or 32 rows), and
+    // planes that compress differently: the probe values, a constant, and noise-like bits.
+    const int width = 33, height = 100;
+    Frame frame = makeFrame(width, height, {"viewZ", "normal.X", "materialId"});
+    frame.extraLayers[1].plane.fill(0.5f);
+    uint32_t state = 12345;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            state = state * 1664525u + 1013904223u;
+            float v;
+            const uint32_t bits = (state & 0x807fffffu) | 0x3f000000u;  // finite, any mantissa
+            std::memcpy(&v, &bits, sizeof v);
+            frame.extraLayers[2].plane.at(x, y) = v;
+        }
+    std::vector<std::size_t> sizes;
+    for (int c = 0; c <= int(ExrCompression::Piz); ++c) {
+        const ExrCompression compression = ExrCompression(c);
+        CAPTURE(exrCompressionName(compression));
+        std::string first;
+        for (int threads : {1, 3}) {
+            const std::string path = dir.file("frame.exr");
+            writeImage(path, frame, WriteOptions{allLayerGroups(), compression, threads});
+            const std::string bytes = fileBytes(path);
+            if (threads == 1) first = bytes;
+            else CHECK(bytes == first);
+            for (const NamedPlane& p : frame.extraLayers) {
+                CAPTURE(p.name);
+                int w = 0, h = 0;
+                const std::vector<float> got = readChannel(path, p.name, w, h);
+                REQUIRE(w == width);
+                REQUIRE(h == height);
+                bool same = true;
+                for (int y = 0; y < height; ++y)
+                    for (int x = 0; x < width; ++x)
+                        same = same && sameBits(got[std::size_t(y) * width + x], p.plane.at(x, y));
+                CHECK(same);
+            }
+        }
+        sizes.push_back(first.size());
+    }
+    // The choice reaches the file: none stores every byte, the others fewer.
+    CHECK(sizes[0] >= std::size_t(3) * width * height * sizeof(float));
+    for (std::size_t c = 1; c < sizes.size(); ++c) CHECK(sizes[c] < sizes[0]);
+    CHECK(dir.listing() == std::vector<std::string>{"frame.exr"});
+}
+
+TEST_CASE("an EXR holds exactly the layer groups asked for, in the frame's order") {
+    TempDir dir;
+    const Frame frame = makeFrame(4, 3, {"color.R", "viewZ", "materialId", "ssr.R", "ref.color.R"});
+    const LayerGroup groups[] = {LayerGroup::Color, LayerGroup::GBuffer, LayerGroup::GBuffer,
+                                 LayerGroup::Trace, LayerGroup::Truth};
+    ImageLayers image{4, 3, {}};
+    for (std::size_t i = 0; i < frame.extraLayers.size(); ++i)
+        image.layers.push_back({frame.extraLayers[i].name, &frame.extraLayers[i].plane, groups[i]});
+    const std::string path = dir.file("frame.exr");
+    const auto written = [&](LayerGroups chosen) {
+        writeImage(path, image, WriteOptions{chosen, ExrCompression::Zips, 1});
+        std::vector<std::string> names = readChannelNames(path);
+        std::sort(names.begin(), names.end());
+        return names;
+    };
+    const auto only = [](LayerGroup g) { return LayerGroups().set(int(g)); };
+    CHECK(written(only(LayerGroup::Color)) == std::vector<std::string>{"color.R"});
+    CHECK(written(only(LayerGroup::GBuffer)) == std::vector<std::string>{"materialId", "viewZ"});
+    CHECK(written(only(LayerGroup::Trace)) == std::vector<std::string>{"ssr.R"});
+    CHECK(written(only(LayerGroup::Truth) | only(LayerGroup::Color)) ==
+          std::vector<std::string>{"color.R", "ref.color.R"});
+    CHECK(written(allLayerGroups()).size() == 5);
+
+    // No chosen plane: refused, the file as it was.
+    const std::string before = fileBytes(path);
+    image.layers.pop_back();
+    CHECK_THROWS_WITH_AS(writeImage(path, image, WriteOptions{only(LayerGroup::Truth)}),
+                         doctest::Contains("no planes"), std::invalid_argument);
+    CHECK(fileBytes(path) == before);
+    // A PNG is the display planes whatever the groups.
+    const Frame preview = makeFrame(2, 2, {"display.R", "display.G", "display.B"});
+    writeImage(dir.file("preview.png"), preview, WriteOptions{only(LayerGroup::Trace)});
+    CHECK(readChannelNames(dir.file("preview.png")) == std::vector<std::string>{"R", "G", "B"});
+}
+
+TEST_CASE("layer groups and compressions are parsed by the names they print") {
+    for (int g = 0; g < kLayerGroupCount; ++g)
+        CHECK(parseLayerGroup(layerGroupName(LayerGroup(g))) == LayerGroup(g));
+    CHECK(parseLayerGroup("colour") == LayerGroup::Color);
+    CHECK_FALSE(parseLayerGroup("Color").has_value());
+    CHECK_FALSE(parseLayerGroup("all").has_value());  // a word of the command line's list
+    CHECK(layerGroupList() == "color, gbuffer, trace, truth");
+    for (int c = 0; c <= int(ExrCompression::Piz); ++c)
+        CHECK(parseExrCompression(exrCompressionName(ExrCompression(c))) == ExrCompression(c));
+    CHECK_FALSE(parseExrCompression("dwaa").has_value());  // lossy: not offered
+    CHECK_FALSE(parseExrCompression("pxr24").has_value());
+    CHECK(exrCompressionList() == "none, rle, zips, zip, piz");
 }
 
 TEST_CASE("PNG quantises display planes as round(clamp(v, 0, 1) * 255)") {
