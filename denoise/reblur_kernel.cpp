@@ -62,7 +62,7 @@ SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bo
 
 // Signal present at the centre: a surface pixel with this signal.
 SSRT_INLINE Mask validAt(const ReblurView& v, const Centre& c, std::size_t o, bool specular) {
-    return (c.z > Lane(0.0f)) & (loadAt(v.mask[specular ? 1 : 0], o) > Lane(0.0f));
+    return loadAt(v.signalZ[specular ? 1 : 0], o) > Lane(0.0f);
 }
 
 // A tap's pixel (floored continuous position), whether it lies on the frame, and its index.
@@ -140,7 +140,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         for (int ch = 0; ch < 3; ++ch)
             ln::store(a.noisy[ch] + o, sanitize(loadAt(a.diffuse[ch], o)));
         ln::store(a.noisy[3] + o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
-        ln::store(a.mask[0] + o, ln::select(has, one, zero));
+        ln::store(a.signalZ[0] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileDiffuse;
     }
     if (a.ssr[0]) {
@@ -153,7 +153,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
             ln::store(a.noisy[4 + ch] + o, opacity * ssr + (one - opacity) * env);
         }
         ln::store(a.noisy[7] + o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
-        ln::store(a.mask[1] + o, ln::select(has, one, zero));
+        ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileSpecular;
     }
 }
@@ -253,9 +253,8 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         const Lane ox = (Lane(k.x) * cs - Lane(k.y) * sn) * radius;
         const Lane oy = (Lane(k.x) * sn + Lane(k.y) * cs) * radius;
         const Tap t = tapAt(v, p.px + ox, p.py + oy);
-        const Lane zs = ln::gather(v.viewZ, t.index);
-        const Lane ms = ln::gather(v.mask[spec ? 1 : 0], t.index);
-        const Mask ok = valid & t.inside & (zs > zero) & (ms > zero);
+        const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+        const Mask ok = valid & t.inside & (zs > zero);
         if (!ln::any(ok)) continue;
         const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
         const V3 ns{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
@@ -370,6 +369,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     Lane bil[4] = {zero, zero, zero, zero};
     V3 normal{zero, zero, zero};
     Lane w[2][2];
+    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             w[j][i] = ln::select(ok[j + 1][i + 1], bw[j][i], zero);
@@ -388,8 +388,10 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                     normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
                                 ln::gather(a.prevNormal[2], idx)} *
                                  wn;
-            for (int ch = 0; ch < 4; ++ch)
-                bil[ch] = bil[ch] + wn * ln::gather(a.prevSignal[ch], idx);
+            for (int ch = 0; ch < 4; ++ch) {
+                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx);
+                bil[ch] = bil[ch] + wn * inner[j][i][ch];
+            }
         }
     h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
     h.frames = ln::select(h.found, frames, zero);
@@ -404,9 +406,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
         Lane cr[4] = {zero, zero, zero, zero};
         for (int j = 0; j < 4; ++j) {
             Lane row[4] = {zero, zero, zero, zero};
-            for (int i = 0; i < 4; ++i)
-                for (int ch = 0; ch < 4; ++ch)
-                    row[ch] = row[ch] + wx[i] * ln::gather(a.prevSignal[ch], index[j][i]);
+            for (int i = 0; i < 4; ++i) {
+                const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
+                for (int ch = 0; ch < 4; ++ch) {
+                    const Lane s = isInner ? inner[j - 1][i - 1][ch]
+                                           : ln::gather(a.prevSignal[ch], index[j][i]);
+                    row[ch] = row[ch] + wx[i] * s;
+                }
+            }
             for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
         }
         // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
@@ -580,9 +587,8 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
                 if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
                 const Tap t =
                     tapAt(v, p.px + Lane(float(i)) * stride, p.py + Lane(float(j)) * stride);
-                const Lane zs = ln::gather(v.viewZ, t.index);
-                const Lane ms = ln::gather(v.mask[spec ? 1 : 0], t.index);
-                const Mask ok = young & t.inside & (zs > zero) & (ms > zero);
+                const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+                const Mask ok = young & t.inside & (zs > zero);
                 if (!ln::any(ok)) continue;
                 const V3 xs =
                     screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
@@ -605,10 +611,10 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     if (a.fast && ln::any(valid)) {
         // The fast history's 5x5 moments bound the slow history's luma (REBLUR's "fast
         // history" clamp), more firmly the older the pixel.
-        // (The mask is 0 off surfaces, so it alone says which taps count. Where the whole
+        // (signalZ is 0 off surfaces, so it alone says which taps count. Where the whole
         // window lies in the frame for every lane, its rows are plain loads.)
         const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
-        const float* mask = v.mask[spec ? 1 : 0];
+        const float* mask = v.signalZ[spec ? 1 : 0];
         Lane m1 = zero, m2 = zero, count = zero;
         for (int j = -2; j <= 2; ++j)
             for (int i = -2; i <= 2; ++i) {
