@@ -171,6 +171,7 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in
                    ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
     a.minRadius = s.minBlurRadius;
+    if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
     a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
     a.roughnessFraction = s.roughnessFraction;
     a.planeDistance = s.planeDistanceSensitivity;

@@ -61,7 +61,7 @@ SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bo
 }
 
 // Signal present at the centre: a surface pixel with this signal.
-SSRT_INLINE Mask validAt(const ReblurView& v, const Centre& c, std::size_t o, bool specular) {
+SSRT_INLINE Mask validAt(const ReblurView& v, std::size_t o, bool specular) {
     return loadAt(v.signalZ[specular ? 1 : 0], o) > Lane(0.0f);
 }
 
@@ -193,8 +193,10 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
     const bool spec = a.specular;
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
-    const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history).
+    const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(10.0f);
+    // A pixel with a long history leaves the blur as it came (the post-blur filters it).
+    const Mask valid = validAt(v, o, spec) & (frames < Lane(a.maxFrames));
     const auto store = [&](const Lane s[4]) {
         for (int ch = 0; ch < 4; ++ch) {
             ln::store(a.out[ch] + o, s[ch]);
@@ -202,11 +204,10 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         }
     };
     if (!ln::any(valid)) return store(c);
+    const Centre p = centreAt(v, x, y, o, spec);
 
     const Lane zero(0.0f), one(1.0f);
     const bool pre = a.pass == ReblurSpatial::PreBlur;
-    // The pre-blur runs before the history: NRD gives it a fixed 1/11.
-    const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(10.0f);
     const Lane alpha = one / (one + frames);
     const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
     const Lane hitFactor = ln::saturate(hitWorld / (Lane(v.frustum) * p.z));
@@ -332,6 +333,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     // Per tap of the 4x4 footprint (row j, column i): passes the occlusion test.
     Mask ok[4][4];
     ILane index[4][4];
+    V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
     Mask allOk = valid;
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
@@ -353,6 +355,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                 const V3 np{ln::gather(a.prevNormal[0], t.index),
                             ln::gather(a.prevNormal[1], t.index),
                             ln::gather(a.prevNormal[2], t.index)};
+                innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
                 if (a.specular) {
@@ -384,10 +387,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
             frames = frames + wn * ln::gather(a.prevFrames, idx);
             fast = fast + wn * ln::gather(a.prevFast, idx);
             if (!surface)  // (only the virtual read's confidence asks for it)
-                normal =
-                    normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
-                                ln::gather(a.prevNormal[2], idx)} *
-                                 wn;
+                normal = normal + innerNormal[j][i] * wn;
             for (int ch = 0; ch < 4; ++ch) {
                 inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx);
                 bil[ch] = bil[ch] + wn * inner[j][i][ch];
@@ -461,7 +461,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    const Mask valid = validAt(v, o, spec);
     const auto store = [&](const Lane s[4], Lane frames, Lane fast) {
         for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, s[ch]);
         ln::store(a.outFrames + o, frames);
@@ -569,7 +569,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    const Mask valid = validAt(v, o, spec);
     const Lane frames = loadAt(a.frames, o);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));

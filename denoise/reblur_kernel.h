@@ -57,6 +57,7 @@ struct ReblurSpatialArgs {
     uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
     float radius = 30.0f;                 // pre-blur's radius, or the blur's largest
     float minRadius = 1.0f;
+    float maxFrames = 1.0e9f;       // pixels with this many frames of history or more are copied
     float lobeFraction2 = 0.0225f;  // lobeAngleFraction squared
     float roughnessFraction = 0.15f;
     float planeDistance = 0.02f;
