@@ -88,8 +88,8 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
     v.viewZ = in.viewZ->row(0);
     for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
     v.roughness = in.roughness->row(0);
-    v.mask[0] = sc.mask[0].row(0);
-    v.mask[1] = sc.mask[1].row(0);
+    v.signalZ[0] = sc.signalZ[0].row(0);
+    v.signalZ[1] = sc.signalZ[1].row(0);
     v.tiles = sc.tiles.data();
     const float diagonal = cam.sceneDiagonal > 0.0f ? cam.sceneDiagonal : 1.0f;
     v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
@@ -141,11 +141,11 @@ void frontEnd(Context& c) {
     }
     a.specularMaxRoughness = in.specularMaxRoughness;
     for (int i = 0; i < 8; ++i) a.noisy[i] = c.sc.noisy[i].row(0);
-    a.mask[0] = c.sc.mask[0].row(0);
-    a.mask[1] = c.sc.mask[1].row(0);
+    a.signalZ[0] = c.sc.signalZ[0].row(0);
+    a.signalZ[1] = c.sc.signalZ[1].row(0);
     // A signal that is off has no pixels.
-    if (!in.diffuse[0]) c.sc.mask[0].fill(0.0f);
-    if (!in.ssr[0]) c.sc.mask[1].fill(0.0f);
+    if (!in.diffuse[0]) c.sc.signalZ[0].fill(0.0f);
+    if (!in.ssr[0]) c.sc.signalZ[1].fill(0.0f);
     a.tiles = c.sc.tiles.data();
     const auto fn = SSRT_DISPATCH(c.isa, reblurFrontEndTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
@@ -171,6 +171,7 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in
                    ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
     a.minRadius = s.minBlurRadius;
+    if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
     a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
     a.roughnessFraction = s.roughnessFraction;
     a.planeDistance = s.planeDistanceSensitivity;
@@ -284,7 +285,7 @@ void commitHistory(Context& c) {
     DenoiseHistory& h = *c.history;
     const DenoiseInputs& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
-    const PlaneF* const masks[2] = {&c.sc.mask[0], &c.sc.mask[1]};
+    const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no signal
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         const TileRect r = c.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y) {
@@ -318,7 +319,7 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
     for (PlaneF* group : {sc.noisy, sc.pre, sc.accumulated, sc.fixed, sc.blurred})
         for (int i = 0; i < 8; ++i) keepIf(i < 4 ? diffuse : specular, group[i]);
     for (int i = 0; i < 2; ++i) {
-        sc.mask[i].ensureSize(w, h);
+        sc.signalZ[i].ensureSize(w, h);
         sc.frames[i].ensureSize(w, h);
         sc.fast[i].ensureSize(w, h);
     }

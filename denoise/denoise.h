@@ -82,7 +82,7 @@ struct DenoiseHistory {
 // Transient planes, kept between frames so that no pass allocates.
 struct DenoiseScratch {
     PlaneF noisy[8], pre[8], accumulated[8], fixed[8], blurred[8];  // diffuse 0-3, specular 4-7
-    PlaneF mask[2];              // 1 where the diffuse / specular signal exists, else 0
+    PlaneF signalZ[2];           // viewZ where the diffuse / specular signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneF fast[2];              // this frame's fast luma
     std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular

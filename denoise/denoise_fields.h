@@ -45,6 +45,11 @@ inline constexpr std::array kDenoiseFields = {
         "maxBlurRadius", kDenoiseUse,
         "Blur radius of a pixel without history, pixels (the post-blur doubles it)")
         .floats(0.0, false, 100.0),
+    field<&DenoiseSettings::blurMaxFrames>(
+        "blurMaxFrames", kDenoiseUse,
+        "Pixels with this many frames of history or more skip the blur, keeping the post-blur "
+        "(64: every pixel is blurred twice)")
+        .ints(0, kMaxDenoiseFrames + 1),
     field<&DenoiseSettings::lobeAngleFraction>(
         "lobeAngleFraction", kDenoiseUse,
         "Share of the specular lobe's angle a neighbour's normal may differ by")

@@ -61,8 +61,8 @@ SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bo
 }
 
 // Signal present at the centre: a surface pixel with this signal.
-SSRT_INLINE Mask validAt(const ReblurView& v, const Centre& c, std::size_t o, bool specular) {
-    return (c.z > Lane(0.0f)) & (loadAt(v.mask[specular ? 1 : 0], o) > Lane(0.0f));
+SSRT_INLINE Mask validAt(const ReblurView& v, std::size_t o, bool specular) {
+    return loadAt(v.signalZ[specular ? 1 : 0], o) > Lane(0.0f);
 }
 
 // A tap's pixel (floored continuous position), whether it lies on the frame, and its index.
@@ -140,7 +140,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         for (int ch = 0; ch < 3; ++ch)
             ln::store(a.noisy[ch] + o, sanitize(loadAt(a.diffuse[ch], o)));
         ln::store(a.noisy[3] + o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
-        ln::store(a.mask[0] + o, ln::select(has, one, zero));
+        ln::store(a.signalZ[0] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileDiffuse;
     }
     if (a.ssr[0]) {
@@ -153,7 +153,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
             ln::store(a.noisy[4 + ch] + o, opacity * ssr + (one - opacity) * env);
         }
         ln::store(a.noisy[7] + o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
-        ln::store(a.mask[1] + o, ln::select(has, one, zero));
+        ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileSpecular;
     }
 }
@@ -193,8 +193,10 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
     const bool spec = a.specular;
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
-    const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history).
+    const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(10.0f);
+    // A pixel with a long history leaves the blur as it came (the post-blur filters it).
+    const Mask valid = validAt(v, o, spec) & (frames < Lane(a.maxFrames));
     const auto store = [&](const Lane s[4]) {
         for (int ch = 0; ch < 4; ++ch) {
             ln::store(a.out[ch] + o, s[ch]);
@@ -202,11 +204,10 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         }
     };
     if (!ln::any(valid)) return store(c);
+    const Centre p = centreAt(v, x, y, o, spec);
 
     const Lane zero(0.0f), one(1.0f);
     const bool pre = a.pass == ReblurSpatial::PreBlur;
-    // The pre-blur runs before the history: NRD gives it a fixed 1/11.
-    const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(10.0f);
     const Lane alpha = one / (one + frames);
     const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
     const Lane hitFactor = ln::saturate(hitWorld / (Lane(v.frustum) * p.z));
@@ -253,9 +254,8 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         const Lane ox = (Lane(k.x) * cs - Lane(k.y) * sn) * radius;
         const Lane oy = (Lane(k.x) * sn + Lane(k.y) * cs) * radius;
         const Tap t = tapAt(v, p.px + ox, p.py + oy);
-        const Lane zs = ln::gather(v.viewZ, t.index);
-        const Lane ms = ln::gather(v.mask[spec ? 1 : 0], t.index);
-        const Mask ok = valid & t.inside & (zs > zero) & (ms > zero);
+        const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+        const Mask ok = valid & t.inside & (zs > zero);
         if (!ln::any(ok)) continue;
         const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
         const V3 ns{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
@@ -333,6 +333,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     // Per tap of the 4x4 footprint (row j, column i): passes the occlusion test.
     Mask ok[4][4];
     ILane index[4][4];
+    V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
     Mask allOk = valid;
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
@@ -354,6 +355,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                 const V3 np{ln::gather(a.prevNormal[0], t.index),
                             ln::gather(a.prevNormal[1], t.index),
                             ln::gather(a.prevNormal[2], t.index)};
+                innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
                 if (a.specular) {
@@ -370,6 +372,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     Lane bil[4] = {zero, zero, zero, zero};
     V3 normal{zero, zero, zero};
     Lane w[2][2];
+    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             w[j][i] = ln::select(ok[j + 1][i + 1], bw[j][i], zero);
@@ -384,12 +387,11 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
             frames = frames + wn * ln::gather(a.prevFrames, idx);
             fast = fast + wn * ln::gather(a.prevFast, idx);
             if (!surface)  // (only the virtual read's confidence asks for it)
-                normal =
-                    normal + V3{ln::gather(a.prevNormal[0], idx), ln::gather(a.prevNormal[1], idx),
-                                ln::gather(a.prevNormal[2], idx)} *
-                                 wn;
-            for (int ch = 0; ch < 4; ++ch)
-                bil[ch] = bil[ch] + wn * ln::gather(a.prevSignal[ch], idx);
+                normal = normal + innerNormal[j][i] * wn;
+            for (int ch = 0; ch < 4; ++ch) {
+                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx);
+                bil[ch] = bil[ch] + wn * inner[j][i][ch];
+            }
         }
     h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
     h.frames = ln::select(h.found, frames, zero);
@@ -404,9 +406,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
         Lane cr[4] = {zero, zero, zero, zero};
         for (int j = 0; j < 4; ++j) {
             Lane row[4] = {zero, zero, zero, zero};
-            for (int i = 0; i < 4; ++i)
-                for (int ch = 0; ch < 4; ++ch)
-                    row[ch] = row[ch] + wx[i] * ln::gather(a.prevSignal[ch], index[j][i]);
+            for (int i = 0; i < 4; ++i) {
+                const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
+                for (int ch = 0; ch < 4; ++ch) {
+                    const Lane s = isInner ? inner[j - 1][i - 1][ch]
+                                           : ln::gather(a.prevSignal[ch], index[j][i]);
+                    row[ch] = row[ch] + wx[i] * s;
+                }
+            }
             for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
         }
         // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
@@ -454,7 +461,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    const Mask valid = validAt(v, o, spec);
     const auto store = [&](const Lane s[4], Lane frames, Lane fast) {
         for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, s[ch]);
         ln::store(a.outFrames + o, frames);
@@ -562,7 +569,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
-    const Mask valid = validAt(v, p, o, spec);
+    const Mask valid = validAt(v, o, spec);
     const Lane frames = loadAt(a.frames, o);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));
@@ -580,9 +587,8 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
                 if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
                 const Tap t =
                     tapAt(v, p.px + Lane(float(i)) * stride, p.py + Lane(float(j)) * stride);
-                const Lane zs = ln::gather(v.viewZ, t.index);
-                const Lane ms = ln::gather(v.mask[spec ? 1 : 0], t.index);
-                const Mask ok = young & t.inside & (zs > zero) & (ms > zero);
+                const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+                const Mask ok = young & t.inside & (zs > zero);
                 if (!ln::any(ok)) continue;
                 const V3 xs =
                     screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
@@ -605,10 +611,10 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     if (a.fast && ln::any(valid)) {
         // The fast history's 5x5 moments bound the slow history's luma (REBLUR's "fast
         // history" clamp), more firmly the older the pixel.
-        // (The mask is 0 off surfaces, so it alone says which taps count. Where the whole
+        // (signalZ is 0 off surfaces, so it alone says which taps count. Where the whole
         // window lies in the frame for every lane, its rows are plain loads.)
         const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
-        const float* mask = v.mask[spec ? 1 : 0];
+        const float* mask = v.signalZ[spec ? 1 : 0];
         Lane m1 = zero, m2 = zero, count = zero;
         for (int j = -2; j <= 2; ++j)
             for (int i = -2; i <= 2; ++i) {

@@ -20,7 +20,8 @@ struct ReblurView {
     const float* viewZ = nullptr;
     const float* normal[3] = {};
     const float* roughness = nullptr;
-    const float* mask[2] = {};       // 1 where the diffuse / specular signal exists, else 0
+    // The view depth where the diffuse / specular signal exists, else 0: one read says both.
+    const float* signalZ[2] = {};
     const uint8_t* tiles = nullptr;  // per tile: bit 0 diffuse, bit 1 specular signal
     reblur::HitDistanceScale hitScale{};
 };
@@ -39,7 +40,7 @@ struct ReblurFrontEndArgs {
     const float* specularHit = nullptr;
     float specularMaxRoughness = 1.0f;
     float* noisy[8] = {};  // diffuse RGB + normalised hit distance, then specular's
-    float* mask[2] = {};
+    float* signalZ[2] = {};
     uint8_t* tiles = nullptr;
 };
 
@@ -56,6 +57,7 @@ struct ReblurSpatialArgs {
     uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
     float radius = 30.0f;                 // pre-blur's radius, or the blur's largest
     float minRadius = 1.0f;
+    float maxFrames = 1.0e9f;       // pixels with this many frames of history or more are copied
     float lobeFraction2 = 0.0225f;  // lobeAngleFraction squared
     float roughnessFraction = 0.15f;
     float planeDistance = 0.02f;
