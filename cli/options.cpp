@@ -277,10 +277,7 @@ WriteOptions writeOptionsFrom(const RenderOptions& o, const RenderSettings& sett
     if (o.exrCompression)
         w.compression = parseChoice("--exr-compression", *o.exrCompression, parseExrCompression,
                                     exrCompressionList());
-    std::string ext = fs::path(output).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    if ((o.layers || o.exrCompression) && ext != ".exr")
+    if ((o.layers || o.exrCompression) && !isExrPath(output))
         err << "ssrt: warning: --layers and --exr-compression apply to EXR files only; '" << output
             << "' is not one, so they are ignored\n";
     return w;

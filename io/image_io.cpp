@@ -255,6 +255,8 @@ void checkWritable(const std::string& path) {
     fs::remove(probe, ec);
 }
 
+bool isExrPath(const std::string& path) { return lowerExtension(path) == ".exr"; }
+
 void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options) {
     writeImage(path, ImageLayers{frame.width, frame.height, frame.layers()}, options);
 }

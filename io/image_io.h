@@ -41,6 +41,10 @@ void writeImage(const std::string& path, const ImageLayers& image,
 // Creates and removes a probe file, so nothing is left behind.
 void checkWritable(const std::string& path);
 
+// Whether writeImage writes `path` as an EXR (its extension, case-insensitive, is .exr):
+// the files --layers and the compression apply to.
+bool isExrPath(const std::string& path);
+
 // Extensions writeImage accepts, with the dot: ".png", ".exr".
 const std::vector<std::string>& supportedImageExtensions();
 

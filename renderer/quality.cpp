@@ -14,41 +14,32 @@ constexpr double kFull = double(TraceLayout::Full);
 constexpr double kCheckerboard = double(TraceLayout::Checkerboard);
 constexpr double kHalf = double(TraceLayout::Half);
 
-// What each preset traces and how the denoiser treats it. Every preset names the same keys,
-// so that applying one after another leaves no trace of the first. Measured (README): time
-// and error of each at 1920x1080 and 640x360.
+// What each preset traces and how the denoiser treats it: every preset sets the same keys
+// (one table, a row per preset), so that applying one after another leaves no trace of the
+// first. Measured (README): time and error of each at 1920x1080 and 640x360.
+constexpr std::array<std::string_view, 6> kKeys = {
+    "ssrLayout",    "ssgiLayout", "maxSteps", "diffusePrepassRadius", "specularPrepassRadius",
+    "blurMaxFrames"};
+using PresetRow = std::array<double, kKeys.size()>;  // a value per key, in kKeys' order
+
+constexpr std::array<PresetValue, kKeys.size()> preset(const PresetRow& row) {
+    std::array<PresetValue, kKeys.size()> out{};
+    for (std::size_t i = 0; i < kKeys.size(); ++i) out[i] = {kKeys[i], row[i]};
+    return out;
+}
+
 // ultra: today's full-resolution tracing, denoised with every pass (NRD's pre-blur radii).
-constexpr std::array kUltra = {PresetValue{"ssrLayout", kFull},
-                               PresetValue{"ssgiLayout", kFull},
-                               PresetValue{"maxSteps", 512},
-                               PresetValue{"diffusePrepassRadius", 30},
-                               PresetValue{"specularPrepassRadius", 50},
-                               PresetValue{"blurMaxFrames", 64}};
+constexpr auto kUltra = preset({kFull, kFull, 512, 30, 50, 64});
 // high: SSGI in a checkerboard, SSR at every pixel.
-constexpr std::array kHigh = {PresetValue{"ssrLayout", kFull},
-                              PresetValue{"ssgiLayout", kCheckerboard},
-                              PresetValue{"maxSteps", 512},
-                              PresetValue{"diffusePrepassRadius", 30},
-                              PresetValue{"specularPrepassRadius", 50},
-                              PresetValue{"blurMaxFrames", 64}};
+constexpr auto kHigh = preset({kFull, kCheckerboard, 512, 30, 50, 64});
 // medium (the default): SSR in a checkerboard, SSGI at half resolution; the denoiser without
 // its pre-blur, and one spatial pass (the post-blur) for pixels with 4 frames of history or
 // more (issue 18: half the denoiser's time; on cornell relMSE 0.0251 / 0.0239 on frames 1 /
 // 30 against 0.0255 / 0.0242 with both, camera paths within their bar, flicker 0.0025
 // against 0.0010).
-constexpr std::array kMedium = {PresetValue{"ssrLayout", kCheckerboard},
-                                PresetValue{"ssgiLayout", kHalf},
-                                PresetValue{"maxSteps", 512},
-                                PresetValue{"diffusePrepassRadius", 0},
-                                PresetValue{"specularPrepassRadius", 0},
-                                PresetValue{"blurMaxFrames", 4}};
+constexpr auto kMedium = preset({kCheckerboard, kHalf, 512, 0, 0, 4});
 // low: medium with a march of at most 48 Hi-Z iterations.
-constexpr std::array kLow = {PresetValue{"ssrLayout", kCheckerboard},
-                             PresetValue{"ssgiLayout", kHalf},
-                             PresetValue{"maxSteps", 48},
-                             PresetValue{"diffusePrepassRadius", 0},
-                             PresetValue{"specularPrepassRadius", 0},
-                             PresetValue{"blurMaxFrames", 4}};
+constexpr auto kLow = preset({kCheckerboard, kHalf, 48, 0, 0, 4});
 
 constexpr std::string_view kNames[kQualityCount] = {"low", "medium", "high", "ultra"};
 
