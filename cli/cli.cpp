@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "cli/compare_command.h"
+#include "cli/merge_command.h"
+#include "cli/reference_command.h"
 #include "cli/render_command.h"
 #include "cli/scenes_command.h"
 #include "cli/sweep_command.h"
@@ -47,10 +49,14 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* compare = addCompareCommand(app, compareOptions);
     SweepOptions sweepOptions;
     CLI::App* sweep = addSweepCommand(app, sweepOptions);
+    ReferenceOptions referenceOptions;
+    CLI::App* reference = addReferenceCommand(app, referenceOptions);
+    MergeOptions mergeOptions;
+    CLI::App* merge = addMergeCommand(app, mergeOptions);
     CLI::App* scenes = addScenesCommand(app);
     if (argc <= 1) {
-        err << "ssrt: error: no command given (render, compare, sweep or scenes; see 'ssrt "
-               "--help')\n";
+        err << "ssrt: error: no command given (render, compare, sweep, reference, merge or "
+               "scenes; see 'ssrt --help')\n";
         return kExitUsage;
     }
     try {
@@ -60,10 +66,12 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (e.get_exit_code() == 0) return app.exit(e, out, err);
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
-        if (!render->parsed() && !compare->parsed() && !sweep->parsed() && !scenes->parsed() &&
-            first.rfind('-', 0) != 0) {
+        const bool anyParsed = render->parsed() || compare->parsed() || sweep->parsed() ||
+                               reference->parsed() || merge->parsed() || scenes->parsed();
+        if (!anyParsed && first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first
-                << "' (expected render, compare, sweep or scenes; see 'ssrt --help')\n";
+                << "' (expected render, compare, sweep, reference, merge or scenes; see 'ssrt "
+                   "--help')\n";
             return kExitUsage;
         }
         err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
@@ -74,6 +82,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (compare->parsed())
         return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
     if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
+    if (reference->parsed())
+        return reportErrors(err, [&] { return runReference(referenceOptions, out, err); });
+    if (merge->parsed()) return reportErrors(err, [&] { return runMerge(mergeOptions, out, err); });
     if (scenes->parsed()) return reportErrors(err, [&] { return runScenes(out); });
     return kExitUsage;  // unreachable: require_subcommand(1) holds
 }

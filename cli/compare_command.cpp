@@ -17,7 +17,6 @@ namespace ssrt::cli {
 
 namespace {
 
-constexpr long long kMaxReferenceSpp = 65536;
 constexpr int kLabel = 22, kValue = 13;
 
 std::string formatFloat(float v) {
@@ -135,10 +134,19 @@ TruthOptions::TruthOptions() {
     depthTolerance = formatFloat(d.depthTolerance);
 }
 
-void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
+namespace {
+
+void addTruthOption(CLI::App& cmd, const std::string& flags, std::string& value,
+                    const std::string& type, const std::string& help) {
+    cmd.add_option(flags, value, help)->type_name(type)->capture_default_str()->group("Truth");
+}
+
+}  // namespace
+
+void addReferenceOptions(CLI::App& cmd, TruthOptions& o) {
     const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
                          const std::string& help) {
-        cmd.add_option(flags, value, help)->type_name(type)->capture_default_str()->group("Truth");
+        addTruthOption(cmd, flags, value, type, help);
     };
     add("--reference-spp", o.referenceSpp, "INT",
         "Rays per pixel of the reference image for each of SSR and SSGI, 1 to " +
@@ -151,6 +159,24 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     add("--visibility", o.visibility, "KIND",
         "Sun visibility in the reference: embree (shadow rays, the truth) or shadowmap (the "
         "frame's own shadow map, to isolate the tracing errors)");
+    cmd.add_option_function<std::string>(
+           "--cache-dir", [&o](const std::string& v) { o.cacheDir = v; },
+           "Where reference images are cached, by a hash of the scene and settings (a folder "
+           "many processes and machines may share)")
+        ->type_name("DIR")
+        ->default_str("$SSRT_CACHE_DIR, else $XDG_CACHE_HOME/ssrt, else ~/.cache/ssrt")
+        ->group("Truth");
+    cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
+        ->group("Truth");
+    cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
+}
+
+void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
+    addReferenceOptions(cmd, o);
+    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
+                         const std::string& help) {
+        addTruthOption(cmd, flags, value, type, help);
+    };
     add("--pixel-tolerance", o.pixelTolerance, "FLOAT",
         "Pixels between a march hit and the true hit's projection for an agreed hit, > 0");
     add("--depth-tolerance", o.depthTolerance, "FLOAT",
@@ -158,20 +184,11 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
     add("--repeats", o.repeats, "INT",
         "Timed renders per setting; each pass's median is reported, 1 to 1000");
     cmd.add_option_function<std::string>(
-           "--cache-dir", [&o](const std::string& v) { o.cacheDir = v; },
-           "Where reference images are cached, by a hash of the scene and settings")
-        ->type_name("DIR")
-        ->default_str("$SSRT_CACHE_DIR, else $XDG_CACHE_HOME/ssrt, else ~/.cache/ssrt")
-        ->group("Truth");
-    cmd.add_flag("--no-cache", o.noCache, "Render the reference even if cached, and keep no copy")
-        ->group("Truth");
-    cmd.add_option_function<std::string>(
            "--per-frame", [&o](const std::string& v) { o.perFrame = v; },
            "Also write each frame's colour relMSE and flicker to this CSV (columns frame, "
            "frame_index, cut, relmse, flicker; sweep adds setting, its CSV's row from 0)")
         ->type_name("FILE.csv")
         ->group("Truth");
-    cmd.add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
 }
 
 int defaultReferenceBounces(const TraceSettings& trace) {

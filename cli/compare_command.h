@@ -21,6 +21,9 @@ class App;
 
 namespace ssrt::cli {
 
+// The largest --reference-spp (and sweep's --embree-spp).
+inline constexpr long long kMaxReferenceSpp = 65536;
+
 // What compare and sweep add to the render options: the reference, the checks, the cache.
 struct TruthOptions {
     std::string referenceSpp = "64";
@@ -49,7 +52,10 @@ RenderSettings truthDefaults();
 // --no-cache) and progress on `err` unless quiet.
 ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& err);
 
-// Registers the reference, check and cache options and --per-frame (shared with sweep).
+// Registers the reference's options (--reference-spp, --reference-bounces, --visibility), the
+// cache's and --quiet (`ssrt reference`).
+void addReferenceOptions(CLI::App& cmd, TruthOptions& options);
+// addReferenceOptions, then the checks' options, --repeats and --per-frame (compare, sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);
 // The reference's diffuse bounces that --reference-bounces auto gives: 1, or with SSGI
 // feedback kFeedbackReferenceBounces (what a still camera's feedback converges to, within

@@ -33,16 +33,34 @@ std::string cachePath(const std::string& dir, uint64_t key) {
     return (fs::path(dir) / name).string();
 }
 
-bool readCached(const std::string& path, int width, int height, ReferenceImage& ref) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return false;
+}  // namespace
+
+std::vector<std::string> referenceChannelNames() {
     std::vector<std::string> names;
     for (const RefPlane& g : kGroups)
         for (int c = 0; c < 3; ++c) names.push_back(std::string(g.name) + kSuffix[c]);
+    return names;
+}
+
+std::vector<PlaneF*> referencePlanes(ReferenceImage& ref) {
+    std::vector<PlaneF*> planes;
+    for (const RefPlane& g : kGroups)
+        for (int c = 0; c < 3; ++c) planes.push_back(&(ref.*g.group)[c]);
+    return planes;
+}
+
+std::string referenceCacheFileName(uint64_t key) {
+    return fs::path(cachePath("", key)).filename().string();
+}
+
+bool readReferenceImage(const std::string& path, int width, int height, ReferenceImage& ref) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
     try {
         // One read for every plane: the file is decompressed once.
         int w = 0, h = 0;
-        const std::vector<std::vector<float>> channels = readChannels(path, names, w, h);
+        const std::vector<std::vector<float>> channels =
+            readChannels(path, referenceChannelNames(), w, h);
         if (w != width || h != height) return false;
         std::size_t k = 0;
         for (const RefPlane& g : kGroups)
@@ -53,22 +71,41 @@ bool readCached(const std::string& path, int width, int height, ReferenceImage& 
                 for (int y = 0; y < h; ++y) std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
             }
     } catch (const std::exception&) {
-        return false;  // unreadable or incomplete: render it again
+        return false;  // unreadable or incomplete
     }
     return true;
 }
 
-void writeCached(const std::string& path, const ReferenceImage& ref) {
-    fs::create_directories(fs::path(path).parent_path());
-    ImageLayers image{ref.color[0].width(), ref.color[0].height(), {}};
-    std::vector<std::string> names;  // kept alive while image.layers view them
-    names.reserve(std::size(kGroups) * 3);
+void writeReferenceImage(const std::string& path, const ReferenceImage& ref,
+                         std::optional<RowBand> band,
+                         std::vector<std::pair<std::string, std::string>> attributes) {
+    const int width = ref.color[0].width();
+    const RowBand rows = band.value_or(RowBand{0, ref.color[0].height()});
+    ImageLayers image{width, rows.y1 - rows.y0, {}, std::move(attributes)};
+    const std::vector<std::string> names = referenceChannelNames();  // alive while viewed
+    std::vector<PlaneF> cropped;                                     // a band's rows, copied out
+    cropped.reserve(names.size());
+    std::size_t k = 0;
     for (const RefPlane& g : kGroups)
-        for (int c = 0; c < 3; ++c) {
-            names.push_back(std::string(g.name) + kSuffix[c]);
-            image.layers.push_back({names.back(), &(ref.*g.group)[c]});
+        for (int c = 0; c < 3; ++c, ++k) {
+            const PlaneF& full = (ref.*g.group)[c];
+            const PlaneF* plane = &full;
+            if (band) {
+                cropped.emplace_back(width, image.height);
+                for (int y = rows.y0; y < rows.y1; ++y)
+                    std::copy_n(full.row(y), width, cropped.back().row(y - rows.y0));
+                plane = &cropped.back();
+            }
+            image.layers.push_back({names[k], plane});
         }
     writeImage(path, image);  // whole or not at all (a temporary renamed over the target)
+}
+
+namespace {
+
+void writeCached(const std::string& path, const ReferenceImage& ref) {
+    fs::create_directories(fs::path(path).parent_path());
+    writeReferenceImage(path, ref);
 }
 
 }  // namespace
@@ -82,18 +119,13 @@ std::string defaultCacheDir() {
     return {};
 }
 
-ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
-                            const RenderSettings& settings, const ReferenceSettings& reference,
-                            const ReferenceSource& source, bool& fromCache) {
-    fromCache = false;
-    const uint64_t key = referenceKey(scene, input.camera, input.frameIndex, settings, reference);
-    const std::string path = source.cacheDir ? cachePath(*source.cacheDir, key) : std::string();
-    ReferenceImage ref;
-    if (!path.empty() && readCached(path, settings.width, settings.height, ref)) {
-        fromCache = true;
-        return ref;
-    }
-    // The frame the reference is rendered over: its G-buffer, direct parts and shadow map.
+namespace {
+
+// Renders the reference (or a band of it) over the frame `input` gives: its G-buffer, direct
+// parts and shadow map, both trace passes on.
+ReferenceImage renderFresh(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                           const RenderSettings& settings, const ReferenceSettings& reference,
+                           const ReferenceSource& source, std::optional<RowBand> band) {
     RenderSettings base = settings;
     base.trace.ssr = base.trace.ssgi = true;
     const Renderer renderer(base);
@@ -109,8 +141,31 @@ ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const
         lastPercent = percent;
         *source.progress << "reference: " << percent << "%\n" << std::flush;
     };
-    ref = renderReference(embree, renderer, frame, reference, progress);
-    if (!path.empty()) {
+    return renderReference(embree, renderer, frame, reference, progress, band);
+}
+
+}  // namespace
+
+std::string referenceCachePath(const std::string& dir, const Scene& scene, const FrameInput& input,
+                               const RenderSettings& settings, const ReferenceSettings& reference) {
+    return cachePath(dir, referenceKey(scene, input.camera, input.frameIndex, settings, reference));
+}
+
+ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
+                            const RenderSettings& settings, const ReferenceSettings& reference,
+                            const ReferenceSource& source, bool& fromCache,
+                            std::optional<RowBand> band) {
+    fromCache = false;
+    const std::string path =
+        source.cacheDir ? referenceCachePath(*source.cacheDir, scene, input, settings, reference)
+                        : std::string();
+    ReferenceImage ref;
+    if (!path.empty() && readReferenceImage(path, settings.width, settings.height, ref)) {
+        fromCache = true;
+        return ref;
+    }
+    ref = renderFresh(embree, scene, input, settings, reference, source, band);
+    if (!path.empty() && !band) {  // a band is not the whole reference: never cached
         try {
             writeCached(path, ref);
         } catch (const std::exception& e) {

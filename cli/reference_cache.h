@@ -7,6 +7,8 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "renderer/renderer.h"
 #include "truth/embree_scene.h"
@@ -25,8 +27,35 @@ struct ReferenceSource {
 // The reference for `settings` (its trace settings' SSR sampler and frame index; both trace
 // passes are turned on for the frame it is rendered over). `fromCache` tells where it came
 // from. A cache file that cannot be read or does not match is rendered again and replaced.
+// With `band`, a cached whole reference is returned as it is, else only the band's rows are
+// rendered (renderReference) and nothing is stored: a band is not the whole reference.
+// Cache files are written to a temporary of a name unique to the process and renamed over
+// the target, so processes on many machines sharing one cache folder (a Slurm array's tasks)
+// never see a torn file: readers get a whole reference or none, and of two writers racing
+// on one key the last rename wins with a file as whole (and as identical) as the other's.
 ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
                             const RenderSettings& settings, const ReferenceSettings& reference,
-                            const ReferenceSource& source, bool& fromCache);
+                            const ReferenceSource& source, bool& fromCache,
+                            std::optional<RowBand> band = std::nullopt);
+
+// The cache's file for a request: DIR/ref-<referenceKey in hex>.exr.
+std::string referenceCachePath(const std::string& dir, const Scene& scene, const FrameInput& input,
+                               const RenderSettings& settings, const ReferenceSettings& reference);
+
+// The reference's planes as files name them (the cache's, `ssrt reference -o`'s): ref.color.R,
+// .G, .B, then ref.direct, ref.ssr, ref.ssgi, ref.specular, ref.diffuse likewise.
+std::vector<std::string> referenceChannelNames();
+// Writes `ref` as an EXR of referenceChannelNames(), whole or not at all; with `band` only its
+// rows (an image band.y1 - band.y0 rows high), with `attributes` in the header.
+void writeReferenceImage(const std::string& path, const ReferenceImage& ref,
+                         std::optional<RowBand> band = std::nullopt,
+                         std::vector<std::pair<std::string, std::string>> attributes = {});
+// The planes of `ref` in the order of referenceChannelNames().
+std::vector<PlaneF*> referencePlanes(ReferenceImage& ref);
+// The cache's name for a key: ref-<16 hex digits>.exr.
+std::string referenceCacheFileName(uint64_t key);
+// Reads one back: false (and `ref` unspecified) if the file is missing, unreadable, lacks a
+// plane or is not width x height.
+bool readReferenceImage(const std::string& path, int width, int height, ReferenceImage& ref);
 
 }  // namespace ssrt::cli

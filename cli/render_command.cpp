@@ -14,6 +14,7 @@
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "cli/sequence.h"
+#include "cli/shard.h"
 #include "io/image_io.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
@@ -81,6 +82,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
         "out_0001.png, ...)");
     addImageOutputOptions(*cmd, o);
+    addShardOption(*cmd, o.shard,
+                   "frames: block K of N of --frames, each frame's file named as unsharded; the "
+                   "frames before the block since the history last restarted are rendered, "
+                   "not written");
     addTraceOptions(*cmd, o);
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
@@ -132,7 +137,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const RenderSettings& settings = request.settings;
     const SequencePlan plan = sequencePlanFrom(o, request);
     const int frames = plan.frames;
-    checkWritable(sequenceFileName(o.output, 0, frames));
+    std::string shardSource;
+    const Shard shard = shardFrom(o.shard, &shardSource);
+    const Range block = shardBlock(shard, frames);
+    checkWritable(sequenceFileName(o.output, int(block.begin), frames));
     const WriteOptions writeOptions = writeOptionsFrom(o, settings, o.output, err);
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
@@ -141,22 +149,38 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     // Loaded before anything is written.
     loadScene(request, err);
     const Scene& scene = request.scene;
+    const FrameSequence sequence(request, plan);
+    // A shard renders from the last step at or before its block where the history restarts
+    // (step 0, or a camera cut): the frames between are rendered for their history only.
+    const int firstStep = plan.warmup + int(block.begin), endStep = plan.warmup + int(block.end);
+    int startStep = firstStep;
+    while (block.begin < block.end && startStep > 0 && !sequence.input(startStep).resetHistory)
+        --startStep;
+    const int historyFrom = std::max(0, sequence.frameOf(startStep));  // the first replayed
     if (!o.quiet) {
         err << "rendering " << request.name << " " << settings.width << "x" << settings.height
             << (frames > 1 ? ", " + plural(frames, "frame") : std::string())
             << (plan.warmup > 0 ? " after " + plural(plan.warmup, "warm-up frame") : std::string())
-            << " on " << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread")
-            << "...\n";
+            << " on " << isaName(request.isa) << ", " << plural(threadsFor(settings), "thread");
+        if (shard.sharded())
+            err << ", " << describeShard(shard, shardSource) << ": "
+                << (block.begin == block.end
+                        ? std::string("no frame")
+                        : "frames " + std::to_string(block.begin) + " to " +
+                              std::to_string(block.end - 1) +
+                              (historyFrom < block.begin
+                                   ? " (history from frame " + std::to_string(historyFrom) + ")"
+                                   : std::string()));
+        err << "...\n";
     }
 
     // One Renderer, one Frame and one history for the whole sequence: planes and scratch
     // buffers are reused, and each frame reads what the one before committed (cli/sequence.h:
     // the cameras, frame indices and cuts).
-    const FrameSequence sequence(request, plan);
     const Renderer renderer(settings);
     Frame frame;
     FrameHistory history;
-    for (int step = 0; step < sequence.steps(); ++step) {
+    for (int step = startStep; step < endStep; ++step) {
         const FrameInput input = sequence.input(step);
         const auto start = std::chrono::steady_clock::now();
         renderer.render(scene, input, history, frame);
@@ -168,6 +192,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         }
 
         const int i = sequence.frameOf(step);
+        if (step < firstStep) {
+            if (!o.quiet) err << "history frame " << (i + 1) << "/" << frames << "\n";
+            continue;
+        }
         const std::string file = sequenceFileName(o.output, i, frames);
         const auto written = std::chrono::steady_clock::now();
         writeImage(file, frame, writeOptions);

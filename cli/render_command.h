@@ -33,7 +33,8 @@ struct RenderOptions {
     std::optional<std::string> layers, exrCompression;
     bool stats = false;
     bool quiet = false;
-    bool strict = false;  // --strict: a glTF file's warnings are errors
+    bool strict = false;               // --strict: a glTF file's warnings are errors
+    std::optional<std::string> shard;  // render's --shard K/N (cli/shard.h): a block of frames
 
     RenderOptions();  // isa defaults to RenderSettings{}'s
 };

@@ -12,17 +12,19 @@
 #include "cli/reference_cache.h"
 #include "cli/sequence.h"
 #include "cli/sequence_evaluation.h"
+#include "cli/shard.h"
 #include "io/image_io.h"
+#include "renderer/quality.h"
 
 namespace ssrt::cli {
 
 namespace {
 
 // The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
-const char* const kPasses[] = {"shadow",    "geometry",   "visibility",   "resolve",
-                               "textures",  "ids",        "environment",  "shading",
-                               "hi-z",      "ssr rays",   "ssr march",    "ssr resolve",
-                               "ssgi rays", "ssgi march", "ssgi resolve", "composite"};
+const char* const kPasses[] = {
+    "shadow",      "geometry",   "visibility",   "resolve",   "textures",      "ids",
+    "environment", "shading",    "hi-z",         "ssr rays",  "ssr march",     "ssr resolve",
+    "ssgi rays",   "ssgi march", "ssgi resolve", "composite", kEmbreeTracePass};
 
 std::string columnName(std::string s) {
     for (char& c : s)
@@ -30,14 +32,32 @@ std::string columnName(std::string s) {
     return s;
 }
 
-// One point of the grid.
+// One point of the chart: a setting of the grid, a quality preset, or the Embree method.
 struct Point {
     bool traced = true;  // false: the "off" marcher (both passes off, the environment's light)
+    std::optional<Quality> preset;  // a quality preset's settings (the fields below: its own)
+    int embreeSpp = 0;              // > 0: SSR and SSGI traced by Embree, this many rays each
     Marcher marcher = Marcher::HiZ;
     int maxSteps = 0, ssrSpp = 1, ssgiSpp = 1;
     SsrMethod ssrMethod = SsrMethod::VndfBounded;
     float thickness = 0.0f;
     SsrResolveMode resolve = SsrResolveMode::Reuse;
+
+    static Point off() {
+        Point p;
+        p.traced = false;
+        return p;
+    }
+    static Point ofPreset(Quality q) {
+        Point p;
+        p.preset = q;
+        return p;
+    }
+    static Point ofEmbree(int spp) {
+        Point p = off();
+        p.embreeSpp = spp;
+        return p;
+    }
 };
 
 template <class T, class F>
@@ -45,6 +65,12 @@ std::vector<T> parseEach(const std::string& option, const std::string& text, F p
     std::vector<T> out;
     for (const std::string& item : splitList(option, text)) out.push_back(parse(item));
     return out;
+}
+
+// The same for a list that may be left empty (none of those points).
+template <class T, class F>
+std::vector<T> parseOptional(const std::string& option, const std::string& text, F parse) {
+    return text.empty() ? std::vector<T>{} : parseEach<T>(option, text, parse);
 }
 
 // Each list item is checked against its setting's range in the field table
@@ -78,7 +104,7 @@ std::vector<Point> grid(const SweepOptions& o) {
     bool off = false;
     for (const auto& m : marchers) {
         if (!m) {
-            if (!off) points.push_back(Point{false});  // once, whatever the other lists say
+            if (!off) points.push_back(Point::off());  // once, whatever the other lists say
             off = true;
             continue;
         }
@@ -88,13 +114,46 @@ std::vector<Point> grid(const SweepOptions& o) {
                     for (int gp : ssgiSpp)
                         for (float th : thickness)
                             for (SsrResolveMode re : resolves)
-                                points.push_back({true, *m, st, sp, gp, me, th, re});
+                                points.push_back({true, {}, 0, *m, st, sp, gp, me, th, re});
     }
+    for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
+             const std::optional<Quality> q = parseQuality(s);
+             if (!q) badValue("--presets", s, "one of " + std::string(qualityList()));
+             return *q;
+         }))
+        points.push_back(Point::ofPreset(q));
+    for (const int spp : parseOptional<int>("--embree-spp", o.embreeSpp, [](const std::string& s) {
+             return int(parseInteger("--embree-spp", s, 1, kMaxReferenceSpp));
+         }))
+        points.push_back(Point::ofEmbree(spp));
     return points;
+}
+
+// The point's columns as its settings have them (a preset's are the preset's; the Embree
+// method draws its SSR rays with the frame's sampler).
+Point describedBy(Point p, const RenderSettings& s) {
+    const TraceSettings& t = s.trace;
+    p.ssrMethod = t.ssrMethod;
+    if (!p.preset) return p;
+    p.traced = t.any();
+    p.marcher = t.marcher;
+    p.maxSteps = t.march.maxSteps;
+    p.ssrSpp = t.ssrSpp;
+    p.ssgiSpp = t.ssgiSpp;
+    p.ssrMethod = t.ssrMethod;
+    p.thickness = t.march.thickness;
+    p.resolve = t.resolve.mode;
+    return p;
 }
 
 RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
     RenderSettings s = base;
+    if (p.embreeSpp > 0) return s;  // the frame as the scene options give it, traced by Embree
+    if (p.preset) {
+        applyQuality(*p.preset, s);
+        s.validate();
+        return s;
+    }
     TraceSettings& t = s.trace;
     t.ssr = t.ssgi = p.traced;
     if (p.traced) {
@@ -126,7 +185,7 @@ double passMs(const Evaluation& ev, const char* name) {
 }
 
 // One CSV row (the values of sweepColumns(), in order).
-std::string csvRow(const std::string& scene, const RenderSettings& s, const Point& p,
+std::string csvRow(int setting, const std::string& scene, const RenderSettings& s, const Point& p,
                    const ReferenceSettings& reference, const SequencePlan& plan,
                    const SequenceEvaluation& result) {
     const Evaluation& ev = result.last;
@@ -137,11 +196,17 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
         r << ',';
         if (on) r << v;
     };
-    r << csvField(scene);
+    r << setting << ',' << csvField(scene);
     cell(s.width), cell(s.height), cell(s.threads);
-    cell(p.traced ? marcherName(p.marcher) : std::string_view("off"));
-    r << ',' << (p.traced ? std::string(ssrMethodName(p.ssrMethod)) : "");
-    optional(p.traced, p.ssrSpp), optional(p.traced, p.ssgiSpp), optional(p.traced, p.maxSteps);
+    const bool embree = p.embreeSpp > 0;
+    cell(embree     ? std::string_view("embree")
+         : p.traced ? marcherName(p.marcher)
+                    : std::string_view("off"));
+    r << ',' << (p.preset ? qualityName(*p.preset) : std::string_view());
+    r << ',' << (p.traced || embree ? std::string(ssrMethodName(p.ssrMethod)) : "");
+    optional(p.traced || embree, embree ? p.embreeSpp : p.ssrSpp);
+    optional(p.traced || embree, embree ? p.embreeSpp : p.ssgiSpp);
+    optional(p.traced, p.maxSteps);
     optional(p.traced, p.thickness);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
@@ -175,7 +240,48 @@ std::string csvRow(const std::string& scene, const RenderSettings& s, const Poin
     return r.str();
 }
 
+// The Embree method's rays take the evaluated frame's index plus this, so that they are not
+// the reference's first samples (truth/evaluation.h, evaluateEmbreeMethod).
+constexpr uint32_t kEmbreeMethodFrameOffset = 0x80000000u;
+
+// The Embree method on the sequence's last frame (no history: nothing is accumulated), against
+// that frame's reference.
+SequenceEvaluation evaluateEmbreePoint(const TruthContext& t, const FrameSequence& sequence,
+                                       const RenderSettings& settings, int spp) {
+    const FrameInput last = sequence.input(sequence.steps() - 1);
+    bool fromCache = false;
+    const ReferenceImage reference =
+        referenceFor(t.embree, t.scene, last, settings, t.reference, t.source, fromCache);
+    FrameInput own = last;
+    own.frameIndex = last.frameIndex + kEmbreeMethodFrameOffset;
+    ReferenceSettings world = t.reference;
+    world.spp = spp;
+    SequenceEvaluation out;
+    out.last =
+        evaluateEmbreeMethod(t.embree, t.scene, own, settings, world, reference, t.evaluation);
+    FrameError row;
+    row.frame = sequence.plan().frames - 1;
+    row.frameIndex = last.frameIndex;
+    row.relMse = out.last.error.color.relMse;
+    out.frames.push_back(row);
+    return out;
+}
+
+// A shard's settings: i % N == K (cli/shard.h).
+bool ownsSetting(const Shard& shard, std::size_t i) {
+    return int(i % std::size_t(shard.count)) == shard.index;
+}
+int ownedCount(const Shard& shard, std::size_t settings) {
+    int n = 0;
+    for (std::size_t i = 0; i < settings; ++i) n += ownsSetting(shard, i);
+    return n;
+}
+
 std::string describe(const Point& p) {
+    if (p.embreeSpp > 0)
+        return "embree, ssr x" + std::to_string(p.embreeSpp) + ", ssgi x" +
+               std::to_string(p.embreeSpp) + " (world space, no denoiser)";
+    if (p.preset) return "preset " + std::string(qualityName(*p.preset));
     if (!p.traced) return "off (environment light only)";
     std::ostringstream s;
     s << marcherName(p.marcher) << ", " << p.maxSteps << " steps, " << ssrMethodName(p.ssrMethod)
@@ -201,9 +307,10 @@ SweepOptions::SweepOptions() {
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
         std::vector<std::string> c = {
-            "scene",      "width",        "height",        "threads",           "marcher",
-            "ssr_method", "ssr_spp",      "ssgi_spp",      "max_steps",         "thickness",
-            "resolve",    "trace_hidden", "reference_spp", "reference_bounces", "frame_ms"};
+            "setting",           "scene",     "width",      "height",       "threads",
+            "marcher",           "quality",   "ssr_method", "ssr_spp",      "ssgi_spp",
+            "max_steps",         "thickness", "resolve",    "trace_hidden", "reference_spp",
+            "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -243,6 +350,14 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     list("--thickness", o.thickness,
          "Depth-buffer thickness (fractions of view depth, as --thickness)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
+    list("--presets", o.presets,
+         "Quality presets as points of their own beside the grid (column quality): " +
+             std::string(qualityList()) + "; none by default");
+    list("--embree-spp", o.embreeSpp,
+         "The world-space alternative as points of its own (marcher embree): SSR and SSGI "
+         "traced by Embree with this many rays per pixel each instead of marched, no denoiser, "
+         "e.g. 1,4,16; its time is the frame without traces plus Embree's (column "
+         "ms_embree_trace); none by default");
     cmd->add_flag("--trace-hidden", o.traceHidden,
                   "Every setting also traces the rays the composite hides (SSR past the "
                   "roughness fade, SSGI on metals); by default they get no ray, so the ray "
@@ -256,20 +371,29 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     cmd->add_option("-o,--output", o.output, "CSV file to write (whole, when the sweep ends)")
         ->type_name("FILE")
         ->capture_default_str();
+    addShardOption(*cmd, o.shard, "settings K, K + N, K + 2N, ...; --per-frame's file too");
     return cmd;
 }
 
 int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     request.settings.trace.traceHidden = o.traceHidden;
-    const std::vector<Point> points = grid(o);
+    std::vector<Point> points = grid(o);
     std::vector<RenderSettings> settings;
-    for (const Point& p : points) settings.push_back(settingsFor(request.settings, p));
+    for (Point& p : points) {
+        settings.push_back(settingsFor(request.settings, p));
+        p = describedBy(p, settings.back());
+    }
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings.trace);
-    checkCsvPath("-o", o.output);
-    if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
+    std::string shardSource;
+    const Shard shard = shardFrom(o.shard, &shardSource);
+    const std::string output = shardFileName(o.output, shard);
+    const std::optional<std::string> perFrameOutput =
+        o.truth.perFrame ? std::optional(shardFileName(*o.truth.perFrame, shard)) : std::nullopt;
+    checkCsvPath("-o", output);
+    if (perFrameOutput) checkCsvPath("--per-frame", *perFrameOutput);
     loadScene(request, err);
     const Scene& scene = request.scene;
     const FrameSequence sequence(request, plan);
@@ -280,7 +404,11 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                   << (plan.frames > 1 || plan.warmup > 0 ? " of " + sequenceText(plan)
                                                          : std::string())
                   << " on " << isaName(request.isa) << ", "
-                  << plural(threadsFor(request.settings), "thread") << "\n";
+                  << plural(threadsFor(request.settings), "thread")
+                  << (shard.sharded() ? ", " + describeShard(shard, shardSource) + ": " +
+                                            plural(ownedCount(shard, points.size()), "setting")
+                                      : std::string())
+                  << "\n";
 
     const EmbreeScene embree(scene);
     const ReferenceSource source = referenceSourceFrom(o.truth, err);
@@ -294,6 +422,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         << "\n";
     Frame frame;
     for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!ownsSetting(shard, i)) continue;
         if (progress)
             *progress << "setting " << (i + 1) << "/" << points.size() << ": "
                       << describe(points[i]) << "\n";
@@ -305,20 +434,23 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         if (!points[i].traced) refRender.trace = request.settings.trace;
         const TruthContext truth{embree, scene, refSettings, source, evalSettings, progress};
         const SequenceEvaluation result =
-            evaluateSequence(truth, sequence, settings[i], refRender, frame);
+            points[i].embreeSpp > 0
+                ? evaluateEmbreePoint(truth, sequence, settings[i], points[i].embreeSpp)
+                : evaluateSequence(truth, sequence, settings[i], refRender, frame);
         const Evaluation& ev = result.last;
-        csv << csvRow(request.name, settings[i], points[i], refSettings, plan, result) << "\n";
+        csv << csvRow(int(i), request.name, settings[i], points[i], refSettings, plan, result)
+            << "\n";
         perFrame << frameErrorsCsvRows(result.frames, int(i));
         out << std::left << std::setw(56) << describe(points[i]) << std::right << std::fixed
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific
             << std::setprecision(3) << std::setw(12) << ev.error.color.relMse << std::defaultfloat
             << "\n";
     }
-    writeTextFile(o.output, csv.str());
-    if (progress) *progress << "wrote " << o.output << "\n";
-    if (o.truth.perFrame) {
-        writeTextFile(*o.truth.perFrame, perFrame.str());
-        if (progress) *progress << "wrote " << *o.truth.perFrame << "\n";
+    writeTextFile(output, csv.str());
+    if (progress) *progress << "wrote " << output << "\n";
+    if (perFrameOutput) {
+        writeTextFile(*perFrameOutput, perFrame.str());
+        if (progress) *progress << "wrote " << *perFrameOutput << "\n";
     }
     return kExitOk;
 }

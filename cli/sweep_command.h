@@ -8,6 +8,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,12 @@ struct SweepOptions {
     TruthOptions truth;
     std::string marchers = "off,linear,dda,hiz";
     std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness,
-        resolves;  // defaults: TraceSettings{}
+        resolves;           // defaults: TraceSettings{}
+    std::string presets;    // quality presets as points: "low,medium,..." (none by default)
+    std::string embreeSpp;  // the Embree method's rays per pixel: "1,4,16" (none by default)
     std::string output = "sweep.csv";
-    bool traceHidden = false;  // every setting: TraceSettings::traceHidden
+    bool traceHidden = false;          // every setting: TraceSettings::traceHidden
+    std::optional<std::string> shard;  // --shard K/N (cli/shard.h)
     SweepOptions();
 };
 

@@ -3,6 +3,7 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
@@ -92,13 +93,25 @@ void checkDirectory(const std::string& path) {
     if (fs::is_directory(fs::status(path, ec))) failWrite(path, "it is a directory");
 }
 
+// This machine's name as a file name may hold it (letters, digits, '-', '.'; others '_').
+std::string hostTag() {
+    char host[256] = {};
+    if (::gethostname(host, sizeof host - 1) != 0) return "host";
+    std::string tag(host);
+    for (char& c : tag)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+    return tag.empty() ? "host" : tag;
+}
+
 // A hidden name beside the target that keeps its extension (OpenImageIO picks the format by
-// it) and cannot collide with another writer in this or another process.
+// it) and cannot collide with another writer in this or another process, on this machine or
+// another sharing the folder (a cluster's shared cache: process ids repeat across nodes).
 fs::path temporaryPathFor(const std::string& path, const std::string& ext) {
     static std::atomic<unsigned> counter{0};
+    static const std::string host = hostTag();
     // Built with append: GCC 12 gives a false -Wrestrict for "." + std::string.
     std::string name(1, '.');
-    name.append(fs::path(path).filename().string()).append(".tmp-");
+    name.append(fs::path(path).filename().string()).append(".tmp-").append(host).append("-");
     name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
     name.append(ext);
     return directoryOf(path) / name;
@@ -206,6 +219,8 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
     Imf::Header header(image.width, image.height);
     header.compression() = exrCompression(options.compression);
     header.insert("software", Imf::StringAttribute("ssrt"));
+    for (const auto& [name, value] : image.attributes)
+        header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer buffer;
     for (const PlaneRef& p : image.layers) {
         const std::string name(p.name);
@@ -231,7 +246,7 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
 
 // The layers of the groups asked for, in the frame's order.
 ImageLayers chosenLayers(const ImageLayers& image, const LayerGroups& groups) {
-    ImageLayers out{image.width, image.height, {}};
+    ImageLayers out{image.width, image.height, {}, image.attributes};
     for (const PlaneRef& p : image.layers)
         if (hasGroup(groups, p.group)) out.layers.push_back(p);
     return out;
@@ -258,7 +273,7 @@ void checkWritable(const std::string& path) {
 bool isExrPath(const std::string& path) { return lowerExtension(path) == ".exr"; }
 
 void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options) {
-    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers()}, options);
+    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers(), {}}, options);
 }
 
 void writeImage(const std::string& path, const ImageLayers& image, const WriteOptions& options) {
@@ -331,6 +346,20 @@ SkyImage readSkyImage(const std::string& path) {
         img.rgb = std::move(half.rgb);
     }
     return img;
+}
+
+std::map<std::string, std::string> readExrStringAttributes(const std::string& path) {
+    std::map<std::string, std::string> out;
+    try {
+        const Imf::InputFile file(path.c_str());
+        const Imf::Header& header = file.header();
+        for (auto it = header.begin(); it != header.end(); ++it)
+            if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                out.emplace(it.name(), a->value());
+    } catch (const std::exception& e) {
+        failRead(path, e.what());
+    }
+    return out;
 }
 
 std::vector<std::string> readChannelNames(const std::string& path) {

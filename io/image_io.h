@@ -2,7 +2,9 @@
 // OpenImageIO stays behind this header so the core library never sees it.
 #pragma once
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/write_options.h"
@@ -31,6 +33,9 @@ void writeImage(const std::string& path, const Frame& frame, const WriteOptions&
 struct ImageLayers {
     int width = 0, height = 0;
     std::vector<PlaneRef> layers;  // in file order
+    // EXR only (a PNG has none): string attributes in the header, e.g. what part of a larger
+    // image a shard's file holds (cli/shard.h). Names must not be OpenEXR's own.
+    std::vector<std::pair<std::string, std::string>> attributes;
 };
 void writeImage(const std::string& path, const ImageLayers& image,
                 const WriteOptions& options = {});
@@ -56,6 +61,10 @@ const std::vector<std::string>& supportedImageExtensions();
 // renderer's float texel indices). Throws std::runtime_error, one line naming the path, if
 // the file cannot be read or holds a NaN or an infinity.
 SkyImage readSkyImage(const std::string& path);
+
+// The string attributes of an EXR file's header (ImageLayers::attributes and OpenEXR's own
+// string attributes), by name. Throws std::runtime_error naming the path if it cannot be read.
+std::map<std::string, std::string> readExrStringAttributes(const std::string& path);
 
 // Channel names of an image file in the order the reader reports them (OpenEXR stores
 // channels sorted by name, so this need not be the order they were written in).

@@ -21,7 +21,12 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
 
-MARKERS = {"off": "x", "linear": "s", "dda": "^", "hiz": "o"}
+MARKERS = {"off": "x", "linear": "s", "dda": "^", "hiz": "o", "embree": "*", "preset": "P"}
+
+
+def group(row):
+    """The legend entry: a quality preset's rows are 'preset', others their marcher."""
+    return "preset" if row.get("quality") else row.get("marcher", "")
 
 
 def read_rows(path, x, y):
@@ -57,8 +62,12 @@ def pareto_front(points):
 
 
 def label(row):
+    if row.get("quality"):
+        return row["quality"]
     if row.get("marcher") == "off":
         return "off"
+    if row.get("marcher") == "embree":
+        return f"embree {row.get('ssr_spp', '')} spp"
     parts = [row.get("marcher", "")]
     for column, suffix in (("max_steps", " st"), ("ssr_spp", " spp")):
         if row.get(column):
@@ -68,10 +77,11 @@ def label(row):
 
 def plot(rows, x, y, out, title):
     fig, ax = plt.subplots(figsize=(8, 5.5), dpi=120)
-    for marcher in sorted({r.get("marcher", "") for r in rows}):
-        group = [r for r in rows if r.get("marcher", "") == marcher]
-        ax.scatter([r["_x"] for r in group], [r["_y"] for r in group],
-                   marker=MARKERS.get(marcher, "D"), s=40, label=marcher or "setting")
+    for name in sorted({group(r) for r in rows}):
+        members = [r for r in rows if group(r) == name]
+        ax.scatter([r["_x"] for r in members], [r["_y"] for r in members],
+                   marker=MARKERS.get(name, "D"), s=70 if name == "embree" else 40,
+                   label=name or "setting")
     for r in rows:
         ax.annotate(label(r), (r["_x"], r["_y"]), textcoords="offset points", xytext=(4, 4),
                     fontsize=7, color="0.35")
@@ -100,13 +110,16 @@ def self_test():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "s.csv")
         with open(path, "w") as f:
-            f.write("scene,marcher,max_steps,ssr_spp,frame_ms,relmse\n")
-            f.write("cornell,off,,,10,0.5\ncornell,hiz,64,1,20,0.1\n")
-            f.write("cornell,linear,512,1,80,0.2\ncornell,dda,,1,,0.3\n")
+            f.write("scene,marcher,quality,max_steps,ssr_spp,frame_ms,relmse\n")
+            f.write("cornell,off,,,,10,0.5\ncornell,hiz,,64,1,20,0.1\n")
+            f.write("cornell,linear,,512,1,80,0.2\ncornell,dda,,,1,,0.3\n")
+            f.write("cornell,embree,,,4,300,0.05\ncornell,hiz,low,48,1,15,0.09\n")
         rows = read_rows(path, "frame_ms", "relmse")
-        assert [r["marcher"] for r in rows] == ["off", "hiz", "linear"], rows
-        assert [rows[i]["marcher"] for i in pareto_front([(r["_x"], r["_y"]) for r in rows])] == [
-            "off", "hiz"]
+        assert [r["marcher"] for r in rows] == ["off", "hiz", "linear", "embree", "hiz"], rows
+        assert [group(r) for r in rows] == ["off", "hiz", "linear", "embree", "preset"]
+        assert [label(r) for r in rows][3:] == ["embree 4 spp", "low"]
+        assert [label(rows[i]) for i in pareto_front([(r["_x"], r["_y"]) for r in rows])] == [
+            "off", "low", "embree 4 spp"]
         png = os.path.join(d, "chart.png")
         plot(rows, "frame_ms", "relmse", png, "self test")
         assert os.path.getsize(png) > 1000

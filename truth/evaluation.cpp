@@ -1,6 +1,7 @@
 #include "truth/evaluation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -150,6 +151,61 @@ Evaluation evaluateSequenceFrame(const EmbreeScene& embree, const Scene& scene,
     es.validate();
     return checkedRender(embree, scene, input, settings, reference, es, earlierRuns, true, &history,
                          frame);
+}
+
+namespace {
+
+ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
+    const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
+    const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
+    return imageError(pa, pb);
+}
+
+}  // namespace
+
+Evaluation evaluateEmbreeMethod(const EmbreeScene& embree, const Scene& scene,
+                                const FrameInput& input, const RenderSettings& settings,
+                                const ReferenceSettings& world, const ReferenceImage& reference,
+                                const EvaluationSettings& es) {
+    es.validate();
+    world.validate();
+    // What stays of the frame: raster, G-buffer, direct light (no trace, no denoiser).
+    RenderSettings direct = settings;
+    direct.trace.ssr = direct.trace.ssgi = false;
+    const Renderer directRenderer(direct);
+    Frame frame;
+    std::vector<std::vector<PassTime>> runs;
+    for (int i = 0; i < es.repeats; ++i) {
+        directRenderer.renderWithoutHistory(scene, input, frame);
+        runs.push_back(frame.stats.passes);
+    }
+    Evaluation ev;
+    ev.passes = medianPasses(runs, ev.frameMs);
+    // The frame Embree traces from (renderReference reads its G-buffer, direct parts and
+    // samplers' inputs; both trace passes on, as it requires), untimed.
+    RenderSettings traced = settings;
+    traced.trace.ssr = traced.trace.ssgi = true;
+    const Renderer renderer(traced);
+    renderer.renderWithoutHistory(scene, input, frame);
+    ev.stats = frame.stats;
+    std::vector<double> ms;
+    ReferenceImage image;
+    for (int i = 0; i < es.repeats; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        image = renderReference(embree, renderer, frame, world);
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count());
+    }
+    const double traceMs = median(ms);
+    ev.passes.push_back({kEmbreeTracePass, traceMs});
+    ev.frameMs += traceMs;
+    ev.error.color = planesError(image.color, reference.color);
+    ev.error.parts = true;
+    ev.error.direct = planesError(image.direct, reference.direct);
+    ev.error.specular = planesError(image.specular, reference.specular);
+    ev.error.diffuse = planesError(image.diffuse, reference.diffuse);
+    return ev;
 }
 
 }  // namespace ssrt

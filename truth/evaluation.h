@@ -61,4 +61,20 @@ Evaluation evaluateSequenceFrame(const EmbreeScene& embree, const Scene& scene,
                                  const std::vector<std::vector<PassTime>>& earlierRuns,
                                  FrameHistory& history, Frame& frame);
 
+// The world-space alternative measured as a method of its own (ssrt sweep --embree-spp): the
+// frame with its SSR and SSGI traced by Embree instead of marched, `world.spp` rays each
+// (renderReference over the frame: nothing guessed, no denoiser), beside the screen-space
+// settings on the error-against-time chart. Its passes are those of the frame that stay
+// (raster, G-buffer, direct light: both trace passes off), medians of `repeats` renders, and
+// kEmbreeTracePass (renderReference's whole time, the median of `repeats`); frameMs is their
+// sum. Its error is its image's against `reference`, overall and per part; no ray checks
+// (nothing is marched). Its random numbers are those of `input`'s frame index: give it
+// another index than the reference's, or its rays are the reference's first samples and its
+// error is biased low.
+inline constexpr const char* kEmbreeTracePass = "embree trace";
+Evaluation evaluateEmbreeMethod(const EmbreeScene& embree, const Scene& scene,
+                                const FrameInput& input, const RenderSettings& settings,
+                                const ReferenceSettings& world, const ReferenceImage& reference,
+                                const EvaluationSettings& evalSettings);
+
 }  // namespace ssrt

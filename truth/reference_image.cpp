@@ -65,8 +65,16 @@ struct Setup {
     SsrMethod ssrMethod = SsrMethod::VndfBounded;  // the frame's SSR sampler
     uint32_t frameIndex = 0;                       // the frame's RNG frame
     std::vector<glm::vec3> offset;                 // per pixel: surfaceOffsets
+    int firstTile = 0, tileCount = 0;              // the band's tiles (row-major, whole rows)
     explicit Setup(const Frame& f) : frame(f) {}
 };
+
+// fn(tile) for the band's tiles, on the setup's threads. Every pixel's value depends only on
+// its own rays (per-pixel random numbers), so a band's pixels are the whole frame's bits.
+template <class Fn>
+void forBandTiles(const Setup& s, Fn&& fn) {
+    parallelForTiles(s.tileCount, s.threads, [&](int t) { fn(s.firstTile + t); });
+}
 
 void requireTraced(const Frame& frame, const RenderSettings& rs) {
     if (frame.width != rs.width || frame.height != rs.height)
@@ -101,6 +109,8 @@ void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
     s.isa = resolveIsa(rs.isa);
     s.threads = rs.threads;
     s.grid = TileGrid(f.width, f.height);
+    s.firstTile = 0;
+    s.tileCount = s.grid.count();
     s.maxDistance = settings.maxDistance;
     s.ssrMethod = rs.trace.ssrMethod;
     s.frameIndex = f.index;
@@ -127,7 +137,7 @@ void surfaceOffsets(Setup& s) {
     const EmbreeScene& embree = *s.ctx.embree;
     const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
     s.offset.assign(std::size_t(a.width) * a.height, glm::vec3(0.0f));
-    parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+    forBandTiles(s, [&](int tile) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
@@ -152,7 +162,7 @@ glm::vec3 pointOf(const PointSurface& ps) { return {ps.p.x, ps.p.y, ps.p.z}; }
 void renderDirect(const Setup& s, PlaneF out[3]) {
     const DirectArgs& a = s.lighting.args;
     const PlaneF* frameDirect = s.frame.direct.direct;
-    parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+    forBandTiles(s, [&](int tile) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
@@ -257,7 +267,7 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
     for (int k = 0; k < spp; ++k) {
         generateSpecularRays(s.isa, s.ssrMethod, s.frameIndex, uint32_t(k), f.camera, s.rayGen,
                              rays, s.threads);
-        parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+        forBandTiles(s, [&](int tile) {
             const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
                 return reference::hitRadiance(s.ctx, o, t.dir, h, true);
             };
@@ -332,7 +342,7 @@ void renderSsgi(const Setup& s, int spp, int bounces, ProgressSteps& progress, P
     RayBatch rays;
     for (int k = 0; k < spp; ++k) {
         generateDiffuseRays(s.isa, s.frameIndex, uint32_t(k), f.camera, s.rayGen, rays, s.threads);
-        parallelForTiles(s.grid.count(), s.threads, [&](int tile) {
+        forBandTiles(s, [&](int tile) {
             const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
                 return diffusePath(s, t, o, h, uint32_t(k), bounces);
             };
@@ -349,6 +359,18 @@ void renderSsgi(const Setup& s, int spp, int bounces, ProgressSteps& progress, P
 
 }  // namespace
 
+RowBand referenceBand(int height, int index, int count) {
+    if (height < 1 || count < 1 || index < 0 || index >= count)
+        throw std::invalid_argument("reference band " + std::to_string(index) + " of " +
+                                    std::to_string(count) + " of " + std::to_string(height) +
+                                    " rows");
+    const long long tileRows = (height + kTileSize - 1) / kTileSize;
+    const auto rowOf = [&](long long k) {
+        return int(std::min<long long>(height, tileRows * k / count * kTileSize));
+    };
+    return {rowOf(index), rowOf(index + 1)};
+}
+
 void ReferenceSettings::validate() const {
     if (spp < 1 || spp > kMaxSpp)
         throw std::invalid_argument("reference spp must be between 1 and " +
@@ -362,11 +384,22 @@ void ReferenceSettings::validate() const {
 
 ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
                                const Frame& frame, const ReferenceSettings& settings,
-                               const Progress& progress) {
+                               const Progress& progress, std::optional<RowBand> band) {
     settings.validate();
     requireTraced(frame, renderer.settings());
     Setup s(frame);
     fillSetup(s, embree, renderer, settings);
+    if (band) {
+        if (band->y0 < 0 || band->y0 >= band->y1 || band->y1 > frame.height ||
+            band->y0 % kTileSize != 0 || (band->y1 % kTileSize != 0 && band->y1 != frame.height))
+            throw std::invalid_argument("reference: rows [" + std::to_string(band->y0) + ", " +
+                                        std::to_string(band->y1) +
+                                        ") are not a band of whole tile rows of the frame");
+        const int firstRow = band->y0 / kTileSize;
+        const int endRow = (band->y1 + kTileSize - 1) / kTileSize;
+        s.firstTile = firstRow * s.grid.tilesX;
+        s.tileCount = (endRow - firstRow) * s.grid.tilesX;
+    }
     const int w = frame.width, h = frame.height;
     ReferenceImage ref;
     for (PlaneF* p : {ref.color, ref.direct, ref.ssr, ref.ssgi, ref.specular, ref.diffuse})

@@ -40,6 +40,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "core/image.h"
 #include "renderer/renderer.h"
@@ -77,12 +78,25 @@ struct ReferenceImage {
 // renderReference, after each sample pass, at most about 200 times.
 using Progress = std::function<void(double fraction)>;
 
+// Pixel rows [y0, y1) of a frame: a band of the reference, in whole tile rows (y0 a multiple
+// of kTileSize, y1 one too or the frame's height), for shards of its work (cli/shard.h).
+struct RowBand {
+    int y0 = 0, y1 = 0;
+};
+// Band `index` (from 0) of `count` bands of a frame `height` rows high: tile rows
+// [index T / count, (index + 1) T / count) of its T tile rows (empty when count > T).
+RowBand referenceBand(int height, int index, int count);
+
 // Renders the reference for `frame` (rendered by `renderer` from `scene` with both trace
 // passes on: its G-buffer, direct parts, shadow map and frame index are read). Deterministic for a
-// given Embree build: per-pixel sample sequences from the counter-based RNG.
+// given Embree build: per-pixel sample sequences from the counter-based RNG. With `band`, only
+// its rows are traced (the others hold what a pixel without rays gets): each of its pixels
+// has the bits the whole frame's reference gives it, so bands assemble into that reference.
+// A band that is not whole tile rows (or is empty) is std::invalid_argument.
 ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,
                                const Frame& frame, const ReferenceSettings& settings,
-                               const Progress& progress = {});
+                               const Progress& progress = {},
+                               std::optional<RowBand> band = std::nullopt);
 
 // A key over everything the reference depends on: the scene's content (meshes, materials,
 // instances, textures, light, sky, cameras), the render settings that shape it (size,

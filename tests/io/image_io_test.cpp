@@ -187,7 +187,7 @@ TEST_CASE("an EXR holds exactly the layer groups asked for, in the frame's order
     const Frame frame = makeFrame(4, 3, {"color.R", "viewZ", "materialId", "ssr.R", "ref.color.R"});
     const LayerGroup groups[] = {LayerGroup::Color, LayerGroup::GBuffer, LayerGroup::GBuffer,
                                  LayerGroup::Trace, LayerGroup::Truth};
-    ImageLayers image{4, 3, {}};
+    ImageLayers image{4, 3, {}, {}};
     for (std::size_t i = 0; i < frame.extraLayers.size(); ++i)
         image.layers.push_back({frame.extraLayers[i].name, &frame.extraLayers[i].plane, groups[i]});
     const std::string path = dir.file("frame.exr");

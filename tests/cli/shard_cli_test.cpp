@@ -1,0 +1,325 @@
+// Shards of batch work (cli/shard.h) and `ssrt merge`, in-process on tiny frames: a sweep run
+// as 3 shards and merged equals the unsharded CSV in every column but the timings; a
+// reference rendered as 2 bands and merged is the unsharded file, byte for byte; a sharded
+// multi-frame render writes exactly the unsharded run's files for its frames (across a camera
+// cut too); Slurm's array variables choose the shard; bad parts are errors and write nothing.
+#include <doctest/doctest.h>
+
+#ifdef SSRT_CLI_LIB
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.h"
+#include "cli/cli_run.h"
+#include "cli/shard.h"
+#include "cli/sweep_command.h"
+#include "temp_dir.h"
+
+using namespace ssrt;
+using test::contains;
+using test::isOneErrorLine;
+using test::runSsrt;
+using test::TempDir;
+
+namespace {
+
+std::string bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::string line;
+    std::istringstream in(text);
+    while (std::getline(in, line)) out.push_back(line);
+    return out;
+}
+
+std::vector<std::string> cells(const std::string& line) {
+    std::vector<std::string> out;
+    std::string cell;
+    std::istringstream in(line);
+    while (std::getline(in, cell, ',')) out.push_back(cell);
+    if (!line.empty() && line.back() == ',') out.push_back("");
+    return out;
+}
+
+// The columns whose values are measured times (they differ from run to run).
+bool isTiming(const std::string& column) {
+    return column == "frame_ms" || column.rfind("ms_", 0) == 0 || column == "march_mrays_s" ||
+           column == "embree_mrays_s" || column == "march_vs_embree";
+}
+
+// A CSV with its timing cells blanked.
+std::vector<std::vector<std::string>> withoutTimings(const std::string& csv) {
+    std::vector<std::vector<std::string>> rows;
+    for (const std::string& line : lines(csv)) rows.push_back(cells(line));
+    REQUIRE(!rows.empty());
+    const std::vector<std::string> header = rows[0];
+    for (auto& row : rows) {
+        REQUIRE(row.size() == header.size());
+        for (std::size_t c = 0; c < header.size(); ++c)
+            if (isTiming(header[c])) row[c] = "";
+    }
+    return rows;
+}
+
+// Restores an environment variable at the end of a test.
+struct ScopedEnv {
+    std::string name;
+    std::optional<std::string> old;
+    ScopedEnv(const std::string& n, const char* value) : name(n) {
+        if (const char* v = std::getenv(n.c_str())) old = v;
+        if (value) ::setenv(n.c_str(), value, 1);
+        else ::unsetenv(n.c_str());
+    }
+    ~ScopedEnv() {
+        if (old) ::setenv(name.c_str(), old->c_str(), 1);
+        else ::unsetenv(name.c_str());
+    }
+};
+
+struct NoSlurm {
+    ScopedEnv id{"SLURM_ARRAY_TASK_ID", nullptr}, count{"SLURM_ARRAY_TASK_COUNT", nullptr},
+        min{"SLURM_ARRAY_TASK_MIN", nullptr};
+};
+
+std::vector<std::string> tinySweep(std::vector<std::string> args, const TempDir& dir) {
+    args.insert(args.begin(), "sweep");
+    for (const char* a :
+         {"--scene", "cornell", "--width", "64", "--height", "36", "--reference-spp", "2",
+          "--repeats", "1", "--shadow-map-size", "128", "-j", "2", "-q"})
+        args.push_back(a);
+    args.insert(args.end(), {"--cache-dir", dir.file("cache")});
+    return args;
+}
+
+}  // namespace
+
+TEST_CASE("shard: K/N parsed, file names, blocks and Slurm's variables") {
+    const NoSlurm clean;
+    const cli::Shard s = cli::parseShard("--shard", "2/5");
+    CHECK(s.index == 2);
+    CHECK(s.count == 5);
+    for (const char* bad : {"5/5", "-1/3", "1/0", "3", "a/b", "1/3/4", "", "/3", "1/"})
+        CHECK_THROWS_AS(cli::parseShard("--shard", bad), std::invalid_argument);
+    CHECK(cli::shardFileName("out/s.csv", s) == "out/s.shard-2-of-5.csv");
+    CHECK(cli::shardFileName("s.csv", cli::Shard{}) == "s.csv");
+    const std::optional<cli::Shard> back = cli::shardOfFileName("out/s.shard-2-of-5.csv");
+    REQUIRE(back);
+    CHECK((back->index == 2 && back->count == 5));
+    CHECK(!cli::shardOfFileName("s.csv"));
+    CHECK(!cli::shardOfFileName("s.shard-5-of-5.csv"));
+    // Contiguous blocks cover every item once.
+    for (int n : {1, 2, 3, 7})
+        for (long long total : {0ll, 1ll, 5ll, 48ll}) {
+            long long next = 0;
+            for (int k = 0; k < n; ++k) {
+                const cli::Range r = cli::shardBlock(cli::Shard{k, n}, total);
+                CHECK(r.begin == next);
+                next = r.end;
+            }
+            CHECK(next == total);
+        }
+    // No --shard and no Slurm: the whole work.
+    CHECK(!cli::shardFrom(std::nullopt).sharded());
+    {
+        const ScopedEnv id("SLURM_ARRAY_TASK_ID", "5"), count("SLURM_ARRAY_TASK_COUNT", "3"),
+            min("SLURM_ARRAY_TASK_MIN", "4");
+        std::string source;
+        const cli::Shard t = cli::shardFrom(std::nullopt, &source);
+        CHECK((t.index == 1 && t.count == 3));
+        CHECK(source == "SLURM_ARRAY_TASK_ID");
+        // --shard wins over the environment.
+        CHECK(cli::shardFrom(std::string("0/2")).count == 2);
+    }
+    {
+        const ScopedEnv id("SLURM_ARRAY_TASK_ID", "7"), count("SLURM_ARRAY_TASK_COUNT", "3");
+        CHECK_THROWS_AS(cli::shardFrom(std::nullopt), std::invalid_argument);  // not contiguous
+    }
+    {
+        const ScopedEnv id("SLURM_ARRAY_TASK_ID", "1");
+        CHECK_THROWS_AS(cli::shardFrom(std::nullopt), std::invalid_argument);  // no count
+    }
+}
+
+TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the timings") {
+    const NoSlurm clean;
+    TempDir dir;
+    // The grid, a preset and the Embree method: 5 points over 3 shards (2, 2 and 1).
+    const std::vector<std::string> grid = {"--marchers", "off,hiz", "--max-steps",  "8,16",
+                                           "--presets",  "low",     "--embree-spp", "1",
+                                           "--frames",   "2",       "--per-frame",  ""};
+    const auto run = [&](const std::string& name, std::optional<std::string> shard) {
+        std::vector<std::string> g = grid;
+        g.back() = dir.file(name + "_frames.csv");
+        g.insert(g.end(), {"-o", dir.file(name + ".csv")});
+        if (shard) g.insert(g.end(), {"--shard", *shard});
+        const test::CliResult r = runSsrt(tinySweep(g, dir));
+        INFO(r.err);
+        REQUIRE(r.code == 0);
+    };
+    run("full", std::nullopt);
+    for (int k = 0; k < 3; ++k) run("part", std::to_string(k) + "/3");
+    std::vector<std::string> parts, frameParts;
+    for (int k = 0; k < 3; ++k) {
+        const std::string p = dir.file("part.shard-" + std::to_string(k) + "-of-3.csv");
+        CHECK(lines(bytes(p)).size() == (k < 2 ? 3u : 2u));  // the header and its settings
+        parts.push_back(p);
+        frameParts.push_back(dir.file("part_frames.shard-" + std::to_string(k) + "-of-3.csv"));
+    }
+    // Given in any order.
+    std::vector<std::string> merge = {"merge",  "-q",     "-o",    dir.file("merged.csv"),
+                                      parts[2], parts[0], parts[1]};
+    REQUIRE(runSsrt(merge).code == 0);
+    const std::string full = bytes(dir.file("full.csv"));
+    CHECK(lines(full).size() == 6u);
+    CHECK(withoutTimings(bytes(dir.file("merged.csv"))) == withoutTimings(full));
+    // The marchers, the preset and the Embree method are all there.
+    for (const char* part : {",off,", ",hiz,", ",low,", ",embree,"})
+        CHECK_MESSAGE(contains(full, part), part);
+    // The per-frame CSVs hold no timings: byte for byte.
+    REQUIRE(runSsrt({"merge", "-q", "-o", dir.file("merged_frames.csv"), frameParts[0],
+                     frameParts[1], frameParts[2]})
+                .code == 0);
+    CHECK(bytes(dir.file("merged_frames.csv")) == bytes(dir.file("full_frames.csv")));
+
+    SUBCASE("a missing, repeated or foreign part is an error, and nothing is written") {
+        const std::string out = dir.file("bad.csv");
+        const std::vector<std::vector<std::string>> bad = {
+            {"merge", "-o", out, parts[0], parts[1]},                        // shard 2 missing
+            {"merge", "-o", out, parts[0], parts[1], parts[1]},              // shard 1 twice
+            {"merge", "-o", out, parts[0], parts[1], dir.file("full.csv")},  // not a part
+            {"merge", "-o", out, parts[0], parts[1], frameParts[2]},         // another CSV's part
+        };
+        for (const auto& args : bad) {
+            const test::CliResult r = runSsrt(args);
+            INFO(args.back());
+            CHECK(r.code != 0);
+            CHECK(isOneErrorLine(r.err));
+        }
+        // A part holding another shard's setting.
+        writeFile(dir.file("x.shard-0-of-2.csv"), lines(full)[0] + "\n" + lines(full)[2] + "\n");
+        writeFile(dir.file("x.shard-1-of-2.csv"), lines(full)[0] + "\n");
+        const test::CliResult r = runSsrt(
+            {"merge", "-o", out, dir.file("x.shard-0-of-2.csv"), dir.file("x.shard-1-of-2.csv")});
+        CHECK(r.code != 0);
+        CHECK(contains(r.err, "holds setting 1"));
+        CHECK(!std::filesystem::exists(out));
+    }
+}
+
+TEST_CASE("shard: a reference as 2 bands, merged, is the unsharded file byte for byte") {
+    const NoSlurm clean;
+    TempDir dir;
+    const auto reference = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {
+            "reference",       "--scene", "spheres",           "--width", "48", "--height", "136",
+            "--reference-spp", "2",       "--shadow-map-size", "128",     "-j", "2",        "-q",
+            "--no-cache"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runSsrt(args);
+    };
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"-o", dir.file("full.exr")},
+          {"-o", dir.file("ref.exr"), "--shard", "0/2"},
+          {"-o", dir.file("ref.exr"), "--shard", "1/2"},
+          {"-o", dir.file("other.exr"), "--shard", "1/2", "--frame", "9"}}) {
+        const test::CliResult r = reference(extra);
+        INFO(r.err);
+        REQUIRE(r.code == 0);
+    }
+    const std::string band0 = dir.file("ref.shard-0-of-2.exr"),
+                      band1 = dir.file("ref.shard-1-of-2.exr");
+    REQUIRE(runSsrt({"merge", "-q", "-o", dir.file("merged.exr"), band1, band0, "--cache-dir",
+                     dir.file("cache")})
+                .code == 0);
+    CHECK(bytes(dir.file("merged.exr")) == bytes(dir.file("full.exr")));
+    // The merged reference lands in the cache under the name compare looks for: a compare
+    // with that cache takes it from there.
+    const test::CliResult c =
+        runSsrt({"compare", "--scene", "spheres", "--width", "48", "--height", "136",
+                 "--reference-spp", "2", "--shadow-map-size", "128", "-j", "2", "--repeats", "1",
+                 "--cache-dir", dir.file("cache")});
+    INFO(c.err);
+    CHECK(c.code == 0);
+    CHECK(contains(c.err, "reference: from the cache"));
+    // More bands than tile rows (3 of 64 pixels) is a usage error; bands of two references do
+    // not merge.
+    const test::CliResult tooMany = reference({"-o", dir.file("r.exr"), "--shard", "0/64"});
+    CHECK(tooMany.code == cli::kExitUsage);
+    CHECK(contains(tooMany.err, "at most 3 shards"));
+    const test::CliResult mixed =
+        runSsrt({"merge", "-o", dir.file("mixed.exr"), band0, dir.file("other.shard-1-of-2.exr")});
+    CHECK(mixed.code != 0);
+    CHECK(contains(mixed.err, "another reference"));
+    CHECK(!std::filesystem::exists(dir.file("mixed.exr")));
+}
+
+TEST_CASE("shard: a multi-frame render in 3 shards writes the unsharded files, across a cut") {
+    const NoSlurm clean;
+    TempDir dir;
+    // Six frames over four keys at times 0, 0.6, ..., 3, a cut at key 1 (t = 1): frames 0-1
+    // one shot, 2-5 the next (the history restarts at frame 2), so shard 1's block [2, 4)
+    // starts at the cut and shard 2's [4, 6) replays frames 2-3 for their history.
+    writeFile(dir.file("cut.json"), R"({
+  "scene": "cornell",
+  "camera": { "path": { "keys": [
+    { "time": 0, "position": [0.0, 1.15, 3.2], "target": [0.0, 0.85, 0.0] },
+    { "time": 1, "position": [0.3, 1.25, 3.0], "target": [0.1, 0.8, 0.0], "cut": true },
+    { "time": 2, "position": [-0.4, 1.0, 2.6], "target": [0.2, 0.9, 0.0] },
+    { "time": 3, "position": [-0.3, 1.05, 2.5], "target": [0.2, 0.9, 0.0] } ] } },
+  "render": { "frames": 6, "warmupFrames": 1 }
+})");
+    const auto render = [&](const std::string& out, std::optional<std::string> shard) {
+        std::vector<std::string> args = {"render",
+                                         "--shot",
+                                         dir.file("cut.json"),
+                                         "--width",
+                                         "64",
+                                         "--height",
+                                         "36",
+                                         "--shadow-map-size",
+                                         "128",
+                                         "--hit-radiance",
+                                         "reprojected",
+                                         "-j",
+                                         "2",
+                                         "-o",
+                                         dir.file(out)};
+        if (shard) args.insert(args.end(), {"--shard", *shard});
+        const test::CliResult r = runSsrt(args);
+        INFO(r.err);
+        REQUIRE(r.code == 0);
+        return r.err;
+    };
+    render("full.exr", std::nullopt);
+    std::filesystem::create_directory(dir.file("s"));
+    std::vector<std::string> progress;
+    for (int k = 0; k < 3; ++k) progress.push_back(render("s/full.exr", std::to_string(k) + "/3"));
+    CHECK(contains(progress[0], "frames 0 to 1..."));
+    CHECK(contains(progress[1], "frames 2 to 3..."));
+    CHECK(contains(progress[2], "frames 4 to 5 (history from frame 2)"));
+    CHECK(contains(progress[2], "history frame 4/6"));  // frame 3, 1-based
+    for (int i = 0; i < 6; ++i) {
+        const std::string name = "full_000" + std::to_string(i) + ".exr";
+        INFO(name);
+        REQUIRE(std::filesystem::exists(dir.file("s/" + name)));
+        CHECK(bytes(dir.file("s/" + name)) == bytes(dir.file(name)));
+    }
+    CHECK(std::distance(std::filesystem::directory_iterator(dir.file("s")),
+                        std::filesystem::directory_iterator()) == 6);
+}
+
+#endif  // SSRT_CLI_LIB
