@@ -34,7 +34,7 @@ CLI::App* addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
     return cmd;
 }
 
-int runReference(const ReferenceOptions& o, std::ostream& out, std::ostream& err) {
+int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
@@ -95,7 +95,6 @@ int runReference(const ReferenceOptions& o, std::ostream& out, std::ostream& err
         writeReferenceImage(output, ref);
     }
     if (progress) *progress << "wrote " << output << "\n";
-    (void)out;
     return kExitOk;
 }
 
