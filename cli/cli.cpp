@@ -37,8 +37,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "direct light, screen-space reflections and diffuse, checked against Embree)",
         "ssrt"};
     app.footer(
-        "Exit status: 0 success, 1 the work failed (a bad shot, scene or image file, file I/O, "
-        "an ISA this CPU lacks, rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for "
+        "Exit status: 0 success, 2 bad command line, 3 the work failed (a bad shot, scene or "
+        "image file, file I/O, an ISA this CPU lacks, rendering).\nRun 'ssrt COMMAND --help' for "
         "a command's options.");
     app.require_subcommand(1);
     RenderOptions renderOptions;
