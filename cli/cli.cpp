@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cli/compare_command.h"
+#include "cli/diff_command.h"
 #include "cli/render_command.h"
 #include "cli/scenes_command.h"
 #include "cli/sweep_command.h"
@@ -37,8 +38,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "direct light, screen-space reflections and diffuse, checked against Embree)",
         "ssrt"};
     app.footer(
-        "Exit status: 0 success, 2 bad command line, 3 the work failed (a bad shot, scene or "
-        "image file, file I/O, an ISA this CPU lacks, rendering).\nRun 'ssrt COMMAND --help' for "
+        "Exit status: 0 success (diff, render --compare: within every threshold), 1 the images "
+        "differ beyond a threshold (diff, render --compare only), 2 bad command line, 3 the work "
+        "failed (a bad shot, scene or image file, file I/O, an ISA this CPU lacks, rendering, "
+        "images of different sizes).\nRun 'ssrt COMMAND --help' for "
         "a command's options.");
     app.require_subcommand(1);
     RenderOptions renderOptions;
@@ -47,10 +50,12 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* compare = addCompareCommand(app, compareOptions);
     SweepOptions sweepOptions;
     CLI::App* sweep = addSweepCommand(app, sweepOptions);
+    DiffOptions diffOptions;
+    CLI::App* diff = addDiffCommand(app, diffOptions);
     CLI::App* scenes = addScenesCommand(app);
     if (argc <= 1) {
-        err << "ssrt: error: no command given (render, compare, sweep or scenes; see 'ssrt "
-               "--help')\n";
+        err << "ssrt: error: no command given (render, compare, sweep, diff or scenes; see "
+               "'ssrt --help')\n";
         return kExitUsage;
     }
     try {
@@ -60,10 +65,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (e.get_exit_code() == 0) return app.exit(e, out, err);
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
-        if (!render->parsed() && !compare->parsed() && !sweep->parsed() && !scenes->parsed() &&
-            first.rfind('-', 0) != 0) {
+        if (!render->parsed() && !compare->parsed() && !sweep->parsed() && !diff->parsed() &&
+            !scenes->parsed() && first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first
-                << "' (expected render, compare, sweep or scenes; see 'ssrt --help')\n";
+                << "' (expected render, compare, sweep, diff or scenes; see 'ssrt --help')\n";
             return kExitUsage;
         }
         err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
@@ -74,6 +79,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (compare->parsed())
         return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
     if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
+    if (diff->parsed()) return reportErrors(err, [&] { return runDiff(diffOptions, out); });
     if (scenes->parsed()) return reportErrors(err, [&] { return runScenes(out); });
     return kExitUsage;  // unreachable: require_subcommand(1) holds
 }
