@@ -72,6 +72,7 @@ TEST_CASE("image compare: a plain RGB file is one layer, named after its channel
     std::vector<uint8_t> pixels(std::size_t(kW) * kH * 3, 100);
     test::writeImage(dir.file("a.png"), kW, kH, 3, pixels);
     pixels[(std::size_t(1) * kW + 3) * 3 + 2] = 103;  // (3, 1), blue, 3/255 brighter
+    pixels[(std::size_t(3) * kW + 4) * 3 + 0] = 97;   // (4, 3), red, as much darker
     test::writeImage(dir.file("b.png"), kW, kH, 3, pixels);
     const ImageDiff d = compareImages(dir.file("a.png"), dir.file("b.png"));
     REQUIRE(d.layers.size() == 1);
@@ -79,10 +80,11 @@ TEST_CASE("image compare: a plain RGB file is one layer, named after its channel
     CHECK(rgb.name == "RGB");
     CHECK(rgb.channels == std::vector<std::string>{"R", "G", "B"});
     CHECK(rgb.maxError == doctest::Approx(3.0 / 255.0));
+    // Two differences as large: the first in row order is named.
     CHECK(rgb.maxX == 3);
     CHECK(rgb.maxY == 1);
     CHECK(rgb.maxChannel == "B");
-    CHECK(rgb.pixelsOver == 1);
+    CHECK(rgb.pixelsOver == 2);
 }
 
 TEST_CASE("image compare: a small difference, where it is, relMSE and the threshold") {
