@@ -148,6 +148,20 @@ DiffSettings diffSettingsFrom(const DiffFlags& f) {
     return s;
 }
 
+bool samePath(const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const std::filesystem::path pa = std::filesystem::weakly_canonical(a, ea);
+    const std::filesystem::path pb = std::filesystem::weakly_canonical(b, eb);
+    return ea || eb ? a == b : pa == pb;
+}
+
+void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string>& images) {
+    if (heatmap.empty()) return;
+    for (const std::string& image : images)
+        if (samePath(heatmap, image))
+            throw std::invalid_argument("--heatmap: '" + heatmap + "' is an image being compared");
+}
+
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
     CLI::App* cmd = app.add_subcommand(
         "diff",
@@ -210,6 +224,7 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
 
 int runDiff(const DiffOptions& o, std::ostream& out) {
     DiffSettings settings = diffSettingsFrom(o.flags);
+    checkHeatmapApart(settings.compare.heatmap, {o.a, o.b});
     if (o.layers) settings.compare.layers = splitList("--layers", *o.layers);
     return diffImages(o.a, o.b, settings, out);
 }

@@ -44,6 +44,14 @@ std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& flags, const st
 // (std::invalid_argument naming the option) in a writable folder (std::runtime_error).
 DiffSettings diffSettingsFrom(const DiffFlags& flags);
 
+// Whether two paths name the same file (or would, once written): their absolute, normal
+// forms with symbolic links resolved as far as they exist.
+bool samePath(const std::string& a, const std::string& b);
+
+// Throws std::invalid_argument (naming --heatmap) when the heat map `heatmap` (empty: none)
+// is one of `images`: writing it would replace an image being compared.
+void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string>& images);
+
 // Registers the `diff` subcommand on `app`, bound to `options`, and returns it.
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 

@@ -153,10 +153,13 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (o.compare) {
         diff = diffSettingsFrom(o.diff);
         if (frames > 1)
-            throw std::invalid_argument(
-                "--compare: compares a single frame, but this render "
-                "has " +
-                plural(frames, "frame") + " (--frames or the shot)");
+            throw std::invalid_argument("--compare: compares a single frame, but this render has " +
+                                        plural(frames, "frame") + " (--frames or the shot)");
+        // Writing over the reference would compare the frame with itself.
+        if (samePath(output, *o.compare))
+            throw std::invalid_argument("--compare: the reference '" + *o.compare +
+                                        "' is the output file itself");
+        checkHeatmapApart(diff->compare.heatmap, {output, *o.compare});
         readChannelNames(*o.compare);
     }
     checkWritable(sequenceFileName(output, 0, frames));

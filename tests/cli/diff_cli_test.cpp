@@ -216,16 +216,18 @@ TEST_CASE("cli diff: the heat map is written and its scale printed") {
 TEST_CASE("cli diff: bad flags are one line, exit 2, before any file is read") {
     TempDir dir;
     const std::string a = dir.file("missing_a.exr"), b = dir.file("missing_b.exr");
-    for (const auto& args :
-         std::vector<std::vector<std::string>>{{"diff", a},
-                                               {"diff", a, b, "--threshold", "-1"},
-                                               {"diff", a, b, "--threshold", "nan"},
-                                               {"diff", a, b, "--threshold", "0.1x"},
-                                               {"diff", a, b, "--max-error", "inf"},
-                                               {"diff", a, b, "--max-relmse", ""},
-                                               {"diff", a, b, "--max-share", "1.5"},
-                                               {"diff", a, b, "--heatmap", dir.file("heat.jpg")},
-                                               {"diff", a, b, "--layers", "color,,viewZ"}}) {
+    for (const auto& args : std::vector<std::vector<std::string>>{
+             {"diff", a},
+             {"diff", a, b, "--threshold", "-1"},
+             {"diff", a, b, "--threshold", "nan"},
+             {"diff", a, b, "--threshold", "0.1x"},
+             {"diff", a, b, "--max-error", "inf"},
+             {"diff", a, b, "--max-relmse", ""},
+             {"diff", a, b, "--max-share", "1.5"},
+             {"diff", a, b, "--heatmap", dir.file("heat.jpg")},
+             {"diff", a, b, "--layers", "color,,viewZ"},
+             {"diff", a, dir.file("b.png"), "--heatmap", dir.file("./b.png")},
+             {"diff", dir.file("a.png"), b, "--heatmap", dir.file("a.png")}}) {
         CAPTURE(args);
         const auto r = run(args);
         CHECK(r.code == cli::kExitUsage);
@@ -266,11 +268,14 @@ TEST_CASE("cli render --compare: one frame, flags that need it, a reference that
                                          "12",     "-q",      "-o", dir.file("out.exr")};
     const std::string golden = dir.file("golden.exr");
     LayeredImage(16, 12, kChannels).write(golden);
-    for (const auto& extra :
-         std::vector<std::vector<std::string>>{{"--compare", golden, "--frames", "2"},
-                                               {"--threshold", "0.1"},
-                                               {"--heatmap", dir.file("h.png")},
-                                               {"--compare", golden, "--max-share", "-0.5"}}) {
+    for (const auto& extra : std::vector<std::vector<std::string>>{
+             {"--compare", golden, "--frames", "2"},
+             {"--threshold", "0.1"},
+             {"--heatmap", dir.file("h.png")},
+             {"--compare", golden, "--max-share", "-0.5"},
+             {"--compare", dir.file("out.exr")},  // the output itself
+             {"--compare", dir.file("g.png"), "--heatmap", dir.file("g.png")},
+             {"--compare", dir.file("g.png"), "--heatmap", dir.file("./g.png")}}) {
         CAPTURE(extra);
         auto args = small;
         args.insert(args.end(), extra.begin(), extra.end());
