@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cli/compare_command.h"
+#include "cli/diff_command.h"
 #include "cli/merge_command.h"
 #include "cli/reference_command.h"
 #include "cli/render_command.h"
@@ -14,6 +15,13 @@
 #include "cli/sweep_command.h"
 
 namespace ssrt::cli {
+
+namespace {
+
+// The commands, as the errors for a missing or mistyped one list them.
+constexpr const char* kCommandList = "render, compare, sweep, diff, reference, merge or scenes";
+
+}  // namespace
 
 std::string oneLine(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');
@@ -39,8 +47,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "direct light, screen-space reflections and diffuse, checked against Embree)",
         "ssrt"};
     app.footer(
-        "Exit status: 0 success, 1 the work failed (a bad shot, scene or image file, file I/O, "
-        "an ISA this CPU lacks, rendering), 2 bad command line.\nRun 'ssrt COMMAND --help' for "
+        "Exit status: 0 success (diff, render --compare: within every threshold), 1 the images "
+        "differ beyond a threshold (diff, render --compare only), 2 bad command line, 3 the work "
+        "failed (a bad shot, scene or image file, file I/O, an ISA this CPU lacks, rendering, "
+        "images of different sizes).\nRun 'ssrt COMMAND --help' for "
         "a command's options.");
     app.require_subcommand(1);
     RenderOptions renderOptions;
@@ -49,14 +59,15 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* compare = addCompareCommand(app, compareOptions);
     SweepOptions sweepOptions;
     CLI::App* sweep = addSweepCommand(app, sweepOptions);
+    DiffOptions diffOptions;
+    CLI::App* diff = addDiffCommand(app, diffOptions);
     ReferenceOptions referenceOptions;
     CLI::App* reference = addReferenceCommand(app, referenceOptions);
     MergeOptions mergeOptions;
     CLI::App* merge = addMergeCommand(app, mergeOptions);
     CLI::App* scenes = addScenesCommand(app);
     if (argc <= 1) {
-        err << "ssrt: error: no command given (render, compare, sweep, reference, merge or "
-               "scenes; see 'ssrt --help')\n";
+        err << "ssrt: error: no command given (" << kCommandList << "; see 'ssrt --help')\n";
         return kExitUsage;
     }
     try {
@@ -67,11 +78,11 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
         const bool anyParsed = render->parsed() || compare->parsed() || sweep->parsed() ||
-                               reference->parsed() || merge->parsed() || scenes->parsed();
+                               diff->parsed() || reference->parsed() || merge->parsed() ||
+                               scenes->parsed();
         if (!anyParsed && first.rfind('-', 0) != 0) {
-            err << "ssrt: error: unknown command '" << first
-                << "' (expected render, compare, sweep, reference, merge or scenes; see 'ssrt "
-                   "--help')\n";
+            err << "ssrt: error: unknown command '" << first << "' (expected " << kCommandList
+                << "; see 'ssrt --help')\n";
             return kExitUsage;
         }
         err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
@@ -82,6 +93,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (compare->parsed())
         return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
     if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
+    if (diff->parsed()) return reportErrors(err, [&] { return runDiff(diffOptions, out); });
     if (reference->parsed())
         return reportErrors(err, [&] { return runReference(referenceOptions, out, err); });
     if (merge->parsed()) return reportErrors(err, [&] { return runMerge(mergeOptions, out, err); });

@@ -7,10 +7,14 @@
 
 namespace ssrt::cli {
 
-// Exit statuses: the command line was wrong, or the work it asked for could not be done.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;  // bad shot/scene/image file, I/O, missing ISA, render
+// Exit statuses, project-wide. 1 means only "the images differ": a script can tell a golden
+// image that no longer matches (1) from a command line it got wrong (2) and from work that
+// could not be done at all (3).
+inline constexpr int kExitOk = 0;       // success; for `diff` and `render --compare`: within
+                                        // every threshold
+inline constexpr int kExitDiffer = 1;   // `diff` / `render --compare`: beyond a threshold
 inline constexpr int kExitUsage = 2;    // unknown option, bad value, unknown scene or format
+inline constexpr int kExitFailure = 3;  // bad shot/scene/image file, I/O, missing ISA, render
 
 // Parses argv (argv[0] is the program) and runs the chosen command. Help and results go to
 // `out`; progress and one-line "ssrt: error: ..." messages go to `err`. Returns the exit status.

@@ -80,7 +80,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     add("-o,--output", o.output, "FILE",
         "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
         "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
-        "out_0001.png, ...)");
+        "out_0001.png, ...); with --compare and no -o, ssrt.exr for an .exr reference");
+    cmd->get_option("--output")->each([&o](const std::string&) { o.outputGiven = true; });
     addImageOutputOptions(*cmd, o);
     addShardOption(*cmd, o.shard,
                    "frames: block K of N of --frames, each frame's file named as unsharded; the "
@@ -91,6 +92,15 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "Print per-pass times, rasterizer counters and the screen-space march's "
                   "counters (per frame)");
     cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
+    CLI::Option* compare =
+        cmd->add_option_function<std::string>(
+               "--compare", [&o](const std::string& v) { o.compare = v; },
+               "After writing the frame, compare it with this reference (a golden image) as "
+               "'ssrt diff OUTPUT FILE' does: its table, exit 1 beyond a threshold; a single "
+               "frame only")
+            ->type_name("FILE")
+            ->group("Golden image");
+    for (CLI::Option* flag : addDiffFlags(*cmd, o.diff, "Golden image")) flag->needs(compare);
     return cmd;
 }
 
@@ -129,6 +139,11 @@ std::string sequenceFileName(const std::string& output, int index, int count) {
     return (path.parent_path() / name).string();
 }
 
+std::string renderOutput(const RenderOptions& o) {
+    if (o.outputGiven || !o.compare) return o.output;
+    return isExrPath(*o.compare) ? "ssrt.exr" : o.output;
+}
+
 // ---------------------------------------------------------------------------------------
 // The command
 
@@ -137,11 +152,29 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const RenderSettings& settings = request.settings;
     const SequencePlan plan = sequencePlanFrom(o, request);
     const int frames = plan.frames;
+    const std::string output = renderOutput(o);
     std::string shardSource;
     const Shard shard = shardFrom(o.shard, &shardSource);
     const Range block = shardBlock(shard, frames);
-    checkWritable(sequenceFileName(o.output, int(block.begin), frames));
-    const WriteOptions writeOptions = writeOptionsFrom(o, settings, o.output, err);
+    // --compare: its flags, one frame, and a reference that can be read, before any work.
+    std::optional<DiffSettings> diff;
+    if (o.compare) {
+        diff = diffSettingsFrom(o.diff);
+        if (frames > 1)
+            throw std::invalid_argument("--compare: compares a single frame, but this render has " +
+                                        plural(frames, "frame") + " (--frames or the shot)");
+        if (shard.sharded())
+            throw std::invalid_argument("--compare: compares a whole render, not a shard of one (" +
+                                        describeShard(shard, shardSource) + ")");
+        // Writing over the reference would compare the frame with itself.
+        if (samePath(output, *o.compare))
+            throw std::invalid_argument("--compare: the reference '" + *o.compare +
+                                        "' is the output file itself");
+        checkHeatmapApart(diff->compare.heatmap, {output, *o.compare});
+        readChannelNames(*o.compare);
+    }
+    checkWritable(sequenceFileName(output, int(block.begin), frames));
+    const WriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
             "--layers: a rendered frame has no truth layers (ssrt "
@@ -196,7 +229,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             if (!o.quiet) err << "history frame " << (i + 1) << "/" << frames << "\n";
             continue;
         }
-        const std::string file = sequenceFileName(o.output, i, frames);
+        const std::string file = sequenceFileName(output, i, frames);
         const auto written = std::chrono::steady_clock::now();
         writeImage(file, frame, writeOptions);
         const std::chrono::duration<double, std::milli> write =
@@ -215,6 +248,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             printStats(out, stats, wall.count(), write.count());
         }
     }
+    if (diff) return diffImages(output, *o.compare, *diff, out);
     return kExitOk;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/diff_command.h"
 #include "renderer/renderer.h"
 
 namespace CLI {
@@ -29,6 +30,10 @@ struct RenderOptions {
     std::map<std::string, std::string, std::less<>> settings;
     std::string isa;
     std::string output = "ssrt.png";
+    bool outputGiven = false;  // -o on the command line (else --compare picks the format)
+    // --compare FILE: the written frame against this reference, with these thresholds.
+    std::optional<std::string> compare;
+    DiffFlags diff;
     // --layers and --exr-compression as typed (unset: every layer, the default compression).
     std::optional<std::string> layers, exrCompression;
     bool stats = false;
@@ -52,12 +57,20 @@ RenderSettings settingsFrom(const RenderOptions& options, const RenderSettings& 
 // needs them), and the extension: out.png -> out_0000.png, out_0001.png, ...
 std::string sequenceFileName(const std::string& output, int index, int count);
 
+// The file a render writes: --output as given; without -o and with --compare, "ssrt" with the
+// reference's extension when it is one writeImage writes (.exr, .png), so that the two
+// files hold the same kind of layers.
+std::string renderOutput(const RenderOptions& options);
+
 // Validates everything (flags, the shot file, the output path) before any work, then renders
 // the warm-up frames and each frame of the sequence (cli/sequence.h) into one reused Frame
 // and one history, and writes each frame of the sequence (whole, through a temporary and a
 // rename) before the next; progress to `err` unless quiet (one line per frame, warm-up frames
 // included, when there is more than one), the --stats table of each written frame to `out`.
-// Returns the exit status; throws on errors (see reportErrors).
+// With --compare (a single frame only: more is a usage error; the reference must be readable
+// before rendering starts) the written file is then compared as `ssrt diff` does, its table
+// to `out`. Returns the exit status (kExitDiffer beyond a threshold); throws on errors (see
+// reportErrors).
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for

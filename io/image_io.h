@@ -35,7 +35,7 @@ struct ImageLayers {
     std::vector<PlaneRef> layers;  // in file order
     // EXR only (a PNG has none): string attributes in the header, e.g. what part of a larger
     // image a shard's file holds (cli/shard.h). Names must not be OpenEXR's own.
-    std::vector<std::pair<std::string, std::string>> attributes;
+    std::vector<std::pair<std::string, std::string>> attributes = {};
 };
 void writeImage(const std::string& path, const ImageLayers& image,
                 const WriteOptions& options = {});

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/rel_mse.h"
+
 namespace ssrt {
 
 namespace {
 
 // A non-finite pixel's error per channel: large enough that no finite image can hide it.
 constexpr double kNonFiniteError = 1e10;
-// relMSE's guard against division by a dark reference (the convention stated in the header).
-constexpr double kRelEpsilon = 0.01;
 
 void requirePlanes(const PlaneF* const image[3], const PlaneF* const reference[3]) {
     if (!image || !reference) throw std::invalid_argument("image error: null plane list");
@@ -51,7 +51,7 @@ ImageError imageError(const PlaneF* const image[3], const PlaneF* const referenc
             }
             for (int c = 0; c < 3; ++c) {
                 const double d = double(i[c]) - double(r[c]);
-                rel += d * d / (double(r[c]) * double(r[c]) + kRelEpsilon);
+                rel += relSquaredError(double(i[c]), double(r[c]));
                 sq += d * d;
             }
         }

@@ -1,4 +1,4 @@
-// Image error against a reference. Conventions (stated once, used everywhere):
+// Image error against a reference. Conventions (relMSE's term is core/rel_mse.h's):
 //   relMSE = mean over pixels and the three channels of (I - R)^2 / (R^2 + 0.01)
 //   RMSE   = sqrt(mean over pixels and channels of (I - R)^2)
 // on scene-linear or exposed values as the caller passes them (ssrt compare: the exposed

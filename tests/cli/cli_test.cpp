@@ -62,6 +62,11 @@ TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
     CHECK(contains(top.out, "render"));
     CHECK(contains(top.out, "scenes"));
     CHECK(top.err.empty());
+    // The exit statuses the footer and README.md promise: 1 means only "the images differ".
+    CHECK(cli::kExitDiffer == 1);
+    CHECK(cli::kExitUsage == 2);
+    CHECK(cli::kExitFailure == 3);
+    CHECK(contains(top.out, "2 bad command line, 3 the work failed"));
 
     const Result help = run({"render", "--help"});
     CHECK(help.code == 0);
@@ -157,7 +162,7 @@ TEST_CASE("cli: an unknown scene is named and the known ones listed") {
     CHECK(dir.empty());
 }
 
-TEST_CASE("cli: a glTF scene that cannot be loaded is one error line, exit 1, no file") {
+TEST_CASE("cli: a glTF scene that cannot be loaded is one error line, exit 3, no file") {
     TempDir dir;
     const std::string broken = dir.file("broken.gltf");
     std::FILE* f = std::fopen(broken.c_str(), "w");
@@ -221,7 +226,7 @@ TEST_CASE("cli: a glTF file's warnings are 'ssrt: warning:' lines, even with --q
     CHECK(plain.err.empty());
 }
 
-TEST_CASE("cli: --strict makes a glTF warning an error: exit 1, one line, no file") {
+TEST_CASE("cli: --strict makes a glTF warning an error: exit 3, one line, no file") {
     TempDir dir;
     const std::string scene = writeWarningGltf(dir);
     const std::string shot = dir.file("shot.json");

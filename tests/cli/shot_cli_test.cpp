@@ -1,5 +1,5 @@
 // ssrt render --shot and --frames, driven in-process: flags override the shot, a bad shot is
-// one line naming the file and field with exit 1 and no file, and a sequence writes exactly
+// one line naming the file and field with exit 3 and no file, and a sequence writes exactly
 // its numbered files with motion vectors that follow the camera path.
 #include <doctest/doctest.h>
 
@@ -108,7 +108,7 @@ TEST_CASE("cli shot: flags override the shot, the shot overrides the defaults") 
     CHECK(s.shadowMapSize == 64);
 }
 
-TEST_CASE("cli shot: a bad shot is one line naming file and field, exit 1, no file") {
+TEST_CASE("cli shot: a bad shot is one line naming file and field, exit 3, no file") {
     TempDir shots, dir;
     const std::string shot = shots.file("shot.json");
     const std::vector<std::pair<std::string, std::string>> cases{

@@ -1,0 +1,232 @@
+#include "cli/diff_command.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/cli.h"
+#include "cli/options.h"
+#include "io/image_io.h"
+
+namespace ssrt::cli {
+
+namespace {
+
+// The whole text must be a finite number in [lo, hi].
+double parseNumber(const std::string& option, const std::string& text, double lo, double hi,
+                   const std::string& expected) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ptr != end || ec != std::errc{} || !std::isfinite(value) || value < lo ||
+        value > hi)
+        badValue(option, text, expected);
+    return value;
+}
+
+constexpr double kHuge = 1e300;
+
+// A number as the table prints it: 4 significant digits, "inf" for +inf.
+std::string number(double v) {
+    if (std::isinf(v)) return "inf";
+    std::ostringstream s;
+    s << std::setprecision(4) << v;
+    return s.str();
+}
+
+// "color.R" -> "R"; a dotless name stays whole.
+std::string shortName(const std::string& channel) {
+    const std::size_t dot = channel.rfind('.');
+    return dot == std::string::npos ? channel : channel.substr(dot + 1);
+}
+
+std::string joined(const std::vector<std::string>& channels) {
+    std::string out;
+    for (const std::string& c : channels) out += (out.empty() ? "" : ",") + shortName(c);
+    return out;
+}
+
+// One table row: layer, channels, max error, where, relMSE, pixels over, share, verdict.
+std::vector<std::string> rowOf(const LayerDiff& l, const DiffThresholds& limits) {
+    std::string why;
+    const bool ok = withinThresholds(l, limits, &why);
+    if (l.presence != LayerDiff::Presence::Both)
+        return {l.name, joined(l.channels), "-", "-", "-", "-", "-", why};
+    const bool differs = l.maxError > 0.0;
+    const std::string where =
+        differs ? "(" + std::to_string(l.maxX) + ", " + std::to_string(l.maxY) + ") " + l.maxChannel
+                : "-";
+    const std::string verdict = l.identical ? "bit-identical"
+                                : ok        ? (differs ? "within" : "equal")
+                                            : "beyond: " + why;
+    return {l.name,
+            joined(l.channels),
+            number(l.maxError),
+            where,
+            number(l.relMse),
+            std::to_string(l.pixelsOver),
+            number(100.0 * l.shareOver) + "%",
+            verdict};
+}
+
+void printTable(std::ostream& out, const std::vector<std::vector<std::string>>& rows) {
+    std::vector<std::size_t> width(rows.front().size(), 0);
+    for (const auto& row : rows)
+        for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+    for (const auto& row : rows) {
+        std::string line;
+        for (std::size_t c = 0; c < row.size(); ++c) {
+            line += row[c];
+            if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 2, ' ');
+        }
+        out << line << "\n";
+    }
+}
+
+}  // namespace
+
+std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& f, const std::string& group) {
+    std::vector<CLI::Option*> added;
+    added.push_back(cmd.add_option("--threshold", f.threshold,
+                                   "Per-channel absolute difference above which a pixel counts "
+                                   "as differing (0: any difference; a NaN against a number "
+                                   "always does, and fails the layer)")
+                        ->type_name("T")
+                        ->capture_default_str());
+    added.push_back(cmd.add_option_function<std::string>(
+                           "--max-error", [&f](const std::string& v) { f.maxError = v; },
+                           "Largest absolute difference a layer may have (default: not checked)")
+                        ->type_name("E"));
+    added.push_back(cmd.add_option_function<std::string>(
+                           "--max-relmse", [&f](const std::string& v) { f.maxRelMse = v; },
+                           "Largest relMSE a layer may have, mean of (A-B)^2/(B^2+0.01) "
+                           "(default: not checked)")
+                        ->type_name("R"));
+    added.push_back(cmd.add_option("--max-share", f.maxShare,
+                                   "Share of a layer's pixels, in [0, 1], that may differ by "
+                                   "more than --threshold")
+                        ->type_name("S")
+                        ->capture_default_str());
+    added.push_back(cmd.add_option_function<std::string>(
+                           "--heatmap", [&f](const std::string& v) { f.heatmap = v; },
+                           "Write a .png of where they differ: per pixel the largest difference "
+                           "over the layers, black where equal, dark red to white up to the "
+                           "largest (the report gives the scale), blue for a NaN or infinity "
+                           "against another value")
+                        ->type_name("FILE.png"));
+    for (CLI::Option* o : added) o->group(group);
+    return added;
+}
+
+DiffSettings diffSettingsFrom(const DiffFlags& f) {
+    DiffSettings s;
+    s.compare.threshold =
+        parseNumber("--threshold", f.threshold, 0.0, kHuge, "a finite number >= 0");
+    if (f.maxError)
+        s.limits.maxError =
+            parseNumber("--max-error", *f.maxError, 0.0, kHuge, "a finite number >= 0");
+    if (f.maxRelMse)
+        s.limits.maxRelMse =
+            parseNumber("--max-relmse", *f.maxRelMse, 0.0, kHuge, "a finite number >= 0");
+    s.limits.maxShare = parseNumber("--max-share", f.maxShare, 0.0, 1.0, "a number in [0, 1]");
+    if (f.heatmap) {
+        const std::string& path = *f.heatmap;
+        std::string ext = std::filesystem::path(path).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (ext != ".png") badValue("--heatmap", path, "a .png file");
+        checkWritable(path);
+        s.compare.heatmap = path;
+    }
+    return s;
+}
+
+bool samePath(const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const std::filesystem::path pa = std::filesystem::weakly_canonical(a, ea);
+    const std::filesystem::path pb = std::filesystem::weakly_canonical(b, eb);
+    return ea || eb ? a == b : pa == pb;
+}
+
+void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string>& images) {
+    if (heatmap.empty()) return;
+    for (const std::string& image : images)
+        if (samePath(heatmap, image))
+            throw std::invalid_argument("--heatmap: '" + heatmap + "' is an image being compared");
+}
+
+CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
+    CLI::App* cmd = app.add_subcommand(
+        "diff",
+        "Compare an image with a reference (a golden image), layer by layer: the largest "
+        "difference and where, relMSE, the pixels over a threshold; exit 1 beyond a threshold");
+    cmd->add_option("A", o.a, "The image to check (EXR, PNG or any file OpenImageIO reads)")
+        ->required()
+        ->type_name("FILE");
+    cmd->add_option("B", o.b, "The reference (golden) image, of the same size")
+        ->required()
+        ->type_name("FILE");
+    cmd->add_option_function<std::string>(
+           "--layers", [&o](const std::string& v) { o.layers = v; },
+           "Compare only these layers, comma-separated (color, viewZ, ...; a plain RGB file's is "
+           "RGB); default: every layer of either file")
+        ->type_name("LIST");
+    addDiffFlags(*cmd, o.flags, "Thresholds");
+    return cmd;
+}
+
+int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
+               std::ostream& out) {
+    const ImageDiff diff = compareImages(a, b, settings.compare);
+    std::vector<std::vector<std::string>> rows{{"layer", "channels", "max error", "at (x, y)",
+                                                "relMSE", "pixels over", "share", "verdict"}};
+    int beyond = 0, identical = 0;
+    for (const LayerDiff& l : diff.layers) {
+        rows.push_back(rowOf(l, settings.limits));
+        beyond += withinThresholds(l, settings.limits) ? 0 : 1;
+        identical += l.presence == LayerDiff::Presence::Both && l.identical ? 1 : 0;
+    }
+    printTable(out, rows);
+    // A NaN or infinity against anything else is spelled out, not left to read from "inf".
+    for (const LayerDiff& l : diff.layers)
+        if (l.nonFinite > 0)
+            out << l.name << ": " << l.nonFinite
+                << (l.nonFinite == 1 ? " pixel has" : " pixels have")
+                << " a NaN or infinity against a different value (max error and relMSE inf)\n";
+    if (!settings.compare.heatmap.empty())
+        out << "heat map " << settings.compare.heatmap
+            << ": black = equal, dark red to white = a difference up to " << number(diff.heatScale)
+            << " (the largest finite one; any difference at least dark red), blue = a NaN or "
+               "infinity against a different value\n";
+    const std::string pair = a + " against " + b + " (" + std::to_string(diff.width) + "x" +
+                             std::to_string(diff.height) + ", " +
+                             plural(int(diff.layers.size()), "layer") + ")";
+    if (diff.identical()) {
+        out << "bit-identical: " << pair << "\n";
+        return kExitOk;
+    }
+    const int n = int(diff.layers.size());
+    if (beyond == 0) {
+        out << "within thresholds: " << pair << ", " << identical << " of " << n
+            << " bit-identical\n";
+        return kExitOk;
+    }
+    out << "DIFFER: " << pair << ", " << beyond << " of " << n << " beyond a threshold\n";
+    return kExitDiffer;
+}
+
+int runDiff(const DiffOptions& o, std::ostream& out) {
+    DiffSettings settings = diffSettingsFrom(o.flags);
+    checkHeatmapApart(settings.compare.heatmap, {o.a, o.b});
+    if (o.layers) settings.compare.layers = splitList("--layers", *o.layers);
+    return diffImages(o.a, o.b, settings, out);
+}
+
+}  // namespace ssrt::cli
