@@ -38,7 +38,7 @@ cannot_start() {
     say "CANNOT START: $*"
     exit 3
 }
-alive() { [ -f "$1" ] && kill -0 "$(cat "$1")" 2>/dev/null; }
+alive() { [ -f "$1" ] && kill -0 "$(cat "$1" 2>/dev/null)" 2>/dev/null; }
 
 install_missing() {
     local missing=() p
@@ -63,7 +63,7 @@ install_missing() {
 write_conf() {
     # The node as slurmd detects it: "NodeName=vm CPUs=2 Boards=1 ... RealMemory=24105".
     local node_line node
-    node_line="$(slurmd -C | head -n 1)"
+    node_line="$(slurmd -C 2>&1 | head -n 1)" || true
     node="$(sed -n 's/^NodeName=\([^ ]*\).*/\1/p' <<<"$node_line")"
     [ -n "$node" ] || cannot_start "slurmd -C printed no node line: $node_line"
     echo "$node" >"$dir/nodename"
@@ -190,13 +190,13 @@ cmd_stop() {
         SLURM_CONF="$conf" scancel --quiet --user="$(id -un)" 2>/dev/null || true
     fi
     for d in slurmd slurmctld munge/munged; do
-        pid="$dir/$d.pid"
-        alive "$pid" || continue
-        kill "$(cat "$pid")"
-        for _ in $(seq 1 50); do alive "$pid" || break; sleep 0.2; done
-        alive "$pid" && kill -9 "$(cat "$pid")" 2>/dev/null || true
-        rm -f "$pid"
-        say "stopped ${d#munge/}"
+        alive "$dir/$d.pid" || continue
+        pid="$(cat "$dir/$d.pid")"
+        kill "$pid" 2>/dev/null || true
+        for _ in $(seq 1 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
+        kill -9 "$pid" 2>/dev/null || true
+        rm -f "$dir/$d.pid"
+        say "stopped ${d#munge/} (pid $pid)"
     done
 }
 
@@ -210,7 +210,8 @@ cmd_status() {
             running=1
         fi
     done
-    [ -f "$conf" ] && SLURM_CONF="$conf" sinfo 2>/dev/null || true
+    # sinfo retries for seconds when no controller answers: only ask a running one.
+    if [ -f "$conf" ] && alive "$dir/slurmctld.pid"; then SLURM_CONF="$conf" sinfo || true; fi
     return $running
 }
 

@@ -1,0 +1,171 @@
+#!/usr/bin/env bash
+# The Slurm test, against a real Slurm: starts the single-node cluster of
+# scripts/slurm/local-cluster.sh (installing slurm-wlm and munge if missing), runs a small
+# sweep unsharded, then the same sweep as 2-task job arrays (scripts/slurm/sweep.sbatch, which
+# passes --shard K/N, and a bare `ssrt sweep` in an array, which reads the array's variables
+# itself), merges each array's parts with `ssrt merge` and checks the merged CSVs (the sweep's
+# and the per-frame one) equal the unsharded ones on every column but the timings.
+#
+#   scripts/test-slurm.sh
+#
+# It stops the cluster if it started it. Where Slurm cannot start here (no packages, a daemon
+# that dies) it prints "test-slurm: SKIPPED: <reason>" and exits 0; SSRT_SLURM_REQUIRED=1 makes
+# that a failure. SSRT_BIN runs another ssrt than build/ssrt (built when missing).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo="$PWD"
+t_start=$SECONDS
+limit_s="${SSRT_SLURM_TEST_WAIT_S:-300}"
+passed=0
+failed=0
+say() { echo "test-slurm: $*" >&2; }
+pass() {
+    say "ok: $*"
+    passed=$((passed + 1))
+}
+fail() {
+    say "FAIL: $*"
+    failed=$((failed + 1))
+}
+finish() {
+    say "$passed passed, $failed failed ($((SECONDS - t_start)) s)"
+    [ "$failed" -eq 0 ]
+    exit
+}
+
+# The cluster: started here (and stopped at the end) unless it already runs.
+cluster=scripts/slurm/local-cluster.sh
+started=0
+if ! bash "$cluster" status >/dev/null 2>&1; then
+    rc=0
+    start_log="$(mktemp)"
+    bash "$cluster" start 2>"$start_log" || rc=$?
+    cat "$start_log" >&2
+    reason="$(sed -n 's/^local-cluster: CANNOT START: //p' "$start_log" | tail -n 1)"
+    rm -f "$start_log"
+    if [ "$rc" -eq 3 ]; then
+        if [ "${SSRT_SLURM_REQUIRED:-0}" = 1 ]; then
+            fail "Slurm could not start ($reason) and SSRT_SLURM_REQUIRED=1"
+            finish
+        fi
+        say "SKIPPED: Slurm could not start here ($reason)"
+        exit 0
+    fi
+    [ "$rc" -eq 0 ] || {
+        fail "scripts/slurm/local-cluster.sh start failed (exit $rc)"
+        finish
+    }
+    started=1
+fi
+cleanup() { [ "$started" = 0 ] || bash "$repo/$cluster" stop || true; }
+trap cleanup EXIT
+eval "$(bash "$cluster" env)"
+say "cluster up after $((SECONDS - t_start)) s ($SLURM_CONF)"
+
+bin="${SSRT_BIN:-$repo/build/ssrt}"
+if [ ! -x "$bin" ]; then
+    say "building ssrt (scripts/build.sh --render)"
+    bash scripts/build.sh --render
+fi
+
+work="$repo/build/test-slurm"
+rm -rf "$work"
+mkdir -p "$work/logs" "$work/cache" "$work/batch" "$work/bare"
+args=(--scene cornell --width 160 --height 90 --marchers off,hiz --max-steps 16,32
+      --reference-spp 4 --frames 2 --quiet)
+
+# Unsharded, with the one thread each array task gets (the CSV's `threads` column is the flag).
+t0=$SECONDS
+if ! "$bin" sweep "${args[@]}" --threads 1 --cache-dir "$work/cache" -o "$work/full.csv" \
+    --per-frame "$work/full-frames.csv" >"$work/full.log" 2>&1; then
+    cat "$work/full.log" >&2
+    fail "the unsharded sweep failed"
+    finish
+fi
+say "unsharded sweep: $((SECONDS - t0)) s"
+
+# Two arrays at once, each of 2 tasks with one CPU (the node runs 2 at a time): the batch
+# file, and ssrt on its own in an array (no --shard: it reads SLURM_ARRAY_TASK_ID/_COUNT).
+# The arrays share a fresh cache of their own, so the tasks render their references too.
+submit() { # name, sbatch arguments...
+    local name="$1"
+    shift
+    timeout "$limit_s" sbatch --wait --array=0-1 --cpus-per-task=1 --time=10 \
+        --job-name="ssrt-test-$name" --output="$work/logs/%x-%A_%a.out" "$@" \
+        >"$work/$name.sbatch.out" 2>&1
+}
+t0=$SECONDS
+export SSRT_BIN="$bin" SSRT_CACHE_DIR="$work/array-cache" SSRT_THREADS=1
+SSRT_OUT_DIR="$work/batch" SSRT_PER_FRAME=1 submit batch scripts/slurm/sweep.sbatch \
+    "${args[@]}" &
+pid_batch=$!
+submit bare --wrap "$(printf '%q ' "$bin" sweep "${args[@]}" --threads 1 \
+    --cache-dir "$work/array-cache" -o "$work/bare/sweep.csv" \
+    --per-frame "$work/bare/sweep-frames.csv")" &
+pid_bare=$!
+rc_batch=0 rc_bare=0
+wait "$pid_batch" || rc_batch=$?
+wait "$pid_bare" || rc_bare=$?
+say "both arrays done: $((SECONDS - t0)) s"
+for name in batch bare; do
+    rc_var="rc_$name"
+    if [ "${!rc_var}" -ne 0 ]; then
+        [ "${!rc_var}" -eq 124 ] && say "$name: no end within ${limit_s} s; cancelling"
+        cat "$work/$name.sbatch.out" "$work"/logs/ssrt-test-"$name"-* >&2 2>/dev/null || true
+        fail "the $name array (exit ${!rc_var}; logs above)"
+    else
+        pass "the $name array ran 2 tasks ($(sed -n 's/^Submitted batch job //p' \
+            "$work/$name.sbatch.out"))"
+    fi
+done
+scancel --name=ssrt-test-batch --name=ssrt-test-bare 2>/dev/null || true
+
+# Merge each array's parts and compare with the unsharded CSVs, timings aside.
+compare() { # label, unsharded, merged
+    /usr/bin/python3 - "$@" <<'PY'
+import csv, sys
+label, full_path, merged_path = sys.argv[1:4]
+def timing(c):
+    return c == "frame_ms" or c.startswith("ms_") or c in (
+        "march_mrays_s", "embree_mrays_s", "march_vs_embree")
+with open(full_path, newline="") as f:
+    full = list(csv.reader(f))
+with open(merged_path, newline="") as f:
+    merged = list(csv.reader(f))
+if full[0] != merged[0]:
+    sys.exit(f"{label}: the headers differ:\n  unsharded {full[0]}\n  merged    {merged[0]}")
+if len(full) != len(merged):
+    sys.exit(f"{label}: {len(full) - 1} unsharded rows, {len(merged) - 1} merged")
+header = full[0]
+checked = [i for i, c in enumerate(header) if not timing(c)]
+for r, (a, b) in enumerate(zip(full[1:], merged[1:]), start=1):
+    if len(a) != len(header) or len(b) != len(header):
+        sys.exit(f"{label}: row {r} has {len(a)} cells unsharded, {len(b)} merged")
+    for i in checked:
+        if a[i] != b[i]:
+            sys.exit(f"{label}: row {r}, column {header[i]}: unsharded {a[i]!r}, merged {b[i]!r}")
+print(f"{label}: {len(full) - 1} rows x {len(checked)} non-timing columns equal "
+      f"({len(header) - len(checked)} timing columns not compared)")
+PY
+}
+check_merge() { # label, unsharded, merged, parts...
+    local label="$1" full="$2" merged="$3"
+    shift 3
+    if [ $# -ne 2 ] || [ ! -s "$1" ] || [ ! -s "$2" ]; then
+        fail "$label: expected 2 parts, found: $* ($(ls "$(dirname "$merged")" | tr '\n' ' '))"
+    elif ! "$bin" merge -o "$merged" "$@" >"$merged.log" 2>&1; then
+        cat "$merged.log" >&2
+        fail "$label: ssrt merge failed"
+    elif out="$(compare "$label" "$full" "$merged" 2>&1)"; then
+        pass "$out"
+    else
+        fail "$out"
+    fi
+}
+for name in batch bare; do
+    d="$work/$name"
+    check_merge "$name sweep" "$work/full.csv" "$d/merged.csv" "$d"/sweep.shard-*-of-2.csv
+    check_merge "$name per-frame" "$work/full-frames.csv" "$d/merged-frames.csv" \
+        "$d"/sweep-frames.shard-*-of-2.csv
+done
+finish
