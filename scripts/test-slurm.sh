@@ -76,7 +76,7 @@ args=(--scene cornell --width 160 --height 90 --marchers off,hiz --max-steps 16,
 
 # Unsharded, with the one thread each array task gets (the CSV's `threads` column is the flag).
 t0=$SECONDS
-if ! "$bin" sweep "${args[@]}" --threads 1 --cache-dir "$work/cache" -o "$work/full.csv" \
+if ! timeout "$limit_s" "$bin" sweep "${args[@]}" --threads 1 --cache-dir "$work/cache" -o "$work/full.csv" \
     --per-frame "$work/full-frames.csv" >"$work/full.log" 2>&1; then
     cat "$work/full.log" >&2
     fail "the unsharded sweep failed"
@@ -118,7 +118,7 @@ for name in batch bare; do
             "$work/$name.sbatch.out"))"
     fi
 done
-scancel --name=ssrt-test-batch --name=ssrt-test-bare 2>/dev/null || true
+for name in batch bare; do scancel --name="ssrt-test-$name" 2>/dev/null || true; done
 
 # Merge each array's parts and compare with the unsharded CSVs, timings aside.
 compare() { # label, unsharded, merged
