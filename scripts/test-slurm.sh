@@ -68,6 +68,12 @@ if [ ! -x "$bin" ]; then
     bash scripts/build.sh --render
 fi
 
+# The sharding interface this test is about: --shard and `ssrt merge`.
+if ! "$bin" merge --help >/dev/null 2>&1; then
+    fail "$bin has no 'merge' command (an ssrt from before --shard and ssrt merge)"
+    finish
+fi
+
 work="$repo/build/test-slurm"
 rm -rf "$work"
 mkdir -p "$work/logs" "$work/cache" "$work/batch" "$work/bare"
