@@ -69,8 +69,8 @@ if [ ! -x "$bin" ]; then
 fi
 
 # The sharding interface this test is about: --shard and `ssrt merge`.
-if ! "$bin" merge --help >/dev/null 2>&1; then
-    fail "$bin has no 'merge' command (an ssrt from before --shard and ssrt merge)"
+if ! "$bin" --help 2>/dev/null | grep -q '^  merge ' || ! "$bin" sweep --help | grep -q -- --shard; then
+    fail "$bin has no 'merge' command or no 'sweep --shard' (an ssrt from before them)"
     finish
 fi
 
