@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The Slurm test, against a real Slurm: starts the single-node cluster of
 # scripts/slurm/local-cluster.sh (installing slurm-wlm and munge if missing), runs a small
-# sweep unsharded, then the same sweep as 2-task job arrays (scripts/slurm/sweep.sbatch, which
-# passes --shard K/N, and a bare `ssrt sweep` in an array, which reads the array's variables
-# itself), merges each array's parts with `ssrt merge` and checks the merged CSVs (the sweep's
-# and the per-frame one) equal the unsharded ones on every column but the timings.
+# sweep, a reference and a short sequence unsharded, then the same as 2-task job arrays, all
+# four at once: the sweep through scripts/slurm/sweep.sbatch (which passes --shard K/N) and as
+# a bare `ssrt sweep` in an array (which reads the array's variables itself), the reference and
+# the sequence through their batch files. It merges each array's parts with `ssrt merge` and
+# checks the merged CSVs (the sweep's and the per-frame one) equal the unsharded ones on every
+# column but the timings, and the merged reference EXR and the frames byte for byte.
 #
 #   scripts/test-slurm.sh
 #
@@ -76,55 +78,81 @@ fi
 
 work="$repo/build/test-slurm"
 rm -rf "$work"
-mkdir -p "$work/logs" "$work/cache" "$work/batch" "$work/bare"
-args=(--scene cornell --width 160 --height 90 --marchers off,hiz --max-steps 16,32
-      --reference-spp 4 --frames 2 --quiet)
+mkdir -p "$work/logs" "$work/full-frames" "$work/bare"
+scene=(--scene cornell --width 160 --height 90 --quiet)
+args=("${scene[@]}" --marchers off,hiz --max-steps 16,32 --reference-spp 4 --frames 2)
+ref_args=("${scene[@]}" --reference-spp 4)
+seq_args=("${scene[@]}" --frames 4)
 
 # Unsharded, with the one thread each array task gets (the CSV's `threads` column is the flag).
 t0=$SECONDS
-if ! timeout "$limit_s" "$bin" sweep "${args[@]}" --threads 1 --cache-dir "$work/cache" -o "$work/full.csv" \
-    --per-frame "$work/full-frames.csv" >"$work/full.log" 2>&1; then
-    cat "$work/full.log" >&2
-    fail "the unsharded sweep failed"
-    finish
-fi
-say "unsharded sweep: $((SECONDS - t0)) s"
-
-# Two arrays at once, each of 2 tasks with one CPU (the node runs 2 at a time): the batch
-# file, and ssrt on its own in an array (no --shard: it reads SLURM_ARRAY_TASK_ID/_COUNT).
-# The arrays share a fresh cache of their own, so the tasks render their references too.
-submit() { # name, sbatch arguments...
-    local name="$1"
+unsharded() { # what, ssrt arguments...
+    local what="$1"
     shift
-    timeout "$limit_s" sbatch --wait --array=0-1 --cpus-per-task=1 --time=10 \
-        --job-name="ssrt-test-$name" --output="$work/logs/%x-%A_%a.out" "$@" \
-        >"$work/$name.sbatch.out" 2>&1
+    timeout "$limit_s" "$bin" "$@" --threads 1 >>"$work/full.log" 2>&1 && return 0
+    cat "$work/full.log" >&2
+    fail "the unsharded $what failed"
+    finish
 }
+unsharded sweep sweep "${args[@]}" --cache-dir "$work/cache" -o "$work/full.csv" \
+    --per-frame "$work/full-frames.csv"
+unsharded reference reference "${ref_args[@]}" --no-cache -o "$work/full-ref.exr"
+unsharded sequence render "${seq_args[@]}" -o "$work/full-frames/frame.png"
+say "unsharded sweep, reference and sequence: $((SECONDS - t0)) s"
+
+# Four arrays at once, each of 2 tasks with one CPU (the node runs 2 at a time): the sweep
+# through its batch file, and ssrt on its own in an array (no --shard: it reads
+# SLURM_ARRAY_TASK_ID/_COUNT); the reference and the sequence through theirs. The sweeps share
+# a fresh cache, so their tasks render references too; the reference's tasks have an empty
+# one, so they render their bands.
+submit() { # name, sbatch arguments...: the array job's id in ids[name]
+    local name="$1" out
+    shift
+    if out="$(sbatch --parsable --array=0-1 --cpus-per-task=1 --time=10 \
+        --job-name="ssrt-test-$name" --output="$work/logs/%x-%A_%a.out" "$@" 2>&1)"; then
+        ids[$name]="${out%%;*}"
+    else
+        echo "$out" >&2
+        fail "sbatch refused the $name array"
+    fi
+}
+declare -A ids=()
 t0=$SECONDS
-export SSRT_BIN="$bin" SSRT_CACHE_DIR="$work/array-cache" SSRT_THREADS=1
-SSRT_OUT_DIR="$work/batch" SSRT_PER_FRAME=1 submit batch scripts/slurm/sweep.sbatch \
-    "${args[@]}" &
-pid_batch=$!
+export SSRT_BIN="$bin" SSRT_THREADS=1
+SSRT_OUT_DIR="$work/batch" SSRT_CACHE_DIR="$work/array-cache" SSRT_PER_FRAME=1 \
+    submit batch scripts/slurm/sweep.sbatch "${args[@]}"
 submit bare --wrap "$(printf '%q ' "$bin" sweep "${args[@]}" --threads 1 \
     --cache-dir "$work/array-cache" -o "$work/bare/sweep.csv" \
-    --per-frame "$work/bare/sweep-frames.csv")" &
-pid_bare=$!
-rc_batch=0 rc_bare=0
-wait "$pid_batch" || rc_batch=$?
-wait "$pid_bare" || rc_bare=$?
-say "both arrays done: $((SECONDS - t0)) s"
-for name in batch bare; do
-    rc_var="rc_$name"
-    if [ "${!rc_var}" -ne 0 ]; then
-        [ "${!rc_var}" -eq 124 ] && say "$name: no end within ${limit_s} s; cancelling"
-        cat "$work/$name.sbatch.out" "$work"/logs/ssrt-test-"$name"-* >&2 2>/dev/null || true
-        fail "the $name array (exit ${!rc_var}; logs above)"
+    --per-frame "$work/bare/sweep-frames.csv")"
+SSRT_OUT_DIR="$work/ref" SSRT_CACHE_DIR="$work/ref-cache" \
+    submit reference scripts/slurm/reference.sbatch "${ref_args[@]}"
+SSRT_OUT_DIR="$work/seq" submit sequence scripts/slurm/sequence.sbatch "${seq_args[@]}"
+
+# Wait (polling squeue each second: sbatch --wait's own polling backs off to tens of
+# seconds), bounded; then every task's state and exit code from scontrol (the controller
+# keeps finished jobs MinJobAge = 300 s; there is no accounting database to ask).
+list="$(IFS=,; echo "${ids[*]}")"
+while [ -n "$list" ] && [ -n "$(squeue -h -j "$list" \
+    -t PENDING,CONFIGURING,RUNNING,COMPLETING,SUSPENDED -o %i 2>/dev/null)" ]; do
+    if [ $((SECONDS - t0)) -ge "$limit_s" ]; then
+        say "the arrays did not end within ${limit_s} s; cancelling them"
+        scancel "${ids[@]}" 2>/dev/null || true
+        break
+    fi
+    sleep 1
+done
+say "the arrays ended: $((SECONDS - t0)) s"
+for name in batch bare reference sequence; do
+    [ -n "${ids[$name]:-}" ] || continue
+    states="$(scontrol -o show job "${ids[$name]}" 2>&1 |
+        grep -o 'JobState=[A-Z_]* .*ExitCode=[0-9:]*' | sed 's/^JobState=\([A-Z_]*\) .*ExitCode=/\1 /')"
+    if [ "$(grep -c '^COMPLETED 0:0$' <<<"$states")" -eq 2 ]; then
+        pass "the $name array ran 2 tasks (job ${ids[$name]})"
     else
-        pass "the $name array ran 2 tasks ($(sed -n 's/^Submitted batch job //p' \
-            "$work/$name.sbatch.out"))"
+        cat "$work"/logs/ssrt-test-"$name"-* >&2 2>/dev/null || true
+        fail "the $name array (job ${ids[$name]}): tasks ended" $states "(logs above)"
     fi
 done
-for name in batch bare; do scancel --name="ssrt-test-$name" 2>/dev/null || true; done
 
 # Merge each array's parts and compare with the unsharded CSVs, timings aside.
 compare() { # label, unsharded, merged
@@ -174,4 +202,26 @@ for name in batch bare; do
     check_merge "$name per-frame" "$work/full-frames.csv" "$d/merged-frames.csv" \
         "$d"/sweep-frames.shard-*-of-2.csv
 done
+
+# The reference's bands, merged, and the sequence's frames: the unsharded files, byte for byte.
+parts=("$work"/ref/ref.shard-*-of-2.exr)
+if [ ${#parts[@]} -ne 2 ] || [ ! -s "${parts[0]}" ]; then
+    fail "reference: expected 2 bands, found: ${parts[*]}"
+elif ! "$bin" merge -o "$work/ref/merged.exr" "${parts[@]}" >"$work/ref/merged.log" 2>&1; then
+    cat "$work/ref/merged.log" >&2
+    fail "reference: ssrt merge failed"
+elif cmp "$work/full-ref.exr" "$work/ref/merged.exr" >&2; then
+    pass "reference: 2 bands merged into the unsharded EXR's bytes"
+else
+    fail "reference: the merged EXR differs from the unsharded one"
+fi
+frames_ok=1
+for f in "$work"/full-frames/frame_000{0..3}.png; do
+    cmp "$f" "$work/seq/${f##*/}" >&2 || frames_ok=0
+done
+if [ "$frames_ok" = 1 ]; then
+    pass "sequence: 4 frames from 2 tasks, the unsharded PNGs' bytes"
+else
+    fail "sequence: frames missing or different (above)"
+fi
 finish
