@@ -104,6 +104,8 @@ InactiveLimit=0
 MinJobAge=300
 KillWait=10
 MaxArraySize=10001
+# No mail on this node (the default /bin/mail is missing: an error at every start).
+MailProg=/bin/true
 $node_line NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=ssrt Nodes=$node Default=YES MaxTime=INFINITE State=UP
 EOF
