@@ -10,7 +10,9 @@
 # Everything it writes lives in one folder, $SSRT_SLURM_DIR (default /var/tmp/ssrt-slurm):
 # slurm.conf, the munge key and socket, the controller's state, slurmd's spool, the pid files
 # and the logs (log/). It never touches /etc/slurm or the system's munged, so the Slurm
-# commands need SLURM_CONF pointed at its slurm.conf (`eval "$(... env)"`).
+# commands need SLURM_CONF pointed at its slurm.conf (`eval "$(... env)"`). The ports are
+# Slurm's usual 6817 and 6818 (SSRT_SLURM_CTLD_PORT, SSRT_SLURM_SLURMD_PORT: other ones where
+# the machine runs a Slurm of its own); SSRT_SLURM_WAIT_S bounds the wait for the node (60).
 #
 # It runs the daemons directly as root, without systemd (a container need not have it):
 # munged with its own key and socket, slurmctld and slurmd daemonized. The configuration
@@ -34,11 +36,22 @@ socket="$dir/munge/munge.socket"
 packages=(munge slurm-wlm slurmctld slurmd slurm-client)
 
 say() { echo "local-cluster: $*" >&2; }
+starting=0
 cannot_start() {
     say "CANNOT START: $*"
+    # Leave no half-started cluster behind: stop whichever of our daemons did start.
+    [ "$starting" = 0 ] || cmd_stop
     exit 3
 }
-alive() { [ -f "$1" ] && kill -0 "$(cat "$1" 2>/dev/null)" 2>/dev/null; }
+# The last error a daemon logged, for the reason cannot_start prints.
+last_error() { grep -E 'fatal|error' "$dir/log/$1.log" 2>/dev/null | grep -v pmix | tail -n 1 | cut -c 27- || true; }
+# Whether the daemon a pid file names runs: the pid alive and its command the file's name
+# (slurmd.pid: slurmd), so a stale file from before a reboot, its pid reused, does not count.
+alive() {
+    local pid
+    pid="$(cat "$1" 2>/dev/null)" || return 1
+    [ -n "$pid" ] && [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$(basename "$1" .pid)" ]
+}
 
 install_missing() {
     local missing=() p
@@ -139,7 +152,7 @@ start_daemon() { # name, pid file, command...
     if alive "$pid"; then return 0; fi
     if ! "$@" >>"$dir/log/$name.out" 2>&1; then
         tail -n 10 "$dir/log/$name.log" "$dir/log/$name.out" >&2 2>/dev/null || true
-        cannot_start "$name exited at start (log: $dir/log/$name.log)"
+        cannot_start "$name exited at start: $(last_error "$name") (log: $dir/log/$name.log)"
     fi
 }
 
@@ -148,6 +161,7 @@ node_state() { sinfo -h -n "$(cat "$dir/nodename")" -o '%t' 2>/dev/null | head -
 cmd_start() {
     mkdir -p "$dir/log" "$dir/ctld" "$dir/slurmd"
     install_missing
+    starting=1
     local t0=$SECONDS
     if alive "$dir/slurmctld.pid" && alive "$dir/slurmd.pid"; then
         say "already running"
@@ -161,17 +175,18 @@ cmd_start() {
     export SLURM_CONF="$conf"
     local state=""
     while [ $((SECONDS - t0)) -lt "$wait_s" ]; do
-        state="$(node_state)"
+        state="$(node_state)" || state="" # no controller answering yet
         case "$state" in
             idle | mix | alloc) break ;;
             # A node left down or drained by an earlier run comes back.
             down* | drain* | fail*)
                 scontrol update nodename="$(cat "$dir/nodename")" state=resume 2>/dev/null || true ;;
         esac
+        # The daemons fork and write their pid files after: give them a moment to appear.
         for d in slurmctld slurmd; do
-            alive "$dir/$d.pid" || {
+            [ $((SECONDS - t0)) -lt 3 ] || alive "$dir/$d.pid" || {
                 tail -n 10 "$dir/log/$d.log" >&2 2>/dev/null || true
-                cannot_start "$d died while starting (log: $dir/log/$d.log)"
+                cannot_start "$d died while starting: $(last_error "$d") (log: $dir/log/$d.log)"
             }
         done
         sleep 1
