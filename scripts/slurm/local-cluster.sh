@@ -61,12 +61,10 @@ install_missing() {
     done
     [ ${#missing[@]} -eq 0 ] && return 0
     say "installing ${missing[*]}"
-    local sudo=""
-    [ "$(id -u)" -eq 0 ] || sudo="sudo"
     export DEBIAN_FRONTEND=noninteractive
     # The packages' postinst scripts try to start the system's services; without systemd
     # (or with a policy-rc.d that denies it) that is skipped, which is what we want.
-    if ! { $sudo apt-get update -qq && $sudo apt-get install -y -qq --no-install-recommends \
+    if ! { apt-get update -qq && apt-get install -y -qq --no-install-recommends \
         "${missing[@]}" >"$dir/log/apt.log" 2>&1; }; then
         tail -n 20 "$dir/log/apt.log" >&2 || true
         cannot_start "apt-get could not install ${missing[*]} (log: $dir/log/apt.log)"
@@ -159,6 +157,8 @@ start_daemon() { # name, pid file, command...
 node_state() { sinfo -h -n "$(cat "$dir/nodename")" -o '%t' 2>/dev/null | head -n 1; }
 
 cmd_start() {
+    # SlurmUser and SlurmdUser are root: the daemons run jobs as whoever submits them.
+    [ "$(id -u)" -eq 0 ] || cannot_start "the daemons need root (run it as root)"
     mkdir -p "$dir/log" "$dir/ctld" "$dir/slurmd"
     install_missing
     starting=1
