@@ -29,15 +29,20 @@ fail() {
     say "FAIL: $*"
     failed=$((failed + 1))
 }
+started=0
+cleanup() { [ "$started" = 0 ] || bash "$repo/$cluster" stop || true; }
+# The cluster is stopped first, so that the count is the script's last line (CI reads it).
 finish() {
-    say "$passed passed, $failed failed ($((SECONDS - t_start)) s)"
+    cleanup
+    started=0
+    say "took $((SECONDS - t_start)) s"
+    say "$passed passed, $failed failed"
     [ "$failed" -eq 0 ]
     exit
 }
 
 # The cluster: started here (and stopped at the end) unless it already runs.
 cluster=scripts/slurm/local-cluster.sh
-started=0
 if ! bash "$cluster" status >/dev/null 2>&1; then
     rc=0
     start_log="$(mktemp)"
@@ -59,7 +64,6 @@ if ! bash "$cluster" status >/dev/null 2>&1; then
     }
     started=1
 fi
-cleanup() { [ "$started" = 0 ] || bash "$repo/$cluster" stop || true; }
 trap cleanup EXIT
 eval "$(bash "$cluster" env)"
 say "cluster up after $((SECONDS - t_start)) s ($SLURM_CONF)"
