@@ -82,15 +82,21 @@ def plot(rows, x, y, out, title):
         ax.scatter([r["_x"] for r in members], [r["_y"] for r in members],
                    marker=MARKERS.get(name, "D"), s=70 if name == "embree" else 40,
                    label=name or "setting")
-    for r in rows:
-        ax.annotate(label(r), (r["_x"], r["_y"]), textcoords="offset points", xytext=(4, 4),
-                    fontsize=7, color="0.35")
     front = pareto_front([(r["_x"], r["_y"]) for r in rows])
+    # Labels where they are read: the front, and the points that are not grid settings (the
+    # others crowd together; their markers say the marcher).
+    for i, r in enumerate(rows):
+        if i in front or group(r) in ("off", "embree", "preset"):
+            ax.annotate(label(r), (r["_x"], r["_y"]), textcoords="offset points",
+                        xytext=(4, 4), fontsize=7, color="0.35")
     fx = [rows[i]["_x"] for i in front]
     fy = [rows[i]["_y"] for i in front]
     ax.step(fx, fy, where="post", color="crimson", linewidth=1.2, label="Pareto front")
     if all(r["_y"] > 0 for r in rows):
         ax.set_yscale("log")
+    xs = [r["_x"] for r in rows]
+    if min(xs) > 0 and max(xs) > 20 * min(xs):  # e.g. Embree's points beside the marchers
+        ax.set_xscale("log")
     ax.set_xlabel(x + (" (ms)" if x.endswith("_ms") or x.startswith("ms_") else ""))
     ax.set_ylabel(y)
     ax.set_title(title)
