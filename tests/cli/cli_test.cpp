@@ -39,20 +39,7 @@ using test::contains;
 Result run(std::vector<std::string> args) { return test::runSsrt(std::move(args)); }
 using test::isOneErrorLine;
 
-// Sets an environment variable for one scope and restores the old value.
-struct ScopedEnv {
-    std::string name;
-    std::optional<std::string> old;
-    ScopedEnv(const std::string& n, const char* value) : name(n) {
-        if (const char* v = std::getenv(n.c_str())) old = v;
-        if (value) ::setenv(n.c_str(), value, 1);
-        else ::unsetenv(n.c_str());
-    }
-    ~ScopedEnv() {
-        if (old) ::setenv(name.c_str(), old->c_str(), 1);
-        else ::unsetenv(name.c_str());
-    }
-};
+using test::ScopedEnv;
 
 }  // namespace
 

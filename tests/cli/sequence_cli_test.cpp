@@ -35,31 +35,10 @@ namespace {
 
 using Result = test::CliResult;
 
-void writeFile(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::string line;
-    std::istringstream in(text);
-    while (std::getline(in, line)) out.push_back(line);
-    return out;
-}
-
-std::vector<std::string> cells(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) out.push_back(cell);
-    if (!line.empty() && line.back() == ',') out.push_back("");
-    return out;
-}
+using test::writeFile;
+std::string bytes(const std::string& path) { return test::readFile(path); }
+std::vector<std::string> lines(const std::string& text) { return test::textLines(text); }
+std::vector<std::string> cells(const std::string& line) { return test::csvCells(line); }
 
 // A tiny render whose history shows in the image.
 std::vector<std::string> tinyRender(std::vector<std::string> args) {

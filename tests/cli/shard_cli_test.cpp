@@ -7,11 +7,7 @@
 
 #ifdef SSRT_CLI_LIB
 
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -25,35 +21,11 @@ using namespace ssrt;
 using test::contains;
 using test::isOneErrorLine;
 using test::runSsrt;
+using test::ScopedEnv;
 using test::TempDir;
+using test::writeFile;
 
 namespace {
-
-std::string bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeFile(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::string line;
-    std::istringstream in(text);
-    while (std::getline(in, line)) out.push_back(line);
-    return out;
-}
-
-std::vector<std::string> cells(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) out.push_back(cell);
-    if (!line.empty() && line.back() == ',') out.push_back("");
-    return out;
-}
 
 // The columns whose values are measured times (they differ from run to run).
 bool isTiming(const std::string& column) {
@@ -64,7 +36,7 @@ bool isTiming(const std::string& column) {
 // A CSV with its timing cells blanked.
 std::vector<std::vector<std::string>> withoutTimings(const std::string& csv) {
     std::vector<std::vector<std::string>> rows;
-    for (const std::string& line : lines(csv)) rows.push_back(cells(line));
+    for (const std::string& line : test::textLines(csv)) rows.push_back(test::csvCells(line));
     REQUIRE(!rows.empty());
     const std::vector<std::string> header = rows[0];
     for (auto& row : rows) {
@@ -74,21 +46,6 @@ std::vector<std::vector<std::string>> withoutTimings(const std::string& csv) {
     }
     return rows;
 }
-
-// Restores an environment variable at the end of a test.
-struct ScopedEnv {
-    std::string name;
-    std::optional<std::string> old;
-    ScopedEnv(const std::string& n, const char* value) : name(n) {
-        if (const char* v = std::getenv(n.c_str())) old = v;
-        if (value) ::setenv(n.c_str(), value, 1);
-        else ::unsetenv(n.c_str());
-    }
-    ~ScopedEnv() {
-        if (old) ::setenv(name.c_str(), old->c_str(), 1);
-        else ::unsetenv(name.c_str());
-    }
-};
 
 struct NoSlurm {
     ScopedEnv id{"SLURM_ARRAY_TASK_ID", nullptr}, count{"SLURM_ARRAY_TASK_COUNT", nullptr},
@@ -175,7 +132,8 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
     std::vector<std::string> parts, frameParts;
     for (int k = 0; k < 3; ++k) {
         const std::string p = dir.file("part.shard-" + std::to_string(k) + "-of-3.csv");
-        CHECK(lines(bytes(p)).size() == (k < 2 ? 3u : 2u));  // the header and its settings
+        CHECK(test::textLines(test::readFile(p)).size() ==
+              (k < 2 ? 3u : 2u));  // the header and its settings
         parts.push_back(p);
         frameParts.push_back(dir.file("part_frames.shard-" + std::to_string(k) + "-of-3.csv"));
     }
@@ -183,9 +141,9 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
     std::vector<std::string> merge = {"merge",  "-q",     "-o",    dir.file("merged.csv"),
                                       parts[2], parts[0], parts[1]};
     REQUIRE(runSsrt(merge).code == 0);
-    const std::string full = bytes(dir.file("full.csv"));
-    CHECK(lines(full).size() == 6u);
-    CHECK(withoutTimings(bytes(dir.file("merged.csv"))) == withoutTimings(full));
+    const std::string full = test::readFile(dir.file("full.csv"));
+    CHECK(test::textLines(full).size() == 6u);
+    CHECK(withoutTimings(test::readFile(dir.file("merged.csv"))) == withoutTimings(full));
     // The marchers, the preset and the Embree method are all there.
     for (const char* part : {",off,", ",hiz,", ",low,", ",embree,"})
         CHECK_MESSAGE(contains(full, part), part);
@@ -193,7 +151,8 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
     REQUIRE(runSsrt({"merge", "-q", "-o", dir.file("merged_frames.csv"), frameParts[0],
                      frameParts[1], frameParts[2]})
                 .code == 0);
-    CHECK(bytes(dir.file("merged_frames.csv")) == bytes(dir.file("full_frames.csv")));
+    CHECK(test::readFile(dir.file("merged_frames.csv")) ==
+          test::readFile(dir.file("full_frames.csv")));
 
     SUBCASE("a missing, repeated or foreign part is an error, and nothing is written") {
         const std::string out = dir.file("bad.csv");
@@ -210,8 +169,9 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
             CHECK(isOneErrorLine(r.err));
         }
         // A part holding another shard's setting.
-        writeFile(dir.file("x.shard-0-of-2.csv"), lines(full)[0] + "\n" + lines(full)[2] + "\n");
-        writeFile(dir.file("x.shard-1-of-2.csv"), lines(full)[0] + "\n");
+        writeFile(dir.file("x.shard-0-of-2.csv"),
+                  test::textLines(full)[0] + "\n" + test::textLines(full)[2] + "\n");
+        writeFile(dir.file("x.shard-1-of-2.csv"), test::textLines(full)[0] + "\n");
         const test::CliResult r = runSsrt(
             {"merge", "-o", out, dir.file("x.shard-0-of-2.csv"), dir.file("x.shard-1-of-2.csv")});
         CHECK(r.code != 0);
@@ -245,7 +205,7 @@ TEST_CASE("shard: a reference as 2 bands, merged, is the unsharded file byte for
     REQUIRE(runSsrt({"merge", "-q", "-o", dir.file("merged.exr"), band1, band0, "--cache-dir",
                      dir.file("cache")})
                 .code == 0);
-    CHECK(bytes(dir.file("merged.exr")) == bytes(dir.file("full.exr")));
+    CHECK(test::readFile(dir.file("merged.exr")) == test::readFile(dir.file("full.exr")));
     // The merged reference lands in the cache under the name compare looks for: a compare
     // with that cache takes it from there.
     const test::CliResult c =
@@ -316,7 +276,7 @@ TEST_CASE("shard: a multi-frame render in 3 shards writes the unsharded files, a
         const std::string name = "full_000" + std::to_string(i) + ".exr";
         INFO(name);
         REQUIRE(std::filesystem::exists(dir.file("s/" + name)));
-        CHECK(bytes(dir.file("s/" + name)) == bytes(dir.file(name)));
+        CHECK(test::readFile(dir.file("s/" + name)) == test::readFile(dir.file(name)));
     }
     CHECK(std::distance(std::filesystem::directory_iterator(dir.file("s")),
                         std::filesystem::directory_iterator()) == 6);

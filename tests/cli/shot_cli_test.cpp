@@ -35,9 +35,7 @@ Result run(std::vector<std::string> args) { return test::runSsrt(std::move(args)
 
 long lines(const std::string& text) { return std::count(text.begin(), text.end(), '\n'); }
 
-void writeFile(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
+using test::writeFile;
 
 // World-space direction of the ray through the centre of pixel (x, y), scaled so that its
 // view-space depth is 1 (tests/raster/gbuffer_test.cpp does the same).

@@ -34,14 +34,7 @@ std::vector<std::string> tiny(std::vector<std::string> args, const TempDir& dir)
     return args;
 }
 
-std::vector<std::string> splitCsv(const std::string& line) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    return cells;
-}
+std::vector<std::string> splitCsv(const std::string& line) { return test::csvCells(line); }
 
 }  // namespace
 

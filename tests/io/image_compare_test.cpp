@@ -169,7 +169,7 @@ TEST_CASE("image compare: a NaN against a number differs beyond any threshold") 
     CHECK(layer(d, "color").maxChannel == "color.B");
 }
 
-TEST_CASE("image compare: NaN against NaN matches; with the same bits it is identical") {
+TEST_CASE("image compare: NaN against NaN matches, and with the same bits it is identical") {
     TempDir dir;
     LayeredImage a(kW, kH, kChannels);
     LayeredImage b(kW, kH, kChannels);

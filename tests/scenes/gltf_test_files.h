@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scenes/gltf_loader.h"
+#include "text_files.h"
 
 namespace ssrt::test {
 
@@ -52,15 +53,6 @@ inline std::string glbOf(std::string json, std::vector<unsigned char> bin) {
     appendU32(out, 0x004E4942);  // "BIN\0"
     out.append(bin.begin(), bin.end());
     return out;
-}
-
-inline void writeFile(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
-
-inline std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // The loader's message for a file it must refuse (a test failure when it loads).
