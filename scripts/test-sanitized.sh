@@ -5,7 +5,8 @@
 # field tables), the material maps and alpha cut-outs (raster and truth), the Embree scene,
 # ray checks,
 # reference image, image error, the compare and sweep commands and their sequences,
-# under AddressSanitizer and UndefinedBehaviorSanitizer.
+# the image comparison (ssrt diff, render --compare), shards and ssrt merge, the reference
+# cache's racing writers, under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Builds in build-asan/; CI runs it after scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,4 +20,4 @@ export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # One known leak inside OpenImageIO on corrupt PNGs (see the file).
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
-./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*'
+./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,shard:*,reference cache:*'
