@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -138,10 +137,7 @@ DiffSettings diffSettingsFrom(const DiffFlags& f) {
     s.limits.maxShare = parseNumber("--max-share", f.maxShare, 0.0, 1.0, "a number in [0, 1]");
     if (f.heatmap) {
         const std::string& path = *f.heatmap;
-        std::string ext = std::filesystem::path(path).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
-        if (ext != ".png") badValue("--heatmap", path, "a .png file");
+        if (!isPngPath(path)) badValue("--heatmap", path, "a .png file");
         checkWritable(path);
         s.compare.heatmap = path;
     }

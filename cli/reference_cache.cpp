@@ -27,12 +27,6 @@ constexpr RefPlane kGroups[] = {
 };
 constexpr const char* kSuffix[3] = {".R", ".G", ".B"};
 
-std::string cachePath(const std::string& dir, uint64_t key) {
-    char name[40];
-    std::snprintf(name, sizeof name, "ref-%016llx.exr", static_cast<unsigned long long>(key));
-    return (fs::path(dir) / name).string();
-}
-
 }  // namespace
 
 std::vector<std::string> referenceChannelNames() {
@@ -42,15 +36,26 @@ std::vector<std::string> referenceChannelNames() {
     return names;
 }
 
-std::vector<PlaneF*> referencePlanes(ReferenceImage& ref) {
-    std::vector<PlaneF*> planes;
+namespace {
+
+// ReferenceImage or const ReferenceImage: the planes with its constness.
+template <class Image>
+auto planesOf(Image& ref) {
+    std::vector<decltype(&ref.color[0])> planes;
     for (const RefPlane& g : kGroups)
         for (int c = 0; c < 3; ++c) planes.push_back(&(ref.*g.group)[c]);
     return planes;
 }
 
+}  // namespace
+
+std::vector<PlaneF*> referencePlanes(ReferenceImage& ref) { return planesOf(ref); }
+std::vector<const PlaneF*> referencePlanes(const ReferenceImage& ref) { return planesOf(ref); }
+
 std::string referenceCacheFileName(uint64_t key) {
-    return fs::path(cachePath("", key)).filename().string();
+    char name[40];
+    std::snprintf(name, sizeof name, "ref-%016llx.exr", static_cast<unsigned long long>(key));
+    return name;
 }
 
 bool readReferenceImage(const std::string& path, int width, int height, ReferenceImage& ref) {
@@ -62,14 +67,12 @@ bool readReferenceImage(const std::string& path, int width, int height, Referenc
         const std::vector<std::vector<float>> channels =
             readChannels(path, referenceChannelNames(), w, h);
         if (w != width || h != height) return false;
-        std::size_t k = 0;
-        for (const RefPlane& g : kGroups)
-            for (int c = 0; c < 3; ++c, ++k) {
-                PlaneF& p = (ref.*g.group)[c];
-                p = PlaneF(w, h);
-                const std::vector<float>& v = channels[k];
-                for (int y = 0; y < h; ++y) std::copy_n(v.data() + std::size_t(y) * w, w, p.row(y));
-            }
+        const std::vector<PlaneF*> planes = referencePlanes(ref);
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+            *planes[k] = PlaneF(w, h);
+            for (int y = 0; y < h; ++y)
+                std::copy_n(channels[k].data() + std::size_t(y) * w, w, planes[k]->row(y));
+        }
     } catch (const std::exception&) {
         return false;  // unreadable or incomplete
     }
@@ -83,21 +86,19 @@ void writeReferenceImage(const std::string& path, const ReferenceImage& ref,
     const RowBand rows = band.value_or(RowBand{0, ref.color[0].height()});
     ImageLayers image{width, rows.y1 - rows.y0, {}, std::move(attributes)};
     const std::vector<std::string> names = referenceChannelNames();  // alive while viewed
-    std::vector<PlaneF> cropped;                                     // a band's rows, copied out
-    cropped.reserve(names.size());
-    std::size_t k = 0;
-    for (const RefPlane& g : kGroups)
-        for (int c = 0; c < 3; ++c, ++k) {
-            const PlaneF& full = (ref.*g.group)[c];
-            const PlaneF* plane = &full;
-            if (band) {
-                cropped.emplace_back(width, image.height);
-                for (int y = rows.y0; y < rows.y1; ++y)
-                    std::copy_n(full.row(y), width, cropped.back().row(y - rows.y0));
-                plane = &cropped.back();
-            }
-            image.layers.push_back({names[k], plane});
+    const std::vector<const PlaneF*> planes = referencePlanes(ref);
+    std::vector<PlaneF> cropped;  // a band's rows, copied out
+    cropped.reserve(planes.size());
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+        const PlaneF* plane = planes[k];
+        if (band) {
+            cropped.emplace_back(width, image.height);
+            for (int y = rows.y0; y < rows.y1; ++y)
+                std::copy_n(plane->row(y), width, cropped.back().row(y - rows.y0));
+            plane = &cropped.back();
         }
+        image.layers.push_back({names[k], plane});
+    }
     writeImage(path, image);  // whole or not at all (a temporary renamed over the target)
 }
 
@@ -146,18 +147,21 @@ ReferenceImage renderFresh(const EmbreeScene& embree, const Scene& scene, const 
 
 }  // namespace
 
-std::string referenceCachePath(const std::string& dir, const Scene& scene, const FrameInput& input,
-                               const RenderSettings& settings, const ReferenceSettings& reference) {
-    return cachePath(dir, referenceKey(scene, input.camera, input.frameIndex, settings, reference));
-}
-
 ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const FrameInput& input,
                             const RenderSettings& settings, const ReferenceSettings& reference,
                             const ReferenceSource& source, bool& fromCache,
                             std::optional<RowBand> band) {
+    const uint64_t key = referenceKey(scene, input.camera, input.frameIndex, settings, reference);
+    return referenceForKey(key, embree, scene, input, settings, reference, source, fromCache, band);
+}
+
+ReferenceImage referenceForKey(uint64_t key, const EmbreeScene& embree, const Scene& scene,
+                               const FrameInput& input, const RenderSettings& settings,
+                               const ReferenceSettings& reference, const ReferenceSource& source,
+                               bool& fromCache, std::optional<RowBand> band) {
     fromCache = false;
     const std::string path =
-        source.cacheDir ? referenceCachePath(*source.cacheDir, scene, input, settings, reference)
+        source.cacheDir ? (fs::path(*source.cacheDir) / referenceCacheFileName(key)).string()
                         : std::string();
     ReferenceImage ref;
     if (!path.empty() && readReferenceImage(path, settings.width, settings.height, ref)) {

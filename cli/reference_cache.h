@@ -38,9 +38,12 @@ ReferenceImage referenceFor(const EmbreeScene& embree, const Scene& scene, const
                             const ReferenceSource& source, bool& fromCache,
                             std::optional<RowBand> band = std::nullopt);
 
-// The cache's file for a request: DIR/ref-<referenceKey in hex>.exr.
-std::string referenceCachePath(const std::string& dir, const Scene& scene, const FrameInput& input,
-                               const RenderSettings& settings, const ReferenceSettings& reference);
+// The same with the request's key (truth's referenceKey) already computed: it hashes the
+// whole scene, textures included, so a caller that needs the key as well computes it once.
+ReferenceImage referenceForKey(uint64_t key, const EmbreeScene& embree, const Scene& scene,
+                               const FrameInput& input, const RenderSettings& settings,
+                               const ReferenceSettings& reference, const ReferenceSource& source,
+                               bool& fromCache, std::optional<RowBand> band = std::nullopt);
 
 // The reference's planes as files name them (the cache's, `ssrt reference -o`'s): ref.color.R,
 // .G, .B, then ref.direct, ref.ssr, ref.ssgi, ref.specular, ref.diffuse likewise.
@@ -52,7 +55,8 @@ void writeReferenceImage(const std::string& path, const ReferenceImage& ref,
                          std::vector<std::pair<std::string, std::string>> attributes = {});
 // The planes of `ref` in the order of referenceChannelNames().
 std::vector<PlaneF*> referencePlanes(ReferenceImage& ref);
-// The cache's name for a key: ref-<16 hex digits>.exr.
+std::vector<const PlaneF*> referencePlanes(const ReferenceImage& ref);
+// The cache's file name for a key: ref-<16 hex digits>.exr.
 std::string referenceCacheFileName(uint64_t key);
 // Reads one back: false (and `ref` unspecified) if the file is missing, unreadable, lacks a
 // plane or is not width x height.

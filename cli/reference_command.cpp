@@ -76,13 +76,13 @@ int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream&
 
     const EmbreeScene embree(scene);
     const ReferenceSource source = referenceSourceFrom(o.truth, err);
+    // The key hashes the whole scene: once, for the cache and for a band's header.
+    const uint64_t key = referenceKey(scene, input.camera, input.frameIndex, settings, refSettings);
     bool fromCache = false;
     const ReferenceImage ref =
-        referenceFor(embree, scene, input, settings, refSettings, source, fromCache, band);
+        referenceForKey(key, embree, scene, input, settings, refSettings, source, fromCache, band);
     if (progress) *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << "\n";
     if (band) {
-        const uint64_t key =
-            referenceKey(scene, input.camera, input.frameIndex, settings, refSettings);
         writeReferenceImage(
             output, ref, band,
             {{kPartAttribute, kReferencePart},

@@ -3,10 +3,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -14,6 +12,7 @@
 #include "core/image.h"
 #include "core/rel_mse.h"
 #include "io/image_io.h"
+#include "io/io_errors.h"
 
 namespace ssrt {
 
@@ -21,16 +20,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// OpenImageIO's messages may span lines; ours are one line each.
-std::string oneLine(std::string text) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text.empty() ? "unknown error" : text;
-}
-
-[[noreturn]] void failRead(const std::string& path, const std::string& reason) {
-    throw std::runtime_error("cannot read '" + path + "': " + oneLine(reason));
-}
+using io_detail::failRead;
 
 // ---------------------------------------------------------------------------------------
 // Files
@@ -208,13 +198,6 @@ LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const Loaded
 // ---------------------------------------------------------------------------------------
 // The heat map
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 void writeHeatmap(const std::string& path, const PlaneF& heat, double scale) {
     const int w = heat.width(), h = heat.height();
     PlaneF planes[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
@@ -278,7 +261,7 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
     if (!(options.threshold >= 0.0))
         throw std::invalid_argument("the pixel threshold must be a number >= 0");
     if (!options.heatmap.empty()) {
-        if (lowerExtension(options.heatmap) != ".png")
+        if (!isPngPath(options.heatmap))
             throw std::invalid_argument("the heat map '" + options.heatmap +
                                         "' must be a .png file");
         checkWritable(options.heatmap);

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <thread>
 
+#include "io/io_errors.h"
 #include "scenes/texture.h"  // srgbToLinear
 #include "shading/environment.h"
 
@@ -51,20 +52,8 @@ std::string joinedExtensions() {
     return out;
 }
 
-// OpenImageIO's messages may span lines; ours are one line each.
-std::string oneLine(std::string text) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text.empty() ? "unknown error" : text;
-}
-
-[[noreturn]] void failWrite(const std::string& path, const std::string& reason) {
-    throw std::runtime_error("cannot write '" + path + "': " + oneLine(reason));
-}
-
-[[noreturn]] void failRead(const std::string& path, const std::string& reason) {
-    throw std::runtime_error("cannot read '" + path + "': " + oneLine(reason));
-}
+using io_detail::failRead;
+using io_detail::failWrite;
 
 // Returns the lower-case extension, or throws if writeImage cannot write it.
 std::string checkedExtension(const std::string& path) {
@@ -271,6 +260,8 @@ void checkWritable(const std::string& path) {
 }
 
 bool isExrPath(const std::string& path) { return lowerExtension(path) == ".exr"; }
+
+bool isPngPath(const std::string& path) { return lowerExtension(path) == ".png"; }
 
 void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options) {
     writeImage(path, ImageLayers{frame.width, frame.height, frame.layers(), {}}, options);

@@ -49,6 +49,8 @@ void checkWritable(const std::string& path);
 // Whether writeImage writes `path` as an EXR (its extension, case-insensitive, is .exr):
 // the files --layers and the compression apply to.
 bool isExrPath(const std::string& path);
+// Whether its extension, case-insensitive, is .png (an 8-bit preview, or ssrt diff's heat map).
+bool isPngPath(const std::string& path);
 
 // Extensions writeImage accepts, with the dot: ".png", ".exr".
 const std::vector<std::string>& supportedImageExtensions();

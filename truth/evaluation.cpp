@@ -44,23 +44,22 @@ double passMs(const std::vector<PassTime>& passes, const std::string& name) {
     return 0.0;
 }
 
+ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
+    const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
+    const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
+    return imageError(pa, pb);
+}
+
 ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     ErrorTable t;
-    const PlaneF* color[3] = {&frame.image.color[0], &frame.image.color[1], &frame.image.color[2]};
-    const PlaneF* refColor[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
-    t.color = imageError(color, refColor);
+    t.color = planesError(frame.image.color, ref.color);
     // With both passes off the direct pass hands out no parts: the colour error alone.
     if (frame.direct.direct[0].empty()) return t;
     t.parts = true;
     const FrameParts parts = frameParts(frame);
-    const auto err = [](const PlaneF(&a)[3], const PlaneF(&b)[3]) {
-        const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
-        const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
-        return imageError(pa, pb);
-    };
-    t.direct = err(parts.direct, ref.direct);
-    t.specular = err(parts.specular, ref.specular);
-    t.diffuse = err(parts.diffuse, ref.diffuse);
+    t.direct = planesError(parts.direct, ref.direct);
+    t.specular = planesError(parts.specular, ref.specular);
+    t.diffuse = planesError(parts.diffuse, ref.diffuse);
     return t;
 }
 
@@ -152,16 +151,6 @@ Evaluation evaluateSequenceFrame(const EmbreeScene& embree, const Scene& scene,
     return checkedRender(embree, scene, input, settings, reference, es, earlierRuns, true, &history,
                          frame);
 }
-
-namespace {
-
-ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
-    const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
-    const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
-    return imageError(pa, pb);
-}
-
-}  // namespace
 
 Evaluation evaluateEmbreeMethod(const EmbreeScene& embree, const Scene& scene,
                                 const FrameInput& input, const RenderSettings& settings,
