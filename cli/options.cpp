@@ -82,8 +82,8 @@ Isa resolveIsaFor(std::optional<Isa> requested) {
     } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(source + ": " + e.what());
     } catch (const std::exception& e) {
-        throw std::runtime_error(source + ": " + e.what() + " (this CPU runs " +
-                                 supportedIsaList() + ")");
+        throw std::runtime_error(source + ": " + e.what() +
+                                 " (available here: " + supportedIsaList() + ")");
     }
 }
 
@@ -233,7 +233,7 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
     addFieldOptions(cmd, o, d, 0, kRenderOwnFields.size(), "");
     cmd.add_option("--isa", o.isa,
                    "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA "
-                   "if set, else the best this CPU runs")
+                   "if set, else the best this CPU runs of those built")
         ->type_name("ISA")
         ->capture_default_str();
     addShotOption("--frame", o.frame, "INT",

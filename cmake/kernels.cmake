@@ -2,7 +2,23 @@
 # Each copy gets its own namespace (ssrt::isa_<name>) through SSRT_ISA_NS, so no symbol
 # compiled with AVX2 flags can be picked by the linker for a baseline caller; core/dispatch.h
 # chooses the copy at run time.
-set(SSRT_ISAS scalar sse2 sse42 avx2 avx512)
+#
+# SSRT_ISAS chooses the families a build compiles (every one by default). scalar is always
+# among them: it is the oracle every other family is tested against and the fallback of
+# core/dispatch.h. A build with fewer families (the sanitized build, which needs one SIMD
+# family to check, not five) runs only those: isaSupported() says false for the others and
+# --isa names what the binary was built with.
+set(SSRT_ALL_ISAS scalar sse2 sse42 avx2 avx512)
+set(SSRT_ISAS "${SSRT_ALL_ISAS}" CACHE STRING
+    "Kernel families to compile (a subset of: ${SSRT_ALL_ISAS}; scalar is always built)")
+foreach(isa ${SSRT_ISAS})
+    if(NOT isa IN_LIST SSRT_ALL_ISAS)
+        message(FATAL_ERROR "SSRT_ISAS: unknown family '${isa}' (known: ${SSRT_ALL_ISAS})")
+    endif()
+endforeach()
+if(NOT scalar IN_LIST SSRT_ISAS)
+    message(FATAL_ERROR "SSRT_ISAS must include scalar (the oracle and the fallback)")
+endif()
 set(SSRT_ISA_FLAGS_scalar "")
 set(SSRT_ISA_FLAGS_sse2 "")
 set(SSRT_ISA_FLAGS_sse42 -msse4.2)
@@ -22,5 +38,7 @@ function(ssrt_add_isa_kernels target)
         target_include_directories(${obj} PRIVATE ${PROJECT_SOURCE_DIR})
         target_link_libraries(${obj} PRIVATE xsimd)
         target_sources(${target} PRIVATE $<TARGET_OBJECTS:${obj}>)
+        # Which copies exist: core/dispatch.h refers only to these, core/isa.cpp offers only these.
+        target_compile_definitions(${target} PUBLIC SSRT_BUILT_ISA_${isa}=1)
     endforeach()
 endfunction()

@@ -25,7 +25,27 @@ std::optional<Isa> parseIsa(std::string_view name) {
                                 "' (expected auto, scalar, sse2, sse42, avx2 or avx512)");
 }
 
+bool isaBuilt(Isa isa) {
+    switch (isa) {
+        case Isa::Scalar: return true;
+#ifdef SSRT_BUILT_ISA_sse2
+        case Isa::SSE2: return true;
+#endif
+#ifdef SSRT_BUILT_ISA_sse42
+        case Isa::SSE42: return true;
+#endif
+#ifdef SSRT_BUILT_ISA_avx2
+        case Isa::AVX2: return true;
+#endif
+#ifdef SSRT_BUILT_ISA_avx512
+        case Isa::AVX512: return true;
+#endif
+        default: return false;
+    }
+}
+
 bool isaSupported(Isa isa) {
+    if (!isaBuilt(isa)) return false;
     // xsimd reads CPUID and XGETBV, so an ISA the OS does not save state for is not offered.
     const auto cpu = xsimd::available_architectures();
     switch (isa) {
@@ -54,6 +74,9 @@ Isa defaultIsa() {
 
 Isa resolveIsa(std::optional<Isa> requested) {
     if (!requested) return defaultIsa();
+    if (!isaBuilt(*requested))
+        throw std::runtime_error("ISA '" + std::string(isaName(*requested)) +
+                                 "' was not built into this binary (cmake -DSSRT_ISAS)");
     if (!isaSupported(*requested))
         throw std::runtime_error("ISA '" + std::string(isaName(*requested)) +
                                  "' is not supported by this CPU");

@@ -19,7 +19,11 @@ std::string_view isaName(Isa isa);
 // Parses a name from isaName(), or "auto" (returns nullopt for auto); throws on anything else.
 std::optional<Isa> parseIsa(std::string_view name);
 
-// True when this CPU (and OS) can run kernels built for the ISA.
+// True when this binary holds the ISA's kernels (cmake/kernels.cmake's SSRT_ISAS; every
+// family unless a build chose fewer).
+bool isaBuilt(Isa isa);
+
+// True when the ISA's kernels are built and this CPU (and OS) can run them.
 bool isaSupported(Isa isa);
 
 // Every ISA the machine can run, scalar first.

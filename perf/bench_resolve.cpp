@@ -147,6 +147,7 @@ void benchComposite(benchmark::State& state, Isa isa) {
 
 [[maybe_unused]] const bool kRegistered = [] {
     for (Isa isa : kAllIsas) {
+        if (!isaSupported(isa)) continue;
         const std::string n(isaName(isa));
         benchmark::RegisterBenchmark(("ssr_resolve_mip/" + n).c_str(), benchSsr, isa,
                                      SsrResolveMode::Mip)

@@ -276,6 +276,23 @@ TEST_CASE("cli: an ISA this CPU lacks is a runtime error that lists what it runs
     CHECK(dir.empty());
 }
 
+TEST_CASE("cli: an ISA left out of the build is a runtime error naming the build option") {
+    CHECK(isaBuilt(Isa::Scalar));
+    for (Isa isa : supportedIsas()) CHECK(isaBuilt(isa));
+    std::optional<Isa> left;
+    for (Isa isa : kAllIsas)
+        if (!isaBuilt(isa)) left = isa;
+    if (!left) return;  // a build of every family (cmake/kernels.cmake's default)
+    TempDir dir;
+    const Result r =
+        run({"render", "--isa", std::string(isaName(*left)), "-o", dir.file("out.png")});
+    CHECK(r.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "not built"));
+    CHECK(contains(r.err, "SSRT_ISAS"));
+    CHECK(dir.empty());
+}
+
 TEST_CASE("cli: scenes lists every built-in scene with its description") {
     const Result r = run({"scenes"});
     CHECK(r.code == 0);
