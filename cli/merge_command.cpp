@@ -34,12 +34,15 @@ struct Part {
     throw std::runtime_error("merge: '" + path + "': " + why);
 }
 
-// The parts in shard order, checked to be shards 0..N-1 of one N, each once.
+// The parts in shard order, checked to be shards 1..N of one N, each once.
 std::vector<Part> shardParts(const std::vector<std::string>& paths) {
     std::vector<Part> parts;
     for (const std::string& path : paths) {
         const std::optional<Shard> s = shardOfFileName(path);
-        if (!s) badPart(path, "not a shard's file (NAME.shard-K-of-N.EXT, as --shard names it)");
+        if (!s)
+            badPart(path,
+                    "not a shard's file (NAME.shard-K-of-N.EXT with K from 1 to N, as --shard "
+                    "names it)");
         if (!parts.empty() && s->count != parts.front().shard.count)
             badPart(path, "a shard of " + std::to_string(s->count) + ", the others of " +
                               std::to_string(parts.front().shard.count));
@@ -49,18 +52,21 @@ std::vector<Part> shardParts(const std::vector<std::string>& paths) {
               [](const Part& a, const Part& b) { return a.shard.index < b.shard.index; });
     const int n = parts.front().shard.count;
     std::string missing;
+    int missingCount = 0;
     for (int k = 0, i = 0; k < n; ++k) {
         if (i < int(parts.size()) && parts[i].shard.index == k) {
             if (i + 1 < int(parts.size()) && parts[i + 1].shard.index == k)
-                badPart(parts[i + 1].path, "shard " + std::to_string(k) + " given twice");
+                badPart(parts[i + 1].path, "shard " + parts[i].shard.text() + " given twice");
             ++i;
         } else {
-            missing += (missing.empty() ? "" : ", ") + std::to_string(k);
+            missing += (missing.empty() ? "" : ", ") + std::to_string(k + 1);
+            ++missingCount;
         }
     }
-    if (!missing.empty())
-        throw std::runtime_error("merge: shards " + missing + " of " + std::to_string(n) +
-                                 " are missing");
+    if (missingCount > 0)
+        throw std::runtime_error("merge: " + std::string(missingCount == 1 ? "shard " : "shards ") +
+                                 missing + " of " + std::to_string(n) +
+                                 (missingCount == 1 ? " is" : " are") + " missing");
     return parts;
 }
 
@@ -117,7 +123,7 @@ std::string mergeCsv(const std::vector<Part>& parts) {
             const long long s = settingOf(part.path, records[i]);
             if (s % part.shard.count != part.shard.index)
                 badPart(part.path, "holds setting " + std::to_string(s) + ", not shard " +
-                                       std::to_string(part.shard.index) + "'s");
+                                       part.shard.text() + "'s");
             rows.push_back({s, std::move(records[i])});
         }
     }
@@ -164,8 +170,7 @@ ReferenceBands mergeReference(const std::vector<Part>& parts) {
         const auto kind = attrs.find(kPartAttribute);
         if (kind == attrs.end() || kind->second != kReferencePart)
             badPart(part.path, "not a band of 'ssrt reference --shard'");
-        const std::string shard =
-            std::to_string(part.shard.index) + "/" + std::to_string(part.shard.count);
+        const std::string shard = part.shard.text();
         const auto said = attrs.find(kShardAttribute);
         if (said == attrs.end() || said->second != shard)
             badPart(part.path, "its header says another shard than its name (" + shard + ")");

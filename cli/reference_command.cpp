@@ -86,7 +86,7 @@ int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream&
         writeReferenceImage(
             output, ref, band,
             {{kPartAttribute, kReferencePart},
-             {kShardAttribute, std::to_string(shard.index) + "/" + std::to_string(shard.count)},
+             {kShardAttribute, shard.text()},
              {kRowsAttribute, std::to_string(band->y0) + " " + std::to_string(band->y1)},
              {kSizeAttribute,
               std::to_string(settings.width) + " " + std::to_string(settings.height)},

@@ -28,12 +28,19 @@ std::optional<long long> slurmVariable(const char* name) {
 
 }  // namespace
 
+std::string Shard::text() const { return std::to_string(number()) + "/" + std::to_string(count); }
+
 Shard parseShard(const std::string& option, const std::string& text) {
     const std::size_t slash = text.find('/');
-    if (slash == std::string::npos) badValue(option, text, "K/N, shard K (from 0) of N, e.g. 0/4");
+    if (slash == std::string::npos) badValue(option, text, "K/N, shard K (from 1) of N, e.g. 1/4");
     Shard s;
     s.count = int(parseInteger(option, text.substr(slash + 1), 1, kMaxShards));
-    s.index = int(parseInteger(option, text.substr(0, slash), 0, s.count - 1));
+    const std::string k = text.substr(0, slash), n = std::to_string(s.count);
+    if (k == "0")
+        badValue(option, text,
+                 "K/N with K from 1 to N: shards count from 1, so 1/" + n + " is the first of " +
+                     n + " and " + n + "/" + n + " the last");
+    s.index = int(parseInteger(option, k, 1, s.count)) - 1;
     return s;
 }
 
@@ -63,7 +70,7 @@ Shard shardFrom(const std::optional<std::string>& option, std::string* source) {
 
 void addShardOption(CLI::App& cmd, std::optional<std::string>& value, const std::string& what) {
     cmd.add_option("--shard", value,
-                   "Do part K (from 0) of N of the work and write it to NAME.shard-K-of-N.EXT (" +
+                   "Do part K (from 1) of N of the work and write it to NAME.shard-K-of-N.EXT (" +
                        what +
                        "); 'ssrt merge' assembles the parts. Inside a Slurm job array the "
                        "task's SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT give it")
@@ -76,7 +83,7 @@ std::string shardFileName(const std::string& path, const Shard& shard) {
     const fs::path p(path);
     std::string name = p.stem().string();
     name.append(".shard-")
-        .append(std::to_string(shard.index))
+        .append(std::to_string(shard.number()))
         .append("-of-")
         .append(std::to_string(shard.count))
         .append(p.extension().string());
@@ -88,9 +95,9 @@ std::optional<Shard> shardOfFileName(const std::string& path) {
     std::smatch m;
     const std::string name = fs::path(path).filename().string();
     if (!std::regex_match(name, m, pattern)) return std::nullopt;
-    const Shard s{std::stoi(m[1]), std::stoi(m[2])};
-    if (s.count < 2 || s.count > kMaxShards || s.index >= s.count) return std::nullopt;
-    return s;
+    const int k = std::stoi(m[1]), n = std::stoi(m[2]);
+    if (n < 2 || n > kMaxShards || k < 1 || k > n) return std::nullopt;
+    return Shard{k - 1, n};
 }
 
 Range shardBlock(const Shard& shard, long long total) {
@@ -98,7 +105,7 @@ Range shardBlock(const Shard& shard, long long total) {
 }
 
 std::string describeShard(const Shard& shard, const std::string& source) {
-    return "shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+    return "shard " + shard.text() +
            (source == "--shard" || source.empty() ? std::string() : " (" + source + ")");
 }
 

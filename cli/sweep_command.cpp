@@ -371,7 +371,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     cmd->add_option("-o,--output", o.output, "CSV file to write (whole, when the sweep ends)")
         ->type_name("FILE")
         ->capture_default_str();
-    addShardOption(*cmd, o.shard, "settings K, K + N, K + 2N, ...; --per-frame's file too");
+    addShardOption(*cmd, o.shard,
+                   "settings K - 1, K - 1 + N, K - 1 + 2N, ... of the CSV's setting column, which "
+                   "counts from 0; --per-frame's file too");
     return cmd;
 }
 

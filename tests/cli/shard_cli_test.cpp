@@ -66,18 +66,35 @@ std::vector<std::string> tinySweep(std::vector<std::string> args, const TempDir&
 
 TEST_CASE("shard: K/N parsed, file names, blocks and Slurm's variables") {
     const NoSlurm clean;
+    // Shards count from 1, as Jest's, Playwright's and Vitest's --shard do: 2/5 is the second.
     const cli::Shard s = cli::parseShard("--shard", "2/5");
-    CHECK(s.index == 2);
+    CHECK(s.index == 1);
+    CHECK(s.number() == 2);
     CHECK(s.count == 5);
-    for (const char* bad : {"5/5", "-1/3", "1/0", "3", "a/b", "1/3/4", "", "/3", "1/"})
+    CHECK(s.text() == "2/5");
+    CHECK(cli::parseShard("--shard", "1/2").index == 0);
+    CHECK(cli::parseShard("--shard", "2/2").index == 1);
+    CHECK(cli::parseShard("--shard", "1/1").count == 1);
+    for (const char* bad : {"6/5", "3/2", "-1/3", "1/0", "3", "a/b", "1/3/4", "", "/3", "1/"})
         CHECK_THROWS_AS(cli::parseShard("--shard", bad), std::invalid_argument);
+    // 0/N is the old count from 0: the message says how shards count.
+    try {
+        cli::parseShard("--shard", "0/2");
+        FAIL("0/2 was accepted");
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        CHECK(contains(what, "count from 1"));
+        CHECK(contains(what, "1/2 is the first of 2 and 2/2 the last"));
+    }
     CHECK(cli::shardFileName("out/s.csv", s) == "out/s.shard-2-of-5.csv");
     CHECK(cli::shardFileName("s.csv", cli::Shard{}) == "s.csv");
     const std::optional<cli::Shard> back = cli::shardOfFileName("out/s.shard-2-of-5.csv");
     REQUIRE(back);
-    CHECK((back->index == 2 && back->count == 5));
+    CHECK((back->index == 1 && back->count == 5));
     CHECK(!cli::shardOfFileName("s.csv"));
-    CHECK(!cli::shardOfFileName("s.shard-5-of-5.csv"));
+    CHECK(!cli::shardOfFileName("s.shard-6-of-5.csv"));
+    CHECK(!cli::shardOfFileName("s.shard-0-of-5.csv"));
+    CHECK(cli::shardOfFileName("s.shard-5-of-5.csv"));
     // Contiguous blocks cover every item once.
     for (int n : {1, 2, 3, 7})
         for (long long total : {0ll, 1ll, 5ll, 48ll}) {
@@ -96,10 +113,10 @@ TEST_CASE("shard: K/N parsed, file names, blocks and Slurm's variables") {
             min("SLURM_ARRAY_TASK_MIN", "4");
         std::string source;
         const cli::Shard t = cli::shardFrom(std::nullopt, &source);
-        CHECK((t.index == 1 && t.count == 3));
+        CHECK((t.number() == 2 && t.count == 3));  // task 5 of 4..6 is the second
         CHECK(source == "SLURM_ARRAY_TASK_ID");
         // --shard wins over the environment.
-        CHECK(cli::shardFrom(std::string("0/2")).count == 2);
+        CHECK(cli::shardFrom(std::string("1/2")).count == 2);
     }
     {
         const ScopedEnv id("SLURM_ARRAY_TASK_ID", "7"), count("SLURM_ARRAY_TASK_COUNT", "3");
@@ -128,12 +145,12 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
         REQUIRE(r.code == 0);
     };
     run("full", std::nullopt);
-    for (int k = 0; k < 3; ++k) run("part", std::to_string(k) + "/3");
+    for (int k = 1; k <= 3; ++k) run("part", std::to_string(k) + "/3");
     std::vector<std::string> parts, frameParts;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 1; k <= 3; ++k) {
         const std::string p = dir.file("part.shard-" + std::to_string(k) + "-of-3.csv");
         CHECK(test::textLines(test::readFile(p)).size() ==
-              (k < 2 ? 3u : 2u));  // the header and its settings
+              (k < 3 ? 3u : 2u));  // the header and its settings
         parts.push_back(p);
         frameParts.push_back(dir.file("part_frames.shard-" + std::to_string(k) + "-of-3.csv"));
     }
@@ -157,25 +174,29 @@ TEST_CASE("shard: a sweep as 3 shards, merged, is the unsharded CSV but for the 
     SUBCASE("a missing, repeated or foreign part is an error, and nothing is written") {
         const std::string out = dir.file("bad.csv");
         const std::vector<std::vector<std::string>> bad = {
-            {"merge", "-o", out, parts[0], parts[1]},                        // shard 2 missing
-            {"merge", "-o", out, parts[0], parts[1], parts[1]},              // shard 1 twice
+            {"merge", "-o", out, parts[0], parts[1]},                        // shard 3 missing
+            {"merge", "-o", out, parts[0], parts[1], parts[1]},              // shard 2 twice
             {"merge", "-o", out, parts[0], parts[1], dir.file("full.csv")},  // not a part
             {"merge", "-o", out, parts[0], parts[1], frameParts[2]},         // another CSV's part
         };
+        std::vector<std::string> errors;
         for (const auto& args : bad) {
             const test::CliResult r = runSsrt(args);
             INFO(args.back());
             CHECK(r.code != 0);
             CHECK(isOneErrorLine(r.err));
+            errors.push_back(r.err);
         }
+        CHECK(contains(errors[0], "shard 3 of 3 is missing"));
+        CHECK(contains(errors[1], "shard 2/3 given twice"));
         // A part holding another shard's setting.
-        writeFile(dir.file("x.shard-0-of-2.csv"),
+        writeFile(dir.file("x.shard-1-of-2.csv"),
                   test::textLines(full)[0] + "\n" + test::textLines(full)[2] + "\n");
-        writeFile(dir.file("x.shard-1-of-2.csv"), test::textLines(full)[0] + "\n");
+        writeFile(dir.file("x.shard-2-of-2.csv"), test::textLines(full)[0] + "\n");
         const test::CliResult r = runSsrt(
-            {"merge", "-o", out, dir.file("x.shard-0-of-2.csv"), dir.file("x.shard-1-of-2.csv")});
+            {"merge", "-o", out, dir.file("x.shard-1-of-2.csv"), dir.file("x.shard-2-of-2.csv")});
         CHECK(r.code != 0);
-        CHECK(contains(r.err, "holds setting 1"));
+        CHECK(contains(r.err, "holds setting 1, not shard 1/2's"));
         CHECK(!std::filesystem::exists(out));
     }
 }
@@ -193,15 +214,15 @@ TEST_CASE("shard: a reference as 2 bands, merged, is the unsharded file byte for
     };
     for (const std::vector<std::string>& extra :
          {std::vector<std::string>{"-o", dir.file("full.exr")},
-          {"-o", dir.file("ref.exr"), "--shard", "0/2"},
           {"-o", dir.file("ref.exr"), "--shard", "1/2"},
-          {"-o", dir.file("other.exr"), "--shard", "1/2", "--frame", "9"}}) {
+          {"-o", dir.file("ref.exr"), "--shard", "2/2"},
+          {"-o", dir.file("other.exr"), "--shard", "2/2", "--frame", "9"}}) {
         const test::CliResult r = reference(extra);
         INFO(r.err);
         REQUIRE(r.code == 0);
     }
-    const std::string band0 = dir.file("ref.shard-0-of-2.exr"),
-                      band1 = dir.file("ref.shard-1-of-2.exr");
+    const std::string band0 = dir.file("ref.shard-1-of-2.exr"),
+                      band1 = dir.file("ref.shard-2-of-2.exr");
     REQUIRE(runSsrt({"merge", "-q", "-o", dir.file("merged.exr"), band1, band0, "--cache-dir",
                      dir.file("cache")})
                 .code == 0);
@@ -217,11 +238,11 @@ TEST_CASE("shard: a reference as 2 bands, merged, is the unsharded file byte for
     CHECK(contains(c.err, "reference: from the cache"));
     // More bands than tile rows (3 of 64 pixels) is a usage error; bands of two references do
     // not merge.
-    const test::CliResult tooMany = reference({"-o", dir.file("r.exr"), "--shard", "0/64"});
+    const test::CliResult tooMany = reference({"-o", dir.file("r.exr"), "--shard", "1/64"});
     CHECK(tooMany.code == cli::kExitUsage);
     CHECK(contains(tooMany.err, "at most 3 shards"));
     const test::CliResult mixed =
-        runSsrt({"merge", "-o", dir.file("mixed.exr"), band0, dir.file("other.shard-1-of-2.exr")});
+        runSsrt({"merge", "-o", dir.file("mixed.exr"), band0, dir.file("other.shard-2-of-2.exr")});
     CHECK(mixed.code != 0);
     CHECK(contains(mixed.err, "another reference"));
     CHECK(!std::filesystem::exists(dir.file("mixed.exr")));
@@ -231,8 +252,8 @@ TEST_CASE("shard: a multi-frame render in 3 shards writes the unsharded files, a
     const NoSlurm clean;
     TempDir dir;
     // Six frames over four keys at times 0, 0.6, ..., 3, a cut at key 1 (t = 1): frames 0-1
-    // one shot, 2-5 the next (the history restarts at frame 2), so shard 1's block [2, 4)
-    // starts at the cut and shard 2's [4, 6) replays frames 2-3 for their history.
+    // one shot, 2-5 the next (the history restarts at frame 2), so shard 2/3's block [2, 4)
+    // starts at the cut and shard 3/3's [4, 6) replays frames 2-3 for their history.
     writeFile(dir.file("cut.json"), R"({
   "scene": "cornell",
   "camera": { "path": { "keys": [
@@ -267,7 +288,7 @@ TEST_CASE("shard: a multi-frame render in 3 shards writes the unsharded files, a
     render("full.exr", std::nullopt);
     std::filesystem::create_directory(dir.file("s"));
     std::vector<std::string> progress;
-    for (int k = 0; k < 3; ++k) progress.push_back(render("s/full.exr", std::to_string(k) + "/3"));
+    for (int k = 1; k <= 3; ++k) progress.push_back(render("s/full.exr", std::to_string(k) + "/3"));
     CHECK(contains(progress[0], "frames 0 to 1..."));
     CHECK(contains(progress[1], "frames 2 to 3..."));
     CHECK(contains(progress[2], "frames 4 to 5 (history from frame 2)"));
