@@ -16,11 +16,18 @@ if [ "${1:-}" = "--render" ]; then
     bash scripts/install-deps.sh render
     options=()
     [ -f build/CMakeCache.txt ] || options=(-DSSRT_BUILD_TESTS=OFF -DSSRT_BUILD_PERF=OFF)
-    cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
-    cmake --build build --target ssrt_cli --parallel "$jobs"
+    targets=(--target ssrt_cli)
+    what="the ssrt command"
 else
     bash scripts/install-deps.sh
-    cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSSRT_BUILD_TESTS=ON \
-          -DSSRT_BUILD_PERF=ON >/dev/null
-    cmake --build build --parallel "$jobs"
+    options=(-DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=ON)
+    targets=()
+    what="every target"
 fi
+source scripts/lib/compiler-cache.sh
+t0=$SECONDS
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${compiler_cache[@]}" "${options[@]}" \
+      >/dev/null
+cmake --build build "${targets[@]}" --parallel "$jobs"
+# (scripts/test-fresh.sh reads this line for the README's times.)
+echo "build: $what in build/ in $((SECONDS - t0)) s" >&2

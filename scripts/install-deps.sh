@@ -3,6 +3,7 @@
 #
 #   scripts/install-deps.sh          # everything: build, render, test, benchmark and chart
 #   scripts/install-deps.sh render   # only what building and running `ssrt` needs
+#   scripts/install-deps.sh ci       # everything, and CI's compiler cache and debootstrap
 #
 # Idempotent: packages already present are skipped, so the README commands can call it on
 # every run at the cost of one dpkg query.
@@ -25,18 +26,25 @@ test_packages=(
     doctest-dev libbenchmark-dev openimageio-tools
     # Real glTF 2.0 files the loader is tested on (/usr/share/assimp/models/glTF2)
     assimp-testmodels
-    # A second compiler (scripts/test-clang.sh) and the formatter (scripts/check-format.sh)
-    clang clang-format
+    # A second compiler (scripts/test-clang.sh), its sanitizers' run-time libraries
+    # (scripts/test-sanitized.sh) and the formatter (scripts/check-format.sh)
+    clang libclang-rt-14-dev clang-format
     # perf/peers: Mesa llvmpipe through EGL surfaceless
     libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
     # Charts (Debian's interpreter: /usr/bin/python3)
     python3-matplotlib
 )
 
+# CI's own tools, on top of the tests': a compiler cache for its builds (kept outside the
+# checkout, so a second run on the machine reuses it) and debootstrap for the fresh Debian root
+# of scripts/test-fresh.sh. Neither README command needs them.
+ci_packages=(ccache debootstrap wget)
+
 case "${1:-all}" in
     render) packages=("${render_packages[@]}") ;;
     all) packages=("${render_packages[@]}" "${test_packages[@]}") ;;
-    *) echo "usage: $0 [render|all]" >&2; exit 2 ;;
+    ci) packages=("${render_packages[@]}" "${test_packages[@]}" "${ci_packages[@]}") ;;
+    *) echo "usage: $0 [render|all|ci]" >&2; exit 2 ;;
 esac
 
 missing=()
@@ -48,8 +56,11 @@ done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${missing[*]}" >&2
+t0=$SECONDS
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# (scripts/test-fresh.sh reads this line for the README's times.)
+echo "install-deps: installed ${#missing[@]} packages and their dependencies in $((SECONDS - t0)) s" >&2

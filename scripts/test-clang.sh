@@ -20,9 +20,12 @@ cc="${SSRT_CLANG_CC:-clang-14}"
 bash scripts/build.sh --render
 
 # The clang build: the command and the tests (no benchmarks).
+source scripts/lib/compiler-cache.sh
+t0=$SECONDS
 CC="$cc" CXX="$cxx" cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF >/dev/null
+    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF "${compiler_cache[@]}" >/dev/null
 cmake --build build-clang --target ssrt_cli ssrt_tests --parallel "$jobs"
+echo "test-clang: built build-clang/ in $((SECONDS - t0)) s" >&2
 
 # Golden hashes, and the same bits for every ISA and thread count (renderer, rasterizer,
 # ray generation, SSGI, marching rays alone or together).
