@@ -29,8 +29,8 @@ test_packages=(
     # A second compiler (scripts/test-clang.sh), its sanitizers' run-time libraries
     # (scripts/test-sanitized.sh) and the formatter (scripts/check-format.sh)
     clang libclang-rt-14-dev clang-format
-    # perf/peers: Mesa llvmpipe through EGL surfaceless
-    libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+    # perf/peers: Mesa llvmpipe through EGL surfaceless (glvnd's libOpenGL and libEGL)
+    libopengl-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
     # Charts (Debian's interpreter: /usr/bin/python3)
     python3-matplotlib
 )
