@@ -242,35 +242,35 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-// One signal through every pass; the post-blur writes the output and the history.
+// One signal through every pass; the post-blur writes the output and the history. Each pass
+// writes the ping-pong group its input is not in.
 void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
     PlaneF* current = sc.noisy + sig.base;
-    const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
-    if (preRadius > 0.0f) {
-        times.run("pre-blur", [&] {
-            spatial(c, sig, ReblurSpatial::PreBlur, current, Four(sc.pre + sig.base).p, nullptr,
-                    nullptr);
-        });
-        current = sc.pre + sig.base;
-    }
-    times.run("temporal", [&] { temporal(c, sig, current, sc.accumulated + sig.base); });
-    current = sc.accumulated + sig.base;
-    times.run("history fix", [&] { historyFix(c, sig, current, sc.fixed + sig.base); });
-    current = sc.fixed + sig.base;
+    const auto step = [&](const char* name, auto&& pass) {
+        PlaneF* out = current == sc.ping ? sc.pong : sc.ping;
+        times.run(name, [&] { pass(current, out); });
+        current = out;
+    };
     const PlaneF* frames = &sc.frames[sig.specular ? 1 : 0];
-    times.run("blur", [&] {
-        spatial(c, sig, ReblurSpatial::Blur, current, Four(sc.blurred + sig.base).p, nullptr,
-                frames);
+    const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
+    if (preRadius > 0.0f)
+        step("pre-blur", [&](PlaneF* in, PlaneF* out) {
+            spatial(c, sig, ReblurSpatial::PreBlur, in, Four(out).p, nullptr, nullptr);
+        });
+    step("temporal", [&](PlaneF* in, PlaneF* out) { temporal(c, sig, in, out); });
+    step("history fix", [&](PlaneF* in, PlaneF* out) { historyFix(c, sig, in, out); });
+    step("blur", [&](PlaneF* in, PlaneF* out) {
+        spatial(c, sig, ReblurSpatial::Blur, in, Four(out).p, nullptr, frames);
     });
-    current = sc.blurred + sig.base;
     // The post-blur's result, RGB to the output and all four channels to the history.
     PlaneF* history = nullptr;
     if (c.history) history = sig.specular ? c.history->specular : c.history->diffuse;
-    // (The output has no hit distance: that channel goes to the pre-blur's plane, no longer
-    // read.)
-    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2], &sc.pre[sig.base + 3]};
+    // (The output has no hit distance: that channel goes to the signal's noisy plane, which
+    // nothing reads after the first pass.)
+    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2],
+                            &sc.noisy[sig.base + 3]};
     times.run("post-blur",
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
@@ -316,8 +316,11 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         else p = PlaneF();
     };
     // Only the signals present (planes 0-3 diffuse, 4-7 specular).
-    for (PlaneF* group : {sc.noisy, sc.pre, sc.accumulated, sc.fixed, sc.blurred})
-        for (int i = 0; i < 8; ++i) keepIf(i < 4 ? diffuse : specular, group[i]);
+    for (int i = 0; i < 8; ++i) keepIf(i < 4 ? diffuse : specular, sc.noisy[i]);
+    for (int i = 0; i < 4; ++i) {
+        keepIf(diffuse || specular, sc.ping[i]);
+        keepIf(diffuse || specular, sc.pong[i]);
+    }
     for (int i = 0; i < 2; ++i) {
         sc.signalZ[i].ensureSize(w, h);
         sc.frames[i].ensureSize(w, h);

@@ -79,9 +79,13 @@ struct DenoiseHistory {
     }
 };
 
-// Transient planes, kept between frames so that no pass allocates.
+// Transient planes, kept between frames so that no pass allocates. Each pass reads only the
+// one before it, and the two signals run one after the other, so a signal's passes alternate
+// between the two ping-pong groups, which both signals share: 16 planes, not one group per
+// pass and signal (40).
 struct DenoiseScratch {
-    PlaneF noisy[8], pre[8], accumulated[8], fixed[8], blurred[8];  // diffuse 0-3, specular 4-7
+    PlaneF noisy[8];  // the front end's: diffuse 0-3, specular 4-7 (RGB, normalised hit distance)
+    PlaneF ping[4], pong[4];
     PlaneF signalZ[2];           // viewZ where the diffuse / specular signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneF fast[2];              // this frame's fast luma
