@@ -267,4 +267,30 @@ SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_
         return xsimd::batch<float, A>::gather(base, index);
 }
 
+// Whether a tap's lanes read consecutive elements (lane i's index is lane 0's plus i), and
+// lane 0's index: where they do, one load does a gather's work with the same bits. Taps on a
+// still or panning camera's history, and neighbours at a fixed offset, are such runs.
+struct Run {
+    bool consecutive;
+    int32_t first;
+};
+SSRT_INLINE Run runOf(int32_t index) { return {true, index}; }
+template <class A>
+SSRT_INLINE Run runOf(xsimd::batch<int32_t, A> index) {
+    using I = xsimd::batch<int32_t, A>;
+    alignas(64) int32_t lane[I::size];
+    alignas(64) int32_t iota[I::size];
+    index.store_aligned(lane);
+    for (std::size_t i = 0; i < I::size; ++i) iota[i] = int32_t(i);
+    return {xsimd::all(index == I(lane[0]) + I::load_aligned(iota)), lane[0]};
+}
+// gather(base, index), as one load where `run` (runOf(index)) is consecutive.
+SSRT_INLINE float gather(const float* base, int32_t index, Run) { return base[index]; }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_t, A> index,
+                                          Run run) {
+    if (run.consecutive) return xsimd::batch<float, A>::load_unaligned(base + run.first);
+    return gather(base, index);
+}
+
 }  // namespace ssrt::lanes

@@ -70,6 +70,7 @@ struct Tap {
     Lane x, y;  // pixel centre
     Mask inside;
     ILane index;
+    ln::Run run;  // its lanes' pixels are consecutive: loads, not gathers
 };
 
 SSRT_INLINE Tap tapAt(const ReblurView& v, Lane fx, Lane fy) {
@@ -80,6 +81,7 @@ SSRT_INLINE Tap tapAt(const ReblurView& v, Lane fx, Lane fy) {
     t.x = ix + Lane(0.5f);
     t.y = iy + Lane(0.5f);
     t.index = screen::pixelIndex(ix, iy, v.width, v.height, v.stride);
+    t.run = ln::runOf(t.index);
     return t;
 }
 
@@ -254,20 +256,21 @@ void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {
         const Lane ox = (Lane(k.x) * cs - Lane(k.y) * sn) * radius;
         const Lane oy = (Lane(k.x) * sn + Lane(k.y) * cs) * radius;
         const Tap t = tapAt(v, p.px + ox, p.py + oy);
-        const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+        const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
         const Mask ok = valid & t.inside & (zs > zero);
         if (!ln::any(ok)) continue;
         const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-        const V3 ns{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
-                    ln::gather(v.normal[2], t.index)};
+        const V3 ns{ln::gather(v.normal[0], t.index, t.run),
+                    ln::gather(v.normal[1], t.index, t.run),
+                    ln::gather(v.normal[2], t.index, t.run)};
         Lane w = geometryWeight(p, xs, invPlane) *
                  rb::weightNonExp(normalScale * rb::acosApprox(ln::dot(p.n, ns))) * Lane(k.gauss);
         if (spec) {
-            const Lane rs = ln::gather(v.roughness, t.index);
+            const Lane rs = ln::gather(v.roughness, t.index, t.run);
             w = w * rb::weightNonExp(roughScale * (rs - p.r));
         }
         Lane s[4];
-        for (int ch = 0; ch < 4; ++ch) s[ch] = ln::gather(a.in[ch], t.index);
+        for (int ch = 0; ch < 4; ++ch) s[ch] = ln::gather(a.in[ch], t.index, t.run);
         w = w * rb::lerp(minHit, one, rb::weightExp(hitScale * (s[3] - c[3])));
         if (spec && pre) {
             const V3 d = xs - p.x;
@@ -333,6 +336,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     // Per tap of the 4x4 footprint (row j, column i): passes the occlusion test.
     Mask ok[4][4];
     ILane index[4][4];
+    ln::Run run[4][4];
     V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
     Mask allOk = valid;
     for (int j = 0; j < 4; ++j)
@@ -340,10 +344,12 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
             const bool inner = (i == 1 || i == 2) && (j == 1 || j == 2);
             ok[j][i] = Mask(false);
             index[j][i] = ILane(0);
+            run[j][i] = ln::Run{false, 0};
             if (!surface && !inner) continue;
             const Tap t = tapAt(v, x0 + Lane(float(i - 1) + 0.5f), y0 + Lane(float(j - 1) + 0.5f));
             index[j][i] = t.index;
-            const Lane zp = ln::gather(a.prevViewZ, t.index);
+            run[j][i] = t.run;
+            const Lane zp = ln::gather(a.prevViewZ, t.index, t.run);
             Mask pass = valid & t.inside & (zp > zero);
             if (surface) {
                 pass = pass & (ln::abs(zp - zExpected) <= threshold);
@@ -352,14 +358,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                 pass = pass & (ln::abs(ln::dot(p.n, q - xw)) <= threshold);
             }
             if (inner) {
-                const V3 np{ln::gather(a.prevNormal[0], t.index),
-                            ln::gather(a.prevNormal[1], t.index),
-                            ln::gather(a.prevNormal[2], t.index)};
+                const V3 np{ln::gather(a.prevNormal[0], t.index, t.run),
+                            ln::gather(a.prevNormal[1], t.index, t.run),
+                            ln::gather(a.prevNormal[2], t.index, t.run)};
                 innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
                 if (a.specular) {
-                    const Lane rp = ln::gather(a.prevRoughness, t.index);
+                    const Lane rp = ln::gather(a.prevRoughness, t.index, t.run);
                     pass = pass & (ln::abs(rp - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
                 }
             }
@@ -383,13 +389,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             const ILane idx = index[j + 1][i + 1];
+            const ln::Run r = run[j + 1][i + 1];
             const Lane wn = w[j][i] * inv;
-            frames = frames + wn * ln::gather(a.prevFrames, idx);
-            fast = fast + wn * ln::gather(a.prevFast, idx);
+            frames = frames + wn * ln::gather(a.prevFrames, idx, r);
+            fast = fast + wn * ln::gather(a.prevFast, idx, r);
             if (!surface)  // (only the virtual read's confidence asks for it)
                 normal = normal + innerNormal[j][i] * wn;
             for (int ch = 0; ch < 4; ++ch) {
-                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx);
+                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx, r);
                 bil[ch] = bil[ch] + wn * inner[j][i][ch];
             }
         }
@@ -410,7 +417,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                 const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
                 for (int ch = 0; ch < 4; ++ch) {
                     const Lane s = isInner ? inner[j - 1][i - 1][ch]
-                                           : ln::gather(a.prevSignal[ch], index[j][i]);
+                                           : ln::gather(a.prevSignal[ch], index[j][i], run[j][i]);
                     row[ch] = row[ch] + wx[i] * s;
                 }
             }
@@ -439,11 +446,12 @@ SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
                             tx - Lane(1.0f));
         else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
         const Tap t = tapAt(v, tx, ty);
-        const Lane zs = ln::gather(v.viewZ, t.index);
+        const Lane zs = ln::gather(v.viewZ, t.index, t.run);
         const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-        const V3 ns = screen::worldToView(
-            v.viewToWorld, V3{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
-                              ln::gather(v.normal[2], t.index)});
+        const V3 ns =
+            screen::worldToView(v.viewToWorld, V3{ln::gather(v.normal[0], t.index, t.run),
+                                                  ln::gather(v.normal[1], t.index, t.run),
+                                                  ln::gather(v.normal[2], t.index, t.run)});
         const V3 d = xs - p.x;
         const Lane d2 = ln::dot(d, d);
         const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);
@@ -587,23 +595,25 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
                 if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
                 const Tap t =
                     tapAt(v, p.px + Lane(float(i)) * stride, p.py + Lane(float(j)) * stride);
-                const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index);  // 0: no signal
+                const Lane zs =
+                    ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
                 const Mask ok = young & t.inside & (zs > zero);
                 if (!ln::any(ok)) continue;
                 const V3 xs =
                     screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-                const V3 ns{ln::gather(v.normal[0], t.index), ln::gather(v.normal[1], t.index),
-                            ln::gather(v.normal[2], t.index)};
+                const V3 ns{ln::gather(v.normal[0], t.index, t.run),
+                            ln::gather(v.normal[1], t.index, t.run),
+                            ln::gather(v.normal[2], t.index, t.run)};
                 Lane w = geometryWeight(p, xs, invPlane) *
                          rb::weightExp(normalScale * rb::acosApprox(ln::dot(p.n, ns)));
                 if (spec) {
-                    const Lane rs = ln::gather(v.roughness, t.index);
+                    const Lane rs = ln::gather(v.roughness, t.index, t.run);
                     w = w * rb::weightExp((rs - p.r) / (Lane(0.05f) + Lane(0.15f) * p.r));
                 }
-                w = w * (one + ln::gather(a.frames, t.index));
+                w = w * (one + ln::gather(a.frames, t.index, t.run));
                 w = ln::select(ok, w, zero);
                 for (int ch = 0; ch < 4; ++ch)
-                    sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index);
+                    sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
                 weightSum = weightSum + w;
             }
         for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
@@ -628,8 +638,8 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
                     inside = valid;
                 } else {
                     const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
-                    ms = ln::gather(mask, t.index);
-                    f = ln::gather(a.fast, t.index);
+                    ms = ln::gather(mask, t.index, t.run);
+                    f = ln::gather(a.fast, t.index, t.run);
                     inside = valid & t.inside;
                 }
                 const Mask ok = inside & (ms > zero);
