@@ -2,6 +2,7 @@
 // (isa_target.h first: it names this copy's lane type)
 #include "core/lane_math.h"
 #include "core/lane_math_kernels.h"
+#include "core/rng_lanes.h"
 
 namespace ssrt::SSRT_ISA_NS {
 
@@ -40,6 +41,16 @@ void evalMath(MathFn fn, const float* a, const float* b, float* out, std::size_t
     }
     ln::store(to, apply(fn, ln::load<Lane>(ta), ln::load<Lane>(tb)));
     for (std::size_t k = 0; i + k < n; ++k) out[i + k] = to[k];
+}
+
+void evalRandom(uint32_t pixel, uint32_t frame, uint32_t sample, uint32_t dim, float* out,
+                std::size_t n) {
+    constexpr std::size_t w = ln::kWidth<Lane>;
+    for (std::size_t i = 0; i < n; i += w) {
+        float group[w];
+        ln::store(group, ln::randomFloats<Lane>(pixel + uint32_t(i), frame, sample, dim));
+        for (std::size_t k = 0; k < w && i + k < n; ++k) out[i + k] = group[k];
+    }
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

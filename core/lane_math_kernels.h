@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "core/dispatch.h"
 
@@ -17,6 +18,17 @@ SSRT_DECLARE_KERNEL(void, evalMath,
 inline void evalMath(Isa isa, MathFn fn, const float* a, const float* b, float* out,
                      std::size_t n) {
     SSRT_DISPATCH(isa, evalMath)(fn, a, b, out, n);
+}
+
+SSRT_DECLARE_KERNEL(void, evalRandom,
+                    (uint32_t pixel, uint32_t frame, uint32_t sample, uint32_t dim, float* out,
+                     std::size_t n))
+
+// out[i] = randomFloat(pixel + i, frame, sample, dim), lane group by lane group
+// (lanes::randomFloats, core/rng_lanes.h), on the given ISA's copy.
+inline void evalRandom(Isa isa, uint32_t pixel, uint32_t frame, uint32_t sample, uint32_t dim,
+                       float* out, std::size_t n) {
+    SSRT_DISPATCH(isa, evalRandom)(pixel, frame, sample, dim, out, n);
 }
 
 }  // namespace ssrt

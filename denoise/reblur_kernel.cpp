@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/lane_math.h"
-#include "core/rng.h"
+#include "core/rng_lanes.h"
 #include "core/tiles.h"
 #include "denoise/reblur_kernel.h"
 #include "trace/screen_lanes.h"
@@ -181,12 +181,9 @@ constexpr KernelTap kSpecial8[8] = {{1.0f, 0.0f, kRing},
 // The rotation of pixel (x .. x + kW, y)'s kernel: a uniform angle in [0, pi/2) (the set's
 // 4-fold symmetry covers the rest).
 SSRT_INLINE void rotationAt(const ReblurSpatialArgs& a, int x, int y, Lane& cs, Lane& sn) {
-    alignas(64) float angle[kW];
-    for (int i = 0; i < kW; ++i) {
-        const uint32_t pixel = uint32_t(y) * uint32_t(a.view.width) + uint32_t(x + i);
-        angle[i] = randomFloat(pixel, a.frameIndex, a.stream, 0) * ln::kHalfPi;
-    }
-    ln::sincos(ln::load<Lane>(angle), sn, cs);
+    const uint32_t pixel = uint32_t(y) * uint32_t(a.view.width) + uint32_t(x);
+    const Lane angle = ln::randomFloats<Lane>(pixel, a.frameIndex, a.stream, 0) * Lane(ln::kHalfPi);
+    ln::sincos(angle, sn, cs);
 }
 
 void spatialChunk(const ReblurSpatialArgs& a, int x, int y) {

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "core/lane_vec.h"
-#include "core/rng.h"
+#include "core/rng_lanes.h"
 #include "core/tiles.h"
 #include "shading/brdf.h"
 #include "shading/sampling.h"
@@ -39,14 +39,9 @@ SSRT_INLINE V3 toView(V3 t, V3 b, V3 n, V3 w) { return (t * w.x + b * w.y) + n *
 // The lane group's two uniform numbers, lane by lane from the counter hash (integer work:
 // the same bits on every ISA).
 SSRT_INLINE void uniforms(const RayGenArgs& a, int x, int y, Lane& u1, Lane& u2) {
-    alignas(64) float r1[kW], r2[kW];
     const uint32_t base = uint32_t(y) * uint32_t(a.width) + uint32_t(x);
-    for (int l = 0; l < kW; ++l) {
-        r1[l] = randomFloat(base + uint32_t(l), a.frame, a.sample, a.dim);
-        r2[l] = randomFloat(base + uint32_t(l), a.frame, a.sample, a.dim + 1u);
-    }
-    u1 = ln::load<Lane>(r1);
-    u2 = ln::load<Lane>(r2);
+    u1 = ln::randomFloats<Lane>(base, a.frame, a.sample, a.dim);
+    u2 = ln::randomFloats<Lane>(base, a.frame, a.sample, a.dim + 1u);
 }
 
 SSRT_INLINE unsigned popcount(Mask m, uint64_t valid) {
