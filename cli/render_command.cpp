@@ -214,7 +214,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     Frame frame;
     FrameHistory history;
     for (int step = startStep; step < endStep; ++step) {
-        const FrameInput input = sequence.input(step);
+        FrameInput input = sequence.input(step);
+        // No frame reads the last one's history: it is read, not replaced (the same image,
+        // without the denoiser's history planes and their writes).
+        input.replaceHistory = step + 1 < endStep;
         const auto start = std::chrono::steady_clock::now();
         renderer.render(scene, input, history, frame);
         const std::chrono::duration<double, std::milli> wall =
@@ -245,7 +248,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             // The renderer may report the thread setting (0 = every core) rather than the count.
             FrameStats stats = frame.stats;
             if (stats.threads <= 0) stats.threads = threadsFor(settings);
-            printStats(out, stats, wall.count(), write.count());
+            printStats(out, stats, double(frame.width) * double(frame.height), wall.count(),
+                       write.count());
         }
     }
     if (diff) return diffImages(output, *o.compare, *diff, out);
@@ -296,9 +300,29 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
         [&](const TraceStats& t) { return share(t.march.laneActive, t.march.laneSlots); });
 }
 
+// What the frame holds, by resource group: bytes per pixel of the frame, and megabytes.
+void printMemory(std::ostream& out, const std::vector<MemoryUse>& memory, double pixels) {
+    out << "\n"
+        << std::left << std::setw(kLabelWidth + 2) << "memory" << std::right
+        << std::setw(kValueWidth) << "B/pixel" << std::setw(kValueWidth) << "MB"
+        << "\n";
+    std::size_t sum = 0;
+    const auto row = [&](const std::string& label, std::size_t bytes) {
+        out << "  " << std::left << std::setw(kLabelWidth) << label << std::right << std::fixed
+            << std::setprecision(1) << std::setw(kValueWidth) << double(bytes) / pixels
+            << std::setw(kValueWidth) << double(bytes) / 1.0e6 << "\n";
+    };
+    for (const MemoryUse& m : memory) {
+        row(m.name, m.bytes);
+        sum += m.bytes;
+    }
+    row("in all", sum);
+}
+
 }  // namespace
 
-void printStats(std::ostream& out, const FrameStats& stats, double wallMs, double writeMs) {
+void printStats(std::ostream& out, const FrameStats& stats, double pixels, double wallMs,
+                double writeMs) {
     std::ios saved(nullptr);  // the caller's stream formatting, restored at the end
     saved.copyfmt(out);
     const auto row = [&](const std::string& label) -> std::ostream& {
@@ -327,6 +351,7 @@ void printStats(std::ostream& out, const FrameStats& stats, double wallMs, doubl
                      << std::setw(kValueWidth) << stats.shadow.*c.field << "\n";
     }
     if (stats.ssr.ran || stats.ssgi.ran) printTraceStats(out, stats);
+    if (!stats.memory.empty() && pixels > 0) printMemory(out, stats.memory, pixels);
     out.copyfmt(saved);
 }
 

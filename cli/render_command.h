@@ -74,9 +74,11 @@ std::string renderOutput(const RenderOptions& options);
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for
-// the screen-space passes rays, misses by cause, steps per ray and SIMD lane utilisation.
+// the screen-space passes rays, misses by cause, steps per ray and SIMD lane utilisation;
+// last the memory the frame holds by resource group, per pixel of the frame's `pixels`.
 // `wallMs` is the whole render call as the CLI timed it, `writeMs` the image file's write
 // (encoding, compression and the rename), after it.
-void printStats(std::ostream& out, const FrameStats& stats, double wallMs, double writeMs);
+void printStats(std::ostream& out, const FrameStats& stats, double pixels, double wallMs,
+                double writeMs);
 
 }  // namespace ssrt::cli

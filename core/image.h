@@ -32,6 +32,8 @@ public:
     // Elements between the starts of two rows (>= width, a multiple of 64 bytes).
     std::size_t stride() const { return stride_; }
     bool empty() const { return width_ == 0 || height_ == 0; }
+    // What it holds, row padding included (0 when empty).
+    std::size_t bytes() const { return stride_ * std::size_t(height_) * sizeof(T); }
 
     T* row(int y) { return data_.get() + std::size_t(y) * stride_; }
     const T* row(int y) const { return data_.get() + std::size_t(y) * stride_; }

@@ -64,8 +64,8 @@ struct Context {
     const DenoiseSettings& s;
     const DenoiseInputs& in;
     DenoiseScratch& sc;
-    DenoiseHistory* history;  // null: no history to write
-    bool readHistory;         // the history holds last frame's, of this size
+    const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
+    DenoiseHistory* next;            // null: no history to write (may be `previous`)
     Isa isa;
     int threads;
     TileGrid grid;
@@ -196,8 +196,8 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
     }
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.readHistory && s.maxAccumulatedFrames > 0) {
-        const DenoiseHistory& h = *c.history;
+    if (c.previous && s.maxAccumulatedFrames > 0) {
+        const DenoiseHistory& h = *c.previous;
         a.prevViewZ = h.viewZ.row(0);
         for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
         a.prevRoughness = h.roughness.row(0);
@@ -266,7 +266,7 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     });
     // The post-blur's result, RGB to the output and all four channels to the history.
     PlaneF* history = nullptr;
-    if (c.history) history = sig.specular ? c.history->specular : c.history->diffuse;
+    if (c.next) history = sig.specular ? c.next->specular : c.next->diffuse;
     // (The output has no hit distance: that channel goes to the signal's noisy plane, which
     // nothing reads after the first pass.)
     PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2],
@@ -282,7 +282,7 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
 // The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
 // and fast histories, for the next frame.
 void commitHistory(Context& c) {
-    DenoiseHistory& h = *c.history;
+    DenoiseHistory& h = *c.next;
     const DenoiseInputs& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
     const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no signal
@@ -358,11 +358,13 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
     const TileGrid grid(w, h);
     const bool readHistory = history && !reset && history->usableAt(w, h);
-    if (history && !readHistory) history->valid = false;
-    ensureSizes(w, h, scratch, out, history, diffuse, specular, grid);
-    Context c{settings, in,          scratch,
-              history,  readHistory, isa,
-              threads,  grid,        makeView(in, settings, scratch, grid)};
+    const DenoiseHistory* previous = readHistory ? history : nullptr;
+    DenoiseHistory* next = in.replaceHistory ? history : nullptr;
+    if (next && !readHistory) next->valid = false;
+    ensureSizes(w, h, scratch, out, next, diffuse, specular, grid);
+    Context c{settings, in,   scratch,
+              previous, next, isa,
+              threads,  grid, makeView(in, settings, scratch, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (diffuse)
@@ -374,7 +376,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
             c,
             {true, 4, {&out.specular[0], &out.specular[1], &out.specular[2]}, &out.specularFrames},
             pt);
-    if (history) pt.run("history", [&] { commitHistory(c); });
+    if (next) pt.run("history", [&] { commitHistory(c); });
 }
 
 }  // namespace ssrt

@@ -28,6 +28,7 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/plane_table.h"
 #include "denoise/denoise_settings.h"
 #include "trace/trace_types.h"
 
@@ -55,6 +56,9 @@ struct DenoiseInputs {
     const PlaneF* specularHitDistance = nullptr;
     // Pixels this rough or rougher have no specular signal (SSR's roughness fade end).
     float specularMaxRoughness = 1.0f;
+    // false: the history is read but left as it was (no later frame reads this one's): the
+    // same output, without writing the next history.
+    bool replaceHistory = true;
 };
 
 // The denoiser's output, of the frame's size.
@@ -66,13 +70,25 @@ struct DenoiseOutputs {
 
 // What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the
 // accumulation speeds, the fast histories, and the guides and camera it was made with.
-struct DenoiseHistory {
+struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     PlaneF viewZ, normal[3], roughness;
     PlaneF diffuse[4], specular[4];  // RGB and normalised hit distance
     PlaneF diffuseFrames, specularFrames;
     PlaneF diffuseFast, specularFast;  // luma
     TraceCamera camera;
     bool valid = false;
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("viewZ", g.viewZ), fn("roughness", g.roughness);
+        fn("normal.X", g.normal[0]), fn("normal.Y", g.normal[1]), fn("normal.Z", g.normal[2]);
+        fn("diffuse.R", g.diffuse[0]), fn("diffuse.G", g.diffuse[1]);
+        fn("diffuse.B", g.diffuse[2]), fn("diffuse.hit", g.diffuse[3]);
+        fn("specular.R", g.specular[0]), fn("specular.G", g.specular[1]);
+        fn("specular.B", g.specular[2]), fn("specular.hit", g.specular[3]);
+        fn("diffuseFrames", g.diffuseFrames), fn("specularFrames", g.specularFrames);
+        fn("diffuseFast", g.diffuseFast), fn("specularFast", g.specularFast);
+    }
 
     bool usableAt(int width, int height) const {
         return valid && viewZ.width() == width && viewZ.height() == height;
@@ -83,13 +99,28 @@ struct DenoiseHistory {
 // one before it, and the two signals run one after the other, so a signal's passes alternate
 // between the two ping-pong groups, which both signals share: 16 planes, not one group per
 // pass and signal (40).
-struct DenoiseScratch {
+struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     PlaneF noisy[8];  // the front end's: diffuse 0-3, specular 4-7 (RGB, normalised hit distance)
     PlaneF ping[4], pong[4];
     PlaneF signalZ[2];           // viewZ where the diffuse / specular signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneF fast[2];              // this frame's fast luma
     std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        static constexpr const char* kNoisy[8] = {
+            "noisy.diffuse.R",  "noisy.diffuse.G",  "noisy.diffuse.B",  "noisy.diffuse.hit",
+            "noisy.specular.R", "noisy.specular.G", "noisy.specular.B", "noisy.specular.hit"};
+        static constexpr const char* kPing[4] = {"ping.R", "ping.G", "ping.B", "ping.hit"};
+        static constexpr const char* kPong[4] = {"pong.R", "pong.G", "pong.B", "pong.hit"};
+        for (int i = 0; i < 8; ++i) fn(std::string_view(kNoisy[i]), g.noisy[i]);
+        for (int i = 0; i < 4; ++i) fn(std::string_view(kPing[i]), g.ping[i]);
+        for (int i = 0; i < 4; ++i) fn(std::string_view(kPong[i]), g.pong[i]);
+        fn("signalZ.diffuse", g.signalZ[0]), fn("signalZ.specular", g.signalZ[1]);
+        fn("frames.diffuse", g.frames[0]), fn("frames.specular", g.frames[1]);
+        fn("fast.diffuse", g.fast[0]), fn("fast.specular", g.fast[1]);
+    }
 };
 
 struct DenoisePassTime {
@@ -98,7 +129,8 @@ struct DenoisePassTime {
 };
 
 // Denoises one frame into `out`. `history` (null: none, every pixel starts afresh) is read
-// when usable at this size and `reset` is false, then replaced with this frame's. Throws
+// when usable at this size and `reset` is false, then replaced with this frame's (unless
+// in.replaceHistory is false). Throws
 // std::invalid_argument on a missing or mis-sized plane. Appends each pass's time to `times`
 // (optional).
 void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,

@@ -1,12 +1,10 @@
 // What a frame is made of: typed groups of planes, each with one name table, and the
 // history a sequence carries from one frame to the next.
 //
-// Each group lists its planes once, in `table` (name and member, in file order). That table
-// is the only place a plane's name is spelled: it gives the EXR channel names (io/image_io.h)
-// and Frame::plane(name). Passes take the members themselves. A group the settings leave out
+// Each group lists its planes once, in `table` (core/plane_table.h). That table is the only
+// place a plane's name is spelled: it gives the EXR channel names (io/image_io.h) and
+// Frame::plane(name). Passes take the members themselves. A group the settings leave out
 // (SSR off, no id planes) holds empty planes, and empty planes are not layers.
-// (After Filament's FrameHistoryEntry and NRD's resource enums: named resources, not strings
-// looked up at each use.)
 #pragma once
 
 #include <string>
@@ -15,6 +13,7 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/plane_table.h"
 #include "denoise/denoise.h"
 #include "raster/hiz.h"
 #include "raster/raster.h"
@@ -44,26 +43,6 @@ struct PlaneRef {
     std::string_view name;
     const PlaneF* plane;
     LayerGroup group = LayerGroup::Color;
-};
-
-// forEachPlane(fn) calls fn(name, plane) for every plane of the group, in table order.
-template <class Group>
-struct PlaneTable {
-    template <class Fn>
-    void forEachPlane(Fn&& fn) {
-        Group::table(static_cast<Group&>(*this), fn);
-    }
-    template <class Fn>
-    void forEachPlane(Fn&& fn) const {
-        Group::table(static_cast<const Group&>(*this), fn);
-    }
-    // Every plane of the group at this size (kept when it already is), or all empty.
-    void ensureSize(int width, int height) {
-        forEachPlane([&](std::string_view, PlaneF& p) { p.ensureSize(width, height); });
-    }
-    void release() {
-        forEachPlane([](std::string_view, PlaneF& p) { p = PlaneF(); });
-    }
 };
 
 // The direct pass's image, which the composite replaces when a trace pass runs.
@@ -249,8 +228,16 @@ struct TraceStats {
     MarchStats march;
 };
 
+// What one resource group of a frame holds in memory, row padding included (`--stats`'s
+// memory table; renderer/memory_use.h).
+struct MemoryUse {
+    std::string name;
+    std::size_t bytes = 0;
+};
+
 struct FrameStats {
     std::vector<PassTime> passes;
+    std::vector<MemoryUse> memory;  // after the frame: its groups, scratch and history
     TraceStats ssr, ssgi;
     RasterStats visibility;  // camera pass
     RasterStats shadow;      // light pass
@@ -294,7 +281,16 @@ struct Frame {
             HiZPyramid hiz;
             RayBatch rays;
             MarchResult march;
-            PlaneF color[3], hit, hitDistance, steps;
+            struct Resolved : PlaneTable<Resolved> {
+                PlaneF color[3], hit, hitDistance, steps;
+
+                template <class G, class Fn>
+                static void table(G& g, Fn& fn) {
+                    fn("half.ssgi.R", g.color[0]), fn("half.ssgi.G", g.color[1]);
+                    fn("half.ssgi.B", g.color[2]), fn("half.ssgiHit", g.hit);
+                    fn("half.ssgiHitDistance", g.hitDistance), fn("half.ssgiSteps", g.steps);
+                }
+            } resolved;
         } half;
     } scratch;
 

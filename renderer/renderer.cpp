@@ -14,6 +14,7 @@
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
 #include "renderer/direct_lighting.h"
+#include "renderer/memory_use.h"
 #include "renderer/pass_timer.h"
 #include "renderer/resolve_tables.h"
 #include "renderer/sky_lighting.h"
@@ -354,14 +355,18 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     directPass(c, scene, environmentPass(c, scene, frame), frame, lighting);
     frame.camera = c.trace;
     frame.index = input.frameIndex;
-    if (!settings_.trace.any()) return;
-    const FrameHistory* previous =
-        history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
-                                                                                       : nullptr;
-    runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, history,
-                    input.resetHistory, observer},
-                   frame);
-    if (history && readsHistory(settings_.trace)) commitHistory(settings_.trace, frame, *history);
+    if (settings_.trace.any()) {
+        const FrameHistory* previous =
+            history && !input.resetHistory && history->usableAt(frame.width, frame.height)
+                ? history
+                : nullptr;
+        runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, history,
+                        input.resetHistory, input.replaceHistory, observer},
+                       frame);
+        if (history && input.replaceHistory && readsHistory(settings_.trace))
+            commitHistory(settings_.trace, frame, *history);
+    }
+    frame.stats.memory = memoryUse(frame, history);
 }
 
 }  // namespace ssrt

@@ -28,10 +28,13 @@ struct FrameInput {
     Camera camera;
     Camera previousCamera;      // where the camera was last frame: motion vectors
     bool resetHistory = false;  // a cut: the history is not read (and is replaced)
+    // false: the history is read but left as it was, for a frame no later frame reads (the
+    // last of a sequence): the same image, without making the new history.
+    bool replaceHistory = true;
 
     // The scene's own cameras.
     static FrameInput still(const Scene& scene, uint32_t frameIndex = 0) {
-        return {frameIndex, scene.camera, scene.previousCamera, false};
+        return {frameIndex, scene.camera, scene.previousCamera, false, true};
     }
 };
 

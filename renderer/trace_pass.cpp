@@ -188,7 +188,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     in.camera = hf.camera;
     in.viewZ = &hf.viewZ;
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
-    const HitStatsPlanes hp{&ht.hit, &ht.steps, &ht.hitDistance};
+    const HitStatsPlanes hp{&ht.resolved.hit, &ht.resolved.steps, &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {
@@ -205,18 +205,19 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
                                    hf.camera, march, hiz, ht.rays, ht.march, c.threads()));
         });
         addTime(times.resolve, [&] {
-            resolveSsgi(isa, in, ht.rays, ht.march, ht.color, s, ts.ssgiSpp, c.threads());
+            resolveSsgi(isa, in, ht.rays, ht.march, ht.resolved.color, s, ts.ssgiSpp, c.threads());
             accumulateHitStats(isa, hf.camera, ht.rays, ht.march, hp, s, ts.ssgiSpp, c.threads());
         });
     }
     SsgiPlanes& planes = frame.trace.ssgi;
     times.reconstruct = 0.0;
     addTime(times.reconstruct, [&] {
-        const ReconstructSource from{{&ht.color[0], &ht.color[1], &ht.color[2]},
-                                     nullptr,
-                                     &ht.hit,
-                                     &ht.hitDistance,
-                                     &ht.steps};
+        const ReconstructSource from{
+            {&ht.resolved.color[0], &ht.resolved.color[1], &ht.resolved.color[2]},
+            nullptr,
+            &ht.resolved.hit,
+            &ht.resolved.hitDistance,
+            &ht.resolved.steps};
         const ReconstructPlanes to{{&planes.color[0], &planes.color[1], &planes.color[2]},
                                    nullptr,
                                    &planes.hit,
@@ -338,6 +339,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
+    in.replaceHistory = c.args.replaceHistory;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,

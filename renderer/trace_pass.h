@@ -22,6 +22,7 @@ struct TracePassArgs {
     // (DenoiseHistory); null: no history (each pixel starts afresh, nothing is kept).
     FrameHistory* sequence;
     bool resetHistory;              // a cut: the denoiser's history is not read
+    bool replaceHistory;            // false: the denoiser reads its history, leaves it as it was
     const TraceObserver* observer;  // optional: sees each sample's rays and march result
 };
 

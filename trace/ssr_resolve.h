@@ -79,13 +79,24 @@ struct SsrResolveInputs {
                                             // scene-linear units of the composite's inputs
 };
 
-struct SsrOutput {
+struct SsrOutput : PlaneTable<SsrOutput> {
     PlaneF color[3];  // reflected radiance where SSR found something (not premultiplied)
     PlaneF opacity;   // how much of it to use, [0, 1]
     // Scratch (per-pixel hit radiance and fade; for the reuse mode also the view-space hit
     // point, or the ray's direction for a miss), kept to reuse memory.
     PlaneF hitRadiance[3], hitFade, hitTarget[3];
 
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("resolve.R", g.color[0]), fn("resolve.G", g.color[1]), fn("resolve.B", g.color[2]);
+        fn("resolve.opacity", g.opacity);
+        fn("resolve.hitRadiance.R", g.hitRadiance[0]),
+            fn("resolve.hitRadiance.G", g.hitRadiance[1]);
+        fn("resolve.hitRadiance.B", g.hitRadiance[2]), fn("resolve.hitFade", g.hitFade);
+        fn("resolve.hitTarget.X", g.hitTarget[0]), fn("resolve.hitTarget.Y", g.hitTarget[1]);
+        fn("resolve.hitTarget.Z", g.hitTarget[2]);
+    }
+    // color, opacity, hitRadiance and hitFade (hitTarget only where the reuse mode asks).
     void ensureSize(int width, int height);
 };
 

@@ -64,7 +64,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     const PlaneF* from[11] = {src.viewZ,       src.normal[0],   src.normal[1],  src.normal[2],
                               src.albedo[0],   src.albedo[1],   src.albedo[2],  src.metallic,
                               src.hitLight[0], src.hitLight[1], src.hitLight[2]};
-    for (PlaneF* p : dst) p->ensureSize(hw, hh);
+    out.ensureSize(hw, hh);
     // Rows of half pixels, each row's count of full-resolution surface pixels left out,
     // summed in row order (the same total for every thread count).
     std::vector<uint64_t> rowCut(std::size_t(hh), 0);

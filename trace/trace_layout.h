@@ -68,10 +68,21 @@ TraceCamera halfCamera(const TraceCamera& full);
 // frames. (The half frame puts that depth at its own pixel centre, the block's centre, so a
 // ray leaves up to half a full pixel beside the chosen pixel in each axis: the price of a
 // plain camera for the half frame; the upsample places the result at the chosen pixel.)
-struct HalfFrame {
+struct HalfFrame : PlaneTable<HalfFrame> {
     TraceCamera camera;  // halfCamera of the full one
     PixelOffset offset;  // the frame's chosen pixel in each block
     PlaneF viewZ, normal[3], albedo[3], metallic, hitLight[3];
+
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("half.viewZ", g.viewZ);
+        fn("half.normal.X", g.normal[0]), fn("half.normal.Y", g.normal[1]);
+        fn("half.normal.Z", g.normal[2]);
+        fn("half.albedo.R", g.albedo[0]), fn("half.albedo.G", g.albedo[1]);
+        fn("half.albedo.B", g.albedo[2]), fn("half.metallic", g.metallic);
+        fn("half.hitLight.R", g.hitLight[0]), fn("half.hitLight.G", g.hitLight[1]);
+        fn("half.hitLight.B", g.hitLight[2]);
+    }
     // Full-resolution surface pixels that are not chosen (RayGenStats::cut).
     uint64_t cutPixels = 0;
 };

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "core/image.h"
+#include "core/plane_table.h"
 
 namespace ssrt {
 
@@ -44,13 +45,17 @@ struct TraceCamera {
 // pdf > 0 as "a ray".
 inline constexpr float kPdfLayoutCut = -1.0f;
 
-struct RayBatch {
+struct RayBatch : PlaneTable<RayBatch> {
     PlaneF ox, oy, oz;  // origin: the pixel's surface point (no offset; marchers skip their
                         // own pixel)
     PlaneF dx, dy, dz;  // unit direction
     PlaneF pdf;         // solid-angle PDF of the direction (0: no ray)
 
-    void ensureSize(int width, int height);
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("ray.ox", g.ox), fn("ray.oy", g.oy), fn("ray.oz", g.oz);
+        fn("ray.dx", g.dx), fn("ray.dy", g.dy), fn("ray.dz", g.dz), fn("ray.pdf", g.pdf);
+    }
     int width() const { return ox.width(); }
     int height() const { return ox.height(); }
 };
@@ -79,14 +84,18 @@ inline std::string_view marchEndName(MarchEnd e) {
 }
 
 // What the march found for each pixel's ray.
-struct MarchResult {
+struct MarchResult : PlaneTable<MarchResult> {
     PlaneF hit;         // 1 hit, 0 not
     PlaneF hitX, hitY;  // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
     PlaneF hitZ;        // view Z at the hit (positive); 0 on a miss
     PlaneF steps;       // march steps (or Hi-Z iterations) this ray took
     PlaneF cause;       // MarchEnd as a float
 
-    void ensureSize(int width, int height);
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("march.hit", g.hit), fn("march.hitX", g.hitX), fn("march.hitY", g.hitY);
+        fn("march.hitZ", g.hitZ), fn("march.steps", g.steps), fn("march.cause", g.cause);
+    }
 };
 
 }  // namespace ssrt

@@ -316,9 +316,16 @@ TEST_CASE("cli: --stats prints every pass and every raster counter of both passe
         vis[i] = 1000 + i;
         sha[i] = 2000 + i;
     }
+    stats.memory = {{"gbuffer", 3000000}, {"denoise scratch", 1000000}};
     std::ostringstream out;
-    cli::printStats(out, stats, 4.5, 7.25);
+    cli::printStats(out, stats, 1.0e6, 4.5, 7.25);
     const std::string text = out.str();
+    // The memory table: bytes per pixel of the million pixels, megabytes, the sum.
+    CHECK(contains(text, "gbuffer"));
+    CHECK(contains(text, "denoise scratch"));
+    CHECK(contains(text, "in all"));
+    CHECK(contains(text, "3.0"));
+    CHECK(contains(text, "4.0\n"));
     CHECK(contains(text, "sse2"));
     CHECK(contains(text, "3 threads"));
     for (const char* part : {"shadow", "visibility", "resolve", "1.250", "2.500", "0.125", "3.875",

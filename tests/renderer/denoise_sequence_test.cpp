@@ -232,3 +232,41 @@ TEST_CASE("denoise sequence: a camera pan reveals background that restarts its h
     CHECK(restarted >= 0.9 * revealed);
     CHECK(keptFrames >= 0.9 * kept);
 }
+
+TEST_CASE("denoise sequence: a frame that does not replace the history renders the same bits") {
+    // The last frame of a sequence reads the history and leaves it (FrameInput::replaceHistory):
+    // the same image as a frame that replaces it, the history untouched, and without a
+    // history to begin with no history made at all.
+    const Scene scene = makeBuiltinScene("cornell");
+    const RenderSettings rs = small(Isa::Scalar, 2);
+    const Renderer renderer(rs);
+    FrameHistory history;
+    Frame frame;
+    FrameInput input = FrameInput::still(scene);
+    for (uint32_t i = 0; i < 3; ++i) {
+        input.frameIndex = i;
+        renderer.render(scene, input, history, frame);
+    }
+    input.frameIndex = 3;
+    FrameHistory kept;
+    kept.denoise.viewZ = history.denoise.viewZ.clone();
+    kept.denoise.diffuse[0] = history.denoise.diffuse[0].clone();
+    kept.denoise.specularFrames = history.denoise.specularFrames.clone();
+    Frame last;
+    input.replaceHistory = false;
+    renderer.render(scene, input, history, last);
+    CHECK(history.denoise.valid);
+    CHECK(hashPlane(history.denoise.viewZ) == hashPlane(kept.denoise.viewZ));
+    CHECK(hashPlane(history.denoise.diffuse[0]) == hashPlane(kept.denoise.diffuse[0]));
+    CHECK(hashPlane(history.denoise.specularFrames) == hashPlane(kept.denoise.specularFrames));
+    input.replaceHistory = true;
+    renderer.render(scene, input, history, frame);
+    CHECK(frameHash(last) == frameHash(frame));
+    CHECK(hashPlane(history.denoise.diffuse[0]) != hashPlane(kept.denoise.diffuse[0]));
+
+    FrameHistory none;
+    input.replaceHistory = false;
+    renderer.render(scene, input, none, last);
+    CHECK(none.denoise.viewZ.empty());
+    CHECK_FALSE(none.denoise.valid);
+}

@@ -1,0 +1,72 @@
+#include "renderer/memory_use.h"
+
+namespace ssrt {
+
+namespace {
+
+template <class T>
+std::size_t bytesOf(const Plane<T>& p) {
+    return p.bytes();
+}
+template <class Group>
+std::size_t bytesOf(const PlaneTable<Group>& g) {
+    return g.bytes();
+}
+template <class T, std::size_t N>
+std::size_t bytesOf(const T (&array)[N]) {
+    std::size_t n = 0;
+    for (const T& p : array) n += bytesOf(p);
+    return n;
+}
+std::size_t bytesOf(const HiZPyramid& hiz) {
+    std::size_t n = hiz.invMinPacked.size() * sizeof(float);
+    for (const PlaneF& p : hiz.minZ) n += p.bytes();
+    for (const PlaneF& p : hiz.maxZ) n += p.bytes();
+    return n;
+}
+std::size_t bytesOf(const ColorPyramid& pyramid) {
+    std::size_t n = 0;
+    for (const auto& level : pyramid.levels)
+        n += bytesOf(level[0]) + bytesOf(level[1]) + bytesOf(level[2]);
+    return n;
+}
+
+}  // namespace
+
+std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
+    std::vector<MemoryUse> out;
+    const auto add = [&](const char* name, std::size_t bytes) {
+        if (bytes > 0) out.push_back({name, bytes});
+    };
+    add("image", bytesOf(f.image));
+    add("gbuffer", bytesOf(f.gbuffer));
+    add("material", bytesOf(f.material));
+    add("ids", bytesOf(f.ids));
+    add("direct parts", bytesOf(f.direct));
+    add("ssr", bytesOf(f.trace.ssr));
+    add("ssgi", bytesOf(f.trace.ssgi));
+    add("denoised", bytesOf(f.trace.denoise));
+    const Frame::Scratch& s = f.scratch;
+    add("visibility buffer", bytesOf(s.visibility.depth) + bytesOf(s.visibility.ids));
+    add("shadow map", bytesOf(s.shadow.depth));
+    add("uv", bytesOf(s.uv));
+    add("tangent", bytesOf(s.tangent));
+    add("hi-z", bytesOf(s.hiz));
+    add("rays", bytesOf(s.rays));
+    add("march", bytesOf(s.march));
+    add("colour pyramid", bytesOf(s.colorPyramid));
+    add("ssr resolve", bytesOf(s.ssr));
+    add("denoise scratch", bytesOf(s.denoise));
+    add("half frame", bytesOf(s.half.frame));
+    add("half hi-z", bytesOf(s.half.hiz));
+    add("half rays", bytesOf(s.half.rays));
+    add("half march", bytesOf(s.half.march));
+    add("half resolved", bytesOf(s.half.resolved));
+    if (history) {
+        add("history", bytesOf(*history));
+        add("denoise history", bytesOf(history->denoise));
+    }
+    return out;
+}
+
+}  // namespace ssrt

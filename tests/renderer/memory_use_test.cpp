@@ -1,0 +1,65 @@
+// The --stats memory table (renderer/memory_use.h): every group that holds memory, with the
+// bytes its planes hold, and nothing a frame does not hold.
+#include "renderer/memory_use.h"
+
+#include <doctest/doctest.h>
+
+#include <map>
+#include <string>
+
+#include "renderer/renderer.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+
+namespace {
+
+std::map<std::string, std::size_t> byName(const std::vector<MemoryUse>& rows) {
+    std::map<std::string, std::size_t> m;
+    for (const MemoryUse& r : rows) {
+        CHECK(m.count(r.name) == 0);  // each group once
+        CHECK(r.bytes > 0);           // empty groups are left out
+        m[r.name] = r.bytes;
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scratch") {
+    RenderSettings rs;
+    rs.width = 40;
+    rs.height = 24;
+    rs.shadowMapSize = 64;
+    rs.trace.ssr = true;
+    rs.trace.ssgi = true;
+    rs.trace.denoise.enabled = true;
+    const Scene scene = makeBuiltinScene("cornell");
+    FrameHistory history;
+    Frame frame;
+    Renderer(rs).render(scene, FrameInput::still(scene), history, frame);
+    const auto m = byName(frame.stats.memory);
+    CHECK(m == byName(memoryUse(frame, &history)));
+    // A plane of the frame: 40 floats padded to 48 (64-byte rows), 24 rows.
+    const std::size_t plane = 48 * 24 * sizeof(float);
+    REQUIRE(frame.gbuffer.viewZ.bytes() == plane);
+    CHECK(m.at("image") == 7 * plane);
+    CHECK(m.at("gbuffer") == 12 * plane);
+    CHECK(m.at("ssr") == 7 * plane);
+    CHECK(m.at("denoised") == 8 * plane);
+    // noisy 8, ping 4, pong 4, signalZ 2, frames 2, fast 2: not a group per pass.
+    CHECK(m.at("denoise scratch") == 22 * plane);
+    CHECK(m.at("shadow map") == 64 * 64 * sizeof(float));
+    // (The colour history only where a setting reads it: not by default.)
+    CHECK(m.count("history") == 0);
+    CHECK(m.count("denoise history") == 1);
+    // Without a history, and without the trace, those groups are gone.
+    Frame still;
+    rs.trace.ssr = rs.trace.ssgi = false;
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), still);
+    const auto n = byName(still.stats.memory);
+    CHECK(n.count("denoise history") == 0);
+    CHECK(n.count("denoise scratch") == 0);
+    CHECK(n.count("ssr") == 0);
+    CHECK(n.at("gbuffer") == 12 * plane);
+}
