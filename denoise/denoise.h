@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "core/camera.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "denoise/denoise_settings.h"
-#include "trace/trace_types.h"
 
 namespace ssrt {
 
