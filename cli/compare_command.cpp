@@ -257,8 +257,8 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
-    const WriteOptions writeOptions =
-        o.output ? writeOptionsFrom(o.render, settings, *o.output, err) : WriteOptions{};
+    const FrameWriteOptions writeOptions =
+        o.output ? writeOptionsFrom(o.render, settings, *o.output, err) : FrameWriteOptions{};
     if (o.truth.perFrame) checkCsvPath("--per-frame", *o.truth.perFrame);
     loadScene(request, err);
     const Scene& scene = request.scene;
@@ -302,7 +302,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     }
     if (o.output) {
         appendTruthPlanes(frame, result.reference, ev);
-        writeImage(*o.output, frame, writeOptions);
+        writeFrame(*o.output, frame, writeOptions);
         if (progress) *progress << "wrote " << *o.output << "\n";
     }
     return kExitOk;

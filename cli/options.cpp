@@ -15,6 +15,7 @@
 #include "io/image_io.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
+#include "renderer/sky_lighting.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/shot.h"
@@ -261,10 +262,10 @@ void addImageOutputOptions(CLI::App& cmd, RenderOptions& o) {
         ->default_str(std::string(exrCompressionName(kDefaultExrCompression)));
 }
 
-WriteOptions writeOptionsFrom(const RenderOptions& o, const RenderSettings& settings,
-                              const std::string& output, std::ostream& err) {
-    WriteOptions w;
-    w.threads = threadsFor(settings);
+FrameWriteOptions writeOptionsFrom(const RenderOptions& o, const RenderSettings& settings,
+                                   const std::string& output, std::ostream& err) {
+    FrameWriteOptions w;
+    w.file.threads = threadsFor(settings);
     if (o.layers) {
         w.layers.reset();
         for (const std::string& item : splitList("--layers", *o.layers))
@@ -275,12 +276,17 @@ WriteOptions writeOptionsFrom(const RenderOptions& o, const RenderSettings& sett
                                                         "all or one of " + layerGroupList())));
     }
     if (o.exrCompression)
-        w.compression = parseChoice("--exr-compression", *o.exrCompression, parseExrCompression,
-                                    exrCompressionList());
+        w.file.compression = parseChoice("--exr-compression", *o.exrCompression,
+                                         parseExrCompression, exrCompressionList());
     if ((o.layers || o.exrCompression) && !isExrPath(output))
         err << "ssrt: warning: --layers and --exr-compression apply to EXR files only; '" << output
             << "' is not one, so they are ignored\n";
     return w;
+}
+
+void writeFrame(const std::string& path, const Frame& frame, const FrameWriteOptions& options) {
+    writeImage(path, frameLayers(frame, isExrPath(path) ? options.layers : allLayerGroups()),
+               options.file);
 }
 
 std::vector<std::string> splitList(const std::string& option, const std::string& text) {
@@ -358,8 +364,8 @@ void loadScene(SceneRequest& r, std::ostream& err) {
     if (r.shot) {
         applyShot(*r.shot, r.scene);
         if (r.shot->environment.file)
-            r.scene.sky.image =
-                std::make_shared<const SkyImage>(readSkyImage(*r.shot->environment.file));
+            r.scene.sky.image = std::make_shared<const SkyImage>(
+                makeSkyImage(*r.shot->environment.file, readSkyImage(*r.shot->environment.file)));
         r.path = shotCameraPath(*r.shot, r.scene.camera);
     }
 }

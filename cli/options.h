@@ -14,6 +14,7 @@
 #include "core/fields.h"
 #include "core/isa.h"
 #include "io/write_options.h"
+#include "renderer/layer_groups.h"
 #include "renderer/renderer.h"
 #include "scenes/camera_path.h"
 #include "scenes/scene.h"
@@ -75,11 +76,21 @@ void addTraceOptions(CLI::App& cmd, RenderOptions& options);
 
 // --layers and --exr-compression (EXR output only).
 void addImageOutputOptions(CLI::App& cmd, RenderOptions& options);
+// How a frame goes into an image file: the layer groups an EXR keeps (--layers) and how the
+// file is written (--exr-compression, threads).
+struct FrameWriteOptions {
+    LayerGroups layers = allLayerGroups();  // EXR only: a PNG is always the display planes
+    WriteOptions file;
+};
 // How `output` is written: the layer groups and compression given (checked: an unknown name
 // throws std::invalid_argument naming the option), compressed on the render's threads. A PNG
 // output with either option given warns on `err` that it is ignored.
-WriteOptions writeOptionsFrom(const RenderOptions& options, const RenderSettings& settings,
-                              const std::string& output, std::ostream& err);
+FrameWriteOptions writeOptionsFrom(const RenderOptions& options, const RenderSettings& settings,
+                                   const std::string& output, std::ostream& err);
+// Writes `frame` to `path` (io/image_io.h writeImage): an EXR holds the layers of the groups
+// options.layers names, in the frame's order; a PNG the display planes. Throws as writeImage
+// does (an EXR whose chosen groups hold no plane is refused: std::invalid_argument).
+void writeFrame(const std::string& path, const Frame& frame, const FrameWriteOptions& options);
 
 // A CSV file to write later: the name must end in .csv (std::invalid_argument naming
 // `option`), its folder must exist and it must not be a folder (std::runtime_error).

@@ -174,7 +174,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         readChannelNames(*o.compare);
     }
     checkWritable(sequenceFileName(output, int(block.begin), frames));
-    const WriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
+    const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
             "--layers: a rendered frame has no truth layers (ssrt "
@@ -234,7 +234,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         }
         const std::string file = sequenceFileName(output, i, frames);
         const auto written = std::chrono::steady_clock::now();
-        writeImage(file, frame, writeOptions);
+        writeFrame(file, frame, writeOptions);
         const std::chrono::duration<double, std::milli> write =
             std::chrono::steady_clock::now() - written;
         if (!o.quiet) {

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace ssrt {
@@ -59,6 +61,28 @@ using PlaneU32 = Plane<uint32_t>;
 struct NamedPlane {
     std::string name;
     PlaneF plane;
+};
+
+// A borrowed plane with its layer name: what image files take (io/image_io.h).
+struct LayerRef {
+    std::string_view name;
+    const PlaneF* plane = nullptr;
+};
+
+// Planes of one size with their names, as files hold them.
+struct ImageLayers {
+    int width = 0, height = 0;
+    std::vector<LayerRef> layers;  // in file order
+    // EXR only (a PNG has none): string attributes in the header, e.g. what part of a larger
+    // image a shard's file holds (cli/shard.h). Names must not be OpenEXR's own.
+    std::vector<std::pair<std::string, std::string>> attributes = {};
+};
+
+// Pixels as an image file decodes them (io/), before the scene model takes them (a texture,
+// a sky): interleaved float channels, row-major, row 0 first.
+struct InterleavedImage {
+    int width = 0, height = 0, channels = 0;
+    std::vector<float> pixels;  // channels * width * height values
 };
 
 // FNV-1a over the visible pixels (padding excluded), for golden hashes.

@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
+#include "core/camera.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/plane_table.h"
 #include "denoise/denoise_settings.h"
-#include "trace/trace_types.h"
 
 namespace ssrt {
 

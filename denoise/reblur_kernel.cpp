@@ -4,9 +4,9 @@
 
 #include "core/lane_math.h"
 #include "core/rng.h"
+#include "core/screen_lanes.h"
 #include "core/tiles.h"
 #include "denoise/reblur_kernel.h"
-#include "trace/screen_lanes.h"
 
 // REBLUR's passes over lanes across x (NRD's REBLUR_*.hlsl restated; denoise/denoise.h lists
 // them). GPU constructs and their CPU rules, for bit-identical results on every ISA:

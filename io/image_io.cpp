@@ -25,9 +25,8 @@
 #include <string_view>
 #include <thread>
 
+#include "core/color.h"
 #include "io/io_errors.h"
-#include "scenes/texture.h"  // srgbToLinear
-#include "shading/environment.h"
 
 namespace ssrt {
 
@@ -126,7 +125,7 @@ fs::path reserveTemporary(const std::string& path, const std::string& ext) {
 constexpr const char* kDisplayPlanes[] = {"display.R", "display.G", "display.B"};
 
 const PlaneF* findPlane(const ImageLayers& image, std::string_view name) {
-    for (const PlaneRef& p : image.layers)
+    for (const LayerRef& p : image.layers)
         if (p.name == name) return p.plane;
     return nullptr;
 }
@@ -140,7 +139,7 @@ void checkFrame(const std::string& path, const ImageLayers& image, const std::st
     if (image.width <= 0 || image.height <= 0) fail("the frame is empty");
     if (image.layers.empty()) fail("the frame has no planes");
     std::set<std::string_view> seen;
-    for (const PlaneRef& p : image.layers) {
+    for (const LayerRef& p : image.layers) {
         const std::string name(p.name);
         if (name.empty()) fail("a plane has no name");
         if (!seen.insert(p.name).second) fail("two planes are named '" + name + "'");
@@ -211,7 +210,7 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
     for (const auto& [name, value] : image.attributes)
         header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer buffer;
-    for (const PlaneRef& p : image.layers) {
+    for (const LayerRef& p : image.layers) {
         const std::string name(p.name);
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
         // OpenEXR's slices take a non-const base; an output file only reads through it.
@@ -231,14 +230,6 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
     } catch (const std::exception& e) {
         failWrite(path, e.what());
     }
-}
-
-// The layers of the groups asked for, in the frame's order.
-ImageLayers chosenLayers(const ImageLayers& image, const LayerGroups& groups) {
-    ImageLayers out{image.width, image.height, {}, image.attributes};
-    for (const PlaneRef& p : image.layers)
-        if (hasGroup(groups, p.group)) out.layers.push_back(p);
-    return out;
 }
 
 }  // namespace
@@ -263,19 +254,14 @@ bool isExrPath(const std::string& path) { return lowerExtension(path) == ".exr";
 
 bool isPngPath(const std::string& path) { return lowerExtension(path) == ".png"; }
 
-void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options) {
-    writeImage(path, ImageLayers{frame.width, frame.height, frame.layers(), {}}, options);
-}
-
 void writeImage(const std::string& path, const ImageLayers& image, const WriteOptions& options) {
     const std::string ext = checkedExtension(path);
-    const ImageLayers frame = ext == ".exr" ? chosenLayers(image, options.layers) : image;
-    checkFrame(path, frame, ext);
+    checkFrame(path, image, ext);
     checkDirectory(path);
     const fs::path tmp = reserveTemporary(path, ext);
     try {
-        if (ext == ".png") writePng(path, tmp, frame);
-        else writeExr(path, tmp, frame, options);
+        if (ext == ".png") writePng(path, tmp, image);
+        else writeExr(path, tmp, image, options);
         // rename() within one directory replaces the target atomically: readers see the old
         // file or the new one, never a half-written one.
         std::error_code ec;
@@ -299,7 +285,7 @@ int channelIndex(const OIIO::ImageSpec& spec, const char* name) {
 
 }  // namespace
 
-SkyImage readSkyImage(const std::string& path) {
+InterleavedImage readSkyImage(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) failRead(path, OIIO::geterror());
     const OIIO::ImageSpec spec = in->spec();
@@ -314,11 +300,7 @@ SkyImage readSkyImage(const std::string& path) {
     if (r >= 0 && g >= 0 && b >= 0) src[0] = r, src[1] = g, src[2] = b;
     else if (n >= 3) src[0] = 0, src[1] = 1, src[2] = 2;
     const bool srgb = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
-    SkyImage img;
-    img.source = path;
-    img.width = w;
-    img.height = h;
-    img.rgb.resize(std::size_t(3) * w * h);
+    InterleavedImage img{w, h, 3, std::vector<float>(std::size_t(3) * w * h)};
     for (std::size_t i = 0; i < std::size_t(w) * h; ++i)
         for (int c = 0; c < 3; ++c) {
             float v = all[i * n + src[c]];
@@ -326,16 +308,8 @@ SkyImage readSkyImage(const std::string& path) {
                 failRead(path, "texel (" + std::to_string(i % w) + ", " + std::to_string(i / w) +
                                    ") is not finite");
             if (srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));  // the project's own pow
-            img.rgb[i * 3 + c] = v > 0.0f ? v : 0.0f;
+            img.pixels[i * 3 + c] = v > 0.0f ? v : 0.0f;
         }
-    // Box-filter to half size until the renderer's float texel indices are exact.
-    while (std::size_t(img.width) * img.height > (std::size_t(1) << 24)) {
-        EquirectImage half =
-            downsampleBox(EquirectView{img.rgb.data(), img.width, img.height, nullptr, nullptr});
-        img.width = half.width;
-        img.height = half.height;
-        img.rgb = std::move(half.rgb);
-    }
     return img;
 }
 

@@ -7,36 +7,25 @@
 #include <utility>
 #include <vector>
 
+#include "core/image.h"
 #include "io/write_options.h"
-#include "renderer/frame.h"
-#include "scenes/scene.h"
 
 namespace ssrt {
 
-// Writes a frame, the format chosen by the extension (case-insensitive):
+// Writes named layers (core/image.h; a frame's come from renderer/layer_groups.h, which
+// chooses them), the format chosen by the extension (case-insensitive):
 //   .png  8-bit RGB from display.{R,G,B} (already tone mapped and sRGB encoded), each value
-//         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0.
-//   .exr  32-bit float, one channel per named plane of the groups options.layers names,
-//         channel name = plane name ("color.R", "viewZ", ...), so viewers show "color",
-//         "normal", ... as layers. Float, not half: ids and view depth need every bit. Written
-//         by OpenEXR with options.compression (lossless) on options.threads threads; the
-//         bytes do not depend on the thread count or on when the file is written.
+//         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0. Other layers are ignored.
+//   .exr  32-bit float, one channel per layer, in the order given, channel name = layer name
+//         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers. Float,
+//         not half: ids and view depth need every bit. Written by OpenEXR with
+//         options.compression (lossless) on options.threads threads; the bytes do not depend
+//         on the thread count or on when the file is written.
 // The file appears whole or not at all: it is written to a temporary beside the target and
 // renamed over it only on success. Throws std::invalid_argument for an unsupported extension
-// or a frame without the planes the format needs, std::runtime_error (one line, naming the
-// path and the reason) when the file cannot be written. An EXR whose chosen groups hold no
-// plane is refused (std::invalid_argument).
-// The frame's layers (Frame::layers()).
-void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options = {});
-
-// Planes of one size with their names, as files hold them.
-struct ImageLayers {
-    int width = 0, height = 0;
-    std::vector<PlaneRef> layers;  // in file order
-    // EXR only (a PNG has none): string attributes in the header, e.g. what part of a larger
-    // image a shard's file holds (cli/shard.h). Names must not be OpenEXR's own.
-    std::vector<std::pair<std::string, std::string>> attributes = {};
-};
+// or an image without the planes the format needs (an empty list of layers included),
+// std::runtime_error (one line, naming the path and the reason) when the file cannot be
+// written.
 void writeImage(const std::string& path, const ImageLayers& image,
                 const WriteOptions& options = {});
 
@@ -47,7 +36,7 @@ void writeImage(const std::string& path, const ImageLayers& image,
 void checkWritable(const std::string& path);
 
 // Whether writeImage writes `path` as an EXR (its extension, case-insensitive, is .exr):
-// the files --layers and the compression apply to.
+// the files the layer choice and the compression apply to.
 bool isExrPath(const std::string& path);
 // Whether its extension, case-insensitive, is .png (an 8-bit preview, or ssrt diff's heat map).
 bool isPngPath(const std::string& path);
@@ -55,14 +44,13 @@ bool isPngPath(const std::string& path);
 // Extensions writeImage accepts, with the dot: ".png", ".exr".
 const std::vector<std::string>& supportedImageExtensions();
 
-// An equirectangular environment image for Sky::Kind::Image, from any file OpenImageIO reads
-// (.exr, .hdr, ...; subimage 0, level 0). Channels: R, G, B by name when present, else the
-// first three; one channel (or two: grey and alpha) is grey. Values are linear; a file
-// tagged sRGB (8-bit PNG, JPEG) is decoded to linear. Negative values become 0; an image
-// larger than 2^24 texels (above 8192 x 2048) is box-filtered to half size until it fits (the
-// renderer's float texel indices). Throws std::runtime_error, one line naming the path, if
-// the file cannot be read or holds a NaN or an infinity.
-SkyImage readSkyImage(const std::string& path);
+// An equirectangular environment image (for Sky::Kind::Image: renderer/sky_lighting.h
+// makeSkyImage takes it) as RGB (3 channels), from any file OpenImageIO reads (.exr, .hdr,
+// ...; subimage 0, level 0). Channels: R, G, B by name when present, else the first three;
+// one channel (or two: grey and alpha) is grey. Values are linear; a file tagged sRGB (8-bit
+// PNG, JPEG) is decoded to linear. Negative values become 0. Throws std::runtime_error, one
+// line naming the path, if the file cannot be read or holds a NaN or an infinity.
+InterleavedImage readSkyImage(const std::string& path);
 
 // The string attributes of an EXR file's header (ImageLayers::attributes and OpenEXR's own
 // string attributes), by name. Throws std::runtime_error naming the path if it cannot be read.

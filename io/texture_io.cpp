@@ -4,10 +4,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <vector>
+
+#include "core/color.h"
 
 namespace ssrt {
 
@@ -27,21 +30,21 @@ namespace OIIO = OIIO_NAMESPACE;
 bool colourChannel(std::size_t c, int channels) { return channels <= 2 ? c == 0 : c < 3; }
 
 // RGBA from 1 (grey), 2 (grey, alpha), 3 (RGB) or 4+ (RGBA, extra channels dropped).
-std::vector<glm::vec4> toRgba(const std::vector<float>& pixels, int channels, std::size_t count) {
-    std::vector<glm::vec4> out(count);
+std::vector<float> toRgba(const std::vector<float>& pixels, int channels, std::size_t count) {
+    std::vector<float> out(count * 4);
     for (std::size_t i = 0; i < count; ++i) {
         const float* p = pixels.data() + i * std::size_t(channels);
-        glm::vec4 t(1.0f);
+        float* t = out.data() + i * 4;
+        t[3] = 1.0f;
         if (channels <= 2) {
-            t.r = t.g = t.b = p[0];
-            if (channels == 2) t.a = p[1];
+            t[0] = t[1] = t[2] = p[0];
+            if (channels == 2) t[3] = p[1];
         } else {
-            t.r = p[0];
-            t.g = p[1];
-            t.b = p[2];
-            if (channels >= 4) t.a = p[3];
+            t[0] = p[0];
+            t[1] = p[1];
+            t[2] = p[2];
+            if (channels >= 4) t[3] = p[3];
         }
-        out[i] = t;
     }
     return out;
 }
@@ -89,7 +92,8 @@ bool readFloat(OIIO::ImageInput* in, int channels, std::vector<float>& out, bool
     return true;
 }
 
-Texture readOpened(const std::string& name, OIIO::ImageInput* in, TextureEncoding encoding) {
+InterleavedImage readOpened(const std::string& name, OIIO::ImageInput* in,
+                            TextureEncoding encoding) {
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) fail(name, "the image is empty");
     if (spec.depth > 1) fail(name, "volume images are not textures");
@@ -109,11 +113,10 @@ Texture readOpened(const std::string& name, OIIO::ImageInput* in, TextureEncodin
         ok = readFloat(in, channels, pixels, srgb);
     }
     if (!ok) fail(name, "cannot decode the image: " + in->geterror());
-    try {
-        return Texture(name, spec.width, spec.height, toRgba(pixels, channels, count));
-    } catch (const std::invalid_argument&) {
-        fail(name, "the image has texels that are not finite");
-    }
+    InterleavedImage out{spec.width, spec.height, 4, toRgba(pixels, channels, count)};
+    for (const float v : out.pixels)
+        if (!std::isfinite(v)) fail(name, "the image has texels that are not finite");
+    return out;
 }
 
 // Texels exactly as stored: glTF's alpha is straight (unassociated), and OIIO would
@@ -126,15 +129,15 @@ OIIO::ImageSpec readConfig() {
 
 }  // namespace
 
-Texture readTexture(const std::string& path, TextureEncoding encoding) {
+InterleavedImage readTextureImage(const std::string& path, TextureEncoding encoding) {
     const OIIO::ImageSpec config = readConfig();
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
     return readOpened(path, in.get(), encoding);
 }
 
-Texture decodeTexture(const std::string& name, const void* bytes, std::size_t size,
-                      const std::string& formatHint, TextureEncoding encoding) {
+InterleavedImage decodeTextureImage(const std::string& name, const void* bytes, std::size_t size,
+                                    const std::string& formatHint, TextureEncoding encoding) {
     if (size == 0) fail(name, "the image data is empty");
     OIIO::Filesystem::IOMemReader reader(bytes, size);
     // With a configuration, OIIO 2.4 takes the proxy from it, not from open()'s argument.

@@ -6,8 +6,6 @@ namespace ssrt {
 
 namespace {
 
-constexpr std::string_view kGroupNames[kLayerGroupCount] = {"color", "gbuffer", "trace", "truth"};
-
 constexpr std::string_view kCompressionNames[] = {"none", "rle", "zips", "zip", "piz"};
 
 std::string joined(const std::string_view* names, int n) {
@@ -17,17 +15,6 @@ std::string joined(const std::string_view* names, int n) {
 }
 
 }  // namespace
-
-std::string_view layerGroupName(LayerGroup group) { return kGroupNames[int(group)]; }
-
-std::string layerGroupList() { return joined(kGroupNames, kLayerGroupCount); }
-
-std::optional<LayerGroup> parseLayerGroup(std::string_view name) {
-    if (name == "colour") return LayerGroup::Color;
-    for (int g = 0; g < kLayerGroupCount; ++g)
-        if (name == kGroupNames[g]) return LayerGroup(g);
-    return std::nullopt;
-}
 
 std::string_view exrCompressionName(ExrCompression c) { return kCompressionNames[int(c)]; }
 

@@ -1,28 +1,13 @@
-// What an image file holds and how it is compressed: the layer groups an EXR keeps (`ssrt
-// render --layers`), its compression (--exr-compression) and the threads that compress it.
-// Names here are the command line's.
+// How an image file is written: an EXR's compression (--exr-compression) and the threads that
+// compress it. Names here are the command line's. (Which layers a file holds is the caller's
+// choice: a frame's layer groups, `--layers`, are renderer/layer_groups.h.)
 #pragma once
 
-#include <bitset>
 #include <optional>
 #include <string>
 #include <string_view>
 
-#include "renderer/frame.h"  // LayerGroup
-
 namespace ssrt {
-
-// A set of LayerGroup, indexed by the enum's value.
-using LayerGroups = std::bitset<kLayerGroupCount>;
-inline LayerGroups allLayerGroups() { return LayerGroups().set(); }
-inline bool hasGroup(const LayerGroups& groups, LayerGroup g) { return groups.test(int(g)); }
-
-// "color", "gbuffer", "trace", "truth".
-std::string_view layerGroupName(LayerGroup group);
-// The group a name gives ("colour" is "color" too), or none.
-std::optional<LayerGroup> parseLayerGroup(std::string_view name);
-// "color, gbuffer, trace, truth" (for help and errors).
-std::string layerGroupList();
 
 // OpenEXR's lossless compressions only: PXR24, B44(A) and DWAA/B would round or drop the
 // float bits that ids and view depth need (B44 leaves float channels as they are, so it
@@ -38,7 +23,6 @@ std::optional<ExrCompression> parseExrCompression(std::string_view name);
 std::string exrCompressionList();  // "none, rle, zips, zip, piz"
 
 struct WriteOptions {
-    LayerGroups layers = allLayerGroups();  // EXR only: a PNG is always the display planes
     ExrCompression compression = kDefaultExrCompression;
     int threads = 0;  // threads compressing an EXR; 0: every core
 };

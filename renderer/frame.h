@@ -29,7 +29,7 @@
 namespace ssrt {
 
 // Which part of the frame a file layer belongs to, for choosing what a file holds (`ssrt
-// render --layers`, io/image_io.h). Frame::layers() gives each layer its group.
+// render --layers`, renderer/layer_groups.h). Frame::layers() gives each layer its group.
 enum class LayerGroup : uint8_t {
     Color,    // ImagePlanes: colour, display, shadow
     GBuffer,  // GBuffer, MaterialPlanes, IdPlanes

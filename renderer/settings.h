@@ -42,7 +42,7 @@ struct TraceSettings {
     // Which pixels get rays (trace/trace_layout.h): every one (full), half of them in a
     // checkerboard that alternates per frame, SSR and SSGI on opposite phases, or (SSGI only)
     // one per 2x2 block on a half-resolution frame. The others are reconstructed from the
-    // traced ones (denoise/reconstruct.h) before anything reads the planes.
+    // traced ones (trace/reconstruct.h) before anything reads the planes.
     // The defaults are the default quality preset's (renderer/quality.h: medium).
     TraceLayout ssrLayout = TraceLayout::Checkerboard;
     TraceLayout ssgiLayout = TraceLayout::Half;

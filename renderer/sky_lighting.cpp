@@ -4,10 +4,34 @@
 
 #include <algorithm>
 #include <mutex>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "shading/prefiltered_env.h"
 
 namespace ssrt {
+
+SkyImage makeSkyImage(std::string source, InterleavedImage rgb) {
+    if (rgb.channels != 3 || rgb.width < 1 || rgb.height < 1 ||
+        rgb.pixels.size() != std::size_t(3) * rgb.width * rgb.height)
+        throw std::invalid_argument("sky image '" + source + "': not " + std::to_string(rgb.width) +
+                                    "x" + std::to_string(rgb.height) + " RGB");
+    SkyImage img;
+    img.source = std::move(source);
+    img.width = rgb.width;
+    img.height = rgb.height;
+    img.rgb = std::move(rgb.pixels);
+    // Box-filter to half size until the renderer's float texel indices are exact.
+    while (std::size_t(img.width) * img.height > kSkyMaxTexels) {
+        EquirectImage half =
+            downsampleBox(EquirectView{img.rgb.data(), img.width, img.height, nullptr, nullptr});
+        img.width = half.width;
+        img.height = half.height;
+        img.rgb = std::move(half.rgb);
+    }
+    return img;
+}
 
 EquirectView SkyLighting::level(const SkyImage& image, int i) const {
     if (i == 0)

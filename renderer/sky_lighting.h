@@ -4,13 +4,26 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "core/image.h"
 #include "scenes/scene.h"
 #include "shading/environment.h"
 #include "shading/irradiance_sh.h"
 
 namespace ssrt {
+
+// The most texels an image sky holds: the environment's float texel indices are exact below
+// 2^24 (shading/environment.h; Scene::validate refuses more).
+inline constexpr std::size_t kSkyMaxTexels = std::size_t(1) << 24;
+
+// An image sky from decoded RGB (3 channels, linear, finite and >= 0: io/image_io.h
+// readSkyImage), `source` naming where it came from. An image larger than kSkyMaxTexels
+// (above 8192 x 2048) is box-filtered to half size (shading/environment.h downsampleBox)
+// until it fits. Throws std::invalid_argument for an image that is not 3-channel RGB of its
+// size.
+SkyImage makeSkyImage(std::string source, InterleavedImage rgb);
 
 inline constexpr int kSkyLevels = 7;            // roughness levels 0, 1/6, ..., 1
 inline constexpr int kSkyPrefilterWidth = 512;  // prefilter and SH from a copy at most this wide

@@ -4,10 +4,10 @@
 #include <limits>
 #include <utility>
 
-#include "denoise/reconstruct.h"
 #include "renderer/pass_timer.h"
 #include "shading/composite.h"
 #include "trace/hit_stats.h"
+#include "trace/reconstruct.h"
 #include "trace/ssgi.h"
 
 namespace ssrt {

@@ -147,17 +147,18 @@ Texture TextureTable::load(int textureIndex, TextureEncoding encoding) const {
         const std::vector<unsigned char>& buf = model_.buffers[bv.buffer].data;
         if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
             fail(name + ": bufferView " + std::to_string(img.bufferView) + " overruns its buffer");
-        texture = decodeTexture(name, buf.data() + bv.byteOffset, bv.byteLength,
-                                formatHint(img.mimeType), encoding);
+        texture =
+            makeTexture(name, decodeTextureImage(name, buf.data() + bv.byteOffset, bv.byteLength,
+                                                 formatHint(img.mimeType), encoding));
     } else if (auto it = dataUris_.find(tex.source); it != dataUris_.end()) {
-        texture = decodeTexture(name, it->second.data(), it->second.size(),
-                                formatHint(img.mimeType), encoding);
+        texture = makeTexture(name, decodeTextureImage(name, it->second.data(), it->second.size(),
+                                                       formatHint(img.mimeType), encoding));
     } else if (!img.uri.empty()) {
         const fs::path file = fs::path(path_).parent_path() / percentDecoded(img.uri);
         std::error_code ec;
         if (!fs::is_regular_file(file, ec)) fail(name + " file not found: " + file.string());
         try {
-            texture = readTexture(file.string(), encoding);
+            texture = makeTexture(file.string(), readTextureImage(file.string(), encoding));
         } catch (const std::runtime_error& e) {
             fail(name + ": " + e.what());  // the error names the file; say which image it is
         }

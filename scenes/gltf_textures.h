@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/texture_io.h"
+#include "scenes/texture.h"
 
 namespace tinygltf {
 class Model;

@@ -133,8 +133,9 @@ struct DirectionalLight {
 
 // An equirectangular (latitude-longitude) HDR image: linear RGB, interleaved, row-major,
 // row 0 at +Y, u = 0.5 looking down -Z (the mapping of shading/environment.h). Loaded at the
-// edge (io/image_io.h). Never changed once shared: the renderer caches what it derives from
-// it (prefiltered levels, irradiance) by the image's identity.
+// edge (io/image_io.h readSkyImage; renderer/sky_lighting.h makeSkyImage). Never changed once
+// shared: the renderer caches what it derives from it (prefiltered levels, irradiance) by the
+// image's identity.
 struct SkyImage {
     std::string source;  // where it came from (a path), for messages
     int width = 0, height = 0;

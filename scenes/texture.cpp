@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/lane_math.h"
 
@@ -139,9 +141,20 @@ glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy) const 
     return a * (1.0f - f) + sampleLevel(int(l0) + 1, uv) * f;
 }
 
-float srgbToLinear(float c) {
-    if (!(c > 0.04045f)) return c > 0.0f ? c / 12.92f : 0.0f;
-    return lanes::pow((c + 0.055f) / 1.055f, 2.4f);
+Texture makeTexture(std::string name, const InterleavedImage& rgba) {
+    if (rgba.channels != 4)
+        throw std::invalid_argument("texture '" + name + "': an RGBA image has 4 channels, not " +
+                                    std::to_string(rgba.channels));
+    const std::size_t count = std::size_t(rgba.width) * std::size_t(rgba.height);
+    if (rgba.width < 1 || rgba.height < 1 || rgba.pixels.size() != count * 4)
+        throw std::invalid_argument("texture '" + name + "': the pixels are not " +
+                                    std::to_string(rgba.width) + "x" + std::to_string(rgba.height) +
+                                    " RGBA");
+    std::vector<glm::vec4> texels(count);
+    for (std::size_t i = 0; i < count; ++i)
+        texels[i] = glm::vec4(rgba.pixels[i * 4], rgba.pixels[i * 4 + 1], rgba.pixels[i * 4 + 2],
+                              rgba.pixels[i * 4 + 3]);
+    return Texture(std::move(name), rgba.width, rgba.height, std::move(texels));
 }
 
 }  // namespace ssrt

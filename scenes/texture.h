@@ -4,7 +4,7 @@
 // Conventions (glTF 2.0):
 //   UV (0, 0) is the top-left corner of the image (row 0 first), (1, 1) the bottom-right;
 //   texel (i, j) covers u in [i, i + 1) / w, v in [j, j + 1) / h, its centre at +0.5.
-//   Base-colour images are sRGB encoded and decoded on loading (srgbToLinear); metallic-
+//   Base-colour images are sRGB encoded and decoded on loading (core/color.h); metallic-
 //   roughness images are linear (roughness in G, metallic in B).
 //
 // Mip level k + 1 is the 2x2 box average of level k (sizes halve, rounding down, never
@@ -20,6 +20,8 @@
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
+
+#include "core/image.h"
 
 namespace ssrt {
 
@@ -54,7 +56,9 @@ struct Texture {
     float lod(glm::vec2 dUVdx, glm::vec2 dUVdy) const;
 };
 
-// The sRGB transfer function's inverse (IEC 61966-2-1), with the project's own pow.
-float srgbToLinear(float encoded);
+// A texture from a decoded RGBA image (io/texture_io.h): its pixels are level 0, the mips
+// are built. Throws std::invalid_argument as the constructor does, and for an image that
+// does not hold 4 channels.
+Texture makeTexture(std::string name, const InterleavedImage& rgba);
 
 }  // namespace ssrt

@@ -34,7 +34,7 @@ struct LayeredImage {
     void write(const std::string& path) const {
         ImageLayers layers{width, height, {}};
         for (const auto& [name, plane] : planes) layers.layers.push_back({name, &plane});
-        writeImage(path, layers, WriteOptions{allLayerGroups(), ExrCompression::Zips, 1});
+        writeImage(path, layers, WriteOptions{ExrCompression::Zips, 1});
     }
 };
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "core/lane_vec.h"
+#include "core/screen_lanes.h"
 #include "core/tiles.h"
 #include "shading/direct_lanes.h"
-#include "trace/screen_lanes.h"
 #include "trace/ssgi_kernel.h"
 
 namespace ssrt::SSRT_ISA_NS {

@@ -1,6 +1,6 @@
 // Trace layouts (issue 17, item 2): which pixels get rays in a frame. Full traces every
 // pixel; the other two trace fewer and leave the rest to a reconstruction
-// (denoise/reconstruct.h) that fills them from the traced pixels before anything reads the
+// (trace/reconstruct.h) that fills them from the traced pixels before anything reads the
 // planes, and to the denoiser's history, which sees every pixel over a few frames.
 //
 // - Checkerboard (NRD's CheckerboardMode, SSR and SSGI): pixel (x, y) of frame f gets rays
@@ -12,7 +12,7 @@
 //   four positions by frame (halfOffset), traced on a half-resolution frame built from the
 //   chosen pixels (buildHalfFrame): its G-buffer, its depth and a Hi-Z pyramid of that
 //   depth. The march, the resolve and the hit statistics run at half resolution; the
-//   upsample (denoise/reconstruct.h) brings them back.
+//   upsample (trace/reconstruct.h) brings them back.
 #pragma once
 
 #include <cstdint>

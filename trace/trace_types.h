@@ -1,16 +1,13 @@
-// What the screen-space passes hand each other: the camera as the marchers see it, the rays
-// of one pass (one per pixel) and what the march found for each. Plain planes and values, so
-// the renderer, the EXR writer and the Embree checks (issue 6) read the same data.
-//
-// View space is the camera's: x right, y up, the camera looks down -z. A G-buffer `viewZ`
-// is the positive distance along -z (0 for background), so a point at pixel (px, py) with
-// depth z sits at ((2 (px + 0.5) / width - 1) tanHalfX z, (1 - 2 (py + 0.5) / height)
-// tanHalfY z, -z). Pixel rows run top to bottom.
+// What the screen-space passes hand each other: the rays of one pass (one per pixel) and
+// what the march found for each, with the camera as the marchers see it (core/camera.h, whose
+// view-space conventions they follow). Plain planes and values, so the renderer, the EXR
+// writer and the Embree checks (issue 6) read the same data.
 #pragma once
 
 #include <cstdint>
 #include <string_view>
 
+#include "core/camera.h"
 #include "core/image.h"
 #include "core/plane_table.h"
 
@@ -21,22 +18,6 @@ namespace ssrt {
 struct RaySeed {
     uint32_t frame = 0;
     uint32_t sample = 0;
-};
-
-// The pinhole camera of the frame, as plain numbers.
-struct TraceCamera {
-    int width = 0, height = 0;
-    float tanHalfX = 1.0f, tanHalfY = 1.0f;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
-    float nearZ = 0.05f, farZ = 100.0f;      // positive distances
-    float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rotation, column-major
-    // World positions in the passes and the truth are measured from `origin` (the scene's
-    // bounds centre, Scene::origin()): a point is origin + position + viewToWorld * view.
-    // The marchers read neither.
-    float position[3] = {0, 0, 0};  // the camera, from the origin
-    float origin[3] = {0, 0, 0};
-    // The diagonal of the scene's bounding box (world units): the unit of the march's
-    // relative lengths (MarchSettings::maxDistance); 0 where nobody set it.
-    float sceneDiagonal = 0.0f;
 };
 
 // One ray per pixel, view space, planes of the frame's size. A pixel without a ray

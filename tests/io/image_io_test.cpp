@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/layer_groups.h"
 #include "temp_dir.h"
 
 using namespace ssrt;
@@ -48,6 +49,11 @@ Frame makeFrame(int width, int height, const std::vector<std::string>& names) {
         frame.extraLayers.push_back({names[c], std::move(plane)});
     }
     return frame;
+}
+
+// A frame's every layer (renderer/layer_groups.h), as the command line writes an EXR of it.
+void writeImage(const std::string& path, const Frame& frame, const WriteOptions& options = {}) {
+    ssrt::writeImage(path, frameLayers(frame), options);
 }
 
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -157,7 +163,7 @@ TEST_CASE("every EXR compression keeps every bit, and its bytes do not depend on
         std::string first;
         for (int threads : {1, 3}) {
             const std::string path = dir.file("frame.exr");
-            writeImage(path, frame, WriteOptions{allLayerGroups(), compression, threads});
+            writeImage(path, frame, WriteOptions{compression, threads});
             const std::string bytes = fileBytes(path);
             if (threads == 1) first = bytes;
             else CHECK(bytes == first);
@@ -182,48 +188,7 @@ TEST_CASE("every EXR compression keeps every bit, and its bytes do not depend on
     CHECK(dir.listing() == std::vector<std::string>{"frame.exr"});
 }
 
-TEST_CASE("an EXR holds exactly the layer groups asked for, in the frame's order") {
-    TempDir dir;
-    const Frame frame = makeFrame(4, 3, {"color.R", "viewZ", "materialId", "ssr.R", "ref.color.R"});
-    const LayerGroup groups[] = {LayerGroup::Color, LayerGroup::GBuffer, LayerGroup::GBuffer,
-                                 LayerGroup::Trace, LayerGroup::Truth};
-    ImageLayers image{4, 3, {}, {}};
-    for (std::size_t i = 0; i < frame.extraLayers.size(); ++i)
-        image.layers.push_back({frame.extraLayers[i].name, &frame.extraLayers[i].plane, groups[i]});
-    const std::string path = dir.file("frame.exr");
-    const auto written = [&](LayerGroups chosen) {
-        writeImage(path, image, WriteOptions{chosen, ExrCompression::Zips, 1});
-        std::vector<std::string> names = readChannelNames(path);
-        std::sort(names.begin(), names.end());
-        return names;
-    };
-    const auto only = [](LayerGroup g) { return LayerGroups().set(int(g)); };
-    CHECK(written(only(LayerGroup::Color)) == std::vector<std::string>{"color.R"});
-    CHECK(written(only(LayerGroup::GBuffer)) == std::vector<std::string>{"materialId", "viewZ"});
-    CHECK(written(only(LayerGroup::Trace)) == std::vector<std::string>{"ssr.R"});
-    CHECK(written(only(LayerGroup::Truth) | only(LayerGroup::Color)) ==
-          std::vector<std::string>{"color.R", "ref.color.R"});
-    CHECK(written(allLayerGroups()).size() == 5);
-
-    // No chosen plane: refused, the file as it was.
-    const std::string before = fileBytes(path);
-    image.layers.pop_back();
-    CHECK_THROWS_WITH_AS(writeImage(path, image, WriteOptions{only(LayerGroup::Truth)}),
-                         doctest::Contains("no planes"), std::invalid_argument);
-    CHECK(fileBytes(path) == before);
-    // A PNG is the display planes whatever the groups.
-    const Frame preview = makeFrame(2, 2, {"display.R", "display.G", "display.B"});
-    writeImage(dir.file("preview.png"), preview, WriteOptions{only(LayerGroup::Trace)});
-    CHECK(readChannelNames(dir.file("preview.png")) == std::vector<std::string>{"R", "G", "B"});
-}
-
-TEST_CASE("layer groups and compressions are parsed by the names they print") {
-    for (int g = 0; g < kLayerGroupCount; ++g)
-        CHECK(parseLayerGroup(layerGroupName(LayerGroup(g))) == LayerGroup(g));
-    CHECK(parseLayerGroup("colour") == LayerGroup::Color);
-    CHECK_FALSE(parseLayerGroup("Color").has_value());
-    CHECK_FALSE(parseLayerGroup("all").has_value());  // a word of the command line's list
-    CHECK(layerGroupList() == "color, gbuffer, trace, truth");
+TEST_CASE("compressions are parsed by the names they print") {
     for (int c = 0; c <= int(ExrCompression::Piz); ++c)
         CHECK(parseExrCompression(exrCompressionName(ExrCompression(c))) == ExrCompression(c));
     CHECK_FALSE(parseExrCompression("dwaa").has_value());  // lossy: not offered

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "io/image_io.h"
+#include "renderer/layer_groups.h"
+#include "renderer/sky_lighting.h"
 #include "scenes/shot.h"
 #include "temp_dir.h"
 
@@ -34,6 +36,14 @@ Frame planesFrame(int w, int h, const std::vector<std::string>& names, F value) 
     return frame;
 }
 
+// Writes the frame's planes as an EXR.
+void writeFrame(const std::string& path, const Frame& frame) {
+    writeImage(path, frameLayers(frame));
+}
+
+// The sky the command line makes of a file (cli/options.cpp): read, then made a SkyImage.
+SkyImage readSky(const std::string& path) { return makeSkyImage(path, readSkyImage(path)); }
+
 std::string errorOf(const std::string& path) {
     try {
         readSkyImage(path);
@@ -49,8 +59,8 @@ TEST_CASE("sky image io: RGB by name, grey from one channel, negatives to zero")
     TempDir dir;
     // EXR stores channels sorted by name (B, G, R, Z): the reader must pick them by name.
     const auto value = [](int c, int x, int y) { return float(c * 100 + y * 8 + x) + 0.25f; };
-    writeImage(dir.file("rgb.exr"), planesFrame(8, 4, {"Z", "R", "G", "B"}, value));
-    const SkyImage rgb = readSkyImage(dir.file("rgb.exr"));
+    writeFrame(dir.file("rgb.exr"), planesFrame(8, 4, {"Z", "R", "G", "B"}, value));
+    const SkyImage rgb = readSky(dir.file("rgb.exr"));
     CHECK(rgb.width == 8);
     CHECK(rgb.height == 4);
     CHECK(rgb.source == dir.file("rgb.exr"));
@@ -62,10 +72,10 @@ TEST_CASE("sky image io: RGB by name, grey from one channel, negatives to zero")
                 exact &= rgb.rgb[(std::size_t(y) * 8 + x) * 3 + c] == value(c + 1, x, y);
     CHECK(exact);
 
-    writeImage(dir.file("grey.exr"), planesFrame(4, 2, {"Y"}, [](int, int x, int y) {
+    writeFrame(dir.file("grey.exr"), planesFrame(4, 2, {"Y"}, [](int, int x, int y) {
                    return x == 1 ? -3.0f : float(x + y);
                }));
-    const SkyImage grey = readSkyImage(dir.file("grey.exr"));
+    const SkyImage grey = readSky(dir.file("grey.exr"));
     REQUIRE(grey.rgb.size() == 3u * 4 * 2);
     CHECK(grey.rgb[3 * 2 + 0] == 2.0f);  // (2, 0)
     CHECK(grey.rgb[3 * 2 + 2] == 2.0f);
@@ -75,7 +85,7 @@ TEST_CASE("sky image io: RGB by name, grey from one channel, negatives to zero")
 TEST_CASE("sky image io: a texel that is not finite, or no file, is one line naming it") {
     TempDir dir;
     const std::string nan = dir.file("nan.exr");
-    writeImage(nan, planesFrame(4, 2, {"R", "G", "B"}, [](int c, int x, int y) {
+    writeFrame(nan, planesFrame(4, 2, {"R", "G", "B"}, [](int c, int x, int y) {
                    return c == 1 && x == 3 && y == 1 ? std::numeric_limits<float>::infinity()
                                                      : 1.0f;
                }));
@@ -95,7 +105,7 @@ TEST_CASE("examples: the committed shot files parse and their sky loads") {
     }
     const Shot shot = loadShot(dir + "spheres_sky.json");
     REQUIRE(shot.environment.file);
-    const SkyImage sky = readSkyImage(*shot.environment.file);
+    const SkyImage sky = readSky(*shot.environment.file);
     CHECK(sky.width == 2 * sky.height);
     CHECK(*std::max_element(sky.rgb.begin(), sky.rgb.end()) > 10.0f);  // the sun
 }

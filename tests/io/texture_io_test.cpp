@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "core/color.h"
 #include "image_files.h"
+#include "scenes/texture.h"
 #include "temp_dir.h"
 
 using namespace ssrt;
@@ -19,6 +21,15 @@ using test::TempDir;
 using test::writeImage;
 
 namespace {
+
+// What the glTF loader does with a decoded image (scenes/gltf_textures.cpp): a Texture of it.
+Texture readTexture(const std::string& path, TextureEncoding encoding) {
+    return makeTexture(path, readTextureImage(path, encoding));
+}
+Texture decodeTexture(const std::string& name, const void* bytes, std::size_t size,
+                      const std::string& formatHint, TextureEncoding encoding) {
+    return makeTexture(name, decodeTextureImage(name, bytes, size, formatHint, encoding));
+}
 
 std::string errorOf(const std::string& path) {
     try {

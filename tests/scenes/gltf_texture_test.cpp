@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/color.h"
 #include "gltf_test_files.h"
 #include "image_files.h"
 #include "io/texture_io.h"

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/color.h"
+
 using ssrt::Texture;
 using ssrt::TextureWrap;
 

@@ -33,7 +33,7 @@
 //   hitDistance = sum w h d / sum w h  (0 without a hit)
 //   steps       = the pixel's own march steps: 0 where it had no ray (the heat map says where
 //                 work was done)
-// A kernel over the lane type, one copy per ISA (denoise/reconstruct_kernel.cpp), of
+// A kernel over the lane type, one copy per ISA (trace/reconstruct_kernel.cpp), of
 // correctly rounded operations only: the same bits on every ISA and thread count.
 #pragma once
 

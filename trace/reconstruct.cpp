@@ -1,11 +1,11 @@
-#include "denoise/reconstruct.h"
+#include "trace/reconstruct.h"
 
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/tiles.h"
-#include "denoise/reconstruct_kernel.h"
+#include "trace/reconstruct_kernel.h"
 
 namespace ssrt {
 

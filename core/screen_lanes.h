@@ -1,6 +1,7 @@
-// Lane-generic screen lookups shared by the resolve kernels (SSR, SSGI): pixel indices,
-// nearest and bilinear reads of a plane at a continuous pixel position (pixel centres at
-// +0.5, edges clamped), view-space points of pixels. Templates, always_inline (core/lanes.h).
+// Lane-generic screen lookups shared by the kernels that read the screen (trace/'s resolves
+// and layout reconstruction, denoise/'s REBLUR): pixel indices, nearest and bilinear reads of
+// a plane at a continuous pixel position (pixel centres at +0.5, edges clamped), view-space
+// points of pixels. Templates, always_inline (core/lanes.h).
 #pragma once
 
 #include <cstddef>
@@ -58,7 +59,7 @@ SSRT_INLINE L sample(const float* plane, const Bilinear<L>& b) {
     return top + (bottom - top) * b.ty;
 }
 
-// The view-space point at continuous pixel position (x, y) and view depth z (trace_types.h).
+// The view-space point at continuous pixel position (x, y) and view depth z (core/camera.h).
 template <class L>
 SSRT_INLINE V3<L> viewPoint(L x, L y, L z, int w, int h, float tanHalfX, float tanHalfY) {
     const L ndcX = x * L(2.0f / float(w)) - L(1.0f);

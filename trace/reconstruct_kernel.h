@@ -1,5 +1,5 @@
-// The reconstruction's kernel, one copy per ISA (denoise/reconstruct_kernel.cpp); the
-// method is in denoise/reconstruct.h.
+// The reconstruction's kernel, one copy per ISA (trace/reconstruct_kernel.cpp); the
+// method is in trace/reconstruct.h.
 #pragma once
 
 #include <cstddef>

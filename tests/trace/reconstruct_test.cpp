@@ -1,7 +1,7 @@
-// The reconstruction of a trace layout's untraced pixels (denoise/reconstruct.h): constant
+// The reconstruction of a trace layout's untraced pixels (trace/reconstruct.h): constant
 // signals stay constant, depth edges do not bleed, every ISA and thread count gives the
 // same bits.
-#include "denoise/reconstruct.h"
+#include "trace/reconstruct.h"
 
 #include <doctest/doctest.h>
 

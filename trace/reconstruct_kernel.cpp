@@ -4,9 +4,9 @@
 #include <limits>
 
 #include "core/lane_vec.h"
+#include "core/screen_lanes.h"
 #include "core/tiles.h"
-#include "denoise/reconstruct_kernel.h"
-#include "trace/screen_lanes.h"
+#include "trace/reconstruct_kernel.h"
 
 namespace ssrt::SSRT_ISA_NS {
 
@@ -63,7 +63,7 @@ SSRT_INLINE void readOwn(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) 
     readValues(a, c, v);
 }
 
-// w_plane w_normal (denoise/reconstruct.h) and the relative plane distance.
+// w_plane w_normal (trace/reconstruct.h) and the relative plane distance.
 SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const Candidate& c,
                                 Lane& dist) {
     const Lane zero(0.0f), one(1.0f);
