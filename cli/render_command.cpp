@@ -175,6 +175,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     }
     checkWritable(sequenceFileName(output, int(block.begin), frames));
     const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
+    // The id planes exist to be looked at: a PNG, which shows none of them, does not make them.
+    if (!isExrPath(output)) request.settings.idPlanes = false;
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
             "--layers: a rendered frame has no truth layers (ssrt "

@@ -338,6 +338,19 @@ TEST_CASE("cli: --stats prints every pass and every raster counter of both passe
     }
 }
 
+TEST_CASE("cli: a PNG render makes no plane only an EXR shows (the --stats memory table)") {
+    TempDir dir;
+    for (const char* name : {"frame.png", "frame.exr"}) {
+        const bool exr = std::string(name).find(".exr") != std::string::npos;
+        CAPTURE(std::string(name));
+        const Result r = run({"render", "--width", "24", "--height", "16", "--threads", "1", "-o",
+                              dir.file(name), "--stats"});
+        REQUIRE_MESSAGE(r.code == 0, r.err);
+        CHECK(contains(r.out, "  gbuffer "));
+        CHECK(contains(r.out, "  ids ") == exr);
+    }
+}
+
 TEST_CASE("cli: render writes the file, reports progress and stats") {
     TempDir dir;
     const std::string path = dir.file("frame.exr");

@@ -1,0 +1,144 @@
+// What this machine allows, the limits a pass's bytes and gathers are set against
+// (perf/README.md, "The frame against the machine"): memory read and copy bandwidth over
+// buffers far past the caches, and the rate of hardware gathers (AVX-512, else AVX2) from a
+// table that fits L1, L2, or neither, with 1 and 2 threads.
+//
+//   ./build/perf/ssrt_bench --benchmark_filter=Machine
+#include <benchmark/benchmark.h>
+#include <immintrin.h>
+
+#include <cstdint>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "core/aligned.h"
+#include "core/rng.h"
+
+namespace {
+
+using Floats = std::vector<float, ssrt::AlignedAllocator<float, 64>>;
+
+constexpr std::size_t kStreamBytes = std::size_t(512) << 20;  // far past any last-level cache
+
+// Runs fn(part) on `threads` threads, part = 0 .. threads-1, and waits.
+template <class Fn>
+void onThreads(int threads, Fn&& fn) {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back([&, t] { fn(t); });
+    fn(0);
+    for (std::thread& th : pool) th.join();
+}
+
+// Integer sums, so the compiler vectorises the loop (a float sum must keep its order).
+uint64_t sumWords(const uint32_t* p, std::size_t n) {
+    uint64_t a = 0, b = 0, c = 0, d = 0;
+    for (std::size_t i = 0; i + 4 <= n; i += 4)
+        a += p[i], b += p[i + 1], c += p[i + 2], d += p[i + 3];
+    return a + b + c + d;
+}
+
+void BM_MachineRead(benchmark::State& state) {
+    const int threads = int(state.range(0));
+    const std::size_t n = kStreamBytes / sizeof(uint32_t);
+    std::vector<uint32_t, ssrt::AlignedAllocator<uint32_t, 64>> buffer(n, 1u);
+    std::vector<uint64_t> sums(std::size_t(threads), 0);
+    for (auto _ : state) {
+        onThreads(threads, [&](int t) {
+            const std::size_t part = n / std::size_t(threads);
+            sums[std::size_t(t)] = sumWords(buffer.data() + part * std::size_t(t), part);
+        });
+        benchmark::DoNotOptimize(sums.data());
+    }
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(kStreamBytes));
+}
+
+void BM_MachineCopy(benchmark::State& state) {
+    const int threads = int(state.range(0));
+    const std::size_t n = kStreamBytes / 2 / sizeof(float);
+    Floats from(n, 1.0f), to(n, 0.0f);
+    for (auto _ : state) {
+        onThreads(threads, [&](int t) {
+            const std::size_t part = n / std::size_t(threads), at = part * std::size_t(t);
+            std::memcpy(to.data() + at, from.data() + at, part * sizeof(float));
+        });
+        benchmark::ClobberMemory();
+    }
+    // Bytes read plus bytes written.
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(kStreamBytes));
+}
+
+// Random indices into a table of `tableFloats`, 64 Ki of them (256 KiB: they stay in L2).
+std::vector<int32_t> randomIndices(std::size_t tableFloats) {
+    std::vector<int32_t> idx(std::size_t(1) << 16);
+    for (std::size_t i = 0; i < idx.size(); ++i)
+        idx[i] = int32_t(ssrt::pcgHash(uint32_t(i)) % uint32_t(tableFloats));
+    return idx;
+}
+
+__attribute__((target("avx512f"))) float gather512(const float* table, const int32_t* idx,
+                                                   std::size_t n, int rounds) {
+    __m512 acc = _mm512_setzero_ps();
+    for (int r = 0; r < rounds; ++r)
+        for (std::size_t i = 0; i < n; i += 16)
+            acc = _mm512_add_ps(
+                acc, _mm512_mask_i32gather_ps(acc, 0xffff, _mm512_loadu_si512(idx + i), table, 4));
+    alignas(64) float lanes[16];
+    _mm512_store_ps(lanes, acc);
+    return lanes[0] + lanes[15];
+}
+
+__attribute__((target("avx2"))) float gather256(const float* table, const int32_t* idx,
+                                                std::size_t n, int rounds) {
+    __m256 acc = _mm256_setzero_ps();
+    for (int r = 0; r < rounds; ++r)
+        for (std::size_t i = 0; i < n; i += 8)
+            acc = _mm256_add_ps(
+                acc, _mm256_i32gather_ps(
+                         table, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(idx + i)), 4));
+    alignas(32) float lanes[8];
+    _mm256_store_ps(lanes, acc);
+    return lanes[0] + lanes[7];
+}
+
+// Args: table KiB, threads. Items are gathered floats.
+void BM_MachineGather(benchmark::State& state) {
+    const bool avx512 = __builtin_cpu_supports("avx512f");
+    if (!avx512 && !__builtin_cpu_supports("avx2")) return state.SkipWithError("no AVX2");
+    const std::size_t tableFloats = std::size_t(state.range(0)) * 1024 / sizeof(float);
+    const int threads = int(state.range(1));
+    const Floats table(tableFloats, 1.0f);
+    const std::vector<int32_t> idx = randomIndices(tableFloats);
+    constexpr int kRounds = 32;
+    std::vector<float> sink(static_cast<std::size_t>(threads));
+    for (auto _ : state) {
+        onThreads(threads, [&](int t) {
+            sink[std::size_t(t)] = avx512
+                                       ? gather512(table.data(), idx.data(), idx.size(), kRounds)
+                                       : gather256(table.data(), idx.data(), idx.size(), kRounds);
+        });
+        benchmark::DoNotOptimize(sink.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(idx.size()) * kRounds * threads);
+    state.SetLabel(avx512 ? "avx512" : "avx2");
+}
+
+}  // namespace
+
+BENCHMARK(BM_MachineRead)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MachineCopy)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MachineGather)
+    ->ArgsProduct({{16, 512, 32768}, {1, 2}})
+    ->ArgNames({"table_KiB", "threads"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
