@@ -12,6 +12,16 @@ namespace ssrt {
 
 void DenoiseSettings::validate() const { checkFields(kDenoiseFields, *this, "DenoiseSettings"); }
 
+DenoiseSettings halfResolutionDiffuse(const DenoiseSettings& full) {
+    DenoiseSettings s = full;
+    s.diffusePrepassRadius =
+        full.diffusePrepassRadius > 0.0f ? 0.5f * full.diffusePrepassRadius : 1.5f;
+    s.minBlurRadius = 0.5f * full.minBlurRadius;
+    s.maxBlurRadius = 0.25f * full.maxBlurRadius;
+    s.historyFixStride = std::max(1, full.historyFixStride / 2);
+    return s;
+}
+
 namespace {
 
 // The rotation draws' sample counters: far above any ray generator's (samples < 64), so the
@@ -87,7 +97,7 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
     v.frustum = 2.0f * (grid.width < grid.height ? cam.tanHalfX : cam.tanHalfY);
     v.viewZ = in.viewZ->row(0);
     for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
-    v.roughness = in.roughness->row(0);
+    v.roughness = in.roughness ? in.roughness->row(0) : nullptr;  // read for specular only
     v.signalZ[0] = sc.signalZ[0].row(0);
     v.signalZ[1] = sc.signalZ[1].row(0);
     v.tiles = sc.tiles.data();
@@ -99,7 +109,6 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
 void checkInputs(const DenoiseInputs& in, int w, int h) {
     need(in.viewZ, w, h, "viewZ");
     for (int i = 0; i < 3; ++i) need(in.normal[i], w, h, "normal");
-    need(in.roughness, w, h, "roughness");
     for (int i = 0; i < 2; ++i) need(in.motion[i], w, h, "motion");
     if (in.diffuse[0]) {
         for (int i = 0; i < 3; ++i) {
@@ -110,6 +119,7 @@ void checkInputs(const DenoiseInputs& in, int w, int h) {
         need(in.diffuseHitDistance, w, h, "diffuse hit distance");
     }
     if (in.ssr[0]) {
+        need(in.roughness, w, h, "roughness");
         for (int i = 0; i < 3; ++i) {
             need(in.ssr[i], w, h, "ssr");
             need(in.envSpecular[i], w, h, "envSpecular");
@@ -294,7 +304,7 @@ void commitHistory(Context& c) {
             };
             copyRow(*in.viewZ, h.viewZ);
             for (int i = 0; i < 3; ++i) copyRow(*in.normal[i], h.normal[i]);
-            copyRow(*in.roughness, h.roughness);
+            if (in.roughness) copyRow(*in.roughness, h.roughness);
             for (int k = 0; k < 2; ++k) {
                 const float* a = c.sc.frames[k].row(y);
                 const float* m = masks[k]->row(y);
@@ -327,12 +337,13 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         sc.fast[i].ensureSize(w, h);
     }
     sc.tiles.assign(std::size_t(grid.count()), 0);
+    // The outputs of a signal not given are left as they are (the caller may fill them).
     for (int ch = 0; ch < 3; ++ch) {
-        keepIf(diffuse, out.diffuse[ch]);
-        keepIf(specular, out.specular[ch]);
+        if (diffuse) out.diffuse[ch].ensureSize(w, h);
+        if (specular) out.specular[ch].ensureSize(w, h);
     }
-    keepIf(diffuse, out.diffuseFrames);
-    keepIf(specular, out.specularFrames);
+    if (diffuse) out.diffuseFrames.ensureSize(w, h);
+    if (specular) out.specularFrames.ensureSize(w, h);
     if (!history) return;
     history->viewZ.ensureSize(w, h);
     history->roughness.ensureSize(w, h);

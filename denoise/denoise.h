@@ -40,9 +40,9 @@ struct DenoiseInputs {
     uint32_t frameIndex = 0;  // rotates the spatial kernels (counter RNG, core/rng.h)
     // Guides (the G-buffer, renderer/frame.h): viewZ 0 is background.
     const PlaneF* viewZ = nullptr;
-    const PlaneF* normal[3] = {};  // world space, unit
-    const PlaneF* roughness = nullptr;
-    const PlaneF* albedo[3] = {};  // with metallic: where the diffuse signal exists
+    const PlaneF* normal[3] = {};       // world space, unit
+    const PlaneF* roughness = nullptr;  // perceptual; read (and needed) for specular only
+    const PlaneF* albedo[3] = {};       // with metallic: where the diffuse signal exists
     const PlaneF* metallic = nullptr;
     const PlaneF* motion[2] = {};  // previous minus current position, pixels
     // Diffuse (null: no SSGI): incoming radiance and the mean hit distance (0: no hit).

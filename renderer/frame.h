@@ -200,6 +200,9 @@ struct FrameHistory : PlaneTable<FrameHistory> {
     PlaneF diffuse[3];
     bool valid = false;      // a frame has committed colour (false: nothing to reproject)
     DenoiseHistory denoise;  // the denoiser's own (it says when it is usable)
+    // The diffuse signal's, at half resolution, where SSGI traces at half (TraceLayout::Half):
+    // it is denoised on the half frame and brought to full resolution after.
+    DenoiseHistory denoiseHalf;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -291,6 +294,10 @@ struct Frame {
                     fn("half.ssgiHitDistance", g.hitDistance), fn("half.ssgiSteps", g.steps);
                 }
             } resolved;
+            // The diffuse signal denoised on the half frame (with the denoiser), before the
+            // upsample.
+            DenoiseScratch denoise;
+            DenoisePlanes denoised;
         } half;
     } scratch;
 

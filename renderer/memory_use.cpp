@@ -62,9 +62,12 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
     add("half rays", bytesOf(s.half.rays));
     add("half march", bytesOf(s.half.march));
     add("half resolved", bytesOf(s.half.resolved));
+    add("half denoise scratch", bytesOf(s.half.denoise));
+    add("half denoised", bytesOf(s.half.denoised));
     if (history) {
         add("history", bytesOf(*history));
         add("denoise history", bytesOf(history->denoise));
+        add("half denoise history", bytesOf(history->denoiseHalf));
     }
     return out;
 }

@@ -1,6 +1,7 @@
 #include "renderer/trace_pass.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <utility>
 
@@ -169,12 +170,14 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     HalfFrame& hf = ht.frame;
     addTime(times.rays, [&] {
-        const HalfFrameSource src{
+        HalfFrameSource src{
             &g.viewZ,
             {&g.normal[0], &g.normal[1], &g.normal[2]},
             {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
             &g.metallic,
             {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]}};
+        // (Motion for the denoiser, which runs on the half frame: denoisePass.)
+        if (ts.denoise.enabled) src.motion[0] = &g.motion[0], src.motion[1] = &g.motion[1];
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
@@ -310,8 +313,47 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
 
 // REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
 // composite then reads; the traced planes stay as they were (the undenoised layers).
+// The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
+// quarter of the pixels, at the resolution it was traced), on guides from each block's first
+// pixel (HalfFrame::guideZ), then brought to the frame by the guided upsample that brings the
+// raw signal (trace/reconstruct.h), placing each half pixel at that first pixel.
+void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
+    Frame::Scratch::HalfTrace& ht = frame.scratch.half;
+    const HalfFrame& hf = ht.frame;
+    DenoiseInputs in;
+    in.camera = hf.camera;
+    in.frameIndex = c.args.frameIndex;
+    in.viewZ = &hf.guideZ;
+    in.metallic = &hf.metallic;
+    for (int i = 0; i < 3; ++i) {
+        in.normal[i] = &hf.guideNormal[i];
+        in.albedo[i] = &hf.albedo[i];
+        in.diffuse[i] = &ht.resolved.color[i];
+    }
+    in.motion[0] = &hf.guideMotion[0];
+    in.motion[1] = &hf.guideMotion[1];
+    in.diffuseHitDistance = &ht.resolved.hitDistance;
+    in.replaceHistory = c.args.replaceHistory;
+    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
+    DenoiseOutputs& half = ht.denoised.out;
+    denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
+            ht.denoise, half, c.threads(), &times);
+    const auto t0 = std::chrono::steady_clock::now();
+    DenoiseOutputs& out = frame.trace.denoise.out;
+    // (The history length, a plane to look at, is blended as the hit share is.)
+    const ReconstructSource from{
+        {&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}, nullptr, &half.diffuseFrames};
+    const ReconstructPlanes to{
+        {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]}, nullptr, &out.diffuseFrames};
+    upsampleHalf(c.args.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to,
+                 c.threads());
+    const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
+    times.push_back({"denoise upsample", ms.count()});
+}
+
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
+    const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
     const GBuffer& g = frame.gbuffer;
     DenoiseInputs in;
     in.camera = c.camera;
@@ -325,7 +367,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     }
     in.motion[0] = &g.motion[0];
     in.motion[1] = &g.motion[1];
-    if (ts.ssgi) {
+    if (ts.ssgi && !halfDiffuse) {
         for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
         in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;
     }
@@ -344,7 +386,24 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     std::vector<DenoisePassTime> times;
     denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
             frame.trace.denoise.out, c.threads(), &times);
-    for (const DenoisePassTime& t : times) frame.stats.passes.push_back({t.name, t.ms});
+    if (halfDiffuse) denoiseHalfDiffuse(c, frame, times);
+    // (denoise() leaves a signal it was not given alone: the half path fills the diffuse.)
+    DenoiseOutputs& out = frame.trace.denoise.out;
+    if (!ts.ssgi) {
+        for (PlaneF& p : out.diffuse) p = PlaneF();
+        out.diffuseFrames = PlaneF();
+    }
+    if (!ts.ssr) {
+        for (PlaneF& p : out.specular) p = PlaneF();
+        out.specularFrames = PlaneF();
+    }
+    // One line per pass, summed over the two calls.
+    for (const DenoisePassTime& t : times) {
+        auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
+                                 [&](const PassTime& p) { return p.name == t.name; });
+        if (same != frame.stats.passes.end()) same->ms += t.ms;
+        else frame.stats.passes.push_back({t.name, t.ms});
+    }
 }
 
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone

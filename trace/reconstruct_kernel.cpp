@@ -18,7 +18,8 @@ using ILane = ln::IntOf<Lane>;
 namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
-constexpr int kValues = 6;  // colour, opacity, hit, distance
+constexpr int kValues = 6;              // colour, opacity, hit, distance
+constexpr float kMinWeight = 1.0e-20f;  // smaller sums of weights count as none (blend())
 
 // The pixel being filled.
 struct Target {
@@ -113,15 +114,19 @@ SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidat
         bestDist = ln::select(nearer, dist, bestDist);
     }
     // Ratio estimates; the nearest sample alone where every weight vanished; zeros (opacity
-    // 0) without a traced candidate.
-    const Mask any = s.w > zero, none = (!any) & (bestSpace >= zero);
+    // 0) without a traced candidate. A weight under kMinWeight counts as vanished: w_normal is
+    // a cosine to the 8th power, which reaches the denormals, and 1 / w then overflows
+    // (2CylinderEngine, whose creases gave NaN and infinite SSGI pixels, issue 27).
+    const Lane minWeight(kMinWeight);
+    const Mask any = s.w > minWeight, none = (!any) & (bestSpace >= zero);
+    const Mask anyO = any & (s.wo > minWeight), anyH = any & (s.wh > minWeight);
     const Lane invW = one / ln::select(any, s.w, one);
-    const Lane invO = one / ln::select(s.wo > zero, s.wo, one);
-    const Lane invH = one / ln::select(s.wh > zero, s.wh, one);
-    for (int k = 0; k < 3; ++k) out[k] = ln::select(s.wo > zero, s.c[k] * invO, zero);
-    out[3] = s.wo * invW;
-    out[4] = s.wh * invW;
-    out[5] = ln::select(s.wh > zero, s.whd * invH, zero);
+    const Lane invO = one / ln::select(anyO, s.wo, one);
+    const Lane invH = one / ln::select(anyH, s.wh, one);
+    for (int k = 0; k < 3; ++k) out[k] = ln::select(anyO, s.c[k] * invO, zero);
+    out[3] = ln::select(any, s.wo * invW, zero);
+    out[4] = ln::select(any, s.wh * invW, zero);
+    out[5] = ln::select(anyH, s.whd * invH, zero);
     for (int k = 0; k < 3; ++k)
         out[k] = ln::select(none, ln::select(best[3] > zero, best[k], zero), out[k]);
     out[3] = ln::select(none, best[3], out[3]);

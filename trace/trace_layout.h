@@ -72,10 +72,19 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     TraceCamera camera;  // halfCamera of the full one
     PixelOffset offset;  // the frame's chosen pixel in each block
     PlaneF viewZ, normal[3], albedo[3], metallic, hitLight[3];
+    // The guides of a signal denoised on the half frame (HalfFrameSource::motion given; empty
+    // otherwise): the block's first pixel (offset (0, 0)) every frame, not the rotating chosen
+    // one, so that the denoiser's history sees the same surface frame after frame; motion in
+    // half pixels (previous minus current).
+    PlaneF guideZ, guideNormal[3], guideMotion[2];
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("half.viewZ", g.viewZ);
+        fn("half.guide.viewZ", g.guideZ);
+        fn("half.guide.normal.X", g.guideNormal[0]), fn("half.guide.normal.Y", g.guideNormal[1]);
+        fn("half.guide.normal.Z", g.guideNormal[2]);
+        fn("half.guide.motion.X", g.guideMotion[0]), fn("half.guide.motion.Y", g.guideMotion[1]);
         fn("half.normal.X", g.normal[0]), fn("half.normal.Y", g.normal[1]);
         fn("half.normal.Z", g.normal[2]);
         fn("half.albedo.R", g.albedo[0]), fn("half.albedo.G", g.albedo[1]);
@@ -93,6 +102,8 @@ struct HalfFrameSource {
     const PlaneF* albedo[3] = {};
     const PlaneF* metallic = nullptr;
     const PlaneF* hitLight[3] = {};  // DirectArgs::hitLight (SSGI's radiance at a hit)
+    // Optional: the G-buffer's motion (full pixels); given, the denoiser's guides are made.
+    const PlaneF* motion[2] = {};
 };
 
 // Fills `out` (planes reused when the size matches) for frame `frame`. Throws

@@ -47,8 +47,11 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(m.at("gbuffer") == 12 * plane);
     CHECK(m.at("ssr") == 7 * plane);
     CHECK(m.at("denoised") == 8 * plane);
-    // noisy 8, ping 4, pong 4, signalZ 2, frames 2, fast 2: not a group per pass.
-    CHECK(m.at("denoise scratch") == 22 * plane);
+    // The specular signal's: noisy 4, ping 4, pong 4, signalZ 2, frames 2, fast 2 (not a
+    // group per pass); the diffuse is denoised on the half frame (SSGI's half layout).
+    CHECK(m.at("denoise scratch") == 18 * plane);
+    CHECK(m.at("half denoise scratch") < m.at("denoise scratch"));
+    CHECK(m.count("half denoise history") == 1);
     CHECK(m.at("shadow map") == 64 * 64 * sizeof(float));
     // (The colour history only where a setting reads it: not by default.)
     CHECK(m.count("history") == 0);

@@ -190,6 +190,52 @@ TEST_CASE("half resolution: the chosen pixel of each block rotates over the four
     }
 }
 
+TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, every frame") {
+    // The chosen pixel rotates; the guides (depth, normal, motion in half pixels) stay at the
+    // block's pixel (0, 0), so the denoiser's history sees one surface frame after frame; and
+    // without motion in the source they are not made.
+    const int w = 7, h = 5;
+    TraceCamera cam;
+    cam.width = w, cam.height = h;
+    PlaneF z(w, h), n[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)}, alb[3], met(w, h);
+    PlaneF light[3], motion[2] = {PlaneF(w, h), PlaneF(w, h)};
+    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneF(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            z.at(x, y) = 1.0f + float(y * w + x);
+            n[1].at(x, y) = float(x);
+            motion[0].at(x, y) = 3.0f * float(x);
+            motion[1].at(x, y) = -float(y);
+        }
+    HalfFrameSource src{&z,
+                        {&n[0], &n[1], &n[2]},
+                        {&alb[0], &alb[1], &alb[2]},
+                        &met,
+                        {&light[0], &light[1], &light[2]}};
+    src.motion[0] = &motion[0], src.motion[1] = &motion[1];
+    for (uint32_t f = 0; f < 4; ++f) {
+        CAPTURE(f);
+        HalfFrame hf;
+        buildHalfFrame(cam, src, f, hf, 2);
+        bool first = true;
+        for (int hy = 0; hy < 3; ++hy)
+            for (int hx = 0; hx < 4; ++hx) {
+                const int x = std::min(2 * hx, w - 1), y = std::min(2 * hy, h - 1);
+                first &= hf.guideZ.at(hx, hy) == z.at(x, y);
+                first &= hf.guideNormal[1].at(hx, hy) == n[1].at(x, y);
+                first &= hf.guideMotion[0].at(hx, hy) == 0.5f * motion[0].at(x, y);
+                first &= hf.guideMotion[1].at(hx, hy) == 0.5f * motion[1].at(x, y);
+            }
+        CHECK(first);
+    }
+    src.motion[0] = src.motion[1] = nullptr;
+    HalfFrame none;
+    buildHalfFrame(cam, src, 1, none, 1);
+    CHECK(none.guideZ.empty());
+    CHECK(none.guideMotion[0].empty());
+    CHECK(!none.viewZ.empty());
+}
+
 TEST_CASE("trace layouts: the same bits for every ISA and thread count, frame after frame") {
     struct Case {
         const char* scene;
