@@ -311,8 +311,6 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssgi");
 }
 
-// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
-// composite then reads; the traced planes stay as they were (the undenoised layers).
 // The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
 // quarter of the pixels, at the resolution it was traced), on guides from each block's first
 // pixel (HalfFrame::guideZ), then brought to the frame by the guided upsample that brings the
@@ -351,6 +349,8 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     times.push_back({"denoise upsample", ms.count()});
 }
 
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
+// composite then reads; the traced planes stay as they were (the undenoised layers).
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
@@ -384,8 +384,9 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     in.replaceHistory = c.args.replaceHistory;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
-    denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
-            frame.trace.denoise.out, c.threads(), &times);
+    if (in.diffuse[0] || in.ssr[0])
+        denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
+                frame.trace.denoise.out, c.threads(), &times);
     if (halfDiffuse) denoiseHalfDiffuse(c, frame, times);
     // (denoise() leaves a signal it was not given alone: the half path fills the diffuse.)
     DenoiseOutputs& out = frame.trace.denoise.out;

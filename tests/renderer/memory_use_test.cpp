@@ -56,6 +56,20 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     // (The colour history only where a setting reads it: not by default.)
     CHECK(m.count("history") == 0);
     CHECK(m.count("denoise history") == 1);
+    // SSR off: the full-resolution denoiser has no signal and does not run; the diffuse is
+    // denoised on the half frame and still reaches the frame.
+    {
+        RenderSettings d = rs;
+        d.trace.ssr = false;
+        Frame diffuseOnly;
+        FrameHistory h;
+        Renderer(d).render(scene, FrameInput::still(scene), h, diffuseOnly);
+        const auto dm = byName(diffuseOnly.stats.memory);
+        CHECK(dm.count("denoise scratch") == 0);
+        CHECK(dm.count("half denoise scratch") == 1);
+        CHECK(dm.at("denoised") == 4 * plane);  // diffuse RGB and its history length
+        CHECK(diffuseOnly.trace.denoise.out.specular[0].empty());
+    }
     // Without a history, and without the trace, those groups are gone.
     Frame still;
     rs.trace.ssr = rs.trace.ssgi = false;
