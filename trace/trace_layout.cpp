@@ -67,27 +67,38 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     const bool guides = src.motion[0] != nullptr;
     if (guides)
         for (int c = 0; c < 2; ++c) checkSource(src.motion[c], full, "motion");
-    out.ensureSize(hw, hh);
     PlaneF* const guide[6] = {&out.guideZ,         &out.guideNormal[0], &out.guideNormal[1],
                               &out.guideNormal[2], &out.guideMotion[0], &out.guideMotion[1]};
     const PlaneF* const guideFrom[6] = {src.viewZ,     src.normal[0], src.normal[1],
                                         src.normal[2], src.motion[0], src.motion[1]};
-    if (!guides)
-        for (PlaneF* p : guide) *p = PlaneF();
+    // (Sized one by one: the guides are not made and freed again on every frame without them.)
+    for (PlaneF* p : dst) p->ensureSize(hw, hh);
+    for (PlaneF* p : guide) {
+        if (guides) p->ensureSize(hw, hh);
+        else *p = PlaneF();
+    }
     // Rows of half pixels, each row's count of full-resolution surface pixels left out,
     // summed in row order (the same total for every thread count).
     std::vector<uint64_t> rowCut(std::size_t(hh), 0);
     const PixelOffset o = out.offset;
     parallelFor(hh, threads, [&](int hy) {
-        for (int hx = 0; hx < hw; ++hx) {
-            const PixelOffset s = halfSource(hx, hy, o, w, h);
-            for (int p = 0; p < 11; ++p) dst[p]->at(hx, hy) = from[p]->at(s.x, s.y);
-            if (!guides) continue;
-            const PixelOffset f = halfSource(hx, hy, PixelOffset{0, 0}, w, h);
-            for (int p = 0; p < 4; ++p) guide[p]->at(hx, hy) = guideFrom[p]->at(f.x, f.y);
-            // (Motion in half pixels: halving is exact.)
-            for (int p = 4; p < 6; ++p) guide[p]->at(hx, hy) = 0.5f * guideFrom[p]->at(f.x, f.y);
+        // Plane by plane along the row, through row pointers (a plane's members reloaded per
+        // pixel cost more than the copy).
+        const int sy = halfSource(0, hy, o, w, h).y, gy = halfSource(0, hy, {0, 0}, w, h).y;
+        for (int p = 0; p < 11; ++p) {
+            const float* in = from[p]->row(sy);
+            float* to = dst[p]->row(hy);
+            for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
         }
+        if (guides)
+            for (int p = 0; p < 6; ++p) {
+                const float* in = guideFrom[p]->row(gy);
+                float* to = guide[p]->row(hy);
+                // (Motion in half pixels: halving is exact.)
+                const float scale = p < 4 ? 1.0f : 0.5f;
+                for (int hx = 0; hx < hw; ++hx)
+                    to[hx] = scale * in[halfSource(hx, hy, {0, 0}, w, h).x];
+            }
         uint64_t cut = 0;
         for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y)
             for (int x = 0; x < w; ++x) {
