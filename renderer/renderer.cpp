@@ -89,8 +89,18 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
     keepIf(s.trace.any(), f.direct);
     if (!s.trace.ssgi)
         for (PlaneF& p : f.direct.hitLight) p = PlaneF();
-    // (the denoiser sizes its own outputs, per signal)
-    if (!s.trace.any() || !s.trace.denoise.enabled) f.trace.denoise.release();
+    // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
+    // out has none)
+    DenoiseOutputs& d = f.trace.denoise.out;
+    const bool denoise = s.trace.any() && s.trace.denoise.enabled;
+    if (!denoise || !s.trace.ssgi) {
+        for (PlaneF& p : d.diffuse) p = PlaneF();
+        d.diffuseFrames = PlaneF();
+    }
+    if (!denoise || !s.trace.ssr) {
+        for (PlaneF& p : d.specular) p = PlaneF();
+        d.specularFrames = PlaneF();
+    }
 }
 
 void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {

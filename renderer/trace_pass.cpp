@@ -388,16 +388,6 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
                 frame.trace.denoise.out, c.threads(), &times);
     if (halfDiffuse) denoiseHalfDiffuse(c, frame, times);
-    // (denoise() leaves a signal it was not given alone: the half path fills the diffuse.)
-    DenoiseOutputs& out = frame.trace.denoise.out;
-    if (!ts.ssgi) {
-        for (PlaneF& p : out.diffuse) p = PlaneF();
-        out.diffuseFrames = PlaneF();
-    }
-    if (!ts.ssr) {
-        for (PlaneF& p : out.specular) p = PlaneF();
-        out.specularFrames = PlaneF();
-    }
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
