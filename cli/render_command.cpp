@@ -175,8 +175,13 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     }
     checkWritable(sequenceFileName(output, int(block.begin), frames));
     const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
-    // The id planes exist to be looked at: a PNG, which shows none of them, does not make them.
-    if (!isExrPath(output)) request.settings.idPlanes = false;
+    // The id planes and the debug planes exist to be looked at: a file that shows none of
+    // them (a PNG, or an EXR whose --layers leave out their group) does not make them.
+    const bool exr = isExrPath(output);
+    if (!exr || !hasGroup(writeOptions.layers, LayerGroup::GBuffer))
+        request.settings.idPlanes = false;
+    if (!exr || !hasGroup(writeOptions.layers, LayerGroup::Trace))
+        request.settings.debugPlanes = false;
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
             "--layers: a rendered frame has no truth layers (ssrt "

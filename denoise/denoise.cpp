@@ -284,6 +284,7 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     times.run("post-blur",
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
+    if (!c.in.historyLengths) return;
     PlaneF& src = sc.frames[sig.specular ? 1 : 0];
     for (int y = 0; y < c.grid.height; ++y)
         std::copy_n(src.row(y), c.grid.width, sig.framesOut->row(y));
@@ -320,7 +321,7 @@ void commitHistory(Context& c) {
 }
 
 void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
-                 bool diffuse, bool specular, const TileGrid& grid) {
+                 bool diffuse, bool specular, bool lengths, const TileGrid& grid) {
     const auto keepIf = [&](bool on, PlaneF& p) {
         if (on) p.ensureSize(w, h);
         else p = PlaneF();
@@ -342,8 +343,8 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         if (diffuse) out.diffuse[ch].ensureSize(w, h);
         if (specular) out.specular[ch].ensureSize(w, h);
     }
-    if (diffuse) out.diffuseFrames.ensureSize(w, h);
-    if (specular) out.specularFrames.ensureSize(w, h);
+    if (diffuse && lengths) out.diffuseFrames.ensureSize(w, h);
+    if (specular && lengths) out.specularFrames.ensureSize(w, h);
     if (!history) return;
     history->viewZ.ensureSize(w, h);
     history->roughness.ensureSize(w, h);
@@ -372,7 +373,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const DenoiseHistory* previous = readHistory ? history : nullptr;
     DenoiseHistory* next = in.replaceHistory ? history : nullptr;
     if (next && !readHistory) next->valid = false;
-    ensureSizes(w, h, scratch, out, next, diffuse, specular, grid);
+    ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid);
     Context c{settings, in,   scratch,
               previous, next, isa,
               threads,  grid, makeView(in, settings, scratch, grid)};

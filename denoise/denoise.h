@@ -59,13 +59,16 @@ struct DenoiseInputs {
     // false: the history is read but left as it was (no later frame reads this one's): the
     // same output, without writing the next history.
     bool replaceHistory = true;
+    // false: DenoiseOutputs' history lengths (planes only to be looked at) are not made.
+    bool historyLengths = true;
 };
 
 // The denoiser's output, of the frame's size.
 struct DenoiseOutputs {
     PlaneF diffuse[3];   // incoming diffuse radiance (what the composite multiplies by albedo)
     PlaneF specular[3];  // incoming specular radiance (what it multiplies by specWeight)
-    PlaneF diffuseFrames, specularFrames;  // frames of history behind each pixel (0: none)
+    // Frames of history behind each pixel (0: none); with DenoiseInputs::historyLengths only.
+    PlaneF diffuseFrames, specularFrames;
 };
 
 // What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the

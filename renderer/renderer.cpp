@@ -83,24 +83,33 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
         if (on) group.ensureSize(w, h);
         else group.release();
     };
+    // A group whose `steps` plane is only made to be looked at (RenderSettings::debugPlanes).
+    const auto keepTraced = [&](bool on, auto& group) {
+        group.forEachPlane([&](std::string_view, PlaneF& p) {
+            if (on && (s.debugPlanes || &p != &group.steps)) p.ensureSize(w, h);
+            else p = PlaneF();
+        });
+    };
+    const bool denoise = s.trace.any() && s.trace.denoise.enabled;
+    // The full-resolution SSGI planes are only looked at where the denoiser takes the half
+    // frame's signal (renderer/trace_pass.cpp, denoiseHalfDiffuse).
+    const bool fullSsgi =
+        s.trace.ssgi && (s.debugPlanes || !denoise || s.trace.ssgiLayout != TraceLayout::Half);
     keepIf(s.idPlanes, f.ids);
-    keepIf(s.trace.ssr, f.trace.ssr);
-    keepIf(s.trace.ssgi, f.trace.ssgi);
+    keepTraced(s.trace.ssr, f.trace.ssr);
+    keepTraced(fullSsgi, f.trace.ssgi);
     keepIf(s.trace.any(), f.direct);
     if (!s.trace.ssgi)
         for (PlaneF& p : f.direct.hitLight) p = PlaneF();
     // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
     // out has none)
     DenoiseOutputs& d = f.trace.denoise.out;
-    const bool denoise = s.trace.any() && s.trace.denoise.enabled;
-    if (!denoise || !s.trace.ssgi) {
+    if (!denoise || !s.trace.ssgi)
         for (PlaneF& p : d.diffuse) p = PlaneF();
-        d.diffuseFrames = PlaneF();
-    }
-    if (!denoise || !s.trace.ssr) {
+    if (!denoise || !s.trace.ssr)
         for (PlaneF& p : d.specular) p = PlaneF();
-        d.specularFrames = PlaneF();
-    }
+    if (!denoise || !s.trace.ssgi || !s.debugPlanes) d.diffuseFrames = PlaneF();
+    if (!denoise || !s.trace.ssr || !s.debugPlanes) d.specularFrames = PlaneF();
 }
 
 void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {

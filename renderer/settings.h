@@ -64,7 +64,12 @@ struct RenderSettings {
     int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
     float exposure = 1.0f;         // scale on linear radiance before the tone map
     bool idPlanes = true;          // also hand out instanceId and triangleId float planes
-    TraceSettings trace;           // SSR and SSGI (on by default)
+    // Also make the planes that only a file or a person reads (renderer/frame.h says which):
+    // the march steps, the undenoised full-resolution SSGI where the diffuse is denoised at
+    // half resolution, the denoiser's history lengths. Off (`ssrt render` to a PNG): not made,
+    // and every other plane keeps its bits.
+    bool debugPlanes = true;
+    TraceSettings trace;  // SSR and SSGI (on by default)
 
     // Throws std::invalid_argument with a one-line message naming the bad field.
     void validate() const;

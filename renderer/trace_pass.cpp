@@ -36,6 +36,8 @@ struct TraceContext {
                   &g.metallic};
     }
     int threads() const { return args.settings.threads; }
+    // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
+    PlaneF* debugPlane(PlaneF& p) const { return args.settings.debugPlanes ? &p : nullptr; }
     // What the reconstruction of a layout's untraced pixels is guided by.
     ReconstructGuides guides(const Frame& f) const {
         const GBuffer& g = f.gbuffer;
@@ -122,7 +124,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     SsrResolveSettings rs = ts.resolve;
     const SsrResolveInputs in = ssrInputs(c, frame, rs, times.resolve);
     // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
-    const HitStatsPlanes hp{&planes.hit, &planes.steps, &planes.hitDistance};
+    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
     TraceStats& st = frame.stats.ssr;
     st.ran = true;
     st.spp = ts.ssrSpp;
@@ -191,7 +193,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     in.camera = hf.camera;
     in.viewZ = &hf.viewZ;
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
-    const HitStatsPlanes hp{&ht.resolved.hit, &ht.resolved.steps, &ht.resolved.hitDistance};
+    const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
+                            &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {
@@ -212,7 +215,10 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
             accumulateHitStats(isa, hf.camera, ht.rays, ht.march, hp, s, ts.ssgiSpp, c.threads());
         });
     }
+    // The full-resolution planes: what the composite reads without the denoiser, and only to
+    // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
     SsgiPlanes& planes = frame.trace.ssgi;
+    if (planes.color[0].empty()) return;
     times.reconstruct = 0.0;
     addTime(times.reconstruct, [&] {
         const ReconstructSource from{
@@ -220,12 +226,12 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
             nullptr,
             &ht.resolved.hit,
             &ht.resolved.hitDistance,
-            &ht.resolved.steps};
+            c.debugPlane(ht.resolved.steps)};
         const ReconstructPlanes to{{&planes.color[0], &planes.color[1], &planes.color[2]},
                                    nullptr,
                                    &planes.hit,
                                    &planes.hitDistance,
-                                   &planes.steps};
+                                   c.debugPlane(planes.steps)};
         upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
     });
 }
@@ -273,7 +279,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     in.metallic = &g.metallic;
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
-    const HitStatsPlanes hp{&planes.hit, &planes.steps, &planes.hitDistance};
+    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;
@@ -332,6 +338,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     in.motion[1] = &hf.guideMotion[1];
     in.diffuseHitDistance = &ht.resolved.hitDistance;
     in.replaceHistory = c.args.replaceHistory;
+    in.historyLengths = c.args.settings.debugPlanes;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
     DenoiseOutputs& half = ht.denoised.out;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
@@ -339,10 +346,12 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     const auto t0 = std::chrono::steady_clock::now();
     DenoiseOutputs& out = frame.trace.denoise.out;
     // (The history length, a plane to look at, is blended as the hit share is.)
-    const ReconstructSource from{
-        {&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}, nullptr, &half.diffuseFrames};
-    const ReconstructPlanes to{
-        {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]}, nullptr, &out.diffuseFrames};
+    const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]},
+                                 nullptr,
+                                 c.debugPlane(half.diffuseFrames)};
+    const ReconstructPlanes to{{&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
+                               nullptr,
+                               c.debugPlane(out.diffuseFrames)};
     upsampleHalf(c.args.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to,
                  c.threads());
     const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
@@ -382,6 +391,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
     in.replaceHistory = c.args.replaceHistory;
+    in.historyLengths = c.args.settings.debugPlanes;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     if (in.diffuse[0] || in.ssr[0])

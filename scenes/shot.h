@@ -28,13 +28,14 @@
 //                field-table key
 //                (renderer/settings_fields.h; README.md, "Shot files", lists them): width,
 //                height, shadowMapSize, shadowBias, shadowSlopeBias, pcfRadius, exposure,
-//                idPlanes, ssr, ssgi, ssrMethod, marcher, ssrSpp, ssgiSpp, traceHidden,
-//                maxSteps, maxDistance, linearStep, thickness, ddaStride, ddaJitter,
-//                refineSteps, hizMostDetailedLevel, hizStartLevel, ssrResolve, hitRadiance,
-//                hitBilinear, edgeFadeLength, roughnessFadeStart, roughnessFadeEnd. Booleans
-//                are true/false, choices are names ("marcher": "dda"). The parser keeps these
-//                settings as written; applying them (cli/shot_settings.h) checks each against
-//                its table entry, unknown keys included.
+//                idPlanes, debugPlanes, ssr, ssgi, ssrMethod, marcher, ssrSpp, ssgiSpp,
+//                traceHidden, maxSteps, maxDistance, linearStep, thickness, ddaStride,
+//                ddaJitter, refineSteps, hizMostDetailedLevel, hizStartLevel, ssrResolve,
+//                hitRadiance, hitBilinear, edgeFadeLength, roughnessFadeStart,
+//                roughnessFadeEnd. Booleans are true/false, choices are names ("marcher":
+//                "dda"). The parser keeps these settings as written; applying them
+//                (cli/shot_settings.h) checks each against its table entry, unknown keys
+//                included.
 // Numbers must be finite (1e999 is not), integers must be written as integers, and any key
 // not listed is an error (typos do not pass silently), as are duplicate keys.
 #pragma once

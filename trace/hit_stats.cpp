@@ -26,10 +26,9 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
     if (w <= 0 || h <= 0) throw std::invalid_argument("accumulateHitStats: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
         throw std::invalid_argument("accumulateHitStats: sample must be in [0, sampleCount)");
-    if (!out.hit || !out.steps)
-        throw std::invalid_argument("accumulateHitStats: hit and steps planes needed");
+    if (!out.hit) throw std::invalid_argument("accumulateHitStats: hit plane needed");
     out.hit->ensureSize(w, h);
-    out.steps->ensureSize(w, h);
+    if (out.steps) out.steps->ensureSize(w, h);
     if (out.distance) out.distance->ensureSize(w, h);
     const TileGrid grid(w, h);
     HitStatsArgs a{};
@@ -40,7 +39,10 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
     a.tanHalfX = camera.tanHalfX;
     a.tanHalfY = camera.tanHalfY;
     a.hit = need(&march.hit, w, h, "march hit");
-    a.steps = need(&march.steps, w, h, "march steps");
+    if (out.steps) {
+        a.steps = need(&march.steps, w, h, "march steps");
+        a.outSteps = out.steps->row(0);
+    }
     if (out.distance) {
         a.hitPos[0] = need(&march.hitX, w, h, "march hitX");
         a.hitPos[1] = need(&march.hitY, w, h, "march hitY");
@@ -51,7 +53,6 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
         a.outDistance = out.distance->row(0);
     }
     a.outHit = out.hit->row(0);
-    a.outSteps = out.steps->row(0);
     a.first = sample == 0;
     a.last = sample == sampleCount - 1;
     a.invCount = 1.0f / float(sampleCount);

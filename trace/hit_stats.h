@@ -14,7 +14,7 @@ namespace ssrt {
 
 struct HitStatsPlanes {
     PlaneF* hit = nullptr;
-    PlaneF* steps = nullptr;
+    PlaneF* steps = nullptr;     // optional (a plane to look at; null: not kept)
     PlaneF* distance = nullptr;  // optional (null: not kept)
 };
 

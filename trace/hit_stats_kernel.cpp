@@ -21,12 +21,9 @@ SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
 void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const Lane zero(0.0f);
-    const Lane hit = loadAt(a.hit, o), steps = loadAt(a.steps, o);
-    Lane hitSum = hit, stepSum = steps;
-    if (!a.first) {
-        hitSum = loadAt(a.outHit, o) + hit;
-        stepSum = loadAt(a.outSteps, o) + steps;
-    }
+    const Lane hit = loadAt(a.hit, o);
+    Lane hitSum = hit;
+    if (!a.first) hitSum = loadAt(a.outHit, o) + hit;
     if (a.outDistance) {
         Lane d = zero;
         const auto hits = hit > zero;
@@ -52,12 +49,14 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
         }
         ln::store(a.outDistance + o, distSum);
     }
-    if (a.last) {
-        hitSum = hitSum * Lane(a.invCount);
-        stepSum = stepSum * Lane(a.invCount);
-    }
+    if (a.last) hitSum = hitSum * Lane(a.invCount);
     ln::store(a.outHit + o, hitSum);
-    ln::store(a.outSteps + o, stepSum);
+    if (a.outSteps) {
+        Lane stepSum = loadAt(a.steps, o);
+        if (!a.first) stepSum = loadAt(a.outSteps, o) + stepSum;
+        if (a.last) stepSum = stepSum * Lane(a.invCount);
+        ln::store(a.outSteps + o, stepSum);
+    }
 }
 
 }  // namespace

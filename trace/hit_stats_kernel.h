@@ -15,11 +15,11 @@ struct HitStatsArgs {
     std::size_t stride;
     float tanHalfX, tanHalfY;
     const float* hit;
-    const float* steps;
+    const float* steps;      // (with outSteps only)
     const float* hitPos[3];  // hitX, hitY, hitZ (distance only)
     const float* origin[3];  // ox, oy, oz (distance only)
     float* outHit;
-    float* outSteps;
+    float* outSteps;     // null: no steps
     float* outDistance;  // null: no distance
     bool first, last;    // sample 0 (overwrite), the last sample (divide)
     float invCount;      // 1 / sampleCount

@@ -56,13 +56,15 @@ FrameParts frameParts(const Frame& frame) {
     FrameParts fp;
     // A pass that was off stands in as the composite has it: SSR off is opacity 0 (the sky's
     // specular alone), SSGI off is the sky's diffuse light.
-    const SsrPlanes& ssrPlanes = frame.trace.ssr;
-    const bool ssrOn = !ssrPlanes.opacity.empty(), ssgiOn = !frame.trace.ssgi.hit.empty();
     // Where the denoiser ran, the composite read its planes: the specular one as the whole
-    // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's.
+    // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's (whose own
+    // planes may then not be made: RenderSettings::debugPlanes).
     const DenoiseOutputs& denoised = frame.trace.denoise.out;
     const bool specDenoised = !denoised.specular[0].empty();
     const bool diffDenoised = !denoised.diffuse[0].empty();
+    const SsrPlanes& ssrPlanes = frame.trace.ssr;
+    const bool ssrOn = !ssrPlanes.opacity.empty();
+    const bool ssgiOn = !frame.trace.ssgi.hit.empty() || diffDenoised;
     const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
                            : specDenoised ? PlaneF(frame.width, frame.height, 1.0f)
                                           : PlaneF();

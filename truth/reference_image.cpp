@@ -79,7 +79,7 @@ void forBandTiles(const Setup& s, Fn&& fn) {
 void requireTraced(const Frame& frame, const RenderSettings& rs) {
     if (frame.width != rs.width || frame.height != rs.height)
         throw std::invalid_argument("reference: the frame was not rendered with these settings");
-    if (frame.trace.ssr.opacity.empty() || frame.trace.ssgi.hit.empty())
+    if (!frame.stats.ssr.ran || !frame.stats.ssgi.ran)
         throw std::invalid_argument("reference: the frame needs both trace passes (SSR and SSGI)");
     if (frame.direct.direct[0].width() != frame.width ||
         frame.direct.direct[0].height() != frame.height)

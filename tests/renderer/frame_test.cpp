@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstring>
 #include <set>
 #include <string>
 #include <vector>
@@ -129,6 +130,59 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     f.trace.ssgi.forEachPlane(add);
     FrameHistory().forEachPlane(add);
     CHECK(int(names.size()) == count);
+}
+
+namespace {
+
+bool sameBits(const PlaneF& a, const PlaneF& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
+            return false;
+    return true;
+}
+
+// The layers of `without` are those of `with` but `debug`, with the same bits.
+void checkWithoutDebugPlanes(const Frame& with, const Frame& without,
+                             const std::set<std::string>& debug) {
+    std::set<std::string> missing;
+    for (const PlaneRef& p : with.layers()) {
+        CAPTURE(std::string(p.name));
+        if (!without.has(p.name)) missing.emplace(p.name);
+        else CHECK(sameBits(*p.plane, without.plane(p.name)));
+    }
+    CHECK(missing == debug);
+    CHECK(without.layers().size() + debug.size() == with.layers().size());
+}
+
+}  // namespace
+
+TEST_CASE("frame: without the debug planes the others keep their bits, along a sequence") {
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings plain = tiny();
+    plain.debugPlanes = false;
+    FrameHistory h1, h2;
+    Frame with, without;
+    // The default preset: SSGI at half resolution, denoised there; SSR in a checkerboard.
+    REQUIRE(plain.trace.ssgiLayout == TraceLayout::Half);
+    for (uint32_t i = 0; i < 3; ++i) {
+        Renderer(tiny()).render(scene, FrameInput::still(scene, i), h1, with);
+        Renderer(plain).render(scene, FrameInput::still(scene, i), h2, without);
+        checkWithoutDebugPlanes(with, without,
+                                {"ssgi.R", "ssgi.G", "ssgi.B", "ssgiHit", "ssgiHitDistance",
+                                 "ssgiSteps", "ssrSteps", "diffuseFrames", "specularFrames"});
+    }
+}
+
+TEST_CASE("frame: without the denoiser the full-resolution SSGI is no debug plane") {
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings rs = tiny();
+    rs.trace.denoise.enabled = false;
+    RenderSettings plain = rs;
+    plain.debugPlanes = false;
+    const Frame with = Renderer(rs).renderWithoutHistory(scene);
+    const Frame without = Renderer(plain).renderWithoutHistory(scene);
+    checkWithoutDebugPlanes(with, without, {"ssrSteps", "ssgiSteps"});
 }
 
 TEST_CASE("frame: extra layers follow the renderer's") {

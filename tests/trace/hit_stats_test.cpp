@@ -82,8 +82,11 @@ TEST_CASE("hit statistics: the scalar loops' bits on every ISA and thread count"
     cam.tanHalfX = 0.45f * float(cam.width) / float(cam.height);
     for (int spp : {1, 3})
         for (bool withDistance : {true, false}) {
+            // (steps are left out with the distance: each optional plane on its own)
+            const bool withSteps = withDistance || spp == 1;
             CAPTURE(spp);
             CAPTURE(withDistance);
+            CAPTURE(withSteps);
             PlaneF refHit(cam.width, cam.height), refSteps(cam.width, cam.height),
                 refDist(cam.width, cam.height);
             RayBatch rays;
@@ -98,13 +101,15 @@ TEST_CASE("hit statistics: the scalar loops' bits on every ISA and thread count"
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     PlaneF hit, steps, dist;
-                    const HitStatsPlanes out{&hit, &steps, withDistance ? &dist : nullptr};
+                    const HitStatsPlanes out{&hit, withSteps ? &steps : nullptr,
+                                             withDistance ? &dist : nullptr};
                     for (int s = 0; s < spp; ++s) {
                         randomSample(cam, uint32_t(s), rays, m);
                         accumulateHitStats(isa, cam, rays, m, out, s, spp, threads);
                     }
                     CHECK(sameBits(hit, refHit));
-                    CHECK(sameBits(steps, refSteps));
+                    if (withSteps) CHECK(sameBits(steps, refSteps));
+                    else CHECK(steps.empty());
                     if (withDistance) CHECK(sameBits(dist, refDist));
                 }
         }
