@@ -153,9 +153,6 @@ void frontEnd(Context& c) {
     for (int i = 0; i < 8; ++i) a.noisy[i] = c.sc.noisy[i].row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
     a.signalZ[1] = c.sc.signalZ[1].row(0);
-    // A signal that is off has no pixels.
-    if (!in.diffuse[0]) c.sc.signalZ[0].fill(0.0f);
-    if (!in.ssr[0]) c.sc.signalZ[1].fill(0.0f);
     a.tiles = c.sc.tiles.data();
     const auto fn = SSRT_DISPATCH(c.isa, reblurFrontEndTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
@@ -206,7 +203,7 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
     }
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.previous && s.maxAccumulatedFrames > 0) {
+    if (c.previous && c.previous->hasSignal(sig.specular) && s.maxAccumulatedFrames > 0) {
         const DenoiseHistory& h = *c.previous;
         a.prevViewZ = h.viewZ.row(0);
         for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
@@ -296,7 +293,8 @@ void commitHistory(Context& c) {
     DenoiseHistory& h = *c.next;
     const DenoiseInputs& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
-    const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no signal
+    const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no pixel
+    const bool signals[2] = {in.diffuse[0] != nullptr, in.ssr[0] != nullptr};
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         const TileRect r = c.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y) {
@@ -305,8 +303,9 @@ void commitHistory(Context& c) {
             };
             copyRow(*in.viewZ, h.viewZ);
             for (int i = 0; i < 3; ++i) copyRow(*in.normal[i], h.normal[i]);
-            if (in.roughness) copyRow(*in.roughness, h.roughness);
+            if (signals[1]) copyRow(*in.roughness, h.roughness);
             for (int k = 0; k < 2; ++k) {
+                if (!signals[k]) continue;
                 const float* a = c.sc.frames[k].row(y);
                 const float* m = masks[k]->row(y);
                 float* out = frames[k]->row(y);
@@ -314,8 +313,8 @@ void commitHistory(Context& c) {
             }
         }
     });
-    std::swap(h.diffuseFast, c.sc.fast[0]);
-    std::swap(h.specularFast, c.sc.fast[1]);
+    if (signals[0]) std::swap(h.diffuseFast, c.sc.fast[0]);
+    if (signals[1]) std::swap(h.specularFast, c.sc.fast[1]);
     h.camera = in.camera;
     h.valid = true;
 }
@@ -333,9 +332,10 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         keepIf(diffuse || specular, sc.pong[i]);
     }
     for (int i = 0; i < 2; ++i) {
-        sc.signalZ[i].ensureSize(w, h);
-        sc.frames[i].ensureSize(w, h);
-        sc.fast[i].ensureSize(w, h);
+        const bool on = i == 0 ? diffuse : specular;
+        keepIf(on, sc.signalZ[i]);
+        keepIf(on, sc.frames[i]);
+        keepIf(on, sc.fast[i]);
     }
     sc.tiles.assign(std::size_t(grid.count()), 0);
     // The outputs of a signal not given are left as they are (the caller may fill them).
@@ -346,16 +346,17 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
     if (diffuse && lengths) out.diffuseFrames.ensureSize(w, h);
     if (specular && lengths) out.specularFrames.ensureSize(w, h);
     if (!history) return;
+    // The guides, and each signal's own planes only where the signal is (roughness guides the
+    // specular alone).
     history->viewZ.ensureSize(w, h);
-    history->roughness.ensureSize(w, h);
     for (int i = 0; i < 3; ++i) history->normal[i].ensureSize(w, h);
+    keepIf(specular, history->roughness);
     for (int i = 0; i < 4; ++i) {
-        history->diffuse[i].ensureSize(w, h);
-        history->specular[i].ensureSize(w, h);
+        keepIf(diffuse, history->diffuse[i]);
+        keepIf(specular, history->specular[i]);
     }
-    for (PlaneF* p : {&history->diffuseFrames, &history->specularFrames, &history->diffuseFast,
-                      &history->specularFast})
-        p->ensureSize(w, h);
+    for (PlaneF* p : {&history->diffuseFrames, &history->diffuseFast}) keepIf(diffuse, *p);
+    for (PlaneF* p : {&history->specularFrames, &history->specularFast}) keepIf(specular, *p);
 }
 
 }  // namespace

@@ -72,7 +72,9 @@ struct DenoiseOutputs {
 };
 
 // What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the
-// accumulation speeds, the fast histories, and the guides and camera it was made with.
+// accumulation speeds, the fast histories, and the guides and camera it was made with. A
+// signal's planes are kept only when that frame had the signal (hasSignal); a signal without
+// them starts afresh.
 struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     PlaneF viewZ, normal[3], roughness;
     PlaneF diffuse[4], specular[4];  // RGB and normalised hit distance
@@ -96,6 +98,10 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     bool usableAt(int width, int height) const {
         return valid && viewZ.width() == width && viewZ.height() == height;
     }
+    // It holds that signal's planes (only the signals of the frame that made it are kept).
+    bool hasSignal(bool specular) const {
+        return !(specular ? specularFrames : diffuseFrames).empty();
+    }
 };
 
 // Transient planes, kept between frames so that no pass allocates. Each pass reads only the
@@ -105,7 +111,8 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
 struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     PlaneF noisy[8];  // the front end's: diffuse 0-3, specular 4-7 (RGB, normalised hit distance)
     PlaneF ping[4], pong[4];
-    PlaneF signalZ[2];           // viewZ where the diffuse / specular signal exists, else 0
+    // Per signal (diffuse, specular), sized only for the signals given:
+    PlaneF signalZ[2];           // viewZ where the signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneF fast[2];              // this frame's fast luma
     std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular

@@ -153,6 +153,27 @@ TEST_CASE("denoise: a constant signal stays constant through every pass, frame a
     }
 }
 
+TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks starts afresh") {
+    Synthetic s(48, 32);
+    Denoiser d;
+    DenoiseInputs diffuseOnly = s.inputs(0);
+    for (auto& p : diffuseOnly.ssr) p = nullptr;
+    denoise(d.isa, d.settings, diffuseOnly, &d.history, false, d.scratch, d.out, d.threads);
+    CHECK(d.history.hasSignal(false));
+    CHECK_FALSE(d.history.hasSignal(true));
+    CHECK(d.history.specular[0].empty());
+    CHECK(d.history.roughness.empty());  // it guides the specular alone
+    CHECK(d.scratch.frames[1].empty());
+    CHECK(d.out.specular[0].empty());
+    // The specular joins: the diffuse goes on, the specular has no frame behind it.
+    d.run(s, 1);
+    CHECK(d.out.diffuseFrames.at(20, 10) == 1.0f);
+    CHECK(d.out.specularFrames.at(20, 10) == 0.0f);
+    CHECK(d.history.hasSignal(true));
+    d.run(s, 2);
+    CHECK(d.out.specularFrames.at(20, 10) == 1.0f);
+}
+
 TEST_CASE(
     "denoise: a still camera's accumulation is the mean of its frames, then a 31-frame window") {
     Synthetic s(64, 48);
