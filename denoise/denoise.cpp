@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "denoise/denoise_fields.h"
 #include "denoise/reblur_kernel.h"
@@ -27,13 +28,6 @@ namespace {
 // The rotation draws' sample counters: far above any ray generator's (samples < 64), so the
 // kernels' rotations are not correlated with the rays' directions.
 constexpr uint32_t kRotationStream = 0x10000;
-
-const float* need(const PlaneF* p, int w, int h, const char* what) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("denoise: ") + what +
-                                    " missing or not of the frame's size");
-    return p->row(0);
-}
 
 // Times each pass (over both signals) for --stats.
 class PassTimes {
@@ -107,25 +101,26 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
 }
 
 void checkInputs(const DenoiseInputs& in, int w, int h) {
-    need(in.viewZ, w, h, "viewZ");
-    for (int i = 0; i < 3; ++i) need(in.normal[i], w, h, "normal");
-    for (int i = 0; i < 2; ++i) need(in.motion[i], w, h, "motion");
+    PlaneCheck need("denoise", w, h);
+    need(in.viewZ, "viewZ");
+    for (int i = 0; i < 3; ++i) need(in.normal[i], "normal");
+    for (int i = 0; i < 2; ++i) need(in.motion[i], "motion");
     if (in.diffuse[0]) {
         for (int i = 0; i < 3; ++i) {
-            need(in.diffuse[i], w, h, "diffuse");
-            need(in.albedo[i], w, h, "albedo");
+            need(in.diffuse[i], "diffuse");
+            need(in.albedo[i], "albedo");
         }
-        need(in.metallic, w, h, "metallic");
-        need(in.diffuseHitDistance, w, h, "diffuse hit distance");
+        need(in.metallic, "metallic");
+        need(in.diffuseHitDistance, "diffuse hit distance");
     }
     if (in.ssr[0]) {
-        need(in.roughness, w, h, "roughness");
+        need(in.roughness, "roughness");
         for (int i = 0; i < 3; ++i) {
-            need(in.ssr[i], w, h, "ssr");
-            need(in.envSpecular[i], w, h, "envSpecular");
+            need(in.ssr[i], "ssr");
+            need(in.envSpecular[i], "envSpecular");
         }
-        need(in.ssrOpacity, w, h, "ssr opacity");
-        need(in.specularHitDistance, w, h, "specular hit distance");
+        need(in.ssrOpacity, "ssr opacity");
+        need(in.specularHitDistance, "specular hit distance");
     }
 }
 

@@ -3,21 +3,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "trace/hit_stats_kernel.h"
 
 namespace ssrt {
-
-namespace {
-
-const float* need(const PlaneF* p, int w, int h, const char* what) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("accumulateHitStats: ") + what +
-                                    " missing or not of the frame's size");
-    return p->row(0);
-}
-
-}  // namespace
 
 void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
                         const MarchResult& march, const HitStatsPlanes& out, int sample,
@@ -35,24 +25,25 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
-    a.stride = out.hit->stride();
     a.tanHalfX = camera.tanHalfX;
     a.tanHalfY = camera.tanHalfY;
-    a.hit = need(&march.hit, w, h, "march hit");
+    PlaneCheck need("accumulateHitStats", w, h);
+    a.hit = need(march.hit, "march hit");
     if (out.steps) {
-        a.steps = need(&march.steps, w, h, "march steps");
-        a.outSteps = out.steps->row(0);
+        a.steps = need(march.steps, "march steps");
+        a.outSteps = need.output(*out.steps, "steps");
     }
     if (out.distance) {
-        a.hitPos[0] = need(&march.hitX, w, h, "march hitX");
-        a.hitPos[1] = need(&march.hitY, w, h, "march hitY");
-        a.hitPos[2] = need(&march.hitZ, w, h, "march hitZ");
-        a.origin[0] = need(&rays.ox, w, h, "ray origin");
-        a.origin[1] = need(&rays.oy, w, h, "ray origin");
-        a.origin[2] = need(&rays.oz, w, h, "ray origin");
-        a.outDistance = out.distance->row(0);
+        a.hitPos[0] = need(march.hitX, "march hitX");
+        a.hitPos[1] = need(march.hitY, "march hitY");
+        a.hitPos[2] = need(march.hitZ, "march hitZ");
+        a.origin[0] = need(rays.ox, "ray origin");
+        a.origin[1] = need(rays.oy, "ray origin");
+        a.origin[2] = need(rays.oz, "ray origin");
+        a.outDistance = need.output(*out.distance, "distance");
     }
-    a.outHit = out.hit->row(0);
+    a.outHit = need.output(*out.hit, "hit");
+    a.stride = need.stride();
     a.first = sample == 0;
     a.last = sample == sampleCount - 1;
     a.invCount = 1.0f / float(sampleCount);

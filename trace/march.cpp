@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_check.h"
 #include "core/rng.h"
 #include "core/tiles.h"
 #include "trace/march_fields.h"
@@ -138,12 +139,6 @@ constexpr int kSortBlock = 4;
 // of the widest group, and plane rows are padded to one (core/image.h).
 static_assert(kTileSize % kMarchPad == 0);
 
-void checkPlane(const PlaneF* p, int w, int h, const char* name) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("marchRays: ") + name +
-                                    " is missing or does not match the ray batch size");
-}
-
 }  // namespace
 
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
@@ -154,13 +149,11 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
     if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
     if (camera.width != w || camera.height != h)
         throw std::invalid_argument("marchRays: camera size does not match the ray batch");
+    PlaneCheck need("marchRays", w, h);
     if (!(camera.tanHalfX > 0.0f) || !(camera.tanHalfY > 0.0f) || !(camera.nearZ > 0.0f))
         throw std::invalid_argument("marchRays: camera needs tanHalfX, tanHalfY, nearZ > 0");
-    checkPlane(g.viewZ, w, h, "viewZ");
-    for (const PlaneF* n : g.normal) checkPlane(n, w, h, "normal");
-    if (g.normal[0]->stride() != g.normal[1]->stride() ||
-        g.normal[0]->stride() != g.normal[2]->stride())
-        throw std::invalid_argument("marchRays: the normal planes differ in stride");
+    need(g.viewZ, "viewZ");
+    for (const PlaneF* n : g.normal) need(n, "normal");
 
     MarchKernelArgs proto{};
     HiZPacked packed;

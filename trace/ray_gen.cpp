@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "trace/ray_gen_kernel.h"
 
@@ -40,19 +41,6 @@ void RayGenStats::add(const RayGenStats& o) {
 
 namespace {
 
-void checkPlane(const PlaneF* p, const char* what, const TraceCamera& cam, std::size_t& stride) {
-    if (!p) throw std::invalid_argument(std::string("ray generation: no G-buffer plane ") + what);
-    if (p->width() != cam.width || p->height() != cam.height)
-        throw std::invalid_argument(std::string("ray generation: G-buffer plane ") + what + " is " +
-                                    std::to_string(p->width()) + "x" + std::to_string(p->height()) +
-                                    ", the camera " + std::to_string(cam.width) + "x" +
-                                    std::to_string(cam.height));
-    if (stride != 0 && p->stride() != stride)
-        throw std::invalid_argument(std::string("ray generation: G-buffer plane ") + what +
-                                    " has a different row stride");
-    stride = p->stride();
-}
-
 // Set-up shared by both passes: checks, arguments, the tile loop, counters in tile order.
 RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays, int threads,
@@ -61,18 +49,19 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
         throw std::invalid_argument("ray generation: the camera has no pixels");
-    std::size_t gStride = 0;
-    checkPlane(g.viewZ, "viewZ", camera, gStride);
-    checkPlane(g.normal[0], "normal.X", camera, gStride);
-    checkPlane(g.normal[1], "normal.Y", camera, gStride);
-    checkPlane(g.normal[2], "normal.Z", camera, gStride);
-    if (lobe != RayGenLobe::Diffuse) checkPlane(g.roughness, "roughness", camera, gStride);
+    PlaneCheck need("ray generation", camera.width, camera.height);
+    need(g.viewZ, "viewZ");
+    need(g.normal[0], "normal.X");
+    need(g.normal[1], "normal.Y");
+    need(g.normal[2], "normal.Z");
+    if (lobe != RayGenLobe::Diffuse) need(g.roughness, "roughness");
     if (onlyDiffuse) {
-        checkPlane(g.albedo[0], "albedo.R", camera, gStride);
-        checkPlane(g.albedo[1], "albedo.G", camera, gStride);
-        checkPlane(g.albedo[2], "albedo.B", camera, gStride);
-        checkPlane(g.metallic, "metallic", camera, gStride);
+        need(g.albedo[0], "albedo.R");
+        need(g.albedo[1], "albedo.G");
+        need(g.albedo[2], "albedo.B");
+        need(g.metallic, "metallic");
     }
+    const std::size_t gStride = need.stride();
     rays.ensureSize(camera.width, camera.height);
 
     RayGenArgs a{};

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "trace/reconstruct_kernel.h"
 
@@ -11,40 +12,28 @@ namespace ssrt {
 
 namespace {
 
-// A plane of w x h with the stride of the others of its group (0: the first sets it).
-const float* need(const PlaneF* p, int w, int h, std::size_t& stride, const char* what) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("reconstruction: ") + what +
-                                    " missing or not of the expected size");
-    if (stride != 0 && p->stride() != stride)
-        throw std::invalid_argument(std::string("reconstruction: ") + what +
-                                    " has a different row stride");
-    stride = p->stride();
-    return p->row(0);
-}
-
 template <class P>
-void planes(const ReconstructPlanesOf<P>& s, int w, int h, std::size_t& stride, const char* what,
+void planes(const ReconstructPlanesOf<P>& s, PlaneCheck& need, const char* what,
             const float* (&to)[kRecN]) {
     P* const all[kRecN] = {s.color[0], s.color[1],    s.color[2], s.opacity,
                            s.hit,      s.hitDistance, s.steps};
     const bool color = s.color[0] || s.color[1] || s.color[2];
     for (int k = 0; k < kRecN; ++k) {
         to[k] = nullptr;
-        if (all[k] || (k < 3 && color)) to[k] = need(all[k], w, h, stride, what);
+        if (all[k] || (k < 3 && color)) to[k] = need(all[k], what);
     }
 }
 
 // The arguments both share: guides and camera.
-ReconstructArgs guideArgs(const ReconstructGuides& g, std::size_t& stride) {
+// `need` checks the planes of the camera's size.
+ReconstructArgs guideArgs(const ReconstructGuides& g, PlaneCheck& need) {
     const int w = g.camera.width, h = g.camera.height;
-    if (w <= 0 || h <= 0) throw std::invalid_argument("reconstruction: empty camera");
     ReconstructArgs a{};
     a.width = w;
     a.height = h;
     a.tilesX = TileGrid(w, h).tilesX;
-    a.viewZ = need(g.viewZ, w, h, stride, "viewZ");
-    for (int c = 0; c < 3; ++c) a.normal[c] = need(g.normal[c], w, h, stride, "normal");
+    a.viewZ = need(g.viewZ, "viewZ");
+    for (int c = 0; c < 3; ++c) a.normal[c] = need(g.normal[c], "normal");
     a.scaleX = 2.0f * g.camera.tanHalfX / float(w);
     a.scaleY = 2.0f * g.camera.tanHalfY / float(h);
     a.tanHalfX = g.camera.tanHalfX;
@@ -52,8 +41,14 @@ ReconstructArgs guideArgs(const ReconstructGuides& g, std::size_t& stride) {
     for (int i = 0; i < 9; ++i) a.viewToWorld[i] = g.camera.viewToWorld[i];
     a.invTolerance = 1.0f / kReconstructPlaneTolerance;
     a.cutMark = kPdfLayoutCut;
-    a.stride = stride;
+    a.stride = need.stride();
     return a;
+}
+
+PlaneCheck frameCheck(const ReconstructGuides& g) {
+    if (g.camera.width <= 0 || g.camera.height <= 0)
+        throw std::invalid_argument("reconstruction: empty camera");
+    return PlaneCheck("reconstruction", g.camera.width, g.camera.height);
 }
 
 // The tiles in parallel. The checkerboard fill writes in place and reads each cut pixel's edge
@@ -82,10 +77,10 @@ uint64_t run(Isa isa, const ReconstructArgs& a, int threads) {
 
 uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf,
                           const ReconstructPlanes& out, int threads) {
-    std::size_t stride = 0;
-    ReconstructArgs a = guideArgs(g, stride);
+    PlaneCheck need = frameCheck(g);
+    ReconstructArgs a = guideArgs(g, need);
     a.half = false;
-    a.pdf = need(&pdf, a.width, a.height, stride, "ray pdf");
+    a.pdf = need(pdf, "ray pdf");
     if (out.steps) throw std::invalid_argument("fillCheckerboard: steps are not filled");
     const float* in[kRecN];
     planes(ReconstructSource{{out.color[0], out.color[1], out.color[2]},
@@ -93,35 +88,36 @@ uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf
                              out.hit,
                              out.hitDistance,
                              nullptr},
-           a.width, a.height, stride, "output", in);
+           need, "output", in);
     for (int k = 0; k < kRecN; ++k) {
         a.in[k] = in[k];
         a.out[k] = const_cast<float*>(in[k]);  // the same planes: filled in place
     }
     a.srcWidth = a.width;
     a.srcHeight = a.height;
-    a.srcStride = stride;
+    a.srcStride = need.stride();
     return run(isa, a, threads);
 }
 
 uint64_t upsampleHalf(Isa isa, const ReconstructGuides& g, PixelOffset offset,
                       const PlaneF& halfPdf, const ReconstructSource& in,
                       const ReconstructPlanes& out, int threads) {
-    std::size_t stride = 0;
-    ReconstructArgs a = guideArgs(g, stride);
+    PlaneCheck need = frameCheck(g);
+    ReconstructArgs a = guideArgs(g, need);
     a.half = true;
     a.offsetX = offset.x & 1;
     a.offsetY = offset.y & 1;
     a.srcWidth = (a.width + 1) / 2;
     a.srcHeight = (a.height + 1) / 2;
-    a.srcStride = 0;
-    a.pdf = need(&halfPdf, a.srcWidth, a.srcHeight, a.srcStride, "half-resolution ray pdf");
-    planes(in, a.srcWidth, a.srcHeight, a.srcStride, "half-resolution input", a.in);
+    PlaneCheck needHalf("reconstruction", a.srcWidth, a.srcHeight);
+    a.pdf = needHalf(halfPdf, "half-resolution ray pdf");
+    planes(in, needHalf, "half-resolution input", a.in);
+    a.srcStride = needHalf.stride();
     for (PlaneF* p : {out.color[0], out.color[1], out.color[2], out.opacity, out.hit,
                       out.hitDistance, out.steps})
         if (p) p->ensureSize(a.width, a.height);
     const float* o[kRecN];
-    planes(out, a.width, a.height, stride, "output", o);
+    planes(out, need, "output", o);
     for (int k = 0; k < kRecN; ++k) a.out[k] = const_cast<float*>(o[k]);
     // (An input without an output is not read; an output without an input is written 0,
     // opacity 1.)

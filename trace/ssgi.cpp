@@ -3,21 +3,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "trace/ssgi_kernel.h"
 
 namespace ssrt {
-
-namespace {
-
-const float* need(const PlaneF* p, int w, int h, const char* what) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("ssgi: ") + what +
-                                    " missing or not of the frame's size");
-    return p->row(0);
-}
-
-}  // namespace
 
 void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], int threads) {
     const int w = hitLight[0].width(), h = hitLight[0].height();
@@ -27,18 +17,18 @@ void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], 
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
-    a.stride = hitLight[0].stride();
-    a.viewZ = need(in.viewZ, w, h, "viewZ");
+    PlaneCheck need("addSsgiFeedback", w, h);
+    a.viewZ = need(in.viewZ, "viewZ");
     for (int c = 0; c < 3; ++c) {
-        a.albedo[c] = need(in.albedo[c], w, h, "albedo");
-        a.prevDiffuse[c] = need(in.prevDiffuse[c], w, h, "previous diffuse radiance");
-        need(&hitLight[c], w, h, "hitLight");
-        a.hitLight[c] = hitLight[c].row(0);
+        a.albedo[c] = need(in.albedo[c], "albedo");
+        a.prevDiffuse[c] = need(in.prevDiffuse[c], "previous diffuse radiance");
+        a.hitLight[c] = need.output(hitLight[c], "hitLight");
     }
-    a.metallic = need(in.metallic, w, h, "metallic");
-    a.motion[0] = need(in.motion[0], w, h, "motion");
-    a.motion[1] = need(in.motion[1], w, h, "motion");
-    if (in.occlusion) a.occlusion = need(in.occlusion, w, h, "occlusion");
+    a.metallic = need(in.metallic, "metallic");
+    a.motion[0] = need(in.motion[0], "motion");
+    a.motion[1] = need(in.motion[1], "motion");
+    if (in.occlusion) a.occlusion = need(in.occlusion, "occlusion");
+    a.stride = need.stride();
     const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
 }
@@ -56,30 +46,31 @@ void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const Marc
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
-    a.stride = out[0].stride();
-    a.viewZ = need(in.viewZ, w, h, "viewZ");
+    PlaneCheck need("resolveSsgi", w, h);
+    a.viewZ = need(in.viewZ, "viewZ");
     if (in.hitLight[0] || in.hitLight[1] || in.hitLight[2]) {
-        for (int c = 0; c < 3; ++c) a.hitLight[c] = need(in.hitLight[c], w, h, "hitLight");
+        for (int c = 0; c < 3; ++c) a.hitLight[c] = need(in.hitLight[c], "hitLight");
     } else {
         for (int c = 0; c < 3; ++c) {
-            a.normal[c] = need(in.normal[c], w, h, "normal");
-            a.albedo[c] = need(in.albedo[c], w, h, "albedo");
+            a.normal[c] = need(in.normal[c], "normal");
+            a.albedo[c] = need(in.albedo[c], "albedo");
         }
-        a.metallic = need(in.metallic, w, h, "metallic");
-        a.shadow = need(in.shadow, w, h, "shadow");
+        a.metallic = need(in.metallic, "metallic");
+        a.shadow = need(in.shadow, "shadow");
         if (in.emission[0] || in.emission[1] || in.emission[2])
-            for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], w, h, "emission");
+            for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], "emission");
     }
     const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
-    a.pdf = need(&rays.pdf, w, h, "ray pdf");
-    a.hit = need(&march.hit, w, h, "march hit");
-    a.hitX = need(&march.hitX, w, h, "march hitX");
-    a.hitY = need(&march.hitY, w, h, "march hitY");
+    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], "ray direction");
+    a.pdf = need(&rays.pdf, "ray pdf");
+    a.hit = need(&march.hit, "march hit");
+    a.hitX = need(&march.hitX, "march hitX");
+    a.hitY = need(&march.hitY, "march hitY");
     a.lighting = *in.lighting;
     // The camera's rotation is the one rays are turned to world with.
     for (int i = 0; i < 9; ++i) a.lighting.viewToWorld[i] = in.camera.viewToWorld[i];
-    for (int c = 0; c < 3; ++c) a.out[c] = out[c].row(0);
+    for (int c = 0; c < 3; ++c) a.out[c] = need.output(out[c], "output");
+    a.stride = need.stride();
     a.sample = sample;
     a.sampleCount = sampleCount;
     const auto tileFn = SSRT_DISPATCH(isa, ssgiTile);

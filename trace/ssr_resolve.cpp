@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 #include "trace/ssr_resolve_kernel.h"
 
@@ -24,20 +25,6 @@ void SsrOutput::ensureSize(int width, int height) {
     hitFade.ensureSize(width, height);
 }
 
-namespace {
-
-// A plane the resolve reads: present, of the frame's size (so of the frame's stride).
-const float* need(const PlaneF* p, int w, int h, const char* what) {
-    if (!p || p->width() != w || p->height() != h)
-        throw std::invalid_argument(std::string("resolveSsr: ") + what +
-                                    " missing or not of the frame's size");
-    return p->row(0);
-}
-
-const float* need(const PlaneF& p, int w, int h, const char* what) { return need(&p, w, h, what); }
-
-}  // namespace
-
 void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
                 const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
                 int sampleCount, int threads) {
@@ -51,26 +38,26 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
-    a.stride = out.opacity.stride();
     a.tanHalfX = in.camera.tanHalfX;
     a.tanHalfY = in.camera.tanHalfY;
     std::copy_n(in.camera.viewToWorld, 9, a.viewToWorld);
-    a.viewZ = need(in.viewZ, w, h, "viewZ");
-    a.roughness = need(in.roughness, w, h, "roughness");
+    PlaneCheck need("resolveSsr", w, h);
+    a.viewZ = need(in.viewZ, "viewZ");
+    a.roughness = need(in.roughness, "roughness");
     a.reuse = settings.mode == SsrResolveMode::Reuse;
     a.mip = settings.mode == SsrResolveMode::Mip;
     if (a.reuse)
-        for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], w, h, "normal");
+        for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], "normal");
     const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], w, h, "ray direction");
-    a.pdf = need(rays.pdf, w, h, "ray pdf");
-    a.hit = need(march.hit, w, h, "march hit");
-    a.hitPos[0] = need(march.hitX, w, h, "march hitX");
-    a.hitPos[1] = need(march.hitY, w, h, "march hitY");
-    a.hitPos[2] = need(march.hitZ, w, h, "march hitZ");
+    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], "ray direction");
+    a.pdf = need(rays.pdf, "ray pdf");
+    a.hit = need(march.hit, "march hit");
+    a.hitPos[0] = need(march.hitX, "march hitX");
+    a.hitPos[1] = need(march.hitY, "march hitY");
+    a.hitPos[2] = need(march.hitZ, "march hitZ");
     a.reproject = settings.radiance == HitRadiance::Reprojected;
     if (a.reproject)
-        for (int c = 0; c < 2; ++c) a.motion[c] = need(in.motion[c], w, h, "motion");
+        for (int c = 0; c < 2; ++c) a.motion[c] = need(in.motion[c], "motion");
     a.bilinear = settings.bilinear;
     if (a.mip) {
         const ColorPyramid* pyr = in.pyramid;
@@ -93,8 +80,7 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
             throw std::invalid_argument("resolveSsr: colour pyramid not of the frame's size");
     } else {
         const PlaneF* const* src = a.reproject ? in.prevColor : in.color;
-        for (int c = 0; c < 3; ++c)
-            a.source[c] = need(src[c], w, h, a.reproject ? "prevColor" : "color");
+        for (int c = 0; c < 3; ++c) a.source[c] = need(src[c], a.reproject ? "prevColor" : "color");
     }
     a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 1.0e30f;
     a.roughnessFadeEnd = settings.roughnessFadeEnd;
@@ -102,16 +88,17 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
     a.roughnessFadeScale = span > 0.0f ? 1.0f / span : 1.0e30f;
     a.radianceScale = in.radianceScale;
     for (int c = 0; c < 3; ++c) {
-        a.hitRadiance[c] = out.hitRadiance[c].row(0);
-        a.outColor[c] = out.color[c].row(0);
+        a.hitRadiance[c] = need.output(out.hitRadiance[c], "hit radiance");
+        a.outColor[c] = need.output(out.color[c], "colour");
     }
-    a.hitFade = out.hitFade.row(0);
+    a.hitFade = need.output(out.hitFade, "hit fade");
     if (a.reuse)
         for (int c = 0; c < 3; ++c) {
             out.hitTarget[c].ensureSize(w, h);  // only the reuse mode needs it
-            a.hitTarget[c] = out.hitTarget[c].row(0);
+            a.hitTarget[c] = need.output(out.hitTarget[c], "hit target");
         }
-    a.outOpacity = out.opacity.row(0);
+    a.outOpacity = need.output(out.opacity, "opacity");
+    a.stride = need.stride();
     a.sample = sample;
     a.sampleCount = sampleCount;
     // Pass 1 (own hits) over every tile before pass 2 reads the neighbours'.

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 
 namespace ssrt {
@@ -33,26 +34,17 @@ TraceCamera halfCamera(const TraceCamera& full) {
     return c;
 }
 
-namespace {
-
-void checkSource(const PlaneF* p, const TraceCamera& cam, const char* what) {
-    if (!p || p->width() != cam.width || p->height() != cam.height)
-        throw std::invalid_argument(std::string("buildHalfFrame: ") + what +
-                                    " missing or not of the camera's size");
-}
-
-}  // namespace
-
 void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_t frame,
                     HalfFrame& out, int threads) {
     if (full.width <= 0 || full.height <= 0)
         throw std::invalid_argument("buildHalfFrame: the camera has no pixels");
-    checkSource(src.viewZ, full, "viewZ");
-    checkSource(src.metallic, full, "metallic");
+    PlaneCheck need("buildHalfFrame", full.width, full.height);
+    need(src.viewZ, "viewZ");
+    need(src.metallic, "metallic");
     for (int c = 0; c < 3; ++c) {
-        checkSource(src.normal[c], full, "normal");
-        checkSource(src.albedo[c], full, "albedo");
-        checkSource(src.hitLight[c], full, "hitLight");
+        need(src.normal[c], "normal");
+        need(src.albedo[c], "albedo");
+        need(src.hitLight[c], "hitLight");
     }
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
@@ -66,7 +58,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
                               src.hitLight[0], src.hitLight[1], src.hitLight[2]};
     const bool guides = src.motion[0] != nullptr;
     if (guides)
-        for (int c = 0; c < 2; ++c) checkSource(src.motion[c], full, "motion");
+        for (int c = 0; c < 2; ++c) need(src.motion[c], "motion");
     PlaneF* const guide[6] = {&out.guideZ,         &out.guideNormal[0], &out.guideNormal[1],
                               &out.guideNormal[2], &out.guideMotion[0], &out.guideMotion[1]};
     const PlaneF* const guideFrom[6] = {src.viewZ,     src.normal[0], src.normal[1],

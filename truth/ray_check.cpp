@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_check.h"
 #include "core/tiles.h"
 
 namespace ssrt {
@@ -62,23 +63,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kBlock = 4;  // 4x4 pixels: one 16-ray Embree packet
 
-void requireSize(const PlaneF& p, const TraceCamera& cam, const char* what) {
-    if (p.width() != cam.width || p.height() != cam.height)
-        throw std::invalid_argument(std::string("checkRays: ") + what + " is " +
-                                    std::to_string(p.width()) + "x" + std::to_string(p.height()) +
-                                    ", the camera " + std::to_string(cam.width) + "x" +
-                                    std::to_string(cam.height));
-}
-
 void requireSizes(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
                   const MarchResult& m) {
     if (cam.width <= 0 || cam.height <= 0)
         throw std::invalid_argument("checkRays: the camera has no pixels");
-    requireSize(viewZ, cam, "viewZ");
+    PlaneCheck need("checkRays", cam.width, cam.height);
+    need(viewZ, "viewZ");
     for (const PlaneF* p : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf})
-        requireSize(*p, cam, "a RayBatch plane");
+        need(p, "a RayBatch plane");
     for (const PlaneF* p : {&m.hit, &m.hitX, &m.hitY, &m.hitZ, &m.steps, &m.cause})
-        requireSize(*p, cam, "a MarchResult plane");
+        need(p, "a MarchResult plane");
 }
 
 glm::vec3 viewOrigin(const RayBatch& r, int x, int y) {
