@@ -59,7 +59,7 @@ struct Four {
 // One signal's planes through the passes: 0-3 diffuse, 4-7 specular of the scratch arrays.
 struct SignalPlanes {
     bool specular;
-    int base;  // 0 or 4
+    PlaneF* noisy;  // the front end's planes of this signal (DenoiseScratch)
     PlaneF* outputs[3];
     PlaneF* framesOut;
 };
@@ -70,6 +70,9 @@ struct Context {
     DenoiseScratch& sc;
     const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
     DenoiseHistory* next;            // null: no history to write (may be `previous`)
+    // Which signals `previous` holds, decided before `next` (the same history, maybe) is
+    // sized for this frame's signals.
+    bool previousHas[2];
     Isa isa;
     int threads;
     TileGrid grid;
@@ -145,7 +148,10 @@ void frontEnd(Context& c) {
         a.specularHit = in.specularHitDistance->row(0);
     }
     a.specularMaxRoughness = in.specularMaxRoughness;
-    for (int i = 0; i < 8; ++i) a.noisy[i] = c.sc.noisy[i].row(0);
+    for (int i = 0; i < 4; ++i) {
+        a.noisyDiffuse[i] = c.sc.noisyDiffuse[i].row(0);
+        a.noisySpecular[i] = c.sc.noisySpecular[i].row(0);
+    }
     a.signalZ[0] = c.sc.signalZ[0].row(0);
     a.signalZ[1] = c.sc.signalZ[1].row(0);
     a.tiles = c.sc.tiles.data();
@@ -198,7 +204,7 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
     }
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.previous && c.previous->hasSignal(sig.specular) && s.maxAccumulatedFrames > 0) {
+    if (c.previous && c.previousHas[k] && s.maxAccumulatedFrames > 0) {
         const DenoiseHistory& h = *c.previous;
         a.prevViewZ = h.viewZ.row(0);
         for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
@@ -249,7 +255,7 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
 void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneF* current = sc.noisy + sig.base;
+    PlaneF* current = sig.noisy;
     const auto step = [&](const char* name, auto&& pass) {
         PlaneF* out = current == sc.ping ? sc.pong : sc.ping;
         times.run(name, [&] { pass(current, out); });
@@ -271,8 +277,7 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     if (c.next) history = sig.specular ? c.next->specular : c.next->diffuse;
     // (The output has no hit distance: that channel goes to the signal's noisy plane, which
     // nothing reads after the first pass.)
-    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2],
-                            &sc.noisy[sig.base + 3]};
+    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2], &sig.noisy[3]};
     times.run("post-blur",
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
@@ -320,8 +325,11 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         if (on) p.ensureSize(w, h);
         else p = PlaneF();
     };
-    // Only the signals present (planes 0-3 diffuse, 4-7 specular).
-    for (int i = 0; i < 8; ++i) keepIf(i < 4 ? diffuse : specular, sc.noisy[i]);
+    // Only the signals present.
+    for (int i = 0; i < 4; ++i) {
+        keepIf(diffuse, sc.noisyDiffuse[i]);
+        keepIf(specular, sc.noisySpecular[i]);
+    }
     for (int i = 0; i < 4; ++i) {
         keepIf(diffuse || specular, sc.ping[i]);
         keepIf(diffuse || specular, sc.pong[i]);
@@ -369,21 +377,30 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const DenoiseHistory* previous = readHistory ? history : nullptr;
     DenoiseHistory* next = in.replaceHistory ? history : nullptr;
     if (next && !readHistory) next->valid = false;
+    const bool previousHas[2] = {previous && previous->hasSignal(false),
+                                 previous && previous->hasSignal(true)};
     ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid);
-    Context c{settings, in,   scratch,
-              previous, next, isa,
-              threads,  grid, makeView(in, settings, scratch, grid)};
+    Context c{settings, in,
+              scratch,  previous,
+              next,     {previousHas[0], previousHas[1]},
+              isa,      threads,
+              grid,     makeView(in, settings, scratch, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (diffuse)
-        denoiseSignal(
-            c, {false, 0, {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]}, &out.diffuseFrames},
-            pt);
+        denoiseSignal(c,
+                      {false,
+                       scratch.noisyDiffuse,
+                       {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
+                       &out.diffuseFrames},
+                      pt);
     if (specular)
-        denoiseSignal(
-            c,
-            {true, 4, {&out.specular[0], &out.specular[1], &out.specular[2]}, &out.specularFrames},
-            pt);
+        denoiseSignal(c,
+                      {true,
+                       scratch.noisySpecular,
+                       {&out.specular[0], &out.specular[1], &out.specular[2]},
+                       &out.specularFrames},
+                      pt);
     if (next) pt.run("history", [&] { commitHistory(c); });
 }
 

@@ -109,7 +109,8 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
 // between the two ping-pong groups, which both signals share: 16 planes, not one group per
 // pass and signal (40).
 struct DenoiseScratch : PlaneTable<DenoiseScratch> {
-    PlaneF noisy[8];  // the front end's: diffuse 0-3, specular 4-7 (RGB, normalised hit distance)
+    // The front end's, per signal: RGB and the normalised hit distance.
+    PlaneF noisyDiffuse[4], noisySpecular[4];
     PlaneF ping[4], pong[4];
     // Per signal (diffuse, specular), sized only for the signals given:
     PlaneF signalZ[2];           // viewZ where the signal exists, else 0
@@ -119,12 +120,14 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        static constexpr const char* kNoisy[8] = {
-            "noisy.diffuse.R",  "noisy.diffuse.G",  "noisy.diffuse.B",  "noisy.diffuse.hit",
-            "noisy.specular.R", "noisy.specular.G", "noisy.specular.B", "noisy.specular.hit"};
+        static constexpr const char* kDiffuse[4] = {"noisy.diffuse.R", "noisy.diffuse.G",
+                                                    "noisy.diffuse.B", "noisy.diffuse.hit"};
+        static constexpr const char* kSpecular[4] = {"noisy.specular.R", "noisy.specular.G",
+                                                     "noisy.specular.B", "noisy.specular.hit"};
         static constexpr const char* kPing[4] = {"ping.R", "ping.G", "ping.B", "ping.hit"};
         static constexpr const char* kPong[4] = {"pong.R", "pong.G", "pong.B", "pong.hit"};
-        for (int i = 0; i < 8; ++i) fn(std::string_view(kNoisy[i]), g.noisy[i]);
+        for (int i = 0; i < 4; ++i) fn(std::string_view(kDiffuse[i]), g.noisyDiffuse[i]);
+        for (int i = 0; i < 4; ++i) fn(std::string_view(kSpecular[i]), g.noisySpecular[i]);
         for (int i = 0; i < 4; ++i) fn(std::string_view(kPing[i]), g.ping[i]);
         for (int i = 0; i < 4; ++i) fn(std::string_view(kPong[i]), g.pong[i]);
         fn("signalZ.diffuse", g.signalZ[0]), fn("signalZ.specular", g.signalZ[1]);

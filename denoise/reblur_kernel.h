@@ -39,7 +39,9 @@ struct ReblurFrontEndArgs {
     const float* envSpecular[3] = {};
     const float* specularHit = nullptr;
     float specularMaxRoughness = 1.0f;
-    float* noisy[8] = {};  // diffuse RGB + normalised hit distance, then specular's
+    // RGB and the normalised hit distance of each signal given.
+    float* noisyDiffuse[4] = {};
+    float* noisySpecular[4] = {};
     float* signalZ[2] = {};
     uint8_t* tiles = nullptr;
 };

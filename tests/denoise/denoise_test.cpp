@@ -156,7 +156,10 @@ TEST_CASE("denoise: a constant signal stays constant through every pass, frame a
 TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks starts afresh") {
     Synthetic s(48, 32);
     Denoiser d;
-    DenoiseInputs diffuseOnly = s.inputs(0);
+    // Both signals for three frames, then the diffuse alone (as when SSR is turned off).
+    for (uint32_t f = 0; f < 3; ++f) d.run(s, f);
+    REQUIRE(d.out.specularFrames.at(20, 10) > 1.0f);
+    DenoiseInputs diffuseOnly = s.inputs(3);
     for (auto& p : diffuseOnly.ssr) p = nullptr;
     denoise(d.isa, d.settings, diffuseOnly, &d.history, false, d.scratch, d.out, d.threads);
     CHECK(d.history.hasSignal(false));
@@ -164,14 +167,18 @@ TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks s
     CHECK(d.history.specular[0].empty());
     CHECK(d.history.roughness.empty());  // it guides the specular alone
     CHECK(d.scratch.frames[1].empty());
-    CHECK(d.out.specular[0].empty());
-    // The specular joins: the diffuse goes on, the specular has no frame behind it.
-    d.run(s, 1);
-    CHECK(d.out.diffuseFrames.at(20, 10) == 1.0f);
+    CHECK(d.out.diffuseFrames.at(20, 10) == 3.0f);
+    // The specular comes back: the diffuse goes on, the specular has no frame behind it,
+    // whatever its planes, sized anew, hold (freed planes of the scene's roughness, which the
+    // allocator is likely to hand back to them, would pass for a history: seen to fail so).
+    {
+        std::vector<PlaneF> stale;
+        for (int i = 0; i < 40; ++i) stale.emplace_back(s.w, s.h, 0.3f);
+    }
+    d.run(s, 4);
+    CHECK(d.out.diffuseFrames.at(20, 10) == 4.0f);
     CHECK(d.out.specularFrames.at(20, 10) == 0.0f);
     CHECK(d.history.hasSignal(true));
-    d.run(s, 2);
-    CHECK(d.out.specularFrames.at(20, 10) == 1.0f);
 }
 
 TEST_CASE(
