@@ -1,7 +1,5 @@
 #include "io/image_compare.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -11,6 +9,7 @@
 
 #include "core/image.h"
 #include "core/rel_mse.h"
+#include "io/image_decode.h"
 #include "io/image_io.h"
 #include "io/io_errors.h"
 
@@ -20,38 +19,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-using io_detail::failRead;
-
 // ---------------------------------------------------------------------------------------
 // Files
 
 // Every channel of subimage 0 as float, interleaved (pixel by pixel, row by row).
-struct LoadedImage {
-    std::vector<std::string> names;
-    std::vector<float> values;
-    int channels = 0;
-};
-
-std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) failRead(path, OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        failRead(path, "the image is empty");
-    return in;
-}
-
-LoadedImage readAll(OIIO::ImageInput& in, const std::string& path) {
-    const OIIO::ImageSpec& spec = in.spec();
-    LoadedImage image;
-    image.names = spec.channelnames;
-    image.channels = spec.nchannels;
-    image.values.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-    // Float to float is a copy, so a NaN keeps its bits.
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
-        failRead(path, in.geterror());
-    return image;
-}
+using LoadedImage = io_detail::FloatImage;
 
 // ---------------------------------------------------------------------------------------
 // Layers
@@ -170,8 +142,8 @@ LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const Loaded
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const std::size_t pixel = std::size_t(y) * width + x;
-            const float* pa = a.values.data() + pixel * a.channels;
-            const float* pb = b.values.data() + pixel * b.channels;
+            const float* pa = a.values.data() + pixel * std::size_t(a.channels);
+            const float* pb = b.values.data() + pixel * std::size_t(b.channels);
             double pixelMax = 0.0;
             for (std::size_t k = 0; k < n; ++k) {
                 const float va = pa[ia[k]], vb = pb[ib[k]];
@@ -266,24 +238,18 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
                                         "' must be a .png file");
         checkWritable(options.heatmap);
     }
-    // Both sizes before either file is decoded.
-    auto inA = openImage(pathA);
-    auto inB = openImage(pathB);
-    const OIIO::ImageSpec& sa = inA->spec();
-    const OIIO::ImageSpec& sb = inB->spec();
-    if (sa.width != sb.width || sa.height != sb.height)
-        throw std::runtime_error("cannot compare '" + pathA + "' (" + std::to_string(sa.width) +
-                                 "x" + std::to_string(sa.height) + ") with '" + pathB + "' (" +
-                                 std::to_string(sb.width) + "x" + std::to_string(sb.height) +
+    const LoadedImage a = io_detail::readFloatImage(pathA);
+    const LoadedImage b = io_detail::readFloatImage(pathB);
+    if (a.width != b.width || a.height != b.height)
+        throw std::runtime_error("cannot compare '" + pathA + "' (" + std::to_string(a.width) +
+                                 "x" + std::to_string(a.height) + ") with '" + pathB + "' (" +
+                                 std::to_string(b.width) + "x" + std::to_string(b.height) +
                                  "): the sizes differ");
-    const std::vector<LayerPlan> plans =
-        chosen(planLayers(sa.channelnames, sb.channelnames), options.layers);
-    const LoadedImage a = readAll(*inA, pathA);
-    const LoadedImage b = readAll(*inB, pathB);
+    const std::vector<LayerPlan> plans = chosen(planLayers(a.names, b.names), options.layers);
 
     ImageDiff diff;
-    diff.width = sa.width;
-    diff.height = sa.height;
+    diff.width = a.width;
+    diff.height = a.height;
     std::unique_ptr<PlaneF> heat;
     if (!options.heatmap.empty()) heat = std::make_unique<PlaneF>(diff.width, diff.height, 0.0f);
     for (const LayerPlan& plan : plans) {

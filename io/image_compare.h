@@ -1,6 +1,6 @@
 // Two image files compared layer by layer against thresholds: what differs, by how much and
-// where (ssrt diff, ssrt render --compare). OpenImageIO reads the files and stays behind
-// this header.
+// where (ssrt diff, ssrt render --compare). io/image_decode.h reads the files and its
+// libraries stay behind this header.
 //
 // A layer is the channels that share the name before their last '.': color.R, color.G and
 // color.B are the layer "color"; viewZ, a channel without a dot, is a layer of its own. The
@@ -77,10 +77,10 @@ struct DiffThresholds {
 bool withinThresholds(const LayerDiff& layer, const DiffThresholds& limits,
                       std::string* why = nullptr);
 
-// Compares `a` against the reference `b` (any file OpenImageIO reads; subimage 0, values as
-// float: an 8-bit PNG's are 0..1). Throws std::runtime_error (one line naming the file) when
-// a file cannot be read or the two differ in size, std::invalid_argument for a bad option;
-// then no heat map is written.
+// Compares `a` against the reference `b` (any image file io/ reads; subimage 0, values as
+// float: an 8-bit PNG's are 0..1, as OpenImageIO converts them). Throws std::runtime_error
+// (one line naming the file) when a file cannot be read or the two differ in size,
+// std::invalid_argument for a bad option; then no heat map is written.
 ImageDiff compareImages(const std::string& a, const std::string& b,
                         const ImageCompareOptions& options = {});
 

@@ -7,8 +7,6 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -26,7 +24,9 @@
 #include <thread>
 
 #include "core/color.h"
+#include "io/image_decode.h"
 #include "io/io_errors.h"
+#include "io/png_io.h"
 
 namespace ssrt {
 
@@ -91,7 +91,7 @@ std::string hostTag() {
     return tag.empty() ? "host" : tag;
 }
 
-// A hidden name beside the target that keeps its extension (OpenImageIO picks the format by
+// A hidden name beside the target that keeps its extension (a reader may pick the format by
 // it) and cannot collide with another writer in this or another process, on this machine or
 // another sharing the folder (a cluster's shared cache: process ids repeat across nodes).
 fs::path temporaryPathFor(const std::string& path, const std::string& ext) {
@@ -160,30 +160,24 @@ uint8_t quantise(float v) {
 // ---------------------------------------------------------------------------------------
 // Writers (into an already reserved temporary)
 
-// 8-bit RGB from the display planes, a row at a time.
+// zlib's fastest level: a preview written for a look, where libpng's default level 6
+// spent about half a second on one 1920x1080 frame (as long as rendering it).
 constexpr int kPngCompressionLevel = 1;
 
+// 8-bit RGB from the display planes, through libpng (io/png_io.h).
 void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
     const PlaneF* planes[3];
     for (int c = 0; c < 3; ++c) planes[c] = findPlane(image, kDisplayPlanes[c]);
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("Software", "ssrt");
-    // zlib's fastest level: a preview written for a look, where libpng's default level 6
-    // spent about half a second on one 1920x1080 frame (as long as rendering it).
-    spec.attribute("png:compressionLevel", kPngCompressionLevel);
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) failWrite(path, OIIO::geterror());
-    if (!out->open(tmp.string(), spec)) failWrite(path, out->geterror());
-    std::vector<uint8_t> row(std::size_t(image.width) * 3);
-    for (int y = 0; y < image.height; ++y) {
+    const std::size_t w = std::size_t(image.width);
+    std::vector<uint8_t> rgb(w * std::size_t(image.height) * 3);
+    for (int y = 0; y < image.height; ++y)
         for (int c = 0; c < 3; ++c) {
             const float* src = planes[c]->row(y);
-            for (int x = 0; x < image.width; ++x) row[std::size_t(x) * 3 + c] = quantise(src[x]);
+            uint8_t* row = rgb.data() + std::size_t(y) * w * 3;
+            for (std::size_t x = 0; x < w; ++x) row[x * 3 + c] = quantise(src[x]);
         }
-        if (!out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, row.data()))
-            failWrite(path, out->geterror());
-    }
-    if (!out->close()) failWrite(path, out->geterror());
+    io_detail::writePngRgb8(path, tmp.string(), image.width, image.height, rgb,
+                            kPngCompressionLevel);
 }
 
 // OpenEXR's compression for ours (all lossless).
@@ -277,8 +271,7 @@ void writeImage(const std::string& path, const ImageLayers& image, const WriteOp
 namespace {
 
 // The channel called `name`, or -1.
-int channelIndex(const OIIO::ImageSpec& spec, const char* name) {
-    const auto& names = spec.channelnames;
+int channelIndex(const std::vector<std::string>& names, const char* name) {
     const auto it = std::find(names.begin(), names.end(), name);
     return it == names.end() ? -1 : int(it - names.begin());
 }
@@ -286,28 +279,22 @@ int channelIndex(const OIIO::ImageSpec& spec, const char* name) {
 }  // namespace
 
 InterleavedImage readSkyImage(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) failRead(path, OIIO::geterror());
-    const OIIO::ImageSpec spec = in->spec();
-    const int w = spec.width, h = spec.height, n = spec.nchannels;
-    if (w <= 0 || h <= 0 || n <= 0) failRead(path, "the image is empty");
-    std::vector<float> all(std::size_t(w) * h * n);
-    if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, all.data()))
-        failRead(path, in->geterror());
+    const io_detail::FloatImage in = io_detail::readFloatImage(path);
+    const int w = in.width, h = in.height, n = in.channels;
     // Which file channel feeds R, G and B.
     int src[3] = {0, 0, 0};
-    const int r = channelIndex(spec, "R"), g = channelIndex(spec, "G"), b = channelIndex(spec, "B");
+    const int r = channelIndex(in.names, "R"), g = channelIndex(in.names, "G"),
+              b = channelIndex(in.names, "B");
     if (r >= 0 && g >= 0 && b >= 0) src[0] = r, src[1] = g, src[2] = b;
     else if (n >= 3) src[0] = 0, src[1] = 1, src[2] = 2;
-    const bool srgb = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
     InterleavedImage img{w, h, 3, std::vector<float>(std::size_t(3) * w * h)};
     for (std::size_t i = 0; i < std::size_t(w) * h; ++i)
         for (int c = 0; c < 3; ++c) {
-            float v = all[i * n + src[c]];
+            float v = in.values[i * n + src[c]];
             if (!std::isfinite(v))
                 failRead(path, "texel (" + std::to_string(i % w) + ", " + std::to_string(i / w) +
                                    ") is not finite");
-            if (srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));  // the project's own pow
+            if (in.srgb) v = srgbToLinear(std::clamp(v, 0.0f, 1.0f));  // the project's own pow
             img.pixels[i * 3 + c] = v > 0.0f ? v : 0.0f;
         }
     return img;
@@ -328,52 +315,31 @@ std::map<std::string, std::string> readExrStringAttributes(const std::string& pa
 }
 
 std::vector<std::string> readChannelNames(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) failRead(path, OIIO::geterror());
-    return in->spec().channelnames;
+    return io_detail::imageChannelNames(path);
 }
 
 std::vector<float> readChannel(const std::string& path, const std::string& channel, int& width,
                                int& height) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) failRead(path, OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    const auto& names = spec.channelnames;
-    const auto it = std::find(names.begin(), names.end(), channel);
-    if (it == names.end()) failRead(path, "it has no channel '" + channel + "'");
-    const int c = int(it - names.begin());
-    std::vector<float> data(std::size_t(spec.width) * spec.height);
-    if (!in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, data.data()))
-        failRead(path, in->geterror());
-    width = spec.width;
-    height = spec.height;
-    return data;
+    return std::move(readChannels(path, {channel}, width, height).front());
 }
 
 std::vector<std::vector<float>> readChannels(const std::string& path,
                                              const std::vector<std::string>& channels, int& width,
                                              int& height) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) failRead(path, OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    const auto& names = spec.channelnames;
-    std::vector<int> index;
+    const io_detail::FloatImage in = io_detail::readFloatImage(path);
+    std::vector<std::size_t> index;
     for (const std::string& channel : channels) {
-        const auto it = std::find(names.begin(), names.end(), channel);
-        if (it == names.end()) failRead(path, "it has no channel '" + channel + "'");
-        index.push_back(int(it - names.begin()));
+        const auto it = std::find(in.names.begin(), in.names.end(), channel);
+        if (it == in.names.end()) failRead(path, "it has no channel '" + channel + "'");
+        index.push_back(std::size_t(it - in.names.begin()));
     }
-    // Every channel interleaved, in one read.
-    const std::size_t pixels = std::size_t(spec.width) * spec.height;
-    const std::size_t n = std::size_t(spec.nchannels);
-    std::vector<float> all(pixels * n);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-        failRead(path, in->geterror());
+    const std::size_t pixels = std::size_t(in.width) * in.height;
+    const std::size_t n = std::size_t(in.channels);
     std::vector<std::vector<float>> out(channels.size(), std::vector<float>(pixels));
     for (std::size_t k = 0; k < channels.size(); ++k)
-        for (std::size_t p = 0; p < pixels; ++p) out[k][p] = all[p * n + std::size_t(index[k])];
-    width = spec.width;
-    height = spec.height;
+        for (std::size_t p = 0; p < pixels; ++p) out[k][p] = in.values[p * n + index[k]];
+    width = in.width;
+    height = in.height;
     return out;
 }
 

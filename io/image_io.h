@@ -1,5 +1,6 @@
-// Image files at the edge of the renderer: EXR with every named plane, PNG previews.
-// OpenImageIO stays behind this header so the core library never sees it.
+// Image files at the edge of the renderer: EXR with every named plane, PNG previews, sky
+// images and channels read back. The libraries (libpng, libjpeg, stb_image, OpenEXR, and
+// OpenImageIO in a module loaded on first need: io/image_decode.h) stay behind this header.
 #pragma once
 
 #include <map>
@@ -16,6 +17,7 @@ namespace ssrt {
 // chooses them), the format chosen by the extension (case-insensitive):
 //   .png  8-bit RGB from display.{R,G,B} (already tone mapped and sRGB encoded), each value
 //         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0. Other layers are ignored.
+//         Written by libpng at zlib level 1, byte for byte as OpenImageIO 2.4 wrote it.
 //   .exr  32-bit float, one channel per layer, in the order given, channel name = layer name
 //         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers. Float,
 //         not half: ids and view depth need every bit. Written by OpenEXR with
@@ -45,8 +47,9 @@ bool isPngPath(const std::string& path);
 const std::vector<std::string>& supportedImageExtensions();
 
 // An equirectangular environment image (for Sky::Kind::Image: renderer/sky_lighting.h
-// makeSkyImage takes it) as RGB (3 channels), from any file OpenImageIO reads (.exr, .hdr,
-// ...; subimage 0, level 0). Channels: R, G, B by name when present, else the first three;
+// makeSkyImage takes it) as RGB (3 channels), from any image file io/ reads (.exr, .hdr,
+// .png, .jpg, or any other OpenImageIO reads; subimage 0, level 0; an alpha channel is
+// associated, as OpenImageIO did). Channels: R, G, B by name when present, else the first three;
 // one channel (or two: grey and alpha) is grey. Values are linear; a file tagged sRGB (8-bit
 // PNG, JPEG) is decoded to linear. Negative values become 0. Throws std::runtime_error, one
 // line naming the path, if the file cannot be read or holds a NaN or an infinity.

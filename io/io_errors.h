@@ -22,4 +22,14 @@ inline std::string oneLine(std::string text) {
     throw std::runtime_error("cannot read '" + path + "': " + oneLine(reason));
 }
 
+// A decoder's failure, the reason alone (io/image_decode.h): each public reader words it with
+// the name of the file or image in its own way.
+struct DecodeFailure : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] inline void failDecode(const std::string& reason) {
+    throw DecodeFailure(oneLine(reason));
+}
+
 }  // namespace ssrt::io_detail

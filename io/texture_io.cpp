@@ -1,22 +1,20 @@
 #include "io/texture_io.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "core/color.h"
+#include "io/image_decode.h"
+#include "io/io_errors.h"
 
 namespace ssrt {
 
 namespace {
 
-namespace OIIO = OIIO_NAMESPACE;
+using io_detail::DecodedImage;
+using io_detail::SampleType;
 
 [[noreturn]] void fail(const std::string& name, const std::string& problem) {
     std::string line = name + ": " + problem;
@@ -60,13 +58,10 @@ const std::array<float, 256>& srgb8Table() {
     return table;
 }
 
-// Reads T values and normalizes them by one division each (8-bit sRGB colour by the table).
+// Normalizes T values by one division each (8-bit sRGB colour by the table).
 template <class T>
-bool readNormalized(OIIO::ImageInput* in, int channels, std::vector<float>& out, float maxValue,
-                    bool srgb) {
-    std::vector<T> raw(out.size());
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDescFromC<T>::value(), raw.data()))
-        return false;
+std::vector<float> normalized(const std::vector<T>& raw, int channels, float maxValue, bool srgb) {
+    std::vector<float> out(raw.size());
     const std::size_t n = std::size_t(channels);
     for (std::size_t c = 0; c < n; ++c) {
         const bool colour = srgb && colourChannel(c, channels);
@@ -80,76 +75,62 @@ bool readNormalized(OIIO::ImageInput* in, int channels, std::vector<float>& out,
             for (std::size_t i = c; i < raw.size(); i += n) out[i] = float(raw[i]) / maxValue;
         }
     }
-    return true;
+    return out;
 }
 
-bool readFloat(OIIO::ImageInput* in, int channels, std::vector<float>& out, bool srgb) {
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, out.data())) return false;
+std::vector<float> linearFloat(std::vector<float> out, int channels, bool srgb) {
     const std::size_t n = std::size_t(channels);
     for (std::size_t c = 0; srgb && c < n; ++c)
         if (colourChannel(c, channels))
             for (std::size_t i = c; i < out.size(); i += n) out[i] = srgbToLinear(out[i]);
-    return true;
+    return out;
 }
 
-InterleavedImage readOpened(const std::string& name, OIIO::ImageInput* in,
-                            TextureEncoding encoding) {
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) fail(name, "the image is empty");
-    if (spec.depth > 1) fail(name, "volume images are not textures");
-    const std::size_t count = std::size_t(spec.width) * std::size_t(spec.height);
+// 8- and 16-bit images are normalized here, by one division per value, rather than by a
+// library's conversion, whose SIMD paths need not round alike on every CPU.
+InterleavedImage toTexture(const std::string& name, const DecodedImage& image,
+                           TextureEncoding encoding) {
+    if (image.width < 1 || image.height < 1 || image.channels < 1) fail(name, "the image is empty");
+    const std::size_t count = std::size_t(image.width) * std::size_t(image.height);
     if (count > (std::size_t(1) << 28)) fail(name, "the image is too large for a texture");
-    const int channels = spec.nchannels;
-    std::vector<float> pixels(count * std::size_t(channels));
-    // 8- and 16-bit images are normalized here, by one division per value, rather than by
-    // OIIO's conversion, whose SIMD paths need not round alike on every CPU.
     const bool srgb = encoding == TextureEncoding::Srgb;
-    bool ok = false;
-    if (spec.format == OIIO::TypeDesc::UINT8) {
-        ok = readNormalized<uint8_t>(in, channels, pixels, 255.0f, srgb);
-    } else if (spec.format == OIIO::TypeDesc::UINT16) {
-        ok = readNormalized<uint16_t>(in, channels, pixels, 65535.0f, srgb);
-    } else {
-        ok = readFloat(in, channels, pixels, srgb);
+    const int n = image.channels;
+    std::vector<float> pixels;
+    switch (image.type) {
+        case SampleType::U8: pixels = normalized(image.u8, n, 255.0f, srgb); break;
+        case SampleType::U16: pixels = normalized(image.u16, n, 65535.0f, srgb); break;
+        case SampleType::F32: pixels = linearFloat(image.f32, n, srgb); break;
     }
-    if (!ok) fail(name, "cannot decode the image: " + in->geterror());
-    InterleavedImage out{spec.width, spec.height, 4, toRgba(pixels, channels, count)};
+    InterleavedImage out{image.width, image.height, 4, toRgba(pixels, n, count)};
     for (const float v : out.pixels)
         if (!std::isfinite(v)) fail(name, "the image has texels that are not finite");
     return out;
 }
 
-// Texels exactly as stored: glTF's alpha is straight (unassociated), and OIIO would
-// otherwise premultiply colour by it while reading PNG.
-OIIO::ImageSpec readConfig() {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    return config;
-}
-
 }  // namespace
 
+// Texels exactly as stored: glTF's alpha is straight (unassociated), never premultiplied.
 InterleavedImage readTextureImage(const std::string& path, TextureEncoding encoding) {
-    const OIIO::ImageSpec config = readConfig();
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
-    return readOpened(path, in.get(), encoding);
+    DecodedImage image;
+    try {
+        image = io_detail::decodeImageFile(path, io_detail::AlphaMode::Straight);
+    } catch (const io_detail::DecodeFailure& e) {
+        fail(path, std::string("cannot read the image: ") + e.what());
+    }
+    return toTexture(path, image, encoding);
 }
 
 InterleavedImage decodeTextureImage(const std::string& name, const void* bytes, std::size_t size,
                                     const std::string& formatHint, TextureEncoding encoding) {
     if (size == 0) fail(name, "the image data is empty");
-    OIIO::Filesystem::IOMemReader reader(bytes, size);
-    // With a configuration, OIIO 2.4 takes the proxy from it, not from open()'s argument.
-    OIIO::ImageSpec config = readConfig();
-    OIIO::Filesystem::IOProxy* proxy = &reader;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    // OIIO picks the decoder by the extension of a file name ("x.png"; ".png" alone is read
-    // as a name without one).
-    const std::string ext = std::filesystem::path(formatHint).extension().string();
-    auto in = OIIO::ImageInput::open("memory" + (ext.empty() ? formatHint : ext), &config, &reader);
-    if (!in) fail(name, "cannot decode the image: " + OIIO::geterror());
-    return readOpened(name, in.get(), encoding);
+    DecodedImage image;
+    try {
+        image =
+            io_detail::decodeImageBytes(bytes, size, formatHint, io_detail::AlphaMode::Straight);
+    } catch (const io_detail::DecodeFailure& e) {
+        fail(name, std::string("cannot decode the image: ") + e.what());
+    }
+    return toTexture(name, image, encoding);
 }
 
 }  // namespace ssrt

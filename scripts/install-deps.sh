@@ -15,10 +15,11 @@ render_packages=(
     g++ cmake ninja-build pkg-config
     # Core library
     libglm-dev libxsimd-dev libtbb-dev
-    # Edges: image files, world-space truth, glTF (and its Draco and meshopt compressed
-    # meshes), shot files (JSON), command line
-    libopenimageio-dev libopenexr-dev libembree-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev
-    nlohmann-json3-dev libcli11-dev
+    # Edges: image files (PNG, JPEG, Radiance HDR, EXR; OpenImageIO for any other format, in a
+    # module loaded on first need), world-space truth, glTF (and its Draco and meshopt
+    # compressed meshes), shot files (JSON), command line
+    libpng-dev libjpeg62-turbo-dev libstb-dev libopenexr-dev libopenimageio-dev
+    libembree-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev nlohmann-json3-dev libcli11-dev
 )
 # Tests, benchmarks, peers and charts, on top of the render's.
 test_packages=(

@@ -1,0 +1,32 @@
+// PNG through libpng (inside io/ only): decoding every PNG OpenImageIO 2.4 reads, to the same
+// samples, names and colour space, and writing ssrt's 8-bit RGB previews to the same bytes
+// its PNG writer gave them (tests/io/decoders_vs_oiio_test.cpp, tests/io/image_io_test.cpp).
+//
+// libpng reports an error by longjmp. Every setjmp here sits in a function whose frame holds
+// no C++ object with a destructor, and the jump never crosses one: the error's text is kept
+// and thrown as a one-line std::runtime_error naming the file once libpng has returned.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/decoded_image.h"
+
+namespace ssrt::io_detail {
+
+// Whether the bytes start with PNG's signature.
+bool isPng(const uint8_t* bytes, std::size_t size);
+
+// Palette and grey below 8 bits expanded to 8, transparency (tRNS) to an alpha channel,
+// 16-bit samples in native order; alpha associated as OpenImageIO does unless Straight.
+DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha);
+
+// Writes 8-bit RGB rows (width * 3 bytes each, row 0 first) to `file`, as OpenImageIO 2.4
+// wrote ssrt's previews: an oFFs chunk at 0, 0, the text "Software" = "ssrt", no filter,
+// zlib at `compressionLevel`. `path` names the file in errors.
+void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
+                  const std::vector<uint8_t>& rgb, int compressionLevel);
+
+}  // namespace ssrt::io_detail
