@@ -320,25 +320,31 @@ void commitHistory(Context& c) {
 }
 
 void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
-                 bool diffuse, bool specular, bool lengths, const TileGrid& grid) {
+                 bool diffuse, bool specular, bool lengths, const TileGrid& grid, PlanePool* pool) {
     const auto keepIf = [&](bool on, PlaneF& p) {
         if (on) p.ensureSize(w, h);
         else p = PlaneF();
     };
+    // The scratch's planes from the pool where there is one.
+    const auto keepScratchIf = [&](bool on, PlaneF& p) {
+        if (!pool) keepIf(on, p);
+        else if (on) pool->take(p, w, h);
+        else pool->give(p);
+    };
     // Only the signals present.
     for (int i = 0; i < 4; ++i) {
-        keepIf(diffuse, sc.noisyDiffuse[i]);
-        keepIf(specular, sc.noisySpecular[i]);
+        keepScratchIf(diffuse, sc.noisyDiffuse[i]);
+        keepScratchIf(specular, sc.noisySpecular[i]);
     }
     for (int i = 0; i < 4; ++i) {
-        keepIf(diffuse || specular, sc.ping[i]);
-        keepIf(diffuse || specular, sc.pong[i]);
+        keepScratchIf(diffuse || specular, sc.ping[i]);
+        keepScratchIf(diffuse || specular, sc.pong[i]);
     }
     for (int i = 0; i < 2; ++i) {
         const bool on = i == 0 ? diffuse : specular;
-        keepIf(on, sc.signalZ[i]);
-        keepIf(on, sc.frames[i]);
-        keepIf(on, sc.fast[i]);
+        keepScratchIf(on, sc.signalZ[i]);
+        keepScratchIf(on, sc.frames[i]);
+        keepScratchIf(on, sc.fast[i]);
     }
     sc.tiles.assign(std::size_t(grid.count()), 0);
     // The outputs of a signal not given are left as they are (the caller may fill them).
@@ -379,7 +385,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     if (next && !readHistory) next->valid = false;
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
-    ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid);
+    ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
     Context c{settings, in,
               scratch,  previous,
               next,     {previousHas[0], previousHas[1]},
@@ -402,6 +408,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
                        &out.specularFrames},
                       pt);
     if (next) pt.run("history", [&] { commitHistory(c); });
+    if (in.pool) in.pool->give(scratch);
 }
 
 }  // namespace ssrt

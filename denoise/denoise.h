@@ -29,6 +29,7 @@
 #include "core/camera.h"
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/plane_pool.h"
 #include "core/plane_table.h"
 #include "denoise/denoise_settings.h"
 
@@ -61,6 +62,9 @@ struct DenoiseInputs {
     bool replaceHistory = true;
     // false: DenoiseOutputs' history lengths (planes only to be looked at) are not made.
     bool historyLengths = true;
+    // Where the scratch's planes come from, and go back to after the call (null: the scratch
+    // keeps its own between calls).
+    PlanePool* pool = nullptr;
 };
 
 // The denoiser's output, of the frame's size.

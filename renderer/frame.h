@@ -13,6 +13,7 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/plane_pool.h"
 #include "core/plane_table.h"
 #include "denoise/denoise.h"
 #include "raster/hiz.h"
@@ -265,6 +266,9 @@ struct Frame {
     // Buffers the passes need but do not hand out; kept so that rendering into the same
     // Frame again reuses every allocation (no page faults, no clears).
     struct Scratch {
+        // The planes of the groups below marked "pooled" while their pass is not running
+        // (renderer/trace_pass.cpp): those groups are empty between frames.
+        PlanePool pool;
         VisibilityBuffer visibility;
         ShadowMap shadow;
         // UV and its screen derivatives, for textured scenes: set 0, then set 1 when read
@@ -272,11 +276,12 @@ struct Frame {
         // The tangent frame (x, y, z, w) for normal maps (raster/resolve_kernel.h)
         PlaneF tangent[4];
         HiZPyramid hiz;
-        RayBatch rays;
-        MarchResult march;
+        RayBatch rays;      // pooled
+        MarchResult march;  // pooled
         ColorPyramid colorPyramid;
-        SsrOutput ssr;  // the resolve's scratch; its colour and opacity are lent trace.ssr's
-        DenoiseScratch denoise;
+        SsrOutput
+            ssr;  // pooled: the resolve's scratch; its colour and opacity are lent trace.ssr's
+        DenoiseScratch denoise;  // pooled (by the denoiser: DenoiseInputs::pool)
         // SSGI's half-resolution trace (TraceLayout::Half): the chosen pixels' frame, its
         // depth pyramid, rays, march and resolved planes before the upsample.
         struct HalfTrace {

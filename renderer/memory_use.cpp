@@ -57,6 +57,7 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
     add("colour pyramid", bytesOf(s.colorPyramid));
     add("ssr resolve", bytesOf(s.ssr));
     add("denoise scratch", bytesOf(s.denoise));
+    add("pooled scratch", s.pool.bytes());
     add("half frame", bytesOf(s.half.frame));
     add("half hi-z", bytesOf(s.half.hiz));
     add("half rays", bytesOf(s.half.rays));

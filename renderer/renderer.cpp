@@ -79,6 +79,7 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
     f.height = h;
     f.image.ensureSize(w, h);
     f.gbuffer.ensureSize(w, h);
+    f.scratch.pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
     const auto keepIf = [&](bool on, auto& group) {
         if (on) group.ensureSize(w, h);
         else group.release();

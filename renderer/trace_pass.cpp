@@ -132,7 +132,13 @@ void ssrPass(const TraceContext& c, Frame& frame) {
         ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
     const RayGenCheckerboard checker{ts.ssrLayout == TraceLayout::Checkerboard,
                                      kSsrCheckerboardPhase};
+    // The rays, march results and the resolve's own scratch come from the pool and go back to
+    // it once the checkerboard fill has read the rays' pdf (the denoiser takes them next).
+    const int w = frame.width, h = frame.height;
+    sc.pool.take(sc.rays, w, h);
+    sc.pool.take(sc.march, w, h);
     swapSsrOutput(planes, sc.ssr);
+    sc.pool.take(sc.ssr, w, h);
     for (int s = 0; s < ts.ssrSpp; ++s) {
         addTime(times.rays, [&] {
             st.rays.add(generateSpecularRays(isa, ts.ssrMethod, c.args.frameIndex, uint32_t(s),
@@ -146,6 +152,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
         });
     }
     swapSsrOutput(planes, sc.ssr);
+    sc.pool.give(sc.ssr);
     // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
     if (checker.on) {
         times.reconstruct = 0.0;
@@ -157,6 +164,8 @@ void ssrPass(const TraceContext& c, Frame& frame) {
             fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
+    sc.pool.give(sc.rays);
+    sc.pool.give(sc.march);
     times.report(frame.stats, "ssr");
 }
 
@@ -293,6 +302,8 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
+    sc.pool.take(sc.rays, frame.width, frame.height);
+    sc.pool.take(sc.march, frame.width, frame.height);
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         addTime(times.rays, [&] {
             st.rays.add(generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), c.camera, c.rayGen,
@@ -314,6 +325,8 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
             fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
+    sc.pool.give(sc.rays);
+    sc.pool.give(sc.march);
     times.report(frame.stats, "ssgi");
 }
 
@@ -339,6 +352,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     in.diffuseHitDistance = &ht.resolved.hitDistance;
     in.replaceHistory = c.args.replaceHistory;
     in.historyLengths = c.args.settings.debugPlanes;
+    in.pool = &frame.scratch.pool;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
     DenoiseOutputs& half = ht.denoised.out;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
@@ -392,6 +406,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     }
     in.replaceHistory = c.args.replaceHistory;
     in.historyLengths = c.args.settings.debugPlanes;
+    in.pool = &frame.scratch.pool;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     if (in.diffuse[0] || in.ssr[0])

@@ -47,13 +47,20 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(m.at("gbuffer") == 12 * plane);
     CHECK(m.at("ssr") == 7 * plane);
     CHECK(m.at("denoised") == 8 * plane);
-    // The specular signal's alone: noisy 4, ping 4, pong 4, signalZ, frames, fast (not a
-    // group per pass, nor the diffuse's, which is denoised on the half frame: SSGI's half
-    // layout).
-    CHECK(m.at("denoise scratch") == 15 * plane);
-    // Its history: the guides (viewZ, normal 3, roughness), the signal 4, frames, fast.
+    // Between frames the pool holds the scratch that passes hand on: SSR's rays 7, march
+    // results 6 and the resolve's own 7 (hit radiance 3, fade, target 3), which the
+    // full-resolution denoiser's scratch reuses (the specular signal's alone: noisy 4, ping 4,
+    // pong 4, signalZ, frames, fast = 15, not a group per pass), and the half-resolution
+    // denoiser's 15 (the diffuse's, on the half frame: SSGI's half layout; a 20x12 plane is 32
+    // floats a row).
+    const std::size_t halfPlane = 32 * 12 * sizeof(float);
+    CHECK(m.at("pooled scratch") == 20 * plane + 15 * halfPlane);
+    for (const char* pooled :
+         {"rays", "march", "ssr resolve", "denoise scratch", "half denoise scratch"})
+        CHECK(m.count(pooled) == 0);
+    // The denoiser's history: the guides (viewZ, normal 3, roughness), the signal 4, frames,
+    // fast.
     CHECK(m.at("denoise history") == 11 * plane);
-    CHECK(m.at("half denoise scratch") < m.at("denoise scratch"));
     CHECK(m.count("half denoise history") == 1);
     CHECK(m.at("shadow map") == 64 * 64 * sizeof(float));
     // (The colour history only where a setting reads it: not by default.)
@@ -68,8 +75,8 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
         Renderer(d).render(scene, FrameInput::still(scene), h, diffuseOnly);
         const auto dm = byName(diffuseOnly.stats.memory);
         CHECK(dm.count("denoise scratch") == 0);
-        CHECK(dm.count("half denoise scratch") == 1);
-        CHECK(dm.at("denoised") == 4 * plane);  // diffuse RGB and its history length
+        CHECK(dm.at("pooled scratch") == 15 * halfPlane);  // the half denoiser's alone
+        CHECK(dm.at("denoised") == 4 * plane);             // diffuse RGB and its history length
         CHECK(diffuseOnly.trace.denoise.out.specular[0].empty());
     }
     // Without a history, and without the trace, those groups are gone.
@@ -81,4 +88,30 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(n.count("denoise scratch") == 0);
     CHECK(n.count("ssr") == 0);
     CHECK(n.at("gbuffer") == 12 * plane);
+}
+
+TEST_CASE("memory use: a sequence's pooled scratch is allocated in its first frame only") {
+    RenderSettings rs;
+    rs.width = 40;
+    rs.height = 24;
+    rs.shadowMapSize = 64;
+    rs.trace.ssgiLayout = TraceLayout::Full;  // SSGI takes the rays and march results too
+    const Scene scene = makeBuiltinScene("cornell");
+    FrameHistory history;
+    Frame frame;
+    std::size_t first = 0;
+    for (uint32_t i = 0; i < 4; ++i) {
+        Renderer(rs).render(scene, FrameInput::still(scene, i), history, frame);
+        // (The pool frees nothing at one size: a plane allocated later would grow it.)
+        if (i == 0) first = frame.scratch.pool.size();
+        CHECK(frame.scratch.pool.size() == first);
+    }
+    CHECK(first > 0);
+    // (Both signals at full resolution: the denoiser's 22 planes, more than SSR's 20.)
+    CHECK(first == 22);
+    // Another size frees the pooled planes of the old one.
+    rs.width = 32;
+    Renderer(rs).render(scene, FrameInput::still(scene, 4), history, frame);
+    CHECK(frame.scratch.pool.size() == first);
+    CHECK(frame.scratch.pool.bytes() == first * PlaneF(32, 24).bytes());
 }
