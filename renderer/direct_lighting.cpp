@@ -49,13 +49,7 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.energy = &energyTables();
 }
 
-void setDirectGBuffer(const GBuffer& g, DirectArgs& a) {
-    const PlaneF* const planes[10] = {&g.viewZ,     &g.normal[0], &g.normal[1], &g.normal[2],
-                                      &g.albedo[0], &g.albedo[1], &g.albedo[2], &g.metallic,
-                                      &g.roughness, &g.materialId};
-    for (int i = 0; i < 10; ++i) a.g[i] = planes[i]->row(0);
-    a.gStride = g.viewZ.stride();
-}
+void setDirectGBuffer(const GBuffer& g, DirectArgs& a) { a.g = g.rows(); }
 
 void setDirectMaterialPlanes(const MaterialPlanes& m, DirectArgs& a) {
     for (int c = 0; c < 3; ++c)

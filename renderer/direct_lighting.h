@@ -34,8 +34,7 @@ struct DirectLighting {
 void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
                        std::shared_ptr<const SkyLighting> sky, DirectLighting& out);
 
-// Points args.g and args.gStride at the G-buffer, in the kernel's order (viewZ, normal XYZ,
-// albedo RGB, metallic, roughness, materialId).
+// Points args.g at the G-buffer.
 void setDirectGBuffer(const GBuffer& gbuffer, DirectArgs& args);
 
 // Points args.emissivePlane and args.occlusion at the material planes the frame has (its

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/gbuffer_rows.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/plane_pool.h"
@@ -80,6 +81,9 @@ struct GBuffer : PlaneTable<GBuffer> {
         fn("materialId", g.materialId);
         fn("motion.X", g.motion[0]), fn("motion.Y", g.motion[1]);
     }
+    // Its planes as kernels read them (every plane of the frame's size, so one stride).
+    GBufferRows rows() const;
+    GBufferRowsOf<float> rows();
 };
 
 // Per-pixel material terms the texture pass writes when some material needs them, each

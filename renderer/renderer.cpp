@@ -300,6 +300,30 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
 
 }  // namespace
 
+namespace {
+
+template <class Rows, class G>
+Rows rowsOf(G& g) {
+    Rows r;
+    r.viewZ = g.viewZ.row(0);
+    for (int c = 0; c < 3; ++c) {
+        r.normal[c] = g.normal[c].row(0);
+        r.albedo[c] = g.albedo[c].row(0);
+    }
+    r.metallic = g.metallic.row(0);
+    r.roughness = g.roughness.row(0);
+    r.materialId = g.materialId.row(0);
+    r.motion[0] = g.motion[0].row(0);
+    r.motion[1] = g.motion[1].row(0);
+    r.stride = g.viewZ.stride();
+    return r;
+}
+
+}  // namespace
+
+GBufferRows GBuffer::rows() const { return rowsOf<GBufferRows>(*this); }
+GBufferRowsOf<float> GBuffer::rows() { return rowsOf<GBufferRowsOf<float>>(*this); }
+
 std::vector<PlaneRef> Frame::layers() const {
     std::vector<PlaneRef> out;
     LayerGroup group = LayerGroup::Color;

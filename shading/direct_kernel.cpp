@@ -25,8 +25,8 @@ using shade::tonemapAces;
 
 // Shades lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
 void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
-    const std::size_t go = std::size_t(y) * a.gStride + x;
-    const Lane viewZ = ln::load<Lane>(a.g[0] + go);
+    const std::size_t go = std::size_t(y) * a.g.stride + x;
+    const Lane viewZ = ln::load<Lane>(a.g.viewZ + go);
     const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
     const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
     const Lane ndcY = Lane(1.0f) - Lane((float(y) + 0.5f) * (2.0f / float(a.height)));
@@ -45,12 +45,12 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     if (!ln::all(background)) {
         Surface s;
         s.p = splat3(a.camPos) + dirWorld * viewZ;
-        s.n = {ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go),
-               ln::load<Lane>(a.g[3] + go)};
-        s.albedo = {ln::load<Lane>(a.g[4] + go), ln::load<Lane>(a.g[5] + go),
-                    ln::load<Lane>(a.g[6] + go)};
-        s.metallic = ln::load<Lane>(a.g[7] + go);
-        s.roughness = ln::load<Lane>(a.g[8] + go);
+        s.n = {ln::load<Lane>(a.g.normal[0] + go), ln::load<Lane>(a.g.normal[1] + go),
+               ln::load<Lane>(a.g.normal[2] + go)};
+        s.albedo = {ln::load<Lane>(a.g.albedo[0] + go), ln::load<Lane>(a.g.albedo[1] + go),
+                    ln::load<Lane>(a.g.albedo[2] + go)};
+        s.metallic = ln::load<Lane>(a.g.metallic + go);
+        s.roughness = ln::load<Lane>(a.g.roughness + go);
         const V3 toCam = ln::normalize(dirWorld);
         s.view = {Lane(0.0f) - toCam.x, Lane(0.0f) - toCam.y, Lane(0.0f) - toCam.z};
         const Lane vis = shade::shadowMapVisibility(a, s);
@@ -67,7 +67,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
                      ln::load<Lane>(a.emissivePlane[2] + go)};
             } else {
                 alignas(64) float mat[kW], em[3][kW];
-                ln::store(mat, ln::load<Lane>(a.g[9] + go));
+                ln::store(mat, ln::load<Lane>(a.g.materialId + go));
                 for (int l = 0; l < kW; ++l)
                     for (int c = 0; c < 3; ++c)
                         em[c][l] = mat[l] >= 0.0f ? a.emissive[3 * int(mat[l]) + c] : 0.0f;

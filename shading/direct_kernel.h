@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_rows.h"
 #include "shading/energy_tables.h"
 #include "shading/environment.h"
 
@@ -11,10 +12,7 @@ namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
 struct DirectArgs {
-    // G-buffer planes, all with gStride: viewZ, normal XYZ, albedo RGB, metallic,
-    // roughness, materialId.
-    const float* g[10];
-    std::size_t gStride;
+    GBufferRows g;  // viewZ, normal, albedo, metallic, roughness, materialId (not motion)
     int width, height, tilesX;
     float tanHalfX, tanHalfY;
     float camPos[3];
@@ -34,10 +32,10 @@ struct DirectArgs {
     float envIntensity;
     const float* emissive;  // 3 per material id
     bool anyEmissive;       // false: skip the emission lookup
-    // Per-pixel emission RGB (gStride; the texture pass's, with emissive textures), read
+    // Per-pixel emission RGB (g.stride; the texture pass's, with emissive textures), read
     // instead of the per-material table when set (with anyEmissive); null otherwise.
     const float* emissivePlane[3];
-    // Per-pixel occlusion (gStride; occlusion textures), or null (1). Indirect light only:
+    // Per-pixel occlusion (g.stride; occlusion textures), or null (1). Indirect light only:
     // it multiplies envDiffuse and specWeight (so the sky's specular and SSR, which the
     // composite weighs by specWeight) and, in the composite, SSGI; never the sun or the
     // emission (shade::occludeIndirect).

@@ -141,7 +141,7 @@ void surfaceOffsets(Setup& s) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
-                if (!(a.g[0][std::size_t(y) * a.gStride + x] > 0.0f)) continue;
+                if (!(a.g.viewZ[std::size_t(y) * a.g.stride + x] > 0.0f)) continue;
                 const PointSurface ps = reference::pixelSurface(a, x, y);
                 const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
                 glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
@@ -166,7 +166,7 @@ void renderDirect(const Setup& s, PlaneF out[3]) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
-                if (!(a.g[0][std::size_t(y) * a.gStride + x] > 0.0f)) {
+                if (!(a.g.viewZ[std::size_t(y) * a.g.stride + x] > 0.0f)) {
                     for (int c = 0; c < 3; ++c) out[c].at(x, y) = frameDirect[c].at(x, y);
                     continue;
                 }

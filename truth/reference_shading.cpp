@@ -17,8 +17,8 @@ glm::vec3 toGlm(const V3f& v) { return {v.x, v.y, v.z}; }
 
 PointSurface pixelSurface(const DirectArgs& a, int x, int y) {
     // The direct kernel's camera ray and point, operation for operation (shadeChunk).
-    const std::size_t go = std::size_t(y) * a.gStride + x;
-    const float viewZ = a.g[0][go];
+    const std::size_t go = std::size_t(y) * a.g.stride + x;
+    const float viewZ = a.g.viewZ[go];
     const float px = (float(x) + 0.0f) + 0.5f;
     const float ndcX = px * (2.0f / float(a.width)) - 1.0f;
     const float ndcY = 1.0f - (float(y) + 0.5f) * (2.0f / float(a.height));
@@ -29,10 +29,10 @@ PointSurface pixelSurface(const DirectArgs& a, int x, int y) {
                        (r[2] * dirView.x + r[5] * dirView.y) + r[8] * dirView.z};
     PointSurface s;
     s.p = shade::splat3<float>(a.camPos) + dirWorld * viewZ;
-    s.n = {a.g[1][go], a.g[2][go], a.g[3][go]};
-    s.albedo = {a.g[4][go], a.g[5][go], a.g[6][go]};
-    s.metallic = a.g[7][go];
-    s.roughness = a.g[8][go];
+    s.n = {a.g.normal[0][go], a.g.normal[1][go], a.g.normal[2][go]};
+    s.albedo = {a.g.albedo[0][go], a.g.albedo[1][go], a.g.albedo[2][go]};
+    s.metallic = a.g.metallic[go];
+    s.roughness = a.g.roughness[go];
     const V3f toCam = ln::normalize(dirWorld);
     s.view = {0.0f - toCam.x, 0.0f - toCam.y, 0.0f - toCam.z};
     return s;
