@@ -119,7 +119,7 @@ struct IdPlanes : PlaneTable<IdPlanes> {
 struct DirectParts : PlaneTable<DirectParts> {
     PlaneF direct[3];
     PlaneF emission[3];
-    PlaneF envDiffuse[3];
+    PlaneF envDiffuse[3];  // only without SSGI (whose light the composite reads instead)
     PlaneF envSpecular[3];
     PlaneF specWeight[3];
     PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI

@@ -100,8 +100,8 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
     keepTraced(s.trace.ssr, f.trace.ssr);
     keepTraced(fullSsgi, f.trace.ssgi);
     keepIf(s.trace.any(), f.direct);
-    if (!s.trace.ssgi)
-        for (PlaneF& p : f.direct.hitLight) p = PlaneF();
+    // SSGI's light replaces the sky's diffuse in the composite; SSGI reads the hit light.
+    for (PlaneF& p : s.trace.ssgi ? f.direct.envDiffuse : f.direct.hitLight) p = PlaneF();
     // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
     // out has none)
     DenoiseOutputs& d = f.trace.denoise.out;
@@ -288,7 +288,7 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
         for (int ch = 0; ch < 3; ++ch) {
             da.direct[ch] = p.direct[ch].row(0);
             da.emission[ch] = p.emission[ch].row(0);
-            da.envDiffuse[ch] = p.envDiffuse[ch].row(0);
+            da.envDiffuse[ch] = p.envDiffuse[ch].empty() ? nullptr : p.envDiffuse[ch].row(0);
             da.envSpecular[ch] = p.envSpecular[ch].row(0);
             da.specWeight[ch] = p.specWeight[ch].row(0);
             if (c.settings.trace.ssgi) da.hitLight[ch] = p.hitLight[ch].row(0);

@@ -433,7 +433,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
     for (int ch = 0; ch < 3; ++ch) {
         ci.direct[ch] = &parts.direct[ch];
         ci.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
-        ci.envDiffuse[ch] = &parts.envDiffuse[ch];
+        if (!ts.ssgi) ci.envDiffuse[ch] = &parts.envDiffuse[ch];
         ci.envSpecular[ch] = &parts.envSpecular[ch];
         ci.specWeight[ch] = &parts.specWeight[ch];
         const DenoiseOutputs& d = frame.trace.denoise.out;

@@ -146,6 +146,12 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
     const glm::vec3 cam(frame.camera.position[0], frame.camera.position[1],
                         frame.camera.position[2]);
     const DirectParts& p = frame.direct;
+    // The sky's diffuse part, made only without SSGI (the direct pass is the same).
+    RenderSettings noSsgi = renderer.settings();
+    noSsgi.trace.ssgi = false;
+    const Frame withoutSsgi = Renderer(noSsgi).renderWithoutHistory(scene);
+    const PlaneF* envDiffuse = withoutSsgi.direct.envDiffuse;
+    REQUIRE(frame.direct.envDiffuse[0].empty());
     std::vector<float> full, bounce;
     int occluded = 0, emitting = 0;
     for (int y = 0; y < frame.height; ++y)
@@ -159,7 +165,7 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
             const glm::vec3 lb = reference::hitRadiance(ctx, cam, dir, hit, false);
             float ef = 0.0f, eb = 0.0f;
             for (int c = 0; c < 3; ++c) {
-                const float sum = ((p.direct[c].at(x, y) + p.envDiffuse[c].at(x, y)) +
+                const float sum = ((p.direct[c].at(x, y) + envDiffuse[c].at(x, y)) +
                                    p.specWeight[c].at(x, y) * p.envSpecular[c].at(x, y)) +
                                   p.emission[c].at(x, y);
                 ef = std::max(ef, relDiff(lf[c], sum));
