@@ -34,8 +34,7 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     for (const Material& m : scene.materials)
         out.emissive.insert(out.emissive.end(), {m.emissive.r, m.emissive.g, m.emissive.b});
     da.emissive = out.emissive.data();
-    da.anyEmissive =
-        std::any_of(out.emissive.begin(), out.emissive.end(), [](float e) { return e != 0.0f; });
+    da.anyEmissive = anyEmissive(scene);
     // Shadow map.
     da.shadow = shadow.depth.row(0);
     da.shadowStride = shadow.depth.stride();
@@ -47,6 +46,12 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.exposure = s.exposure;
     // The GGX energy tables of the specular (multiple scattering, DFG).
     da.energy = &energyTables();
+}
+
+bool anyEmissive(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return m.emissive.r != 0.0f || m.emissive.g != 0.0f || m.emissive.b != 0.0f;
+    });
 }
 
 void setDirectGBuffer(const GBuffer& g, DirectArgs& a) { a.g = g.rows(); }

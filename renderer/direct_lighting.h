@@ -34,6 +34,9 @@ struct DirectLighting {
 void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
                        std::shared_ptr<const SkyLighting> sky, DirectLighting& out);
 
+// Some material emits light (DirectArgs::anyEmissive): else no pass reads emission.
+bool anyEmissive(const Scene& scene);
+
 // Points args.g at the G-buffer.
 void setDirectGBuffer(const GBuffer& gbuffer, DirectArgs& args);
 

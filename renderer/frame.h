@@ -118,7 +118,7 @@ struct IdPlanes : PlaneTable<IdPlanes> {
 // says what each holds), scene-linear; and the light SSGI reads at its hits. Not file layers.
 struct DirectParts : PlaneTable<DirectParts> {
     PlaneF direct[3];
-    PlaneF emission[3];
+    PlaneF emission[3];    // only where some material emits (DirectArgs::anyEmissive)
     PlaneF envDiffuse[3];  // only without SSGI (whose light the composite reads instead)
     PlaneF envSpecular[3];
     PlaneF specWeight[3];

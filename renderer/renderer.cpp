@@ -73,7 +73,7 @@ struct FrameContext {
 
 // The frame's planes at this size, kept when they already are; the groups the settings leave
 // out are emptied. Every pixel of every plane is written by a pass, so none is cleared here.
-void ensurePlanes(const RenderSettings& s, Frame& f) {
+void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     const int w = s.width, h = s.height;
     f.width = w;
     f.height = h;
@@ -99,9 +99,23 @@ void ensurePlanes(const RenderSettings& s, Frame& f) {
     keepIf(s.idPlanes, f.ids);
     keepTraced(s.trace.ssr, f.trace.ssr);
     keepTraced(fullSsgi, f.trace.ssgi);
-    keepIf(s.trace.any(), f.direct);
-    // SSGI's light replaces the sky's diffuse in the composite; SSGI reads the hit light.
-    for (PlaneF& p : s.trace.ssgi ? f.direct.envDiffuse : f.direct.hitLight) p = PlaneF();
+    // The direct pass's parts that a later pass reads: SSGI's light replaces the sky's diffuse
+    // in the composite, SSGI reads the hit light, and nothing reads the emission of a scene
+    // where nothing emits.
+    const bool trace = s.trace.any(), emits = anyEmissive(scene);
+    const auto keepPlane = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(w, h);
+        else p = PlaneF();
+    };
+    DirectParts& parts = f.direct;
+    for (int c = 0; c < 3; ++c) {
+        keepPlane(trace, parts.direct[c]);
+        keepPlane(trace && emits, parts.emission[c]);
+        keepPlane(trace && !s.trace.ssgi, parts.envDiffuse[c]);
+        keepPlane(trace, parts.envSpecular[c]);
+        keepPlane(trace, parts.specWeight[c]);
+        keepPlane(trace && s.trace.ssgi, parts.hitLight[c]);
+    }
     // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
     // out has none)
     DenoiseOutputs& d = f.trace.denoise.out;
@@ -287,7 +301,7 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
         DirectParts& p = frame.direct;
         for (int ch = 0; ch < 3; ++ch) {
             da.direct[ch] = p.direct[ch].row(0);
-            da.emission[ch] = p.emission[ch].row(0);
+            da.emission[ch] = p.emission[ch].empty() ? nullptr : p.emission[ch].row(0);
             da.envDiffuse[ch] = p.envDiffuse[ch].empty() ? nullptr : p.envDiffuse[ch].row(0);
             da.envSpecular[ch] = p.envSpecular[ch].row(0);
             da.specWeight[ch] = p.specWeight[ch].row(0);
@@ -386,7 +400,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
-    ensurePlanes(settings_, frame);
+    ensurePlanes(settings_, scene, frame);
 
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);

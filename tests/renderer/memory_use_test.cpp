@@ -46,9 +46,9 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(m.at("image") == 7 * plane);
     CHECK(m.at("gbuffer") == 12 * plane);
     CHECK(m.at("ssr") == 7 * plane);
-    // direct, emission, sky specular and its weight, SSGI's hit light: no sky diffuse (SSGI's
-    // light replaces it).
-    CHECK(m.at("direct parts") == 15 * plane);
+    // direct, sky specular and its weight, SSGI's hit light: no sky diffuse (SSGI's light
+    // replaces it), no emission (nothing in cornell emits).
+    CHECK(m.at("direct parts") == 12 * plane);
     CHECK(m.at("denoised") == 8 * plane);
     // Between frames the pool holds the scratch that passes hand on: SSR's rays 7, march
     // results 6 and the resolve's own 7 (hit radiance 3, fade, target 3), which the
