@@ -7,17 +7,15 @@
 
 namespace ssrt {
 
-template <class F>
-struct GBufferRowsOf {
-    F* viewZ = nullptr;  // positive view-space depth; 0 on background
-    F* normal[3] = {};   // world space, unit
-    F* albedo[3] = {};   // base colour (linear)
-    F* metallic = nullptr;
-    F* roughness = nullptr;  // perceptual
-    F* materialId = nullptr;
-    F* motion[2] = {};  // previous minus current position, pixels
+struct GBufferRows {
+    const float* viewZ = nullptr;  // positive view-space depth; 0 on background
+    const float* normal[3] = {};   // world space, unit
+    const float* albedo[3] = {};   // base colour (linear)
+    const float* metallic = nullptr;
+    const float* roughness = nullptr;  // perceptual
+    const float* materialId = nullptr;
+    const float* motion[2] = {};  // previous minus current position, pixels
     std::size_t stride = 0;
 };
-using GBufferRows = GBufferRowsOf<const float>;
 
 }  // namespace ssrt

@@ -83,7 +83,6 @@ struct GBuffer : PlaneTable<GBuffer> {
     }
     // Its planes as kernels read them (every plane of the frame's size, so one stride).
     GBufferRows rows() const;
-    GBufferRowsOf<float> rows();
 };
 
 // Per-pixel material terms the texture pass writes when some material needs them, each

@@ -80,15 +80,17 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     f.image.ensureSize(w, h);
     f.gbuffer.ensureSize(w, h);
     f.scratch.pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
+    const auto keepPlane = [&](bool on, PlaneF& p) {
+        if (on) p.ensureSize(w, h);
+        else p = PlaneF();
+    };
     const auto keepIf = [&](bool on, auto& group) {
-        if (on) group.ensureSize(w, h);
-        else group.release();
+        group.forEachPlane([&](std::string_view, PlaneF& p) { keepPlane(on, p); });
     };
     // A group whose `steps` plane is only made to be looked at (RenderSettings::debugPlanes).
     const auto keepTraced = [&](bool on, auto& group) {
         group.forEachPlane([&](std::string_view, PlaneF& p) {
-            if (on && (s.debugPlanes || &p != &group.steps)) p.ensureSize(w, h);
-            else p = PlaneF();
+            keepPlane(on && (s.debugPlanes || &p != &group.steps), p);
         });
     };
     const bool denoise = s.trace.any() && s.trace.denoise.enabled;
@@ -103,10 +105,6 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     // in the composite, SSGI reads the hit light, and nothing reads the emission of a scene
     // where nothing emits.
     const bool trace = s.trace.any(), emits = anyEmissive(scene);
-    const auto keepPlane = [&](bool on, PlaneF& p) {
-        if (on) p.ensureSize(w, h);
-        else p = PlaneF();
-    };
     DirectParts& parts = f.direct;
     for (int c = 0; c < 3; ++c) {
         keepPlane(trace, parts.direct[c]);
@@ -314,29 +312,21 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
 
 }  // namespace
 
-namespace {
-
-template <class Rows, class G>
-Rows rowsOf(G& g) {
-    Rows r;
-    r.viewZ = g.viewZ.row(0);
+GBufferRows GBuffer::rows() const {
+    GBufferRows r;
+    r.viewZ = viewZ.row(0);
     for (int c = 0; c < 3; ++c) {
-        r.normal[c] = g.normal[c].row(0);
-        r.albedo[c] = g.albedo[c].row(0);
+        r.normal[c] = normal[c].row(0);
+        r.albedo[c] = albedo[c].row(0);
     }
-    r.metallic = g.metallic.row(0);
-    r.roughness = g.roughness.row(0);
-    r.materialId = g.materialId.row(0);
-    r.motion[0] = g.motion[0].row(0);
-    r.motion[1] = g.motion[1].row(0);
-    r.stride = g.viewZ.stride();
+    r.metallic = metallic.row(0);
+    r.roughness = roughness.row(0);
+    r.materialId = materialId.row(0);
+    r.motion[0] = motion[0].row(0);
+    r.motion[1] = motion[1].row(0);
+    r.stride = viewZ.stride();
     return r;
 }
-
-}  // namespace
-
-GBufferRows GBuffer::rows() const { return rowsOf<GBufferRows>(*this); }
-GBufferRowsOf<float> GBuffer::rows() { return rowsOf<GBufferRowsOf<float>>(*this); }
 
 std::vector<PlaneRef> Frame::layers() const {
     std::vector<PlaneRef> out;

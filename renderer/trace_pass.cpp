@@ -330,6 +330,18 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     times.report(frame.stats, "ssgi");
 }
 
+// What both of the frame's denoiser calls share: the camera they run at, the frame, whether
+// the history is replaced, the debug planes and the frame's pool of scratch.
+DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera) {
+    DenoiseInputs in;
+    in.camera = camera;
+    in.frameIndex = c.args.frameIndex;
+    in.replaceHistory = c.args.replaceHistory;
+    in.historyLengths = c.args.settings.debugPlanes;
+    in.pool = &frame.scratch.pool;
+    return in;
+}
+
 // The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
 // quarter of the pixels, at the resolution it was traced), on guides from each block's first
 // pixel (HalfFrame::guideZ), then brought to the frame by the guided upsample that brings the
@@ -337,9 +349,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
 void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     const HalfFrame& hf = ht.frame;
-    DenoiseInputs in;
-    in.camera = hf.camera;
-    in.frameIndex = c.args.frameIndex;
+    DenoiseInputs in = denoiseCall(c, frame, hf.camera);
     in.viewZ = &hf.guideZ;
     in.metallic = &hf.metallic;
     for (int i = 0; i < 3; ++i) {
@@ -350,9 +360,6 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     in.motion[0] = &hf.guideMotion[0];
     in.motion[1] = &hf.guideMotion[1];
     in.diffuseHitDistance = &ht.resolved.hitDistance;
-    in.replaceHistory = c.args.replaceHistory;
-    in.historyLengths = c.args.settings.debugPlanes;
-    in.pool = &frame.scratch.pool;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
     DenoiseOutputs& half = ht.denoised.out;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
@@ -378,9 +385,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
     const GBuffer& g = frame.gbuffer;
-    DenoiseInputs in;
-    in.camera = c.camera;
-    in.frameIndex = c.args.frameIndex;
+    DenoiseInputs in = denoiseCall(c, frame, c.camera);
     in.viewZ = &g.viewZ;
     in.roughness = &g.roughness;
     in.metallic = &g.metallic;
@@ -404,9 +409,6 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
-    in.replaceHistory = c.args.replaceHistory;
-    in.historyLengths = c.args.settings.debugPlanes;
-    in.pool = &frame.scratch.pool;
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     if (in.diffuse[0] || in.ssr[0])

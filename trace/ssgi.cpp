@@ -1,7 +1,6 @@
 #include "trace/ssgi.h"
 
 #include <stdexcept>
-#include <string>
 
 #include "core/plane_check.h"
 #include "core/tiles.h"
