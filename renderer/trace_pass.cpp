@@ -10,6 +10,7 @@
 #include "trace/hit_stats.h"
 #include "trace/reconstruct.h"
 #include "trace/ssgi.h"
+#include "trace/ssr_trace.h"
 
 namespace ssrt {
 
@@ -115,9 +116,64 @@ void swapSsrOutput(SsrPlanes& planes, SsrOutput& out) {
     std::swap(out.opacity, planes.opacity);
 }
 
+// What one sample of SSR needs besides its rays and march results.
+struct SsrSample {
+    const TraceContext& c;
+    const SsrResolveSettings& rs;
+    const SsrResolveInputs& in;
+    const HitStatsPlanes& hp;
+    float maxRoughness;
+    RayGenCheckerboard checker;
+
+    RayGenerator rays(int s) const {
+        return RayGenerator::specular(c.args.isa, c.ts.ssrMethod, c.args.frameIndex, uint32_t(s),
+                                      c.camera, c.rayGen, maxRoughness, checker);
+    }
+};
+
+// Stage by stage over the frame, the frame's rays and march results in the pool's planes:
+// for the observer (the truth's ray check), which reads them. Leaves the last sample's pdf in
+// frame.scratch.rays for the checkerboard fill.
+void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
+    const TraceContext& c = q.c;
+    Frame::Scratch& sc = frame.scratch;
+    sc.pool.take(sc.rays, frame.width, frame.height);
+    sc.pool.take(sc.march, frame.width, frame.height);
+    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+        addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
+        marchSample(c, TracePass::Ssr, s, frame, st, times);
+        addTime(times.resolve, [&] {
+            resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
+                       c.threads());
+            accumulateHitStats(c.args.isa, c.camera, sc.rays, sc.march, q.hp, s, c.ts.ssrSpp,
+                               c.threads());
+        });
+    }
+}
+
+// Tile by tile (trace/ssr_trace.h): no frame of rays or march results; the resolve copies the
+// pdf (and hits) that its second pass and the checkerboard fill read into sc.ssr.
+void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
+    const TraceContext& c = q.c;
+    const Isa isa = c.args.isa;
+    SsrOutput& out = frame.scratch.ssr;
+    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+        const RayGenerator rays = q.rays(s);
+        const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
+                               c.camera, c.march, c.hiz, c.threads());
+        const SsrResolver resolve(isa, q.rs, q.in, out, s, c.ts.ssrSpp, true);
+        const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
+        const SsrChainStats r = runSsrTileChain({rays, march, resolve, hitStats}, c.threads());
+        st.rays.add(r.rays);
+        st.march.add(r.march);
+        times.rays += r.raysMs;
+        times.march += r.marchMs;
+        times.resolve += r.hitMs + r.resolveMs;
+    }
+}
+
 void ssrPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
-    const Isa isa = c.args.isa;
     Frame::Scratch& sc = frame.scratch;
     SsrPlanes& planes = frame.trace.ssr;
     StageTimes times;
@@ -130,40 +186,35 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     st.spp = ts.ssrSpp;
     const float maxRoughness =
         ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
-    const RayGenCheckerboard checker{ts.ssrLayout == TraceLayout::Checkerboard,
-                                     kSsrCheckerboardPhase};
-    // The rays, march results and the resolve's own scratch come from the pool and go back to
-    // it once the checkerboard fill has read the rays' pdf (the denoiser takes them next).
+    const SsrSample q{
+        c,  rs,           in,
+        hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
+    // The resolve's scratch comes from the pool (and the frame's rays and march results, where
+    // they are made) and goes back to it once the checkerboard fill has read the rays' pdf
+    // (the denoiser takes them next).
     const int w = frame.width, h = frame.height;
-    sc.pool.take(sc.rays, w, h);
-    sc.pool.take(sc.march, w, h);
+    const bool tiled = !(c.args.observer && *c.args.observer);
     swapSsrOutput(planes, sc.ssr);
-    sc.pool.take(sc.ssr, w, h);
-    for (int s = 0; s < ts.ssrSpp; ++s) {
-        addTime(times.rays, [&] {
-            st.rays.add(generateSpecularRays(isa, ts.ssrMethod, c.args.frameIndex, uint32_t(s),
-                                             c.camera, c.rayGen, sc.rays, c.threads(), maxRoughness,
-                                             checker));
-        });
-        marchSample(c, TracePass::Ssr, s, frame, st, times);
-        addTime(times.resolve, [&] {
-            resolveSsr(isa, rs, in, sc.rays, sc.march, sc.ssr, s, ts.ssrSpp, c.threads());
-            accumulateHitStats(isa, c.camera, sc.rays, sc.march, hp, s, ts.ssrSpp, c.threads());
-        });
-    }
+    sc.ssr.forEachPlane([&](std::string_view, PlaneF& p) {
+        const bool copy = &p == &sc.ssr.rayPdf || &p == &sc.ssr.rayHit;
+        if (tiled || !copy) sc.pool.take(p, w, h);
+    });
+    if (tiled) ssrTileSamples(q, frame, st, times);
+    else ssrFrameSamples(q, frame, st, times);
     swapSsrOutput(planes, sc.ssr);
-    sc.pool.give(sc.ssr);
     // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
-    if (checker.on) {
+    if (q.checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, [&] {
             const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
                                        &planes.opacity,
                                        &planes.hit,
                                        &planes.hitDistance};
-            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(c.args.isa, c.guides(frame), tiled ? sc.ssr.rayPdf : sc.rays.pdf, rp,
+                             c.threads());
         });
     }
+    sc.pool.give(sc.ssr);
     sc.pool.give(sc.rays);
     sc.pool.give(sc.march);
     times.report(frame.stats, "ssr");

@@ -8,9 +8,9 @@
 
 namespace ssrt {
 
-void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
-                        const MarchResult& march, const HitStatsPlanes& out, int sample,
-                        int sampleCount, int threads) {
+HitStatsAccumulator::HitStatsAccumulator(Isa isa, const TraceCamera& camera,
+                                         const HitStatsPlanes& out, int sample, int sampleCount)
+    : grid_(camera.width, camera.height) {
     const int w = camera.width, h = camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("accumulateHitStats: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
@@ -19,35 +19,57 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
     out.hit->ensureSize(w, h);
     if (out.steps) out.steps->ensureSize(w, h);
     if (out.distance) out.distance->ensureSize(w, h);
-    const TileGrid grid(w, h);
-    HitStatsArgs a{};
+    HitStatsArgs& a = args_;
     a.width = w;
     a.height = h;
-    a.tilesX = grid.tilesX;
+    a.tilesX = grid_.tilesX;
     a.tanHalfX = camera.tanHalfX;
     a.tanHalfY = camera.tanHalfY;
     PlaneCheck need("accumulateHitStats", w, h);
+    if (out.steps) a.outSteps = need.output(*out.steps, "steps");
+    if (out.distance) a.outDistance = need.output(*out.distance, "distance");
+    a.outHit = need.output(*out.hit, "hit");
+    a.stride = need.stride();
+    a.first = sample == 0;
+    a.last = sample == sampleCount - 1;
+    a.invCount = 1.0f / float(sampleCount);
+    kernel_ = SSRT_DISPATCH(isa, hitStatsTile);
+}
+
+void HitStatsAccumulator::tile(int tile, const RayBatch& rays, const MarchResult& march) const {
+    const TileRect r = grid_.rect(tile);
+    const BatchCorner c = march.corner;
+    const int w = march.hit.width(), h = march.hit.height();
+    if (rays.corner.x0 != c.x0 || rays.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
+        r.x1 - c.x0 > w || r.y1 - c.y0 > h)
+        throw std::invalid_argument("accumulateHitStats: the batches do not hold the tile");
+    HitStatsArgs a = args_;
+    PlaneCheck need("accumulateHitStats", w, h);
     a.hit = need(march.hit, "march hit");
-    if (out.steps) {
-        a.steps = need(march.steps, "march steps");
-        a.outSteps = need.output(*out.steps, "steps");
-    }
-    if (out.distance) {
+    if (a.outSteps) a.steps = need(march.steps, "march steps");
+    if (a.outDistance) {
         a.hitPos[0] = need(march.hitX, "march hitX");
         a.hitPos[1] = need(march.hitY, "march hitY");
         a.hitPos[2] = need(march.hitZ, "march hitZ");
         a.origin[0] = need(rays.ox, "ray origin");
         a.origin[1] = need(rays.oy, "ray origin");
         a.origin[2] = need(rays.oz, "ray origin");
-        a.outDistance = need.output(*out.distance, "distance");
     }
-    a.outHit = need.output(*out.hit, "hit");
-    a.stride = need.stride();
-    a.first = sample == 0;
-    a.last = sample == sampleCount - 1;
-    a.invCount = 1.0f / float(sampleCount);
-    const auto tileFn = SSRT_DISPATCH(isa, hitStatsTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+    a.inStride = need.stride();
+    a.inX0 = c.x0;
+    a.inY0 = c.y0;
+    kernel_(a, tile);
+}
+
+void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
+                        const MarchResult& march, const HitStatsPlanes& out, int sample,
+                        int sampleCount, int threads) {
+    const HitStatsAccumulator acc(isa, camera, out, sample, sampleCount);
+    const int w = camera.width, h = camera.height;
+    PlaneCheck need("accumulateHitStats", w, h);  // the frame's batches, of the frame's size
+    need(march.hit, "march hit");
+    if (out.distance) need(rays.ox, "ray origin");
+    parallelForTiles(acc.grid().count(), threads, [&](int t) { acc.tile(t, rays, march); });
 }
 
 }  // namespace ssrt

@@ -8,6 +8,8 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
+#include "trace/hit_stats_kernel.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -27,5 +29,22 @@ struct HitStatsPlanes {
 void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
                         const MarchResult& march, const HitStatsPlanes& out, int sample,
                         int sampleCount, int threads);
+
+// The same, checked and set up once, then run tile by tile: over the frame by
+// accumulateHitStats, or one tile at a time by the SSR trace's tile chain (trace/ssr_trace.h).
+class HitStatsAccumulator {
+public:
+    // accumulateHitStats' arguments less the batches and threads (`out` ensured here).
+    HitStatsAccumulator(Isa isa, const TraceCamera& camera, const HitStatsPlanes& out, int sample,
+                        int sampleCount);
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile` of the batches: each the frame's (corner (0, 0)) or a tile's; one corner.
+    void tile(int tile, const RayBatch& rays, const MarchResult& march) const;
+
+private:
+    HitStatsArgs args_{};
+    TileGrid grid_;
+    decltype(&isa_scalar::hitStatsTile) kernel_ = nullptr;
+};
 
 }  // namespace ssrt

@@ -20,8 +20,9 @@ SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
 
 void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
+    const std::size_t i = std::size_t(y - a.inY0) * a.inStride + std::size_t(x - a.inX0);
     const Lane zero(0.0f);
-    const Lane hit = loadAt(a.hit, o);
+    const Lane hit = loadAt(a.hit, i);
     Lane hitSum = hit;
     if (!a.first) hitSum = loadAt(a.outHit, o) + hit;
     if (a.outDistance) {
@@ -30,15 +31,15 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
         if (ln::any(hits)) {
             // The hit's view-space point from its pixel position and depth, minus the origin
             // (the scalar loop's expressions, in its order).
-            const Lane z = loadAt(a.hitPos[2], o);
+            const Lane z = loadAt(a.hitPos[2], i);
             const Lane px =
-                ((Lane(2.0f) * loadAt(a.hitPos[0], o)) / Lane(float(a.width)) - Lane(1.0f)) *
+                ((Lane(2.0f) * loadAt(a.hitPos[0], i)) / Lane(float(a.width)) - Lane(1.0f)) *
                 Lane(a.tanHalfX) * z;
             const Lane py =
-                (Lane(1.0f) - (Lane(2.0f) * loadAt(a.hitPos[1], o)) / Lane(float(a.height))) *
+                (Lane(1.0f) - (Lane(2.0f) * loadAt(a.hitPos[1], i)) / Lane(float(a.height))) *
                 Lane(a.tanHalfY) * z;
-            const Lane dx = px - loadAt(a.origin[0], o), dy = py - loadAt(a.origin[1], o),
-                       dz = -z - loadAt(a.origin[2], o);
+            const Lane dx = px - loadAt(a.origin[0], i), dy = py - loadAt(a.origin[1], i),
+                       dz = -z - loadAt(a.origin[2], i);
             d = ln::select(hits, ln::sqrt(dx * dx + dy * dy + dz * dz), zero);
         }
         Lane distSum = d;
@@ -52,7 +53,7 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
     if (a.last) hitSum = hitSum * Lane(a.invCount);
     ln::store(a.outHit + o, hitSum);
     if (a.outSteps) {
-        Lane stepSum = loadAt(a.steps, o);
+        Lane stepSum = loadAt(a.steps, i);
         if (!a.first) stepSum = loadAt(a.outSteps, o) + stepSum;
         if (a.last) stepSum = stepSum * Lane(a.invCount);
         ln::store(a.outSteps + o, stepSum);

@@ -9,7 +9,7 @@
 namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has the frame's size and one stride.
+// The outputs have the frame's size and one stride (`stride`).
 struct HitStatsArgs {
     int width, height, tilesX;
     std::size_t stride;
@@ -18,6 +18,10 @@ struct HitStatsArgs {
     const float* steps;      // (with outSteps only)
     const float* hitPos[3];  // hitX, hitY, hitZ (distance only)
     const float* origin[3];  // ox, oy, oz (distance only)
+    // The inputs above (a batch's planes) have their own stride, and their element (0, 0) is
+    // the frame's pixel (inX0, inY0) (trace/trace_types.h, BatchCorner).
+    std::size_t inStride;
+    int inX0, inY0;
     float* outHit;
     float* outSteps;     // null: no steps
     float* outDistance;  // null: no distance

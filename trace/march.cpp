@@ -141,22 +141,20 @@ static_assert(kTileSize % kMarchPad == 0);
 
 }  // namespace
 
-MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
-                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
-                     const RayBatch& rays, MarchResult& result, int threads) {
+RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
+                       const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
+                       int threads)
+    : grid_(camera.width, camera.height), seed_(seed), maxSteps_(settings.maxSteps) {
     settings.validate();
-    const int w = rays.width(), h = rays.height();
-    if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
-    if (camera.width != w || camera.height != h)
-        throw std::invalid_argument("marchRays: camera size does not match the ray batch");
+    const int w = camera.width, h = camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the camera has no pixels");
     PlaneCheck need("marchRays", w, h);
     if (!(camera.tanHalfX > 0.0f) || !(camera.tanHalfY > 0.0f) || !(camera.nearZ > 0.0f))
         throw std::invalid_argument("marchRays: camera needs tanHalfX, tanHalfY, nearZ > 0");
     need(g.viewZ, "viewZ");
     for (const PlaneF* n : g.normal) need(n, "normal");
 
-    MarchKernelArgs proto{};
-    HiZPacked packed;
+    MarchKernelArgs& proto = proto_;
     proto.width = w;
     proto.height = h;
     proto.sx = float(w) / (2.0f * camera.tanHalfX);
@@ -197,8 +195,8 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
         std::vector<std::size_t> ownOffset;
         const std::vector<std::size_t>* offset = &hiz->packedOffset;
         if (inv->empty() || offset->size() != hiz->minZ.size()) {
-            packInverseMin(hiz->minZ, packed, ownOffset, threads);
-            inv = &packed, offset = &ownOffset;
+            packInverseMin(hiz->minZ, packed_, ownOffset, threads);
+            inv = &packed_, offset = &ownOffset;
         }
         if (!inv->empty()) {
             for (int L = 0; L < proto.hizLevels; ++L) {
@@ -212,138 +210,169 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
         proto.startLevel =
             std::clamp(settings.hizStartLevel, proto.mostDetailedLevel, proto.hizLevels - 1);
     }
-    auto kernel = marcher == Marcher::Linear ? SSRT_DISPATCH(isa, marchLinearKernel)
-                  : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
-                                             : SSRT_DISPATCH(isa, marchHiZKernel);
+    kernel_ = marcher == Marcher::Linear ? SSRT_DISPATCH(isa, marchLinearKernel)
+              : marcher == Marcher::Dda  ? SSRT_DISPATCH(isa, marchDdaKernel)
+                                         : SSRT_DISPATCH(isa, marchHiZKernel);
+    sortKeys_ = SSRT_DISPATCH(isa, marchSortKeys);
+    if (marcher == Marcher::Dda) ddaJitter_ = settings.ddaJitter;
+}
 
-    const auto sortKeys = SSRT_DISPATCH(isa, marchSortKeys);
-    const bool jitter = marcher == Marcher::Dda && settings.ddaJitter > 0.0f;
-    result.ensureSize(w, h);
-    const std::size_t outStride = result.hit.stride();  // all six: one size, one stride
-    const TileGrid grid(w, h);
-    std::vector<MarchStats> tileStats(std::size_t(grid.count()));
-    const std::size_t histogramSize = std::size_t(settings.maxSteps) + 1;
-    parallelForTiles(grid.count(), threads, [&](int tile) {
-        const TileRect rect = grid.rect(tile);
-        thread_local TileScratch scratch;
-        const std::size_t cap = std::size_t(kTileSize * kTileSize + kMarchPad);
-        if (scratch.capacity != cap) {
-            scratch.capacity = cap;
-            scratch.data.assign(cap * TileScratch::kArrays, 0.0f);
-            scratch.key.resize(cap);
-        }
-        // Which pixels have a ray (pdf > 0, finite non-zero direction, origin in front of
-        // the camera), and each ray's bucket.
-        int8_t* key = scratch.key.data();
-        int counts[kSortBuckets + 1] = {};
-        const int tw = rect.x1 - rect.x0;
-        for (int y = rect.y0; y < rect.y1; ++y) {
-            const int x = rect.x0;
-            int8_t* k = key + (y - rect.y0) * tw;
-            const SortKeyArgs ka{rays.pdf.row(y) + x,
-                                 rays.ox.row(y) + x,
-                                 rays.oy.row(y) + x,
-                                 rays.oz.row(y) + x,
-                                 rays.dx.row(y) + x,
-                                 rays.dy.row(y) + x,
-                                 rays.dz.row(y) + x,
-                                 tw,
-                                 proto.sx,
-                                 proto.sy,
-                                 k};
-            sortKeys(ka);
-            for (int i = 0; i < tw; ++i)
-                if (k[i] >= 0) ++counts[k[i] + 1];
-        }
-        for (int b = 1; b <= kSortBuckets; ++b) counts[b] += counts[b - 1];
-        const int n = counts[kSortBuckets];
-        float* A[TileScratch::kArrays];
-        for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
-        // Pack them bucket by bucket; within a bucket in 4x4 blocks (block rows, then rows).
-        for (int by = rect.y0; by < rect.y1; by += kSortBlock)
-            for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
-                for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y) {
-                    const int8_t* k = key + (y - rect.y0) * tw;
-                    const float *OX = rays.ox.row(y), *OY = rays.oy.row(y), *OZ = rays.oz.row(y);
-                    const float *DX = rays.dx.row(y), *DY = rays.dy.row(y), *DZ = rays.dz.row(y);
-                    for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) {
-                        const int b = k[x - rect.x0];
-                        if (b < 0) continue;
-                        const int i = counts[b]++;
-                        A[TileScratch::kOx][i] = OX[x];
-                        A[TileScratch::kOy][i] = OY[x];
-                        A[TileScratch::kOz][i] = OZ[x];
-                        A[TileScratch::kDx][i] = DX[x];
-                        A[TileScratch::kDy][i] = DY[x];
-                        A[TileScratch::kDz][i] = DZ[x];
-                        A[TileScratch::kPx][i] = float(x);
-                        A[TileScratch::kPy][i] = float(y);
-                        const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
-                        A[TileScratch::kJitter][i] =
-                            jitter ? settings.ddaJitter *
-                                         randomFloat(pixel, seed.frame, seed.sample, 0)
-                                   : 0.0f;
-                    }
+namespace {
+
+// Whether a batch (corner and planes) holds the tile's pixels.
+bool holds(BatchCorner c, const PlaneF& p, const TileRect& r) {
+    return r.x0 >= c.x0 && r.y0 >= c.y0 && r.x1 - c.x0 <= p.width() && r.y1 - c.y0 <= p.height();
+}
+
+}  // namespace
+
+MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result) const {
+    const TileRect rect = grid_.rect(tile);
+    if (!holds(rays.corner, rays.ox, rect) || !holds(result.corner, result.hit, rect))
+        throw std::invalid_argument("marchRays: a batch does not hold the tile");
+    const int w = proto_.width;
+    const BatchCorner in = rays.corner, out = result.corner;
+    const bool jitter = ddaJitter_ > 0.0f;
+    const std::size_t histogramSize = std::size_t(maxSteps_) + 1;
+    thread_local TileScratch scratch;
+    const std::size_t cap = std::size_t(kTileSize * kTileSize + kMarchPad);
+    if (scratch.capacity != cap) {
+        scratch.capacity = cap;
+        scratch.data.assign(cap * TileScratch::kArrays, 0.0f);
+        scratch.key.resize(cap);
+    }
+    // Which pixels have a ray (pdf > 0, finite non-zero direction, origin in front of the
+    // camera), and each ray's bucket.
+    int8_t* key = scratch.key.data();
+    int counts[kSortBuckets + 1] = {};
+    const int tw = rect.x1 - rect.x0;
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        const int x = rect.x0 - in.x0, yy = y - in.y0;
+        int8_t* k = key + (y - rect.y0) * tw;
+        const SortKeyArgs ka{rays.pdf.row(yy) + x,
+                             rays.ox.row(yy) + x,
+                             rays.oy.row(yy) + x,
+                             rays.oz.row(yy) + x,
+                             rays.dx.row(yy) + x,
+                             rays.dy.row(yy) + x,
+                             rays.dz.row(yy) + x,
+                             tw,
+                             proto_.sx,
+                             proto_.sy,
+                             k};
+        sortKeys_(ka);
+        for (int i = 0; i < tw; ++i)
+            if (k[i] >= 0) ++counts[k[i] + 1];
+    }
+    for (int b = 1; b <= kSortBuckets; ++b) counts[b] += counts[b - 1];
+    const int n = counts[kSortBuckets];
+    float* A[TileScratch::kArrays];
+    for (int i = 0; i < TileScratch::kArrays; ++i) A[i] = scratch.array(i);
+    // Pack them bucket by bucket; within a bucket in 4x4 blocks (block rows, then rows).
+    for (int by = rect.y0; by < rect.y1; by += kSortBlock)
+        for (int bx = rect.x0; bx < rect.x1; bx += kSortBlock)
+            for (int y = by; y < std::min(by + kSortBlock, rect.y1); ++y) {
+                const int8_t* k = key + (y - rect.y0) * tw;
+                const int yy = y - in.y0;
+                const float *OX = rays.ox.row(yy), *OY = rays.oy.row(yy), *OZ = rays.oz.row(yy);
+                const float *DX = rays.dx.row(yy), *DY = rays.dy.row(yy), *DZ = rays.dz.row(yy);
+                for (int x = bx; x < std::min(bx + kSortBlock, rect.x1); ++x) {
+                    const int b = k[x - rect.x0];
+                    if (b < 0) continue;
+                    const int i = counts[b]++, xx = x - in.x0;
+                    A[TileScratch::kOx][i] = OX[xx];
+                    A[TileScratch::kOy][i] = OY[xx];
+                    A[TileScratch::kOz][i] = OZ[xx];
+                    A[TileScratch::kDx][i] = DX[xx];
+                    A[TileScratch::kDy][i] = DY[xx];
+                    A[TileScratch::kDz][i] = DZ[xx];
+                    A[TileScratch::kPx][i] = float(x);
+                    A[TileScratch::kPy][i] = float(y);
+                    const uint32_t pixel = uint32_t(y) * uint32_t(w) + uint32_t(x);
+                    A[TileScratch::kJitter][i] =
+                        jitter ? ddaJitter_ * randomFloat(pixel, seed_.frame, seed_.sample, 0)
+                               : 0.0f;
                 }
-        // Pad the last lane group with copies of the first ray (their results are dropped).
-        const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
-        for (int i = n; i < padded; ++i)
-            for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
-        // Everything defaults to "no ray".
-        for (int y = rect.y0; y < rect.y1; ++y) {
-            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
-                std::fill(p->row(y) + rect.x0, p->row(y) + rect.x1, 0.0f);
-            std::fill(result.cause.row(y) + rect.x0, result.cause.row(y) + rect.x1,
-                      float(int(MarchEnd::NoRay)));
-        }
-        MarchStats& st = tileStats[std::size_t(tile)];
-        st.stepHistogram.assign(histogramSize, 0);
-        if (n == 0) return;
-        MarchKernelArgs args = proto;
-        args.count = n;
-        args.ox = A[TileScratch::kOx];
-        args.oy = A[TileScratch::kOy];
-        args.oz = A[TileScratch::kOz];
-        args.dx = A[TileScratch::kDx];
-        args.dy = A[TileScratch::kDy];
-        args.dz = A[TileScratch::kDz];
-        args.pixelX = A[TileScratch::kPx];
-        args.pixelY = A[TileScratch::kPy];
-        args.jitter = A[TileScratch::kJitter];
-        args.hit = A[TileScratch::kHit];
-        args.hitX = A[TileScratch::kHitX];
-        args.hitY = A[TileScratch::kHitY];
-        args.hitZ = A[TileScratch::kHitZ];
-        args.steps = A[TileScratch::kSteps];
-        args.cause = A[TileScratch::kCause];
-        args.laneSlots = args.laneActive = 0;
-        kernel(args);
-        // Scatter the results and count (plane pointers and counters in locals: stores
-        // through float pointers would otherwise make the compiler reload them per ray).
-        st.rays = uint64_t(n);
-        st.laneSlots = args.laneSlots;
-        st.laneActive = args.laneActive;
-        float* const out[6] = {result.hit.row(0),  result.hitX.row(0),  result.hitY.row(0),
-                               result.hitZ.row(0), result.steps.row(0), result.cause.row(0)};
-        const float* const from[6] = {args.hit,  args.hitX,  args.hitY,
-                                      args.hitZ, args.steps, args.cause};
-        uint64_t ends[kMarchEndCount] = {}, steps = 0;
-        uint64_t* const histogram = st.stepHistogram.data();
-        for (int i = 0; i < n; ++i) {
-            const std::size_t at =
-                std::size_t(args.pixelY[i]) * outStride + std::size_t(args.pixelX[i]);
-            for (int p = 0; p < 6; ++p) out[p][at] = from[p][i];
-            const int cause = int(args.cause[i]);
-            if (cause >= 0 && cause < kMarchEndCount) ++ends[cause];
-            const uint64_t s = uint64_t(args.steps[i]);
-            steps += s;
-            ++histogram[std::min<std::size_t>(std::size_t(s), histogramSize - 1)];
-        }
-        st.steps = steps;
-        for (int c = 0; c < kMarchEndCount; ++c) st.ends[c] = ends[c];
+            }
+    // Pad the last lane group with copies of the first ray (their results are dropped).
+    const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
+    for (int i = n; i < padded; ++i)
+        for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
+    // Everything defaults to "no ray".
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        const int yy = y - out.y0, x0 = rect.x0 - out.x0, x1 = rect.x1 - out.x0;
+        for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
+            std::fill(p->row(yy) + x0, p->row(yy) + x1, 0.0f);
+        std::fill(result.cause.row(yy) + x0, result.cause.row(yy) + x1,
+                  float(int(MarchEnd::NoRay)));
+    }
+    MarchStats st;
+    st.stepHistogram.assign(histogramSize, 0);
+    if (n == 0) return st;
+    MarchKernelArgs args = proto_;
+    args.count = n;
+    args.ox = A[TileScratch::kOx];
+    args.oy = A[TileScratch::kOy];
+    args.oz = A[TileScratch::kOz];
+    args.dx = A[TileScratch::kDx];
+    args.dy = A[TileScratch::kDy];
+    args.dz = A[TileScratch::kDz];
+    args.pixelX = A[TileScratch::kPx];
+    args.pixelY = A[TileScratch::kPy];
+    args.jitter = A[TileScratch::kJitter];
+    args.hit = A[TileScratch::kHit];
+    args.hitX = A[TileScratch::kHitX];
+    args.hitY = A[TileScratch::kHitY];
+    args.hitZ = A[TileScratch::kHitZ];
+    args.steps = A[TileScratch::kSteps];
+    args.cause = A[TileScratch::kCause];
+    args.laneSlots = args.laneActive = 0;
+    kernel_(args);
+    // Scatter the results and count (plane pointers and counters in locals: stores through
+    // float pointers would otherwise make the compiler reload them per ray).
+    st.rays = uint64_t(n);
+    st.laneSlots = args.laneSlots;
+    st.laneActive = args.laneActive;
+    const std::size_t outStride = result.hit.stride();  // all six: one size, one stride
+    float* const to[6] = {result.hit.row(0),  result.hitX.row(0),  result.hitY.row(0),
+                          result.hitZ.row(0), result.steps.row(0), result.cause.row(0)};
+    const float* const from[6] = {args.hit,  args.hitX,  args.hitY,
+                                  args.hitZ, args.steps, args.cause};
+    uint64_t ends[kMarchEndCount] = {}, steps = 0;
+    uint64_t* const histogram = st.stepHistogram.data();
+    for (int i = 0; i < n; ++i) {
+        const std::size_t at = std::size_t(int(args.pixelY[i]) - out.y0) * outStride +
+                               std::size_t(int(args.pixelX[i]) - out.x0);
+        for (int p = 0; p < 6; ++p) to[p][at] = from[p][i];
+        const int cause = int(args.cause[i]);
+        if (cause >= 0 && cause < kMarchEndCount) ++ends[cause];
+        const uint64_t s = uint64_t(args.steps[i]);
+        steps += s;
+        ++histogram[std::min<std::size_t>(std::size_t(s), histogramSize - 1)];
+    }
+    st.steps = steps;
+    for (int c = 0; c < kMarchEndCount; ++c) st.ends[c] = ends[c];
+    return st;
+}
+
+MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
+                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
+                     const RayBatch& rays, MarchResult& result, int threads) {
+    settings.validate();
+    const int w = rays.width(), h = rays.height();
+    if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
+    if (camera.width != w || camera.height != h)
+        throw std::invalid_argument("marchRays: camera size does not match the ray batch");
+    const RayMarcher march(isa, marcher, settings, seed, camera, g, hiz, threads);
+    result.ensureSize(w, h);
+    result.corner = {};
+    const TileGrid& grid = march.grid();
+    std::vector<MarchStats> tileStats(std::size_t(grid.count()));
+    parallelForTiles(grid.count(), threads, [&](int tile) {
+        tileStats[std::size_t(tile)] = march.tile(tile, rays, result);
     });
     MarchStats total;
-    total.stepHistogram.assign(histogramSize, 0);
+    total.stepHistogram.assign(std::size_t(settings.maxSteps) + 1, 0);
     for (const MarchStats& s : tileStats) total.add(s);
     return total;
 }

@@ -15,7 +15,9 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
 #include "raster/hiz.h"
+#include "trace/march_kernel.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -108,5 +110,34 @@ struct MarchGBuffer {
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
                      const RayBatch& rays, MarchResult& result, int threads);
+
+// One march, checked and set up once (the camera's, the settings' and the pyramid's
+// arguments), then run tile by tile: over the frame by marchRays, or one tile at a time by the
+// SSR trace's tile chain (trace/ssr_trace.h). The same results either way: a ray's path
+// depends on its own ray alone. It points into `hiz` and `g`: they outlive it.
+class RayMarcher {
+public:
+    // marchRays' arguments less the batches; `threads` only packs a pyramid without its copy.
+    RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
+               const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
+               int threads);
+    RayMarcher(const RayMarcher&) = delete;  // (the arguments point into packed_)
+    RayMarcher& operator=(const RayMarcher&) = delete;
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile`'s rays of `rays` into `result`, every pixel of the tile written; each is the
+    // frame's batch (planes of the camera's size, corner (0, 0)) or a tile's (planes of at
+    // least the tile's size, corner at the tile's corner).
+    MarchStats tile(int tile, const RayBatch& rays, MarchResult& result) const;
+
+private:
+    MarchKernelArgs proto_{};
+    HiZPacked packed_;
+    TileGrid grid_;
+    RaySeed seed_;
+    float ddaJitter_ = 0.0f;  // 0: no jitter
+    int maxSteps_ = 0;
+    decltype(&isa_scalar::marchHiZKernel) kernel_ = nullptr;
+    decltype(&isa_scalar::marchSortKeys) sortKeys_ = nullptr;
+};
 
 }  // namespace ssrt

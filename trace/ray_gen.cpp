@@ -9,7 +9,6 @@
 
 #include "core/plane_check.h"
 #include "core/tiles.h"
-#include "trace/ray_gen_kernel.h"
 
 namespace ssrt {
 
@@ -39,12 +38,10 @@ void RayGenStats::add(const RayGenStats& o) {
     cut += o.cut;
 }
 
-namespace {
-
-// Set-up shared by both passes: checks, arguments, the tile loop, counters in tile order.
-RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
-                const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays, int threads,
-                float maxRoughness, bool onlyDiffuse, RayGenCheckerboard checkerboard) {
+RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
+                           const TraceCamera& camera, const RayGenGBuffer& g, float maxRoughness,
+                           bool onlyDiffuse, RayGenCheckerboard checkerboard)
+    : grid_(camera.width, camera.height) {
     if (std::isnan(maxRoughness))
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
@@ -61,22 +58,15 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
         need(g.albedo[2], "albedo.B");
         need(g.metallic, "metallic");
     }
-    const std::size_t gStride = need.stride();
-    rays.ensureSize(camera.width, camera.height);
-
-    RayGenArgs a{};
+    RayGenArgs& a = args_;
     a.lobe = lobe;
     a.g[0] = g.viewZ->row(0);
     for (int i = 0; i < 3; ++i) a.g[1 + i] = g.normal[i]->row(0);
     a.g[4] = lobe != RayGenLobe::Diffuse ? g.roughness->row(0) : nullptr;
-    a.gStride = gStride;
-    PlaneF* out[7] = {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf};
-    for (int i = 0; i < 7; ++i) a.out[i] = out[i]->row(0);
-    a.outStride = rays.ox.stride();
-    const TileGrid grid(camera.width, camera.height);
+    a.gStride = need.stride();
     a.width = camera.width;
     a.height = camera.height;
-    a.tilesX = grid.tilesX;
+    a.tilesX = grid_.tilesX;
     a.tanHalfX = camera.tanHalfX;
     a.tanHalfY = camera.tanHalfY;
     std::copy_n(camera.viewToWorld, 9, a.viewToWorld);
@@ -91,32 +81,81 @@ RayGenStats run(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint3
         for (int c = 0; c < 3; ++c) a.diffuse[c] = g.albedo[c]->row(0);
         a.diffuse[3] = g.metallic->row(0);
     }
-
-    std::vector<RayGenCounts> counts(std::size_t(grid.count()));
-    auto* kernel = SSRT_DISPATCH(isa, generateRaysTile);
-    parallelForTiles(grid.count(), threads,
-                     [&](int tile) { kernel(a, tile, counts[std::size_t(tile)]); });
-    RayGenStats stats;
-    for (const RayGenCounts& c : counts)
-        stats.add({c.pixels, c.rays, c.belowSurface, c.background, c.hidden, c.cut});
-    return stats;
+    kernel_ = SSRT_DISPATCH(isa, generateRaysTile);
 }
 
-}  // namespace
+RayGenerator RayGenerator::specular(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
+                                    const TraceCamera& camera, const RayGenGBuffer& g,
+                                    float maxRoughness, RayGenCheckerboard checkerboard) {
+    return {isa,
+            RayGenLobe(int(method)),
+            frame,
+            sample,
+            kRayGenSpecularDim,
+            camera,
+            g,
+            maxRoughness,
+            false,
+            checkerboard};
+}
+
+RayGenerator RayGenerator::diffuse(Isa isa, uint32_t frame, uint32_t sample,
+                                   const TraceCamera& camera, const RayGenGBuffer& g,
+                                   DiffuseCut cut, RayGenCheckerboard checkerboard) {
+    return {isa,
+            RayGenLobe::Diffuse,
+            frame,
+            sample,
+            kRayGenDiffuseDim,
+            camera,
+            g,
+            std::numeric_limits<float>::infinity(),
+            cut == DiffuseCut::NoDiffuseColour,
+            checkerboard};
+}
+
+RayGenStats RayGenerator::tile(int tile, RayBatch& rays) const {
+    const TileRect r = grid_.rect(tile);
+    const BatchCorner c = rays.corner;
+    if (r.x0 < c.x0 || r.y0 < c.y0 || r.x1 - c.x0 > rays.ox.width() ||
+        r.y1 - c.y0 > rays.ox.height())
+        throw std::invalid_argument("ray generation: the batch does not hold the tile");
+    RayGenArgs a = args_;
+    PlaneF* out[7] = {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf};
+    for (int i = 0; i < 7; ++i) a.out[i] = out[i]->row(0);
+    a.outStride = rays.ox.stride();
+    a.outX0 = c.x0;
+    a.outY0 = c.y0;
+    // A frame's batch is read by the next pass, long after: past the cache.
+    a.stream = rays.ox.width() == a.width && rays.ox.height() == a.height;
+    RayGenCounts n{};
+    kernel_(a, tile, n);
+    return {n.pixels, n.rays, n.belowSurface, n.background, n.hidden, n.cut};
+}
+
+RayGenStats RayGenerator::frame(RayBatch& rays, int threads) const {
+    rays.ensureSize(args_.width, args_.height);
+    rays.corner = {};
+    std::vector<RayGenStats> counts(std::size_t(grid_.count()));
+    parallelForTiles(grid_.count(), threads,
+                     [&](int t) { counts[std::size_t(t)] = tile(t, rays); });
+    RayGenStats stats;
+    for (const RayGenStats& c : counts) stats.add(c);
+    return stats;
+}
 
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
                                  const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
                                  int threads, float maxRoughness, RayGenCheckerboard checkerboard) {
-    return run(isa, RayGenLobe(int(method)), frame, sample, kRayGenSpecularDim, camera, g, rays,
-               threads, maxRoughness, false, checkerboard);
+    return RayGenerator::specular(isa, method, frame, sample, camera, g, maxRoughness, checkerboard)
+        .frame(rays, threads);
 }
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
                                 const RayGenGBuffer& g, RayBatch& rays, int threads, DiffuseCut cut,
                                 RayGenCheckerboard checkerboard) {
-    return run(isa, RayGenLobe::Diffuse, frame, sample, kRayGenDiffuseDim, camera, g, rays, threads,
-               std::numeric_limits<float>::infinity(), cut == DiffuseCut::NoDiffuseColour,
-               checkerboard);
+    return RayGenerator::diffuse(isa, frame, sample, camera, g, cut, checkerboard)
+        .frame(rays, threads);
 }
 
 }  // namespace ssrt

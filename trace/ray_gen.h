@@ -43,6 +43,8 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
+#include "trace/ray_gen_kernel.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -130,5 +132,33 @@ RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const 
                                 const RayGenGBuffer& g, RayBatch& rays, int threads,
                                 DiffuseCut cut = DiffuseCut::None,
                                 RayGenCheckerboard checkerboard = {});
+
+// One pass's ray generation, checked and set up once, then run tile by tile: over the frame by
+// the two functions above, or one tile at a time by the SSR trace's tile chain
+// (trace/ssr_trace.h). The same rays either way: a pixel's ray depends on its pixel alone.
+class RayGenerator {
+public:
+    // The arguments of generateSpecularRays and generateDiffuseRays, less the batch and threads.
+    static RayGenerator specular(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
+                                 const TraceCamera& camera, const RayGenGBuffer& g,
+                                 float maxRoughness, RayGenCheckerboard checkerboard);
+    static RayGenerator diffuse(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
+                                const RayGenGBuffer& g, DiffuseCut cut,
+                                RayGenCheckerboard checkerboard);
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile`'s rays into `rays`: the frame's batch (planes of the camera's size, corner
+    // (0, 0)) or a tile's (planes of at least the tile's size, corner at the tile's corner).
+    RayGenStats tile(int tile, RayBatch& rays) const;
+    // Every tile's into the frame's batch (sized here), counted in tile order.
+    RayGenStats frame(RayBatch& rays, int threads) const;
+
+private:
+    RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
+                 const TraceCamera& camera, const RayGenGBuffer& g, float maxRoughness,
+                 bool onlyDiffuse, RayGenCheckerboard checkerboard);
+    RayGenArgs args_{};
+    TileGrid grid_;
+    decltype(&isa_scalar::generateRaysTile) kernel_ = nullptr;
+};
 
 }  // namespace ssrt

@@ -184,8 +184,9 @@ template <RayGenLobe K>
 void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
     const auto [x0, y0, x1, y1] = tileRect(tile, a.tilesX, a.width, a.height);
     // Lane groups past the right edge read and write the rows' 64-byte padding and are
-    // left out of the counts. Rows go through a buffer and are streamed out in whole cache
-    // lines (written once per pass; see raster/resolve_kernel.cpp).
+    // left out of the counts. Rows go through a buffer and are written in whole cache lines,
+    // streamed past the cache into a frame's batch (written once per pass; see
+    // raster/resolve_kernel.cpp), stored into a tile's (its march reads them next).
     alignas(64) float rowBuf[7][kTileSize];
     float* bufPtr[7];
     for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
@@ -197,12 +198,17 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
             rayChunk<K>(a, x, y, valid, bufPtr, x - x0, c);
         }
         for (int p = 0; p < 7; ++p) {
-            float* dst = a.out[p] + std::size_t(y) * a.outStride + std::size_t(x0);
-            for (int i = 0; i < span; i += kW)
-                ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+            float* dst =
+                a.out[p] + std::size_t(y - a.outY0) * a.outStride + std::size_t(x0 - a.outX0);
+            if (a.stream)
+                for (int i = 0; i < span; i += kW)
+                    ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
+            else
+                for (int i = 0; i < span; i += kW)
+                    ln::store(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }
     }
-    ln::streamFence();
+    if (a.stream) ln::streamFence();
 }
 
 }  // namespace

@@ -27,6 +27,8 @@ struct RayGenArgs {
     std::size_t gStride;
     float* out[7];  // RayBatch planes ox, oy, oz, dx, dy, dz, pdf; all with outStride
     std::size_t outStride;
+    int outX0, outY0;  // the frame pixel of the planes' element (0, 0) (RayBatch::corner)
+    bool stream;       // store past the cache (a frame's batch; not a tile's, read next)
     int width, height, tilesX;
     float tanHalfX, tanHalfY;
     float viewToWorld[9];  // rotation, column-major

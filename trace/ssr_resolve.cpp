@@ -25,19 +25,18 @@ void SsrOutput::ensureSize(int width, int height) {
     hitFade.ensureSize(width, height);
 }
 
-void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
-                const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
-                int sampleCount, int threads) {
+SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
+                         SsrOutput& out, int sample, int sampleCount, bool tileBatches)
+    : grid_(in.camera.width, in.camera.height), tileBatches_(tileBatches) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsr: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
         throw std::invalid_argument("resolveSsr: sample must be in [0, sampleCount)");
     out.ensureSize(w, h);
-    const TileGrid grid(w, h);
-    SsrResolveArgs a{};
+    SsrResolveArgs& a = args_;
     a.width = w;
     a.height = h;
-    a.tilesX = grid.tilesX;
+    a.tilesX = grid_.tilesX;
     a.tanHalfX = in.camera.tanHalfX;
     a.tanHalfY = in.camera.tanHalfY;
     std::copy_n(in.camera.viewToWorld, 9, a.viewToWorld);
@@ -48,13 +47,6 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
     a.mip = settings.mode == SsrResolveMode::Mip;
     if (a.reuse)
         for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], "normal");
-    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], "ray direction");
-    a.pdf = need(rays.pdf, "ray pdf");
-    a.hit = need(march.hit, "march hit");
-    a.hitPos[0] = need(march.hitX, "march hitX");
-    a.hitPos[1] = need(march.hitY, "march hitY");
-    a.hitPos[2] = need(march.hitZ, "march hitZ");
     a.reproject = settings.radiance == HitRadiance::Reprojected;
     if (a.reproject)
         for (int c = 0; c < 2; ++c) a.motion[c] = need(in.motion[c], "motion");
@@ -98,14 +90,71 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
             a.hitTarget[c] = need.output(out.hitTarget[c], "hit target");
         }
     a.outOpacity = need.output(out.opacity, "opacity");
+    if (tileBatches) {
+        out.rayPdf.ensureSize(w, h);
+        a.copyPdf = need.output(out.rayPdf, "ray pdf copy");
+        a.framePdf = a.copyPdf;
+        if (a.reuse) {
+            out.rayHit.ensureSize(w, h);
+            a.copyHit = need.output(out.rayHit, "ray hit copy");
+            a.frameHit = a.copyHit;
+        }
+    }
     a.stride = need.stride();
     a.sample = sample;
     a.sampleCount = sampleCount;
+    hitKernel_ = SSRT_DISPATCH(isa, ssrHitTile);
+    resolveKernel_ = SSRT_DISPATCH(isa, ssrResolveTile);
+}
+
+void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& march) const {
+    const TileRect r = grid_.rect(tile);
+    const BatchCorner c = rays.corner;
+    const int bw = rays.pdf.width(), bh = rays.pdf.height();
+    const bool frame = bw == args_.width && bh == args_.height && c.x0 == 0 && c.y0 == 0;
+    if (frame == tileBatches_ || march.corner.x0 != c.x0 || march.corner.y0 != c.y0 ||
+        r.x0 < c.x0 || r.y0 < c.y0 || r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
+        throw std::invalid_argument(tileBatches_ ? "resolveSsr: expected a tile's batches"
+                                                 : "resolveSsr: expected the frame's batches");
+    SsrResolveArgs a = args_;
+    PlaneCheck need("resolveSsr", bw, bh);
+    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
+    for (int k = 0; k < 3; ++k) a.rayDir[k] = need(dirs[k], "ray direction");
+    a.pdf = need(rays.pdf, "ray pdf");
+    a.hit = need(march.hit, "march hit");
+    a.hitPos[0] = need(march.hitX, "march hitX");
+    a.hitPos[1] = need(march.hitY, "march hitY");
+    a.hitPos[2] = need(march.hitZ, "march hitZ");
+    a.rayStride = need.stride();
+    a.rayX0 = c.x0;
+    a.rayY0 = c.y0;
+    hitKernel_(a, tile);
+}
+
+void SsrResolver::resolveTile(int tile, const RayBatch* frameRays,
+                              const MarchResult* frameMarch) const {
+    SsrResolveArgs a = args_;
+    if (!tileBatches_) {
+        if (!frameRays || !frameMarch)
+            throw std::invalid_argument("resolveSsr: the second pass needs the frame's batches");
+        const PlaneF &pdf = frameRays->pdf, &hit = frameMarch->hit;
+        if (pdf.width() != a.width || pdf.height() != a.height || pdf.stride() != a.stride ||
+            hit.width() != a.width || hit.height() != a.height || hit.stride() != a.stride)
+            throw std::invalid_argument("resolveSsr: the frame's batches are of another size");
+        a.framePdf = frameRays->pdf.row(0);
+        a.frameHit = frameMarch->hit.row(0);
+    }
+    resolveKernel_(a, tile);
+}
+
+void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
+                const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
+                int sampleCount, int threads) {
+    const SsrResolver resolver(isa, settings, in, out, sample, sampleCount, false);
+    const int count = resolver.grid().count();
     // Pass 1 (own hits) over every tile before pass 2 reads the neighbours'.
-    const auto hitTile = SSRT_DISPATCH(isa, ssrHitTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { hitTile(a, tile); });
-    const auto resolveTile = SSRT_DISPATCH(isa, ssrResolveTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { resolveTile(a, tile); });
+    parallelForTiles(count, threads, [&](int t) { resolver.hitTile(t, rays, march); });
+    parallelForTiles(count, threads, [&](int t) { resolver.resolveTile(t, &rays, &march); });
 }
 
 }  // namespace ssrt

@@ -62,9 +62,12 @@ SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip,
 // One lane group of pass 1: the pixel's own hit radiance and fade.
 void hitChunk(const SsrResolveArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
+    const std::size_t r = std::size_t(y - a.rayY0) * a.rayStride + std::size_t(x - a.rayX0);
     const Lane zero(0.0f), one(1.0f);
-    const Lane pdf = loadAt(a.pdf, o), hit = loadAt(a.hit, o);
-    const Lane hx = loadAt(a.hitPos[0], o), hy = loadAt(a.hitPos[1], o);
+    const Lane pdf = loadAt(a.pdf, r), hit = loadAt(a.hit, r);
+    if (a.copyPdf) ln::store(a.copyPdf + o, pdf);
+    if (a.copyHit) ln::store(a.copyHit + o, hit);
+    const Lane hx = loadAt(a.hitPos[0], r), hy = loadAt(a.hitPos[1], r);
     auto valid = (pdf > zero) & (hit > Lane(0.5f));
     V3 radiance{zero, zero, zero};
     Lane fade = zero;
@@ -105,9 +108,9 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
     if (a.reuse) {
         // What the 3x3 reuse aims at: the hit point in view space, or the ray's direction for
         // a miss (computed once here instead of once per neighbour there).
-        const V3 hitP = screen::viewPoint(hx, hy, loadAt(a.hitPos[2], o), a.width, a.height,
+        const V3 hitP = screen::viewPoint(hx, hy, loadAt(a.hitPos[2], r), a.width, a.height,
                                           a.tanHalfX, a.tanHalfY);
-        const V3 dir{loadAt(a.rayDir[0], o), loadAt(a.rayDir[1], o), loadAt(a.rayDir[2], o)};
+        const V3 dir{loadAt(a.rayDir[0], r), loadAt(a.rayDir[1], r), loadAt(a.rayDir[2], r)};
         const V3 target = ln::select(hit > Lane(0.5f), hitP, dir);
         ln::store(a.hitTarget[0] + o, target.x);
         ln::store(a.hitTarget[1] + o, target.y);
@@ -132,13 +135,13 @@ template <class At>
 SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
                                 ln::MaskOf<Lane> inFrame, At&& at, ReuseSums& sum) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane pdf = at(a.pdf);
+    const Lane pdf = at(a.framePdf);
     const auto hasRay = inFrame & (pdf > zero);
     if (!ln::any(hasRay)) return;
     // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
     const V3 target{at(a.hitTarget[0]), at(a.hitTarget[1]), at(a.hitTarget[2])};
     const V3 toHit = ln::normalize(target - s.p);
-    const V3 l = ln::select(at(a.hit) > Lane(0.5f), toHit, target);
+    const V3 l = ln::select(at(a.frameHit) > Lane(0.5f), toHit, target);
     // This pixel's lobe towards l.
     const Lane NoLraw = ln::dot(s.n, l);
     const Lane NoL = ln::saturate(NoLraw);
@@ -166,8 +169,8 @@ SSRT_INLINE bool anyNeighbourRay(const SsrResolveArgs& a, int x, int y) {
     for (const int yy : {y, y - 1, y + 1}) {
         if (yy < 0 || yy >= a.height) continue;
         const std::size_t o = std::size_t(yy) * a.stride + std::size_t(x);
-        if (ln::any((loadAt(a.pdf, o - 1) > zero) | (loadAt(a.pdf, o) > zero) |
-                    (loadAt(a.pdf, o + 1) > zero)))
+        if (ln::any((loadAt(a.framePdf, o - 1) > zero) | (loadAt(a.framePdf, o) > zero) |
+                    (loadAt(a.framePdf, o + 1) > zero)))
             return true;
     }
     return false;

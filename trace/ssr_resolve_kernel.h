@@ -11,7 +11,8 @@
 namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has the frame's size and one stride (`stride`), the pyramid levels aside.
+// Every plane has the frame's size and one stride (`stride`), the pyramid levels and the
+// batch's planes aside.
 struct SsrResolveArgs {
     int width, height, tilesX;
     std::size_t stride;
@@ -21,11 +22,20 @@ struct SsrResolveArgs {
     const float* viewZ;
     const float* normal[3];  // world space
     const float* roughness;
-    // Rays and march
+    // Rays and march, read by ssrHitTile: a batch's planes, with their own stride, whose
+    // element (0, 0) is the frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
     const float* rayDir[3];  // view space
     const float* pdf;
     const float* hit;
     const float* hitPos[3];  // hitX, hitY (pixels), hitZ (view depth)
+    std::size_t rayStride;
+    int rayX0, rayY0;
+    // The pdf and hit planes of the frame that ssrResolveTile reads around each pixel: the
+    // batch's own when it is the frame's; else ssrHitTile copies the tile's there.
+    const float* framePdf;
+    const float* frameHit;
+    float* copyPdf;  // null when the batch is the frame's
+    float* copyHit;  // (reuse only)
     // Where hit radiance comes from: `source` at level 0 (Current: colour; Reprojected: the
     // previous frame's colour), read at hit + motion when `reproject`.
     const float* source[3];

@@ -26,7 +26,16 @@ struct RaySeed {
 // pdf > 0 as "a ray".
 inline constexpr float kPdfLayoutCut = -1.0f;
 
+// Where a batch lies in the frame: its element (0, 0) is the frame's pixel (x0, y0). A batch of
+// the whole frame has corner (0, 0); a tile's batch (the SSR trace's tile chain,
+// trace/ssr_trace.h) has planes of one tile's size and the tile's corner, so that its rays and
+// march results stay in the core's cache between the stages.
+struct BatchCorner {
+    int x0 = 0, y0 = 0;
+};
+
 struct RayBatch : PlaneTable<RayBatch> {
+    BatchCorner corner;
     PlaneF ox, oy, oz;  // origin: the pixel's surface point (no offset; marchers skip their
                         // own pixel)
     PlaneF dx, dy, dz;  // unit direction
@@ -66,11 +75,12 @@ inline std::string_view marchEndName(MarchEnd e) {
 
 // What the march found for each pixel's ray.
 struct MarchResult : PlaneTable<MarchResult> {
-    PlaneF hit;         // 1 hit, 0 not
-    PlaneF hitX, hitY;  // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
-    PlaneF hitZ;        // view Z at the hit (positive); 0 on a miss
-    PlaneF steps;       // march steps (or Hi-Z iterations) this ray took
-    PlaneF cause;       // MarchEnd as a float
+    BatchCorner corner;  // as RayBatch's
+    PlaneF hit;          // 1 hit, 0 not
+    PlaneF hitX, hitY;   // hit position in pixels (continuous; pixel centres at +0.5); 0 on a miss
+    PlaneF hitZ;         // view Z at the hit (positive); 0 on a miss
+    PlaneF steps;        // march steps (or Hi-Z iterations) this ray took
+    PlaneF cause;        // MarchEnd as a float
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {

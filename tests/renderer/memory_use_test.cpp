@@ -50,14 +50,15 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     // replaces it), no emission (nothing in cornell emits).
     CHECK(m.at("direct parts") == 12 * plane);
     CHECK(m.at("denoised") == 8 * plane);
-    // Between frames the pool holds the scratch that passes hand on: SSR's rays 7, march
-    // results 6 and the resolve's own 7 (hit radiance 3, fade, target 3), which the
-    // full-resolution denoiser's scratch reuses (the specular signal's alone: noisy 4, ping 4,
-    // pong 4, signalZ, frames, fast = 15, not a group per pass), and the half-resolution
-    // denoiser's 15 (the diffuse's, on the half frame: SSGI's half layout; a 20x12 plane is 32
-    // floats a row).
+    // Between frames the pool holds the scratch that passes hand on: the SSR resolve's 9 (hit
+    // radiance 3, fade, target 3, and the pdf and hits its tile chain copies out of the tiles'
+    // batches: trace/ssr_trace.h; no frame of rays or march results), which the
+    // full-resolution denoiser's scratch reuses and outgrows (the specular signal's alone:
+    // noisy 4, ping 4, pong 4, signalZ, frames, fast = 15, not a group per pass), and the
+    // half-resolution denoiser's 15 (the diffuse's, on the half frame: SSGI's half layout; a
+    // 20x12 plane is 32 floats a row).
     const std::size_t halfPlane = 32 * 12 * sizeof(float);
-    CHECK(m.at("pooled scratch") == 20 * plane + 15 * halfPlane);
+    CHECK(m.at("pooled scratch") == 15 * plane + 15 * halfPlane);
     for (const char* pooled :
          {"rays", "march", "ssr resolve", "denoise scratch", "half denoise scratch"})
         CHECK(m.count(pooled) == 0);

@@ -214,3 +214,60 @@ TEST_CASE("renderer: reprojected SSR hits read the previous frame of a sequence"
     rr.render(scene, input, other, b);
     CHECK(test::sameBits(b.trace.ssr.color[0], still.trace.ssr.color[0]));
 }
+
+// The SSR trace runs tile by tile (trace/ssr_trace.h) unless an observer asks for the frame's
+// rays and march results, when it runs stage by stage over the frame: the two give the same
+// bits and the same counters, for every marcher, layout, resolve mode and sample count, on a
+// frame whose size is not a whole number of tiles.
+TEST_CASE("renderer: the SSR trace tile by tile gives the stage-by-stage bits") {
+    const Scene scene = makeBuiltinScene("spheres");
+    struct Case {
+        Marcher marcher;
+        TraceLayout layout;
+        SsrResolveMode mode;
+        int spp;
+    };
+    for (const Case k : {Case{Marcher::HiZ, TraceLayout::Checkerboard, SsrResolveMode::Reuse, 1},
+                         Case{Marcher::Dda, TraceLayout::Full, SsrResolveMode::Reuse, 2},
+                         Case{Marcher::Linear, TraceLayout::Checkerboard, SsrResolveMode::Mip, 1},
+                         Case{Marcher::HiZ, TraceLayout::Full, SsrResolveMode::Mip, 3}}) {
+        CAPTURE(marcherName(k.marcher));
+        CAPTURE(k.spp);
+        RenderSettings rs = smallTraced();
+        rs.width = 150;  // the last tile column is 22 pixels wide, not a lane multiple
+        rs.height = 70;
+        rs.trace.marcher = k.marcher;
+        rs.trace.ssrLayout = k.layout;
+        rs.trace.ssgiLayout = TraceLayout::Half;  // (its own batches, at half resolution)
+        rs.trace.resolve.mode = k.mode;
+        rs.trace.ssrSpp = k.spp;
+        const Renderer r(rs);
+        int observed = 0;
+        const TraceObserver seeRays = [&](TracePass pass, int, const RayBatch&,
+                                          const MarchResult&) {
+            observed += pass == TracePass::Ssr;
+        };
+        Frame tiled, staged;
+        r.renderWithoutHistory(scene, FrameInput::still(scene), tiled);
+        r.renderWithoutHistory(scene, FrameInput::still(scene), staged, &seeRays);
+        CHECK(observed == k.spp);
+        const SsrPlanes &a = tiled.trace.ssr, &b = staged.trace.ssr;
+        for (int ch = 0; ch < 3; ++ch) CHECK(test::sameBits(a.color[ch], b.color[ch]));
+        CHECK(test::sameBits(a.opacity, b.opacity));
+        CHECK(test::sameBits(a.hit, b.hit));
+        CHECK(test::sameBits(a.hitDistance, b.hitDistance));
+        CHECK(test::sameBits(a.steps, b.steps));
+        CHECK(test::sameBits(tiled.image.color[0], staged.image.color[0]));
+        const TraceStats &sa = tiled.stats.ssr, &sb = staged.stats.ssr;
+        CHECK(sa.rays.rays == sb.rays.rays);
+        CHECK(sa.rays.cut == sb.rays.cut);
+        CHECK(sa.rays.hidden == sb.rays.hidden);
+        CHECK(sa.march.rays == sb.march.rays);
+        CHECK(sa.march.steps == sb.march.steps);
+        CHECK(sa.march.laneActive == sb.march.laneActive);
+        for (int e = 0; e < kMarchEndCount; ++e) CHECK(sa.march.ends[e] == sb.march.ends[e]);
+        CHECK(sa.march.stepHistogram == sb.march.stepHistogram);
+        // The tile chain made no frame of rays or march results: its pool holds less.
+        CHECK(tiled.scratch.pool.bytes() < staged.scratch.pool.bytes());
+    }
+}
