@@ -10,7 +10,7 @@
 #include "trace/hit_stats.h"
 #include "trace/reconstruct.h"
 #include "trace/ssgi.h"
-#include "trace/ssr_trace.h"
+#include "trace/tile_chain.h"
 
 namespace ssrt {
 
@@ -131,14 +131,29 @@ struct SsrSample {
     }
 };
 
-// Stage by stage over the frame, the frame's rays and march results in the pool's planes:
-// for the observer (the truth's ray check), which reads them. Leaves the last sample's pdf in
-// frame.scratch.rays for the checkerboard fill.
+// Whether the trace runs tile by tile (trace/tile_chain.h): unless the observer (the truth's
+// ray check) asks for the frame's rays and march results.
+bool tiled(const TraceContext& c) { return !(c.args.observer && *c.args.observer); }
+
+// The frame's batches where the passes read them: every plane for the observer's stage-by-stage
+// path; for the tile chain only the pdf (and the hits: `hits`) that what runs after the chain
+// reads around each pixel.
+void takeBatches(const TraceContext& c, Frame& frame, bool hits) {
+    Frame::Scratch& sc = frame.scratch;
+    const int w = frame.width, h = frame.height;
+    if (!tiled(c)) {
+        sc.pool.take(sc.rays, w, h);
+        sc.pool.take(sc.march, w, h);
+        return;
+    }
+    sc.pool.take(sc.rays.pdf, w, h);
+    if (hits) sc.pool.take(sc.march.hit, w, h);
+}
+
+// Stage by stage over the frame, for the observer, which reads the frame's batches.
 void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
     Frame::Scratch& sc = frame.scratch;
-    sc.pool.take(sc.rays, frame.width, frame.height);
-    sc.pool.take(sc.march, frame.width, frame.height);
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
         marchSample(c, TracePass::Ssr, s, frame, st, times);
@@ -151,24 +166,29 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     }
 }
 
-// Tile by tile (trace/ssr_trace.h): no frame of rays or march results; the resolve copies the
-// pdf (and hits) that its second pass and the checkerboard fill read into sc.ssr.
+// Tile by tile: the resolve's first pass and the hit statistics take each tile's batches.
 void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
     const Isa isa = c.args.isa;
-    SsrOutput& out = frame.scratch.ssr;
+    Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
         const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
                                c.camera, c.march, c.hiz, c.threads());
-        const SsrResolver resolve(isa, q.rs, q.in, out, s, c.ts.ssrSpp, true);
+        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march);
         const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
-        const SsrChainStats r = runSsrTileChain({rays, march, resolve, hitStats}, c.threads());
+        const TileChainStats r = runTileChain({rays, march,
+                                               [&](int t, const RayBatch& b, const MarchResult& m) {
+                                                   resolve.hitTile(t, b, m);
+                                                   hitStats.tile(t, b, m);
+                                               }},
+                                              c.threads());
         st.rays.add(r.rays);
         st.march.add(r.march);
         times.rays += r.raysMs;
         times.march += r.marchMs;
-        times.resolve += r.hitMs + r.resolveMs;
+        times.resolve += r.consumeMs;
+        addTime(times.resolve, [&] { resolve.resolveFrame(c.threads()); });
     }
 }
 
@@ -189,19 +209,15 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     const SsrSample q{
         c,  rs,           in,
         hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
-    // The resolve's scratch comes from the pool (and the frame's rays and march results, where
-    // they are made) and goes back to it once the checkerboard fill has read the rays' pdf
-    // (the denoiser takes them next).
-    const int w = frame.width, h = frame.height;
-    const bool tiled = !(c.args.observer && *c.args.observer);
+    // The batches and the resolve's scratch come from the pool and go back to it once the
+    // checkerboard fill has read the rays' pdf (the denoiser takes them next).
+    takeBatches(c, frame, rs.mode == SsrResolveMode::Reuse);
     swapSsrOutput(planes, sc.ssr);
-    sc.ssr.forEachPlane([&](std::string_view, PlaneF& p) {
-        const bool copy = &p == &sc.ssr.rayPdf || &p == &sc.ssr.rayHit;
-        if (tiled || !copy) sc.pool.take(p, w, h);
-    });
-    if (tiled) ssrTileSamples(q, frame, st, times);
+    sc.pool.take(sc.ssr, frame.width, frame.height);
+    if (tiled(c)) ssrTileSamples(q, frame, st, times);
     else ssrFrameSamples(q, frame, st, times);
     swapSsrOutput(planes, sc.ssr);
+    sc.pool.give(sc.ssr);
     // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
     if (q.checker.on) {
         times.reconstruct = 0.0;
@@ -210,14 +226,64 @@ void ssrPass(const TraceContext& c, Frame& frame) {
                                        &planes.opacity,
                                        &planes.hit,
                                        &planes.hitDistance};
-            fillCheckerboard(c.args.isa, c.guides(frame), tiled ? sc.ssr.rayPdf : sc.rays.pdf, rp,
-                             c.threads());
+            fillCheckerboard(c.args.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
-    sc.pool.give(sc.ssr);
     sc.pool.give(sc.rays);
     sc.pool.give(sc.march);
     times.report(frame.stats, "ssr");
+}
+
+// One SSGI sample's stages on a camera (the frame's, or the half frame's) and its G-buffer:
+// tile by tile (trace/tile_chain.h), the rays' pdf copied into rays.pdf for the layouts'
+// reconstruction; or, for the observer, stage by stage over the frame's batches.
+struct SsgiSample {
+    const TraceContext& c;
+    const TraceCamera& camera;
+    const RayGenGBuffer& rayGen;
+    const MarchGBuffer& march;
+    const HiZPyramid* hiz;
+    const SsgiInputs& in;
+    const HitStatsPlanes& hp;
+    DiffuseCut cut;
+    RayGenCheckerboard checker;
+    PlaneF* out;  // the resolve's colour planes
+};
+
+RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
+                       TraceStats& st, StageTimes& times, bool observe, Frame& frame) {
+    const TraceContext& c = q.c;
+    const Isa isa = c.args.isa;
+    const int spp = c.ts.ssgiSpp;
+    const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), q.camera,
+                                                   q.rayGen, q.cut, q.checker);
+    const RaySeed seed{c.args.frameIndex, uint32_t(s)};
+    if (observe) {
+        RayGenStats rs;
+        addTime(times.rays, [&] { rs = gen.frame(rays, c.threads()); });
+        marchSample(c, TracePass::Ssgi, s, frame, st, times);
+        addTime(times.resolve, [&] {
+            resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads());
+            accumulateHitStats(isa, q.camera, rays, result, q.hp, s, spp, c.threads());
+        });
+        return rs;
+    }
+    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, q.camera, q.march, q.hiz,
+                           c.threads());
+    const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
+    rays.corner = {};
+    const HitStatsAccumulator hitStats(isa, q.camera, q.hp, s, spp);
+    const TileChainStats r = runTileChain({gen, march,
+                                           [&](int t, const RayBatch& b, const MarchResult& m) {
+                                               resolve.tile(t, b, m);
+                                               hitStats.tile(t, b, m);
+                                           }},
+                                          c.threads());
+    st.march.add(r.march);
+    times.rays += r.raysMs;
+    times.march += r.marchMs;
+    times.resolve += r.consumeMs;
+    return r.rays;
 }
 
 // SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a
@@ -256,24 +322,14 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
                             &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
+    const SsgiSample q{c, hf.camera, rayGen, march, hiz, in, hp, cut, {}, ht.resolved.color};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
-        addTime(times.rays, [&] {
-            RayGenStats rs = generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), hf.camera,
-                                                 rayGen, ht.rays, c.threads(), cut);
-            // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
-            // and background stay counts of half pixels).
-            rs.pixels += hf.cutPixels;
-            rs.cut += hf.cutPixels;
-            st.rays.add(rs);
-        });
-        addTime(times.march, [&] {
-            st.march.add(marchRays(isa, ts.marcher, ts.march, {c.args.frameIndex, uint32_t(s)},
-                                   hf.camera, march, hiz, ht.rays, ht.march, c.threads()));
-        });
-        addTime(times.resolve, [&] {
-            resolveSsgi(isa, in, ht.rays, ht.march, ht.resolved.color, s, ts.ssgiSpp, c.threads());
-            accumulateHitStats(isa, hf.camera, ht.rays, ht.march, hp, s, ts.ssgiSpp, c.threads());
-        });
+        RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times, false, frame);
+        // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
+        // and background stay counts of half pixels).
+        rs.pixels += hf.cutPixels;
+        rs.cut += hf.cutPixels;
+        st.rays.add(rs);
     }
     // The full-resolution planes: what the composite reads without the denoiser, and only to
     // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
@@ -353,19 +409,10 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
-    sc.pool.take(sc.rays, frame.width, frame.height);
-    sc.pool.take(sc.march, frame.width, frame.height);
-    for (int s = 0; s < ts.ssgiSpp; ++s) {
-        addTime(times.rays, [&] {
-            st.rays.add(generateDiffuseRays(isa, c.args.frameIndex, uint32_t(s), c.camera, c.rayGen,
-                                            sc.rays, c.threads(), cut, checker));
-        });
-        marchSample(c, TracePass::Ssgi, s, frame, st, times);
-        addTime(times.resolve, [&] {
-            resolveSsgi(isa, in, sc.rays, sc.march, planes.color, s, ts.ssgiSpp, c.threads());
-            accumulateHitStats(isa, c.camera, sc.rays, sc.march, hp, s, ts.ssgiSpp, c.threads());
-        });
-    }
+    takeBatches(c, frame, false);
+    const SsgiSample q{c, c.camera, c.rayGen, c.march, c.hiz, in, hp, cut, checker, planes.color};
+    for (int s = 0; s < ts.ssgiSpp; ++s)
+        st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times, !tiled(c), frame));
     if (checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, [&] {

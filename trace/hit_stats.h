@@ -31,7 +31,7 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
                         int sampleCount, int threads);
 
 // The same, checked and set up once, then run tile by tile: over the frame by
-// accumulateHitStats, or one tile at a time by the SSR trace's tile chain (trace/ssr_trace.h).
+// accumulateHitStats, or one tile at a time by a trace pass's tile chain (trace/tile_chain.h).
 class HitStatsAccumulator {
 public:
     // accumulateHitStats' arguments less the batches and threads (`out` ensured here).

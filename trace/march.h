@@ -113,7 +113,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
 
 // One march, checked and set up once (the camera's, the settings' and the pyramid's
 // arguments), then run tile by tile: over the frame by marchRays, or one tile at a time by the
-// SSR trace's tile chain (trace/ssr_trace.h). The same results either way: a ray's path
+// trace pass's tile chain (trace/tile_chain.h). The same results either way: a ray's path
 // depends on its own ray alone. It points into `hiz` and `g`: they outlive it.
 class RayMarcher {
 public:

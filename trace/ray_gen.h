@@ -134,8 +134,8 @@ RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const 
                                 RayGenCheckerboard checkerboard = {});
 
 // One pass's ray generation, checked and set up once, then run tile by tile: over the frame by
-// the two functions above, or one tile at a time by the SSR trace's tile chain
-// (trace/ssr_trace.h). The same rays either way: a pixel's ray depends on its pixel alone.
+// the two functions above, or one tile at a time by a trace pass's tile chain
+// (trace/tile_chain.h). The same rays either way: a pixel's ray depends on its pixel alone.
 class RayGenerator {
 public:
     // The arguments of generateSpecularRays and generateDiffuseRays, less the batch and threads.

@@ -32,19 +32,19 @@ void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], 
     parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
 }
 
-void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const MarchResult& march,
-                 PlaneF out[3], int sample, int sampleCount, int threads) {
+SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sample,
+                           int sampleCount, PlaneF* pdfCopy)
+    : grid_(in.camera.width, in.camera.height) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsgi: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
         throw std::invalid_argument("resolveSsgi: sample must be in [0, sampleCount)");
     if (!in.lighting) throw std::invalid_argument("resolveSsgi: lighting (DirectArgs) missing");
     for (int c = 0; c < 3; ++c) out[c].ensureSize(w, h);
-    const TileGrid grid(w, h);
-    SsgiArgs a{};
+    SsgiArgs& a = args_;
     a.width = w;
     a.height = h;
-    a.tilesX = grid.tilesX;
+    a.tilesX = grid_.tilesX;
     PlaneCheck need("resolveSsgi", w, h);
     a.viewZ = need(in.viewZ, "viewZ");
     if (in.hitLight[0] || in.hitLight[1] || in.hitLight[2]) {
@@ -59,21 +59,49 @@ void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const Marc
         if (in.emission[0] || in.emission[1] || in.emission[2])
             for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], "emission");
     }
-    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int c = 0; c < 3; ++c) a.rayDir[c] = need(dirs[c], "ray direction");
-    a.pdf = need(&rays.pdf, "ray pdf");
-    a.hit = need(&march.hit, "march hit");
-    a.hitX = need(&march.hitX, "march hitX");
-    a.hitY = need(&march.hitY, "march hitY");
     a.lighting = *in.lighting;
     // The camera's rotation is the one rays are turned to world with.
     for (int i = 0; i < 9; ++i) a.lighting.viewToWorld[i] = in.camera.viewToWorld[i];
     for (int c = 0; c < 3; ++c) a.out[c] = need.output(out[c], "output");
+    if (pdfCopy) {
+        pdfCopy->ensureSize(w, h);
+        a.copyPdf = need.output(*pdfCopy, "pdf copy");
+    }
     a.stride = need.stride();
     a.sample = sample;
     a.sampleCount = sampleCount;
-    const auto tileFn = SSRT_DISPATCH(isa, ssgiTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+    kernel_ = SSRT_DISPATCH(isa, ssgiTile);
+}
+
+void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march) const {
+    const TileRect r = grid_.rect(tile);
+    const BatchCorner c = rays.corner;
+    const int bw = rays.pdf.width(), bh = rays.pdf.height();
+    if (march.corner.x0 != c.x0 || march.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
+        r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
+        throw std::invalid_argument("resolveSsgi: the batches do not hold the tile");
+    SsgiArgs a = args_;
+    PlaneCheck need("resolveSsgi", bw, bh);
+    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
+    for (int k = 0; k < 3; ++k) a.rayDir[k] = need(dirs[k], "ray direction");
+    a.pdf = need(&rays.pdf, "ray pdf");
+    a.hit = need(&march.hit, "march hit");
+    a.hitX = need(&march.hitX, "march hitX");
+    a.hitY = need(&march.hitY, "march hitY");
+    a.rayStride = need.stride();
+    a.rayX0 = c.x0;
+    a.rayY0 = c.y0;
+    kernel_(a, tile);
+}
+
+void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const MarchResult& march,
+                 PlaneF out[3], int sample, int sampleCount, int threads) {
+    const SsgiResolver resolver(isa, in, out, sample, sampleCount);
+    PlaneCheck need("resolveSsgi", in.camera.width, in.camera.height);  // the frame's batches
+    need(&rays.pdf, "ray pdf");
+    need(&march.hit, "march hit");
+    parallelForTiles(resolver.grid().count(), threads,
+                     [&](int t) { resolver.tile(t, rays, march); });
 }
 
 }  // namespace ssrt

@@ -35,7 +35,9 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
 #include "shading/direct_kernel.h"
+#include "trace/ssgi_kernel.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -80,5 +82,23 @@ void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneF hitLight[
 // in [0, sampleCount).
 void resolveSsgi(Isa isa, const SsgiInputs& inputs, const RayBatch& rays, const MarchResult& march,
                  PlaneF out[3], int sample, int sampleCount, int threads);
+
+// The same, checked and set up once, then run tile by tile: over the frame by resolveSsgi, or
+// one tile at a time in a trace pass's tile chain (trace/tile_chain.h), whose batches do not
+// outlive their tile: `pdfCopy` (optional) then receives the rays' pdf, which the layouts'
+// reconstruction reads after the chain.
+class SsgiResolver {
+public:
+    SsgiResolver(Isa isa, const SsgiInputs& inputs, PlaneF out[3], int sample, int sampleCount,
+                 PlaneF* pdfCopy = nullptr);
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile` of the batches: the frame's (corner (0, 0)) or a tile's; one corner.
+    void tile(int tile, const RayBatch& rays, const MarchResult& march) const;
+
+private:
+    SsgiArgs args_{};
+    TileGrid grid_;
+    decltype(&isa_scalar::ssgiTile) kernel_ = nullptr;
+};
 
 }  // namespace ssrt

@@ -32,14 +32,16 @@ SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
 
 void ssgiChunk(const SsgiArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
+    const std::size_t r = std::size_t(y - a.rayY0) * a.rayStride + std::size_t(x - a.rayX0);
     const Lane zero(0.0f);
-    const Lane pdf = ln::load<Lane>(a.pdf + o);
+    const Lane pdf = ln::load<Lane>(a.pdf + r);
+    if (a.copyPdf) ln::store(a.copyPdf + o, pdf);
     const auto hasRay = pdf > zero;
     V3 radiance{zero, zero, zero};
     if (ln::any(hasRay)) {
-        const auto hit = hasRay & (ln::load<Lane>(a.hit + o) > Lane(0.5f));
+        const auto hit = hasRay & (ln::load<Lane>(a.hit + r) > Lane(0.5f));
         // The hit pixel's G-buffer (nearest; clamped, so unused lanes read inside the frame).
-        const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + o), ln::load<Lane>(a.hitY + o),
+        const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + r), ln::load<Lane>(a.hitY + r),
                                              a.width, a.height, a.stride);
         const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
         if (ln::any(surface))
@@ -48,8 +50,8 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
         // Misses: the sky along the ray, in world space.
         const auto miss = hasRay & !surface;
         if (ln::any(miss)) {
-            const V3 d{ln::load<Lane>(a.rayDir[0] + o), ln::load<Lane>(a.rayDir[1] + o),
-                       ln::load<Lane>(a.rayDir[2] + o)};
+            const V3 d{ln::load<Lane>(a.rayDir[0] + r), ln::load<Lane>(a.rayDir[1] + r),
+                       ln::load<Lane>(a.rayDir[2] + r)};
             const V3 dw = ln::normalize(screen::viewToWorld(a.lighting.viewToWorld, d));
             radiance = ln::select(miss, shade::skyRadiance(a.lighting, dw), radiance);
         }

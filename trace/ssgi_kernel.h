@@ -10,7 +10,7 @@
 namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has the frame's size and one stride.
+// Every plane has the frame's size and one stride, the batch's aside.
 struct SsgiArgs {
     int width, height, tilesX;
     std::size_t stride;
@@ -21,11 +21,16 @@ struct SsgiArgs {
     const float* shadow;
     const float* emission[3];  // all null: no emission
     const float* hitLight[3];  // all null: computed from the planes above (SsgiInputs)
-    const float* rayDir[3];    // view space
+    // Rays and march: a batch's planes, with their own stride, whose element (0, 0) is the
+    // frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
+    const float* rayDir[3];  // view space
     const float* pdf;
     const float* hit;
     const float* hitX;
     const float* hitY;
+    std::size_t rayStride;
+    int rayX0, rayY0;
+    float* copyPdf;       // optional: the frame's plane the batch's pdf is copied to
     DirectArgs lighting;  // sun, sky and viewToWorld
     float* out[3];
     int sample, sampleCount;

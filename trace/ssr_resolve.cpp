@@ -26,8 +26,9 @@ void SsrOutput::ensureSize(int width, int height) {
 }
 
 SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
-                         SsrOutput& out, int sample, int sampleCount, bool tileBatches)
-    : grid_(in.camera.width, in.camera.height), tileBatches_(tileBatches) {
+                         SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
+                         MarchResult& frameMarch)
+    : grid_(in.camera.width, in.camera.height), frameRays_(&frameRays), frameMarch_(&frameMarch) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsr: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
@@ -90,15 +91,14 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
             a.hitTarget[c] = need.output(out.hitTarget[c], "hit target");
         }
     a.outOpacity = need.output(out.opacity, "opacity");
-    if (tileBatches) {
-        out.rayPdf.ensureSize(w, h);
-        a.copyPdf = need.output(out.rayPdf, "ray pdf copy");
-        a.framePdf = a.copyPdf;
-        if (a.reuse) {
-            out.rayHit.ensureSize(w, h);
-            a.copyHit = need.output(out.rayHit, "ray hit copy");
-            a.frameHit = a.copyHit;
-        }
+    // What pass 2 reads around each pixel (the hits only for the reuse).
+    frameRays.corner = {};
+    frameRays.pdf.ensureSize(w, h);
+    a.framePdf = need.output(frameRays.pdf, "ray pdf");
+    if (a.reuse) {
+        frameMarch.corner = {};
+        frameMarch.hit.ensureSize(w, h);
+        a.frameHit = need.output(frameMarch.hit, "march hit");
     }
     a.stride = need.stride();
     a.sample = sample;
@@ -111,11 +111,9 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
     const int bw = rays.pdf.width(), bh = rays.pdf.height();
-    const bool frame = bw == args_.width && bh == args_.height && c.x0 == 0 && c.y0 == 0;
-    if (frame == tileBatches_ || march.corner.x0 != c.x0 || march.corner.y0 != c.y0 ||
-        r.x0 < c.x0 || r.y0 < c.y0 || r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
-        throw std::invalid_argument(tileBatches_ ? "resolveSsr: expected a tile's batches"
-                                                 : "resolveSsr: expected the frame's batches");
+    if (march.corner.x0 != c.x0 || march.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
+        r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
+        throw std::invalid_argument("resolveSsr: the batches do not hold the tile");
     SsrResolveArgs a = args_;
     PlaneCheck need("resolveSsr", bw, bh);
     const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
@@ -128,33 +126,31 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     a.rayStride = need.stride();
     a.rayX0 = c.x0;
     a.rayY0 = c.y0;
+    // A tile's batch: its pdf and hits go to the frame's, for pass 2.
+    if (&rays != frameRays_) a.copyPdf = const_cast<float*>(a.framePdf);
+    if (&march != frameMarch_ && a.reuse) a.copyHit = const_cast<float*>(a.frameHit);
     hitKernel_(a, tile);
 }
 
-void SsrResolver::resolveTile(int tile, const RayBatch* frameRays,
-                              const MarchResult* frameMarch) const {
-    SsrResolveArgs a = args_;
-    if (!tileBatches_) {
-        if (!frameRays || !frameMarch)
-            throw std::invalid_argument("resolveSsr: the second pass needs the frame's batches");
-        const PlaneF &pdf = frameRays->pdf, &hit = frameMarch->hit;
-        if (pdf.width() != a.width || pdf.height() != a.height || pdf.stride() != a.stride ||
-            hit.width() != a.width || hit.height() != a.height || hit.stride() != a.stride)
-            throw std::invalid_argument("resolveSsr: the frame's batches are of another size");
-        a.framePdf = frameRays->pdf.row(0);
-        a.frameHit = frameMarch->hit.row(0);
-    }
-    resolveKernel_(a, tile);
+void SsrResolver::resolveFrame(int threads) const {
+    parallelForTiles(grid_.count(), threads, [&](int t) { resolveKernel_(args_, t); });
 }
 
 void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
                 const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
                 int sampleCount, int threads) {
-    const SsrResolver resolver(isa, settings, in, out, sample, sampleCount, false);
-    const int count = resolver.grid().count();
+    // The frame's batches, of the frame's size: only read (pass 1 copies nothing into its own
+    // input, and the resolver's sizing of the two planes pass 2 reads keeps them).
+    PlaneCheck need("resolveSsr", in.camera.width, in.camera.height);
+    need(rays.pdf, "ray pdf");
+    need(march.hit, "march hit");
+    RayBatch& frameRays = const_cast<RayBatch&>(rays);
+    MarchResult& frameMarch = const_cast<MarchResult&>(march);
+    const SsrResolver resolver(isa, settings, in, out, sample, sampleCount, frameRays, frameMarch);
     // Pass 1 (own hits) over every tile before pass 2 reads the neighbours'.
-    parallelForTiles(count, threads, [&](int t) { resolver.hitTile(t, rays, march); });
-    parallelForTiles(count, threads, [&](int t) { resolver.resolveTile(t, &rays, &march); });
+    parallelForTiles(resolver.grid().count(), threads,
+                     [&](int t) { resolver.hitTile(t, rays, march); });
+    resolver.resolveFrame(threads);
 }
 
 }  // namespace ssrt

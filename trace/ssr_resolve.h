@@ -87,8 +87,6 @@ struct SsrOutput : PlaneTable<SsrOutput> {
     // Scratch (per-pixel hit radiance and fade; for the reuse mode also the view-space hit
     // point, or the ray's direction for a miss), kept to reuse memory.
     PlaneF hitRadiance[3], hitFade, hitTarget[3];
-    // The rays' pdf and (reuse only) hits, copied from tile batches (SsrResolver).
-    PlaneF rayPdf, rayHit;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -99,7 +97,6 @@ struct SsrOutput : PlaneTable<SsrOutput> {
         fn("resolve.hitRadiance.B", g.hitRadiance[2]), fn("resolve.hitFade", g.hitFade);
         fn("resolve.hitTarget.X", g.hitTarget[0]), fn("resolve.hitTarget.Y", g.hitTarget[1]);
         fn("resolve.hitTarget.Z", g.hitTarget[2]);
-        fn("resolve.rayPdf", g.rayPdf), fn("resolve.rayHit", g.rayHit);
     }
     // color, opacity, hitRadiance and hitFade (hitTarget only where the reuse mode asks).
     void ensureSize(int width, int height);
@@ -115,29 +112,28 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
                 int sampleCount, int threads);
 
 // The same, checked and set up once, then run in its two passes tile by tile: over the frame
-// by resolveSsr, or with the first pass one tile at a time in the SSR trace's tile chain
-// (trace/ssr_trace.h), whose tile batches do not outlive their tile: the first pass then
-// copies the rays' pdf and hits that the second reads around each pixel into `out.rayPdf`
-// and `out.rayHit`.
+// by resolveSsr, or with the first pass one tile at a time in a trace pass's tile chain
+// (trace/tile_chain.h). The second pass reads the pdf and hits around each pixel in the
+// frame's batches, `frameRays.pdf` and `frameMarch.hit`: a first pass given a tile's batches,
+// which do not outlive their tile, copies the tile's there (and only those two planes of the
+// frame's batches need exist, of the frame's size).
 class SsrResolver {
 public:
-    // resolveSsr's arguments less the batches and threads; `tileBatches`: the first pass
-    // reads tiles' batches, not the frame's.
+    // resolveSsr's arguments less threads.
     SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& inputs,
-                SsrOutput& out, int sample, int sampleCount, bool tileBatches);
+                SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
+                MarchResult& frameMarch);
     const TileGrid& grid() const { return grid_; }
-    // Pass 1 on tile `tile`: the batches are the frame's or the tile's (one corner), as the
-    // constructor was told.
+    // Pass 1 on tile `tile`: the batches are the frame's or the tile's (one corner).
     void hitTile(int tile, const RayBatch& rays, const MarchResult& march) const;
-    // Pass 2 on tile `tile`, once pass 1 ran on it and its neighbours. With the frame's
-    // batches, the ones pass 1 read (their pdf and hits are read around the pixel).
-    void resolveTile(int tile, const RayBatch* frameRays = nullptr,
-                     const MarchResult* frameMarch = nullptr) const;
+    // Pass 2 on every tile, once pass 1 ran on all of them.
+    void resolveFrame(int threads) const;
 
 private:
     SsrResolveArgs args_{};
     TileGrid grid_;
-    bool tileBatches_ = false;
+    const RayBatch* frameRays_;
+    const MarchResult* frameMarch_;
     decltype(&isa_scalar::ssrHitTile) hitKernel_ = nullptr;
     decltype(&isa_scalar::ssrResolveTile) resolveKernel_ = nullptr;
 };

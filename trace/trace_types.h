@@ -27,8 +27,8 @@ struct RaySeed {
 inline constexpr float kPdfLayoutCut = -1.0f;
 
 // Where a batch lies in the frame: its element (0, 0) is the frame's pixel (x0, y0). A batch of
-// the whole frame has corner (0, 0); a tile's batch (the SSR trace's tile chain,
-// trace/ssr_trace.h) has planes of one tile's size and the tile's corner, so that its rays and
+// the whole frame has corner (0, 0); a tile's batch (a trace pass's tile chain,
+// trace/tile_chain.h) has planes of one tile's size and the tile's corner, so that its rays and
 // march results stay in the core's cache between the stages.
 struct BatchCorner {
     int x0 = 0, y0 = 0;

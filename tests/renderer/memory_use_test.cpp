@@ -52,7 +52,7 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(m.at("denoised") == 8 * plane);
     // Between frames the pool holds the scratch that passes hand on: the SSR resolve's 9 (hit
     // radiance 3, fade, target 3, and the pdf and hits its tile chain copies out of the tiles'
-    // batches: trace/ssr_trace.h; no frame of rays or march results), which the
+    // batches: trace/tile_chain.h; no frame of rays or march results), which the
     // full-resolution denoiser's scratch reuses and outgrows (the specular signal's alone:
     // noisy 4, ping 4, pong 4, signalZ, frames, fast = 15, not a group per pass), and the
     // half-resolution denoiser's 15 (the diffuse's, on the half frame: SSGI's half layout; a

@@ -1,4 +1,4 @@
-#include "trace/ssr_trace.h"
+#include "trace/tile_chain.h"
 
 #include <chrono>
 #include <stdexcept>
@@ -31,16 +31,16 @@ struct TileBatches {
 struct TileResult {
     RayGenStats rays;
     MarchStats march;
-    double ms[3] = {};  // rays, march, hits
+    double ms[3] = {};  // rays, march, consume
 };
 
 }  // namespace
 
-SsrChainStats runSsrTileChain(const SsrTileChain& chain, int threads) {
+TileChainStats runTileChain(const TileChain& chain, int threads) {
     const TileGrid& grid = chain.rays.grid();
-    for (const TileGrid* g : {&chain.march.grid(), &chain.resolve.grid(), &chain.hitStats.grid()})
-        if (g->width != grid.width || g->height != grid.height)
-            throw std::invalid_argument("runSsrTileChain: the stages' frames differ");
+    const TileGrid& marchGrid = chain.march.grid();
+    if (marchGrid.width != grid.width || marchGrid.height != grid.height)
+        throw std::invalid_argument("runTileChain: the stages' frames differ");
     std::vector<TileResult> tiles(std::size_t(grid.count()));
     const Clock::time_point t0 = Clock::now();
     parallelForTiles(grid.count(), threads, [&](int tile) {
@@ -53,15 +53,12 @@ SsrChainStats runSsrTileChain(const SsrTileChain& chain, int threads) {
         const Clock::time_point m = Clock::now();
         out.march = chain.march.tile(tile, b.rays, b.march);
         const Clock::time_point h = Clock::now();
-        chain.resolve.hitTile(tile, b.rays, b.march);
-        chain.hitStats.tile(tile, b.rays, b.march);
+        chain.consume(tile, b.rays, b.march);
         const Clock::time_point e = Clock::now();
         out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[2] = msBetween(h, e);
     });
-    const Clock::time_point t1 = Clock::now();
-    parallelForTiles(grid.count(), threads, [&](int tile) { chain.resolve.resolveTile(tile); });
-    SsrChainStats s;
-    s.resolveMs = msBetween(t1, Clock::now());
+    const double wall = msBetween(t0, Clock::now());
+    TileChainStats s;
     double busy[3] = {};
     for (const TileResult& t : tiles) {
         s.rays.add(t.rays);
@@ -69,9 +66,8 @@ SsrChainStats runSsrTileChain(const SsrTileChain& chain, int threads) {
         for (int i = 0; i < 3; ++i) busy[i] += t.ms[i];
     }
     // The loop's wall time, shared out by the threads' time in each stage.
-    const double wall = msBetween(t0, t1), sum = busy[0] + busy[1] + busy[2];
-    const double k = sum > 0.0 ? wall / sum : 0.0;
-    s.raysMs = busy[0] * k, s.marchMs = busy[1] * k, s.hitMs = busy[2] * k;
+    const double sum = busy[0] + busy[1] + busy[2], k = sum > 0.0 ? wall / sum : 0.0;
+    s.raysMs = busy[0] * k, s.marchMs = busy[1] * k, s.consumeMs = busy[2] * k;
     return s;
 }
 
