@@ -23,7 +23,7 @@ namespace {
 constexpr int kRowsPerTask = 16;
 
 // Level 0: viewZ with background (not > 0) as +infinity.
-void copyLevel0(const PlaneF& viewZ, PlaneF& minZ, PlaneF& maxZ, int threads) {
+void copyLevel0(const PlaneF& viewZ, PlaneF& minZ, int threads) {
     const int w = viewZ.width(), h = viewZ.height();
     const float inf = std::numeric_limits<float>::infinity();
     parallelFor((h + kRowsPerTask - 1) / kRowsPerTask, threads, [&](int task) {
@@ -31,19 +31,13 @@ void copyLevel0(const PlaneF& viewZ, PlaneF& minZ, PlaneF& maxZ, int threads) {
         for (int y = task * kRowsPerTask; y < y1; ++y) {
             const float* src = viewZ.row(y);
             float* lo = minZ.row(y);
-            float* hi = maxZ.row(y);
-            for (int x = 0; x < w; ++x) {
-                const float z = src[x] > 0.0f ? src[x] : inf;
-                lo[x] = z;
-                hi[x] = z;
-            }
+            for (int x = 0; x < w; ++x) lo[x] = src[x] > 0.0f ? src[x] : inf;
         }
     });
 }
 
-// Level k from level k-1: min and max over the (up to) 2x2 cells below.
-void reduceLevel(const PlaneF& srcMin, const PlaneF& srcMax, PlaneF& minZ, PlaneF& maxZ,
-                 int threads) {
+// Level k from level k-1: the min over the (up to) 2x2 cells below.
+void reduceLevel(const PlaneF& srcMin, PlaneF& minZ, int threads) {
     const int pw = srcMin.width(), ph = srcMin.height();
     const int w = minZ.width(), h = minZ.height();
     parallelFor((h + kRowsPerTask - 1) / kRowsPerTask, threads, [&](int task) {
@@ -52,14 +46,10 @@ void reduceLevel(const PlaneF& srcMin, const PlaneF& srcMax, PlaneF& minZ, Plane
             const int sy0 = std::min(2 * y, ph - 1), sy1 = std::min(2 * y + 1, ph - 1);
             const float* a0 = srcMin.row(sy0);
             const float* a1 = srcMin.row(sy1);
-            const float* b0 = srcMax.row(sy0);
-            const float* b1 = srcMax.row(sy1);
             float* lo = minZ.row(y);
-            float* hi = maxZ.row(y);
             for (int x = 0; x < w; ++x) {
                 const int sx0 = std::min(2 * x, pw - 1), sx1 = std::min(2 * x + 1, pw - 1);
                 lo[x] = std::min(std::min(a0[sx0], a0[sx1]), std::min(a1[sx0], a1[sx1]));
-                hi[x] = std::max(std::max(b0[sx0], b0[sx1]), std::max(b1[sx0], b1[sx1]));
             }
         }
     });
@@ -123,18 +113,15 @@ void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads) {
     if (viewZ.empty()) throw std::invalid_argument("buildHiZ: viewZ is empty");
     const int levels = hiZLevelCount(viewZ.width(), viewZ.height());
     pyramid.minZ.resize(std::size_t(levels));
-    pyramid.maxZ.resize(std::size_t(levels));
     int w = viewZ.width(), h = viewZ.height();
     for (int k = 0; k < levels; ++k) {
         pyramid.minZ[std::size_t(k)].ensureSize(w, h);
-        pyramid.maxZ[std::size_t(k)].ensureSize(w, h);
         w = std::max(1, (w + 1) / 2);
         h = std::max(1, (h + 1) / 2);
     }
-    copyLevel0(viewZ, pyramid.minZ[0], pyramid.maxZ[0], threads);
+    copyLevel0(viewZ, pyramid.minZ[0], threads);
     for (std::size_t k = 1; k < std::size_t(levels); ++k)
-        reduceLevel(pyramid.minZ[k - 1], pyramid.maxZ[k - 1], pyramid.minZ[k], pyramid.maxZ[k],
-                    threads);
+        reduceLevel(pyramid.minZ[k - 1], pyramid.minZ[k], threads);
     packInverseMin(pyramid.minZ, pyramid.invMinPacked, pyramid.packedOffset, threads);
 }
 

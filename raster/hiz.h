@@ -1,10 +1,11 @@
-// The Hi-Z pyramid: min and max view depth over power-of-two footprints, for the Hi-Z
-// marcher (trace/march_hiz_kernel.cpp) and anything else that wants conservative depth bounds.
+// The Hi-Z pyramid: the min view depth over power-of-two footprints, for the Hi-Z marcher
+// (trace/march_hiz_kernel.cpp). (A max pyramid was built beside it and never read: issue 27
+// removed it, 5 B a pixel and a third of the build.)
 //
 // Convention: depths are positive view Z as in the G-buffer, and background (viewZ 0, or
-// anything not > 0) is +infinity in both pyramids: a ray is never behind the background.
+// anything not > 0) is +infinity: a ray is never behind the background.
 // Level 0 is a copy of viewZ with that substitution; level k has size
-// (max(1, ceil(w_{k-1} / 2)), max(1, ceil(h_{k-1} / 2))) and cell (x, y) holds the min (max)
+// (max(1, ceil(w_{k-1} / 2)), max(1, ceil(h_{k-1} / 2))) and cell (x, y) holds the min
 // of cells (2x..2x+1, 2y..2y+1) of level k-1 that exist (the last column/row of an odd size
 // covers the single leftover texel). So cell (x, y) of level k covers level-0 pixels
 // [x 2^k, min((x + 1) 2^k, w)) x [y 2^k, min((y + 1) 2^k, h)); the last level is 1x1.
@@ -49,7 +50,7 @@ inline constexpr std::size_t hiZPackedIndex(int x, int y, int pitch) {
 }
 
 struct HiZPyramid {
-    std::vector<PlaneF> minZ, maxZ;  // [level], level 0 = full resolution
+    std::vector<PlaneF> minZ;  // [level], level 0 = full resolution
     // Every level of minZ packed for a hardware gather (the Hi-Z marcher's reads): level after
     // level in 4x4 tiles (hiZPackedIndex), as 1 / minZ (background 0); level L starts at
     // packedOffset[L]. Empty when the whole would reach 2^24 elements (the marcher indexes it
@@ -62,7 +63,7 @@ struct HiZPyramid {
 
 // Builds every level from the G-buffer's viewZ, and the packed 1/minZ copy; reuses the
 // planes when the sizes match. Rows of a level are cut across `threads` workers (0 = every
-// core); min and max are exact, so the result does not depend on the thread count.
+// core); the min is exact, so the result does not depend on the thread count.
 void buildHiZ(const PlaneF& viewZ, HiZPyramid& pyramid, int threads);
 
 // The packed copy's size limit (elements), and the packing itself: minZ levels into `packed`

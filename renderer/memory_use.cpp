@@ -21,7 +21,6 @@ std::size_t bytesOf(const T (&array)[N]) {
 std::size_t bytesOf(const HiZPyramid& hiz) {
     std::size_t n = hiz.invMinPacked.size() * sizeof(float);
     for (const PlaneF& p : hiz.minZ) n += p.bytes();
-    for (const PlaneF& p : hiz.maxZ) n += p.bytes();
     return n;
 }
 std::size_t bytesOf(const ColorPyramid& pyramid) {

@@ -129,7 +129,7 @@ TEST_CASE("march: stats percentiles, mean and combination") {
     CHECK(a.maxStepsTaken() == 7);
 }
 
-TEST_CASE("march: hi-z levels equal brute-force min/max of their footprint") {
+TEST_CASE("march: hi-z levels equal the brute-force min of their footprint") {
     // An odd-sized rendered G-buffer with background, so the odd rows/columns and the
     // background convention are both exercised.
     const GBuf g = renderGBuffer("spheres", 101, 77);
@@ -143,19 +143,16 @@ TEST_CASE("march: hi-z levels equal brute-force min/max of their footprint") {
     bool background = false;
     for (int L = 0; L < hiz.levels(); ++L) {
         const PlaneF& lo = hiz.minZ[std::size_t(L)];
-        const PlaneF& hi = hiz.maxZ[std::size_t(L)];
         for (int cy = 0; cy < lo.height(); ++cy)
             for (int cx = 0; cx < lo.width(); ++cx) {
-                float mn = inf, mx = -inf;
+                float mn = inf;
                 for (int y = cy << L; y < std::min((cy + 1) << L, 77); ++y)
                     for (int x = cx << L; x < std::min((cx + 1) << L, 101); ++x) {
                         const float z = g.viewZ.at(x, y) > 0.0f ? g.viewZ.at(x, y) : inf;
                         background |= z == inf;
                         mn = std::min(mn, z);
-                        mx = std::max(mx, z);
                     }
                 REQUIRE(lo.at(cx, cy) == mn);
-                REQUIRE(hi.at(cx, cy) == mx);
             }
     }
     CHECK(background);
