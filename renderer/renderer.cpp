@@ -117,7 +117,7 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
     // out has none)
     DenoiseOutputs& d = f.trace.denoise.out;
-    if (!denoise || !s.trace.ssgi)
+    if (!denoise || !s.trace.ssgi || diffuseUpsampledInComposite(s))
         for (PlaneF& p : d.diffuse) p = PlaneF();
     if (!denoise || !s.trace.ssr)
         for (PlaneF& p : d.specular) p = PlaneF();

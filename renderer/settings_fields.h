@@ -125,8 +125,9 @@ inline constexpr std::array kRenderOwnFields = {
                                      "The instanceId and triangleId planes (EXR layers)"),
     field<&RenderSettings::debugPlanes>(
         "debugPlanes", kCliShot,
-        "The planes made only to be looked at (EXR layers): march steps, the undenoised "
-        "full-resolution SSGI when the diffuse is denoised at half resolution, history lengths"),
+        "The planes made only to be looked at (EXR layers): march steps, the undenoised and "
+        "the denoised full-resolution SSGI when the diffuse is denoised at half resolution, "
+        "history lengths"),
 };
 // Every member is in the table but two: isa (a run-time choice of kernels, "auto" or
 // $SSRT_ISA, parsed by core/isa.h) and trace (its own table).

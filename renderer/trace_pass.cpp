@@ -462,6 +462,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     DenoiseOutputs& half = ht.denoised.out;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
             ht.denoise, half, c.threads(), &times);
+    if (diffuseUpsampledInComposite(c.args.settings)) return;  // (compositePass)
     const auto t0 = std::chrono::steady_clock::now();
     DenoiseOutputs& out = frame.trace.denoise.out;
     // (The history length, a plane to look at, is blended as the hit share is.)
@@ -524,9 +525,44 @@ void denoisePass(const TraceContext& c, Frame& frame) {
 
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone
 // mapped; replaces the direct pass's colour and display.
+// The composite tile by tile, each tile's SSGI light first brought from the denoised half
+// frame into a tile's planes (diffuseUpsampledInComposite): the two stages' times are the
+// loop's, shared by the threads' time in each.
+void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeInputs& ci) {
+    using Clock = std::chrono::steady_clock;
+    const DenoiseOutputs& half = frame.scratch.half.denoised.out;
+    const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
+    const HalfUpsampler up(c.args.isa, c.guides(frame), PixelOffset{0, 0},
+                           frame.scratch.half.rays.pdf, from);
+    const Compositor comp(c.args.isa, ci, frame.image.color, frame.image.display, true);
+    const TileGrid& grid = comp.grid();
+    std::vector<double> busy(std::size_t(2 * grid.count()), 0.0);
+    const Clock::time_point t0 = Clock::now();
+    parallelForTiles(grid.count(), c.threads(), [&](int tile) {
+        thread_local PlaneF light[3];
+        for (PlaneF& p : light)
+            if (p.empty()) p = PlaneF(kTileSize, kTileSize);
+        const TileRect r = grid.rect(tile);
+        const Clock::time_point a = Clock::now();
+        up.tile(tile, ReconstructPlanes{{&light[0], &light[1], &light[2]}}, r.x0, r.y0);
+        const Clock::time_point b = Clock::now();
+        const PlaneF* const ssgi[3] = {&light[0], &light[1], &light[2]};
+        comp.tile(tile, ssgi, r.x0, r.y0);
+        busy[std::size_t(2 * tile)] = std::chrono::duration<double, std::milli>(b - a).count();
+        busy[std::size_t(2 * tile + 1)] =
+            std::chrono::duration<double, std::milli>(Clock::now() - b).count();
+    });
+    const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    double upMs = 0.0, compMs = 0.0;
+    for (std::size_t i = 0; i < busy.size(); i += 2) upMs += busy[i], compMs += busy[i + 1];
+    const double k = upMs + compMs > 0.0 ? wall / (upMs + compMs) : 0.0;
+    frame.stats.passes.push_back({"denoise upsample", upMs * k});
+    frame.stats.passes.push_back({"composite", compMs * k});
+}
+
 void compositePass(const TraceContext& c, Frame& frame) {
-    const ScopedPass timer(frame.stats, "composite");
     const TraceSettings& ts = c.ts;
+    const bool inComposite = diffuseUpsampledInComposite(c.args.settings);
     const GBuffer& g = frame.gbuffer;
     const DirectParts& parts = frame.direct;
     CompositeInputs ci;
@@ -538,7 +574,8 @@ void compositePass(const TraceContext& c, Frame& frame) {
         ci.specWeight[ch] = &parts.specWeight[ch];
         const DenoiseOutputs& d = frame.trace.denoise.out;
         if (ts.ssgi) {
-            ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
+            if (!inComposite)
+                ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
             ci.albedo[ch] = &g.albedo[ch];
         }
         if (ts.ssr) {
@@ -555,10 +592,18 @@ void compositePass(const TraceContext& c, Frame& frame) {
     ci.exposure = c.args.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.
+    if (inComposite) return upsampleAndComposite(c, frame, ci);
+    const ScopedPass timer(frame.stats, "composite");
     composite(c.args.isa, ci, frame.image.color, frame.image.display, c.threads());
 }
 
 }  // namespace
+
+bool diffuseUpsampledInComposite(const RenderSettings& s) {
+    const TraceSettings& t = s.trace;
+    return t.ssgi && t.denoise.enabled && t.ssgiLayout == TraceLayout::Half && !s.debugPlanes &&
+           !t.ssgiFeedback;
+}
 
 void runTracePasses(const TracePassArgs& args, Frame& frame) {
     TraceContext c(args, frame);

@@ -30,6 +30,12 @@ struct TracePassArgs {
 // appends pass times and stats to frame.stats.
 void runTracePasses(const TracePassArgs& args, Frame& frame);
 
+// Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
+// inside the composite, which alone reads it, instead of into the frame's planes
+// (frame.trace.denoise.out.diffuse, then not made): unless a file shows them (debugPlanes)
+// or the next frame's SSGI feedback reads them.
+bool diffuseUpsampledInComposite(const RenderSettings& settings);
+
 // Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected,
 // SSGI with ssgiFeedback). The denoiser's history is its own (denoise/denoise.h).
 bool readsHistory(const TraceSettings& settings);

@@ -14,8 +14,9 @@ bool anyOf(const PlaneF* const p[3]) { return p[0] || p[1] || p[2]; }
 
 }  // namespace
 
-void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF display[3],
-               int threads) {
+Compositor::Compositor(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF display[3],
+                       bool tileSsgi)
+    : tileSsgi_(tileSsgi) {
     if (!in.direct[0]) throw std::invalid_argument("composite: direct missing");
     const int w = in.direct[0]->width(), h = in.direct[0]->height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("composite: empty planes");
@@ -23,20 +24,20 @@ void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF displ
         color[c].ensureSize(w, h);
         display[c].ensureSize(w, h);
     }
-    const TileGrid grid(w, h);
-    CompositeArgs a{};
+    grid_ = TileGrid(w, h);
+    CompositeArgs& a = args_;
     a.width = w;
     a.height = h;
-    a.tilesX = grid.tilesX;
+    a.tilesX = grid_.tilesX;
     PlaneCheck need("composite", w, h);
-    const bool ssgi = anyOf(in.ssgi), ssr = anyOf(in.ssrColor) || in.ssrOpacity;
+    const bool ssgi = tileSsgi || anyOf(in.ssgi), ssr = anyOf(in.ssrColor) || in.ssrOpacity;
     for (int c = 0; c < 3; ++c) {
         a.direct[c] = need(in.direct[c], "direct");
         a.envSpecular[c] = need(in.envSpecular[c], "envSpecular");
         a.specWeight[c] = need(in.specWeight[c], "specWeight");
         if (anyOf(in.emission)) a.emission[c] = need(in.emission[c], "emission");
         if (ssgi) {
-            a.ssgi[c] = need(in.ssgi[c], "ssgi");
+            if (!tileSsgi) a.ssgi[c] = need(in.ssgi[c], "ssgi");
             a.albedo[c] = need(in.albedo[c], "albedo");
         } else {
             a.envDiffuse[c] = need(in.envDiffuse[c], "envDiffuse");
@@ -53,9 +54,35 @@ void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF displ
     }
     if (ssr) a.ssrOpacity = need(in.ssrOpacity, "ssrOpacity");
     a.stride = need.stride();
+    a.ssgiStride = a.stride;
     a.exposure = in.exposure;
-    const auto tileFn = SSRT_DISPATCH(isa, compositeTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+    kernel_ = SSRT_DISPATCH(isa, compositeTile);
+}
+
+void Compositor::tile(int tile, const PlaneF* const ssgi[3], int x0, int y0) const {
+    if (!tileSsgi_) {
+        if (ssgi) throw std::invalid_argument("composite: SSGI planes given twice");
+        return kernel_(args_, tile);
+    }
+    const TileRect r = grid_.rect(tile);
+    if (!ssgi || !ssgi[0] || !ssgi[1] || !ssgi[2])
+        throw std::invalid_argument("composite: the tile's SSGI planes are missing");
+    const int w = ssgi[0]->width(), h = ssgi[0]->height();
+    PlaneCheck need("composite", w, h);
+    CompositeArgs a = args_;
+    for (int c = 0; c < 3; ++c) a.ssgi[c] = need(ssgi[c], "ssgi");
+    if (r.x0 < x0 || r.y0 < y0 || r.x1 - x0 > w || r.y1 - y0 > h)
+        throw std::invalid_argument("composite: the SSGI planes do not hold the tile");
+    a.ssgiStride = need.stride();
+    a.ssgiX0 = x0;
+    a.ssgiY0 = y0;
+    kernel_(a, tile);
+}
+
+void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF display[3],
+               int threads) {
+    const Compositor c(isa, in, color, display);
+    parallelForTiles(c.grid().count(), threads, [&](int tile) { c.tile(tile); });
 }
 
 }  // namespace ssrt

@@ -15,6 +15,8 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
+#include "shading/composite_kernel.h"
 
 namespace ssrt {
 
@@ -46,5 +48,26 @@ struct CompositeInputs {
 // inputs' size. Throws std::invalid_argument on a missing or mis-sized plane.
 void composite(Isa isa, const CompositeInputs& inputs, PlaneF color[3], PlaneF display[3],
                int threads);
+
+// The same, checked and set up once, then run tile by tile: over the frame by composite(), or
+// one tile at a time after what makes its SSGI planes for that tile alone (the renderer's
+// upsample of the half-resolution diffuse, trace/reconstruct.h).
+class Compositor {
+public:
+    // composite()'s arguments less threads; `tileSsgi`: inputs.ssgi is not given (its planes
+    // come with each tile).
+    Compositor(Isa isa, const CompositeInputs& inputs, PlaneF color[3], PlaneF display[3],
+               bool tileSsgi = false);
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile`, with the frame's SSGI planes (or, given, `ssgi` holding at least the tile
+    // from its corner).
+    void tile(int tile, const PlaneF* const ssgi[3] = nullptr, int x0 = 0, int y0 = 0) const;
+
+private:
+    CompositeArgs args_{};
+    TileGrid grid_;
+    bool tileSsgi_ = false;
+    decltype(&isa_scalar::compositeTile) kernel_ = nullptr;
+};
 
 }  // namespace ssrt

@@ -29,7 +29,8 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
         const Lane metallic = ln::load<Lane>(a.metallic + o);
         const V3 colour = load3(a.albedo, o) * (one - metallic);
         const auto background = ln::load<Lane>(a.viewZ + o) <= zero;
-        V3 bounce = colour * load3(a.ssgi, o);
+        const std::size_t so = std::size_t(y - a.ssgiY0) * a.ssgiStride + std::size_t(x - a.ssgiX0);
+        V3 bounce = colour * load3(a.ssgi, so);
         if (a.occlusion) bounce = bounce * ln::load<Lane>(a.occlusion + o);
         diffuse = ln::select(background, V3{zero, zero, zero}, bounce);
     } else {

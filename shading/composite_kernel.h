@@ -9,7 +9,7 @@
 namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has one size and one stride.
+// Every plane has one size and one stride, ssgi's aside.
 struct CompositeArgs {
     int width, height, tilesX;
     std::size_t stride;
@@ -19,6 +19,10 @@ struct CompositeArgs {
     const float* envSpecular[3];
     const float* specWeight[3];
     const float* ssgi[3];  // null: SSGI off
+    // ssgi's planes may be a tile's (the renderer's upsample run tile by tile into them): their
+    // own stride, and their element (0, 0) the frame's pixel (ssgiX0, ssgiY0).
+    std::size_t ssgiStride;
+    int ssgiX0, ssgiY0;
     const float* viewZ;
     const float* albedo[3];
     const float* metallic;

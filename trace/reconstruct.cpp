@@ -51,18 +51,18 @@ PlaneCheck frameCheck(const ReconstructGuides& g) {
     return PlaneCheck("reconstruction", g.camera.width, g.camera.height);
 }
 
-// The tiles in parallel. The checkerboard fill writes in place and reads each cut pixel's edge
+// The checkerboard's tiles in parallel. The fill writes in place and reads each cut pixel's edge
 // neighbours, up to one pixel into the next tile: it runs in two colours of tiles ((tx + ty)
 // & 1), so that no tile is written while an edge neighbour reads it. (What it reads there is
 // traced pixels, never written; the colours keep the loads of the lanes it drops race-free.)
-uint64_t run(Isa isa, const ReconstructArgs& a, int threads) {
+uint64_t runCheckerboard(Isa isa, const ReconstructArgs& a, int threads) {
     const TileGrid grid(a.width, a.height);
     std::vector<uint64_t> filled(std::size_t(grid.count()), 0);
     const auto kernel = SSRT_DISPATCH(isa, reconstructTile);
-    for (int colour = 0; colour < (a.half ? 1 : 2); ++colour) {
+    for (int colour = 0; colour < 2; ++colour) {
         std::vector<int> tiles;
         for (int t = 0; t < grid.count(); ++t)
-            if (a.half || ((t % grid.tilesX + t / grid.tilesX) & 1) == colour) tiles.push_back(t);
+            if (((t % grid.tilesX + t / grid.tilesX) & 1) == colour) tiles.push_back(t);
         parallelForTiles(int(tiles.size()), threads, [&](int i) {
             const int tile = tiles[std::size_t(i)];
             kernel(a, tile, filled[std::size_t(tile)]);
@@ -96,14 +96,16 @@ uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf
     a.srcWidth = a.width;
     a.srcHeight = a.height;
     a.srcStride = need.stride();
-    return run(isa, a, threads);
+    a.outStride = need.stride();
+    return runCheckerboard(isa, a, threads);
 }
 
-uint64_t upsampleHalf(Isa isa, const ReconstructGuides& g, PixelOffset offset,
-                      const PlaneF& halfPdf, const ReconstructSource& in,
-                      const ReconstructPlanes& out, int threads) {
+HalfUpsampler::HalfUpsampler(Isa isa, const ReconstructGuides& g, PixelOffset offset,
+                             const PlaneF& halfPdf, const ReconstructSource& in) {
     PlaneCheck need = frameCheck(g);
-    ReconstructArgs a = guideArgs(g, need);
+    ReconstructArgs& a = args_;
+    a = guideArgs(g, need);
+    grid_ = TileGrid(a.width, a.height);
     a.half = true;
     a.offsetX = offset.x & 1;
     a.offsetY = offset.y & 1;
@@ -113,15 +115,49 @@ uint64_t upsampleHalf(Isa isa, const ReconstructGuides& g, PixelOffset offset,
     a.pdf = needHalf(halfPdf, "half-resolution ray pdf");
     planes(in, needHalf, "half-resolution input", a.in);
     a.srcStride = needHalf.stride();
-    for (PlaneF* p : {out.color[0], out.color[1], out.color[2], out.opacity, out.hit,
-                      out.hitDistance, out.steps})
-        if (p) p->ensureSize(a.width, a.height);
+    kernel_ = SSRT_DISPATCH(isa, reconstructTile);
+}
+
+uint64_t HalfUpsampler::tile(int tile, const ReconstructPlanes& out, int x0, int y0) const {
+    // The outputs' size: the frame's, or a tile's from (x0, y0) (one with the frame's size at
+    // corner 0 is the frame's either way).
+    const TileRect r = grid_.rect(tile);
+    const PlaneF* any = nullptr;
+    for (const PlaneF* p : {out.color[0], out.opacity, out.hit, out.hitDistance, out.steps})
+        if (!any) any = p;
+    if (!any) throw std::invalid_argument("reconstruction: no output");
+    const int w = any->width(), h = any->height();
+    if (r.x0 < x0 || r.y0 < y0 || r.x1 - x0 > w || r.y1 - y0 > h)
+        throw std::invalid_argument("reconstruction: the outputs do not hold the tile");
+    PlaneCheck need("reconstruction", w, h);
+    ReconstructArgs a = args_;
     const float* o[kRecN];
     planes(out, need, "output", o);
     for (int k = 0; k < kRecN; ++k) a.out[k] = const_cast<float*>(o[k]);
+    a.outStride = need.stride();
+    a.outX0 = x0;
+    a.outY0 = y0;
     // (An input without an output is not read; an output without an input is written 0,
     // opacity 1.)
-    return run(isa, a, threads);
+    uint64_t filled = 0;
+    kernel_(a, tile, filled);
+    return filled;
+}
+
+uint64_t upsampleHalf(Isa isa, const ReconstructGuides& g, PixelOffset offset,
+                      const PlaneF& halfPdf, const ReconstructSource& in,
+                      const ReconstructPlanes& out, int threads) {
+    const HalfUpsampler up(isa, g, offset, halfPdf, in);
+    const int w = g.camera.width, h = g.camera.height;
+    for (PlaneF* p : {out.color[0], out.color[1], out.color[2], out.opacity, out.hit,
+                      out.hitDistance, out.steps})
+        if (p) p->ensureSize(w, h);
+    std::vector<uint64_t> filled(std::size_t(up.grid().count()), 0);
+    parallelForTiles(up.grid().count(), threads,
+                     [&](int t) { filled[std::size_t(t)] = up.tile(t, out); });
+    uint64_t total = 0;
+    for (uint64_t n : filled) total += n;
+    return total;
 }
 
 }  // namespace ssrt

@@ -41,6 +41,8 @@
 
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/tiles.h"
+#include "trace/reconstruct_kernel.h"
 #include "trace/trace_layout.h"
 #include "trace/trace_types.h"
 
@@ -81,5 +83,25 @@ uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& guides, const PlaneF
 uint64_t upsampleHalf(Isa isa, const ReconstructGuides& guides, PixelOffset offset,
                       const PlaneF& halfPdf, const ReconstructSource& in,
                       const ReconstructPlanes& out, int threads);
+
+// The same, checked and set up once, then run tile by tile: over the frame by upsampleHalf,
+// or one tile at a time into a tile's planes for what reads it next in that tile (the
+// renderer's composite). It points into the guides' and `in`'s planes: they outlive it.
+class HalfUpsampler {
+public:
+    // upsampleHalf's arguments less the outputs and threads.
+    HalfUpsampler(Isa isa, const ReconstructGuides& guides, PixelOffset offset,
+                  const PlaneF& halfPdf, const ReconstructSource& in);
+    const TileGrid& grid() const { return grid_; }
+    // Tile `tile` into `out`: the frame's planes (corner (0, 0): ensured to the frame's size)
+    // or planes holding at least the tile from the frame pixel (x0, y0). Returns the tile's
+    // surface pixels blended.
+    uint64_t tile(int tile, const ReconstructPlanes& out, int x0 = 0, int y0 = 0) const;
+
+private:
+    ReconstructArgs args_{};
+    TileGrid grid_;
+    decltype(&isa_scalar::reconstructTile) kernel_ = nullptr;
+};
 
 }  // namespace ssrt

@@ -260,9 +260,10 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
         for (int k = 0; k < kValues; ++k) v[k] = ln::select(surface, v[k], zero);
         filled += uint64_t(__builtin_popcountll(ln::maskBits(surface & !own)));
     }
+    const std::size_t oo = std::size_t(y - a.outY0) * a.outStride + std::size_t(x - a.outX0);
     for (int k = 0; k < kValues; ++k)
-        if (a.out[k]) ln::store(a.out[k] + o, v[k]);
-    if (a.out[kRecSteps]) ln::store(a.out[kRecSteps] + o, steps);
+        if (a.out[k]) ln::store(a.out[k] + oo, v[k]);
+    if (a.out[kRecSteps]) ln::store(a.out[kRecSteps] + oo, steps);
 }
 
 }  // namespace

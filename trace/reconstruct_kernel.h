@@ -31,6 +31,10 @@ struct ReconstructArgs {
     std::size_t srcStride;
     const float* in[kRecN];  // half: the half frame's planes (srcStride); checkerboard: = out
     float* out[kRecN];
+    // half: the outputs' stride and the frame pixel of their element (0, 0) (a tile's planes,
+    // or the frame's: stride, 0, 0); the checkerboard fills the frame's in place.
+    std::size_t outStride;
+    int outX0, outY0;
     int offsetX, offsetY;  // half: the chosen pixel of each block
 };
 

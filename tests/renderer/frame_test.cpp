@@ -168,9 +168,12 @@ TEST_CASE("frame: without the debug planes the others keep their bits, along a s
     for (uint32_t i = 0; i < 3; ++i) {
         Renderer(tiny()).render(scene, FrameInput::still(scene, i), h1, with);
         Renderer(plain).render(scene, FrameInput::still(scene, i), h2, without);
+        // (The denoised diffuse at full resolution too: without a file to show it, the
+        // composite upsamples the half frame's tile by tile, diffuseUpsampledInComposite.)
         checkWithoutDebugPlanes(with, without,
                                 {"ssgi.R", "ssgi.G", "ssgi.B", "ssgiHit", "ssgiHitDistance",
-                                 "ssgiSteps", "ssrSteps", "diffuseFrames", "specularFrames"});
+                                 "ssgiSteps", "ssrSteps", "diffuseFrames", "specularFrames",
+                                 "denoisedDiffuse.R", "denoisedDiffuse.G", "denoisedDiffuse.B"});
     }
 }
 

@@ -7,6 +7,7 @@
 
 #include "plane_compare.h"
 #include "renderer/renderer.h"
+#include "renderer/trace_pass.h"
 #include "scenes/builtin_scenes.h"
 
 using namespace ssrt;
@@ -283,5 +284,37 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
         // the denoiser's scratch does not outgrow both: with SSGI's diffuse at half resolution).
         if (k.ssgiLayout == L::Half)
             CHECK(tiled.scratch.pool.bytes() < staged.scratch.pool.bytes());
+    }
+}
+
+// The half-resolution diffuse, once denoised, is brought to the frame inside the composite,
+// tile by tile (renderer/trace_pass.h, diffuseUpsampledInComposite), unless a file shows the
+// frame's denoised diffuse or feedback reads it: the image is the same bits either way, and
+// the frame's planes are not made.
+TEST_CASE("renderer: the half diffuse upsampled inside the composite gives the same image") {
+    const Scene scene = makeBuiltinScene("corridor");
+    RenderSettings rs = smallTraced();
+    rs.width = 150;  // tiles of 64 and a last column of 22
+    rs.height = 70;
+    rs.trace.ssgiLayout = TraceLayout::Half;
+    rs.trace.ssrLayout = TraceLayout::Checkerboard;
+    RenderSettings shown = rs;
+    shown.debugPlanes = true;
+    rs.debugPlanes = false;
+    REQUIRE(diffuseUpsampledInComposite(rs));
+    REQUIRE_FALSE(diffuseUpsampledInComposite(shown));
+    FrameHistory ha, hb;
+    Frame a, b;
+    FrameInput input = FrameInput::still(scene);
+    for (int frame = 0; frame < 2; ++frame) {  // a first frame, then one with history
+        input.frameIndex = uint32_t(frame);
+        Renderer(rs).render(scene, input, ha, a);
+        Renderer(shown).render(scene, input, hb, b);
+        for (int ch = 0; ch < 3; ++ch) {
+            CHECK(test::sameBits(a.image.color[ch], b.image.color[ch]));
+            CHECK(test::sameBits(a.image.display[ch], b.image.display[ch]));
+        }
+        CHECK(a.trace.denoise.out.diffuse[0].empty());
+        CHECK_FALSE(b.trace.denoise.out.diffuse[0].empty());
     }
 }
