@@ -21,6 +21,7 @@
 #include "renderer/texture_pass.h"
 #include "renderer/trace_pass.h"
 #include "shading/direct_kernel.h"
+#include "trace/trace_layout.h"
 
 namespace ssrt {
 
@@ -112,7 +113,7 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
         keepPlane(trace && !s.trace.ssgi, parts.envDiffuse[c]);
         keepPlane(trace, parts.envSpecular[c]);
         keepPlane(trace, parts.specWeight[c]);
-        keepPlane(trace && s.trace.ssgi, parts.hitLight[c]);
+        keepPlane(trace && s.trace.ssgi && !hitLightAtHalf(s), parts.hitLight[c]);
     }
     // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
     // out has none)
@@ -274,7 +275,7 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
 // composite rebuilds the colour from (frame.direct; shading/direct_kernel.h) instead of the
 // tone map, which the composite does.
 void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const SkyLighting> sky,
-                Frame& frame, DirectLighting& lighting) {
+                uint32_t frameIndex, Frame& frame, DirectLighting& lighting) {
     const ScopedPass timer(frame.stats, "shading");
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
@@ -303,7 +304,19 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
             da.envDiffuse[ch] = p.envDiffuse[ch].empty() ? nullptr : p.envDiffuse[ch].row(0);
             da.envSpecular[ch] = p.envSpecular[ch].row(0);
             da.specWeight[ch] = p.specWeight[ch].row(0);
-            if (c.settings.trace.ssgi) da.hitLight[ch] = p.hitLight[ch].row(0);
+            if (c.settings.trace.ssgi && !p.hitLight[ch].empty())
+                da.hitLight[ch] = p.hitLight[ch].row(0);
+        }
+        if (hitLightAtHalf(c.settings)) {
+            // Straight into the half frame that SSGI traces (its chosen pixels this frame).
+            HalfFrame& hf = frame.scratch.half.frame;
+            const TraceCamera half = halfCamera(c.trace);
+            for (PlaneF& p : hf.hitLight) p.ensureSize(half.width, half.height);
+            for (int ch = 0; ch < 3; ++ch) da.hitLightHalf[ch] = hf.hitLight[ch].row(0);
+            da.halfStride = hf.hitLight[0].stride();
+            const PixelOffset o = halfOffset(frameIndex);
+            da.halfOffsetX = o.x;
+            da.halfOffsetY = o.y;
         }
     }
     const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
@@ -400,7 +413,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     if (textured) texturePass(c, scene, frame);
     if (settings_.idPlanes) idPass(c, tables.triangles, frame);
     DirectLighting lighting;
-    directPass(c, scene, environmentPass(c, scene, frame), frame, lighting);
+    directPass(c, scene, environmentPass(c, scene, frame), input.frameIndex, frame, lighting);
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {

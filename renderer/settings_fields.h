@@ -127,7 +127,7 @@ inline constexpr std::array kRenderOwnFields = {
         "debugPlanes", kCliShot,
         "The planes made only to be looked at (EXR layers): march steps, the undenoised and "
         "the denoised full-resolution SSGI when the diffuse is denoised at half resolution, "
-        "history lengths"),
+        "SSGI's full-resolution hit light when it traces at half, history lengths"),
 };
 // Every member is in the table but two: isa (a run-time choice of kernels, "auto" or
 // $SSRT_ISA, parsed by core/isa.h) and trace (its own table).

@@ -304,6 +304,9 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
             {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
             &g.metallic,
             {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]}};
+        // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
+        if (hitLightAtHalf(c.args.settings))
+            for (const PlaneF*& p : src.hitLight) p = nullptr;
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         if (ts.denoise.enabled) src.motion[0] = &g.motion[0], src.motion[1] = &g.motion[1];
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
@@ -598,6 +601,11 @@ void compositePass(const TraceContext& c, Frame& frame) {
 }
 
 }  // namespace
+
+bool hitLightAtHalf(const RenderSettings& s) {
+    const TraceSettings& t = s.trace;
+    return t.ssgi && t.ssgiLayout == TraceLayout::Half && !t.ssgiFeedback && !s.debugPlanes;
+}
 
 bool diffuseUpsampledInComposite(const RenderSettings& s) {
     const TraceSettings& t = s.trace;

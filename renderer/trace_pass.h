@@ -36,6 +36,12 @@ void runTracePasses(const TracePassArgs& args, Frame& frame);
 // or the next frame's SSGI feedback reads them.
 bool diffuseUpsampledInComposite(const RenderSettings& settings);
 
+// Whether the direct pass writes SSGI's hit light at half resolution, straight into the half
+// frame (DirectArgs::hitLightHalf), instead of a full-resolution plane buildHalfFrame copies
+// from (frame.direct.hitLight, then not made): SSGI traced on the half frame, without the
+// feedback that adds to the full-resolution plane, and without a file to show it.
+bool hitLightAtHalf(const RenderSettings& settings);
+
 // Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected,
 // SSGI with ssgiFeedback). The denoiser's history is its own (denoise/denoise.h).
 bool readsHistory(const TraceSettings& settings);

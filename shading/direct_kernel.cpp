@@ -23,6 +23,27 @@ using Parts = shade::Parts<Lane>;
 using shade::srgbEncode;
 using shade::tonemapAces;
 
+// The chosen pixels' hit light of lane group x of row y into the half frame's planes: pixel
+// (px, y) is half pixel (px / 2, y / 2)'s where halfSource says so (the frame's last column or
+// row stands in for a block cut by an odd size).
+void hitLightToHalf(const DirectArgs& a, int x, int y, const V3& light) {
+    const auto chosen = [](int p, int offset, int size) {
+        const int q = 2 * (p / 2) + offset;
+        return (q < size ? q : size - 1) == p;
+    };
+    if (!chosen(y, a.halfOffsetY, a.height)) return;
+    alignas(64) float v[3][kW];
+    ln::store(v[0], light.x);
+    ln::store(v[1], light.y);
+    ln::store(v[2], light.z);
+    const std::size_t row = std::size_t(y / 2) * a.halfStride;
+    for (int i = 0; i < kW && x + i < a.width; ++i) {
+        const int px = x + i;
+        if (!chosen(px, a.halfOffsetX, a.width)) continue;
+        for (int c = 0; c < 3; ++c) a.hitLightHalf[c][row + std::size_t(px / 2)] = v[c][i];
+    }
+}
+
 // Shades lane group x of row y into out[plane] + (x - x0): a row buffer of the tile.
 void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     const std::size_t go = std::size_t(y) * a.g.stride + x;
@@ -76,7 +97,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
             lit = lit + e;
             emission = ln::select(background, emission, e);
         }
-        if (a.hitLight[0]) {
+        if (a.hitLight[0] || a.hitLightHalf[0]) {
             V3 light = shade::lambertSunLight(a, s.n, s.albedo, s.metallic, vis);
             if (a.anyEmissive) light = light + emission;
             hitLight = ln::select(background, hitLight, light);
@@ -102,6 +123,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     put(a.envSpecular, envSpecular);
     put(a.specWeight, specWeight);
     put(a.hitLight, hitLight);
+    if (a.hitLightHalf[0]) hitLightToHalf(a, x, y, hitLight);
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};

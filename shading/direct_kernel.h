@@ -83,6 +83,13 @@ struct DirectArgs {
     // the radiance SSGI reads at its hits (trace/ssgi.h), by the function SSGI's G-buffer path
     // uses (shade::lambertSunLight), so reading it gives the same bits; 0 on background.
     float* hitLight[3];
+    // Optional (null = not written): hitLight at half resolution, for SSGI traced on a half
+    // frame (trace/trace_layout.h): each half pixel (hx, hy) gets the value of its chosen
+    // pixel, halfSource(hx, hy, {halfOffsetX, halfOffsetY}, width, height), as buildHalfFrame
+    // would copy it from hitLight, which then need not exist at full resolution.
+    float* hitLightHalf[3];
+    std::size_t halfStride;
+    int halfOffsetX, halfOffsetY;
     // The GGX energy tables (E, E_avg, DFG; shading/energy_tables.h) that shade the
     // specular of every surface pixel, sun and sky: required (setDirectLighting sets the
     // stored ones, energyTables()).

@@ -41,21 +41,29 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     PlaneCheck need("buildHalfFrame", full.width, full.height);
     need(src.viewZ, "viewZ");
     need(src.metallic, "metallic");
+    // Without src.hitLight the half frame's holds its chosen pixels' already (the direct pass
+    // wrote them: DirectArgs::hitLightHalf).
+    const bool hitLight = src.hitLight[0] || src.hitLight[1] || src.hitLight[2];
     for (int c = 0; c < 3; ++c) {
         need(src.normal[c], "normal");
         need(src.albedo[c], "albedo");
-        need(src.hitLight[c], "hitLight");
+        if (hitLight) need(src.hitLight[c], "hitLight");
     }
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
     const int hw = out.camera.width, hh = out.camera.height;
     const int w = full.width, h = full.height;
+    if (!hitLight) {
+        PlaneCheck given("buildHalfFrame", hw, hh);
+        for (PlaneF& p : out.hitLight) given(p, "the half frame's hitLight");
+    }
     PlaneF* dst[11] = {&out.viewZ,       &out.normal[0],   &out.normal[1],  &out.normal[2],
                        &out.albedo[0],   &out.albedo[1],   &out.albedo[2],  &out.metallic,
                        &out.hitLight[0], &out.hitLight[1], &out.hitLight[2]};
     const PlaneF* from[11] = {src.viewZ,       src.normal[0],   src.normal[1],  src.normal[2],
                               src.albedo[0],   src.albedo[1],   src.albedo[2],  src.metallic,
                               src.hitLight[0], src.hitLight[1], src.hitLight[2]};
+    const int copied = hitLight ? 11 : 8;
     const bool guides = src.motion[0] != nullptr;
     if (guides)
         for (int c = 0; c < 2; ++c) need(src.motion[c], "motion");
@@ -77,7 +85,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         // Plane by plane along the row, through row pointers (a plane's members reloaded per
         // pixel cost more than the copy).
         const int sy = halfSource(0, hy, o, w, h).y, gy = halfSource(0, hy, {0, 0}, w, h).y;
-        for (int p = 0; p < 11; ++p) {
+        for (int p = 0; p < copied; ++p) {
             const float* in = from[p]->row(sy);
             float* to = dst[p]->row(hy);
             for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];

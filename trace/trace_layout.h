@@ -101,7 +101,9 @@ struct HalfFrameSource {
     const PlaneF* normal[3] = {};
     const PlaneF* albedo[3] = {};
     const PlaneF* metallic = nullptr;
-    const PlaneF* hitLight[3] = {};  // DirectArgs::hitLight (SSGI's radiance at a hit)
+    // DirectArgs::hitLight (SSGI's radiance at a hit); all null: out.hitLight holds the
+    // chosen pixels' already, at the half frame's size (DirectArgs::hitLightHalf).
+    const PlaneF* hitLight[3] = {};
     // Optional: the G-buffer's motion (full pixels); given, the denoiser's guides are made.
     const PlaneF* motion[2] = {};
 };

@@ -287,11 +287,12 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
     }
 }
 
-// The half-resolution diffuse, once denoised, is brought to the frame inside the composite,
-// tile by tile (renderer/trace_pass.h, diffuseUpsampledInComposite), unless a file shows the
-// frame's denoised diffuse or feedback reads it: the image is the same bits either way, and
-// the frame's planes are not made.
-TEST_CASE("renderer: the half diffuse upsampled inside the composite gives the same image") {
+// Without a file to show the full-resolution planes (renderer/trace_pass.h): the direct pass
+// writes SSGI's hit light straight into the half frame (hitLightAtHalf), and the denoised
+// half-resolution diffuse is brought to the frame inside the composite, tile by tile
+// (diffuseUpsampledInComposite). The half frame and the image are the same bits either way,
+// over the four chosen-pixel offsets, and the frame's planes are not made.
+TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the same image") {
     const Scene scene = makeBuiltinScene("corridor");
     RenderSettings rs = smallTraced();
     rs.width = 150;  // tiles of 64 and a last column of 22
@@ -303,13 +304,20 @@ TEST_CASE("renderer: the half diffuse upsampled inside the composite gives the s
     rs.debugPlanes = false;
     REQUIRE(diffuseUpsampledInComposite(rs));
     REQUIRE_FALSE(diffuseUpsampledInComposite(shown));
+    REQUIRE(hitLightAtHalf(rs));
+    REQUIRE_FALSE(hitLightAtHalf(shown));
+    rs.height = shown.height = 71;  // an odd size: the last row of blocks is cut
     FrameHistory ha, hb;
     Frame a, b;
     FrameInput input = FrameInput::still(scene);
-    for (int frame = 0; frame < 2; ++frame) {  // a first frame, then one with history
+    for (int frame = 0; frame < 4; ++frame) {  // a first frame, then three with history
         input.frameIndex = uint32_t(frame);
         Renderer(rs).render(scene, input, ha, a);
         Renderer(shown).render(scene, input, hb, b);
+        const HalfFrame &fa = a.scratch.half.frame, &fb = b.scratch.half.frame;
+        for (int ch = 0; ch < 3; ++ch) CHECK(test::sameBits(fa.hitLight[ch], fb.hitLight[ch]));
+        CHECK(a.direct.hitLight[0].empty());
+        CHECK_FALSE(b.direct.hitLight[0].empty());
         for (int ch = 0; ch < 3; ++ch) {
             CHECK(test::sameBits(a.image.color[ch], b.image.color[ch]));
             CHECK(test::sameBits(a.image.display[ch], b.image.display[ch]));
