@@ -334,10 +334,12 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
     st.laneSlots = args.laneSlots;
     st.laneActive = args.laneActive;
     const std::size_t outStride = result.hit.stride();  // all six: one size, one stride
-    float* const to[6] = {result.hit.row(0),  result.hitX.row(0),  result.hitY.row(0),
-                          result.hitZ.row(0), result.steps.row(0), result.cause.row(0)};
+    // The kernel's outputs in the result's table order (hit, hitX, hitY, hitZ, steps, cause).
     const float* const from[6] = {args.hit,  args.hitX,  args.hitY,
                                   args.hitZ, args.steps, args.cause};
+    float* to[6];
+    int k = 0;
+    result.forEachPlane([&](std::string_view, PlaneF& p) { to[k++] = p.row(0); });
     uint64_t ends[kMarchEndCount] = {}, steps = 0;
     uint64_t* const histogram = st.stepHistogram.data();
     for (int i = 0; i < n; ++i) {

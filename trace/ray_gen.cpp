@@ -121,8 +121,9 @@ RayGenStats RayGenerator::tile(int tile, RayBatch& rays) const {
         r.y1 - c.y0 > rays.ox.height())
         throw std::invalid_argument("ray generation: the batch does not hold the tile");
     RayGenArgs a = args_;
-    PlaneF* out[7] = {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf};
-    for (int i = 0; i < 7; ++i) a.out[i] = out[i]->row(0);
+    // (The kernel's outputs in the batch's table order, RayGenArgs::out.)
+    int k = 0;
+    rays.forEachPlane([&](std::string_view, PlaneF& p) { a.out[k++] = p.row(0); });
     a.outStride = rays.ox.stride();
     a.outX0 = c.x0;
     a.outY0 = c.y0;

@@ -25,7 +25,8 @@ struct RayGenArgs {
     const float* g[5];  // viewZ, world normal X, Y, Z, perceptual roughness (may be null
                         // for Diffuse); all with gStride
     std::size_t gStride;
-    float* out[7];  // RayBatch planes ox, oy, oz, dx, dy, dz, pdf; all with outStride
+    float* out[7];  // RayBatch's planes in its table's order (ox, oy, oz, dx, dy, dz, pdf);
+                    // all with outStride
     std::size_t outStride;
     int outX0, outY0;  // the frame pixel of the planes' element (0, 0) (RayBatch::corner)
     bool stream;       // store past the cache (a frame's batch; not a tile's, read next)

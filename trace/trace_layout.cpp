@@ -57,25 +57,31 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         PlaneCheck given("buildHalfFrame", hw, hh);
         for (PlaneF& p : out.hitLight) given(p, "the half frame's hitLight");
     }
-    PlaneF* dst[11] = {&out.viewZ,       &out.normal[0],   &out.normal[1],  &out.normal[2],
-                       &out.albedo[0],   &out.albedo[1],   &out.albedo[2],  &out.metallic,
-                       &out.hitLight[0], &out.hitLight[1], &out.hitLight[2]};
-    const PlaneF* from[11] = {src.viewZ,       src.normal[0],   src.normal[1],  src.normal[2],
-                              src.albedo[0],   src.albedo[1],   src.albedo[2],  src.metallic,
-                              src.hitLight[0], src.hitLight[1], src.hitLight[2]};
-    const int copied = hitLight ? 11 : 8;
-    const bool guides = src.motion[0] != nullptr;
-    if (guides)
+    // What each half pixel copies from its chosen pixel (`chosen`), and from its block's
+    // first pixel for the denoiser's guides (`guides`; motion halved).
+    struct Copy {
+        PlaneF* to;
+        const PlaneF* from;
+        float scale = 1.0f;
+    };
+    std::vector<Copy> chosen = {{&out.viewZ, src.viewZ}, {&out.metallic, src.metallic}};
+    for (int c = 0; c < 3; ++c) {
+        chosen.push_back({&out.normal[c], src.normal[c]});
+        chosen.push_back({&out.albedo[c], src.albedo[c]});
+        if (hitLight) chosen.push_back({&out.hitLight[c], src.hitLight[c]});
+    }
+    const bool withGuides = src.motion[0] != nullptr;
+    if (withGuides)
         for (int c = 0; c < 2; ++c) need(src.motion[c], "motion");
-    PlaneF* const guide[6] = {&out.guideZ,         &out.guideNormal[0], &out.guideNormal[1],
-                              &out.guideNormal[2], &out.guideMotion[0], &out.guideMotion[1]};
-    const PlaneF* const guideFrom[6] = {src.viewZ,     src.normal[0], src.normal[1],
-                                        src.normal[2], src.motion[0], src.motion[1]};
+    std::vector<Copy> guides = {{&out.guideZ, src.viewZ}};
+    for (int c = 0; c < 3; ++c) guides.push_back({&out.guideNormal[c], src.normal[c]});
+    // (Motion in half pixels: halving is exact.)
+    for (int c = 0; c < 2; ++c) guides.push_back({&out.guideMotion[c], src.motion[c], 0.5f});
     // (Sized one by one: the guides are not made and freed again on every frame without them.)
-    for (PlaneF* p : dst) p->ensureSize(hw, hh);
-    for (PlaneF* p : guide) {
-        if (guides) p->ensureSize(hw, hh);
-        else *p = PlaneF();
+    for (const Copy& p : chosen) p.to->ensureSize(hw, hh);
+    for (const Copy& p : guides) {
+        if (withGuides) p.to->ensureSize(hw, hh);
+        else *p.to = PlaneF();
     }
     // Rows of half pixels, each row's count of full-resolution surface pixels left out,
     // summed in row order (the same total for every thread count).
@@ -85,19 +91,17 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         // Plane by plane along the row, through row pointers (a plane's members reloaded per
         // pixel cost more than the copy).
         const int sy = halfSource(0, hy, o, w, h).y, gy = halfSource(0, hy, {0, 0}, w, h).y;
-        for (int p = 0; p < copied; ++p) {
-            const float* in = from[p]->row(sy);
-            float* to = dst[p]->row(hy);
+        for (const Copy& p : chosen) {
+            const float* in = p.from->row(sy);
+            float* to = p.to->row(hy);
             for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
         }
-        if (guides)
-            for (int p = 0; p < 6; ++p) {
-                const float* in = guideFrom[p]->row(gy);
-                float* to = guide[p]->row(hy);
-                // (Motion in half pixels: halving is exact.)
-                const float scale = p < 4 ? 1.0f : 0.5f;
+        if (withGuides)
+            for (const Copy& p : guides) {
+                const float* in = p.from->row(gy);
+                float* to = p.to->row(hy);
                 for (int hx = 0; hx < hw; ++hx)
-                    to[hx] = scale * in[halfSource(hx, hy, {0, 0}, w, h).x];
+                    to[hx] = p.scale * in[halfSource(hx, hy, {0, 0}, w, h).x];
             }
         uint64_t cut = 0;
         for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y)
