@@ -59,7 +59,8 @@ struct ResolveArgs {
     // transform; zero for instances without a normal map), or all null: then no tangent
     // outputs (a scene without normal maps gathers and writes nothing more).
     const float* tangent[4] = {};
-    // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId, motion XY, then the
+    // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId, motion XY (the
+    // renderer's GBuffer table, renderer/frame.h, in its order), then the
     // UV outputs of set 0 (with u) and of set 1 (with u1), then the tangent outputs (with
     // tangent), packed in that order (all with outStride)
     float* out[kResolveMaxOutputs];

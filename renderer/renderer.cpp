@@ -174,11 +174,14 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
     ra.tanHalfY = c.trace.tanHalfY;
     ra.nearZ = c.trace.nearZ;
     ra.farZ = c.trace.farZ;
-    // The kernel's output order (raster/resolve_kernel.h), every plane with one stride.
-    PlaneF* const out[kResolveOutputs] = {&g.viewZ,     &g.normal[0],  &g.normal[1], &g.normal[2],
-                                          &g.albedo[0], &g.albedo[1],  &g.albedo[2], &g.metallic,
-                                          &g.roughness, &g.materialId, &g.motion[0], &g.motion[1]};
-    for (int i = 0; i < kResolveOutputs; ++i) ra.out[i] = out[i]->row(0);
+    // The kernel's output order (raster/resolve_kernel.h) is the G-buffer's table's; every
+    // plane with one stride.
+    int k = 0;
+    g.forEachPlane([&](std::string_view, PlaneF& p) {
+        if (k < kResolveOutputs) ra.out[k] = p.row(0);
+        ++k;
+    });
+    if (k != kResolveOutputs) throw std::logic_error("resolve: the G-buffer's table changed");
     ra.outStride = g.viewZ.stride();
     if (textured) {
         ra.u = tables.u.data();
@@ -289,10 +292,14 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
     std::copy_n(c.trace.viewToWorld, 9, da.viewToWorld);
     std::copy_n(c.trace.position, 3, da.camPos);
     ImagePlanes& im = frame.image;
-    // The kernel's output order: colour, display, shadow, all with one stride.
-    PlaneF* const out[7] = {&im.color[0],   &im.color[1],   &im.color[2], &im.display[0],
-                            &im.display[1], &im.display[2], &im.shadow};
-    for (int i = 0; i < 7; ++i) da.out[i] = out[i]->row(0);
+    // The kernel's outputs are the image's table in its order (colour, display, shadow), all
+    // with one stride.
+    int k = 0;
+    im.forEachPlane([&](std::string_view, PlaneF& p) {
+        if (k < 7) da.out[k] = p.row(0);
+        ++k;
+    });
+    if (k != 7) throw std::logic_error("shading: the image's table changed");
     da.outStride = im.color[0].stride();
     if (c.settings.trace.any()) {
         // The composite overwrites the display (and the colour, which SSR reads before it).

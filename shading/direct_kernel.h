@@ -48,7 +48,8 @@ struct DirectArgs {
     float biasConst, biasSlope;  // depth-key units; slope term scales tan(angle to light)
     int pcfRadius;
     float exposure;
-    // Outputs (outStride): color RGB (linear), display RGB (tone mapped, sRGB), shadow. The
+    // Outputs (outStride), the renderer's ImagePlanes table in its order (renderer/frame.h):
+    // color RGB (linear), display RGB (tone mapped, sRGB), shadow. The
     // display triple may be null (not written, its tone map skipped): with a trace pass the
     // composite writes the display from its own colour.
     float* out[7];
