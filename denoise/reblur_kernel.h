@@ -1,5 +1,5 @@
-// The denoiser's per-ISA kernels (denoise/reblur_kernel.cpp, compiled once per ISA) and their
-// argument blocks; denoise/denoise.cpp fills them and runs them per tile.
+// The denoiser's per-ISA kernels (denoise/*_kernel.cpp, a file a pass, each compiled once per
+// ISA) and their argument blocks; denoise/denoise.cpp fills them and runs them per tile.
 #pragma once
 
 #include <cstddef>

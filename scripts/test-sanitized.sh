@@ -12,8 +12,8 @@
 # The build is made for these tests and nothing else, which took this stage of CI from 59
 # minutes (52 of them building) to 8 on an empty compiler cache (405 s building, 2 cores):
 #  - clang 14, not gcc: gcc 12 spends 60-125 s on each of the heaviest kernel files with the
-#    sanitizers' instrumentation (denoise/reblur_kernel.cpp: 124 s at -O2 -g, 90 s at -O2
-#    -g1), clang 4 s; clang's sanitizers are the reference implementation, and clang is
+#    sanitizers' instrumentation (the denoiser's kernels, then one file: 124 s at -O2 -g, 90 s
+#    at -O2 -g1), clang 4 s; clang's sanitizers are the reference implementation, and clang is
 #    already CI's second compiler (test-clang.sh) and the fuzzer's;
 #  - -O1 -gline-tables-only: what a sanitizer report needs (file and line of every frame),
 #    without the variable locations that cost minutes;

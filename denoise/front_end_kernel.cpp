@@ -1,0 +1,62 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include "denoise/reblur_lanes.h"
+
+// REBLUR's front end, one copy per ISA (denoise/reblur_lanes.h has what the passes share).
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace {
+
+using namespace reblur_lanes;
+
+// ---------------------------------------------------------------------------------------
+// Front end (NRD's REBLUR_FrontEnd_PackRadianceAndNormHitDist with sanitize, and
+// REBLUR_ClassifyTiles).
+
+void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
+    const ReblurView& v = a.view;
+    const std::size_t o = std::size_t(y) * v.stride + x;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane z = loadAt(v.viewZ, o);
+    const Mask surface = z > zero;
+    // Lanes past the frame's right edge are not pixels.
+    const Mask inFrame = (Lane(float(x)) + ln::laneIndex<Lane>()) < Lane(float(v.width));
+    if (a.diffuse[0]) {
+        const Lane colour = ln::max(ln::max(loadAt(a.albedo[0], o), loadAt(a.albedo[1], o)),
+                                    loadAt(a.albedo[2], o)) *
+                            (one - loadAt(a.metallic, o));
+        const Mask has = surface & inFrame & (colour > zero);
+        for (int ch = 0; ch < 3; ++ch)
+            ln::store(a.noisyDiffuse[ch] + o, sanitize(loadAt(a.diffuse[ch], o)));
+        ln::store(a.noisyDiffuse[3] + o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
+        ln::store(a.signalZ[0] + o, ln::select(has, z, zero));
+        if (ln::any(has)) flags |= kTileDiffuse;
+    }
+    if (a.ssr[0]) {
+        const Lane r = loadAt(v.roughness, o);
+        const Mask has = surface & inFrame & (r < Lane(a.specularMaxRoughness));
+        const Lane opacity = ln::saturate(sanitize(loadAt(a.ssrOpacity, o)));
+        for (int ch = 0; ch < 3; ++ch) {
+            const Lane ssr = sanitize(loadAt(a.ssr[ch], o));
+            const Lane env = sanitize(loadAt(a.envSpecular[ch], o));
+            ln::store(a.noisySpecular[ch] + o, opacity * ssr + (one - opacity) * env);
+        }
+        ln::store(a.noisySpecular[3] + o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
+        ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
+        if (ln::any(has)) flags |= kTileSpecular;
+    }
+}
+
+}  // namespace
+
+void reblurFrontEndTile(const ReblurFrontEndArgs& a, int tile) {
+    const ReblurView& v = a.view;
+    const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
+    uint8_t flags = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) frontEndChunk(a, x, y, flags);
+    a.tiles[tile] = flags;
+}
+
+}  // namespace ssrt::SSRT_ISA_NS

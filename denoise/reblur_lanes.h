@@ -1,0 +1,130 @@
+// What REBLUR's per-ISA kernels share (denoise/*_kernel.cpp, one pass each): included by
+// each copy after core/isa_target.h, inside its ISA's namespace, so every helper is that
+// ISA's own (tests/check_kernel_objects.sh).
+//
+// REBLUR's passes over lanes across x (NRD's REBLUR_*.hlsl restated; denoise/denoise.h lists
+// them). GPU constructs and their CPU rules, for bit-identical results on every ISA:
+//   - texture filtering (hardware bilinear, Catmull-Rom from 5 bilinear fetches) becomes
+//     explicit taps with float weights summed in a fixed order;
+//   - a per-pixel branch becomes masks and select; a tap no lane needs is skipped, which
+//     changes nothing (its weight would be 0 and every signal is finite);
+//   - rcp / rsqrt / transcendental intrinsics become / and sqrt (correctly rounded) and the
+//     project's own exp2, log2, atan (core/lane_math.h);
+//   - per-thread hashes become the counter RNG (core/rng.h), per pixel.
+#pragma once
+
+#include <algorithm>
+
+#include "core/lane_math.h"
+#include "core/rng.h"
+#include "core/screen_lanes.h"
+#include "core/tiles.h"
+#include "denoise/reblur_kernel.h"
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace ln = ssrt::lanes;
+namespace rb = ssrt::reblur;
+using V3 = ln::V3<Lane>;
+using ILane = ln::IntOf<Lane>;
+using Mask = ln::MaskOf<Lane>;
+
+namespace reblur_lanes {
+
+constexpr int kW = int(ln::kWidth<Lane>);
+constexpr float kNormalUlp = 0.5f / 255.0f;  // NRD's normal-encoding floor on angles
+constexpr float kMaxSignal = 65504.0f;       // the front end's clamp (NRD's fp16 range)
+
+SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
+    return ln::load<Lane>(plane + offset);
+}
+
+// The centre pixel of a chunk: position, guides, and the view-space frame.
+struct Centre {
+    Lane px, py;  // pixel centre
+    Lane z;
+    V3 n, nv;  // world and view-space normal
+    V3 x;      // view-space point
+    Lane noV;
+    Lane r;  // roughness (1 for the diffuse signal)
+};
+
+SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bool specular) {
+    Centre c;
+    c.px = Lane(float(x) + 0.5f) + ln::laneIndex<Lane>();
+    c.py = Lane(float(y) + 0.5f);
+    c.z = loadAt(v.viewZ, o);
+    c.n = {loadAt(v.normal[0], o), loadAt(v.normal[1], o), loadAt(v.normal[2], o)};
+    c.nv = screen::worldToView(v.viewToWorld, c.n);
+    c.x = screen::viewPoint(c.px, c.py, c.z, v.width, v.height, v.tanHalfX, v.tanHalfY);
+    const V3 toEye = ln::normalize(V3{Lane(0.0f) - c.x.x, Lane(0.0f) - c.x.y, Lane(0.0f) - c.x.z});
+    c.noV = ln::abs(ln::dot(c.nv, toEye));
+    c.r = specular ? loadAt(v.roughness, o) : Lane(1.0f);
+    return c;
+}
+
+// Signal present at the centre: a surface pixel with this signal.
+SSRT_INLINE Mask validAt(const ReblurView& v, std::size_t o, bool specular) {
+    return loadAt(v.signalZ[specular ? 1 : 0], o) > Lane(0.0f);
+}
+
+// A tap's pixel (floored continuous position), whether it lies on the frame, and its index.
+struct Tap {
+    Lane x, y;  // pixel centre
+    Mask inside;
+    ILane index;
+    ln::Run run;  // its lanes' pixels are consecutive: loads, not gathers
+};
+
+SSRT_INLINE Tap tapAt(const ReblurView& v, Lane fx, Lane fy) {
+    Tap t;
+    const Lane ix = ln::floor(fx), iy = ln::floor(fy);
+    t.inside = (ix >= Lane(0.0f)) & (ix < Lane(float(v.width))) & (iy >= Lane(0.0f)) &
+               (iy < Lane(float(v.height)));
+    t.x = ix + Lane(0.5f);
+    t.y = iy + Lane(0.5f);
+    t.index = screen::pixelIndex(ix, iy, v.width, v.height, v.stride);
+    t.run = ln::runOf(t.index);
+    return t;
+}
+
+// Plane-distance weight of a point at view-space position xs (NRD's geometry weight).
+SSRT_INLINE Lane geometryWeight(const Centre& c, V3 xs, Lane invDistance) {
+    return rb::weightNonExp(ln::dot(c.nv, xs - c.x) * invDistance);
+}
+
+// Lobe-angle normal weight's scale: 1 / (the accepted angle x fraction scale).
+SSRT_INLINE Lane normalWeightScale(Lane r, Lane alpha, float lobeFraction2, float fractionScale) {
+    const Lane percent = Lane(0.75f) * rb::lerp(Lane(lobeFraction2), Lane(1.0f), alpha);
+    const Lane angle = ln::max(ln::atan(rb::lobeTanHalfAngle(r, percent)), Lane(kNormalUlp));
+    return Lane(1.0f) / (angle * Lane(fractionScale));
+}
+
+SSRT_INLINE Lane sanitize(Lane v) {
+    const Mask finite = (v - v) == Lane(0.0f);  // false for NaN and both infinities
+    return ln::select(finite, ln::clamp(v, Lane(0.0f), Lane(kMaxSignal)), Lane(0.0f));
+}
+
+// Normalised hit distance: 1 without a hit (a miss is as far as it gets).
+SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
+    const Lane d = sanitize(h);
+    const Lane scale = rb::hitDistanceScale(v.hitScale, z, r);
+    return ln::select(d > Lane(0.0f), ln::saturate(d / scale), Lane(1.0f));
+}
+
+// Copies a tile's rows of in[] to out[] (and copy[]): the passes on tiles without the signal.
+inline void copyTile(const ReblurView& v, const float* const in[4], float* const out[4],
+                     float* const copy[4], int tile) {
+    const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t o = std::size_t(y) * v.stride;
+        for (int ch = 0; ch < 4; ++ch) {
+            std::copy(in[ch] + o + x0, in[ch] + o + x1, out[ch] + o + x0);
+            if (copy[ch]) std::copy(in[ch] + o + x0, in[ch] + o + x1, copy[ch] + o + x0);
+        }
+    }
+}
+
+}  // namespace reblur_lanes
+
+}  // namespace ssrt::SSRT_ISA_NS

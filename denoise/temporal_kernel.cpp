@@ -1,0 +1,300 @@
+#include "core/isa_target.h"
+// (isa_target.h first: it names this copy's lane type)
+#include "denoise/reblur_lanes.h"
+
+// REBLUR's temporal accumulation, one copy per ISA (denoise/reblur_lanes.h has what the passes
+// share).
+
+namespace ssrt::SSRT_ISA_NS {
+
+namespace {
+
+using namespace reblur_lanes;
+
+// ---------------------------------------------------------------------------------------
+// Temporal accumulation (REBLUR_TemporalAccumulation).
+
+// Catmull-Rom weights of the 4 taps around a fraction t (Keys' a = -0.5); they sum to 1.
+SSRT_INLINE void catmullRom(Lane t, Lane w[4]) {
+    const Lane half(0.5f), one(1.0f);
+    w[0] = t * (Lane(-0.5f) + t * (one - half * t));
+    w[1] = one + t * t * (Lane(-2.5f) + Lane(1.5f) * t);
+    w[2] = t * (half + t * (Lane(2.0f) - Lane(1.5f) * t));
+    w[3] = t * t * (Lane(-0.5f) + half * t);
+}
+
+// A reprojected history read: the 2x2 bilinear footprint (and with surface motion the 4x4
+// Catmull-Rom one) at a previous-frame position, each tap tested for occlusion.
+struct History {
+    Lane signal[4];
+    Lane frames;  // accumulation speed behind the read (0: none)
+    Lane fast;
+    Lane quality;  // sqrt of the bilinear weight that survived (REBLUR's footprint quality)
+    Mask found;
+    V3 normal;  // the surviving taps' mean normal (not normalised); virtual reads only
+};
+
+// The previous frame's view-space point of its pixel (tx, ty) at depth zp, in this camera's
+// world frame (camera at the origin).
+SSRT_INLINE V3 prevPointInThisFrame(const ReblurTemporalArgs& a, Lane tx, Lane ty, Lane zp) {
+    const ReblurView& v = a.view;
+    const V3 pv = screen::viewPoint(tx, ty, zp, v.width, v.height, a.prevTanHalfX, a.prevTanHalfY);
+    const V3 w = screen::viewToWorld(a.prevViewToWorld, pv);
+    return {w.x - Lane(a.cameraDelta[0]), w.y - Lane(a.cameraDelta[1]),
+            w.z - Lane(a.cameraDelta[2])};
+}
+
+// Reads the history at previous-frame pixel position (qx, qy). `surface`: the footprint is
+// the surface's own (occlusion by the expected depth zExpected, Catmull-Rom where all 16
+// taps pass); otherwise a virtual-motion read (occlusion by the plane of the centre, whose
+// point in this camera's world frame is xw, bilinear only).
+History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
+                    bool surface, Lane zExpected, V3 xw, Lane threshold) {
+    const ReblurView& v = a.view;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane sx = qx - Lane(0.5f), sy = qy - Lane(0.5f);
+    const Lane x0 = ln::floor(sx), y0 = ln::floor(sy);
+    const Lane fx = sx - x0, fy = sy - y0;
+    History h;
+    // Per tap of the 4x4 footprint (row j, column i): passes the occlusion test.
+    Mask ok[4][4];
+    ILane index[4][4];
+    ln::Run run[4][4];
+    V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
+    Mask allOk = valid;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const bool inner = (i == 1 || i == 2) && (j == 1 || j == 2);
+            ok[j][i] = Mask(false);
+            index[j][i] = ILane(0);
+            run[j][i] = ln::Run{false, 0};
+            if (!surface && !inner) continue;
+            const Tap t = tapAt(v, x0 + Lane(float(i - 1) + 0.5f), y0 + Lane(float(j - 1) + 0.5f));
+            index[j][i] = t.index;
+            run[j][i] = t.run;
+            const Lane zp = ln::gather(a.prevViewZ, t.index, t.run);
+            Mask pass = valid & t.inside & (zp > zero);
+            if (surface) {
+                pass = pass & (ln::abs(zp - zExpected) <= threshold);
+            } else {
+                const V3 q = prevPointInThisFrame(a, t.x, t.y, zp);
+                pass = pass & (ln::abs(ln::dot(p.n, q - xw)) <= threshold);
+            }
+            if (inner) {
+                const V3 np{ln::gather(a.prevNormal[0], t.index, t.run),
+                            ln::gather(a.prevNormal[1], t.index, t.run),
+                            ln::gather(a.prevNormal[2], t.index, t.run)};
+                innerNormal[j - 1][i - 1] = np;
+                // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
+                pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
+                if (a.specular) {
+                    const Lane rp = ln::gather(a.prevRoughness, t.index, t.run);
+                    pass = pass & (ln::abs(rp - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
+                }
+            }
+            ok[j][i] = pass;
+            allOk = allOk & pass;
+        }
+    // Bilinear over the inner 2x2 with the surviving weights.
+    const Lane bw[2][2] = {{(one - fx) * (one - fy), fx * (one - fy)}, {(one - fx) * fy, fx * fy}};
+    Lane wsum = zero, frames = zero, fast = zero;
+    Lane bil[4] = {zero, zero, zero, zero};
+    V3 normal{zero, zero, zero};
+    Lane w[2][2];
+    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            w[j][i] = ln::select(ok[j + 1][i + 1], bw[j][i], zero);
+            wsum = wsum + w[j][i];
+        }
+    h.found = wsum > Lane(1.0e-4f);
+    const Lane inv = one / ln::select(h.found, wsum, one);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            const ILane idx = index[j + 1][i + 1];
+            const ln::Run r = run[j + 1][i + 1];
+            const Lane wn = w[j][i] * inv;
+            frames = frames + wn * ln::gather(a.prevFrames, idx, r);
+            fast = fast + wn * ln::gather(a.prevFast, idx, r);
+            if (!surface)  // (only the virtual read's confidence asks for it)
+                normal = normal + innerNormal[j][i] * wn;
+            for (int ch = 0; ch < 4; ++ch) {
+                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx, r);
+                bil[ch] = bil[ch] + wn * inner[j][i][ch];
+            }
+        }
+    h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
+    h.frames = ln::select(h.found, frames, zero);
+    h.fast = fast;
+    h.normal = normal;
+    for (int ch = 0; ch < 4; ++ch) h.signal[ch] = bil[ch];
+    if (surface && ln::any(allOk)) {
+        // Catmull-Rom where every tap passed (sharper history: less blur over 30 frames).
+        Lane wx[4], wy[4];
+        catmullRom(fx, wx);
+        catmullRom(fy, wy);
+        Lane cr[4] = {zero, zero, zero, zero};
+        for (int j = 0; j < 4; ++j) {
+            Lane row[4] = {zero, zero, zero, zero};
+            for (int i = 0; i < 4; ++i) {
+                const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
+                for (int ch = 0; ch < 4; ++ch) {
+                    const Lane s = isInner ? inner[j - 1][i - 1][ch]
+                                           : ln::gather(a.prevSignal[ch], index[j][i], run[j][i]);
+                    row[ch] = row[ch] + wx[i] * s;
+                }
+            }
+            for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
+        }
+        // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
+        for (int ch = 0; ch < 3; ++ch) cr[ch] = ln::max(cr[ch], zero);
+        cr[3] = ln::saturate(cr[3]);
+        for (int ch = 0; ch < 4; ++ch) h.signal[ch] = ln::select(allOk, cr[ch], h.signal[ch]);
+    }
+    // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
+    h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
+    return h;
+}
+
+// The surface's curvature at the centre from its right (or left) and lower (or upper)
+// neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
+// 0 across a depth edge.
+SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
+    const Lane zero(0.0f);
+    Lane sum = zero;
+    for (int axis = 0; axis < 2; ++axis) {
+        Lane tx = p.px, ty = p.py;
+        if (axis == 0)
+            tx = ln::select(tx + Lane(1.0f) < Lane(float(v.width)), tx + Lane(1.0f),
+                            tx - Lane(1.0f));
+        else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
+        const Tap t = tapAt(v, tx, ty);
+        const Lane zs = ln::gather(v.viewZ, t.index, t.run);
+        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 ns =
+            screen::worldToView(v.viewToWorld, V3{ln::gather(v.normal[0], t.index, t.run),
+                                                  ln::gather(v.normal[1], t.index, t.run),
+                                                  ln::gather(v.normal[2], t.index, t.run)});
+        const V3 d = xs - p.x;
+        const Lane d2 = ln::dot(d, d);
+        const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);
+        const Lane k = ln::dot(ns - p.nv, d) / ln::select(same, d2, Lane(1.0f));
+        sum = sum + ln::select(same, k, zero);
+    }
+    return sum * Lane(0.5f);
+}
+
+void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
+    const ReblurView& v = a.view;
+    const std::size_t o = std::size_t(y) * v.stride + x;
+    const bool spec = a.specular;
+    const Lane zero(0.0f), one(1.0f);
+    Lane c[4];
+    for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
+    const Centre p = centreAt(v, x, y, o, spec);
+    const Mask valid = validAt(v, o, spec);
+    const auto store = [&](const Lane s[4], Lane frames, Lane fast) {
+        for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, s[ch]);
+        ln::store(a.outFrames + o, frames);
+        ln::store(a.outFast + o, fast);
+    };
+    const Lane lumaNow = rb::luma(c[0], c[1], c[2]);
+    if (!a.prevViewZ || !ln::any(valid)) return store(c, zero, lumaNow);
+
+    // Surface motion: where the pixel was, and the depth the previous camera saw it at (the
+    // world assumed still, as NRD with 2D motion vectors; a moving object's history then
+    // fails the test and restarts, which never ghosts).
+    const Lane qx = p.px + loadAt(a.motion[0], o), qy = p.py + loadAt(a.motion[1], o);
+    const V3 xw = screen::viewToWorld(v.viewToWorld, p.x);
+    const V3 xprev = screen::worldToView(
+        a.prevViewToWorld, V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
+                              xw.z + Lane(a.cameraDelta[2])});
+    const Lane zExpected = zero - xprev.z;
+    // Disocclusion threshold: a fraction of the frustum at that depth, wider at grazing angles.
+    const Lane threshold =
+        Lane(v.frustum) * p.z *
+        ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
+    History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
+
+    // Specular history is only as good as the reflection it saw: the surface's history saw
+    // it from a direction the parallax angle away, which a lobe narrower than that angle
+    // cannot hide (REBLUR's surface-motion confidence: a mirror on a moving camera keeps
+    // few frames).
+    Lane lobe = one;
+    if (spec) {
+        lobe = ln::max(ln::atan(rb::lobeTanHalfAngle(p.r, Lane(0.75f))), Lane(kNormalUlp));
+        const V3 from = ln::normalize(xw);
+        const V3 fromBefore =
+            ln::normalize(V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
+                             xw.z + Lane(a.cameraDelta[2])});
+        const Lane parallax = rb::acosApprox(ln::dot(from, fromBefore));
+        Lane conf = ln::saturate(one - parallax / lobe);
+        conf = conf * conf;
+        h.frames = ln::min(h.frames, Lane(a.maxFrames) * conf * conf);
+    }
+
+    if (spec && a.virtualMotion) {
+        // Virtual motion: the reflection seen in a mirror sits the hit distance behind it,
+        // along the view ray; reproject that point (NRD's virtual motion, flat-mirror form,
+        // leaning to the surface as the lobe widens: the dominant factor).
+        const Lane dominant = rb::dominantFactor(p.noV, p.r);
+        const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+        // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
+        // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
+        const Lane kappa = ln::max(curvature(v, p, y), zero);
+        const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
+        const V3 dir = ln::normalize(xw);
+        const V3 xv = xw + dir * (virtualDistance * dominant);
+        const V3 pv = screen::worldToView(
+            a.prevViewToWorld, V3{xv.x + Lane(a.cameraDelta[0]), xv.y + Lane(a.cameraDelta[1]),
+                                  xv.z + Lane(a.cameraDelta[2])});
+        const Lane depth = zero - pv.z;
+        const Mask front = depth > Lane(1.0e-6f);
+        const Lane safe = ln::select(front, depth, one);
+        const Lane vx = ((pv.x / safe) / Lane(a.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
+        const Lane vy = (one - (pv.y / safe) / Lane(a.prevTanHalfY)) * Lane(0.5f * float(v.height));
+        History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+        // The virtual point is exact for a flat mirror only: where the history's normal
+        // turned, the reflection turned twice as far (REBLUR's normal confidence).
+        const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
+        Lane conf = ln::saturate(one - Lane(2.0f) * turn / lobe);
+        conf = conf * conf;
+        hv.frames = ln::min(hv.frames, Lane(a.maxFrames) * conf * conf);
+        const Lane amount =
+            ln::select(hv.found, rb::smoothstep(0.05f, 0.95f, dominant) * hv.quality, zero);
+        for (int ch = 0; ch < 4; ++ch) h.signal[ch] = rb::lerp(h.signal[ch], hv.signal[ch], amount);
+        h.frames = rb::lerp(h.frames, hv.frames, amount);
+        h.fast = rb::lerp(h.fast, hv.fast, amount);
+        h.found = h.found | hv.found;
+    }
+
+    const Lane frames = ln::select(h.found, ln::min(h.frames, Lane(a.maxFrames)), zero);
+    const Lane alpha = one / (one + frames);
+    // Firefly suppressor: a new sample may exceed the history's luma by a shrinking factor.
+    const Lane lumaHistory = rb::luma(h.signal[0], h.signal[1], h.signal[2]);
+    const Lane maxRelative = Lane(a.fireflyScale) + Lane(38.0f) / (frames + one);
+    const Lane k = Lane(3.0f) * frames / (one + Lane(3.0f) * frames);
+    const Lane lumaKept = rb::lerp(lumaNow, ln::min(lumaNow, lumaHistory * maxRelative), k);
+    const Lane scale = (lumaKept + Lane(rb::kEps)) / (lumaNow + Lane(rb::kEps));
+    const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
+    const Lane hitAlpha = ln::max(alpha, one / (one + Lane(15.0f) * smc));
+    Lane out[4];
+    for (int ch = 0; ch < 3; ++ch) out[ch] = rb::lerp(h.signal[ch], c[ch] * scale, alpha);
+    out[3] = rb::lerp(h.signal[3], c[3], hitAlpha);
+    const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
+    const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
+    const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
+    for (int ch = 0; ch < 4; ++ch) out[ch] = ln::select(valid, out[ch], c[ch]);
+    store(out, ln::select(valid, frames, zero), ln::select(valid, fast, lumaNow));
+}
+
+}  // namespace
+
+void reblurTemporalTile(const ReblurTemporalArgs& a, int tile) {
+    const ReblurView& v = a.view;
+    const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) temporalChunk(a, x, y);
+}
+
+}  // namespace ssrt::SSRT_ISA_NS
