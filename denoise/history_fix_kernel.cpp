@@ -14,11 +14,96 @@ using namespace reblur_lanes;
 // History fix (REBLUR_HistoryFix): young pixels get a wide reconstruction; the fast history
 // clamps the slow one (anti-lag).
 
+// Young pixels' reconstruction: the pixel and a sparse 5x5 of taps `stride` apart (wider the
+// younger), weighted by plane distance, normal (and roughness) and the taps' own history.
+void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, const Lane frames,
+                      const Lane c[4], Lane result[4]) {
+    const ReblurView& v = a.view;
+    const bool spec = a.specular;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
+    const Lane stride = ln::max(
+        one, ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc)));
+    const Lane alpha = one / (one + frames);
+    const Lane invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
+    const Lane normalScale = normalWeightScale(p.r, alpha, a.lobeFraction2, 1.0f);
+    Lane sum[4], weightSum = one + frames;
+    for (int ch = 0; ch < 4; ++ch) sum[ch] = c[ch] * weightSum;
+    for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i) {
+            if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
+            const Tap t = tapAt(v, p.px + Lane(float(i)) * stride, p.py + Lane(float(j)) * stride);
+            const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
+            const Mask ok = young & t.inside & (zs > zero);
+            if (!ln::any(ok)) continue;
+            const V3 xs =
+                screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+            const V3 ns{ln::gather(v.normal[0], t.index, t.run),
+                        ln::gather(v.normal[1], t.index, t.run),
+                        ln::gather(v.normal[2], t.index, t.run)};
+            Lane w = geometryWeight(p, xs, invPlane) *
+                     rb::weightExp(normalScale * rb::acosApprox(ln::dot(p.n, ns)));
+            if (spec) {
+                const Lane rs = ln::gather(v.roughness, t.index, t.run);
+                w = w * rb::weightExp((rs - p.r) / (Lane(0.05f) + Lane(0.15f) * p.r));
+            }
+            w = w * (one + ln::gather(a.frames, t.index, t.run));
+            w = ln::select(ok, w, zero);
+            for (int ch = 0; ch < 4; ++ch)
+                sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
+            weightSum = weightSum + w;
+        }
+    for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
+}
+
+// The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
+// "fast history" clamp), more firmly the older the pixel.
+void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int x, int y,
+                 std::size_t o, const Lane frames, Lane result[4]) {
+    const ReblurView& v = a.view;
+    const bool spec = a.specular;
+    const Lane zero(0.0f), one(1.0f);
+    // (signalZ is 0 off surfaces, so it alone says which taps count. Where the whole
+    // window lies in the frame for every lane, its rows are plain loads.)
+    const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
+    const float* mask = v.signalZ[spec ? 1 : 0];
+    Lane m1 = zero, m2 = zero, count = zero;
+    for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i) {
+            Lane ms, f;
+            Mask inside;
+            if (interior) {
+                const std::size_t at =
+                    std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
+                ms = loadAt(mask, at);
+                f = loadAt(a.fast, at);
+                inside = valid;
+            } else {
+                const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
+                ms = ln::gather(mask, t.index, t.run);
+                f = ln::gather(a.fast, t.index, t.run);
+                inside = valid & t.inside;
+            }
+            const Mask ok = inside & (ms > zero);
+            f = ln::select(ok, f, zero);
+            m1 = m1 + f;
+            m2 = m2 + f * f;
+            count = count + ln::select(ok, one, zero);
+        }
+    const Lane n = ln::max(count, one);
+    m1 = m1 / n;
+    const Lane sigma = ln::sqrt(ln::max(m2 / n - m1 * m1, zero));
+    const Lane y0 = rb::luma(result[0], result[1], result[2]);
+    const Lane clamped = ln::clamp(y0, m1 - Lane(2.0f) * sigma, m1 + Lane(2.0f) * sigma);
+    const Lane y1 = rb::lerp(clamped, y0, one / (one + Lane(2.0f) * frames));
+    const Lane scale = (y1 + Lane(rb::kEps)) / (y0 + Lane(rb::kEps));
+    for (int ch = 0; ch < 3; ++ch) result[ch] = ln::select(valid, result[ch] * scale, result[ch]);
+}
+
 void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const ReblurView& v = a.view;
     const std::size_t o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
-    const Lane zero(0.0f), one(1.0f);
     Lane c[4];
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
@@ -26,83 +111,8 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const Lane frames = loadAt(a.frames, o);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));
-    if (ln::any(young)) {
-        const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
-        const Lane stride = ln::max(one, ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) *
-                                                   rb::lerp(Lane(0.5f), one, smc)));
-        const Lane alpha = one / (one + frames);
-        const Lane invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
-        const Lane normalScale = normalWeightScale(p.r, alpha, a.lobeFraction2, 1.0f);
-        Lane sum[4], weightSum = one + frames;
-        for (int ch = 0; ch < 4; ++ch) sum[ch] = c[ch] * weightSum;
-        for (int j = -2; j <= 2; ++j)
-            for (int i = -2; i <= 2; ++i) {
-                if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
-                const Tap t =
-                    tapAt(v, p.px + Lane(float(i)) * stride, p.py + Lane(float(j)) * stride);
-                const Lane zs =
-                    ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
-                const Mask ok = young & t.inside & (zs > zero);
-                if (!ln::any(ok)) continue;
-                const V3 xs =
-                    screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-                const V3 ns{ln::gather(v.normal[0], t.index, t.run),
-                            ln::gather(v.normal[1], t.index, t.run),
-                            ln::gather(v.normal[2], t.index, t.run)};
-                Lane w = geometryWeight(p, xs, invPlane) *
-                         rb::weightExp(normalScale * rb::acosApprox(ln::dot(p.n, ns)));
-                if (spec) {
-                    const Lane rs = ln::gather(v.roughness, t.index, t.run);
-                    w = w * rb::weightExp((rs - p.r) / (Lane(0.05f) + Lane(0.15f) * p.r));
-                }
-                w = w * (one + ln::gather(a.frames, t.index, t.run));
-                w = ln::select(ok, w, zero);
-                for (int ch = 0; ch < 4; ++ch)
-                    sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
-                weightSum = weightSum + w;
-            }
-        for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
-    }
-    if (a.fast && ln::any(valid)) {
-        // The fast history's 5x5 moments bound the slow history's luma (REBLUR's "fast
-        // history" clamp), more firmly the older the pixel.
-        // (signalZ is 0 off surfaces, so it alone says which taps count. Where the whole
-        // window lies in the frame for every lane, its rows are plain loads.)
-        const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
-        const float* mask = v.signalZ[spec ? 1 : 0];
-        Lane m1 = zero, m2 = zero, count = zero;
-        for (int j = -2; j <= 2; ++j)
-            for (int i = -2; i <= 2; ++i) {
-                Lane ms, f;
-                Mask inside;
-                if (interior) {
-                    const std::size_t at =
-                        std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
-                    ms = loadAt(mask, at);
-                    f = loadAt(a.fast, at);
-                    inside = valid;
-                } else {
-                    const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
-                    ms = ln::gather(mask, t.index, t.run);
-                    f = ln::gather(a.fast, t.index, t.run);
-                    inside = valid & t.inside;
-                }
-                const Mask ok = inside & (ms > zero);
-                f = ln::select(ok, f, zero);
-                m1 = m1 + f;
-                m2 = m2 + f * f;
-                count = count + ln::select(ok, one, zero);
-            }
-        const Lane n = ln::max(count, one);
-        m1 = m1 / n;
-        const Lane sigma = ln::sqrt(ln::max(m2 / n - m1 * m1, zero));
-        const Lane y0 = rb::luma(result[0], result[1], result[2]);
-        const Lane clamped = ln::clamp(y0, m1 - Lane(2.0f) * sigma, m1 + Lane(2.0f) * sigma);
-        const Lane y1 = rb::lerp(clamped, y0, one / (one + Lane(2.0f) * frames));
-        const Lane scale = (y1 + Lane(rb::kEps)) / (y0 + Lane(rb::kEps));
-        for (int ch = 0; ch < 3; ++ch)
-            result[ch] = ln::select(valid, result[ch] * scale, result[ch]);
-    }
+    if (ln::any(young)) reconstructYoung(a, p, young, frames, c, result);
+    if (a.fast && ln::any(valid)) clampToFast(a, p, valid, x, y, o, frames, result);
     for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, result[ch]);
 }
 

@@ -44,34 +44,41 @@ SSRT_INLINE V3 prevPointInThisFrame(const ReblurTemporalArgs& a, Lane tx, Lane t
             w.z - Lane(a.cameraDelta[2])};
 }
 
-// Reads the history at previous-frame pixel position (qx, qy). `surface`: the footprint is
-// the surface's own (occlusion by the expected depth zExpected, Catmull-Rom where all 16
-// taps pass); otherwise a virtual-motion read (occlusion by the plane of the centre, whose
-// point in this camera's world frame is xw, bilinear only).
-History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
-                    bool surface, Lane zExpected, V3 xw, Lane threshold) {
-    const ReblurView& v = a.view;
-    const Lane zero(0.0f), one(1.0f);
-    const Lane sx = qx - Lane(0.5f), sy = qy - Lane(0.5f);
-    const Lane x0 = ln::floor(sx), y0 = ln::floor(sy);
-    const Lane fx = sx - x0, fy = sy - y0;
-    History h;
-    // Per tap of the 4x4 footprint (row j, column i): passes the occlusion test.
+// The 4x4 footprint of a history read at previous-frame position (qx, qy): each tap's pixel
+// and whether it passes the occlusion test (only the inner 2x2 for a virtual read).
+struct Footprint {
+    Lane fx, fy;  // the position's fraction within the inner 2x2
     Mask ok[4][4];
     ILane index[4][4];
     ln::Run run[4][4];
     V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
-    Mask allOk = valid;
+    Mask allOk;
+};
+
+// `surface`: the footprint is the surface's own (occlusion by the expected depth zExpected);
+// otherwise a virtual-motion read (occlusion by the plane of the centre, whose point in this
+// camera's world frame is xw).
+SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p, Mask valid,
+                                    Lane qx, Lane qy, bool surface, Lane zExpected, V3 xw,
+                                    Lane threshold) {
+    const ReblurView& v = a.view;
+    const Lane zero(0.0f);
+    const Lane sx = qx - Lane(0.5f), sy = qy - Lane(0.5f);
+    const Lane x0 = ln::floor(sx), y0 = ln::floor(sy);
+    Footprint f;
+    f.fx = sx - x0;
+    f.fy = sy - y0;
+    f.allOk = valid;
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
             const bool inner = (i == 1 || i == 2) && (j == 1 || j == 2);
-            ok[j][i] = Mask(false);
-            index[j][i] = ILane(0);
-            run[j][i] = ln::Run{false, 0};
+            f.ok[j][i] = Mask(false);
+            f.index[j][i] = ILane(0);
+            f.run[j][i] = ln::Run{false, 0};
             if (!surface && !inner) continue;
             const Tap t = tapAt(v, x0 + Lane(float(i - 1) + 0.5f), y0 + Lane(float(j - 1) + 0.5f));
-            index[j][i] = t.index;
-            run[j][i] = t.run;
+            f.index[j][i] = t.index;
+            f.run[j][i] = t.run;
             const Lane zp = ln::gather(a.prevViewZ, t.index, t.run);
             Mask pass = valid & t.inside & (zp > zero);
             if (surface) {
@@ -84,7 +91,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                 const V3 np{ln::gather(a.prevNormal[0], t.index, t.run),
                             ln::gather(a.prevNormal[1], t.index, t.run),
                             ln::gather(a.prevNormal[2], t.index, t.run)};
-                innerNormal[j - 1][i - 1] = np;
+                f.innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
                 if (a.specular) {
@@ -92,32 +99,40 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                     pass = pass & (ln::abs(rp - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
                 }
             }
-            ok[j][i] = pass;
-            allOk = allOk & pass;
+            f.ok[j][i] = pass;
+            f.allOk = f.allOk & pass;
         }
-    // Bilinear over the inner 2x2 with the surviving weights.
+    return f;
+}
+
+// The history bilinear over the inner 2x2 with the surviving weights (and, for a virtual
+// read, the taps' mean normal); the inner taps' signals go to `inner` for the Catmull-Rom.
+SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint& f, bool surface,
+                                    Lane inner[2][2][4]) {
+    const Lane zero(0.0f), one(1.0f);
+    const Lane fx = f.fx, fy = f.fy;
     const Lane bw[2][2] = {{(one - fx) * (one - fy), fx * (one - fy)}, {(one - fx) * fy, fx * fy}};
     Lane wsum = zero, frames = zero, fast = zero;
     Lane bil[4] = {zero, zero, zero, zero};
     V3 normal{zero, zero, zero};
     Lane w[2][2];
-    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-            w[j][i] = ln::select(ok[j + 1][i + 1], bw[j][i], zero);
+            w[j][i] = ln::select(f.ok[j + 1][i + 1], bw[j][i], zero);
             wsum = wsum + w[j][i];
         }
+    History h;
     h.found = wsum > Lane(1.0e-4f);
     const Lane inv = one / ln::select(h.found, wsum, one);
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-            const ILane idx = index[j + 1][i + 1];
-            const ln::Run r = run[j + 1][i + 1];
+            const ILane idx = f.index[j + 1][i + 1];
+            const ln::Run r = f.run[j + 1][i + 1];
             const Lane wn = w[j][i] * inv;
             frames = frames + wn * ln::gather(a.prevFrames, idx, r);
             fast = fast + wn * ln::gather(a.prevFast, idx, r);
             if (!surface)  // (only the virtual read's confidence asks for it)
-                normal = normal + innerNormal[j][i] * wn;
+                normal = normal + f.innerNormal[j][i] * wn;
             for (int ch = 0; ch < 4; ++ch) {
                 inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx, r);
                 bil[ch] = bil[ch] + wn * inner[j][i][ch];
@@ -128,29 +143,45 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     h.fast = fast;
     h.normal = normal;
     for (int ch = 0; ch < 4; ++ch) h.signal[ch] = bil[ch];
-    if (surface && ln::any(allOk)) {
-        // Catmull-Rom where every tap passed (sharper history: less blur over 30 frames).
-        Lane wx[4], wy[4];
-        catmullRom(fx, wx);
-        catmullRom(fy, wy);
-        Lane cr[4] = {zero, zero, zero, zero};
-        for (int j = 0; j < 4; ++j) {
-            Lane row[4] = {zero, zero, zero, zero};
-            for (int i = 0; i < 4; ++i) {
-                const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
-                for (int ch = 0; ch < 4; ++ch) {
-                    const Lane s = isInner ? inner[j - 1][i - 1][ch]
-                                           : ln::gather(a.prevSignal[ch], index[j][i], run[j][i]);
-                    row[ch] = row[ch] + wx[i] * s;
-                }
+    return h;
+}
+
+// Catmull-Rom over the whole 4x4 where every tap passed (sharper history: less blur over 30
+// frames), in place of the bilinear signal.
+SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint& f,
+                                   const Lane inner[2][2][4], History& h) {
+    const Lane zero(0.0f);
+    Lane wx[4], wy[4];
+    catmullRom(f.fx, wx);
+    catmullRom(f.fy, wy);
+    Lane cr[4] = {zero, zero, zero, zero};
+    for (int j = 0; j < 4; ++j) {
+        Lane row[4] = {zero, zero, zero, zero};
+        for (int i = 0; i < 4; ++i) {
+            const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
+            for (int ch = 0; ch < 4; ++ch) {
+                const Lane s = isInner ? inner[j - 1][i - 1][ch]
+                                       : ln::gather(a.prevSignal[ch], f.index[j][i], f.run[j][i]);
+                row[ch] = row[ch] + wx[i] * s;
             }
-            for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
         }
-        // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
-        for (int ch = 0; ch < 3; ++ch) cr[ch] = ln::max(cr[ch], zero);
-        cr[3] = ln::saturate(cr[3]);
-        for (int ch = 0; ch < 4; ++ch) h.signal[ch] = ln::select(allOk, cr[ch], h.signal[ch]);
+        for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
     }
+    // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
+    for (int ch = 0; ch < 3; ++ch) cr[ch] = ln::max(cr[ch], zero);
+    cr[3] = ln::saturate(cr[3]);
+    for (int ch = 0; ch < 4; ++ch) h.signal[ch] = ln::select(f.allOk, cr[ch], h.signal[ch]);
+}
+
+// Reads the history at previous-frame pixel position (qx, qy): testFootprint's occlusion
+// test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass.
+History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
+                    bool surface, Lane zExpected, V3 xw, Lane threshold) {
+    const Lane one(1.0f);
+    const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
+    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
+    History h = bilinearHistory(a, f, surface, inner);
+    if (surface && ln::any(f.allOk)) catmullRomHistory(a, f, inner, h);
     // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
     h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
     return h;
@@ -184,6 +215,89 @@ SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
     return sum * Lane(0.5f);
 }
 
+// Specular history is only as good as the reflection it saw: the surface's history saw it
+// from a direction the parallax angle away, which a lobe narrower than that angle cannot hide
+// (REBLUR's surface-motion confidence: a mirror on a moving camera keeps few frames). Returns
+// the lobe's angle.
+SSRT_INLINE Lane parallaxConfidence(const ReblurTemporalArgs& a, const Centre& p, V3 xw,
+                                    History& h) {
+    const Lane one(1.0f);
+    const Lane lobe = ln::max(ln::atan(rb::lobeTanHalfAngle(p.r, Lane(0.75f))), Lane(kNormalUlp));
+    const V3 from = ln::normalize(xw);
+    const V3 fromBefore =
+        ln::normalize(V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
+                         xw.z + Lane(a.cameraDelta[2])});
+    const Lane parallax = rb::acosApprox(ln::dot(from, fromBefore));
+    Lane conf = ln::saturate(one - parallax / lobe);
+    conf = conf * conf;
+    h.frames = ln::min(h.frames, Lane(a.maxFrames) * conf * conf);
+    return lobe;
+}
+
+// Virtual motion: the reflection seen in a mirror sits the hit distance behind it, along the
+// view ray; reproject that point (NRD's virtual motion, flat-mirror form, leaning to the
+// surface as the lobe widens: the dominant factor) and blend its history into `h`.
+SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int y,
+                               Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
+    const ReblurView& v = a.view;
+    const Lane zero(0.0f), one(1.0f);
+    const Lane dominant = rb::dominantFactor(p.noV, p.r);
+    const Lane hitWorld = hit * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+    // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
+    // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
+    const Lane kappa = ln::max(curvature(v, p, y), zero);
+    const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
+    const V3 dir = ln::normalize(xw);
+    const V3 xv = xw + dir * (virtualDistance * dominant);
+    const V3 pv = screen::worldToView(
+        a.prevViewToWorld, V3{xv.x + Lane(a.cameraDelta[0]), xv.y + Lane(a.cameraDelta[1]),
+                              xv.z + Lane(a.cameraDelta[2])});
+    const Lane depth = zero - pv.z;
+    const Mask front = depth > Lane(1.0e-6f);
+    const Lane safe = ln::select(front, depth, one);
+    const Lane vx = ((pv.x / safe) / Lane(a.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
+    const Lane vy = (one - (pv.y / safe) / Lane(a.prevTanHalfY)) * Lane(0.5f * float(v.height));
+    History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+    // The virtual point is exact for a flat mirror only: where the history's normal turned,
+    // the reflection turned twice as far (REBLUR's normal confidence).
+    const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
+    Lane conf = ln::saturate(one - Lane(2.0f) * turn / lobe);
+    conf = conf * conf;
+    hv.frames = ln::min(hv.frames, Lane(a.maxFrames) * conf * conf);
+    const Lane amount =
+        ln::select(hv.found, rb::smoothstep(0.05f, 0.95f, dominant) * hv.quality, zero);
+    for (int ch = 0; ch < 4; ++ch) h.signal[ch] = rb::lerp(h.signal[ch], hv.signal[ch], amount);
+    h.frames = rb::lerp(h.frames, hv.frames, amount);
+    h.fast = rb::lerp(h.fast, hv.fast, amount);
+    h.found = h.found | hv.found;
+}
+
+// The new sample into the history read: the accumulation, the firefly suppressor and the
+// fast history; stored.
+SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask valid, std::size_t o,
+                            const Lane c[4], Lane lumaNow, const History& h) {
+    const Lane zero(0.0f), one(1.0f);
+    const Lane frames = ln::select(h.found, ln::min(h.frames, Lane(a.maxFrames)), zero);
+    const Lane alpha = one / (one + frames);
+    // Firefly suppressor: a new sample may exceed the history's luma by a shrinking factor.
+    const Lane lumaHistory = rb::luma(h.signal[0], h.signal[1], h.signal[2]);
+    const Lane maxRelative = Lane(a.fireflyScale) + Lane(38.0f) / (frames + one);
+    const Lane k = Lane(3.0f) * frames / (one + Lane(3.0f) * frames);
+    const Lane lumaKept = rb::lerp(lumaNow, ln::min(lumaNow, lumaHistory * maxRelative), k);
+    const Lane scale = (lumaKept + Lane(rb::kEps)) / (lumaNow + Lane(rb::kEps));
+    const Lane smc = a.specular ? rb::specMagicCurve(p.r) : one;
+    const Lane hitAlpha = ln::max(alpha, one / (one + Lane(15.0f) * smc));
+    Lane out[4];
+    for (int ch = 0; ch < 3; ++ch) out[ch] = rb::lerp(h.signal[ch], c[ch] * scale, alpha);
+    out[3] = rb::lerp(h.signal[3], c[3], hitAlpha);
+    const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
+    const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
+    const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
+    for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, ln::select(valid, out[ch], c[ch]));
+    ln::store(a.outFrames + o, ln::select(valid, frames, zero));
+    ln::store(a.outFast + o, ln::select(valid, fast, lumaNow));
+}
+
 void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     const ReblurView& v = a.view;
     const std::size_t o = std::size_t(y) * v.stride + x;
@@ -193,14 +307,13 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
-    const auto store = [&](const Lane s[4], Lane frames, Lane fast) {
-        for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, s[ch]);
-        ln::store(a.outFrames + o, frames);
-        ln::store(a.outFast + o, fast);
-    };
     const Lane lumaNow = rb::luma(c[0], c[1], c[2]);
-    if (!a.prevViewZ || !ln::any(valid)) return store(c, zero, lumaNow);
-
+    if (!a.prevViewZ || !ln::any(valid)) {
+        for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, c[ch]);
+        ln::store(a.outFrames + o, zero);
+        ln::store(a.outFast + o, lumaNow);
+        return;
+    }
     // Surface motion: where the pixel was, and the depth the previous camera saw it at (the
     // world assumed still, as NRD with 2D motion vectors; a moving object's history then
     // fails the test and restarts, which never ghosts).
@@ -215,77 +328,9 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         Lane(v.frustum) * p.z *
         ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
     History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
-
-    // Specular history is only as good as the reflection it saw: the surface's history saw
-    // it from a direction the parallax angle away, which a lobe narrower than that angle
-    // cannot hide (REBLUR's surface-motion confidence: a mirror on a moving camera keeps
-    // few frames).
-    Lane lobe = one;
-    if (spec) {
-        lobe = ln::max(ln::atan(rb::lobeTanHalfAngle(p.r, Lane(0.75f))), Lane(kNormalUlp));
-        const V3 from = ln::normalize(xw);
-        const V3 fromBefore =
-            ln::normalize(V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
-                             xw.z + Lane(a.cameraDelta[2])});
-        const Lane parallax = rb::acosApprox(ln::dot(from, fromBefore));
-        Lane conf = ln::saturate(one - parallax / lobe);
-        conf = conf * conf;
-        h.frames = ln::min(h.frames, Lane(a.maxFrames) * conf * conf);
-    }
-
-    if (spec && a.virtualMotion) {
-        // Virtual motion: the reflection seen in a mirror sits the hit distance behind it,
-        // along the view ray; reproject that point (NRD's virtual motion, flat-mirror form,
-        // leaning to the surface as the lobe widens: the dominant factor).
-        const Lane dominant = rb::dominantFactor(p.noV, p.r);
-        const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
-        // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
-        // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
-        const Lane kappa = ln::max(curvature(v, p, y), zero);
-        const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
-        const V3 dir = ln::normalize(xw);
-        const V3 xv = xw + dir * (virtualDistance * dominant);
-        const V3 pv = screen::worldToView(
-            a.prevViewToWorld, V3{xv.x + Lane(a.cameraDelta[0]), xv.y + Lane(a.cameraDelta[1]),
-                                  xv.z + Lane(a.cameraDelta[2])});
-        const Lane depth = zero - pv.z;
-        const Mask front = depth > Lane(1.0e-6f);
-        const Lane safe = ln::select(front, depth, one);
-        const Lane vx = ((pv.x / safe) / Lane(a.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
-        const Lane vy = (one - (pv.y / safe) / Lane(a.prevTanHalfY)) * Lane(0.5f * float(v.height));
-        History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
-        // The virtual point is exact for a flat mirror only: where the history's normal
-        // turned, the reflection turned twice as far (REBLUR's normal confidence).
-        const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
-        Lane conf = ln::saturate(one - Lane(2.0f) * turn / lobe);
-        conf = conf * conf;
-        hv.frames = ln::min(hv.frames, Lane(a.maxFrames) * conf * conf);
-        const Lane amount =
-            ln::select(hv.found, rb::smoothstep(0.05f, 0.95f, dominant) * hv.quality, zero);
-        for (int ch = 0; ch < 4; ++ch) h.signal[ch] = rb::lerp(h.signal[ch], hv.signal[ch], amount);
-        h.frames = rb::lerp(h.frames, hv.frames, amount);
-        h.fast = rb::lerp(h.fast, hv.fast, amount);
-        h.found = h.found | hv.found;
-    }
-
-    const Lane frames = ln::select(h.found, ln::min(h.frames, Lane(a.maxFrames)), zero);
-    const Lane alpha = one / (one + frames);
-    // Firefly suppressor: a new sample may exceed the history's luma by a shrinking factor.
-    const Lane lumaHistory = rb::luma(h.signal[0], h.signal[1], h.signal[2]);
-    const Lane maxRelative = Lane(a.fireflyScale) + Lane(38.0f) / (frames + one);
-    const Lane k = Lane(3.0f) * frames / (one + Lane(3.0f) * frames);
-    const Lane lumaKept = rb::lerp(lumaNow, ln::min(lumaNow, lumaHistory * maxRelative), k);
-    const Lane scale = (lumaKept + Lane(rb::kEps)) / (lumaNow + Lane(rb::kEps));
-    const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
-    const Lane hitAlpha = ln::max(alpha, one / (one + Lane(15.0f) * smc));
-    Lane out[4];
-    for (int ch = 0; ch < 3; ++ch) out[ch] = rb::lerp(h.signal[ch], c[ch] * scale, alpha);
-    out[3] = rb::lerp(h.signal[3], c[3], hitAlpha);
-    const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
-    const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
-    const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
-    for (int ch = 0; ch < 4; ++ch) out[ch] = ln::select(valid, out[ch], c[ch]);
-    store(out, ln::select(valid, frames, zero), ln::select(valid, fast, lumaNow));
+    const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
+    if (spec && a.virtualMotion) virtualMotion(a, p, valid, y, c[3], xw, threshold, lobe, h);
+    accumulate(a, p, valid, o, c, lumaNow, h);
 }
 
 }  // namespace
