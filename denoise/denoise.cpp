@@ -319,33 +319,47 @@ void commitHistory(Context& c) {
     h.valid = true;
 }
 
+// A scratch plane sized for the signals present (`on`), from the pool where there is one.
+void keepScratch(bool on, PlaneF& p, int w, int h, PlanePool* pool) {
+    if (!pool) {
+        if (on) p.ensureSize(w, h);
+        else p = PlaneF();
+    } else if (on) {
+        pool->take(p, w, h);
+    } else {
+        pool->give(p);
+    }
+}
+
+// The scratch the passes after the front end write: the ping-pong pair, the accumulation
+// speeds and the fast histories (taken once the front end has read the signals).
+void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool specular,
+                       PlanePool* pool) {
+    for (int i = 0; i < 4; ++i) {
+        keepScratch(diffuse || specular, sc.ping[i], w, h, pool);
+        keepScratch(diffuse || specular, sc.pong[i], w, h, pool);
+    }
+    for (int i = 0; i < 2; ++i) {
+        const bool on = i == 0 ? diffuse : specular;
+        keepScratch(on, sc.frames[i], w, h, pool);
+        keepScratch(on, sc.fast[i], w, h, pool);
+    }
+}
+
+// The front end's scratch (the noisy signals and where they exist), the outputs and the
+// history.
 void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
                  bool diffuse, bool specular, bool lengths, const TileGrid& grid, PlanePool* pool) {
     const auto keepIf = [&](bool on, PlaneF& p) {
         if (on) p.ensureSize(w, h);
         else p = PlaneF();
     };
-    // The scratch's planes from the pool where there is one.
-    const auto keepScratchIf = [&](bool on, PlaneF& p) {
-        if (!pool) keepIf(on, p);
-        else if (on) pool->take(p, w, h);
-        else pool->give(p);
-    };
     // Only the signals present.
     for (int i = 0; i < 4; ++i) {
-        keepScratchIf(diffuse, sc.noisyDiffuse[i]);
-        keepScratchIf(specular, sc.noisySpecular[i]);
+        keepScratch(diffuse, sc.noisyDiffuse[i], w, h, pool);
+        keepScratch(specular, sc.noisySpecular[i], w, h, pool);
     }
-    for (int i = 0; i < 4; ++i) {
-        keepScratchIf(diffuse || specular, sc.ping[i]);
-        keepScratchIf(diffuse || specular, sc.pong[i]);
-    }
-    for (int i = 0; i < 2; ++i) {
-        const bool on = i == 0 ? diffuse : specular;
-        keepScratchIf(on, sc.signalZ[i]);
-        keepScratchIf(on, sc.frames[i]);
-        keepScratchIf(on, sc.fast[i]);
-    }
+    for (int i = 0; i < 2; ++i) keepScratch(i == 0 ? diffuse : specular, sc.signalZ[i], w, h, pool);
     sc.tiles.assign(std::size_t(grid.count()), 0);
     // The outputs of a signal not given are left as they are (the caller may fill them).
     for (int ch = 0; ch < 3; ++ch) {
@@ -393,6 +407,8 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
               grid,     makeView(in, settings, scratch, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
+    if (in.signalsRead) in.signalsRead();
+    ensurePassScratch(w, h, scratch, diffuse, specular, in.pool);
     if (diffuse)
         denoiseSignal(c,
                       {false,

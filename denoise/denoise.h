@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,10 @@ struct DenoiseInputs {
     // Where the scratch's planes come from, and go back to after the call (null: the scratch
     // keeps its own between calls).
     PlanePool* pool = nullptr;
+    // Called once the front end has read the signals above, before the scratch planes the
+    // later passes write are taken from the pool: a caller whose signal planes are pooled
+    // gives them back here, and the passes reuse their memory (optional).
+    std::function<void()> signalsRead;
 };
 
 // The denoiser's output, of the frame's size.

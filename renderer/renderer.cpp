@@ -100,8 +100,8 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     const bool fullSsgi =
         s.trace.ssgi && (s.debugPlanes || !denoise || s.trace.ssgiLayout != TraceLayout::Half);
     keepIf(s.idPlanes, f.ids);
-    keepTraced(s.trace.ssr, f.trace.ssr);
-    keepTraced(fullSsgi, f.trace.ssgi);
+    keepTraced(s.trace.ssr && !tracedSignalsPooled(s), f.trace.ssr);
+    keepTraced(fullSsgi && !tracedSignalsPooled(s), f.trace.ssgi);
     // The direct pass's parts that a later pass reads: SSGI's light replaces the sky's diffuse
     // in the composite, SSGI reads the hit light, and nothing reads the emission of a scene
     // where nothing emits.

@@ -127,7 +127,8 @@ inline constexpr std::array kRenderOwnFields = {
         "debugPlanes", kCliShot,
         "The planes made only to be looked at (EXR layers): march steps, the undenoised and "
         "the denoised full-resolution SSGI when the diffuse is denoised at half resolution, "
-        "SSGI's full-resolution hit light when it traces at half, history lengths"),
+        "SSGI's full-resolution hit light when it traces at half, and with the denoiser on "
+        "SSR's and SSGI's own planes, history lengths"),
 };
 // Every member is in the table but two: isa (a run-time choice of kernels, "auto" or
 // $SSRT_ISA, parsed by core/isa.h) and trace (its own table).

@@ -131,6 +131,15 @@ struct SsrSample {
     }
 };
 
+// A traced signal's planes from the pool (tracedSignalsPooled; the denoiser gives them back
+// once its front end has read them), its march steps aside: only looked at, not made then.
+template <class Group>
+void takeSignal(PlanePool& pool, Group& g, int w, int h) {
+    g.forEachPlane([&](std::string_view, PlaneF& p) {
+        if (&p != &g.steps) pool.take(p, w, h);
+    });
+}
+
 // Whether the trace runs tile by tile (trace/tile_chain.h): unless the observer (the truth's
 // ray check) asks for the frame's rays and march results.
 bool tiled(const TraceContext& c) { return !(c.args.observer && *c.args.observer); }
@@ -212,6 +221,8 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     // The batches and the resolve's scratch come from the pool and go back to it once the
     // checkerboard fill has read the rays' pdf (the denoiser takes them next).
     takeBatches(c, frame, rs.mode == SsrResolveMode::Reuse);
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
+        takeSignal(sc.pool, planes, frame.width, frame.height);
     swapSsrOutput(planes, sc.ssr);
     sc.pool.take(sc.ssr, frame.width, frame.height);
     if (tiled(c)) ssrTileSamples(q, frame, st, times);
@@ -322,6 +333,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     in.camera = hf.camera;
     in.viewZ = &hf.viewZ;
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
+        takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
     const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
                             &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
@@ -413,6 +426,8 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
     takeBatches(c, frame, false);
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
+        takeSignal(sc.pool, planes, frame.width, frame.height);
     const SsgiSample q{c, c.camera, c.rayGen, c.march, c.hiz, in, hp, cut, checker, planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times, !tiled(c), frame));
@@ -461,6 +476,8 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     in.motion[0] = &hf.guideMotion[0];
     in.motion[1] = &hf.guideMotion[1];
     in.diffuseHitDistance = &ht.resolved.hitDistance;
+    if (tracedSignalsPooled(c.args.settings))
+        in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
     DenoiseOutputs& half = ht.denoised.out;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
@@ -511,6 +528,11 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
+    if (tracedSignalsPooled(c.args.settings))
+        in.signalsRead = [&frame] {
+            frame.scratch.pool.give(frame.trace.ssr);
+            frame.scratch.pool.give(frame.trace.ssgi);
+        };
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     if (in.diffuse[0] || in.ssr[0])
@@ -581,9 +603,9 @@ void compositePass(const TraceContext& c, Frame& frame) {
                 ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
             ci.albedo[ch] = &g.albedo[ch];
         }
-        if (ts.ssr) {
-            ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+        if (ts.ssr) {  // the denoiser's output, or SSR's own
             if (ts.denoise.enabled) ci.specular[ch] = &d.specular[ch];
+            else ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
         }
     }
     if (ts.ssgi) {
@@ -591,7 +613,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
         ci.metallic = &g.metallic;
         if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     }
-    if (ts.ssr) ci.ssrOpacity = &frame.trace.ssr.opacity;
+    if (ts.ssr && !ts.denoise.enabled) ci.ssrOpacity = &frame.trace.ssr.opacity;
     ci.exposure = c.args.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.
@@ -601,6 +623,10 @@ void compositePass(const TraceContext& c, Frame& frame) {
 }
 
 }  // namespace
+
+bool tracedSignalsPooled(const RenderSettings& s) {
+    return s.trace.denoise.enabled && !s.debugPlanes;
+}
 
 bool hitLightAtHalf(const RenderSettings& s) {
     const TraceSettings& t = s.trace;

@@ -42,6 +42,12 @@ bool diffuseUpsampledInComposite(const RenderSettings& settings);
 // feedback that adds to the full-resolution plane, and without a file to show it.
 bool hitLightAtHalf(const RenderSettings& settings);
 
+// Whether the traced signals the denoiser reads (frame.trace.ssr and .ssgi, the half frame's
+// SSGI) come from the pool and go back to it once the denoiser's front end has read them, for
+// its later passes to reuse: with the denoiser on (the composite then reads its output
+// instead) and no file to show them.
+bool tracedSignalsPooled(const RenderSettings& settings);
+
 // Whether the next frame reads what this one commits (SSR hits with HitRadiance::Reprojected,
 // SSGI with ssgiFeedback). The denoiser's history is its own (denoise/denoise.h).
 bool readsHistory(const TraceSettings& settings);

@@ -169,11 +169,14 @@ TEST_CASE("frame: without the debug planes the others keep their bits, along a s
         Renderer(tiny()).render(scene, FrameInput::still(scene, i), h1, with);
         Renderer(plain).render(scene, FrameInput::still(scene, i), h2, without);
         // (The denoised diffuse at full resolution too: without a file to show it, the
-        // composite upsamples the half frame's tile by tile, diffuseUpsampledInComposite.)
-        checkWithoutDebugPlanes(with, without,
-                                {"ssgi.R", "ssgi.G", "ssgi.B", "ssgiHit", "ssgiHitDistance",
-                                 "ssgiSteps", "ssrSteps", "diffuseFrames", "specularFrames",
-                                 "denoisedDiffuse.R", "denoisedDiffuse.G", "denoisedDiffuse.B"});
+        // composite upsamples the half frame's tile by tile, diffuseUpsampledInComposite; and
+        // SSR's planes, pooled once the denoiser has read them, tracedSignalsPooled.)
+        checkWithoutDebugPlanes(
+            with, without,
+            {"ssgi.R", "ssgi.G", "ssgi.B", "ssgiHit", "ssgiHitDistance", "ssgiSteps", "ssrSteps",
+             "diffuseFrames", "specularFrames", "denoisedDiffuse.R", "denoisedDiffuse.G",
+             "denoisedDiffuse.B", "ssr.R", "ssr.G", "ssr.B", "ssrOpacity", "ssrHit",
+             "ssrHitDistance"});
     }
 }
 

@@ -288,10 +288,11 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
 }
 
 // Without a file to show the full-resolution planes (renderer/trace_pass.h): the direct pass
-// writes SSGI's hit light straight into the half frame (hitLightAtHalf), and the denoised
+// writes SSGI's hit light straight into the half frame (hitLightAtHalf), the denoised
 // half-resolution diffuse is brought to the frame inside the composite, tile by tile
-// (diffuseUpsampledInComposite). The half frame and the image are the same bits either way,
-// over the four chosen-pixel offsets, and the frame's planes are not made.
+// (diffuseUpsampledInComposite), and the traced signals are pooled (tracedSignalsPooled). The
+// half frame and the image are the same bits either way, over the four chosen-pixel offsets,
+// and the frame's planes are not made.
 TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the same image") {
     const Scene scene = makeBuiltinScene("corridor");
     RenderSettings rs = smallTraced();
@@ -324,5 +325,10 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
         }
         CHECK(a.trace.denoise.out.diffuse[0].empty());
         CHECK_FALSE(b.trace.denoise.out.diffuse[0].empty());
+        // SSR's planes went back to the pool once the denoiser read them, and its passes
+        // reused them: the pool is no larger for holding them (tracedSignalsPooled).
+        CHECK(a.trace.ssr.color[0].empty());
+        CHECK_FALSE(b.trace.ssr.color[0].empty());
+        CHECK(a.scratch.pool.bytes() == b.scratch.pool.bytes());
     }
 }
