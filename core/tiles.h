@@ -23,6 +23,19 @@ struct TileRect {
             y0 + kTileSize < height ? y0 + kTileSize : height};
 }
 
+// Where planes smaller than the frame lie in it: their element (0, 0) is the frame's pixel
+// (x0, y0). A stage run on one tile writes or reads such planes of one tile's size
+// (trace/trace_types.h's batches, the composite's tile of SSGI light).
+struct BatchCorner {
+    int x0 = 0, y0 = 0;
+};
+
+// Whether planes of width x height placed at corner `c` hold the tile `r`'s pixels.
+[[gnu::always_inline]] constexpr bool holdsTile(BatchCorner c, int width, int height,
+                                                const TileRect& r) {
+    return r.x0 >= c.x0 && r.y0 >= c.y0 && r.x1 - c.x0 <= width && r.y1 - c.y0 <= height;
+}
+
 struct TileGrid {
     int width = 0, height = 0;  // image size in pixels
     int tilesX = 0, tilesY = 0;

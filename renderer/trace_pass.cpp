@@ -159,6 +159,26 @@ void takeBatches(const TraceContext& c, Frame& frame, bool hits) {
     if (hits) sc.pool.take(sc.march.hit, w, h);
 }
 
+// One sample's tile chain (trace/tile_chain.h): on each tile's batches the resolve's
+// per-pixel pass, then the hit statistics. Adds the march's counters and the stages' times;
+// returns the rays' counters.
+template <class Resolve>
+RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const RayMarcher& march,
+                       const Resolve& resolveTile, const HitStatsAccumulator& hitStats,
+                       TraceStats& st, StageTimes& times) {
+    const TileChainStats r = runTileChain({rays, march,
+                                           [&](int t, const RayBatch& b, const MarchResult& m) {
+                                               resolveTile(t, b, m);
+                                               hitStats.tile(t, b, m);
+                                           }},
+                                          c.threads());
+    st.march.add(r.march);
+    times.rays += r.raysMs;
+    times.march += r.marchMs;
+    times.resolve += r.consumeMs;
+    return r.rays;
+}
+
 // Stage by stage over the frame, for the observer, which reads the frame's batches.
 void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
@@ -186,17 +206,10 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
                                c.camera, c.march, c.hiz, c.threads());
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march);
         const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
-        const TileChainStats r = runTileChain({rays, march,
-                                               [&](int t, const RayBatch& b, const MarchResult& m) {
-                                                   resolve.hitTile(t, b, m);
-                                                   hitStats.tile(t, b, m);
-                                               }},
-                                              c.threads());
-        st.rays.add(r.rays);
-        st.march.add(r.march);
-        times.rays += r.raysMs;
-        times.march += r.marchMs;
-        times.resolve += r.consumeMs;
+        const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
+            resolve.hitTile(t, b, m);
+        };
+        st.rays.add(traceTiles(c, rays, march, resolveTile, hitStats, st, times));
         addTime(times.resolve, [&] { resolve.resolveFrame(c.threads()); });
     }
 }
@@ -284,17 +297,10 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
     const HitStatsAccumulator hitStats(isa, q.camera, q.hp, s, spp);
-    const TileChainStats r = runTileChain({gen, march,
-                                           [&](int t, const RayBatch& b, const MarchResult& m) {
-                                               resolve.tile(t, b, m);
-                                               hitStats.tile(t, b, m);
-                                           }},
-                                          c.threads());
-    st.march.add(r.march);
-    times.rays += r.raysMs;
-    times.march += r.marchMs;
-    times.resolve += r.consumeMs;
-    return r.rays;
+    const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
+        resolve.tile(t, b, m);
+    };
+    return traceTiles(c, gen, march, resolveTile, hitStats, st, times);
 }
 
 // SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a

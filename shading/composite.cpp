@@ -71,7 +71,7 @@ void Compositor::tile(int tile, const PlaneF* const ssgi[3], int x0, int y0) con
     PlaneCheck need("composite", w, h);
     CompositeArgs a = args_;
     for (int c = 0; c < 3; ++c) a.ssgi[c] = need(ssgi[c], "ssgi");
-    if (r.x0 < x0 || r.y0 < y0 || r.x1 - x0 > w || r.y1 - y0 > h)
+    if (!holdsTile({x0, y0}, w, h, r))
         throw std::invalid_argument("composite: the SSGI planes do not hold the tile");
     a.ssgiStride = need.stride();
     a.ssgiX0 = x0;

@@ -40,8 +40,7 @@ void HitStatsAccumulator::tile(int tile, const RayBatch& rays, const MarchResult
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = march.corner;
     const int w = march.hit.width(), h = march.hit.height();
-    if (rays.corner.x0 != c.x0 || rays.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
-        r.x1 - c.x0 > w || r.y1 - c.y0 > h)
+    if (!sameCornerHolds(rays, march, r))
         throw std::invalid_argument("accumulateHitStats: the batches do not hold the tile");
     HitStatsArgs a = args_;
     PlaneCheck need("accumulateHitStats", w, h);

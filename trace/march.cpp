@@ -217,18 +217,10 @@ RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, 
     if (marcher == Marcher::Dda) ddaJitter_ = settings.ddaJitter;
 }
 
-namespace {
-
-// Whether a batch (corner and planes) holds the tile's pixels.
-bool holds(BatchCorner c, const PlaneF& p, const TileRect& r) {
-    return r.x0 >= c.x0 && r.y0 >= c.y0 && r.x1 - c.x0 <= p.width() && r.y1 - c.y0 <= p.height();
-}
-
-}  // namespace
-
 MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result) const {
     const TileRect rect = grid_.rect(tile);
-    if (!holds(rays.corner, rays.ox, rect) || !holds(result.corner, result.hit, rect))
+    if (!holdsTile(rays.corner, rays.ox.width(), rays.ox.height(), rect) ||
+        !holdsTile(result.corner, result.hit.width(), result.hit.height(), rect))
         throw std::invalid_argument("marchRays: a batch does not hold the tile");
     const int w = proto_.width;
     const BatchCorner in = rays.corner, out = result.corner;

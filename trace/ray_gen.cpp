@@ -117,8 +117,7 @@ RayGenerator RayGenerator::diffuse(Isa isa, uint32_t frame, uint32_t sample,
 RayGenStats RayGenerator::tile(int tile, RayBatch& rays) const {
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
-    if (r.x0 < c.x0 || r.y0 < c.y0 || r.x1 - c.x0 > rays.ox.width() ||
-        r.y1 - c.y0 > rays.ox.height())
+    if (!holdsTile(c, rays.ox.width(), rays.ox.height(), r))
         throw std::invalid_argument("ray generation: the batch does not hold the tile");
     RayGenArgs a = args_;
     // (The kernel's outputs in the batch's table order, RayGenArgs::out.)

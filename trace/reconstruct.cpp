@@ -127,7 +127,7 @@ uint64_t HalfUpsampler::tile(int tile, const ReconstructPlanes& out, int x0, int
         if (!any) any = p;
     if (!any) throw std::invalid_argument("reconstruction: no output");
     const int w = any->width(), h = any->height();
-    if (r.x0 < x0 || r.y0 < y0 || r.x1 - x0 > w || r.y1 - y0 > h)
+    if (!holdsTile({x0, y0}, w, h, r))
         throw std::invalid_argument("reconstruction: the outputs do not hold the tile");
     PlaneCheck need("reconstruction", w, h);
     ReconstructArgs a = args_;

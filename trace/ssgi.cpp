@@ -77,8 +77,7 @@ void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
     const int bw = rays.pdf.width(), bh = rays.pdf.height();
-    if (march.corner.x0 != c.x0 || march.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
-        r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
+    if (!sameCornerHolds(rays, march, r))
         throw std::invalid_argument("resolveSsgi: the batches do not hold the tile");
     SsgiArgs a = args_;
     PlaneCheck need("resolveSsgi", bw, bh);

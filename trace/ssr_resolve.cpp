@@ -94,11 +94,11 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     // What pass 2 reads around each pixel (the hits only for the reuse).
     frameRays.corner = {};
     frameRays.pdf.ensureSize(w, h);
-    a.framePdf = need.output(frameRays.pdf, "ray pdf");
+    a.framePdf = pdfTarget_ = need.output(frameRays.pdf, "ray pdf");
     if (a.reuse) {
         frameMarch.corner = {};
         frameMarch.hit.ensureSize(w, h);
-        a.frameHit = need.output(frameMarch.hit, "march hit");
+        a.frameHit = hitTarget_ = need.output(frameMarch.hit, "march hit");
     }
     a.stride = need.stride();
     a.sample = sample;
@@ -111,8 +111,7 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
     const int bw = rays.pdf.width(), bh = rays.pdf.height();
-    if (march.corner.x0 != c.x0 || march.corner.y0 != c.y0 || r.x0 < c.x0 || r.y0 < c.y0 ||
-        r.x1 - c.x0 > bw || r.y1 - c.y0 > bh)
+    if (!sameCornerHolds(rays, march, r))
         throw std::invalid_argument("resolveSsr: the batches do not hold the tile");
     SsrResolveArgs a = args_;
     PlaneCheck need("resolveSsr", bw, bh);
@@ -127,8 +126,8 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     a.rayX0 = c.x0;
     a.rayY0 = c.y0;
     // A tile's batch: its pdf and hits go to the frame's, for pass 2.
-    if (&rays != frameRays_) a.copyPdf = const_cast<float*>(a.framePdf);
-    if (&march != frameMarch_ && a.reuse) a.copyHit = const_cast<float*>(a.frameHit);
+    if (&rays != frameRays_) a.copyPdf = pdfTarget_;
+    if (&march != frameMarch_) a.copyHit = hitTarget_;
     hitKernel_(a, tile);
 }
 

@@ -134,6 +134,9 @@ private:
     TileGrid grid_;
     const RayBatch* frameRays_;
     const MarchResult* frameMarch_;
+    // Where a tile's pdf and hits go for pass 2: the frame's planes' rows (null: not copied).
+    float* pdfTarget_ = nullptr;
+    float* hitTarget_ = nullptr;
     decltype(&isa_scalar::ssrHitTile) hitKernel_ = nullptr;
     decltype(&isa_scalar::ssrResolveTile) resolveKernel_ = nullptr;
 };

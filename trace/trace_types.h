@@ -10,6 +10,7 @@
 #include "core/camera.h"
 #include "core/image.h"
 #include "core/plane_table.h"
+#include "core/tiles.h"
 
 namespace ssrt {
 
@@ -26,13 +27,10 @@ struct RaySeed {
 // pdf > 0 as "a ray".
 inline constexpr float kPdfLayoutCut = -1.0f;
 
-// Where a batch lies in the frame: its element (0, 0) is the frame's pixel (x0, y0). A batch of
-// the whole frame has corner (0, 0); a tile's batch (a trace pass's tile chain,
-// trace/tile_chain.h) has planes of one tile's size and the tile's corner, so that its rays and
-// march results stay in the core's cache between the stages.
-struct BatchCorner {
-    int x0 = 0, y0 = 0;
-};
+// A batch lies in the frame at its `corner` (core/tiles.h, BatchCorner). A batch of the whole
+// frame has corner (0, 0); a tile's batch (a trace pass's tile chain, trace/tile_chain.h) has
+// planes of one tile's size and the tile's corner, so that its rays and march results stay in
+// the core's cache between the stages.
 
 struct RayBatch : PlaneTable<RayBatch> {
     BatchCorner corner;
@@ -88,5 +86,14 @@ struct MarchResult : PlaneTable<MarchResult> {
         fn("march.hitZ", g.hitZ), fn("march.steps", g.steps), fn("march.cause", g.cause);
     }
 };
+
+// Whether a tile's rays and their march results share one corner and hold the tile: what the
+// stages after the march check.
+inline bool sameCornerHolds(const RayBatch& rays, const MarchResult& march, const TileRect& r) {
+    const BatchCorner c = rays.corner;
+    return c.x0 == march.corner.x0 && c.y0 == march.corner.y0 &&
+           holdsTile(c, rays.pdf.width(), rays.pdf.height(), r) &&
+           holdsTile(c, march.hit.width(), march.hit.height(), r);
+}
 
 }  // namespace ssrt
