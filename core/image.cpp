@@ -1,7 +1,5 @@
 #include "core/image.h"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -10,58 +8,34 @@
 #include <new>
 #include <stdexcept>
 
+#include "core/plane_memory.h"
+
 namespace ssrt {
 
 namespace {
 
-// Planes of 2 MiB or more ask the kernel for transparent huge pages (Linux's "madvise" mode,
-// Debian's default) over the 2 MiB-aligned part of their memory: their first touch then
-// faults (and the kernel zeroes) 2 MiB at a time instead of 4 KiB, the cost that dominated a
-// single frame's passes. But within a huge page the virtual offset is the physical one, so
-// planes at the same offset modulo the cache's set span (64 KiB for a 1 MiB 16-way L2) put a
-// pixel's values into one set: a pass that reads a dozen planes at one pixel evicts its own
-// lines (measured: a sequence's frame 226 -> 263 ms, SSR's march 27 -> 42 ms). With 4 KiB
-// pages the physical pages scatter them. So each large plane also starts a different number
-// of pages and cache lines into its block (kStagger). A kernel without huge pages ignores the
-// advice; no pixel depends on either.
-constexpr std::size_t kHugePage = std::size_t(2) << 20;
-// Each large plane starts kStagger bytes further into its block than the one before, cycling
-// through kStaggers offsets.
+// Large planes start at different cache sets. Within a huge page (core/plane_memory.h) the
+// virtual offset is the physical one, so planes at the same offset modulo the cache's set
+// span (64 KiB for a 1 MiB 16-way L2) put a pixel's values into one set: a pass that reads a
+// dozen planes at one pixel evicts its own lines (measured: a sequence's frame 226 -> 263
+// ms, SSR's march 27 -> 42 ms). With 4 KiB pages the physical pages scatter them. So each
+// large plane starts a different number of pages and cache lines into its block, cycling
+// through kStaggers offsets. No pixel depends on it.
+constexpr std::size_t kLargePlane = std::size_t(2) << 20;
 constexpr std::size_t kStagger = 4096 + kRowAlignment, kStaggers = 16;
 std::atomic<std::size_t> nextStagger{0};
 
 void* allocatePlane(std::size_t bytes) {
-    const bool large = bytes >= kHugePage;
-    // (The shift, kept just before the data for the free, is at least a row's alignment.)
-    const std::size_t shift =
-        kRowAlignment + (large ? nextStagger.fetch_add(1) % kStaggers * kStagger : 0);
-    auto* base = static_cast<unsigned char*>(std::aligned_alloc(kRowAlignment, bytes + shift));
-    if (!base) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-    if (large) {
-        const auto at = reinterpret_cast<std::uintptr_t>(base);
-        const auto begin = (at + kHugePage - 1) & ~(kHugePage - 1);
-        const auto end = (at + shift + bytes) & ~(kHugePage - 1);
-        if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-    }
-#endif
-    unsigned char* data = base + shift;
-    std::memcpy(data - sizeof(std::size_t), &shift, sizeof(shift));
-    return data;
-}
-
-void freePlane(void* p) {
-    if (!p) return;
-    std::size_t shift = 0;
-    std::memcpy(&shift, static_cast<unsigned char*>(p) - sizeof(shift), sizeof(shift));
-    std::free(static_cast<unsigned char*>(p) - shift);
+    const std::size_t stagger =
+        bytes >= kLargePlane ? nextStagger.fetch_add(1) % kStaggers * kStagger : 0;
+    return allocatePlaneMemory(bytes, stagger);
 }
 
 }  // namespace
 
 template <class T>
 void Plane<T>::Free::operator()(T* p) const {
-    freePlane(p);
+    freePlaneMemory(p);
 }
 
 template <class T>

@@ -1,0 +1,31 @@
+// Where planes' memory comes from: one range of address space advised for transparent huge
+// pages, handed out best fit, with freed blocks merged with their free neighbours.
+//
+// Why not malloc: a frame's first touch of fresh memory was a single image's largest cost
+// (page faults and the kernel zeroing pages). Huge pages fault 2 MiB at a time, but the
+// kernel grants one only where an aligned 2 MiB stretch lies inside one advised mapping, and
+// malloc gives each large plane a mapping of its own: at 1280x720 (3.7 MB float planes, 0.9
+// MB half planes) only 37 % of a frame's memory got huge pages. In one advised range, planes
+// side by side share huge pages across their borders.
+#pragma once
+
+#include <cstddef>
+
+namespace ssrt {
+
+// At least `bytes`, starting `stagger` bytes (a multiple of 64) past a 64-byte boundary, so
+// that large planes can start at different cache sets (core/image.cpp). Throws
+// std::bad_alloc.
+void* allocatePlaneMemory(std::size_t bytes, std::size_t stagger);
+void freePlaneMemory(void* p);
+
+// What the range holds now, for tests: the bytes handed out and the free blocks' count
+// (0 and 0 where planes come from malloc: a sanitizer's build, or no range could be reserved).
+struct PlaneMemoryUse {
+    std::size_t bytesInUse = 0;
+    std::size_t freeBlocks = 0;
+    bool fromRange = false;
+};
+PlaneMemoryUse planeMemoryUse();
+
+}  // namespace ssrt
