@@ -19,7 +19,6 @@ DenoiseSettings halfResolutionDiffuse(const DenoiseSettings& full) {
         full.diffusePrepassRadius > 0.0f ? 0.5f * full.diffusePrepassRadius : 1.5f;
     s.minBlurRadius = 0.5f * full.minBlurRadius;
     s.maxBlurRadius = 0.25f * full.maxBlurRadius;
-    s.freshFrameBlurRadius = 0.25f * full.freshFrameBlurRadius;
     s.historyFixStride = std::max(1, full.historyFixStride / 2);
     return s;
 }
@@ -401,13 +400,11 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
     ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
-    DenoiseSettings frameSettings = settings;
-    if (!readHistory) frameSettings.maxBlurRadius = settings.freshFrameBlurRadius;
-    Context c{frameSettings, in,
-              scratch,       previous,
-              next,          {previousHas[0], previousHas[1]},
-              isa,           threads,
-              grid,          makeView(in, settings, scratch, grid)};
+    Context c{settings, in,
+              scratch,  previous,
+              next,     {previousHas[0], previousHas[1]},
+              isa,      threads,
+              grid,     makeView(in, settings, scratch, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();

@@ -43,13 +43,7 @@ inline constexpr std::array kDenoiseFields = {
         .floats(0.0, false, 100.0),
     field<&DenoiseSettings::maxBlurRadius>(
         "maxBlurRadius", kDenoiseUse,
-        "Blur radius of a pixel without history in a frame that has one (a disoccluded "
-        "pixel), pixels (the post-blur doubles it)")
-        .floats(0.0, false, 100.0),
-    field<&DenoiseSettings::freshFrameBlurRadius>(
-        "freshFrameBlurRadius", kDenoiseUse,
-        "Blur radius of every pixel in a frame without history (a single image, a sequence's "
-        "first frame, a camera cut), pixels (the post-blur doubles it)")
+        "Blur radius of a pixel without history, pixels (the post-blur doubles it)")
         .floats(0.0, false, 100.0),
     field<&DenoiseSettings::blurMaxFrames>(
         "blurMaxFrames", kDenoiseUse,

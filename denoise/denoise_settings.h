@@ -22,12 +22,6 @@ struct DenoiseSettings {
     float specularPrepassRadius = 0.0f;
     float minBlurRadius = 1.0f;
     float maxBlurRadius = 30.0f;
-    // A frame without history (a single image, a sequence's first frame, one after a camera
-    // cut) replaces maxBlurRadius with this: there every pixel is young, and the one-ray
-    // signal's error against the reference is lowest near 10 pixels on cornell, corridor,
-    // spheres and a glTF engine, below 30's by 0.4-6 % (perf/single_frame.py). A sequence
-    // keeps 30 for its disoccluded pixels: 10 there raised cornell's frame 30 error 1.7 %.
-    float freshFrameBlurRadius = 10.0f;
     // Pixels with at least this many frames of history skip the blur and get the post-blur
     // only (ssrt's; NRD blurs every pixel twice): the history's own averaging has already
     // done the first pass's work (flicker rises: 0.0025 against 0.0017 on cornell). 64: every

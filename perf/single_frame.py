@@ -8,7 +8,10 @@ of variants (denoiser settings, more rays with a lighter filter, the quality pre
 several scenes and records, per variant and scene, the colour relMSE against the 64-spp
 one-bounce Embree reference (`ssrt compare --reference-bounces 1`, 640x360) and the time of
 the render call at 1280x720 (`ssrt render --stats`, median of RUNS). Output: a CSV and a
-chart of error against time, one panel per scene. Run with Debian's /usr/bin/python3:
+chart of error against time, one panel per scene. relMSE is not the whole answer: look at
+the 1280x720 images too (smaller blur radii score lower at 640x360 but leave blotches of
+10-20 pixels on cornell's walls at 1280x720, issue 28's closing note). Run with Debian's
+/usr/bin/python3:
 
     perf/single_frame.py build/ssrt perf/charts/single_frame.csv perf/charts/single_frame.png
 """
@@ -21,18 +24,18 @@ import sys
 SCENES = ("cornell", "corridor", "spheres",
           "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb")
 VARIANTS = {
-    "default (medium: radius 10)": [],
-    "blur radius 30 (a sequence's)": ["--fresh-frame-blur-radius", "30"],
+    "default (medium: radius 30)": [],
+    "blur radius 10": ["--max-blur-radius", "10"],
     "no history fix": ["--history-fix-frames", "0"],
-    "blur radius 15": ["--fresh-frame-blur-radius", "15"],
-    "blur radius 45": ["--fresh-frame-blur-radius", "45"],
-    "blur radius 5": ["--fresh-frame-blur-radius", "5"],
-    "blur radius 20": ["--fresh-frame-blur-radius", "20"],
+    "blur radius 15": ["--max-blur-radius", "15"],
+    "blur radius 45": ["--max-blur-radius", "45"],
+    "blur radius 5": ["--max-blur-radius", "5"],
+    "blur radius 20": ["--max-blur-radius", "20"],
     "post-blur only": ["--blur-max-frames", "0"],
     "history-fix stride 7": ["--history-fix-stride", "7"],
     "stride 7, post-blur only": ["--history-fix-stride", "7", "--blur-max-frames", "0"],
     "2 rays each": ["--ssr-spp", "2", "--ssgi-spp", "2"],
-    "2 rays each, blur 5": ["--ssr-spp", "2", "--ssgi-spp", "2", "--fresh-frame-blur-radius", "5"],
+    "2 rays each, blur 5": ["--ssr-spp", "2", "--ssgi-spp", "2", "--max-blur-radius", "5"],
     "full SSR, checkerboard SSGI": ["--ssr-layout", "full", "--ssgi-layout", "checkerboard"],
     "no denoiser": ["--no-denoise"],
     "low": ["--quality", "low"],

@@ -124,7 +124,7 @@ DenoiseSettings everyPass() {
 DenoiseSettings accumulationOnly() {
     DenoiseSettings s;
     s.diffusePrepassRadius = s.specularPrepassRadius = 0.0f;
-    s.minBlurRadius = s.maxBlurRadius = s.freshFrameBlurRadius = 0.0f;
+    s.minBlurRadius = s.maxBlurRadius = 0.0f;
     s.historyFixFrames = 0;
     s.maxFastAccumulatedFrames = s.maxAccumulatedFrames;
     return s;
@@ -226,28 +226,6 @@ TEST_CASE("denoise: pixels with a long history skip the blur, younger ones keep 
         // Frame f has f frames of history: the blur is skipped from frame 3 on.
         if (f < 3) CHECK(outputHash(both) == outputHash(skip));
         else CHECK(outputHash(both) != outputHash(skip));
-    }
-}
-
-TEST_CASE("denoise: a frame without history blurs with its own radius, a frame with one not") {
-    Synthetic s(64, 48);
-    // Three denoisers: the default radii, another radius for disoccluded pixels, another for
-    // a frame without history.
-    Denoiser base, young, first;
-    young.settings.maxBlurRadius = 5.0f;
-    first.settings.freshFrameBlurRadius = 20.0f;
-    for (uint32_t f = 0; f < 3; ++f) {
-        for (int y = 0; y < s.h; ++y)
-            for (int x = 0; x < s.w; ++x) s.diffuse[0].at(x, y) = noise(x, y, f, 0);
-        const bool cut = f == 2;  // frame 2 restarts the history, as a camera cut does
-        for (Denoiser* d : {&base, &young, &first}) d->run(s, f, cut);
-        CAPTURE(f);
-        if (f == 1) {  // with a history: maxBlurRadius counts, the other not
-            CHECK(outputHash(young) != outputHash(base));
-        } else {  // without: freshFrameBlurRadius alone counts
-            CHECK(outputHash(young) == outputHash(base));
-            CHECK(outputHash(first) != outputHash(base));
-        }
     }
 }
 
