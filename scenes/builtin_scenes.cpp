@@ -110,6 +110,7 @@ const std::vector<BuiltinSceneInfo>& builtinScenes() {
         {"offscreen", kOffscreenDescription},
         {"occluded", kOccludedDescription},
         {"bunny", kBunnyDescription},
+        {"fence", kFenceDescription},
     };
     return scenes;
 }
@@ -122,6 +123,7 @@ Scene makeBuiltinScene(const std::string& name) {
     if (name == "offscreen") return makeOffscreenScene();
     if (name == "occluded") return makeOccludedScene();
     if (name == "bunny") return makeBunnyScene();
+    if (name == "fence") return makeFenceScene();
     std::string known;
     for (const BuiltinSceneInfo& info : builtinScenes())
         known += (known.empty() ? "" : ", ") + info.name;

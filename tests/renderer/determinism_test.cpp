@@ -169,6 +169,8 @@ const std::map<std::string, uint64_t> kGolden = {
     {"corridor", 0xa61538c6e76cfe7bull},
     {"offscreen", 0xe973850dc456ee37ull},
     {"occluded", 0xe1ca44fb22356163ull},
+    {"fence", 0xc87c2943732d5e2full},
+    {"fence@dda", 0x501f2637c08988b1ull},
     {"cornell+tex", 0x9ba8cfa0a4624ae9ull},
     {"cornell+alpha", 0x32de899a14c3c97eull},
     {"cornell@hiz", 0x54a0a43154d7b1c4ull},

@@ -1,4 +1,4 @@
-// The failure-mode scenes (thin, corridor, offscreen, occluded): each renders cleanly, and
+// The failure-mode scenes (thin, fence, corridor, offscreen, occluded): each renders cleanly, and
 // each is built so that its failure mode is really there (checked by projecting bounds and
 // reading the G-buffer, not by looking at pictures).
 #include <doctest/doctest.h>
@@ -19,7 +19,7 @@ namespace {
 
 constexpr int kWidth = 128, kHeight = 72;
 constexpr float kAspect = float(kWidth) / float(kHeight);
-const char* const kFailureScenes[] = {"thin", "corridor", "offscreen", "occluded"};
+const char* const kFailureScenes[] = {"thin", "fence", "corridor", "offscreen", "occluded"};
 
 using Corners = std::array<glm::vec3, 8>;
 
@@ -173,6 +173,55 @@ TEST_CASE("thin scene: thin slabs on a mirror floor, their mirror images wholly 
     CHECK(thinnest <= 0.005f);
     // Low down: the camera's eye is below the posts' middle, so the view grazes the floor.
     CHECK(scene.camera.position.y < 0.5f);
+}
+
+// How many pixels a box spans along screen axis `axis` (0: x, 1: y) at 320x180, the ray
+// check's size (tests/truth/ray_check_scenes_test.cpp).
+float pixelsAcross(const Camera& camera, const Corners& c, int axis) {
+    float lo = INFINITY, hi = -INFINITY;
+    for (const glm::vec3& p : c) {
+        const glm::vec4 clip = toClip(camera, p);
+        const float ndc = (axis == 0 ? clip.x : clip.y) / clip.w;
+        lo = std::min(lo, ndc);
+        hi = std::max(hi, ndc);
+    }
+    return 0.5f * (hi - lo) * (axis == 0 ? 320.0f : 180.0f);
+}
+
+TEST_CASE("fence scene: poles and wires about a pixel across before a wall, mirrored in view") {
+    const Scene scene = makeBuiltinScene("fence");
+    const uint32_t floor = onlyInstanceOf(scene, "mirror_floor");
+    const Material& floorMat = scene.materials[scene.instances[floor].material];
+    CHECK(floorMat.metallic == 1.0f);
+    CHECK(floorMat.roughness <= 0.05f);
+    const float floorY = worldCorners(scene, floor)[0].y;
+    const Corners wall = worldCorners(scene, onlyInstanceOf(scene, "fence_wall"));
+    const std::vector<uint32_t> poles = instancesOf(scene, "fence_pole");
+    const std::vector<uint32_t> wires = instancesOf(scene, "fence_wire");
+    REQUIRE(poles.size() >= 10);
+    REQUIRE(wires.size() == 2);
+    for (uint32_t pole : poles) {
+        const Corners c = worldCorners(scene, pole);
+        CAPTURE(pole);
+        CHECK(c[0].y == doctest::Approx(floorY));
+        CHECK(c[0].z > wall[7].z + 1.0f);  // a metre or more before the wall
+        CHECK(allInView(scene.camera, c));
+        CHECK(allInView(scene.camera, mirrored(c, 1, floorY)));
+        // 1.6 pixels on the axis; off it the box's depth adds to its width.
+        CHECK(pixelsAcross(scene.camera, c, 0) <= 2.5f);
+        CHECK(extent(c).z <= 0.03f);  // far thinner than the thickness guess at its depth
+    }
+    for (uint32_t wire : wires) {
+        const Corners c = worldCorners(scene, wire);
+        CHECK(allInView(scene.camera, c));
+        CHECK(pixelsAcross(scene.camera, c, 1) <= 1.0f);  // under a pixel high
+    }
+    // Between two poles, away from the wires, the wall shows through.
+    const Frame frame = renderSmall(scene);
+    const glm::vec3 gap =
+        0.5f * (centre(worldCorners(scene, poles[0])) + centre(worldCorners(scene, poles[1])));
+    CHECK(instanceAt(frame, pixelOf(scene.camera, {gap.x, 0.7f, gap.z})) ==
+          float(onlyInstanceOf(scene, "fence_wall")));
 }
 
 TEST_CASE("corridor scene: long and narrow, no ceiling, far end visible down the middle") {

@@ -162,7 +162,7 @@ TEST_CASE("mesh builders reject degenerate input") {
 
 TEST_CASE("built-in scenes: default first, valid, still frames") {
     const auto& infos = builtinScenes();
-    REQUIRE(infos.size() == 7);
+    REQUIRE(infos.size() == 8);
     CHECK(infos[0].name == "cornell");
     CHECK(infos[1].name == "spheres");
     CHECK(infos[2].name == "thin");
@@ -170,6 +170,7 @@ TEST_CASE("built-in scenes: default first, valid, still frames") {
     CHECK(infos[4].name == "offscreen");
     CHECK(infos[5].name == "occluded");
     CHECK(infos[6].name == "bunny");
+    CHECK(infos[7].name == "fence");
     for (const BuiltinSceneInfo& info : infos) {
         CAPTURE(info.name);
         CHECK(!info.description.empty());
