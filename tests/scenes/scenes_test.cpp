@@ -263,6 +263,6 @@ TEST_CASE("unknown scene names throw, naming the scene and the known ones") {
     } catch (const std::invalid_argument& e) {
         CHECK(std::string(e.what()) ==
               "unknown scene 'cornel' (built-in scenes: cornell, spheres, thin, corridor, "
-              "offscreen, occluded, bunny)");
+              "offscreen, occluded, bunny, fence)");
     }
 }
