@@ -86,6 +86,38 @@ void printErrors(std::ostream& out, const ErrorTable& e) {
     out << "  relMSE = mean over pixels and RGB of (I - R)^2 / (R^2 + 0.01)\n";
 }
 
+// Figures that would judge nothing. A frame without a surface pixel is refused, as work that
+// could not be done: its reference is the same sky, so its relMSE is 0 and every share 0 %,
+// which reads as a perfect result. A pass without a checked ray is warned about: the frame
+// is still judged by the other pass and the image error.
+uint64_t surfacePixels(const PlaneF& viewZ) {
+    uint64_t n = 0;
+    for (int y = 0; y < viewZ.height(); ++y)
+        for (int x = 0; x < viewZ.width(); ++x) n += viewZ.at(x, y) > 0.0f;
+    return n;
+}
+
+void requireSurface(const Frame& frame) {
+    if (surfacePixels(frame.gbuffer.viewZ) == 0)
+        throw std::runtime_error(
+            "the frame shows no surface (every pixel is sky): there is no ray to check and the "
+            "image error would be the sky's against itself; aim the camera at the scene");
+}
+
+// `hidden`: where the pass draws no ray because the composite would not show what it found.
+void warnUnchecked(std::ostream& err, const char* pass, const char* flag, const char* hidden,
+                   bool on, const RayCheckTable& check, const RayGenStats& gen) {
+    if (!on) {
+        err << "ssrt: warning: " << pass << " is off (" << flag
+            << "): none of its rays is checked\n";
+        return;
+    }
+    if (check.rays > 0) return;
+    err << "ssrt: warning: " << pass << " traced no ray, so none is checked (its shares read 0 %): "
+        << "of " << gen.pixels << " surface pixels " << gen.hidden << " are " << hidden << ", "
+        << gen.belowSurface << " drew a ray below the surface\n";
+}
+
 // The reference and the first sample's checks as extra layers of the frame.
 void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation& ev) {
     const char* suffix[3] = {".R", ".G", ".B"};
@@ -242,7 +274,10 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
            "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
            "per-pixel checks of the first sample (ssrCheck.class, .pixelError, .depthError, "
            "ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
-           "off-screen truth), or .png")
+           "off-screen truth, 0 no ray: a pixel that traced none, such as a checkerboard's "
+           "other phase or, for the half layout, a block's unchosen pixels; the half layout's "
+           "ray is at its block's chosen pixel, its pixel error in full-resolution pixels), or "
+           ".png")
         ->type_name("FILE");
     addImageOutputOptions(*cmd, o.render);
     return cmd;
@@ -278,6 +313,11 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     Frame frame;
     const SequenceEvaluation result = evaluateSequence(truth, sequence, settings, settings, frame);
     const Evaluation& ev = result.last;
+    requireSurface(frame);
+    warnUnchecked(err, "ssr", "--no-ssr", "past the roughness fade", ev.ssr, ev.ssrCheck,
+                  ev.stats.ssr.rays);
+    warnUnchecked(err, "ssgi", "--no-ssgi", "without diffuse colour", ev.ssgi, ev.ssgiCheck,
+                  ev.stats.ssgi.rays);
     out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
         << marcherName(settings.trace.marcher) << ", ssr "
         << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +

@@ -18,9 +18,12 @@ enum class TracePass { Ssr, Ssgi };
 // Sees every sample's rays and what the march found, right after the march and before the
 // resolve, on the thread that called render(), in pass then sample order. Its time is not in
 // any pass time. `ssrt compare` hands them to Embree (truth/ray_check.h), so the
-// truth is asked about the very rays that were marched.
-using TraceObserver =
-    std::function<void(TracePass pass, int sample, const RayBatch& rays, const MarchResult& march)>;
+// truth is asked about the very rays that were marched. `half` is null where the batches are
+// the frame's pixels (the full and checkerboard layouts); with SSGI's half-resolution layout
+// it is the half frame they were generated and marched on (its camera and chosen pixels,
+// trace/trace_layout.h).
+using TraceObserver = std::function<void(TracePass pass, int sample, const RayBatch& rays,
+                                         const MarchResult& march, const HalfFrame* half)>;
 
 // What changes from one frame of a sequence to the next; the settings do not.
 struct FrameInput {

@@ -69,16 +69,25 @@ struct StageTimes {
     }
 };
 
-// One sample's march of frame.scratch.rays, shown to the observer.
-void marchSample(const TraceContext& c, TracePass pass, int sample, Frame& frame, TraceStats& stats,
-                 StageTimes& times) {
-    Frame::Scratch& sc = frame.scratch;
+// The frame a pass's rays are generated and marched on: the frame's own camera, G-buffer and
+// pyramid, or the half frame's (`half`, TraceLayout::Half).
+struct MarchFrame {
+    const TraceCamera& camera;
+    const MarchGBuffer& gbuffer;
+    const HiZPyramid* hiz;
+    const HalfFrame* half;
+};
+
+// One sample's march of the frame's batch `rays` into `result`, shown to the observer.
+void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
+                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times) {
     addTime(times.march, [&] {
         stats.march.add(marchRays(c.args.isa, c.ts.marcher, c.ts.march,
-                                  {c.args.frameIndex, uint32_t(sample)}, c.camera, c.march, c.hiz,
-                                  sc.rays, sc.march, c.threads()));
+                                  {c.args.frameIndex, uint32_t(sample)}, on.camera, on.gbuffer,
+                                  on.hiz, rays, result, c.threads()));
     });
-    if (c.args.observer && *c.args.observer) (*c.args.observer)(pass, sample, sc.rays, sc.march);
+    if (c.args.observer && *c.args.observer)
+        (*c.args.observer)(pass, sample, rays, result, on.half);
 }
 
 // The SSR resolve's inputs: this frame's direct light, or the last frame's composite (when the
@@ -185,7 +194,8 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
-        marchSample(c, TracePass::Ssr, s, frame, st, times);
+        marchSample(c, {c.camera, c.march, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays, sc.march,
+                    st, times);
         addTime(times.resolve, [&] {
             resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
                        c.threads());
@@ -260,13 +270,11 @@ void ssrPass(const TraceContext& c, Frame& frame) {
 
 // One SSGI sample's stages on a camera (the frame's, or the half frame's) and its G-buffer:
 // tile by tile (trace/tile_chain.h), the rays' pdf copied into rays.pdf for the layouts'
-// reconstruction; or, for the observer, stage by stage over the frame's batches.
+// reconstruction; or, for the observer, stage by stage over the batches `rays` and `result`.
 struct SsgiSample {
     const TraceContext& c;
-    const TraceCamera& camera;
+    MarchFrame on;
     const RayGenGBuffer& rayGen;
-    const MarchGBuffer& march;
-    const HiZPyramid* hiz;
     const SsgiInputs& in;
     const HitStatsPlanes& hp;
     DiffuseCut cut;
@@ -275,28 +283,29 @@ struct SsgiSample {
 };
 
 RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
-                       TraceStats& st, StageTimes& times, bool observe, Frame& frame) {
+                       TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
     const Isa isa = c.args.isa;
     const int spp = c.ts.ssgiSpp;
-    const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), q.camera,
+    const TraceCamera& camera = q.on.camera;
+    const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), camera,
                                                    q.rayGen, q.cut, q.checker);
     const RaySeed seed{c.args.frameIndex, uint32_t(s)};
-    if (observe) {
+    if (!tiled(c)) {
         RayGenStats rs;
         addTime(times.rays, [&] { rs = gen.frame(rays, c.threads()); });
-        marchSample(c, TracePass::Ssgi, s, frame, st, times);
+        marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times);
         addTime(times.resolve, [&] {
             resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads());
-            accumulateHitStats(isa, q.camera, rays, result, q.hp, s, spp, c.threads());
+            accumulateHitStats(isa, camera, rays, result, q.hp, s, spp, c.threads());
         });
         return rs;
     }
-    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, q.camera, q.march, q.hiz,
+    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, camera, q.on.gbuffer, q.on.hiz,
                            c.threads());
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
-    const HitStatsAccumulator hitStats(isa, q.camera, q.hp, s, spp);
+    const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
     const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
         resolve.tile(t, b, m);
     };
@@ -305,8 +314,8 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
 
 // SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a
 // half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
-// run on it, and the upsample brings them to the frame's planes. (The observer is not
-// called: the truth's ray checks expect the frame's camera.)
+// run on it, and the upsample brings them to the frame's planes. The observer sees the half
+// frame's batches with the half frame (TraceObserver).
 void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, DiffuseCut cut,
               TraceStats& st, StageTimes& times) {
     const TraceSettings& ts = c.ts;
@@ -344,9 +353,9 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
                             &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
-    const SsgiSample q{c, hf.camera, rayGen, march, hiz, in, hp, cut, {}, ht.resolved.color};
+    const SsgiSample q{c, {hf.camera, march, hiz, &hf}, rayGen, in, hp, cut, {}, ht.resolved.color};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
-        RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times, false, frame);
+        RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
         // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
         // and background stay counts of half pixels).
         rs.pixels += hf.cutPixels;
@@ -434,9 +443,10 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     takeBatches(c, frame, false);
     if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
         takeSignal(sc.pool, planes, frame.width, frame.height);
-    const SsgiSample q{c, c.camera, c.rayGen, c.march, c.hiz, in, hp, cut, checker, planes.color};
+    const SsgiSample q{
+        c, {c.camera, c.march, c.hiz, nullptr}, c.rayGen, in, hp, cut, checker, planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)
-        st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times, !tiled(c), frame));
+        st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
     if (checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, [&] {

@@ -92,7 +92,7 @@ Evaluation checkedRender(const EmbreeScene& embree, const Scene& scene, const Fr
     RayCheckSettings check = es.check;
     const PlaneF* viewZ = nullptr;
     const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
-                                       const MarchResult& march) {
+                                       const MarchResult& march, const HalfFrame* half) {
         const bool ssr = pass == TracePass::Ssr;
         RayCheckPlanes* planes =
             es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes) : nullptr;
@@ -102,8 +102,8 @@ Evaluation checkedRender(const EmbreeScene& embree, const Scene& scene, const Fr
             check.maxDistance =
                 marchLengths(settings.trace.march, frame.camera.sceneDiagonal).maxDistance;
         }
-        const RayCheckTable t =
-            checkRays(embree, frame.camera, *viewZ, rays, march, check, planes, settings.threads);
+        const RayCheckTable t = checkRays(embree, frame.camera, *viewZ, rays, march, check, planes,
+                                          settings.threads, half);
         (ssr ? ev.ssrCheck : ev.ssgiCheck).add(t);
     };
     if (history) renderer.render(scene, input, *history, frame, &observer);

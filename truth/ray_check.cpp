@@ -63,12 +63,38 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kBlock = 4;  // 4x4 pixels: one 16-ray Embree packet
 
-void requireSizes(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
+// Where a batch's pixels lie: the frame's own, or the half frame's, each standing for its
+// block's chosen pixel (trace/trace_layout.h). The rays' view-space origins and directions are
+// the march's in either case (both cameras share the view), so Embree traces them as they are;
+// what the march found is moved into the frame's pixels, where the truth is projected and
+// judged, and where the per-pixel planes hold it.
+struct BatchGrid {
+    const TraceCamera& frame;
+    const TraceCamera& batch;  // the camera the rays were marched on (the frame's, or the half's)
+    const HalfFrame* half;
+
+    BatchGrid(const TraceCamera& f, const HalfFrame* h)
+        : frame(f), batch(h ? h->camera : f), half(h) {}
+    PixelOffset framePixel(int x, int y) const {
+        return half ? halfSource(x, y, half->offset, frame.width, frame.height) : PixelOffset{x, y};
+    }
+    // A continuous position in the batch's pixels as the frame's: through the view-space slope
+    // (x / z, y / z) both cameras project by (for the half camera of an even size, 2 x).
+    void toFramePixels(float& x, float& y) const {
+        if (!half) return;
+        const float sx = (x / float(batch.width) * 2.0f - 1.0f) * batch.tanHalfX;
+        const float sy = (1.0f - y / float(batch.height) * 2.0f) * batch.tanHalfY;
+        x = (sx / frame.tanHalfX * 0.5f + 0.5f) * float(frame.width);
+        y = (0.5f - sy / frame.tanHalfY * 0.5f) * float(frame.height);
+    }
+};
+
+void requireSizes(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
                   const MarchResult& m) {
-    if (cam.width <= 0 || cam.height <= 0)
+    if (g.frame.width <= 0 || g.frame.height <= 0 || g.batch.width <= 0 || g.batch.height <= 0)
         throw std::invalid_argument("checkRays: the camera has no pixels");
-    PlaneCheck need("checkRays", cam.width, cam.height);
-    need(viewZ, "viewZ");
+    PlaneCheck("checkRays", g.frame.width, g.frame.height)(viewZ, "viewZ");
+    PlaneCheck need("checkRays", g.batch.width, g.batch.height);
     for (const PlaneF* p : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf})
         need(p, "a RayBatch plane");
     for (const PlaneF* p : {&m.hit, &m.hitX, &m.hitY, &m.hitZ, &m.steps, &m.cause})
@@ -121,11 +147,11 @@ uint64_t traceBlock(const EmbreeScene& embree, const WorldFrame& wf, const RayBa
     return count;
 }
 
-// Embree's first hit for every ray, tile by tile in 4x4 packets: trueT per pixel.
-uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& cam, const RayBatch& rays,
+// Embree's first hit for every ray, tile by tile in 4x4 packets: trueT per pixel of the batch.
+uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& batch, const RayBatch& rays,
                   float tfar, PlaneF& trueT, int threads) {
-    const TileGrid grid(cam.width, cam.height);
-    const WorldFrame wf(cam);
+    const TileGrid grid(batch.width, batch.height);
+    const WorldFrame wf(batch);
     std::vector<uint64_t> hits(std::size_t(grid.count()), 0);
     parallelForTiles(grid.count(), threads, [&](int tile) {
         const TileRect r = grid.rect(tile);
@@ -176,8 +202,8 @@ struct PixelCheck {
     float pixelError = 0.0f, depthError = 0.0f;
 };
 
-PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSettings& s, int x,
-                    int y) {
+PixelCheck classify(const BatchGrid& g, const MarchResult& m, const TrueHit& truth,
+                    const RayCheckSettings& s, int x, int y) {
     PixelCheck c;
     if (!(m.hit.at(x, y) > 0.0f)) {
         c.cls = !truth.exists   ? RayClass::TrueMiss
@@ -194,7 +220,9 @@ PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSe
     c.pixelError = inf;
     c.depthError = inf;
     if (truth.projects) {
-        const float ex = m.hitX.at(x, y) - truth.px, ey = m.hitY.at(x, y) - truth.py;
+        float hx = m.hitX.at(x, y), hy = m.hitY.at(x, y);
+        g.toFramePixels(hx, hy);
+        const float ex = hx - truth.px, ey = hy - truth.py;
         c.pixelError = std::sqrt(ex * ex + ey * ey);
         c.depthError = std::abs(m.hitZ.at(x, y) - truth.z) / truth.z;
     }
@@ -203,23 +231,24 @@ PixelCheck classify(const MarchResult& m, const TrueHit& truth, const RayCheckSe
     return c;
 }
 
-void writePlanes(RayCheckPlanes* planes, const PixelCheck& c, int x, int y) {
+void writePlanes(RayCheckPlanes* planes, const PixelCheck& c, float trueT, PixelOffset p) {
     if (!planes) return;
-    planes->rayClass.at(x, y) = float(int(c.cls));
-    planes->pixelError.at(x, y) = c.bothHit ? c.pixelError : 0.0f;
-    planes->depthError.at(x, y) = c.bothHit ? c.depthError : 0.0f;
+    planes->rayClass.at(p.x, p.y) = float(int(c.cls));
+    planes->pixelError.at(p.x, p.y) = c.bothHit ? c.pixelError : 0.0f;
+    planes->depthError.at(p.x, p.y) = c.bothHit ? c.depthError : 0.0f;
+    planes->trueT.at(p.x, p.y) = trueT;
 }
 
-// Classifies one tile's rays into its own table (row order within the tile).
-void classifyTile(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& rays,
+// Classifies one tile's rays (of the batch) into its own table (row order within the tile).
+void classifyTile(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
                   const MarchResult& m, const RayCheckSettings& s, const PlaneF& trueT,
                   RayCheckPlanes* planes, const TileRect& r, RayCheckTable& table) {
     for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) {
             PixelCheck c;
             if (rays.pdf.at(x, y) > 0.0f) {
-                const TrueHit truth = locateTrueHit(cam, viewZ, rays, s, trueT.at(x, y), x, y);
-                c = classify(m, truth, s, x, y);
+                const TrueHit truth = locateTrueHit(g.frame, viewZ, rays, s, trueT.at(x, y), x, y);
+                c = classify(g, m, truth, s, x, y);
                 ++table.rays;
                 ++table.count[int(c.cls)];
                 if (c.bothHit) {
@@ -227,7 +256,7 @@ void classifyTile(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& r
                     table.depthError.push_back(c.depthError);
                 }
             }
-            writePlanes(planes, c, x, y);
+            writePlanes(planes, c, trueT.at(x, y), g.framePixel(x, y));
         }
 }
 
@@ -235,27 +264,33 @@ void classifyTile(const TraceCamera& cam, const PlaneF& viewZ, const RayBatch& r
 
 RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& cam, const PlaneF& viewZ,
                         const RayBatch& rays, const MarchResult& march,
-                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads) {
-    requireSizes(cam, viewZ, rays, march);
+                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads,
+                        const HalfFrame* half) {
+    const BatchGrid g(cam, half);
+    requireSizes(g, viewZ, rays, march);
     requireSameOrigin(embree, cam, "checkRays");
     if (!(settings.maxDistance > 0.0f))
         throw std::invalid_argument("checkRays: maxDistance must be > 0");
-    // Embree first, alone, so that its wall clock is its own; the true distances go to the
-    // caller's trueT plane or a local one.
-    PlaneF localT;
-    PlaneF& trueT = planes ? planes->trueT : localT;
-    if (planes) planes->ensureSize(cam.width, cam.height);
-    else localT.ensureSize(cam.width, cam.height);
+    if (planes) {
+        planes->ensureSize(cam.width, cam.height);
+        // (The half frame's rays write only their chosen pixels: the others hold no ray.)
+        if (half)
+            for (PlaneF* p :
+                 {&planes->rayClass, &planes->pixelError, &planes->depthError, &planes->trueT})
+                p->fill(0.0f);
+    }
+    // Embree first, alone, so that its wall clock is its own.
+    PlaneF trueT(g.batch.width, g.batch.height);
     RayCheckTable total;
     const auto t0 = Clock::now();
-    total.embreeHits = traceAll(embree, cam, rays, settings.maxDistance, trueT, threads);
+    total.embreeHits = traceAll(embree, g.batch, rays, settings.maxDistance, trueT, threads);
     total.embreeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
-    // Then the classes, per tile, combined in tile order.
-    const TileGrid grid(cam.width, cam.height);
+    // Then the classes, per tile of the batch, combined in tile order.
+    const TileGrid grid(g.batch.width, g.batch.height);
     std::vector<RayCheckTable> tiles(std::size_t(grid.count()));
     parallelForTiles(grid.count(), threads, [&](int tile) {
-        classifyTile(cam, viewZ, rays, march, settings, trueT, planes, grid.rect(tile),
+        classifyTile(g, viewZ, rays, march, settings, trueT, planes, grid.rect(tile),
                      tiles[std::size_t(tile)]);
     });
     for (const RayCheckTable& t : tiles) total.add(t);

@@ -26,6 +26,17 @@
 // Hit-position error (for rays where both hit, Agreed or FalseHit): the distance in pixels
 // between the march's (hitX, hitY) and the true hit's projection (infinite when the true hit
 // does not project in front of the camera), and |hitZ - trueZ| / trueZ.
+//
+// The layouts (trace/trace_layout.h). Checkerboard: the batch is the frame's, its untraced
+// pixels have no ray (pdf <= 0). Half: the batch is the half frame's (rays and march results
+// of half->camera's size); each ray is traced by Embree from the view-space origin and
+// direction the march used (the half pixel's, on the half-resolution depth buffer), while the
+// truth is judged in the frame, as for the full layout: projected by the frame's camera,
+// "visible" against the frame's viewZ, and the march's hit moved from half pixels into the
+// frame's (continuous) pixels through the view-space slope, so pixelTolerance and the pixel
+// errors are in full-resolution pixels for every layout. (The half depth buffer holds one
+// depth per 2x2 block, its chosen pixel's, at the block's centre: a hit found on it can lie
+// a pixel or so from where the frame's own depth puts the surface.)
 #pragma once
 
 #include <array>
@@ -34,6 +45,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "trace/trace_layout.h"
 #include "trace/trace_types.h"
 #include "truth/embree_scene.h"
 
@@ -66,7 +78,9 @@ struct RayCheckTable {
     static float quantile(const std::vector<float>& sorted, double q);
 };
 
-// Per-pixel results of one sample's check, planes of the frame's size.
+// Per-pixel results of one sample's check, planes of the frame's size. A pixel that traced no
+// ray (a layout's untraced pixel, a cut one, the background) holds NoRay (0) and 0 in every
+// plane; the half layout's ray is written at its block's chosen pixel.
 struct RayCheckPlanes {
     PlaneF rayClass;    // RayClass as a float
     PlaneF pixelError;  // where both hit, else 0 (inf stays inf)
@@ -76,11 +90,13 @@ struct RayCheckPlanes {
 };
 
 // Checks one sample's rays: Embree traces them (16-ray packets over tiles, `threads`
-// workers, 0 = every core), each is classified. Writes `planes` when not null. `viewZ` is the
-// frame's G-buffer depth (for "visible on screen"). Throws std::invalid_argument on planes of
-// the wrong size.
+// workers, 0 = every core), each is classified. Writes `planes` when not null. `camera` and
+// `viewZ` are the frame's (for "visible on screen"); `half`, when not null, the half frame the
+// batches were marched on (TraceLayout::Half, above). Throws std::invalid_argument on planes
+// of the wrong size.
 RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& camera, const PlaneF& viewZ,
                         const RayBatch& rays, const MarchResult& march,
-                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads);
+                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads,
+                        const HalfFrame* half = nullptr);
 
 }  // namespace ssrt

@@ -5,7 +5,9 @@
 
 #ifdef SSRT_CLI_LIB
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -36,12 +38,23 @@ std::vector<std::string> tiny(std::vector<std::string> args, const TempDir& dir)
 
 std::vector<std::string> splitCsv(const std::string& line) { return test::csvCells(line); }
 
+// The ray-check table's row `label` of compare's output: its ssr and ssgi cells.
+std::vector<std::string> checkRow(const std::string& out, const std::string& label) {
+    for (const std::string& line : test::textLines(out)) {
+        if (line.rfind("  " + label + " ", 0) != 0) continue;
+        std::istringstream cells(line.substr(label.size() + 2));
+        std::vector<std::string> row;
+        for (std::string c; cells >> c;) row.push_back(c);
+        return row;
+    }
+    return {};
+}
+
 }  // namespace
 
 TEST_CASE("compare: tables of ray classes, image error and times -- the reference is cached") {
     TempDir dir;
-    // Every pixel traced: the ray check takes full-resolution rays only, and the default
-    // preset's SSGI is traced at half resolution (its check layers would be missing).
+    // (Every pixel traced; the default preset's layouts: below.)
     const auto args = tiny(
         {"compare", "--scene", "spheres", "--quality", "ultra", "-o", dir.file("cmp.exr")}, dir);
     const test::CliResult first = runSsrt(args);
@@ -66,6 +79,65 @@ TEST_CASE("compare: tables of ray classes, image error and times -- the referenc
         return out.substr(at, out.find('\n', at) - at);
     };
     CHECK(relMseLine(first.out) == relMseLine(second.out));
+}
+
+// The default preset traces SSR on a checkerboard and SSGI on the half frame: both passes'
+// rays are checked, every one in a class, and the check layers are written.
+TEST_CASE("compare: the default preset's checkerboard and half-resolution rays are checked") {
+    TempDir dir;
+    const test::CliResult r =
+        runSsrt(tiny({"compare", "--scene", "cornell", "-o", dir.file("cmp.exr")}, dir));
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const std::vector<std::string> rays = checkRow(r.out, "rays");
+    REQUIRE(rays.size() == 2);
+    for (int pass = 0; pass < 2; ++pass) {
+        CAPTURE(pass);
+        CHECK(std::stoll(rays[std::size_t(pass)]) > 0);
+        double sum = 0.0;
+        for (const char* cls :
+             {"agreed", "false_hit", "missed_on_screen", "true_miss", "offscreen_truth"}) {
+            const std::vector<std::string> row = checkRow(r.out, std::string(cls) + " %");
+            REQUIRE(row.size() == 2);
+            sum += std::stod(row[std::size_t(pass)]);
+        }
+        CHECK(std::abs(sum - 100.0) <= 0.05);  // (five shares printed to 0.01)
+    }
+    CHECK(!contains(r.err, "warning"));
+    const std::vector<std::string> channels = readChannelNames(dir.file("cmp.exr"));
+    for (const char* layer : {"ssrCheck.class", "ssgiCheck.class", "ssgiCheck.pixelError"})
+        CHECK_MESSAGE(std::find(channels.begin(), channels.end(), layer) != channels.end(), layer);
+}
+
+// Figures that judge nothing are said so: a pass without a checked ray is a warning naming
+// it, a frame without a surface pixel an error with nothing written.
+TEST_CASE("compare: a pass without rays is warned about, a frame without surface refused") {
+    TempDir dir;
+    const test::CliResult off = runSsrt(tiny({"compare", "--scene", "cornell", "--no-ssr"}, dir));
+    REQUIRE(off.code == 0);
+    CHECK(contains(off.err, "ssrt: warning: ssr is off (--no-ssr): none of its rays is checked\n"));
+    CHECK(!contains(off.err, "warning: ssgi"));
+    // SSR on, but no pixel below the roughness fade: no ray to check.
+    const test::CliResult none =
+        runSsrt(tiny({"compare", "--scene", "cornell", "--roughness-fade-start", "0",
+                      "--roughness-fade-end", "0", "-q"},
+                     dir));
+    REQUIRE(none.code == 0);
+    CHECK(contains(none.err, "ssrt: warning: ssr traced no ray, so none is checked"));
+    CHECK(contains(none.err, "are past the roughness fade"));
+    // The camera turned away from the box: every pixel sky.
+    test::writeFile(dir.file("away.json"),
+                    R"({"scene": "cornell", "camera": )"
+                    R"({"position": [0, 1, 3.2], "target": [0, 1, 10], "fovY": 40}})");
+    const std::string exr = dir.file("away.exr"), csv = dir.file("away.csv");
+    const test::CliResult empty = runSsrt(tiny(
+        {"compare", "--shot", dir.file("away.json"), "-q", "-o", exr, "--per-frame", csv}, dir));
+    CHECK(empty.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(empty.err));
+    CHECK(contains(empty.err, "the frame shows no surface"));
+    CHECK(empty.out.empty());
+    CHECK(!std::filesystem::exists(exr));
+    CHECK(!std::filesystem::exists(csv));
 }
 
 TEST_CASE("compare: the reference's bounces follow --ssgi-feedback and are cached apart") {

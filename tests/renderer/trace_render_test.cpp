@@ -219,8 +219,8 @@ TEST_CASE("renderer: reprojected SSR hits read the previous frame of a sequence"
 // The trace passes run tile by tile (trace/tile_chain.h) unless an observer asks for the frame's
 // rays and march results, when they run stage by stage over the frame: the two give the same
 // bits and the same counters, for every marcher, layout, resolve mode and sample count, on a
-// frame whose size is not a whole number of tiles. (The half layout's SSGI is never observed:
-// it is tiled either way.)
+// frame whose size is not a whole number of tiles. (The half layout's SSGI is observed on the
+// half frame's batches.)
 TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits") {
     const Scene scene = makeBuiltinScene("spheres");
     struct Case {
@@ -248,15 +248,15 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
         rs.trace.ssrSpp = k.spp;
         const Renderer r(rs);
         int observed[2] = {};
-        const TraceObserver seeRays = [&](TracePass pass, int, const RayBatch&,
-                                          const MarchResult&) {
+        const TraceObserver seeRays = [&](TracePass pass, int, const RayBatch&, const MarchResult&,
+                                          const HalfFrame*) {
             ++observed[pass == TracePass::Ssr ? 0 : 1];
         };
         Frame tiled, staged;
         r.renderWithoutHistory(scene, FrameInput::still(scene), tiled);
         r.renderWithoutHistory(scene, FrameInput::still(scene), staged, &seeRays);
         CHECK(observed[0] == k.spp);
-        CHECK(observed[1] == (k.ssgiLayout == L::Half ? 0 : k.spp));
+        CHECK(observed[1] == k.spp);
         const SsrPlanes &a = tiled.trace.ssr, &b = staged.trace.ssr;
         for (int ch = 0; ch < 3; ++ch) CHECK(test::sameBits(a.color[ch], b.color[ch]));
         CHECK(test::sameBits(a.opacity, b.opacity));

@@ -39,7 +39,7 @@ struct Batches {
 Frame renderObserved(const RenderSettings& rs, const Scene& scene, uint32_t frameIndex,
                      Batches& b) {
     const TraceObserver observer = [&](TracePass pass, int, const RayBatch& rays,
-                                       const MarchResult&) {
+                                       const MarchResult&, const HalfFrame*) {
         const int p = pass == TracePass::Ssr ? 0 : 1;
         b.pdf[p] = PlaneF(rays.width(), rays.height());
         b.dx[p] = PlaneF(rays.width(), rays.height());

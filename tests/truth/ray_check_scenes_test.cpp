@@ -109,12 +109,12 @@ SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher
     rs.height = 180;
     rs.shadowMapSize = 512;
     rs.trace.marcher = marcher;
-    // Every pixel traced: the shares are of every pixel's rays (the half layout's SSGI rays
-    // live on the half frame, which the ray check does not take).
+    // Every pixel traced: the shares are of every pixel's rays, each leaving from its own
+    // pixel's surface point (tests/truth/ray_check_layouts_test.cpp checks the other layouts).
     rs.trace.ssrLayout = rs.trace.ssgiLayout = TraceLayout::Full;
     std::vector<Sample> samples;
     const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
-                                   const MarchResult& march) {
+                                   const MarchResult& march, const HalfFrame*) {
         samples.push_back({pass, copyOf(rays), copyOf(march)});
     };
     Frame frame;
