@@ -13,6 +13,11 @@ struct TraceCamera {
     int width = 0, height = 0;
     float tanHalfX = 1.0f, tanHalfY = 1.0f;  // view ray at NDC (x, y): (x tanHalfX, y tanHalfY, -1)
     float nearZ = 0.05f, farZ = 100.0f;      // positive distances
+    // Where in its pixel each pixel's sample lies, in pixels: the centre (0.5, 0.5), but on
+    // a half frame its block's chosen pixel (trace/trace_layout.h: halfPixelPoint). Ray
+    // generation starts rays there and the march projects with it; the other passes read
+    // a half frame through their own guides and take pixel centres.
+    float pointX = 0.5f, pointY = 0.5f;
     float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rotation, column-major
     // World positions in the passes and the truth are measured from `origin` (the scene's
     // bounds centre, Scene::origin()): a point is origin + position + viewToWorld * view.

@@ -159,8 +159,10 @@ RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, 
     proto.height = h;
     proto.sx = float(w) / (2.0f * camera.tanHalfX);
     proto.sy = float(h) / (2.0f * camera.tanHalfY);
-    proto.cx = float(w) * 0.5f;
-    proto.cy = float(h) * 0.5f;
+    // A pixel's sample at (i + pointX, j + pointY) of the camera projects to (i + 0.5,
+    // j + 0.5), where the march reads it (TraceCamera::pointX: a half frame's chosen pixel).
+    proto.cx = float(w) * 0.5f - (camera.pointX - 0.5f);
+    proto.cy = float(h) * 0.5f - (camera.pointY - 0.5f);
     proto.nearZ = camera.nearZ;
     std::copy(camera.viewToWorld, camera.viewToWorld + 9, proto.viewToWorld);
     proto.viewZ = g.viewZ->row(0);

@@ -69,6 +69,8 @@ RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sa
     a.tilesX = grid_.tilesX;
     a.tanHalfX = camera.tanHalfX;
     a.tanHalfY = camera.tanHalfY;
+    a.originX = camera.pointX;
+    a.originY = camera.pointY;
     std::copy_n(camera.viewToWorld, 9, a.viewToWorld);
     a.frame = frame;
     a.sample = sample;

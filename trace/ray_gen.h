@@ -8,7 +8,8 @@
 // Conventions
 // - Everything is in VIEW space: the world normal of the G-buffer is rotated by the
 //   transpose of TraceCamera::viewToWorld. The origin is the pixel's surface point
-//   ((2 (px + 0.5) / W - 1) tanHalfX z, (1 - 2 (py + 0.5) / H) tanHalfY z, -z), z = viewZ.
+//   ((2 (px + ox) / W - 1) tanHalfX z, (1 - 2 (py + oy) / H) tanHalfY z, -z), z = viewZ,
+//   (ox, oy) = TraceCamera::pointX, pointY: the centre, but on a half frame its chosen pixel.
 // - Random numbers: randomFloat(y * width + x, frame, sample, dim) with dims
 //   kRayGenSpecularDim, kRayGenSpecularDim + 1 (specular) and kRayGenDiffuseDim,
 //   kRayGenDiffuseDim + 1 (diffuse), so the two passes draw independent numbers.

@@ -117,10 +117,11 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
         for (int p = 0; p < 7; ++p) ln::store(out[p] + oo, zero);
         return;
     }
-    // Origin: the view ray through the pixel centre times viewZ (trace/trace_types.h)
-    const Lane px = Lane(float(x)) + ln::laneIndex<Lane>() + Lane(0.5f);
-    const Lane ndcX = px * Lane(2.0f / float(a.width)) - Lane(1.0f);
-    const Lane ndcY = Lane(1.0f) - Lane((float(y) + 0.5f) * (2.0f / float(a.height)));
+    // Origin: the view ray through the pixel's point (its centre, or a half frame's chosen
+    // pixel's: RayGenArgs::originX) times viewZ (trace/trace_types.h)
+    const Lane xi = Lane(float(x)) + ln::laneIndex<Lane>();
+    const Lane ndcX = (xi + Lane(a.originX)) * Lane(2.0f / float(a.width)) - Lane(1.0f);
+    const Lane ndcY = Lane(1.0f) - Lane((float(y) + a.originY) * (2.0f / float(a.height)));
     const V3 ray{ndcX * Lane(a.tanHalfX), ndcY * Lane(a.tanHalfY), Lane(-1.0f)};
     const V3 origin{ray.x * viewZ, ray.y * viewZ, Lane(0.0f) - viewZ};
     // The view direction (towards the camera) and the normal rotated into view space
@@ -152,7 +153,6 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     // traced when (x & 1) == ((y ^ frame ^ phase) & 1) (x's parity as an exact float).
     Mask cut = zero > zero;
     if (a.checkerboard) {
-        const Lane xi = px - Lane(0.5f);
         const Lane parity = xi - Lane(2.0f) * ln::floor(xi * Lane(0.5f));
         const uint32_t want = (uint32_t(y) ^ a.frame ^ a.checkerPhase) & 1u;
         cut = wanted & !(parity == Lane(float(want)));

@@ -32,6 +32,9 @@ struct RayGenArgs {
     bool stream;       // store past the cache (a frame's batch; not a tile's, read next)
     int width, height, tilesX;
     float tanHalfX, tanHalfY;
+    // Where in its pixel a ray starts (0.5: the centre). A half-resolution frame's pixel
+    // holds its block's chosen pixel, which lies off the block's centre.
+    float originX, originY;
     float viewToWorld[9];  // rotation, column-major
     uint32_t frame, sample;
     uint32_t dim;  // first of the two random-number dimensions

@@ -51,6 +51,9 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     }
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
+    const PixelPoint point = halfPixelPoint(out.offset);
+    out.camera.pointX = point.x;
+    out.camera.pointY = point.y;
     const int hw = out.camera.width, hh = out.camera.height;
     const int w = full.width, h = full.height;
     if (!hitLight) {

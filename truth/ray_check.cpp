@@ -82,6 +82,9 @@ struct BatchGrid {
     // (x / z, y / z) both cameras project by (for the half camera of an even size, 2 x).
     void toFramePixels(float& x, float& y) const {
         if (!half) return;
+        // (The march reads a half pixel's sample at its centre; it lies at pointX, pointY.)
+        x += batch.pointX - 0.5f;
+        y += batch.pointY - 0.5f;
         const float sx = (x / float(batch.width) * 2.0f - 1.0f) * batch.tanHalfX;
         const float sy = (1.0f - y / float(batch.height) * 2.0f) * batch.tanHalfY;
         x = (sx / frame.tanHalfX * 0.5f + 0.5f) * float(frame.width);

@@ -190,6 +190,43 @@ TEST_CASE("half resolution: the chosen pixel of each block rotates over the four
     }
 }
 
+// A half frame's pixel holds its block's chosen pixel, off the half pixel's centre: its rays
+// start at that pixel's own surface point (TraceCamera::pointX), where the truth traces them,
+// not at the half pixel's centre at that depth (off a sloped surface).
+TEST_CASE("half resolution: SSGI rays start at the chosen pixel's surface point") {
+    const Scene scene = makeBuiltinScene("cornell");
+    const RenderSettings rs = smallSettings(TraceLayout::Checkerboard, TraceLayout::Half);
+    for (uint32_t f = 0; f < 4; ++f) {
+        CAPTURE(f);
+        int checked = 0;
+        float worst = 0.0f;
+        Frame frame;
+        const TraceObserver observer = [&](TracePass pass, int, const RayBatch& rays,
+                                           const MarchResult&, const HalfFrame* half) {
+            if (pass != TracePass::Ssgi) return;
+            REQUIRE(half);
+            const TraceCamera& c = frame.camera;
+            for (int hy = 0; hy < rays.height(); ++hy)
+                for (int hx = 0; hx < rays.width(); ++hx) {
+                    if (!(rays.pdf.at(hx, hy) > 0.0f)) continue;
+                    const PixelOffset p = halfSource(hx, hy, half->offset, c.width, c.height);
+                    const float z = frame.gbuffer.viewZ.at(p.x, p.y);
+                    const float want[3] = {
+                        (2.0f * (float(p.x) + 0.5f) / float(c.width) - 1.0f) * c.tanHalfX * z,
+                        (1.0f - 2.0f * (float(p.y) + 0.5f) / float(c.height)) * c.tanHalfY * z, -z};
+                    const float got[3] = {rays.ox.at(hx, hy), rays.oy.at(hx, hy),
+                                          rays.oz.at(hx, hy)};
+                    for (int k = 0; k < 3; ++k)
+                        worst = std::max(worst, std::abs(got[k] - want[k]) / z);
+                    ++checked;
+                }
+        };
+        Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene, f), frame, &observer);
+        CHECK(checked > 1000);
+        CHECK(worst < 1e-5f);  // (the half pixel's centre is a quarter of a pixel off: 1e-3)
+    }
+}
+
 TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, every frame") {
     // The chosen pixel rotates; the guides (depth, normal, motion in half pixels) stay at the
     // block's pixel (0, 0), so the denoiser's history sees one surface frame after frame; and
