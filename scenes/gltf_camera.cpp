@@ -39,8 +39,8 @@ Camera placeCamera(const glm::mat4& world, double yfov, double znear, double zfa
         return {};
     }
     const double largest = std::max({sx, sy, sz}), smallest = std::min({sx, sy, sz});
-    placement.uneven = largest > (1.0 + kTolerance) * smallest || sheared(x, y) ||
-                       sheared(x, z) || sheared(y, z);
+    placement.uneven =
+        largest > (1.0 + kTolerance) * smallest || sheared(x, y) || sheared(x, z) || sheared(y, z);
     placement.mirrored = glm::dot(glm::cross(x, y), z) < 0.0;
     placement.scale = std::abs(sz - 1.0) > kTolerance ? float(sz) : 1.0f;
 
@@ -93,8 +93,9 @@ std::vector<std::string> placementWarnings(const CameraPlacement& placement, dou
                         "), where glTF ignores a camera's scale");
     }
     if (placement.uneven)
-        lines.push_back("its node scales unevenly or shears: the view is orthonormalised "
-                        "(along its -Z, up from its +Y)");
+        lines.push_back(
+            "its node scales unevenly or shears: the view is orthonormalised "
+            "(along its -Z, up from its +Y)");
     if (placement.mirrored)
         lines.push_back("its node mirrors: the mirror is ignored (the image is not flipped)");
     if (placement.beyondFar > 0)

@@ -13,10 +13,10 @@ namespace ssrt::gltf {
 
 // What placing a camera reinterpreted, for the loader's warnings.
 struct CameraPlacement {
-    float scale = 1.0f;     // the world matrix's scale along the view axis, applied to near/far
-    bool uneven = false;    // scales unevenly or shears: the view was orthonormalised
-    bool mirrored = false;  // the world matrix mirrors: ignored (the image is not flipped)
-    bool degenerate = false;  // no view direction or up can be taken from it
+    float scale = 1.0f;         // the world matrix's scale along the view axis, applied to near/far
+    bool uneven = false;        // scales unevenly or shears: the view was orthonormalised
+    bool mirrored = false;      // the world matrix mirrors: ignored (the image is not flipped)
+    bool degenerate = false;    // no view direction or up can be taken from it
     std::size_t beyondFar = 0;  // triangles it cannot see for its far plane (trianglesBeyondFar)
 };
 
