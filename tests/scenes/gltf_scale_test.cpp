@@ -52,8 +52,8 @@ Glb readGlb(const std::string& path) {
 // The engine as a .gltf beside its buffer (engine.bin), its scene's root nodes (the model and
 // the camera) under one more node that scales by `scale` and moves by `offset`: the loader's
 // node walk composes that node into every mesh's and the camera's world matrix.
-std::string writeWrapped(const TempDir& dir, const Glb& glb, const std::string& name,
-                         double scale, const glm::dvec3& offset = glm::dvec3(0.0)) {
+std::string writeWrapped(const TempDir& dir, const Glb& glb, const std::string& name, double scale,
+                         const glm::dvec3& offset = glm::dvec3(0.0)) {
     const std::string bin = dir.file("engine.bin");
     if (!std::ifstream(bin).good()) test::writeFile(bin, glb.bin);
     Json j = glb.json;
@@ -102,8 +102,8 @@ Checked renderAndCheck(const Scene& scene) {
     // The G-buffer and camera are final before the trace passes run.
     const TraceObserver check = [&](TracePass pass, int, const RayBatch& rays,
                                     const MarchResult& march) {
-        const RayCheckTable t =
-            checkRays(embree, out.frame.camera, out.frame.gbuffer.viewZ, rays, march, cs, nullptr, 0);
+        const RayCheckTable t = checkRays(embree, out.frame.camera, out.frame.gbuffer.viewZ, rays,
+                                          march, cs, nullptr, 0);
         (pass == TracePass::Ssr ? out.ssr : out.ssgi).add(t);
     };
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), out.frame, &check);
@@ -138,7 +138,9 @@ uint64_t surfacePixels(const Frame& f) {
 
 }  // namespace
 
-TEST_CASE("gltf scale: 2CylinderEngine scaled by 1e-3 and 1e3 or moved 1e4 keeps its image and ray classes") {
+TEST_CASE(
+    "gltf scale: 2CylinderEngine scaled by 1e-3 and 1e3 or moved 1e4 keeps its image and ray "
+    "classes") {
     const std::string path = test::assimpModel(kEngine);
     if (path.empty()) return;
     TempDir dir("gltf-scale");
@@ -160,7 +162,8 @@ TEST_CASE("gltf scale: 2CylinderEngine scaled by 1e-3 and 1e3 or moved 1e4 keeps
         const Scene scene = load(writeWrapped(dir, glb, "v.gltf", v.scale, v.offset), warnings);
         // A scaled camera's near and far planes are scaled with it, and the loader says so.
         CHECK(warnings.size() == (v.scale == 1.0 ? 0u : 1u));
-        if (!warnings.empty()) CHECK(warnings[0].find("znear and zfar are scaled") != std::string::npos);
+        if (!warnings.empty())
+            CHECK(warnings[0].find("znear and zfar are scaled") != std::string::npos);
         const Checked c = renderAndCheck(scene);
         const double error = colourError(c.frame, base.frame);
         const double shares = largestShareChange(c, base);
@@ -179,7 +182,8 @@ TEST_CASE("gltf scale: 2CylinderEngine scaled by 1e-3 and 1e3 or moved 1e4 keeps
 // The bug as found: with znear and zfar taken in world units under a node scaling by 1000,
 // the whole engine lay past the far plane; the image was empty while --stats counted the
 // rasterizer's covered pixels, and the trace saw no surface.
-TEST_CASE("gltf scale: a camera under a node scaling by 1000 sees the engine, the trace counts it") {
+TEST_CASE(
+    "gltf scale: a camera under a node scaling by 1000 sees the engine, the trace counts it") {
     const std::string path = test::assimpModel(kEngine);
     if (path.empty()) return;
     TempDir dir("gltf-scale");
@@ -191,7 +195,8 @@ TEST_CASE("gltf scale: a camera under a node scaling by 1000 sees the engine, th
     const Frame f = Renderer(rs).renderWithoutHistory(scene);
     const uint64_t seen = surfacePixels(f);
     MESSAGE("2CylinderEngine under a 1000x node, 160x90: " << seen << " surface pixels, "
-            << f.stats.visibility.pixelsWritten << " written by the rasterizer");
+                                                           << f.stats.visibility.pixelsWritten
+                                                           << " written by the rasterizer");
     CHECK(seen > 160 * 90 / 10);
     CHECK(f.stats.ssr.rays.pixels == seen);
     CHECK(f.stats.ssgi.rays.pixels == seen);
@@ -268,10 +273,10 @@ TEST_CASE("gltf scale: near and far planes through the engine clip the raster an
             covered += raster;
             differ += raster != bool(clipped[std::size_t(y) * f.width + x]);
         }
-    MESSAGE("2CylinderEngine cut by its near and far planes, 160x90: " << covered
-            << " pixels covered (" << whole << " uncut), " << differ << " where Embree differs; " << beyond
-            << " triangles past far, " << f.stats.visibility.trianglesOutside
-            << " dropped by the rasterizer as outside");
+    MESSAGE("2CylinderEngine cut by its near and far planes, 160x90: "
+            << covered << " pixels covered (" << whole << " uncut), " << differ
+            << " where Embree differs; " << beyond << " triangles past far, "
+            << f.stats.visibility.trianglesOutside << " dropped by the rasterizer as outside");
     CHECK(covered > 0);
     CHECK(f.stats.ssr.rays.pixels == covered);
     CHECK(differ <= covered / 200);  // silhouette pixels whose centre the two round apart
