@@ -105,9 +105,12 @@ SSRT_INLINE Lane sanitize(Lane v) {
     return ln::select(finite, ln::clamp(v, Lane(0.0f), Lane(kMaxSignal)), Lane(0.0f));
 }
 
-// Normalised hit distance: 1 without a hit (a miss is as far as it gets).
+// Normalised hit distance: 1 without a hit (a miss is as far as it gets). The distance is in
+// scene units, so only non-finite and negative values go: sanitize's fp16 clamp would cut a
+// scene in kilometres (a model scaled by 1000) short of its hits.
 SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
-    const Lane d = sanitize(h);
+    const Mask finite = (h - h) == Lane(0.0f);
+    const Lane d = ln::select(finite, ln::max(h, Lane(0.0f)), Lane(0.0f));
     const Lane scale = rb::hitDistanceScale(v.hitScale, z, r);
     return ln::select(d > Lane(0.0f), ln::saturate(d / scale), Lane(1.0f));
 }

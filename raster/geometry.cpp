@@ -104,6 +104,10 @@ int32_t lastPixelAtOrBefore(int64_t v) {
 bool setupScreenTriangle(ScreenVertex v0, ScreenVertex v1, ScreenVertex v2, uint32_t primId,
                          bool cullBack, const RasterView& view, TriangleSetup& t,
                          RasterStats& stats) {
+    if (std::max({v0.q, v1.q, v2.q}) <= view.farKey) {
+        ++stats.trianglesOutside;  // past the far plane
+        return false;
+    }
     int64_t area = int64_t(v1.x - v0.x) * (v2.y - v0.y) - int64_t(v2.x - v0.x) * (v1.y - v0.y);
     if (area == 0) {
         ++stats.trianglesInvalid;  // zero area after snapping

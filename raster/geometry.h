@@ -1,9 +1,11 @@
 // Front end of a raster pass: vertex transform, triangle assembly, culling, clipping
-// (near plane and guard band), snapping to fixed point and triangle set-up.
+// (near plane and guard band; triangles wholly past the far plane dropped), snapping to fixed
+// point and triangle set-up.
 #pragma once
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
 #include <vector>
 
 #include "raster/alpha_test.h"
@@ -18,8 +20,11 @@ struct RasterView {
     glm::mat4 viewProj{1.0f};  // of points measured from `origin`
     glm::vec3 origin{0.0f};    // Scene::origin() for the frame's passes (transformFrom)
     int width = 0, height = 0;
-    bool perspective = true;    // depth key 1/w (perspective) or 1 - z01 (orthographic)
-    float nearW = 0.05f;        // near plane as clip-space w (perspective only)
+    bool perspective = true;  // depth key 1/w (perspective) or 1 - z01 (orthographic)
+    float nearW = 0.05f;      // near plane as clip-space w (perspective only)
+    // The far plane's depth key (RasterOptions::clearDepth): a triangle whose corners all
+    // lie at or past it is dropped before binning, as the depth test would drop its pixels.
+    double farKey = -std::numeric_limits<double>::infinity();
     bool cullBackFaces = true;  // honour Material::doubleSided (false: draw every face)
 };
 

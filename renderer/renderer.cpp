@@ -141,9 +141,10 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     rv.width = c.grid.width;
     rv.height = c.grid.height;
     rv.nearW = c.camera.nearZ;
-    const TransformedVertices tv = transformVertices(scene, rv, c.threads);
     RasterOptions ro = c.raster();
     ro.clearDepth = 1.0f / c.camera.farZ;
+    rv.farKey = ro.clearDepth;  // clipped at the far plane before binning as by the depth test
+    const TransformedVertices tv = transformVertices(scene, rv, c.threads);
     RasterTimes rt;
     rasterize(scene, tv, rv, ro, frame.scratch.visibility, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});

@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 
+#include "scenes/gltf_camera.h"
 #include "scenes/gltf_compression.h"
 #include "scenes/gltf_textures.h"
 #include "scenes/mesh_builders.h"
@@ -50,6 +51,7 @@ struct Notes {
     std::size_t pointLights = 0, spotLights = 0, otherLights = 0, extraDirectional = 0;
     int usedCamera = -1;
     std::set<int> extraCameras, orthographicCameras;
+    gltf::CameraPlacement placement;          // of the camera used
     std::vector<std::size_t> blendMaterials;  // alphaMode BLEND, drawn as MASK
     std::size_t vertexColours = 0, morphTargets = 0;
 };
@@ -714,14 +716,10 @@ void Walk::takeCamera(std::size_t node, int camera, const glm::mat4& world) {
     if (!(p.yfov > 0.0 && p.yfov < 3.14159) || !(p.znear > 0.0) || !std::isfinite(p.zfar))
         ctx.fail(name + ": yfov must lie in (0, pi) and znear must be positive");
     if (p.zfar > 0.0 && p.zfar <= p.znear) ctx.fail(name + ": zfar must exceed znear");
-    Camera& cam = scene.camera;
-    cam.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    cam.target = cam.position + worldDirection(world, {0.0f, 0.0f, -1.0f});  // glTF looks -Z
-    cam.up = worldDirection(world, {0.0f, 1.0f, 0.0f});
-    cam.fovY = glm::degrees(float(p.yfov));
-    cam.nearZ = float(p.znear);
-    cam.farZ = float(p.zfar);
-    if (!std::isfinite(cam.target.x + cam.target.y + cam.target.z + cam.up.x + cam.up.y + cam.up.z))
+    // Under a scaling node its znear and zfar scale with it (scenes/gltf_camera.h).
+    Notes& notes = ctx.notes;
+    scene.camera = gltf::placeCamera(world, p.yfov, p.znear, p.zfar, notes.placement);
+    if (notes.placement.degenerate)
         ctx.fail("node " + str(node) + ": camera transform is degenerate");
     haveCamera = true;
 }
@@ -883,7 +881,7 @@ std::string skippedPrimitives(const Notes& n) {
 }
 
 // Each of the warnings, in a fixed order, one line per kind, each naming the file.
-std::vector<std::string> warningLines(const Context& ctx) {
+std::vector<std::string> warningLines(const Context& ctx, const Scene& scene) {
     const tinygltf::Model& m = ctx.model;
     const Notes& n = ctx.notes;
     std::vector<std::string> lines;
@@ -911,6 +909,11 @@ std::vector<std::string> warningLines(const Context& ctx) {
     if (!n.orthographicCameras.empty())
         lines.push_back(named("orthographic camera", n.orthographicCameras) +
                         " ignored (only perspective cameras are supported)");
+    if (n.usedCamera >= 0) {
+        const tinygltf::PerspectiveCamera& p = m.cameras[n.usedCamera].perspective;
+        for (std::string& line : gltf::placementWarnings(n.placement, p.znear, p.zfar, scene))
+            lines.push_back("camera " + std::to_string(n.usedCamera) + ": " + line);
+    }
     if (!n.blendMaterials.empty())
         lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
                         named("material", n.blendMaterials) + ")");
@@ -953,6 +956,7 @@ void convert(const Context& ctx, Scene& scene) {
                      : "the scene has no triangles (" + skippedPrimitives(ctx.notes) +
                            ": only triangles, strips and fans are rendered)");
     fitCamera(scene, scene.camera.farZ, walk.haveCamera);
+    if (walk.haveCamera) ctx.notes.placement.beyondFar = gltf::trianglesBeyondFar(scene);
     try {
         scene.validate();
     } catch (const std::invalid_argument& e) {
@@ -974,7 +978,7 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoad
         Notes notes;
         const Context ctx{path, model, textures, notes};
         convert(ctx, scene);
-        std::vector<std::string> warnings = warningLines(ctx);
+        std::vector<std::string> warnings = warningLines(ctx, scene);
         if (options.strict && !warnings.empty())
             throw SceneLoadError(warnings.front() + " (strict: every warning is an error)");
         if (report) report->warnings = std::move(warnings);

@@ -22,7 +22,8 @@ public:
 // primitive, with the node's world transform as both transform and previousTransform.
 // Materials: emissiveFactor times KHR_materials_emissive_strength's emissiveStrength.
 //
-// Camera: the first perspective camera met in a depth-first walk of the node tree. Without
+// Camera: the first perspective camera met in a depth-first walk of the node tree, placed by
+// its node's world matrix (scale and all: scenes/gltf_camera.h). Without
 // one, a camera fitted to the bounds: it looks at the centre of the bounding sphere from
 // above and in front (+Z, tilted up), with a 45 degree vertical field of view and far enough
 // that the whole sphere fits vertically (and horizontally for aspect ratios of 1 and wider).
@@ -44,7 +45,8 @@ public:
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
-// cameras other than the one used and orthographic cameras, alphaMode BLEND, sampler
+// cameras other than the one used and orthographic cameras, a camera node's scale, shear or
+// mirror and the triangles wholly past its far plane, alphaMode BLEND, sampler
 // filters other than trilinear, COLOR_0, skins, animations and morph targets.
 // kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is
 // not among them is an error naming it.

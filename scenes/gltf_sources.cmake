@@ -11,7 +11,7 @@ find_package(meshoptimizer REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 add_library(ssrt_gltf STATIC scenes/gltf_loader.cpp scenes/gltf_textures.cpp
                              scenes/gltf_compression.cpp scenes/gltf_draco.cpp
-                             scenes/gltf_meshopt.cpp)
+                             scenes/gltf_meshopt.cpp scenes/gltf_camera.cpp)
 target_link_libraries(ssrt_gltf PUBLIC ssrt PRIVATE ssrt_io TinyGLTF::TinyGLTF draco::draco
                                                     meshoptimizer::meshoptimizer
                                                     nlohmann_json::nlohmann_json)

@@ -190,7 +190,8 @@ TrueHit locateTrueHit(const TraceCamera& cam, const PlaneF& viewZ, const RayBatc
     h.projects = true;
     h.px = (p.x / (h.z * cam.tanHalfX) * 0.5f + 0.5f) * float(cam.width);
     h.py = (0.5f - p.y / (h.z * cam.tanHalfY) * 0.5f) * float(cam.height);
-    if (h.z < cam.nearZ || !(h.px >= 0.0f && h.px < float(cam.width)) ||
+    // Between the near and far planes, as the rasterizer clips.
+    if (h.z < cam.nearZ || h.z > cam.farZ || !(h.px >= 0.0f && h.px < float(cam.width)) ||
         !(h.py >= 0.0f && h.py < float(cam.height)))
         return h;
     // Visible: the pixel it lands on shows this depth (background shows nothing).

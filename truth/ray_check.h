@@ -6,9 +6,9 @@
 // in [tnear, maxDistance] (tnear = EmbreeScene::epsilon(), off the origin's own surface;
 // maxDistance = MarchSettings::maxDistance, where the marchers give up). Both faces count.
 //
-// The true hit is "visible on screen" when it projects inside the frame, in front of the near
-// plane, onto a pixel whose G-buffer viewZ is the hit's own depth within the depth tolerance
-// (nothing nearer covers it; background pixels never see it).
+// The true hit is "visible on screen" when it projects inside the frame, between the near and
+// far planes (as the rasterizer clips), onto a pixel whose G-buffer viewZ is the hit's own
+// depth within the depth tolerance (nothing nearer covers it; background pixels never see it).
 //
 // Classes (per ray; a pixel without a ray is NoRay and in no count):
 //   Agreed          march hit, true hit visible, and the march's hit pixel within

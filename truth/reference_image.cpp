@@ -125,6 +125,14 @@ void ensure3(PlaneF p[3], int w, int h) {
     for (int c = 0; c < 3; ++c) p[c].ensureSize(w, h);
 }
 
+// How far along the unit ray from the camera away from `toCam` the near plane lies: what lies
+// nearer, the rasterizer clipped, so Embree's primary hit must not see it either.
+float nearDistance(const Setup& s, glm::vec3 toCam) {
+    const float* r = s.frame.camera.viewToWorld;  // column 2 is the view's +Z, behind the camera
+    const float cosine = glm::dot(toCam, glm::vec3(r[6], r[7], r[8]));
+    return s.frame.camera.nearZ / cosine;
+}
+
 // Per surface pixel, the step off its surface that every ray leaving it takes: epsilon
 // along the geometric normal, on the camera's side. The G-buffer's point is the true one
 // only to float rounding (1e-5 below a floor seen at a distance is typical), enough for a
@@ -145,7 +153,7 @@ void surfaceOffsets(Setup& s) {
                 const PointSurface ps = reference::pixelSurface(a, x, y);
                 const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
                 glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
-                const EmbreeHit h = embree.intersect(cam, -toCam, 0.0f, INFINITY);
+                const EmbreeHit h = embree.intersect(cam, -toCam, nearDistance(s, toCam), INFINITY);
                 if (h.hit) {
                     n = embree.surface(cam, -toCam, h).geometricNormal;
                     if (glm::dot(n, toCam) < 0.0f) n = -n;

@@ -15,7 +15,9 @@ namespace {
 // 2: the specular with the DFG table and Kulla-Conty multiple scattering (shade::shadeSurface).
 // 3: positions measured from the scene's origin (Scene::origin()), and the march's relative
 //    maxDistance (the same image to within float rounding, not to the bit).
-constexpr uint64_t kReferenceVersion = 3;
+// 4: the primary hit that gives a pixel its geometric normal starts at the near plane, as the
+//    rasterizer clips (the same bits where nothing lies nearer than the near plane).
+constexpr uint64_t kReferenceVersion = 4;
 
 // Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
 class Fnv1a {

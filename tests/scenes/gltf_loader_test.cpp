@@ -138,7 +138,8 @@ void checkRichScene(const ssrt::Scene& s) {
     closeTo(m.emissive, {1, 0.5f, 0});
     CHECK(m.doubleSided);
     closeTo(s.camera.position, {0, 0, 5});
-    closeTo(s.camera.target, {0, 0, 4});
+    // Looking down -Z (the look-at point lies as far out as the camera is from 0).
+    closeTo(glm::normalize(s.camera.target - s.camera.position), {0, 0, -1});
     closeTo(s.camera.up, {0, 1, 0});
     CHECK(s.camera.fovY == doctest::Approx(0.8 * 180.0 / 3.14159265358979));
     CHECK(s.camera.nearZ == doctest::Approx(0.1));
@@ -366,6 +367,47 @@ TEST_CASE("gltf warnings: points and lines are skipped with one line, the triang
                                           "strips and fans are rendered)"});
     // The old entry point loads the same scene and says nothing.
     CHECK(loadGltf(path).triangleCount() == 1);
+}
+
+// A camera under a node that mirrors and stretches its Z by 2 (scenes/gltf_camera.h): it
+// keeps an orthonormal view, scales znear and zfar by 2, and each departure is a warning.
+TEST_CASE("gltf warnings: a camera under a scaled, mirroring node is placed and each change said") {
+    TempDir dir("gltf-warn");
+    Knobs k = richKnobs();
+    k.nodes = R"([{"mesh": 0}, {"scale": [1, 1, -2], "children": [2]},)"
+              R"( {"translation": [0, 0, 5], "camera": 0}])";
+    k.scenes = R"([{"nodes": [0, 1]}])";
+    const std::string path = writeGltf(dir, "mirror.gltf", k);
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene s = loadGltf(path, {}, &report);
+    // At (0, 0, -10), its -Z turned to +Z by the mirror: it faces the triangle at z = 0.
+    closeTo(s.camera.position, {0, 0, -10});
+    closeTo(glm::normalize(s.camera.target - s.camera.position), {0, 0, 1});
+    closeTo(s.camera.up, {0, 1, 0});
+    CHECK(s.camera.nearZ == doctest::Approx(0.2));
+    CHECK(s.camera.farZ == doctest::Approx(100));
+    const std::string cam = path + ": camera 0: its node ";
+    CHECK(report.warnings ==
+          std::vector<std::string>{
+              cam + "scales by 2 along the view axis: znear and zfar are scaled with it "
+                    "(0.1 -> 0.2, 50 -> 100), where glTF ignores a camera's scale",
+              cam + "scales unevenly or shears: the view is orthonormalised (along its -Z, up "
+                    "from its +Y)",
+              cam + "mirrors: the mirror is ignored (the image is not flipped)"});
+}
+
+// What the far plane hides is said, not dropped in silence: every pass leaves it off screen.
+TEST_CASE("gltf warnings: triangles wholly beyond the camera's far plane are counted") {
+    TempDir dir("gltf-warn");
+    Knobs k = richKnobs();
+    k.nodes = R"([{"mesh": 0}, {"translation": [0, 0, 5], "camera": 0}])";
+    k.scenes = R"([{"nodes": [0, 1]}])";
+    k.extra = R"(, "cameras": [{"type": "perspective", "perspective": )"
+              R"({"yfov": 0.8, "znear": 0.1, "zfar": 4}}])";
+    const std::string path = writeGltf(dir, "far.gltf", k);
+    CHECK(warningsOf(path) ==
+          std::vector<std::string>{path + ": camera 0: 1 of 1 triangles lie wholly beyond its far "
+                                          "plane (4 scene units) and are not drawn"});
 }
 
 TEST_CASE("gltf warnings: a required extension ssrt cannot honour is an error naming it") {

@@ -55,6 +55,15 @@ inline std::string glbOf(std::string json, std::vector<unsigned char> bin) {
     return out;
 }
 
+// A file of Debian's assimp-testmodels (its path under /usr/share/assimp/models/glTF2), or ""
+// with a message saying the test is skipped when the package is not installed.
+inline std::string assimpModel(const std::string& relative) {
+    const std::string path = "/usr/share/assimp/models/glTF2/" + relative;
+    if (std::ifstream(path).good()) return path;
+    MESSAGE("skipped: assimp-testmodels is not installed (" << path << ")");
+    return {};
+}
+
 // The loader's message for a file it must refuse (a test failure when it loads).
 inline std::string loadError(const std::string& path) {
     try {
