@@ -89,6 +89,22 @@ void printTable(std::ostream& out, const std::vector<std::vector<std::string>>& 
     }
 }
 
+// FLIP's line: which FLIP, then mean, weighted median and max with 6 decimals.
+void printFlip(std::ostream& out, const FlipResult& r, const FlipFileOptions& options) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2);
+    if (r.hdr)
+        s << "HDR-FLIP (" << r.exposures << " exposures from " << r.startExposure << " to "
+          << r.stopExposure << " stops, ";
+    else s << "LDR-FLIP (";
+    s << options.ppd << " pixels per degree): " << std::setprecision(6) << "mean " << r.stats.mean
+      << ", weighted median " << r.stats.weightedMedian << ", max " << r.stats.max << "\n";
+    if (!options.heatmap.empty())
+        s << "FLIP heat map " << options.heatmap
+          << ": the error per pixel on the magma map, black = 0 to pale yellow = 1\n";
+    out << s.str();
+}
+
 }  // namespace
 
 std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& f, const std::string& group) {
@@ -175,11 +191,23 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
            "RGB); default: every layer of either file")
         ->type_name("LIST");
     addDiffFlags(*cmd, o.flags, "Thresholds");
+    cmd->add_flag("--flip", o.flip,
+                  "Also print FLIP, a perceptual difference of the images' colour (layer color, "
+                  "else R,G,B): its mean, weighted median and maximum over pixels, each in [0, 1] "
+                  "(0: identical); HDR-FLIP when both files are linear (EXR), else LDR-FLIP. It "
+                  "sets no exit status")
+        ->group("FLIP");
+    cmd->add_option_function<std::string>(
+           "--flip-heatmap", [&o](const std::string& v) { o.flipHeatmap = v; },
+           "Write FLIP's error per pixel as a .png on the magma colour map (black: 0, pale "
+           "yellow: 1); implies --flip")
+        ->type_name("FILE.png")
+        ->group("FLIP");
     return cmd;
 }
 
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
-               std::ostream& out) {
+               std::ostream& out, const FlipFileOptions* flip) {
     const ImageDiff diff = compareImages(a, b, settings.compare);
     std::vector<std::vector<std::string>> rows{{"layer", "channels", "max error", "at (x, y)",
                                                 "relMSE", "pixels over", "share", "verdict"}};
@@ -201,6 +229,7 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
             << ": black = equal, dark red to white = a difference up to " << number(diff.heatScale)
             << " (the largest finite one; any difference at least dark red), blue = a NaN or "
                "infinity against a different value\n";
+    if (flip) printFlip(out, flipImages(a, b, *flip), *flip);
     const std::string pair = a + " against " + b + " (" + std::to_string(diff.width) + "x" +
                              std::to_string(diff.height) + ", " +
                              plural(int(diff.layers.size()), "layer") + ")";
@@ -222,7 +251,21 @@ int runDiff(const DiffOptions& o, std::ostream& out) {
     DiffSettings settings = diffSettingsFrom(o.flags);
     checkHeatmapApart(settings.compare.heatmap, {o.a, o.b});
     if (o.layers) settings.compare.layers = splitList("--layers", *o.layers);
-    return diffImages(o.a, o.b, settings, out);
+    if (!o.flip && !o.flipHeatmap) return diffImages(o.a, o.b, settings, out);
+    FlipFileOptions flip;
+    if (o.flipHeatmap) {
+        if (!isPngPath(*o.flipHeatmap)) badValue("--flip-heatmap", *o.flipHeatmap, "a .png file");
+        checkWritable(*o.flipHeatmap);
+        for (const std::string& image : {o.a, o.b})
+            if (samePath(*o.flipHeatmap, image))
+                throw std::invalid_argument("--flip-heatmap: '" + *o.flipHeatmap +
+                                            "' is an image being compared");
+        if (!settings.compare.heatmap.empty() && samePath(*o.flipHeatmap, settings.compare.heatmap))
+            throw std::invalid_argument("--flip-heatmap: '" + *o.flipHeatmap +
+                                        "' is also --heatmap");
+        flip.heatmap = *o.flipHeatmap;
+    }
+    return diffImages(o.a, o.b, settings, out, &flip);
 }
 
 }  // namespace ssrt::cli

@@ -1,5 +1,6 @@
 // `ssrt diff A B`: an image against a reference (a golden image), layer by layer, with
-// thresholds; its table and exit status are also `ssrt render --compare FILE`'s.
+// thresholds; its table and exit status are also `ssrt render --compare FILE`'s. With --flip
+// it also prints FLIP, a perceptual difference of the two images' colour (io/flip.h).
 #pragma once
 
 #include <iosfwd>
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/flip.h"
 #include "io/image_compare.h"
 
 namespace CLI {
@@ -27,7 +29,9 @@ struct DiffFlags {
 struct DiffOptions {
     std::string a, b;  // b is the reference
     DiffFlags flags;
-    std::optional<std::string> layers;  // comma-separated layer names
+    std::optional<std::string> layers;       // comma-separated layer names
+    bool flip = false;                       // print FLIP (--flip, or implied by --flip-heatmap)
+    std::optional<std::string> flipHeatmap;  // a .png of FLIP's error on the magma map
 };
 
 // What the flags mean, checked.
@@ -55,10 +59,11 @@ void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string
 // Registers the `diff` subcommand on `app`, bound to `options`, and returns it.
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 
-// Compares `a` against the reference `b`, prints the table and a summary line to `out` and
-// returns kExitOk (every layer within the thresholds) or kExitDiffer; throws on errors.
+// Compares `a` against the reference `b`, prints the table, FLIP's line (when `flip` is given:
+// its mean, weighted median and maximum, which set no exit status) and a summary line to `out`
+// and returns kExitOk (every layer within the thresholds) or kExitDiffer; throws on errors.
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
-               std::ostream& out);
+               std::ostream& out, const FlipFileOptions* flip = nullptr);
 
 // `ssrt diff`: diffSettingsFrom, then diffImages.
 int runDiff(const DiffOptions& options, std::ostream& out);
