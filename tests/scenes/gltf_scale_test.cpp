@@ -101,9 +101,9 @@ Checked renderAndCheck(const Scene& scene) {
     cs.maxDistance = marchLengths(rs.trace.march, scene.diagonal()).maxDistance;
     // The G-buffer and camera are final before the trace passes run.
     const TraceObserver check = [&](TracePass pass, int, const RayBatch& rays,
-                                    const MarchResult& march) {
+                                    const MarchResult& march, const HalfFrame* half) {
         const RayCheckTable t = checkRays(embree, out.frame.camera, out.frame.gbuffer.viewZ, rays,
-                                          march, cs, nullptr, 0);
+                                          march, cs, nullptr, 0, half);
         (pass == TracePass::Ssr ? out.ssr : out.ssgi).add(t);
     };
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), out.frame, &check);
