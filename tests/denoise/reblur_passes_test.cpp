@@ -14,6 +14,7 @@
 #include "core/isa.h"
 #include "core/tiles.h"
 #include "denoise/reblur_kernel.h"
+#include "plane_compare.h"
 
 using namespace ssrt;
 
@@ -82,12 +83,7 @@ void forEachTile(Fn&& fn) {
     for (int t = 0; t < grid.count(); ++t) fn(t);
 }
 
-bool sameBits(const PlaneF& a, const PlaneF& b) {
-    for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
-    return true;
-}
+using test::sameBits;
 
 }  // namespace
 

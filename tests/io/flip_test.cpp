@@ -14,6 +14,7 @@
 
 #include "cli/cli_run.h"
 #include "io/image_io.h"
+#include "plane_compare.h"
 #include "temp_dir.h"
 
 // Renders through the ssrt_cli_lib target, which defines SSRT_CLI_LIB for those linking it.
@@ -60,13 +61,7 @@ RgbPlanes readColour(const std::string& exr) {
     return rgb;
 }
 
-bool sameBits(const PlaneF& a, const PlaneF& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
-    return true;
-}
+using test::sameBits;
 
 bool allZero(const PlaneF& p) {
     for (int y = 0; y < p.height(); ++y)

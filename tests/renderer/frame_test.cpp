@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plane_compare.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -134,13 +135,7 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
 
 namespace {
 
-bool sameBits(const PlaneF& a, const PlaneF& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
-    return true;
-}
+using test::sameBits;
 
 // The layers of `without` are those of `with` but `debug`, with the same bits.
 void checkWithoutDebugPlanes(const Frame& with, const Frame& without,
