@@ -113,11 +113,11 @@ TEST_CASE("ray check: the half layout's SSGI rays are all checked, each at its c
 // rays a share's standard error is at most sqrt(0.25 / 3800) = 0.8 points, so 4 points (5
 // standard errors) for each class. Agreed and false hit may trade more between them: the
 // half depth buffer holds a surface at half the resolution, so its hits lie a little further
-// from the true ones (on this wall 6.7 % of the half layout's rays are false hits against
-// 1.3 % of the full one's, their pixel errors 2.3 px at the median, just past the 2-pixel
-// tolerance) while the march's hit share (their sum) stays within 4 points; 8 points for
-// each. Without the march's hits moved into the frame's pixels they are about 2x off and
-// the agreed share drops to near 0.
+// from the true ones (on this wall 5.1 % of the half layout's rays are false hits against
+// 1.3 % of the full one's since the rays start at the chosen pixels (6.7 % before); their
+// pixel errors are just past the 2-pixel tolerance) while the march's hit share (their sum)
+// stays within 4 points; 8 points for each. Without the march's hits moved into the frame's pixels
+// they are about 2x off and the agreed share drops to near 0.
 TEST_CASE("ray check: on a wall facing the camera the half layout's classes are the full one's") {
     const Scene scene = levelCornell();
     const EmbreeScene embree(scene);
