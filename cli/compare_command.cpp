@@ -86,24 +86,8 @@ void printErrors(std::ostream& out, const ErrorTable& e) {
     out << "  relMSE = mean over pixels and RGB of (I - R)^2 / (R^2 + 0.01)\n";
 }
 
-// Figures that would judge nothing. A frame without a surface pixel is refused, as work that
-// could not be done: its reference is the same sky, so its relMSE is 0 and every share 0 %,
-// which reads as a perfect result. A pass without a checked ray is warned about: the frame
-// is still judged by the other pass and the image error.
-uint64_t surfacePixels(const PlaneF& viewZ) {
-    uint64_t n = 0;
-    for (int y = 0; y < viewZ.height(); ++y)
-        for (int x = 0; x < viewZ.width(); ++x) n += viewZ.at(x, y) > 0.0f;
-    return n;
-}
-
-void requireSurface(const Frame& frame) {
-    if (surfacePixels(frame.gbuffer.viewZ) == 0)
-        throw std::runtime_error(
-            "the frame shows no surface (every pixel is sky): there is no ray to check and the "
-            "image error would be the sky's against itself; aim the camera at the scene");
-}
-
+// A pass without a checked ray is warned about: the frame is still judged by the other pass
+// and the image error (a frame without surface is refused: requireSurface).
 // `hidden`: where the pass draws no ray because the composite would not show what it found.
 void warnUnchecked(std::ostream& err, const char* pass, const char* flag, const char* hidden,
                    bool on, const RayCheckTable& check, const RayGenStats& gen) {

@@ -5,11 +5,22 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "cli/compare_command.h"
 
 namespace ssrt::cli {
+
+void requireSurface(const Frame& frame) {
+    const PlaneF& viewZ = frame.gbuffer.viewZ;
+    for (int y = 0; y < viewZ.height(); ++y)
+        for (int x = 0; x < viewZ.width(); ++x)
+            if (viewZ.at(x, y) > 0.0f) return;
+    throw std::runtime_error(
+        "the frame shows no surface (every pixel is sky): there is no ray to check and the "
+        "image error would be the sky's against itself; aim the camera at the scene");
+}
 
 namespace {
 

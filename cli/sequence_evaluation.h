@@ -16,6 +16,11 @@
 
 namespace ssrt::cli {
 
+// Refuses a frame without a surface pixel (std::runtime_error), as work that could not be
+// done: its reference is the same sky, so its relMSE would be 0 and every share 0 %, which
+// reads as a perfect result. `compare` and `sweep` both ask before writing anything.
+void requireSurface(const Frame& frame);
+
 // One frame's row of the per-frame report.
 struct FrameError {
     int frame = 0;            // in the sequence: 0 is the first after the warm-up

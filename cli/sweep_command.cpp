@@ -439,6 +439,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
             points[i].embreeSpp > 0
                 ? evaluateEmbreePoint(truth, sequence, settings[i], points[i].embreeSpp)
                 : evaluateSequence(truth, sequence, settings[i], refRender, frame);
+        if (points[i].embreeSpp == 0) requireSurface(frame);  // (before any file is written)
         const Evaluation& ev = result.last;
         csv << csvRow(int(i), request.name, settings[i], points[i], refSettings, plan, result)
             << "\n";

@@ -111,7 +111,8 @@ TEST_CASE("compare: the default preset's checkerboard and half-resolution rays a
 
 // Figures that judge nothing are said so: a pass without a checked ray is a warning naming
 // it, a frame without a surface pixel an error with nothing written.
-TEST_CASE("compare: a pass without rays is warned about, a frame without surface refused") {
+TEST_CASE(
+    "compare: a pass without rays is warned about, a frame without surface refused (sweep too)") {
     TempDir dir;
     const test::CliResult off = runSsrt(tiny({"compare", "--scene", "cornell", "--no-ssr"}, dir));
     REQUIRE(off.code == 0);
@@ -138,6 +139,15 @@ TEST_CASE("compare: a pass without rays is warned about, a frame without surface
     CHECK(empty.out.empty());
     CHECK(!std::filesystem::exists(exr));
     CHECK(!std::filesystem::exists(csv));
+    // sweep the same: no CSV of zeros.
+    const std::string sweepCsv = dir.file("sweep.csv");
+    const test::CliResult sweep = runSsrt(
+        tiny({"sweep", "--shot", dir.file("away.json"), "--marchers", "hiz", "-q", "-o", sweepCsv},
+             dir));
+    CHECK(sweep.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(sweep.err));
+    CHECK(contains(sweep.err, "the frame shows no surface"));
+    CHECK(!std::filesystem::exists(sweepCsv));
 }
 
 TEST_CASE("compare: the reference's bounces follow --ssgi-feedback and are cached apart") {
