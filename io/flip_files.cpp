@@ -206,21 +206,11 @@ void writeFlipHeatmap(const std::string& path, const PlaneF& error) {
             magmaColour(error.at(x, y), rgb);
             for (int c = 0; c < 3; ++c) planes[c].at(x, y) = rgb[c];
         }
-    // The PNG writer takes display planes as they are.
-    writeImage(path, ImageLayers{w,
-                                 h,
-                                 {{"display.R", &planes[0]},
-                                  {"display.G", &planes[1]},
-                                  {"display.B", &planes[2]}}});
+    writeDisplayPng(path, planes[0], planes[1], planes[2]);
 }
 
 FlipResult flipImages(const std::string& a, const std::string& b, const FlipFileOptions& options) {
-    if (!options.heatmap.empty()) {
-        if (!isPngPath(options.heatmap))
-            throw std::invalid_argument("the FLIP heat map '" + options.heatmap +
-                                        "' must be a .png file");
-        checkWritable(options.heatmap);
-    }
+    if (!options.heatmap.empty()) checkPngOutput(options.heatmap, "the FLIP heat map");
     const FileColour test = readColour(a);
     const FileColour reference = readColour(b);
     if (test.rgb.width() != reference.rgb.width() || test.rgb.height() != reference.rgb.height())

@@ -182,12 +182,7 @@ void writeHeatmap(const std::string& path, const PlaneF& heat, double scale) {
             else heatColour(std::max(kHeatFloor, scale > 0.0 ? double(d) / scale : 1.0), rgb);
             for (int c = 0; c < 3; ++c) planes[c].at(x, y) = rgb[c];
         }
-    // The PNG writer takes the display planes as they are (already display values).
-    writeImage(path, ImageLayers{w,
-                                 h,
-                                 {{"display.R", &planes[0]},
-                                  {"display.G", &planes[1]},
-                                  {"display.B", &planes[2]}}});
+    writeDisplayPng(path, planes[0], planes[1], planes[2]);
 }
 
 }  // namespace
@@ -232,12 +227,7 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
                         const ImageCompareOptions& options) {
     if (!(options.threshold >= 0.0))
         throw std::invalid_argument("the pixel threshold must be a number >= 0");
-    if (!options.heatmap.empty()) {
-        if (!isPngPath(options.heatmap))
-            throw std::invalid_argument("the heat map '" + options.heatmap +
-                                        "' must be a .png file");
-        checkWritable(options.heatmap);
-    }
+    if (!options.heatmap.empty()) checkPngOutput(options.heatmap, "the heat map");
     const LoadedImage a = io_detail::readFloatImage(pathA);
     const LoadedImage b = io_detail::readFloatImage(pathB);
     if (a.width != b.width || a.height != b.height)

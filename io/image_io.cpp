@@ -248,6 +248,17 @@ bool isExrPath(const std::string& path) { return lowerExtension(path) == ".exr";
 
 bool isPngPath(const std::string& path) { return lowerExtension(path) == ".png"; }
 
+void checkPngOutput(const std::string& path, const std::string& what) {
+    if (!isPngPath(path)) throw std::invalid_argument(what + " '" + path + "' must be a .png file");
+    checkWritable(path);
+}
+
+void writeDisplayPng(const std::string& path, const PlaneF& r, const PlaneF& g, const PlaneF& b) {
+    writeImage(path, ImageLayers{r.width(),
+                                 r.height(),
+                                 {{"display.R", &r}, {"display.G", &g}, {"display.B", &b}}});
+}
+
 void writeImage(const std::string& path, const ImageLayers& image, const WriteOptions& options) {
     const std::string ext = checkedExtension(path);
     checkFrame(path, image, ext);

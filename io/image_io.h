@@ -37,6 +37,12 @@ void writeImage(const std::string& path, const ImageLayers& image,
 // Creates and removes a probe file, so nothing is left behind.
 void checkWritable(const std::string& path);
 
+// For a heat map's path, before any work: a .png (else std::invalid_argument calling it
+// `what`) that checkWritable accepts.
+void checkPngOutput(const std::string& path, const std::string& what);
+// Writes three planes of display values (as they are, no tone map) as a PNG.
+void writeDisplayPng(const std::string& path, const PlaneF& r, const PlaneF& g, const PlaneF& b);
+
 // Whether writeImage writes `path` as an EXR (its extension, case-insensitive, is .exr):
 // the files the layer choice and the compression apply to.
 bool isExrPath(const std::string& path);
