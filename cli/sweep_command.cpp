@@ -22,9 +22,9 @@ namespace {
 
 // The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
 const char* const kPasses[] = {
-    "shadow",      "geometry",   "visibility",   "resolve",   "textures",      "ids",
-    "environment", "shading",    "hi-z",         "ssr rays",  "ssr march",     "ssr resolve",
-    "ssgi rays",   "ssgi march", "ssgi resolve", "composite", kEmbreeTracePass};
+    "shadow",      "geometry",  "visibility", "resolve",      "textures",  "ids",
+    "environment", "shading",   "back faces", "hi-z",         "ssr rays",  "ssr march",
+    "ssr resolve", "ssgi rays", "ssgi march", "ssgi resolve", "composite", kEmbreeTracePass};
 
 std::string columnName(std::string s) {
     for (char& c : s)
@@ -41,6 +41,7 @@ struct Point {
     int maxSteps = 0, ssrSpp = 1, ssgiSpp = 1;
     SsrMethod ssrMethod = SsrMethod::VndfBounded;
     float thickness = 0.0f;
+    bool backFaces = false;  // MarchSettings::backFaces
     SsrResolveMode resolve = SsrResolveMode::Reuse;
 
     static Point off() {
@@ -99,6 +100,10 @@ std::vector<Point> grid(const SweepOptions& o) {
     const auto thickness = parseEach<float>("--thickness", o.thickness, [](const std::string& s) {
         return float(parseFieldText(renderField("thickness"), "--thickness", s));
     });
+    const auto backFaces = parseEach<bool>("--back-faces", o.backFaces, [](const std::string& s) {
+        if (s != "on" && s != "off") badValue("--back-faces", s, "on or off");
+        return s == "on";
+    });
     const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
     std::vector<Point> points;
     bool off = false;
@@ -113,8 +118,9 @@ std::vector<Point> grid(const SweepOptions& o) {
                 for (int sp : ssrSpp)
                     for (int gp : ssgiSpp)
                         for (float th : thickness)
-                            for (SsrResolveMode re : resolves)
-                                points.push_back({true, {}, 0, *m, st, sp, gp, me, th, re});
+                            for (bool bf : backFaces)
+                                for (SsrResolveMode re : resolves)
+                                    points.push_back({true, {}, 0, *m, st, sp, gp, me, th, bf, re});
     }
     for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
              const std::optional<Quality> q = parseQuality(s);
@@ -142,6 +148,7 @@ Point describedBy(Point p, const RenderSettings& s) {
     p.ssgiSpp = t.ssgiSpp;
     p.ssrMethod = t.ssrMethod;
     p.thickness = t.march.thickness;
+    p.backFaces = t.march.backFaces;
     p.resolve = t.resolve.mode;
     return p;
 }
@@ -163,6 +170,7 @@ RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
         t.ssrSpp = p.ssrSpp;
         t.ssgiSpp = p.ssgiSpp;
         t.march.thickness = p.thickness;
+        t.march.backFaces = p.backFaces;
         t.resolve.mode = p.resolve;
     }
     s.validate();
@@ -208,6 +216,7 @@ std::string csvRow(int setting, const std::string& scene, const RenderSettings& 
     optional(p.traced || embree, embree ? p.embreeSpp : p.ssgiSpp);
     optional(p.traced, p.maxSteps);
     optional(p.traced, p.thickness);
+    optional(p.traced, p.backFaces ? 1 : 0);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
     cell(reference.spp);
@@ -285,7 +294,8 @@ std::string describe(const Point& p) {
     if (!p.traced) return "off (environment light only)";
     std::ostringstream s;
     s << marcherName(p.marcher) << ", " << p.maxSteps << " steps, " << ssrMethodName(p.ssrMethod)
-      << ", ssr x" << p.ssrSpp << ", ssgi x" << p.ssgiSpp << ", thickness " << p.thickness << ", "
+      << ", ssr x" << p.ssrSpp << ", ssgi x" << p.ssgiSpp << ", thickness " << p.thickness
+      << (p.backFaces ? ", back faces, " : ", ")
       << (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse");
     return s.str();
 }
@@ -301,15 +311,17 @@ SweepOptions::SweepOptions() {
     std::ostringstream t;
     t << d.march.thickness;
     thickness = t.str();
+    backFaces = d.march.backFaces ? "on" : "off";
     resolves = std::string(resolveModeName(d.resolve.mode));
 }
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
         std::vector<std::string> c = {
-            "setting",           "scene",     "width",      "height",       "threads",
-            "marcher",           "quality",   "ssr_method", "ssr_spp",      "ssgi_spp",
-            "max_steps",         "thickness", "resolve",    "trace_hidden", "reference_spp",
+            "setting",           "scene",    "width",        "height",
+            "threads",           "marcher",  "quality",      "ssr_method",
+            "ssr_spp",           "ssgi_spp", "max_steps",    "thickness",
+            "back_faces",        "resolve",  "trace_hidden", "reference_spp",
             "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
@@ -349,6 +361,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
     list("--ssgi-spp", o.ssgiSpp, "SSGI rays per pixel");
     list("--thickness", o.thickness,
          "Depth-buffer thickness (fractions of view depth, as --thickness)");
+    list("--back-faces", o.backFaces,
+         "Depth intervals from the back faces (as --back-faces): on, off (column back_faces)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
     list("--presets", o.presets,
          "Quality presets as points of their own beside the grid (column quality): " +

@@ -25,8 +25,12 @@ MARKERS = {"off": "x", "linear": "s", "dda": "^", "hiz": "o", "embree": "*", "pr
 
 
 def group(row):
-    """The legend entry: a quality preset's rows are 'preset', others their marcher."""
-    return "preset" if row.get("quality") else row.get("marcher", "")
+    """The legend entry: a quality preset's rows are 'preset', others their marcher (and
+    'back faces' where the depth intervals came from them: issue 29)."""
+    if row.get("quality"):
+        return "preset"
+    marcher = row.get("marcher", "")
+    return marcher + " + back faces" if row.get("back_faces") == "1" else marcher
 
 
 def read_rows(path, x, y):
@@ -72,6 +76,8 @@ def label(row):
     for column, suffix in (("max_steps", " st"), ("ssr_spp", " spp")):
         if row.get(column):
             parts.append(row[column] + suffix)
+    if row.get("back_faces") == "1":
+        parts.append("back faces")
     return ", ".join(parts)
 
 

@@ -102,8 +102,7 @@ int32_t lastPixelAtOrBefore(int64_t v) {
 
 // Set-up of one screen triangle; returns false when it covers no pixel centre's bounds.
 bool setupScreenTriangle(ScreenVertex v0, ScreenVertex v1, ScreenVertex v2, uint32_t primId,
-                         bool cullBack, const RasterView& view, TriangleSetup& t,
-                         RasterStats& stats) {
+                         Faces keep, const RasterView& view, TriangleSetup& t, RasterStats& stats) {
     if (std::max({v0.q, v1.q, v2.q}) <= view.farKey) {
         ++stats.trianglesOutside;  // past the far plane
         return false;
@@ -114,7 +113,7 @@ bool setupScreenTriangle(ScreenVertex v0, ScreenVertex v1, ScreenVertex v2, uint
         return false;
     }
     // Counter-clockwise in NDC (front) is negative area in y-down pixel coordinates.
-    if (cullBack && area > 0) {
+    if ((keep == Faces::Front && area > 0) || (keep == Faces::Back && area < 0)) {
         ++stats.trianglesCulled;
         return false;
     }
@@ -172,7 +171,7 @@ static bool insideClipVolume(const glm::vec4& c, const RasterView& view) {
     return true;
 }
 
-bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, const RasterView& view,
+bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, Faces keep, const RasterView& view,
                    std::vector<TriangleSetup>& out, RasterStats& stats) {
     if (!finite4(clip[0]) || !finite4(clip[1]) || !finite4(clip[2])) {
         ++stats.trianglesInvalid;
@@ -187,7 +186,7 @@ bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, cons
     if (!clipped) {
         TriangleSetup t;
         if (!setupScreenTriangle(toScreen(clip[0], view), toScreen(clip[1], view),
-                                 toScreen(clip[2], view), primId, cullBack, view, t, stats))
+                                 toScreen(clip[2], view), primId, keep, view, t, stats))
             return false;
         out.push_back(t);
         return true;
@@ -206,7 +205,7 @@ bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, cons
         TriangleSetup t;
         RasterStats pieceStats;
         if (setupScreenTriangle(s0, toScreen(poly[i], view), toScreen(poly[i + 1], view), primId,
-                                cullBack, view, t, pieceStats)) {
+                                keep, view, t, pieceStats)) {
             out.push_back(t);
             any = true;
         }
@@ -301,8 +300,8 @@ void baseColorUvs(const Mesh& mesh, const Material& m, uint32_t local, glm::vec2
 // piece of it was set up.
 void setupAlphaTested(const Scene& scene, const TransformedVertices& tv, const RasterView& view,
                       const AlphaPlan& alpha, std::size_t inst, uint32_t prim, const uint32_t v[3],
-                      bool cull, std::vector<TriangleSetup>& out, std::vector<AlphaTriangle>& slots,
-                      RasterStats& stats) {
+                      Faces cull, std::vector<TriangleSetup>& out,
+                      std::vector<AlphaTriangle>& slots, RasterStats& stats) {
     if (alpha.coverage[inst] == AlphaCoverage::Invisible) {
         ++stats.trianglesCutOut;
         return;
@@ -316,6 +315,11 @@ void setupAlphaTested(const Scene& scene, const TransformedVertices& tv, const R
     baseColorUvs(scene.meshes[instance.mesh], scene.materials[instance.material], local, uv);
     slots[slot] = alphaTriangle(clip, uv, view, prim, instance.material);
     ++stats.trianglesMasked;
+}
+
+// The faces a triangle of `material` keeps in a pass drawing `faces`.
+Faces facesOf(Faces faces, const Material& material) {
+    return faces == Faces::Front && material.doubleSided ? Faces::All : faces;
 }
 
 // The triangles [begin, end) in order. kAlpha: the pass has cut-out materials (AlphaPlan not
@@ -332,13 +336,15 @@ void setupRange(const Scene& scene, const TransformedVertices& tv, const RasterV
         while (inst + 1 < tv.triangleOffset.size() && tv.triangleOffset[inst + 1] <= prim) ++inst;
         const Instance& instance = scene.instances[inst];
         const Mesh& mesh = scene.meshes[instance.mesh];
-        const bool cull = view.cullBackFaces && !scene.materials[instance.material].doubleSided;
+        const Faces cull = facesOf(view.faces, scene.materials[instance.material]);
         const uint32_t local = prim - tv.triangleOffset[inst];
         const uint32_t i0 = tv.instanceOffset[inst] + mesh.indices[3 * local];
         const uint32_t i1 = tv.instanceOffset[inst] + mesh.indices[3 * local + 1];
         const uint32_t i2 = tv.instanceOffset[inst] + mesh.indices[3 * local + 2];
         ++stats.trianglesIn;
         if (kAlpha && alpha.coverage[inst] != AlphaCoverage::Opaque) {
+            // (The back-face layer has no cut-outs: a cut-out surface's thickness is unknown.)
+            if (view.faces == Faces::Back) continue;
             const uint32_t v[3] = {i0, i1, i2};
             setupAlphaTested(scene, tv, view, alpha, inst, prim, v, cull, out, slots, stats);
             continue;

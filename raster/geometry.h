@@ -15,6 +15,14 @@
 
 namespace ssrt {
 
+// Which faces a pass draws, by their winding on screen (counter-clockwise in NDC is front).
+enum class Faces : uint8_t {
+    Front,  // front faces, and back faces of double-sided materials (the visibility pass)
+    All,    // every face (the shadow map: every face casts a shadow)
+    Back,   // back faces only, of every material, opaque ones alone: the back-face depth layer
+            // (the far side of what the visibility pass sees; renderer/back_depth.h)
+};
+
 // How the pass sees the scene.
 struct RasterView {
     glm::mat4 viewProj{1.0f};  // of points measured from `origin`
@@ -25,7 +33,7 @@ struct RasterView {
     // The far plane's depth key (RasterOptions::clearDepth): a triangle whose corners all
     // lie at or past it is dropped before binning, as the depth test would drop its pixels.
     double farKey = -std::numeric_limits<double>::infinity();
-    bool cullBackFaces = true;  // honour Material::doubleSided (false: draw every face)
+    Faces faces = Faces::Front;
 };
 
 // A vertex snapped to the screen: 24.8 fixed point and the depth key. Only valid when
@@ -68,7 +76,9 @@ AlphaTriangle alphaTriangle(const glm::vec4 clip[3], const glm::vec2 uv[3], cons
 
 // Clips one clip-space triangle and appends its screen triangles to `out`; exposed for the
 // tests. Returns false when nothing of it can be seen.
-bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, bool cullBack, const RasterView& view,
+// `keep`: the faces it draws by winding alone (Front: front faces only; a double-sided
+// material is the caller's Faces::All).
+bool setupTriangle(const glm::vec4 clip[3], uint32_t primId, Faces keep, const RasterView& view,
                    std::vector<TriangleSetup>& out, RasterStats& stats);
 
 }  // namespace ssrt

@@ -38,7 +38,7 @@ RasterView fitShadowView(const Scene& scene, int size, float& depthRange, float&
     rv.origin = center;
     rv.width = rv.height = size;
     rv.perspective = false;
-    rv.cullBackFaces = false;  // every face casts a shadow
+    rv.faces = Faces::All;  // every face casts a shadow
     return rv;
 }
 

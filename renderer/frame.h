@@ -273,6 +273,10 @@ struct Frame {
         // (renderer/trace_pass.cpp): those groups are empty between frames.
         PlanePool pool;
         VisibilityBuffer visibility;
+        // The back faces' raster and the depth layer made of it (raster/back_depth.h), when
+        // the marchers use it (MarchSettings::backFaces); empty otherwise.
+        VisibilityBuffer backVisibility;
+        PlaneF backZ;
         ShadowMap shadow;
         // UV and its screen derivatives, for textured scenes: set 0, then set 1 when read
         PlaneF uv[12];  // kResolveUvSets * kResolveUvOutputs (asserted in renderer.cpp)

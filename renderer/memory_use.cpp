@@ -47,6 +47,8 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
     add("denoised", bytesOf(f.trace.denoise));
     const Frame::Scratch& s = f.scratch;
     add("visibility buffer", bytesOf(s.visibility.depth) + bytesOf(s.visibility.ids));
+    add("back faces",
+        bytesOf(s.backVisibility.depth) + bytesOf(s.backVisibility.ids) + bytesOf(s.backZ));
     add("shadow map", bytesOf(s.shadow.depth));
     add("uv", bytesOf(s.uv));
     add("tangent", bytesOf(s.tangent));

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/tiles.h"
+#include "raster/back_depth.h"
 #include "raster/raster.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
@@ -72,6 +73,9 @@ struct FrameContext {
     }
 };
 
+// The marchers' depth intervals (raster/back_depth.h), when a trace pass marches with them.
+bool wantsBackDepth(const RenderSettings& s) { return s.trace.any() && s.trace.march.backFaces; }
+
 // The frame's planes at this size, kept when they already are; the groups the settings leave
 // out are emptied. Every pixel of every plane is written by a pass, so none is cleared here.
 void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
@@ -100,6 +104,7 @@ void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
     const bool fullSsgi =
         s.trace.ssgi && (s.debugPlanes || !denoise || s.trace.ssgiLayout != TraceLayout::Half);
     keepIf(s.idPlanes, f.ids);
+    if (!wantsBackDepth(s)) f.scratch.backVisibility = {}, f.scratch.backZ = PlaneF();
     keepTraced(s.trace.ssr && !tracedSignalsPooled(s), f.trace.ssr);
     keepTraced(fullSsgi && !tracedSignalsPooled(s), f.trace.ssgi);
     // The direct pass's parts that a later pass reads: SSGI's light replaces the sky's diffuse
@@ -132,6 +137,18 @@ void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {
                     frame.stats.shadow);
 }
 
+// The back faces' raster over the visibility pass's vertices, resolved to the back-face depth
+// layer (Frame::Scratch::backZ).
+void backDepthPass(const FrameContext& c, const Scene& scene, const TransformedVertices& tv,
+                   RasterView rv, const RasterOptions& ro, Frame& frame) {
+    const ScopedPass timer(frame.stats, "back faces");
+    rv.faces = Faces::Back;
+    RasterStats stats;
+    rasterize(scene, tv, rv, ro, frame.scratch.backVisibility, stats);
+    resolveBackDepth(frame.scratch.visibility, frame.scratch.backVisibility, tv.triangleOffset,
+                     frame.scratch.backZ, c.threads);
+}
+
 // Depth and triangle ids; "geometry" is the vertex transform and set-up around the raster.
 void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     const auto t0 = PassClock::now();
@@ -149,6 +166,7 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     rasterize(scene, tv, rv, ro, frame.scratch.visibility, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
     frame.stats.passes.push_back({"visibility", rt.rasterMs});
+    if (wantsBackDepth(c.settings)) backDepthPass(c, scene, tv, rv, ro, frame);
 }
 
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);

@@ -16,6 +16,9 @@ namespace ssrt {
 
 namespace {
 
+// The back-face depth layer when the frame has one (renderer.cpp, backDepthPass), else null.
+const PlaneF* backZ(const PlaneF& p) { return p.empty() ? nullptr : &p; }
+
 // What the passes below share: the frame's G-buffer as each stage reads it, the pyramid.
 struct TraceContext {
     const TracePassArgs& args;
@@ -28,7 +31,7 @@ struct TraceContext {
     TraceContext(const TracePassArgs& a, const Frame& f) : args(a), ts(a.settings.trace) {
         const GBuffer& g = f.gbuffer;
         camera = f.camera;
-        march = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}};
+        march = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}, backZ(f.scratch.backZ)};
         // (albedo and metallic: the diffuse colour the composite multiplies SSGI by)
         rayGen = {&g.viewZ,
                   {&g.normal[0], &g.normal[1], &g.normal[2]},
@@ -329,7 +332,9 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
             {&g.normal[0], &g.normal[1], &g.normal[2]},
             {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
             &g.metallic,
-            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]}};
+            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
+            {},
+            backZ(frame.scratch.backZ)};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
         if (hitLightAtHalf(c.args.settings))
             for (const PlaneF*& p : src.hitLight) p = nullptr;
@@ -343,7 +348,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
                                nullptr,
                                {&hf.albedo[0], &hf.albedo[1], &hf.albedo[2]},
                                &hf.metallic};
-    const MarchGBuffer march{&hf.viewZ, {&hf.normal[0], &hf.normal[1], &hf.normal[2]}};
+    const MarchGBuffer march{
+        &hf.viewZ, {&hf.normal[0], &hf.normal[1], &hf.normal[2]}, backZ(hf.backZ)};
     SsgiInputs in = full;
     in.camera = hf.camera;
     in.viewZ = &hf.viewZ;

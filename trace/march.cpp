@@ -167,6 +167,13 @@ RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, 
     std::copy(camera.viewToWorld, camera.viewToWorld + 9, proto.viewToWorld);
     proto.viewZ = g.viewZ->row(0);
     proto.zStride = g.viewZ->stride();
+    proto.backZ = nullptr;
+    if (settings.backFaces && g.backZ) {
+        need(g.backZ, "backZ");
+        if (g.backZ->stride() != g.viewZ->stride())
+            throw std::invalid_argument("marchRays: backZ and viewZ of different strides");
+        proto.backZ = g.backZ->row(0);
+    }
     for (int c = 0; c < 3; ++c) proto.normal[c] = g.normal[c]->row(0);
     proto.nStride = g.normal[0]->stride();
     proto.maxSteps = settings.maxSteps;

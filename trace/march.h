@@ -52,6 +52,11 @@ struct MarchSettings {
     // depth interval of one step against [z, z + thickness]; Hi-Z validates its hit with it.
     float thickness = 0.03f;
     float thicknessAbsolute = 0.0f;  // view-space depth (scene units); 0: use thickness
+    // The depth interval from the scene (raster/back_depth.h): where a pixel's back face is
+    // known (MarchGBuffer::backZ), a ray hits it only within [z, back face]; the thickness
+    // above is then the fallback where it is not. Off: the thickness everywhere. (Off by
+    // default, the medium preset's; high and ultra turn it on: renderer/quality.cpp.)
+    bool backFaces = false;
     // DDA: pixels per step along the major axis (>= 1).
     float ddaStride = 2.0f;
     // DDA: the first step is offset by ddaJitter * u strides, u = randomFloat(pixel, frame,
@@ -101,6 +106,9 @@ struct MarchStats {
 struct MarchGBuffer {
     const PlaneF* viewZ = nullptr;
     const PlaneF* normal[3] = {nullptr, nullptr, nullptr};  // world-space normals
+    // The back-face depth layer (raster/back_depth.h: 0 where unknown), or null: the
+    // thickness everywhere.
+    const PlaneF* backZ = nullptr;
 };
 
 // Marches every pixel's ray of `rays`; writes every pixel of `result` (ensureSize'd here).

@@ -61,17 +61,38 @@ SSRT_INLINE Lane pixelOf(Lane p, int size) {
     return ln::clamp(ln::floor(p), Lane(0.0f), Lane(float(size - 1)));
 }
 
-// G-buffer depth at integer pixels (ix, iy) in the frame; background as +infinity.
-SSRT_INLINE Lane sceneDepth(const MarchKernelArgs& a, Lane ix, Lane iy) {
-    const ILane idx = ln::toIntTrunc(iy) * ILane(int32_t(a.zStride)) + ln::toIntTrunc(ix);
+// Index of integer pixels (ix, iy) in the frame's depth planes (viewZ, backZ).
+SSRT_INLINE ILane depthIndex(const MarchKernelArgs& a, Lane ix, Lane iy) {
+    return ln::toIntTrunc(iy) * ILane(int32_t(a.zStride)) + ln::toIntTrunc(ix);
+}
+
+// G-buffer depth at a depthIndex; background as +infinity.
+SSRT_INLINE Lane sceneDepthAt(const MarchKernelArgs& a, ILane idx) {
     const Lane z = ln::gather(a.viewZ, idx);
     return ln::select(z > Lane(0.0f), z, Lane(__builtin_inff()));
+}
+
+// G-buffer depth at integer pixels (ix, iy) in the frame; background as +infinity.
+SSRT_INLINE Lane sceneDepth(const MarchKernelArgs& a, Lane ix, Lane iy) {
+    return sceneDepthAt(a, depthIndex(a, ix, iy));
 }
 
 // How far behind the depth buffer's z a ray may pass and still hit it (MarchLengths). Only
 // read where z is a surface (finite): the callers' masks rule the background out first.
 SSRT_INLINE Lane thicknessAt(const MarchKernelArgs& a, Lane z) {
     return z * Lane(a.thicknessScale) + Lane(a.thicknessBias);
+}
+
+// Where a ray at depth rayZ, behind the surface at a depthIndex by the depth buffer, is still
+// within it: `fallback` (the thickness test, as the caller words it) where the back-face
+// layer knows no interval there, rayZ <= the back face + `slack` where it does. (Gathered
+// only when some lane is behind: most steps have none.)
+SSRT_INLINE Mask withinSurface(const MarchKernelArgs& a, ILane idx, Mask behind, Lane rayZ,
+                               Lane slack, Mask fallback) {
+    if (!a.backZ || !ln::any(behind)) return fallback;
+    const Lane back = ln::gather(a.backZ, idx);
+    const Mask known = back > Lane(0.0f);
+    return (known & (rayZ <= back + slack)) | ((!known) & fallback);
 }
 
 // The ray clipped to the near plane and to maxDistance, its two ends projected: pixel

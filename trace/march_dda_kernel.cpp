@@ -101,10 +101,12 @@ struct DdaGroup {
         prevZ = ln::select(active, zB, prevZ);
         const Lane zMin = ln::min(zA, zB), zMax = ln::max(zA, zB);
         const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
-        const Lane sceneZ = sceneDepth(a, ix, iy);
+        const ILane idx = depthIndex(a, ix, iy);
+        const Lane sceneZ = sceneDepthAt(a, idx);
         const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
         const Mask cross = (zMax > sceneZ) & !own;
-        const Mask accept = cross & (zMin <= sceneZ + thicknessAt(a, sceneZ));
+        const Mask accept = cross & withinSurface(a, idx, cross & active, zMin, zero,
+                                                  zMin <= sceneZ + thicknessAt(a, sceneZ));
         // Ends, first match wins: end of the segment, off screen, hit, step cap.
         const Mask past = (s.M0 + s.dM * u - s.M1) * s.stepDir > zero;
         const Mask left = !onScreen(a, px, py);

@@ -41,6 +41,10 @@ inline constexpr std::array kMarchFields = {
         "thicknessAbsolute", kMarchUse,
         "Surface thickness in scene units (view depth), replacing --thickness when > 0")
         .floats(0.0, false),
+    field<&MarchSettings::backFaces>(
+        "backFaces", kMarchUse,
+        "Depth interval from a raster of back faces: a ray hits a surface only between its "
+        "depth and the back face of the same object behind it; --thickness where none is known"),
     field<&MarchSettings::ddaStride>("ddaStride", kMarchUse,
                                      "DDA marcher: pixels per step along the major axis")
         .floats(1.0, false),

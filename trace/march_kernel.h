@@ -25,6 +25,9 @@ struct MarchKernelArgs {
     // G-buffer.
     const float* viewZ;
     std::size_t zStride;
+    // The back-face depth layer, of viewZ's stride (0 where unknown), or null: the thickness
+    // is the fallback at every pixel.
+    const float* backZ;
     const float* normal[3];
     std::size_t nStride;
     // Hi-Z min pyramid (levels of minZ, background +inf).

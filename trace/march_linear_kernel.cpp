@@ -1,8 +1,9 @@
 // The linear marcher: fixed view-space steps along the ray (a length per ray: a fraction of
 // its origin's depth, or absolute; MarchLengths), each sample projected to its pixel and
-// compared with the depth buffer. A sample behind the surface by at most
-// thickness(z) + step |dir.z| (the ray's depth change over one step) is a hit; one behind by
-// more is a thickness rejection and the march goes on behind the surface.
+// compared with the depth buffer. A sample behind the surface and before its back face (or by
+// at most thickness(z) where the back face is unknown), with step |dir.z| (the ray's depth
+// change over one step) of slack, is a hit; one behind by more is a thickness rejection and
+// the march goes on behind the surface.
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
 #include "trace/march_common.h"
@@ -44,12 +45,14 @@ struct LinearGroup {
         const Lane px = projectX(a, r.o.x + r.d.x * t, k);
         const Lane py = projectY(a, r.o.y + r.d.y * t, k);
         const Lane ix = pixelOf(px, a.width), iy = pixelOf(py, a.height);
-        const Lane sceneZ = sceneDepth(a, ix, iy);
+        const ILane idx = depthIndex(a, ix, iy);
+        const Lane sceneZ = sceneDepthAt(a, idx);
         const Mask own = (ix == r.pixelX) & (iy == r.pixelY);
         const Mask behind = (depth > sceneZ) & !own;
         const Lane diff = depth - sceneZ;
         const Lane thresh = thicknessAt(a, sceneZ) + stepDepth;
-        const Mask accept = behind & (diff <= thresh);
+        const Mask accept =
+            behind & withinSurface(a, idx, behind & active, depth, stepDepth, diff <= thresh);
         // Ends, first match wins: distance cap, near plane, off screen, hit, step cap.
         const Mask past = t > Lane(a.maxDistance);
         const Mask left = (depth < nearZ) | !onScreen(a, px, py);
@@ -63,7 +66,7 @@ struct LinearGroup {
         e.hitX = ln::select(hitNow, px, e.hitX);
         e.hitY = ln::select(hitNow, py, e.hitY);
         e.hitZ = ln::select(hitNow, sceneZ, e.hitZ);
-        e.thick = ln::select(sampleUsed & behind & (diff > thresh), one, e.thick);
+        e.thick = ln::select(sampleUsed & behind & !accept, one, e.thick);
         e.cause = ln::select(active, c, e.cause);
         return true;
     }

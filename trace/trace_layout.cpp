@@ -68,6 +68,12 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         float scale = 1.0f;
     };
     std::vector<Copy> chosen = {{&out.viewZ, src.viewZ}, {&out.metallic, src.metallic}};
+    if (src.backZ) {
+        need(src.backZ, "backZ");
+        chosen.push_back({&out.backZ, src.backZ});
+    } else {
+        out.backZ = PlaneF();
+    }
     for (int c = 0; c < 3; ++c) {
         chosen.push_back({&out.normal[c], src.normal[c]});
         chosen.push_back({&out.albedo[c], src.albedo[c]});

@@ -84,6 +84,8 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     TraceCamera camera;  // halfCamera of the full one
     PixelOffset offset;  // the frame's chosen pixel in each block
     PlaneF viewZ, normal[3], albedo[3], metallic, hitLight[3];
+    PlaneF backZ;  // the chosen pixels' back-face depth (HalfFrameSource::backZ given; empty
+                   // otherwise)
     // The guides of a signal denoised on the half frame (HalfFrameSource::motion given; empty
     // otherwise): the block's first pixel (offset (0, 0)) every frame, not the rotating chosen
     // one, so that the denoiser's history sees the same surface frame after frame; motion in
@@ -93,6 +95,7 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("half.viewZ", g.viewZ);
+        fn("half.backZ", g.backZ);
         fn("half.guide.viewZ", g.guideZ);
         fn("half.guide.normal.X", g.guideNormal[0]), fn("half.guide.normal.Y", g.guideNormal[1]);
         fn("half.guide.normal.Z", g.guideNormal[2]);
@@ -118,6 +121,8 @@ struct HalfFrameSource {
     const PlaneF* hitLight[3] = {};
     // Optional: the G-buffer's motion (full pixels); given, the denoiser's guides are made.
     const PlaneF* motion[2] = {};
+    // Optional: the back-face depth layer (raster/back_depth.h), which the march reads.
+    const PlaneF* backZ = nullptr;
 };
 
 // Fills `out` (planes reused when the size matches) for frame `frame`. Throws

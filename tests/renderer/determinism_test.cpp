@@ -132,14 +132,18 @@ Scene sceneNamed(const std::string& name) {
 // "SCENE" renders the direct pass alone (screen-space passes off, as before issue 5);
 // "SCENE@MARCHER" adds SSR and SSGI with that marcher and the default settings, and
 // "SCENE@MARCHER/mip" resolves SSR through the colour pyramid instead of ray reuse; a
-// trailing "!all" also traces the rays the composite hides (TraceSettings::traceHidden).
+// trailing "!all" also traces the rays the composite hides (TraceSettings::traceHidden), and
+// "!back" marches with the back faces' depth intervals (MarchSettings::backFaces).
 Frame renderSmall(std::string name, Isa isa, int threads) {
     RenderSettings rs;
-    const std::string all = "!all";
-    if (name.size() > all.size() && name.compare(name.size() - all.size(), all.size(), all) == 0) {
-        rs.trace.traceHidden = true;
-        name.resize(name.size() - all.size());
-    }
+    const auto suffix = [&](const std::string& tail) {
+        const bool has = name.size() > tail.size() &&
+                         name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+        if (has) name.resize(name.size() - tail.size());
+        return has;
+    };
+    rs.trace.march.backFaces = suffix("!back");
+    rs.trace.traceHidden = suffix("!all");
     rs.width = 240;
     rs.height = 136;
     rs.shadowMapSize = 512;
@@ -187,6 +191,11 @@ const std::map<std::string, uint64_t> kGolden = {
     {"thin@hiz/mip!all", 0x9d126bd47b2c0a51ull},
     {"offscreen@hiz!all", 0xd42672a9b8d92c0full},
     {"occluded@dda!all", 0x139432405455503dull},
+    // With the back faces' depth intervals (issue 29; on in the high and ultra presets).
+    {"fence@hiz!back", 0x275721d386990de3ull},
+    {"cornell@dda!back", 0x177da4ea0b24b3cbull},
+    {"thin@linear!back", 0x71c91bad4820ea40ull},
+    {"cornell+alpha@hiz!back", 0x2f20f244139599cfull},
 };
 // clang-format on
 
@@ -196,7 +205,8 @@ TEST_CASE("every ISA and thread count renders the same bits") {
     for (const std::string scene :
          {"cornell", "spheres", "spheres+sky", "cornell+sky", "cornell+tex", "cornell@hiz",
           "spheres+sky@linear", "corridor@dda/mip", "cornell+tex@hiz", "cornell+uv1",
-          "cornell+maps", "cornell+maps@hiz", "spheres+maps@dda/mip", "cornell+alpha"}) {
+          "cornell+maps", "cornell+maps@hiz", "spheres+maps@dda/mip", "cornell+alpha",
+          "fence@hiz!back", "thin@linear!back", "cornell+alpha@dda!back"}) {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
