@@ -88,8 +88,11 @@ void writeFrame(const PyFrame& frame, py::handle pathObject, const std::vector<s
                               exrCompressionList() + ")");
     options.compression = *c;
     options.threads = threads;
+    if (threads < 0) throw py::value_error("threads: expected an integer >= 0 (0: every core)");
     const LayerGroups groups = isExrPath(path) ? layerGroupsOf(layers) : allLayerGroups();
-    withFiles({}, [&] {
+    // A missing folder is FileNotFoundError, as open() has it; the file itself may be new.
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    withFiles({folder.empty() ? "." : folder}, [&] {
         py::gil_scoped_release unlocked;
         writeImage(path, frameLayers(*frame.frame, groups), options);
     });

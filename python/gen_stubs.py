@@ -102,7 +102,7 @@ def class_stub(cls):
 def main():
     package = Path(sys.argv[1])
     out = ["# Written by python/gen_stubs.py from the built module: do not edit.\n",
-           "import os\n\nimport numpy\n\n"]
+           "import os\nfrom typing import Optional\n\nimport numpy\n\n"]
     for name, obj in sorted(vars(ext).items()):
         if name.startswith("_"):
             continue

@@ -104,7 +104,6 @@ void bindFrameInput(py::module_& m) {
 
 void bindScenes(py::module_& m) {
     bindCamera(m);
-    bindFrameInput(m);
     py::class_<PyScene>(m, "Scene",
                         "A scene as `ssrt render --scene` loads it: a built-in name (see "
                         "ssrt.builtin_scenes()) or a .gltf/.glb file. strict: every warning about "
@@ -116,6 +115,7 @@ void bindScenes(py::module_& m) {
                                [](const PyScene& s) { return s.data->scene.triangleCount(); })
         .def("__repr__", [](const PyScene& s) { return "ssrt.Scene('" + s.data->name + "')"; });
 
+    bindFrameInput(m);  // after Scene, so that its signatures name the class
     py::class_<PyShot>(m, "Shot",
                        "A shot file as `ssrt render --shot` reads it: its scene (with its camera "
                        "path, light and sky), its settings over the defaults, and its frames.")
