@@ -25,10 +25,13 @@ set(ssrt_python_files __init__.py py.typed)
 foreach(f ${ssrt_python_files})
     configure_file(${CMAKE_CURRENT_LIST_DIR}/ssrt/${f} ${SSRT_PYTHON_DIR}/ssrt/${f} COPYONLY)
 endforeach()
-add_custom_command(TARGET ssrt_python POST_BUILD
+set(ssrt_python_stubs ${SSRT_PYTHON_DIR}/ssrt/_ssrt.pyi ${SSRT_PYTHON_DIR}/ssrt/__init__.pyi)
+add_custom_command(OUTPUT ${ssrt_python_stubs}
     COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${SSRT_PYTHON_DIR}
             ${Python_EXECUTABLE} -P ${CMAKE_CURRENT_LIST_DIR}/gen_stubs.py ${SSRT_PYTHON_DIR}/ssrt
+    DEPENDS ssrt_python ${CMAKE_CURRENT_LIST_DIR}/gen_stubs.py
     COMMENT "Writing the ssrt module's .pyi stubs")
+add_custom_target(ssrt_python_stubs ALL DEPENDS ${ssrt_python_stubs})
 
 execute_process(COMMAND ${Python_EXECUTABLE} -c "import sysconfig; print(sysconfig.get_path('platlib'))"
                 OUTPUT_VARIABLE ssrt_site OUTPUT_STRIP_TRAILING_WHITESPACE)

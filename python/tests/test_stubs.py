@@ -1,6 +1,7 @@
 """The .pyi stubs written from the built module name everything the module has."""
 
 import ast
+import builtins
 from pathlib import Path
 
 import ssrt
@@ -14,6 +15,25 @@ def test_stubs_name_every_public_name():
     tree = stub_tree()
     names = {n.name for n in tree.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
     assert names == set(ssrt.__all__)
+
+
+def test_stubs_name_only_what_they_define_or_import():
+    tree = stub_tree()
+    known = set(dir(builtins)) | {"numpy", "os"}
+    for node in tree.body:
+        if isinstance(node, (ast.ClassDef, ast.FunctionDef)):
+            known.add(node.name)
+        elif isinstance(node, ast.ImportFrom):
+            known.update(a.asname or a.name for a in node.names)
+    annotations = []
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.AnnAssign, ast.arg)) and node.annotation is not None:
+            annotations.append(node.annotation)
+        elif isinstance(node, ast.FunctionDef) and node.returns is not None:
+            annotations.append(node.returns)
+    used = {n.id for a in annotations for n in ast.walk(a) if isinstance(n, ast.Name)}
+    assert {"Optional", "RenderSettings", "Frame"} <= used
+    assert used <= known, used - known
 
 
 def test_settings_stub_has_every_field_as_a_keyword():
