@@ -4,6 +4,10 @@
 # puts the same folder into the interpreter's site-packages (SSRT_PYTHON_INSTALL_DIR), so
 # `import ssrt` works without PYTHONPATH. Its .pyi stubs are written at build time from the
 # built module (python/gen_stubs.py), so they say what the module holds.
+if(NOT TARGET ssrt_cli_lib)
+    message(FATAL_ERROR "SSRT_BUILD_PYTHON needs SSRT_BUILD_CLI or SSRT_BUILD_TESTS: the module "
+                        "loads scenes and shots through the CLI's code (cli/options.h)")
+endif()
 set(Python_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The interpreter the module is built for")
 set(PYBIND11_FINDPYTHON ON)
 find_package(Python 3.11 REQUIRED COMPONENTS Interpreter Development.Module)
