@@ -19,6 +19,16 @@ cmake -S "$src/tests/install" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="
       "-DCMAKE_CXX_COMPILER_LAUNCHER=$launcher" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/embed_example"
+# Each component brings its own libraries and no other's: the core-only tool loads no image,
+# glTF or Embree library, the tool on every component loads them.
+for lib in libembree3 libOpenEXR libpng libtinygltf libdraco; do
+    if ldd "$work/consumer/embed_example" | grep -q "$lib"; then
+        echo "FAIL: embed_example (ssrt::core only) loads $lib" >&2
+        exit 1
+    fi
+    ldd "$work/consumer/tool_example" | grep -q "$lib" ||
+        { echo "FAIL: tool_example (every component) does not load $lib" >&2; exit 1; }
+done
 "$work/consumer/tool_example" "$src/tests/fuzz/seeds/material_maps_datauri.gltf" "$work/out.exr"
 
 # What the package must refuse, each with its reason in the message.
