@@ -20,7 +20,7 @@ if [ "${1:-}" = "--render" ]; then
     what="the ssrt command"
 else
     bash scripts/install-deps.sh
-    options=(-DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=ON)
+    options=(-DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=ON -DSSRT_BUILD_PYTHON=ON)
     targets=()
     what="every target"
 fi

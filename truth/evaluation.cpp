@@ -50,6 +50,8 @@ ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
     return imageError(pa, pb);
 }
 
+}  // namespace
+
 ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     ErrorTable t;
     t.color = planesError(frame.image.color, ref.color);
@@ -62,8 +64,6 @@ ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     t.diffuse = planesError(parts.diffuse, ref.diffuse);
     return t;
 }
-
-}  // namespace
 
 void EvaluationSettings::validate() const {
     if (repeats < 1 || repeats > 1000)

@@ -20,6 +20,9 @@ struct ErrorTable {
     bool parts = false;  // direct, specular and diffuse measured (not with both passes off)
 };
 
+// The frame's exposed colour against the reference's, and its parts when it has them.
+ErrorTable imageErrors(const Frame& frame, const ReferenceImage& reference);
+
 struct EvaluationSettings {
     int repeats = 3;         // timed renders (the median of each pass is kept), >= 1
     RayCheckSettings check;  // maxDistance is taken from the render settings

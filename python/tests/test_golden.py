@@ -1,0 +1,63 @@
+"""Golden-image tests written the way a user of the module writes them: a frame's planes
+against hashes kept in the test, and a rendered image against a golden EXR with thresholds."""
+
+import pytest
+
+import ssrt
+from conftest import plane_hash
+
+# cornell, 64x36, default settings. Any ISA and thread count gives these bits (the
+# determinism contract); a change to the renderer's output changes them, on purpose only.
+GOLDEN = {
+    "display.R": "5b9936623189939d",
+    "display.G": "8285943d5e0422f9",
+    "display.B": "09c92c4b5a3a1a7b",
+    "viewZ": "0a8b3a199928fc8e",
+    "normal.Y": "fa5ef2bd704aea39",
+    "ssgi.R": "6e82797677df0dcd",
+    "ssr.G": "7aff6d2343f93491",
+}
+
+
+@pytest.mark.parametrize("isa,threads", [("auto", 0), ("scalar", 1)])
+def test_cornell_planes_match_their_golden_hashes(isa, threads):
+    settings = ssrt.RenderSettings(width=64, height=36, isa=isa, threads=threads)
+    frame = ssrt.Renderer(settings).render(ssrt.Scene("cornell"))
+    assert {name: plane_hash(frame[name])[:16] for name in GOLDEN} == GOLDEN
+
+
+@pytest.fixture(scope="module")
+def golden(tmp_path_factory):
+    """The golden image a project would commit: here written once from frame 0."""
+    path = tmp_path_factory.mktemp("golden") / "cornell.exr"
+    frame = ssrt.Renderer(ssrt.RenderSettings(width=64, height=36)).render(ssrt.Scene("cornell"))
+    ssrt.write(frame, path, layers=["color"])
+    return path
+
+
+def render_to(path, **settings):
+    scene = ssrt.Scene("cornell")
+    renderer = ssrt.Renderer(ssrt.RenderSettings(width=64, height=36, **settings.pop("render", {})))
+    frame = renderer.render(scene, ssrt.FrameInput.still(scene, settings.pop("frame", 0)))
+    ssrt.write(frame, path, layers=["color"])
+    return path
+
+
+def test_the_same_frame_is_identical(golden, tmp_path):
+    result = ssrt.diff(render_to(tmp_path / "a.exr"), golden)
+    assert result["identical"] and result["passed"]
+
+
+def test_other_noise_passes_within_thresholds(golden, tmp_path):
+    # Another frame index: other random numbers, the same image up to noise.
+    result = ssrt.diff(render_to(tmp_path / "b.exr", frame=7), golden, layers=["color"],
+                       max_rel_mse=0.05, max_share=1.0)
+    assert not result["identical"]
+    assert result["passed"], result["layers"]["color"]
+
+
+def test_a_real_change_fails(golden, tmp_path):
+    result = ssrt.diff(render_to(tmp_path / "c.exr", render={"exposure": 1.5}), golden,
+                       layers=["color"], max_rel_mse=0.05, max_share=1.0)
+    assert not result["passed"]
+    assert result["layers"]["color"]["why"] == "relMSE"
