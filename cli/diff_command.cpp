@@ -32,14 +32,6 @@ double parseNumber(const std::string& option, const std::string& text, double lo
 
 constexpr double kHuge = 1e300;
 
-// A number as the table prints it: 4 significant digits, "inf" for +inf.
-std::string number(double v) {
-    if (std::isinf(v)) return "inf";
-    std::ostringstream s;
-    s << std::setprecision(4) << v;
-    return s.str();
-}
-
 // "color.R" -> "R"; a dotless name stays whole.
 std::string shortName(const std::string& channel) {
     const std::size_t dot = channel.rfind('.');
@@ -106,6 +98,15 @@ void printFlip(std::ostream& out, const FlipResult& r, const FlipFileOptions& op
 }
 
 }  // namespace
+
+std::string channelList(const std::vector<std::string>& channels) { return joined(channels); }
+
+std::string number(double v) {
+    if (std::isinf(v)) return "inf";
+    std::ostringstream s;
+    s << std::setprecision(4) << v;
+    return s.str();
+}
 
 std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& f, const std::string& group) {
     std::vector<CLI::Option*> added;

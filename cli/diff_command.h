@@ -56,6 +56,11 @@ bool samePath(const std::string& a, const std::string& b);
 // is one of `images`: writing it would replace an image being compared.
 void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string>& images);
 
+// A difference as the tables print it: 4 significant digits, "inf" for +inf.
+std::string number(double v);
+// Channel names as the tables print them: "R,G,B" for color.R, color.G, color.B.
+std::string channelList(const std::vector<std::string>& channels);
+
 // Registers the `diff` subcommand on `app`, bound to `options`, and returns it.
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 
