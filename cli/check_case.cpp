@@ -1,5 +1,6 @@
 #include "cli/check_case.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,7 +10,9 @@
 #include <stdexcept>
 
 #include "cli/child_process.h"
+#include "cli/cli.h"
 #include "cli/diff_command.h"
+#include "cli/render_command.h"
 #include "cli/suite_rules.h"
 #include "io/flip.h"
 #include "io/image_compare.h"
@@ -173,6 +176,25 @@ void compareCase(const SuiteCase& c, const fs::path& dir, const std::string& out
     }
 }
 
+// A render of several frames wrote rendered_0000.exr, rendered_0001.exr, ...
+// (sequenceFileName): the case's frame is the one compared. Returns 0, or an exit status for a
+// frame the render did not write, with the message.
+int pickFrame(int frame, CaseResult& r) {
+    const fs::path dir = fs::path(r.rendered).parent_path();
+    const std::string stem = fs::path(r.rendered).stem().string() + "_";
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(dir))
+        count += entry.path().filename().string().rfind(stem, 0) == 0 ? 1 : 0;
+    const std::string file = sequenceFileName(r.rendered, frame, std::max(count, 2));
+    if (frame >= count || !fs::exists(file)) {
+        r.report.message = "the render wrote " + std::to_string(count) + " frames, no frame " +
+                           std::to_string(frame);
+        return kExitFailure;
+    }
+    r.rendered = file;
+    return 0;
+}
+
 }  // namespace
 
 const char* caseStatusName(CaseStatus status) {
@@ -211,10 +233,11 @@ CaseResult runCase(const Suite& suite, const SuiteCase& c, const CheckContext& c
     } catch (const std::exception& e) {
         r.report.message = e.what();
     }
+    if (code == 0 && c.frame) code = pickFrame(*c.frame, r);
     if (code != 0) {
         r.status = CaseStatus::Error;
         r.rendered.clear();
-        if (code > 0)
+        if (code > 0 && r.report.message.empty())
             r.report.message =
                 "the render failed (exit " + std::to_string(code) + "): " + lastLine(log);
     } else {

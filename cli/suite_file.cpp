@@ -20,8 +20,8 @@ namespace {
 
 // The keys each object of the file may hold (one place: parsing and the messages use them).
 const std::vector<std::string> kSuiteKeys = {"cases"};
-const std::vector<std::string> kCaseKeys = {"name",   "shot",       "render", "reference",
-                                            "layers", "alternates", "flip"};
+const std::vector<std::string> kCaseKeys = {"name",      "shot",   "render",     "frame",
+                                            "reference", "layers", "alternates", "flip"};
 const std::vector<std::string> kRuleKeys = {"threshold", "maxDifference", "pixels", "buckets",
                                             "hardLimit"};
 const std::vector<std::string> kFlipKeys = {"mean", "max"};
@@ -200,6 +200,12 @@ SuiteCase parseCase(const json& j, const std::string& path, const std::string& f
     checkReferenceFormat(c.reference, path + ".reference", r);
     if (j.contains("shot")) c.shot = r.existingFile(j["shot"], path + ".shot", folder);
     if (j.contains("render")) c.args = parseArgs(j["render"], path + ".render", r);
+    if (j.contains("frame")) {
+        const json& f = j["frame"];
+        if (!f.is_number_unsigned() || f.get<uint64_t>() > 99999)
+            r.fail(path + ".frame", "expected an integer from 0 to 99999");
+        c.frame = int(f.get<uint64_t>());
+    }
     if (j.contains("layers")) {
         const json& layers = j["layers"];
         if (!layers.is_object()) r.fail(path + ".layers", "expected an object: layer -> rule");

@@ -61,7 +61,10 @@ struct SuiteCase {
     std::string name;                 // [A-Za-z0-9._-]+, unique in the suite
     std::optional<std::string> shot;  // as written (relative to the suite's folder)
     std::vector<std::string> args;    // `ssrt render` flags
-    std::string reference;            // as written
+    // For a render of several frames (a shot's "frames", --frames): the index of the one frame
+    // compared (0 is the first), which the other frames' history leads up to.
+    std::optional<int> frame;
+    std::string reference;  // as written
     std::vector<AlternateReference> alternates;
     std::map<std::string, LayerRule> layers;  // by layer name; "*" for every other layer
     std::optional<FlipRule> flip;

@@ -365,7 +365,10 @@ void copyImageWithAttributes(const std::string& from, const std::string& to,
     static const std::string kDisplay[3] = {"display.R", "display.G", "display.B"};
     for (std::size_t i = 0; i < names.size(); ++i)
         image.layers.push_back({png ? kDisplay[i] : names[i], &planes[i]});
-    writeImage(to, image);
+    // ZIP: lossless and the smallest for renders (a reference is kept, often in git).
+    WriteOptions options;
+    options.compression = ExrCompression::Zip;
+    writeImage(to, image, options);
 }
 
 std::vector<std::string> readChannelNames(const std::string& path) {

@@ -70,8 +70,9 @@ std::map<std::string, std::string> readExrStringAttributes(const std::string& pa
 std::map<std::string, std::string> readImageAttributes(const std::string& path);
 
 // Writes the image file `from` again as `to` (both .exr or both .png), every channel's values
-// kept, with `attributes` added: an EXR's channels as they are (32-bit float), a PNG's R, G, B
-// as its 8 bits. Whole or not at all, as writeImage. Throws as readChannels and writeImage do.
+// kept, with `attributes` added: an EXR's channels as they are (32-bit float, ZIP-compressed),
+// a PNG's R, G, B as its 8 bits. Whole or not at all, as writeImage. Throws as readChannels and
+// writeImage do.
 void copyImageWithAttributes(const std::string& from, const std::string& to,
                              const std::vector<std::pair<std::string, std::string>>& attributes);
 

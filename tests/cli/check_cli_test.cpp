@@ -188,6 +188,27 @@ TEST_CASE("check: a tolerance ten times looser than the difference is stale") {
     CHECK(test::readFile(s.golden("spheres.exr")) == reference);
 }
 
+TEST_CASE("check: a frame of a sequence is the one compared") {
+    SuiteDir s;
+    const std::string frames = ", \"--scene\", \"cornell\", \"--frames\", \"3\"";
+    test::writeFile(s.dir.file("suite.json"),
+                    "{\"cases\": [{\"name\": \"seq\", \"frame\": 2, \"reference\": "
+                    "\"golden/seq.exr\", \"render\": [\"--width\", \"64\", \"--height\", "
+                    "\"36\"" +
+                        frames + "]}]}");
+    REQUIRE(s.check({"--update"}).code == 0);
+    CHECK(compareImages(s.out("cases/seq/rendered_0002.exr"), s.golden("seq.exr")).identical());
+    CHECK(!compareImages(s.out("cases/seq/rendered_0000.exr"), s.golden("seq.exr")).identical());
+    test::writeFile(s.dir.file("suite.json"),
+                    "{\"cases\": [{\"name\": \"seq\", \"frame\": 3, \"reference\": "
+                    "\"golden/seq.exr\", \"render\": [\"--width\", \"64\", \"--height\", "
+                    "\"36\"" +
+                        frames + "]}]}");
+    const test::CliResult r = s.check();
+    CHECK(r.code == 3);
+    CHECK(contains(r.out, "ERROR    seq  the render wrote 3 frames, no frame 3"));
+}
+
 TEST_CASE("check: a render that fails is an error (exit 3); bad flags are usage errors (exit 2)") {
     SuiteDir s;
     s.write({{"spheres", ", \"--scene\", \"spheres\""}, {"broken", ", \"--scene\", \"nosuch\""}});

@@ -123,7 +123,7 @@ TEST_CASE("suite file: one number N is the range [N/10, N]; the rules by layer a
          "flip": {"mean": 0.01},
          "alternates": [{"arch": "aarch64", "reference": "a.arm.exr"},
                         {"cpu": "avx512", "arch": "x86_64", "reference": "a.avx512.exr"}]},
-        {"name": "b", "reference": "b.png"}]})");
+        {"name": "b", "reference": "b.png", "frame": 3}]})");
     REQUIRE(s.cases.size() == 2);
     const SuiteCase& a = s.cases[0];
     CHECK(*a.shot == "shot.json");
@@ -135,6 +135,8 @@ TEST_CASE("suite file: one number N is the range [N/10, N]; the rules by layer a
     CHECK(color.pixels->lo == 3);
     CHECK(*ruleFor(a, "viewZ").hardLimit == 0.5);
     CHECK(ruleFor(s.cases[1], "color").exact);
+    CHECK(!a.frame);
+    CHECK(*s.cases[1].frame == 3);
     CHECK(caseThresholds(a) == std::vector<double>{0.0, 0.001});
     CHECK(a.flip->mean->hi == 0.01);
     CHECK(chosenReference(a, {{"arch", "aarch64"}, {"cpu", "scalar"}}) == "a.arm.exr");
@@ -165,6 +167,8 @@ TEST_CASE("suite file: a bad file is one line naming the field") {
               .find("cases[0].layers.color.maxDifference: expected lo <= hi") != std::string::npos);
     CHECK(loadError(R"({"cases": [{"name": "a", "reference": "a.exr", "layers": {"color": {}}}]})")
               .find("cases[0].layers.color: expected \"exact\" or") != std::string::npos);
+    CHECK(loadError(R"({"cases": [{"name": "a", "reference": "a.exr", "frame": -1}]})")
+              .find("cases[0].frame: expected an integer from 0") != std::string::npos);
     CHECK(loadError(R"({"cases": [{"name": "a", "reference": "a.exr"},
                                   {"name": "a", "reference": "b.exr"}]})")
               .find("cases[1].name: 'a' names another case too") != std::string::npos);
