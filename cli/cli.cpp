@@ -56,8 +56,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "bad shot, scene, suite or image file, file I/O, an ISA this CPU lacks, rendering, "
         "images of different sizes).\nRun 'ssrt COMMAND --help' for "
         "a command's options.");
-    app.set_version_flag("--version", versionLine() + "\n",
-                         "Print the version, commit and compiler");
+    app.set_version_flag("--version", versionLine(), "Print the version, commit and compiler");
     app.require_subcommand(1);
     RenderOptions renderOptions;
     CLI::App* render = addRenderCommand(app, renderOptions);
