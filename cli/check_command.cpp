@@ -141,8 +141,10 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& o) {
         "check",
         "Run a golden-image suite: render each case, compare it with its reference by its "
         "rules (exact unless a layer's rule says otherwise), one line per case, an HTML report "
-        "and a JUnit file; exit 1 when a case fails, is stale or has no reference");
-    cmd->add_option("SUITE", o.suite, "The suite file (JSON; see the README, \"Golden images\")")
+        "and a JUnit file; exit 1 when a case fails, is stale or has no reference, 3 when one "
+        "cannot be rendered");
+    cmd->add_option("SUITE", o.suite,
+                    "The suite file (JSON; see the README, \"Suites: ssrt check\")")
         ->required()
         ->type_name("FILE");
     cmd->add_option("-o,--out", o.out,

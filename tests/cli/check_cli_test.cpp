@@ -110,7 +110,7 @@ TEST_CASE("check: new cases fail until --update writes their references with pro
 }
 
 TEST_CASE(
-    "check: a changed case fails by name and layer, leads the report; --update rewrites only "
+    "check: a changed case fails by name and layer, leads the report, and --update rewrites only "
     "failing ones") {
     SuiteDir s;
     s.write(kCases);
@@ -209,7 +209,7 @@ TEST_CASE("check: a frame of a sequence is the one compared") {
     CHECK(contains(r.out, "ERROR    seq  the render wrote 3 frames, no frame 3"));
 }
 
-TEST_CASE("check: a render that fails is an error (exit 3); bad flags are usage errors (exit 2)") {
+TEST_CASE("check: a render that fails is an error (exit 3), bad flags are usage errors (exit 2)") {
     SuiteDir s;
     s.write({{"spheres", ", \"--scene\", \"spheres\""}, {"broken", ", \"--scene\", \"nosuch\""}});
     const test::CliResult r = s.check();

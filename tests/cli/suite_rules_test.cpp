@@ -114,7 +114,7 @@ TEST_CASE("suite rules: FLIP's ranges") {
     CHECK(judgeFlip(s, rule).verdict == Verdict::Stale);
 }
 
-TEST_CASE("suite file: one number N is the range [N/10, N]; the rules by layer and '*'") {
+TEST_CASE("suite file: one number N is the range [N/10, N], the rules by layer and '*'") {
     test::TempDir dir;
     const Suite s = suiteOf(dir, R"({"cases": [
         {"name": "a", "shot": "shot.json", "render": ["--width", "64"], "reference": "a.exr",
