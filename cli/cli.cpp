@@ -6,6 +6,8 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "cli/build_info.h"
+#include "cli/check_command.h"
 #include "cli/compare_command.h"
 #include "cli/diff_command.h"
 #include "cli/merge_command.h"
@@ -19,7 +21,8 @@ namespace ssrt::cli {
 namespace {
 
 // The commands, as the errors for a missing or mistyped one list them.
-constexpr const char* kCommandList = "render, compare, sweep, diff, reference, merge or scenes";
+constexpr const char* kCommandList =
+    "render, compare, sweep, diff, check, reference, merge or scenes";
 
 }  // namespace
 
@@ -47,11 +50,13 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "direct light, screen-space reflections and diffuse, checked against Embree)",
         "ssrt"};
     app.footer(
-        "Exit status: 0 success (diff, render --compare: within every threshold), 1 the images "
-        "differ beyond a threshold (diff, render --compare only), 2 bad command line, 3 the work "
-        "failed (a bad shot, scene or image file, file I/O, an ISA this CPU lacks, rendering, "
+        "Exit status: 0 success (diff, render --compare, check: within every threshold and "
+        "rule), 1 the images differ beyond a threshold (diff, render --compare, and check: a "
+        "case failed, is stale or has no reference), 2 bad command line, 3 the work failed (a "
+        "bad shot, scene, suite or image file, file I/O, an ISA this CPU lacks, rendering, "
         "images of different sizes).\nRun 'ssrt COMMAND --help' for "
         "a command's options.");
+    app.set_version_flag("--version", versionLine(), "Print the version, commit and compiler");
     app.require_subcommand(1);
     RenderOptions renderOptions;
     CLI::App* render = addRenderCommand(app, renderOptions);
@@ -61,6 +66,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* sweep = addSweepCommand(app, sweepOptions);
     DiffOptions diffOptions;
     CLI::App* diff = addDiffCommand(app, diffOptions);
+    CheckOptions checkOptions;
+    CLI::App* check = addCheckCommand(app, checkOptions);
     ReferenceOptions referenceOptions;
     CLI::App* reference = addReferenceCommand(app, referenceOptions);
     MergeOptions mergeOptions;
@@ -78,8 +85,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
         const bool anyParsed = render->parsed() || compare->parsed() || sweep->parsed() ||
-                               diff->parsed() || reference->parsed() || merge->parsed() ||
-                               scenes->parsed();
+                               diff->parsed() || check->parsed() || reference->parsed() ||
+                               merge->parsed() || scenes->parsed();
         if (!anyParsed && first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first << "' (expected " << kCommandList
                 << "; see 'ssrt --help')\n";
@@ -94,6 +101,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
     if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
     if (diff->parsed()) return reportErrors(err, [&] { return runDiff(diffOptions, out); });
+    if (check->parsed()) return reportErrors(err, [&] { return runCheck(checkOptions, out); });
     if (reference->parsed())
         return reportErrors(err, [&] { return runReference(referenceOptions, out, err); });
     if (merge->parsed()) return reportErrors(err, [&] { return runMerge(mergeOptions, out, err); });

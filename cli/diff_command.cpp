@@ -32,14 +32,6 @@ double parseNumber(const std::string& option, const std::string& text, double lo
 
 constexpr double kHuge = 1e300;
 
-// A number as the table prints it: 4 significant digits, "inf" for +inf.
-std::string number(double v) {
-    if (std::isinf(v)) return "inf";
-    std::ostringstream s;
-    s << std::setprecision(4) << v;
-    return s.str();
-}
-
 // "color.R" -> "R"; a dotless name stays whole.
 std::string shortName(const std::string& channel) {
     const std::size_t dot = channel.rfind('.');
@@ -106,6 +98,15 @@ void printFlip(std::ostream& out, const FlipResult& r, const FlipFileOptions& op
 }
 
 }  // namespace
+
+std::string channelList(const std::vector<std::string>& channels) { return joined(channels); }
+
+std::string number(double v) {
+    if (std::isinf(v)) return "inf";
+    std::ostringstream s;
+    s << std::setprecision(4) << v;
+    return s.str();
+}
 
 std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& f, const std::string& group) {
     std::vector<CLI::Option*> added;
@@ -194,8 +195,8 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
     cmd->add_flag("--flip", o.flip,
                   "Also print FLIP, a perceptual difference of the images' colour (layer color, "
                   "else R,G,B): its mean, weighted median and maximum over pixels, each in [0, 1] "
-                  "(0: identical); HDR-FLIP when both files are linear (EXR), else LDR-FLIP. It "
-                  "sets no exit status")
+                  "(0: identical); HDR-FLIP when both files are linear (EXR), else LDR-FLIP. "
+                  "Alone it sets no exit status (see --max-flip-mean)")
         ->group("FLIP");
     cmd->add_option_function<std::string>(
            "--flip-heatmap", [&o](const std::string& v) { o.flipHeatmap = v; },
@@ -203,11 +204,17 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
            "yellow: 1); implies --flip")
         ->type_name("FILE.png")
         ->group("FLIP");
+    cmd->add_option_function<std::string>(
+           "--max-flip-mean", [&o](const std::string& v) { o.maxFlipMean = v; },
+           "Make FLIP part of the verdict: its mean above M differs (exit 1), like a layer beyond "
+           "a threshold; implies --flip")
+        ->type_name("M")
+        ->group("FLIP");
     return cmd;
 }
 
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
-               std::ostream& out, const FlipFileOptions* flip) {
+               std::ostream& out, const FlipFileOptions* flip, std::optional<double> maxFlipMean) {
     const ImageDiff diff = compareImages(a, b, settings.compare);
     std::vector<std::vector<std::string>> rows{{"layer", "channels", "max error", "at (x, y)",
                                                 "relMSE", "pixels over", "share", "verdict"}};
@@ -229,7 +236,16 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
             << ": black = equal, dark red to white = a difference up to " << number(diff.heatScale)
             << " (the largest finite one; any difference at least dark red), blue = a NaN or "
                "infinity against a different value\n";
-    if (flip) printFlip(out, flipImages(a, b, *flip), *flip);
+    // FLIP is a verdict only when a limit for it is given: its mean above the limit differs.
+    bool flipBeyond = false;
+    if (flip) {
+        const FlipResult r = flipImages(a, b, *flip);
+        printFlip(out, r, *flip);
+        flipBeyond = maxFlipMean && !(r.stats.mean <= *maxFlipMean);
+        if (flipBeyond)
+            out << "FLIP mean " << number(r.stats.mean) << " > --max-flip-mean "
+                << number(*maxFlipMean) << "\n";
+    }
     const std::string pair = a + " against " + b + " (" + std::to_string(diff.width) + "x" +
                              std::to_string(diff.height) + ", " +
                              plural(int(diff.layers.size()), "layer") + ")";
@@ -238,6 +254,11 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
         return kExitOk;
     }
     const int n = int(diff.layers.size());
+    if (flipBeyond) {
+        out << "DIFFER: " << pair << ", FLIP's mean beyond --max-flip-mean, " << beyond << " of "
+            << n << " layers beyond a threshold\n";
+        return kExitDiffer;
+    }
     if (beyond == 0) {
         out << "within thresholds: " << pair << ", " << identical << " of " << n
             << " bit-identical\n";
@@ -251,7 +272,11 @@ int runDiff(const DiffOptions& o, std::ostream& out) {
     DiffSettings settings = diffSettingsFrom(o.flags);
     checkHeatmapApart(settings.compare.heatmap, {o.a, o.b});
     if (o.layers) settings.compare.layers = splitList("--layers", *o.layers);
-    if (!o.flip && !o.flipHeatmap) return diffImages(o.a, o.b, settings, out);
+    std::optional<double> maxFlipMean;
+    if (o.maxFlipMean)
+        maxFlipMean =
+            parseNumber("--max-flip-mean", *o.maxFlipMean, 0.0, 1.0, "a number in [0, 1]");
+    if (!o.flip && !o.flipHeatmap && !maxFlipMean) return diffImages(o.a, o.b, settings, out);
     FlipFileOptions flip;
     if (o.flipHeatmap) {
         if (!isPngPath(*o.flipHeatmap)) badValue("--flip-heatmap", *o.flipHeatmap, "a .png file");
@@ -265,7 +290,7 @@ int runDiff(const DiffOptions& o, std::ostream& out) {
                                         "' is also --heatmap");
         flip.heatmap = *o.flipHeatmap;
     }
-    return diffImages(o.a, o.b, settings, out, &flip);
+    return diffImages(o.a, o.b, settings, out, &flip, maxFlipMean);
 }
 
 }  // namespace ssrt::cli

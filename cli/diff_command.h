@@ -32,6 +32,7 @@ struct DiffOptions {
     std::optional<std::string> layers;       // comma-separated layer names
     bool flip = false;                       // print FLIP (--flip, or implied by --flip-heatmap)
     std::optional<std::string> flipHeatmap;  // a .png of FLIP's error on the magma map
+    std::optional<std::string> maxFlipMean;  // FLIP's mean above it differs (implies --flip)
 };
 
 // What the flags mean, checked.
@@ -56,14 +57,22 @@ bool samePath(const std::string& a, const std::string& b);
 // is one of `images`: writing it would replace an image being compared.
 void checkHeatmapApart(const std::string& heatmap, const std::vector<std::string>& images);
 
+// A difference as the tables print it: 4 significant digits, "inf" for +inf.
+std::string number(double v);
+// Channel names as the tables print them: "R,G,B" for color.R, color.G, color.B.
+std::string channelList(const std::vector<std::string>& channels);
+
 // Registers the `diff` subcommand on `app`, bound to `options`, and returns it.
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 
 // Compares `a` against the reference `b`, prints the table, FLIP's line (when `flip` is given:
-// its mean, weighted median and maximum, which set no exit status) and a summary line to `out`
-// and returns kExitOk (every layer within the thresholds) or kExitDiffer; throws on errors.
+// its mean, weighted median and maximum) and a summary line to `out` and returns kExitOk (every
+// layer within the thresholds, and FLIP's mean at most `maxFlipMean` when that is given) or
+// kExitDiffer; throws on errors. FLIP without `maxFlipMean` sets no exit status: it is a
+// report until someone states the limit.
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
-               std::ostream& out, const FlipFileOptions* flip = nullptr);
+               std::ostream& out, const FlipFileOptions* flip = nullptr,
+               std::optional<double> maxFlipMean = {});
 
 // `ssrt diff`: diffSettingsFrom, then diffImages.
 int runDiff(const DiffOptions& options, std::ostream& out);

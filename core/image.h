@@ -73,8 +73,8 @@ struct LayerRef {
 struct ImageLayers {
     int width = 0, height = 0;
     std::vector<LayerRef> layers;  // in file order
-    // EXR only (a PNG has none): string attributes in the header, e.g. what part of a larger
-    // image a shard's file holds (cli/shard.h). Names must not be OpenEXR's own.
+    // String attributes: an EXR's in the header (names must not be OpenEXR's own), e.g. what
+    // part of a larger image a shard's file holds (cli/shard.h); a PNG's as tEXt chunks.
     std::vector<std::pair<std::string, std::string>> attributes = {};
 };
 

@@ -113,6 +113,16 @@ float heatValue(double d) {
     return d == kInf ? std::numeric_limits<float>::infinity() : float(std::min(d, kMax));
 }
 
+constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ull;
+
+// One value's four bytes into a 64-bit FNV-1a hash, low byte first.
+uint64_t fnvBits(uint64_t h, float v) {
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int i = 0; i < 4; ++i) h = (h ^ ((bits >> (8 * i)) & 0xffu)) * 0x100000001b3ull;
+    return h;
+}
+
 bool sameBits(float a, float b) {
     uint32_t x, y;
     std::memcpy(&x, &a, sizeof x);
@@ -127,8 +137,10 @@ bool sameBits(float a, float b) {
 // tests/io/image_compare_test.cpp shows it), absdiff makes NaN against NaN a NaN where we
 // want 0, and relMSE needs a pass over the values anyway.
 LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const LoadedImage& b, int width,
-                       int height, double threshold, PlaneF* heat) {
+                       int height, const ImageCompareOptions& options, PlaneF* heat) {
     LayerDiff d;
+    d.pixelsOverEach.assign(options.moreThresholds.size(), 0);
+    d.hashA = d.hashB = kFnvOffset;
     d.name = plan.name;
     d.channels = plan.both;
     d.identical = true;
@@ -148,6 +160,8 @@ LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const Loaded
             for (std::size_t k = 0; k < n; ++k) {
                 const float va = pa[ia[k]], vb = pb[ib[k]];
                 d.identical = d.identical && sameBits(va, vb);
+                d.hashA = fnvBits(d.hashA, va);
+                d.hashB = fnvBits(d.hashB, vb);
                 const double diff = difference(va, vb);
                 if (diff > d.maxError) {
                     d.maxError = diff;
@@ -158,7 +172,9 @@ LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const Loaded
                 pixelMax = std::max(pixelMax, diff);
             }
             if (pixelMax == kInf) ++d.nonFinite;
-            if (pixelMax > threshold) ++d.pixelsOver;
+            if (pixelMax > options.threshold) ++d.pixelsOver;
+            for (std::size_t t = 0; t < options.moreThresholds.size(); ++t)
+                if (pixelMax > options.moreThresholds[t]) ++d.pixelsOverEach[t];
             if (heat) heat->at(x, y) = std::max(heat->at(x, y), heatValue(pixelMax));
         }
     const double pixels = double(width) * double(height);
@@ -227,6 +243,8 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
                         const ImageCompareOptions& options) {
     if (!(options.threshold >= 0.0))
         throw std::invalid_argument("the pixel threshold must be a number >= 0");
+    for (double t : options.moreThresholds)
+        if (!(t >= 0.0)) throw std::invalid_argument("every pixel threshold must be a number >= 0");
     if (!options.heatmap.empty()) checkPngOutput(options.heatmap, "the heat map");
     const LoadedImage a = io_detail::readFloatImage(pathA);
     const LoadedImage b = io_detail::readFloatImage(pathB);
@@ -245,7 +263,7 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
     for (const LayerPlan& plan : plans) {
         if (!plan.both.empty())
             diff.layers.push_back(
-                compareLayer(plan, a, b, diff.width, diff.height, options.threshold, heat.get()));
+                compareLayer(plan, a, b, diff.width, diff.height, options, heat.get()));
         // Channels only one file has: reported, never compared.
         for (const auto& [list, presence] :
              {std::pair{&plan.onlyB, LayerDiff::Presence::MissingInA},

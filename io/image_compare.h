@@ -31,6 +31,9 @@ struct ImageCompareOptions {
     // Layer names to compare (empty: every layer of either file). A name in neither file is
     // an error (std::invalid_argument).
     std::vector<std::string> layers;
+    // More thresholds (each >= 0) whose pixel counts LayerDiff::pixelsOverEach gives, in this
+    // order: a golden-image suite's buckets (cli/suite_file.h) count several in one pass.
+    std::vector<double> moreThresholds;
     // A PNG to write, or empty: per pixel the largest difference over the compared layers
     // that are in both files, on a colour ramp (heatColour). Written only when both files
     // were read and compared, through a temporary and a rename (io/image_io.h's writeImage).
@@ -44,14 +47,18 @@ struct LayerDiff {
     std::vector<std::string> channels;  // the full channel names, the reference's order
     Presence presence = Presence::Both;
     // The rest are for a layer in both files (Presence::Both).
-    bool identical = false;   // bit for bit
-    double maxError = 0.0;    // the largest difference; +inf for a non-finite mismatch
-    int maxX = 0, maxY = 0;   // where it is (the first such value in row order)
-    std::string maxChannel;   // and in which channel
-    double relMse = 0.0;      // +inf when a value's difference is +inf
-    uint64_t nonFinite = 0;   // pixels where a NaN or infinity meets a different value
-    uint64_t pixelsOver = 0;  // pixels with a channel's difference above the threshold
-    double shareOver = 0.0;   // pixelsOver over the pixel count
+    bool identical = false;                // bit for bit
+    double maxError = 0.0;                 // the largest difference; +inf for a non-finite mismatch
+    int maxX = 0, maxY = 0;                // where it is (the first such value in row order)
+    std::string maxChannel;                // and in which channel
+    double relMse = 0.0;                   // +inf when a value's difference is +inf
+    uint64_t nonFinite = 0;                // pixels where a NaN or infinity meets a different value
+    uint64_t pixelsOver = 0;               // pixels with a channel's difference above the threshold
+    double shareOver = 0.0;                // pixelsOver over the pixel count
+    std::vector<uint64_t> pixelsOverEach;  // pixels over each of moreThresholds, in order
+    // 64-bit FNV-1a over the layer's values' bits (its channels in order, pixel by pixel) in
+    // each file: equal bits give equal hashes, so a report can show what a layer was.
+    uint64_t hashA = 0, hashB = 0;
 };
 
 // The whole comparison.

@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <stdexcept>
 #include <string_view>
@@ -177,7 +179,7 @@ void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& i
             for (std::size_t x = 0; x < w; ++x) row[x * 3 + c] = quantise(src[x]);
         }
     io_detail::writePngRgb8(path, tmp.string(), image.width, image.height, rgb,
-                            kPngCompressionLevel);
+                            kPngCompressionLevel, image.attributes);
 }
 
 // OpenEXR's compression for ours (all lossless).
@@ -323,6 +325,50 @@ std::map<std::string, std::string> readExrStringAttributes(const std::string& pa
         failRead(path, e.what());
     }
     return out;
+}
+
+std::map<std::string, std::string> readImageAttributes(const std::string& path) {
+    if (isExrPath(path)) return readExrStringAttributes(path);
+    if (!isPngPath(path)) failRead(path, "only EXR and PNG files hold attributes here");
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) failRead(path, "cannot read the file");
+    std::map<std::string, std::string> out;
+    try {
+        for (const auto& [key, value] : io_detail::readPngTexts(bytes.data(), bytes.size()))
+            out[key] = value;
+    } catch (const std::exception& e) {
+        failRead(path, e.what());
+    }
+    return out;
+}
+
+void copyImageWithAttributes(const std::string& from, const std::string& to,
+                             const std::vector<std::pair<std::string, std::string>>& attributes) {
+    if (lowerExtension(from) != lowerExtension(to))
+        throw std::invalid_argument("cannot copy '" + from + "' to '" + to + "': formats differ");
+    const bool png = isPngPath(to);
+    const std::vector<std::string> names =
+        png ? std::vector<std::string>{"R", "G", "B"} : readChannelNames(from);
+    int w = 0, h = 0;
+    const std::vector<std::vector<float>> values = readChannels(from, names, w, h);
+    std::vector<PlaneF> planes;
+    planes.reserve(names.size());
+    ImageLayers image{w, h, {}, attributes};
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        planes.emplace_back(w, h);
+        for (int y = 0; y < h; ++y)
+            std::copy_n(values[i].data() + std::size_t(y) * w, w, planes[i].row(y));
+    }
+    // A PNG is written from display planes (its values already display values).
+    static const std::string kDisplay[3] = {"display.R", "display.G", "display.B"};
+    for (std::size_t i = 0; i < names.size(); ++i)
+        image.layers.push_back({png ? kDisplay[i] : names[i], &planes[i]});
+    // ZIP: lossless and the smallest for renders (a reference is kept, often in git).
+    WriteOptions options;
+    options.compression = ExrCompression::Zip;
+    writeImage(to, image, options);
 }
 
 std::vector<std::string> readChannelNames(const std::string& path) {

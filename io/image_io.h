@@ -65,6 +65,17 @@ InterleavedImage readSkyImage(const std::string& path);
 // string attributes), by name. Throws std::runtime_error naming the path if it cannot be read.
 std::map<std::string, std::string> readExrStringAttributes(const std::string& path);
 
+// An EXR's string attributes (readExrStringAttributes) or a PNG's tEXt chunks, by name.
+// Throws std::runtime_error naming the path for another format or a file that cannot be read.
+std::map<std::string, std::string> readImageAttributes(const std::string& path);
+
+// Writes the image file `from` again as `to` (both .exr or both .png), every channel's values
+// kept, with `attributes` added: an EXR's channels as they are (32-bit float, ZIP-compressed),
+// a PNG's R, G, B as its 8 bits. Whole or not at all, as writeImage. Throws as readChannels and
+// writeImage do.
+void copyImageWithAttributes(const std::string& from, const std::string& to,
+                             const std::vector<std::pair<std::string, std::string>>& attributes);
+
 // Channel names of an image file in the order the reader reports them (OpenEXR stores
 // channels sorted by name, so this need not be the order they were written in).
 std::vector<std::string> readChannelNames(const std::string& path);

@@ -103,7 +103,29 @@ void associateAlpha(T* data, std::size_t pixels, int channels, int alphaChannel,
     }
 }
 
+// The header alone (the texts before the pixels are in it).
+bool readInfo(png_structp png, png_infop info) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_read_info(png, info);
+    return true;
+}
+
 }  // namespace
+
+PngTexts readPngTexts(const uint8_t* bytes, std::size_t size) {
+    PngRead r;
+    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.error, onPngError, onPngWarning);
+    if (r.png) r.info = png_create_info_struct(r.png);
+    if (!r.info) failDecode("out of memory");
+    MemoryReader reader{bytes, size, 0};
+    png_set_read_fn(r.png, &reader, readFromMemory);
+    if (!readInfo(r.png, r.info)) failDecode(r.error.text);
+    png_textp texts = nullptr;
+    const int n = png_get_text(r.png, r.info, &texts, nullptr);
+    PngTexts out;
+    for (int i = 0; i < n; ++i) out.emplace_back(texts[i].key, texts[i].text ? texts[i].text : "");
+    return out;
+}
 
 bool isPng(const uint8_t* bytes, std::size_t size) {
     return size >= 8 && png_sig_cmp(bytes, 0, 8) == 0;
@@ -162,7 +184,7 @@ struct PngWrite {
 
 // OpenImageIO 2.4's PNG writer's calls, in its order, for 8-bit RGB and its default settings.
 bool writeRgb8(png_structp png, png_infop info, std::FILE* file, png_uint_32 width,
-               png_uint_32 height, png_bytepp rows, int level) {
+               png_uint_32 height, png_bytepp rows, int level, png_textp more, int moreCount) {
     if (setjmp(png_jmpbuf(png))) return false;
     png_init_io(png, file);
     png_set_compression_level(png, level);
@@ -177,6 +199,7 @@ bool writeRgb8(png_structp png, png_infop info, std::FILE* file, png_uint_32 wid
     text.key = key;
     text.text = value;
     png_set_text(png, info, &text, 1);
+    if (moreCount > 0) png_set_text(png, info, more, moreCount);
     png_write_info(png, info);
     for (png_uint_32 y = 0; y < height; ++y) png_write_row(png, rows[y]);
     png_write_end(png, info);
@@ -186,7 +209,16 @@ bool writeRgb8(png_structp png, png_infop info, std::FILE* file, png_uint_32 wid
 }  // namespace
 
 void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
-                  const std::vector<uint8_t>& rgb, int compressionLevel) {
+                  const std::vector<uint8_t>& rgb, int compressionLevel, const PngTexts& texts) {
+    // libpng takes the texts by pointer; these strings outlive the write.
+    std::vector<std::string> keys, values;
+    for (const auto& [key, value] : texts) keys.push_back(key), values.push_back(value);
+    std::vector<png_text> more(texts.size());
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+        more[i].compression = PNG_TEXT_COMPRESSION_NONE;
+        more[i].key = keys[i].data();
+        more[i].text = values[i].data();
+    }
     PngWrite w;
     w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w.error, onPngError, onPngWarning);
     if (w.png) w.info = png_create_info_struct(w.png);
@@ -197,7 +229,7 @@ void writePngRgb8(const std::string& path, const std::string& file, int width, i
     std::FILE* out = std::fopen(file.c_str(), "wb");
     if (!out) failWrite(path, std::strerror(errno));
     const bool ok = writeRgb8(w.png, w.info, out, png_uint_32(width), png_uint_32(height),
-                              rows.data(), compressionLevel);
+                              rows.data(), compressionLevel, more.data(), int(more.size()));
     // A full disk shows at the flush or the close, not in libpng.
     const bool flushed = std::fflush(out) == 0 && !std::ferror(out);
     const int err = errno;

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/decoded_image.h"
@@ -23,10 +24,18 @@ bool isPng(const uint8_t* bytes, std::size_t size);
 // 16-bit samples in native order; alpha associated as OpenImageIO does unless Straight.
 DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha);
 
+// A PNG's tEXt chunks: keyword and text (keywords of 1 to 79 Latin-1 characters).
+using PngTexts = std::vector<std::pair<std::string, std::string>>;
+
 // Writes 8-bit RGB rows (width * 3 bytes each, row 0 first) to `file`, as OpenImageIO 2.4
-// wrote ssrt's previews: an oFFs chunk at 0, 0, the text "Software" = "ssrt", no filter,
-// zlib at `compressionLevel`. `path` names the file in errors.
+// wrote ssrt's previews: an oFFs chunk at 0, 0, the text "Software" = "ssrt" (then `texts`, if
+// any, before the pixels), no filter, zlib at `compressionLevel`. `path` names the file in
+// errors.
 void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
-                  const std::vector<uint8_t>& rgb, int compressionLevel);
+                  const std::vector<uint8_t>& rgb, int compressionLevel,
+                  const PngTexts& texts = {});
+
+// The tEXt chunks before a PNG's pixels, in file order. Throws as decodePng does.
+PngTexts readPngTexts(const uint8_t* bytes, std::size_t size);
 
 }  // namespace ssrt::io_detail

@@ -39,9 +39,11 @@ test_packages=(
 )
 
 # CI's own tools, on top of the tests': a compiler cache for its builds (kept outside the
-# checkout, so a second run on the machine reuses it) and debootstrap for the fresh Debian root
-# of scripts/test-fresh.sh. Neither README command needs them.
-ci_packages=(ccache debootstrap wget)
+# checkout, so a second run on the machine reuses it), debootstrap for the fresh Debian root
+# of scripts/test-fresh.sh, and headless Chromium, which loads `ssrt check`'s HTML report
+# (tests/io/check_report_browser.sh; about 100 MB with its libraries, so a newcomer's test
+# command does not fetch it and that test says it is skipped). Neither README command needs them.
+ci_packages=(ccache debootstrap wget chromium)
 
 case "${1:-all}" in
     render) packages=("${render_packages[@]}") ;;

@@ -32,6 +32,10 @@ echo "test-clang: built build-clang/ in $((SECONDS - t0)) s" >&2
 ./build-clang/tests/ssrt_tests \
     -tc='built-in scenes keep their golden hashes,every ISA and thread count*,*the same bits*'
 
+# The golden-image suite (tests/golden/suite.json, made by the gcc build) rendered by the clang
+# build: every case exact. Its report stays in build-clang/golden-report/.
+./build-clang/ssrt check tests/golden/suite.json --out build-clang/golden-report
+
 # The same EXR bytes from both compilers: every built-in scene, an image sky (a shot file),
 # textured glTFs (a data-URI PNG, the same quad as a .glb, and the quad with normal, occlusion
 # and emissive maps), and compressed meshes (the Draco box, the meshopt sphere).

@@ -202,4 +202,30 @@ TEST_CASE("flip: ssrt diff --flip prints it, --flip-heatmap writes the magma map
     CHECK(rgb[0] > 0.98f);
 }
 
+TEST_CASE("flip: ssrt diff --max-flip-mean makes FLIP's mean a verdict") {
+    const Render& reference = rendered("1");
+    const Render& large = rendered("1.6");
+    // Within the layers' thresholds, so FLIP alone decides.
+    const std::vector<std::string> loose{"--threshold", "10", "--max-share", "1"};
+    const auto diff = [&](const std::string& limit) {
+        std::vector<std::string> args{"diff", large.png, reference.png, "--max-flip-mean", limit};
+        args.insert(args.end(), loose.begin(), loose.end());
+        return test::runSsrt(args);
+    };
+    std::vector<std::string> plain{"diff", large.png, reference.png, "--flip"};
+    plain.insert(plain.end(), loose.begin(), loose.end());
+    auto r = test::runSsrt(plain);
+    CHECK(r.code == 0);  // without a limit FLIP only reports
+    r = diff("0.001");
+    CHECK(r.code == 1);
+    CHECK(test::contains(r.out, "> --max-flip-mean 0.001"));
+    CHECK(test::contains(r.out, "DIFFER: "));
+    r = diff("0.9");
+    CHECK(r.code == 0);
+    CHECK(test::contains(r.out, "LDR-FLIP ("));
+    r = diff("1.5");
+    CHECK(r.code == 2);
+    CHECK(test::isOneErrorLine(r.err));
+}
+
 #endif  // SSRT_CLI_LIB
