@@ -4,12 +4,16 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/openexr.h>
 #include <strings.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <string_view>
 
+#include "io/decoded_image.h"
 #include "io/io_errors.h"
 
 namespace ssrt::io_detail {
@@ -92,21 +96,79 @@ bool readableAsFloat(const Imf::ChannelList& channels) {
 
 }  // namespace
 
+namespace {
+
+// Bytes in memory, as OpenEXR's core library reads a stream.
+struct ExrMemory {
+    const uint8_t* bytes;
+    std::size_t size;
+};
+
+int64_t readExrMemory(exr_const_context_t, void* user, void* buffer, uint64_t size, uint64_t offset,
+                      exr_stream_error_func_ptr_t) {
+    const auto* in = static_cast<const ExrMemory*>(user);
+    if (offset >= in->size) return 0;
+    const std::size_t n = std::size_t(std::min<uint64_t>(size, in->size - offset));
+    std::memcpy(buffer, in->bytes + offset, n);
+    return int64_t(n);
+}
+
+int64_t exrMemorySize(exr_const_context_t, void* user) {
+    return int64_t(static_cast<const ExrMemory*>(user)->size);
+}
+
+// checkExrSize's work; `name` is the file, or a name for bytes that `init` reads.
+void checkExrHeader(const char* name, exr_context_initializer_t& init) {
+    init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char*) {};  // quiet
+    exr_context_t context = nullptr;
+    exr_attr_box2i_t window{};
+    const exr_attr_chlist_t* channels = nullptr;
+    const bool parsed = exr_start_read(&context, name, &init) == EXR_ERR_SUCCESS &&
+                        exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS &&
+                        exr_get_channels(context, 0, &channels) == EXR_ERR_SUCCESS;
+    const int channelCount = parsed ? channels->num_channels : 0;
+    exr_finish(&context);
+    if (parsed)
+        checkImageSize(std::int64_t(window.max.x) - window.min.x + 1,
+                       std::int64_t(window.max.y) - window.min.y + 1, channelCount);
+}
+
+}  // namespace
+
+void checkExrSize(const std::string& path) {
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    checkExrHeader(path.c_str(), init);
+}
+
+void checkExrSize(const uint8_t* bytes, std::size_t size) {
+    ExrMemory memory{bytes, size};
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.user_data = &memory;
+    init.read_fn = readExrMemory;
+    init.size_fn = exrMemorySize;
+    checkExrHeader("memory.exr", init);
+}
+
 bool isExr(const uint8_t* bytes, std::size_t size) {
     return size >= 4 && bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 &&
            bytes[3] == 0x01;
 }
 
 std::optional<DecodedImage> readExr(const std::string& path) {
+    checkExrSize(path);
     try {
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
         if (!readableAsFloat(header.channels())) return std::nullopt;
         const Imath::Box2i window = header.dataWindow();
         DecodedImage image;
+        image.channelNames = channelOrder(header.channels());
+        // In 64 bits: a corrupt window may span more than an int.
+        checkImageSize(std::int64_t(window.max.x) - window.min.x + 1,
+                       std::int64_t(window.max.y) - window.min.y + 1,
+                       std::int64_t(image.channelNames.size()));
         image.width = window.max.x - window.min.x + 1;
         image.height = window.max.y - window.min.y + 1;
-        image.channelNames = channelOrder(header.channels());
         image.channels = int(image.channelNames.size());
         image.type = SampleType::F32;
         image.f32.resize(image.sampleCount());
@@ -125,6 +187,7 @@ std::optional<DecodedImage> readExr(const std::string& path) {
 }
 
 std::vector<std::string> readExrChannelNames(const std::string& path) {
+    checkExrSize(path);
     try {
         const Imf::InputFile file(path.c_str());
         return channelOrder(file.header().channels());
