@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <string_view>
 
 #include "io/decoded_image.h"
@@ -98,11 +99,20 @@ bool readableAsFloat(const Imf::ChannelList& channels) {
 
 namespace {
 
-// Bytes in memory, as OpenEXR's core library reads a stream.
+// What OpenEXR's core library reads through (bytes in memory, or none for a file) and the
+// first error it reported.
 struct ExrMemory {
-    const uint8_t* bytes;
-    std::size_t size;
+    const uint8_t* bytes = nullptr;
+    std::size_t size = 0;
+    std::string error;
 };
+
+void keepFirstError(exr_const_context_t context, exr_result_t, const char* message) {
+    void* user = nullptr;
+    if (exr_get_user_data(context, &user) != EXR_ERR_SUCCESS || !user) return;
+    std::string& error = static_cast<ExrMemory*>(user)->error;
+    if (error.empty()) error = message;
+}
 
 int64_t readExrMemory(exr_const_context_t, void* user, void* buffer, uint64_t size, uint64_t offset,
                       exr_stream_error_func_ptr_t) {
@@ -117,36 +127,61 @@ int64_t exrMemorySize(exr_const_context_t, void* user) {
     return int64_t(static_cast<const ExrMemory*>(user)->size);
 }
 
-// checkExrSize's work; `name` is the file, or a name for bytes that `init` reads.
-void checkExrHeader(const char* name, exr_context_initializer_t& init) {
-    init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char*) {};  // quiet
+// Every chunk of pixels takes at least its offset-table entry (8 bytes) and its own row and
+// size fields (8 more): a file shorter than that for its header's chunks is cut short, and is
+// refused before OpenEXR rebuilds its table and a pixel buffer is allocated at the claimed
+// size (the fuzzer's 667-byte file claiming a large image took 40 s and gigabytes).
+constexpr std::int64_t kMinChunkBytes = 16;
+
+// checkExrSize's work; `name` is the file, or a name for bytes that `init` reads, `size` the
+// bytes there are.
+// A header the core library refuses is refused with its reason: OpenEXR's InputFile (3.1)
+// reads some of those (a string attribute's size beyond the file, a channel sampled every
+// 1.7e9 rows) and then spends seconds on them.
+void checkExrHeader(const char* name, exr_context_initializer_t& init, std::int64_t size,
+                    ExrMemory& memory) {
+    init.error_handler_fn = keepFirstError;  // kept, not printed
+    init.user_data = &memory;
     exr_context_t context = nullptr;
     exr_attr_box2i_t window{};
     const exr_attr_chlist_t* channels = nullptr;
+    int32_t chunks = 0;
     const bool parsed = exr_start_read(&context, name, &init) == EXR_ERR_SUCCESS &&
                         exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS &&
-                        exr_get_channels(context, 0, &channels) == EXR_ERR_SUCCESS;
+                        exr_get_channels(context, 0, &channels) == EXR_ERR_SUCCESS &&
+                        exr_get_chunk_count(context, 0, &chunks) == EXR_ERR_SUCCESS;
     const int channelCount = parsed ? channels->num_channels : 0;
     exr_finish(&context);
-    if (parsed)
-        checkImageSize(std::int64_t(window.max.x) - window.min.x + 1,
-                       std::int64_t(window.max.y) - window.min.y + 1, channelCount);
+    if (!parsed)
+        failDecode("the header is damaged: " +
+                   (memory.error.empty() ? std::string("unreadable") : memory.error));
+    const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+    checkImageSize(width, height, channelCount);
+    if (kMinChunkBytes * chunks > size)
+        failDecode("the file is cut short: its " + std::to_string(width) + " x " +
+                   std::to_string(height) + " pixels come in " + std::to_string(chunks) +
+                   " chunks, at least " + std::to_string(kMinChunkBytes * chunks) +
+                   " bytes, and the file has " + std::to_string(size));
 }
 
 }  // namespace
 
 void checkExrSize(const std::string& path) {
+    std::error_code error;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error) return;  // InputFile says why it cannot be read
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    checkExrHeader(path.c_str(), init);
+    ExrMemory none;  // read from the file
+    checkExrHeader(path.c_str(), init, std::int64_t(size), none);
 }
 
 void checkExrSize(const uint8_t* bytes, std::size_t size) {
-    ExrMemory memory{bytes, size};
+    ExrMemory memory{bytes, size, {}};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.user_data = &memory;
     init.read_fn = readExrMemory;
     init.size_fn = exrMemorySize;
-    checkExrHeader("memory.exr", init);
+    checkExrHeader("memory.exr", init, std::int64_t(size), memory);
 }
 
 bool isExr(const uint8_t* bytes, std::size_t size) {

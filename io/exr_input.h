@@ -17,8 +17,9 @@ bool isExr(const uint8_t* bytes, std::size_t size);
 // DecodeFailure when part 0's header gives a size over io/image_limits.h's limits, read by
 // OpenEXR's core library, which parses the header alone: OpenEXR's InputFile reads a table of
 // one entry per block of rows when it opens a file, so a corrupt height costs memory (and a
-// truncated file another message) before its header could be checked. A header the core
-// library cannot parse is left for InputFile to report.
+// truncated file another message) before its header could be checked. A file too short for
+// the chunks its header declares is refused too. A header the core library cannot parse is
+// left for InputFile to report.
 void checkExrSize(const std::string& path);
 // The same for an EXR in memory (which OpenImageIO decodes).
 void checkExrSize(const uint8_t* bytes, std::size_t size);

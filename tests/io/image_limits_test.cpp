@@ -83,3 +83,15 @@ TEST_CASE("image limits: EXR channel names and attributes check the header too")
     checkRefusal(thrownBy([&] { readChannelNames(path); }), path, "60000");
     checkRefusal(thrownBy([&] { readExrStringAttributes(path); }), path, "60000");
 }
+
+TEST_CASE("image limits: an EXR header OpenEXR's core library refuses is refused at once") {
+    // The sky-image fuzzer's input (667 bytes): a string attribute's size beyond the file and a
+    // channel sampled every 1.7e9 rows, which OpenEXR's InputFile read for 15 s (40 s under
+    // ASan) and gigabytes before failing; now one line from the header.
+    const std::string path = SSRT_SOURCE_DIR "/tests/io/data/damaged_header.exr";
+    const std::string message = thrownBy([&] { readSkyImage(path); });
+    INFO(message);
+    CHECK(message == "cannot read '" + path +
+                         "': the header is damaged: Attribute 'Exif:ImageHistory', type "
+                         "'string': Invalid size 1835622262");
+}
