@@ -146,8 +146,11 @@ void checkExrHeader(const char* name, exr_context_initializer_t& init, std::int6
     exr_attr_box2i_t window{};
     const exr_attr_chlist_t* channels = nullptr;
     int32_t chunks = 0;
+    int parts = 0;
+    // (A damaged attribute may be reported and skipped with success: any report counts.)
     const bool parsed = exr_start_read(&context, name, &init) == EXR_ERR_SUCCESS &&
-                        exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS &&
+                        memory.error.empty() && exr_get_count(context, &parts) == EXR_ERR_SUCCESS &&
+                        parts >= 1 && exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS &&
                         exr_get_channels(context, 0, &channels) == EXR_ERR_SUCCESS &&
                         exr_get_chunk_count(context, 0, &chunks) == EXR_ERR_SUCCESS;
     const int channelCount = parsed ? channels->num_channels : 0;

@@ -67,3 +67,13 @@ TEST_CASE("cli limits: a frame is checked against the memory available before an
                     std::runtime_error);
     CHECK_NOTHROW(cli::checkFrameMemory(settings, {small, "MemAvailable"}));
 }
+
+TEST_CASE("cli limits: ssrt diff of an EXR with a damaged attribute is one line at once") {
+    // diff_fuzz's input (an out-of-memory report: 1.7 GB and 15 s in OpenEXR's InputFile): an
+    // attribute whose size runs past the file, which OpenEXR's core library reports and skips.
+    const std::string path = SSRT_SOURCE_DIR "/tests/io/data/damaged_attribute.exr";
+    const test::CliResult r = runSsrt({"diff", path, path});
+    CHECK(r.code == cli::kExitFailure);
+    CHECK(isOneErrorLine(r.err));
+    CHECK(contains(r.err, "cannot read '" + path + "': the header is damaged: Attribute "));
+}
