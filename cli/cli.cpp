@@ -3,18 +3,14 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <exception>
+#include <iterator>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
 
 #include "cli/build_info.h"
-#include "cli/check_command.h"
-#include "cli/compare_command.h"
-#include "cli/diff_command.h"
-#include "cli/merge_command.h"
-#include "cli/reference_command.h"
-#include "cli/render_command.h"
+#include "cli/command_line.h"
 #include "cli/scenes_command.h"
-#include "cli/sweep_command.h"
 
 namespace ssrt::cli {
 
@@ -44,11 +40,12 @@ int reportErrors(std::ostream& err, const std::function<int()>& command) {
     }
 }
 
-int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-    CLI::App app{
-        "ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
-        "direct light, screen-space reflections and diffuse, checked against Embree)",
-        "ssrt"};
+CommandLine::CommandLine()
+    : app_(std::make_unique<CLI::App>(
+          "ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
+          "direct light, screen-space reflections and diffuse, checked against Embree)",
+          "ssrt")) {
+    CLI::App& app = *app_;
     app.footer(
         "Exit status: 0 success (diff, render --compare, check: within every threshold and "
         "rule), 1 the images differ beyond a threshold (diff, render --compare, and check: a "
@@ -58,35 +55,48 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         "a command's options.");
     app.set_version_flag("--version", versionLine(), "Print the version, commit and compiler");
     app.require_subcommand(1);
-    RenderOptions renderOptions;
-    CLI::App* render = addRenderCommand(app, renderOptions);
-    CompareOptions compareOptions;
-    CLI::App* compare = addCompareCommand(app, compareOptions);
-    SweepOptions sweepOptions;
-    CLI::App* sweep = addSweepCommand(app, sweepOptions);
-    DiffOptions diffOptions;
-    CLI::App* diff = addDiffCommand(app, diffOptions);
-    CheckOptions checkOptions;
-    CLI::App* check = addCheckCommand(app, checkOptions);
-    ReferenceOptions referenceOptions;
-    CLI::App* reference = addReferenceCommand(app, referenceOptions);
-    MergeOptions mergeOptions;
-    CLI::App* merge = addMergeCommand(app, mergeOptions);
-    CLI::App* scenes = addScenesCommand(app);
+    commands_[int(Command::Render)] = addRenderCommand(app, render);
+    commands_[int(Command::Compare)] = addCompareCommand(app, compare);
+    commands_[int(Command::Sweep)] = addSweepCommand(app, sweep);
+    commands_[int(Command::Diff)] = addDiffCommand(app, diff);
+    commands_[int(Command::Check)] = addCheckCommand(app, check);
+    commands_[int(Command::Reference)] = addReferenceCommand(app, reference);
+    commands_[int(Command::Merge)] = addMergeCommand(app, merge);
+    commands_[int(Command::Scenes)] = addScenesCommand(app);
+}
+
+CommandLine::~CommandLine() = default;
+
+void CommandLine::reset() {
+    // The options are bound to these members by reference and written only when given, so
+    // fresh values and a cleared app are the state parse() starts from.
+    app_->clear();
+    render = {};
+    compare = {};
+    sweep = {};
+    diff = {};
+    check = {};
+    reference = {};
+    merge = {};
+    command_ = Command::Scenes;
+}
+
+std::optional<int> CommandLine::parse(int argc, const char* const* argv, std::ostream& out,
+                                      std::ostream& err) {
     if (argc <= 1) {
         err << "ssrt: error: no command given (" << kCommandList << "; see 'ssrt --help')\n";
         return kExitUsage;
     }
     try {
-        app.parse(argc, argv);
+        app_->parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         // --help arrives as a "parse error" whose exit code is success.
-        if (e.get_exit_code() == 0) return app.exit(e, out, err);
+        if (e.get_exit_code() == 0) return app_->exit(e, out, err);
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
-        const bool anyParsed = render->parsed() || compare->parsed() || sweep->parsed() ||
-                               diff->parsed() || check->parsed() || reference->parsed() ||
-                               merge->parsed() || scenes->parsed();
+        const bool anyParsed =
+            std::any_of(std::begin(commands_), std::end(commands_),
+                        [](const CLI::App* command) { return command->parsed(); });
         if (!anyParsed && first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first << "' (expected " << kCommandList
                 << "; see 'ssrt --help')\n";
@@ -95,18 +105,31 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
         return kExitUsage;
     }
-    if (render->parsed())
-        return reportErrors(err, [&] { return runRender(renderOptions, out, err); });
-    if (compare->parsed())
-        return reportErrors(err, [&] { return runCompare(compareOptions, out, err); });
-    if (sweep->parsed()) return reportErrors(err, [&] { return runSweep(sweepOptions, out, err); });
-    if (diff->parsed()) return reportErrors(err, [&] { return runDiff(diffOptions, out); });
-    if (check->parsed()) return reportErrors(err, [&] { return runCheck(checkOptions, out); });
-    if (reference->parsed())
-        return reportErrors(err, [&] { return runReference(referenceOptions, out, err); });
-    if (merge->parsed()) return reportErrors(err, [&] { return runMerge(mergeOptions, out, err); });
-    if (scenes->parsed()) return reportErrors(err, [&] { return runScenes(out); });
-    return kExitUsage;  // unreachable: require_subcommand(1) holds
+    // require_subcommand(1) holds: exactly one command was parsed.
+    for (int c = 0; c < kCommandCount; ++c)
+        if (commands_[c]->parsed()) command_ = Command(c);
+    return std::nullopt;
+}
+
+int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    CommandLine line;
+    if (const std::optional<int> status = line.parse(argc, argv, out, err)) return *status;
+    switch (line.command()) {
+        case Command::Render:
+            return reportErrors(err, [&] { return runRender(line.render, out, err); });
+        case Command::Compare:
+            return reportErrors(err, [&] { return runCompare(line.compare, out, err); });
+        case Command::Sweep:
+            return reportErrors(err, [&] { return runSweep(line.sweep, out, err); });
+        case Command::Diff: return reportErrors(err, [&] { return runDiff(line.diff, out); });
+        case Command::Check: return reportErrors(err, [&] { return runCheck(line.check, out); });
+        case Command::Reference:
+            return reportErrors(err, [&] { return runReference(line.reference, out, err); });
+        case Command::Merge:
+            return reportErrors(err, [&] { return runMerge(line.merge, out, err); });
+        case Command::Scenes: return reportErrors(err, [&] { return runScenes(out); });
+    }
+    return kExitUsage;  // unreachable: every command is a case
 }
 
 }  // namespace ssrt::cli

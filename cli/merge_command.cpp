@@ -15,6 +15,7 @@
 #include "cli/reference_command.h"
 #include "cli/shard.h"
 #include "io/image_io.h"
+#include "io/image_limits.h"
 
 namespace ssrt::cli {
 
@@ -175,6 +176,9 @@ ReferenceBands mergeReference(const std::vector<Part>& parts) {
         if (said == attrs.end() || said->second != shard)
             badPart(part.path, "its header says another shard than its name (" + shard + ")");
         const auto [w, h] = twoInts(part, attrs, kSizeAttribute);
+        // Checked before the planes are made at that size.
+        if (const std::optional<std::string> problem = imageSizeProblem(w, h))
+            badPart(part.path, "its " + std::string(kSizeAttribute) + " attribute: " + *problem);
         const auto [y0, y1] = twoInts(part, attrs, kRowsAttribute);
         const auto key = attrs.find(kKeyAttribute);
         if (key == attrs.end()) badPart(part.path, "no reference key");

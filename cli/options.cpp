@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/memory_check.h"
 #include "io/image_io.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
@@ -349,6 +350,7 @@ SceneRequest loadSceneRequest(const RenderOptions& o, const RenderSettings& defa
     }
     r.isa = resolveIsaFor(r.settings.isa);
     r.strict = o.strict;
+    checkFrameMemory(r.settings, availableMemory());
     return r;
 }
 

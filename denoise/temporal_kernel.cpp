@@ -173,6 +173,21 @@ SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint&
     for (int ch = 0; ch < 4; ++ch) h.signal[ch] = ln::select(f.allOk, cr[ch], h.signal[ch]);
 }
 
+// A read whose signal, speed or fast history is not finite is no history: the caller owns the
+// history and may hand in a corrupt one, and a NaN tap would spread through the accumulation
+// (a rejected tap's weight 0 times NaN is NaN) and the blur to the whole surface until a cut.
+// The pixel restarts as at a disocclusion; a finite read keeps every bit.
+SSRT_INLINE History finiteHistory(History h) {
+    const Lane zero(0.0f);
+    Mask finite = ((h.frames - h.frames) == zero) & ((h.fast - h.fast) == zero);
+    for (int ch = 0; ch < 4; ++ch) finite = finite & ((h.signal[ch] - h.signal[ch]) == zero);
+    h.found = h.found & finite;
+    h.frames = ln::select(finite, h.frames, zero);
+    h.fast = ln::select(finite, h.fast, zero);
+    for (int ch = 0; ch < 4; ++ch) h.signal[ch] = ln::select(finite, h.signal[ch], zero);
+    return h;
+}
+
 // Reads the history at previous-frame pixel position (qx, qy): testFootprint's occlusion
 // test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass.
 History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
@@ -184,7 +199,7 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     if (surface && ln::any(f.allOk)) catmullRomHistory(a, f, inner, h);
     // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
     h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
-    return h;
+    return finiteHistory(h);
 }
 
 // The surface's curvature at the centre from its right (or left) and lower (or upper)

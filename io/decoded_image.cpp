@@ -1,6 +1,14 @@
 #include "io/decoded_image.h"
 
+#include "io/image_limits.h"
+#include "io/io_errors.h"
+
 namespace ssrt::io_detail {
+
+void checkImageSize(std::int64_t width, std::int64_t height, std::int64_t channels) {
+    if (const std::optional<std::string> problem = imageSizeProblem(width, height, channels))
+        failDecode(*problem);
+}
 
 std::vector<std::string> defaultChannelNames(int n) {
     if (n == 1) return {"Y"};

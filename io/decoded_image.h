@@ -30,6 +30,10 @@ struct DecodedImage {
     std::size_t sampleCount() const { return std::size_t(width) * height * channels; }
 };
 
+// DecodeFailure (io/io_errors.h) when a header's size is over io/image_limits.h's limits:
+// every decoder calls it before allocating the pixels.
+void checkImageSize(std::int64_t width, std::int64_t height, std::int64_t channels);
+
 // OpenImageIO's default channel names for n channels (ImageSpec::default_channel_names):
 // "Y" for one, R, G, B, A for up to four, then "channel4", ...
 std::vector<std::string> defaultChannelNames(int n);

@@ -14,6 +14,16 @@ namespace ssrt::io_detail {
 // Whether the bytes start with EXR's magic number.
 bool isExr(const uint8_t* bytes, std::size_t size);
 
+// DecodeFailure when part 0's header gives a size over io/image_limits.h's limits, read by
+// OpenEXR's core library, which parses the header alone: OpenEXR's InputFile reads a table of
+// one entry per block of rows when it opens a file, so a corrupt height costs memory (and a
+// truncated file another message) before its header could be checked. A file too short for
+// the chunks its header declares is refused too. A header the core library cannot parse is
+// left for InputFile to report.
+void checkExrSize(const std::string& path);
+// The same for an EXR in memory (which OpenImageIO decodes).
+void checkExrSize(const uint8_t* bytes, std::size_t size);
+
 // Every channel as float. Empty for a file whose channels OpenEXR would convert otherwise
 // than OpenImageIO (32-bit unsigned integers, which it scales to [0, 1]) or that it cannot
 // lay out (subsampled channels): OpenImageIO reads those.

@@ -12,6 +12,8 @@
 #define STBI_NO_FAILURE_STRINGS
 #include <stb/stb_image.h>
 
+#include "io/io_errors.h"
+
 namespace ssrt::io_detail {
 
 bool isRadianceHdr(const uint8_t* bytes, std::size_t size) {
@@ -21,6 +23,10 @@ bool isRadianceHdr(const uint8_t* bytes, std::size_t size) {
 std::optional<DecodedImage> decodeRadianceHdr(const uint8_t* bytes, std::size_t size) {
     if (size > std::size_t(std::numeric_limits<int>::max())) return std::nullopt;
     int width = 0, height = 0, fileChannels = 0;
+    // The header's size first: stb_image would allocate whatever it claims.
+    if (!stbi_info_from_memory(bytes, int(size), &width, &height, &fileChannels))
+        return std::nullopt;
+    checkImageSize(width, height, 3);
     float* texels = stbi_loadf_from_memory(bytes, int(size), &width, &height, &fileChannels, 3);
     if (!texels) return std::nullopt;
     DecodedImage image;

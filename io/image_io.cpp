@@ -26,6 +26,7 @@
 #include <thread>
 
 #include "core/color.h"
+#include "io/exr_input.h"
 #include "io/image_decode.h"
 #include "io/io_errors.h"
 #include "io/png_io.h"
@@ -316,6 +317,7 @@ InterleavedImage readSkyImage(const std::string& path) {
 std::map<std::string, std::string> readExrStringAttributes(const std::string& path) {
     std::map<std::string, std::string> out;
     try {
+        io_detail::checkExrSize(path);
         const Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
         for (auto it = header.begin(); it != header.end(); ++it)

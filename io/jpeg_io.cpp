@@ -41,8 +41,7 @@ struct JpegRead {
     }
 };
 
-// The header, then the decompressor started with libjpeg's defaults (OpenImageIO's).
-// Returns 0 on success, 1 after an error, 2 for a CMYK or YCCK file.
+// The header. Returns 0 on success, 1 after an error, 2 for a CMYK or YCCK file.
 int readHeader(JpegRead& r, const uint8_t* bytes, std::size_t size) {
     if (setjmp(r.errors.jump)) return 1;
     jpeg_create_decompress(&r.info);
@@ -50,8 +49,14 @@ int readHeader(JpegRead& r, const uint8_t* bytes, std::size_t size) {
     jpeg_mem_src(&r.info, bytes, static_cast<unsigned long>(size));
     jpeg_read_header(&r.info, TRUE);
     if (r.info.jpeg_color_space == JCS_CMYK || r.info.jpeg_color_space == JCS_YCCK) return 2;
-    jpeg_start_decompress(&r.info);
     return 0;
+}
+
+// The decompressor started with libjpeg's defaults (OpenImageIO's); false after an error.
+bool start(JpegRead& r) {
+    if (setjmp(r.errors.jump)) return false;
+    jpeg_start_decompress(&r.info);
+    return true;
 }
 
 bool readRows(JpegRead& r, uint8_t* pixels, std::size_t rowBytes) {
@@ -77,6 +82,9 @@ std::optional<DecodedImage> decodeJpeg(const uint8_t* bytes, std::size_t size) {
     const int header = readHeader(r, bytes, size);
     if (header == 1) failDecode(r.errors.text);
     if (header == 2) return std::nullopt;
+    // Before the decompressor allocates its buffers for a width the header may invent.
+    checkImageSize(r.info.image_width, r.info.image_height, r.info.num_components);
+    if (!start(r)) failDecode(r.errors.text);
     DecodedImage image;
     image.width = int(r.info.output_width);
     image.height = int(r.info.output_height);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "io/image_limits.h"
 #include "io/oiio_module.h"
 
 namespace ssrt::io_detail {
@@ -31,6 +32,11 @@ bool readOpened(OIIO::ImageInput& in, DecodedImage& out, std::string& error) {
     }
     if (spec.depth > 1) {
         error = "volume images are not supported";
+        return false;
+    }
+    if (const std::optional<std::string> problem =
+            imageSizeProblem(spec.width, spec.height, spec.nchannels)) {
+        error = *problem;
         return false;
     }
     out.width = spec.width;

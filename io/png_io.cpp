@@ -140,6 +140,8 @@ DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha) 
     png_set_read_fn(r.png, &reader, readFromMemory);
     if (!readHeader(r.png, r.info)) failDecode(r.error.text);
 
+    checkImageSize(png_get_image_width(r.png, r.info), png_get_image_height(r.png, r.info),
+                   png_get_channels(r.png, r.info));
     DecodedImage image;
     image.width = int(png_get_image_width(r.png, r.info));
     image.height = int(png_get_image_height(r.png, r.info));

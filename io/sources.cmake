@@ -14,7 +14,8 @@ set(SSRT_IO_DECODE_SOURCES
     ${root}/io/decoded_image.cpp ${root}/io/exr_input.cpp ${root}/io/hdr_io.cpp
     ${root}/io/image_decode.cpp ${root}/io/jpeg_io.cpp ${root}/io/oiio_module.cpp
     ${root}/io/png_io.cpp ${root}/io/texture_io.cpp)
-set(SSRT_IO_DECODE_LIBRARIES PNG::PNG JPEG::JPEG OpenEXR::OpenEXR ${CMAKE_DL_LIBS})
+set(SSRT_IO_DECODE_LIBRARIES PNG::PNG JPEG::JPEG OpenEXR::OpenEXR OpenEXR::OpenEXRCore
+                              ${CMAKE_DL_LIBS})
 
 # Where io/oiio_module.cpp looks for the module (besides beside the program): the build tree,
 # an absolute path given to that one file only (so the others compile to the same command line

@@ -91,8 +91,8 @@ std::vector<float> linearFloat(std::vector<float> out, int channels, bool srgb) 
 InterleavedImage toTexture(const std::string& name, const DecodedImage& image,
                            TextureEncoding encoding) {
     if (image.width < 1 || image.height < 1 || image.channels < 1) fail(name, "the image is empty");
+    // (Its size is within io/image_limits.h's: the decoder checked the header.)
     const std::size_t count = std::size_t(image.width) * std::size_t(image.height);
-    if (count > (std::size_t(1) << 28)) fail(name, "the image is too large for a texture");
     const bool srgb = encoding == TextureEncoding::Srgb;
     const int n = image.channels;
     std::vector<float> pixels;

@@ -30,7 +30,29 @@ std::size_t bytesOf(const ColorPyramid& pyramid) {
     return n;
 }
 
+template <class Group>
+int planesOf(const PlaneTable<Group>& g) {
+    int n = 0;
+    g.forEachPlane([&](std::string_view, const PlaneF&) { ++n; });
+    return n;
+}
+
 }  // namespace
+
+FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
+    const Frame f;
+    const FrameHistory h;
+    FrameMemoryNeed need;
+    need.planes = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) + planesOf(f.ids) +
+                  planesOf(f.direct) + planesOf(f.trace.ssr) + planesOf(f.trace.ssgi) +
+                  planesOf(f.trace.denoise) + planesOf(h) + planesOf(h.denoise) +
+                  planesOf(h.denoiseHalf);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    need.bytes = (std::size_t(need.planes) * pixels +
+                  std::size_t(shadowMapSize) * std::size_t(shadowMapSize)) *
+                 sizeof(float);
+    return need;
+}
 
 std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
     std::vector<MemoryUse> out;

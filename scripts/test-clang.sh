@@ -45,11 +45,11 @@ mkdir -p "$out/gcc" "$out/clang"
 inputs=()
 for scene in $(./build/ssrt scenes | awk '{print $1}'); do inputs+=("scene:$scene"); done
 inputs+=(shot:examples/shots/spheres_sky.json
-         scene:tests/fuzz/seeds/textured_quad_datauri.gltf
-         scene:tests/fuzz/seeds/textured_quad.glb
-         scene:tests/fuzz/seeds/material_maps_datauri.gltf
+         scene:tests/fuzz/seeds/gltf/textured_quad_datauri.gltf
+         scene:tests/fuzz/seeds/gltf/textured_quad.glb
+         scene:tests/fuzz/seeds/gltf/material_maps_datauri.gltf
          scene:tests/scenes/data/draco_box.gltf
-         scene:tests/fuzz/seeds/meshopt_sphere.glb)
+         scene:tests/fuzz/seeds/gltf/meshopt_sphere.glb)
 [ ${#inputs[@]} -ge 10 ] || { echo "test-clang: too few inputs: ${inputs[*]}" >&2; exit 1; }
 # The trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and
 # the half-resolution pick are not frame 0's: "layout:SCENE".

@@ -7,6 +7,8 @@
 # reference image, image error, the compare and sweep commands and their sequences,
 # the image comparison (ssrt diff, render --compare), shards and ssrt merge, the reference
 # cache's racing writers, under AddressSanitizer and UndefinedBehaviorSanitizer.
+# Then the libFuzzer targets of tests/fuzz (built here too: -DSSRT_BUILD_FUZZ=ON) replay their
+# committed seeds (scripts/fuzz.sh replay): a crash, leak or UB report on any fails.
 # Builds in build-asan/; CI runs it after scripts/test.sh.
 #
 # The build is made for these tests and nothing else, which took this stage of CI from 59
@@ -35,14 +37,12 @@ fi
 t0=$SECONDS
 CC="$cc" CXX="$cxx" cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" \
-      "-DSSRT_ISAS=scalar;avx2" -DSSRT_SANITIZE=ON -DSSRT_BUILD_PERF=OFF "${compiler_cache[@]}" \
-      >/dev/null
-cmake --build build-asan --target ssrt_tests --parallel "${SSRT_BUILD_JOBS:-$(nproc)}"
+      "-DSSRT_ISAS=scalar;avx2" -DSSRT_SANITIZE=ON -DSSRT_BUILD_PERF=OFF -DSSRT_BUILD_FUZZ=ON \
+      "${compiler_cache[@]}" >/dev/null
+cmake --build build-asan --target ssrt_tests ssrt_fuzz --parallel "${SSRT_BUILD_JOBS:-$(nproc)}"
 echo "test-sanitized: built build-asan/ in $((SECONDS - t0)) s" >&2
-# tinygltf is a system library built without ASan: containers it fills trip ASan's
-# container-overflow annotations falsely, so that one check is off.
-export ASAN_OPTIONS=detect_container_overflow=0:abort_on_error=1
-export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-# One known leak inside OpenImageIO on corrupt PNGs (see the file).
-export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
-./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*'
+source scripts/lib/sanitizer-options.sh
+./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*,image limits:*,command line:*,cli limits:*'
+t0=$SECONDS
+bash scripts/fuzz.sh replay
+echo "test-sanitized: replayed the fuzz seeds in $((SECONDS - t0)) s" >&2

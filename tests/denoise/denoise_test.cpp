@@ -287,6 +287,27 @@ TEST_CASE("denoise: NaN and infinity never enter the history, and the pixel reco
     }
 }
 
+TEST_CASE("denoise: a history handed in with NaN restarts those pixels, and nothing spreads") {
+    // The caller owns the history (issue 33's soak hands one in corrupt): a NaN block in its
+    // radiance must not spread (a rejected tap's weight 0 times NaN is NaN) to the output or
+    // to the next history.
+    Synthetic s(64, 48);
+    Denoiser d;
+    for (uint32_t f = 0; f < 6; ++f) {
+        for (int y = 0; y < s.h; ++y)
+            for (int x = 0; x < s.w; ++x) s.diffuse[0].at(x, y) = noise(x, y, f, 0);
+        if (f == 4)
+            for (PlaneF* p : {&d.history.diffuse[0], &d.history.diffuse[1], &d.history.specular[2]})
+                for (int y = 20; y < 28; ++y)
+                    for (int x = 28; x < 36; ++x) p->at(x, y) = std::nanf("");
+        d.run(s, f);
+        CAPTURE(f);
+        for (const PlaneF* p : {&d.out.diffuse[0], &d.out.diffuse[1], &d.out.specular[2],
+                                &d.history.diffuse[0], &d.history.specular[2]})
+            CHECK(allFinite(*p));
+    }
+}
+
 TEST_CASE("denoise: revealed background restarts its history and carries no ghost") {
     // A red box (depth 1) over a white wall (depth 4), moving 10 pixels right at frame 8; the
     // camera is still, so the wall's motion is 0 and the box's -10 (previous minus current).

@@ -1,0 +1,57 @@
+// The ssrt command line parsed but not run: every command's options bound to one CLI11 app.
+// runCli (cli/cli.h) parses with it and then runs the chosen command; the command-line fuzzer
+// (tests/fuzz/cli_fuzz.cpp) parses with it and then only checks what the command would check
+// before its work, so that parsing and checking are fuzzed without rendering anything.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+
+#include "cli/check_command.h"
+#include "cli/compare_command.h"
+#include "cli/diff_command.h"
+#include "cli/merge_command.h"
+#include "cli/reference_command.h"
+#include "cli/render_command.h"
+#include "cli/sweep_command.h"
+
+namespace CLI {
+class App;
+}
+
+namespace ssrt::cli {
+
+enum class Command { Render, Compare, Sweep, Diff, Check, Reference, Merge, Scenes };
+inline constexpr int kCommandCount = int(Command::Scenes) + 1;
+
+class CommandLine {
+public:
+    CommandLine();
+    ~CommandLine();
+
+    // Parses argv (argv[0] is the program). Returns the exit status when parsing alone ends
+    // the run (--help: 0, its text on `out`; a usage error: kExitUsage, one line on `err`),
+    // else nothing: command() and the options below hold what was asked.
+    std::optional<int> parse(int argc, const char* const* argv, std::ostream& out,
+                             std::ostream& err);
+    Command command() const { return command_; }
+    // Back to the state before parse(), without building the app again (its hundreds of
+    // options cost milliseconds): what parses many command lines in one process, the fuzzer.
+    void reset();
+
+    RenderOptions render;
+    CompareOptions compare;
+    SweepOptions sweep;
+    DiffOptions diff;
+    CheckOptions check;
+    ReferenceOptions reference;
+    MergeOptions merge;
+
+private:
+    std::unique_ptr<CLI::App> app_;
+    CLI::App* commands_[kCommandCount] = {};  // by Command
+    Command command_ = Command::Scenes;
+};
+
+}  // namespace ssrt::cli

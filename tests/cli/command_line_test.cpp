@@ -1,0 +1,50 @@
+// The command line parsed apart from running it (cli/command_line.h): what the fuzzer of the
+// command line relies on, parsing many command lines with one app.
+#include "cli/command_line.h"
+
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.h"
+
+using namespace ssrt::cli;
+
+namespace {
+
+std::optional<int> parse(CommandLine& line, std::vector<const char*> args) {
+    args.insert(args.begin(), "ssrt");
+    std::ostringstream out, err;
+    return line.parse(int(args.size()), args.data(), out, err);
+}
+
+}  // namespace
+
+TEST_CASE("command line: parses the command and its options without running it") {
+    CommandLine line;
+    REQUIRE(!parse(line, {"render", "--width", "100", "--scene", "cornell", "--frames", "3"}));
+    CHECK(line.command() == Command::Render);
+    CHECK(line.render.settings.at("width") == "100");
+    CHECK(line.render.scene == "cornell");
+    CHECK(line.render.frames == "3");
+}
+
+TEST_CASE("command line: after reset() a parse starts as in a new one") {
+    CommandLine line;
+    REQUIRE(!parse(line, {"render", "--width", "100", "--shard", "1/2", "-o", "a.exr"}));
+    line.reset();
+    REQUIRE(!parse(line, {"diff", "a.exr", "b.exr"}));
+    CHECK(line.command() == Command::Diff);
+    CHECK(line.diff.a == "a.exr");
+    line.reset();
+    REQUIRE(!parse(line, {"render"}));  // nothing of the first render's options is left
+    CHECK(line.render.settings.empty());
+    CHECK(!line.render.shard);
+    CHECK(line.render.output == RenderOptions{}.output);
+    line.reset();
+    CHECK(parse(line, {"render", "--no-such-flag"}) == kExitUsage);
+    line.reset();
+    CHECK(parse(line, {"--help"}) == kExitOk);
+}
