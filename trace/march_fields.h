@@ -35,7 +35,8 @@ inline constexpr std::array kMarchFields = {
         .floats(0.0, false),
     field<&MarchSettings::thickness>(
         "thickness", kMarchUse,
-        "Depth a surface is assumed to have behind the depth buffer, as a fraction of its depth")
+        "Depth a surface is assumed to have behind the depth buffer, as a fraction of its "
+        "depth (with --back-faces, only where its back face is unknown)")
         .floats(0.0, true),
     field<&MarchSettings::thicknessAbsolute>(
         "thicknessAbsolute", kMarchUse,

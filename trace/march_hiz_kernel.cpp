@@ -195,7 +195,11 @@ struct Group {
     // face is unknown the candidate stands and finish() validates it against the thickness as
     // before: going on behind a surface of unknown depth turned rays whose truth is hidden
     // behind it into false hits (cornell's SSGI false hits 3.1 -> 6.9 %) and tripled the
-    // corridor's SSR march (rays crawling a pixel at a time behind the walls).
+    // corridor's SSR march (rays crawling a pixel at a time behind the walls). It goes on only
+    // behind intervals thinner than the thickness guess: going on behind every known interval
+    // lowered the colour error more on cornell, corridor and spheres (640x360 relMSE 0.0226,
+    // 0.0171, 0.0123 against 0.0236, 0.0198, 0.0155) but found the wall behind the box where
+    // the truth is the sphere it hides (`occluded` 0.0252 -> 0.0420, against 0.0245 here).
     // Own-pixel and background candidates are left to finish().
     SSRT_INLINE Mask passBehind(const MarchKernelArgs& a, Mask candidate) {
         const Lane zero(0.0f), one(1.0f);

@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""The back faces' depth intervals (issue 29, item 1) against the thickness guess, charted.
+
+For every built-in scene and a real glTF (assimp's 2CylinderEngine at its own scale), runs
+`ssrt sweep` with the Hi-Z and DDA marchers, each with the back-face layer off and on
+(`--back-faces off,on`), on the default preset's layouts at 640x360 against the 64-spp
+one-bounce Embree reference, and writes one CSV (the sweep's columns) and a chart of colour
+relMSE against the frame's time, one panel per scene, an arrow from each marcher's point
+without the layer to its point with it. The times come from the sweep's one frame each: on a
+shared machine they are noisy, so quote the error from here and a speed ratio from
+alternated whole runs. Run with Debian's /usr/bin/python3:
+
+    perf/back_faces.py build/ssrt perf/charts/back_faces.csv perf/charts/back_faces.png
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+
+SCENES = ("cornell", "spheres", "thin", "corridor", "offscreen", "occluded", "bunny", "fence",
+          "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb")
+MARCHERS = ("hiz", "dda")
+
+
+def sweep(ssrt, scene, out):
+    subprocess.run([ssrt, "sweep", "-q", "--scene", scene, "--marchers", ",".join(MARCHERS),
+                    "--back-faces", "off,on", "--reference-bounces", "1", "-o", out],
+                   check=True)
+    with open(out, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def chart(rows, png):
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    cols = 3
+    fig, axes = plt.subplots((len(scenes) + cols - 1) // cols, cols, figsize=(13, 11), dpi=110)
+    for ax, scene in zip(axes.flat, scenes):
+        for marcher, colour in zip(MARCHERS, ("tab:blue", "tab:orange")):
+            pts = {r["back_faces"]: (float(r["frame_ms"]), float(r["relmse"]))
+                   for r in rows if r["scene"] == scene and r["marcher"] == marcher}
+            if set(pts) != {"0", "1"}:
+                continue
+            (x0, y0), (x1, y1) = pts["0"], pts["1"]
+            ax.scatter([x0], [y0], marker="o", color=colour, label=f"{marcher}: thickness")
+            ax.scatter([x1], [y1], marker="D", color=colour, label=f"{marcher}: back faces")
+            ax.annotate("", (x1, y1), (x0, y0),
+                        arrowprops={"arrowstyle": "->", "color": colour, "alpha": 0.6})
+        ax.set_title(os.path.basename(scene), fontsize=9)
+        ax.set_xlabel("frame (ms)", fontsize=8)
+        ax.set_ylabel("colour relMSE", fontsize=8)
+        ax.grid(True, alpha=0.3)
+        ax.tick_params(labelsize=7)
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(scenes):]:
+        ax.axis("off")
+    fig.suptitle("Back-face depth intervals against the thickness guess (640x360, default "
+                 "layouts, one-bounce reference)", fontsize=10)
+    fig.tight_layout()
+    tmp = png + ".tmp.png"
+    fig.savefig(tmp)  # whole or not at all
+    os.replace(tmp, png)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    ssrt, out_csv, out_png = sys.argv[1:]
+    rows = []
+    with tempfile.TemporaryDirectory() as d:
+        for i, scene in enumerate(SCENES):
+            print(f"back_faces.py: {scene} ({i + 1}/{len(SCENES)})", file=sys.stderr)
+            rows += sweep(ssrt, scene, os.path.join(d, f"{i}.csv"))
+    with open(out_csv + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(out_csv + ".tmp", out_csv)
+    chart(rows, out_png)
+
+
+if __name__ == "__main__":
+    main()
