@@ -134,6 +134,14 @@ std::string fieldTypeName(const FieldInfo& f) {
     return f.type == FieldType::Int ? "INT" : f.type == FieldType::Float ? "FLOAT" : "NAME";
 }
 
+// Whether some quality preset sets the field `key` (renderer/quality.cpp's table).
+bool aPresetSets(std::string_view key) {
+    for (int q = 0; q < kQualityCount; ++q)
+        for (const PresetValue& v : qualityValues(Quality(q)))
+            if (v.key == key) return true;
+    return false;
+}
+
 // One option per CLI field of kRenderFields[begin, end), remembered only when typed (so the
 // shot, or else the command's default, decides otherwise); help shows `defaults`.
 void addFieldOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& defaults,
@@ -147,6 +155,14 @@ void addFieldOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& defa
             const std::string value = defaultIsOn(f) ? "false" : "true";
             option = cmd.add_flag_callback(
                 fieldFlags(f), [&o, key, value] { o.settings[key] = value; }, fieldHelp(f));
+            // A switch that is off by default but that a preset turns on needs its way off.
+            if (!defaultIsOn(f) && f.flag.empty() && aPresetSets(key)) {
+                CLI::Option* off = cmd.add_flag_callback(
+                    "--no-" + kebab(key), [&o, key] { o.settings[key] = "false"; },
+                    "Turn " + fieldOption(f) + " off where the --quality preset turns it on");
+                off->excludes(option);
+                if (!group.empty()) off->group(group);
+            }
         } else {
             option = cmd.add_option_function<std::string>(
                             fieldFlags(f), [&o, key](const std::string& v) { o.settings[key] = v; },

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/cli.h"
+#include "cli/render_command.h"
 
 using namespace ssrt::cli;
 
@@ -47,4 +48,18 @@ TEST_CASE("command line: after reset() a parse starts as in a new one") {
     CHECK(parse(line, {"render", "--no-such-flag"}) == kExitUsage);
     line.reset();
     CHECK(parse(line, {"--help"}) == kExitOk);
+}
+
+TEST_CASE("command line: a switch a preset turns on can be turned off beside it") {
+    CommandLine line;
+    REQUIRE(!parse(line, {"render", "--quality", "ultra"}));
+    CHECK(settingsFrom(line.render).trace.march.backFaces);  // ultra's
+    line.reset();
+    REQUIRE(!parse(line, {"render", "--quality", "ultra", "--no-back-faces"}));
+    CHECK(!settingsFrom(line.render).trace.march.backFaces);
+    line.reset();
+    REQUIRE(!parse(line, {"render", "--back-faces"}));
+    CHECK(settingsFrom(line.render).trace.march.backFaces);
+    line.reset();
+    CHECK(parse(line, {"render", "--back-faces", "--no-back-faces"}) == kExitUsage);
 }
