@@ -11,11 +11,11 @@ foreach(header /usr/include/OpenEXR/ImfOutputFile.h /usr/include/Imath/ImathVec.
         message(FATAL_ERROR "${header} is missing: install libopenexr-dev and libimath-dev")
     endif()
 endforeach()
-# Each library as NAME:SOVERSION:LINKS, in dependency order.
-foreach(entry "Imath:29:" "Iex:30:" "IlmThread:30:OpenEXR::Iex"
-              "OpenEXRCore:30:OpenEXR::Imath"
-              "OpenEXR:30:OpenEXR::Iex,OpenEXR::IlmThread,OpenEXR::OpenEXRCore,OpenEXR::Imath")
-    string(REPLACE ":" ";" parts "${entry}")
+# Each library as NAME/SOVERSION/LINKS, in dependency order.
+foreach(entry "Imath/29/" "Iex/30/" "IlmThread/30/OpenEXR::Iex"
+              "OpenEXRCore/30/OpenEXR::Imath"
+              "OpenEXR/30/OpenEXR::Iex,OpenEXR::IlmThread,OpenEXR::OpenEXRCore,OpenEXR::Imath")
+    string(REPLACE "/" ";" parts "${entry}")
     list(GET parts 0 name)
     list(GET parts 1 soversion)
     list(GET parts 2 links)
