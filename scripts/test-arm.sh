@@ -58,12 +58,6 @@ echo "test-arm: tests under qemu-aarch64 in $((SECONDS - t0)) s" >&2
 source scripts/lib/compare-renders.sh
 x86=(build/ssrt)
 arm=(qemu-aarch64 build-arm/ssrt)
-# Not yet the same bits (README.md, "How determinism is kept"): Debian's arm64 libdraco is
-# compiled with gcc's default FMA contraction, and its octahedral normal decoding gives
-# normals a few 1e-9 off x86-64's (only the normal layer differs; colour is the same bytes).
-declare -A compare_skip=(
-    [scene:tests/scenes/data/draco_box.gltf]="Draco's arm64 normal decoding contracts to FMA"
-)
 t0=$SECONDS
 compare_renders test-arm build-arm/compare x86 arm default ultra
 echo "test-arm: renders in $((SECONDS - t0)) s" >&2

@@ -12,8 +12,6 @@
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
 # half-resolution pick are not frame 0's ("layout:SCENE"). Returns 1 when any file differs.
-# An input the caller names in the associative array `compare_skip` (input -> reason) is
-# not rendered; a line says so, with the reason.
 compare_renders() {
     local label=$1 out=$2 name_a=$3 name_b=$4
     local -n _cr_a=$3 _cr_b=$4  # (names of their own: a nameref must not name itself)
@@ -32,13 +30,8 @@ compare_renders() {
     rm -rf "$out"
     mkdir -p "$out/$name_a" "$out/$name_b"
     local status=0 count=0 input quality kind what name extra
-    declare -p compare_skip &>/dev/null || local -A compare_skip=()
     for quality in "$@"; do
         for input in "${inputs[@]}"; do
-            if [ -n "${compare_skip[$input]:-}" ]; then
-                echo "$label: not compared: $input ($quality): ${compare_skip[$input]}"
-                continue
-            fi
             kind=${input%%:*} what=${input#*:}
             name=$(basename "$what" | tr '.' '_')
             extra=()
