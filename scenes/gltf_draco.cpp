@@ -148,12 +148,14 @@ void fillAttribute(tinygltf::Model& model, int accessor, const draco::Mesh& mesh
         fail(what + " has count " + str(a.count) + " but the Draco mesh has " +
              str(mesh.num_points()) + " points");
     const int components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+    // (an octahedral normal decodes to 3 floats from Draco's 2 integers)
     const bool octahedral = isOctahedral(*att);
-    if (octahedral && (components != 3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT))
-        fail(what + " must be float VEC3 for Draco's octahedral normals");
-    if (!octahedral && components != att->num_components())
+    const int decoded = octahedral ? 3 : att->num_components();
+    if (components != decoded)
         fail(what + " has " + std::to_string(components) + " components but Draco attribute " +
-             str(uniqueId) + " has " + std::to_string(att->num_components()));
+             str(uniqueId) + " has " + std::to_string(decoded));
+    if (octahedral && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        fail(what + " must be float for Draco's octahedral normals");
     std::vector<unsigned char> bytes = octahedral
                                            ? octahedralNormals(*att, mesh.num_points(), what)
                                            : attributeBytes(*att, mesh.num_points(), a, what);
