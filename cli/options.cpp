@@ -250,8 +250,8 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
                   std::string(qualityName(kDefaultQuality)));
     addFieldOptions(cmd, o, d, 0, kRenderOwnFields.size(), "");
     cmd.add_option("--isa", o.isa,
-                   "Kernels to run: auto, scalar, sse2, sse42, avx2 or avx512; auto = $SSRT_ISA "
-                   "if set, else the best this CPU runs of those built")
+                   "Kernels to run: auto, " + isaChoices() +
+                       "; auto = $SSRT_ISA if set, else the best this CPU runs of those built")
         ->type_name("ISA")
         ->capture_default_str();
     addShotOption("--frame", o.frame, "INT",

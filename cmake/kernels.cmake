@@ -8,7 +8,17 @@
 # core/dispatch.h. A build with fewer families (the sanitized build, which needs one SIMD
 # family to check, not five) runs only those: isaSupported() says false for the others and
 # --isa names what the binary was built with.
-set(SSRT_ALL_ISAS scalar sse2 sse42 avx2 avx512)
+#
+# The families are the target architecture's: x86-64's SSE2 to AVX-512, aarch64's NEON
+# (xsimd::neon64: every aarch64 CPU has it, so it needs no flag). Scalar is in both.
+if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(aarch64|arm64|ARM64)$")
+    set(SSRT_ALL_ISAS scalar neon)
+elseif(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
+    set(SSRT_ALL_ISAS scalar sse2 sse42 avx2 avx512)
+else()
+    message(FATAL_ERROR "ssrt's kernels are built for x86-64 and aarch64, not for "
+                        "'${CMAKE_SYSTEM_PROCESSOR}'")
+endif()
 set(SSRT_ISAS "${SSRT_ALL_ISAS}" CACHE STRING
     "Kernel families to compile (a subset of: ${SSRT_ALL_ISAS}; scalar is always built)")
 foreach(isa ${SSRT_ISAS})
@@ -28,6 +38,7 @@ set(SSRT_ISA_FLAGS_avx2 -mavx2)
 # every other ISA still get both warnings.)
 set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl
     -Wno-maybe-uninitialized -Wno-uninitialized)
+set(SSRT_ISA_FLAGS_neon "")
 
 function(ssrt_add_isa_kernels target)
     foreach(isa ${SSRT_ISAS})

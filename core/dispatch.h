@@ -17,7 +17,8 @@
     namespace isa_sse2 { ret name params; }     \
     namespace isa_sse42 { ret name params; }    \
     namespace isa_avx2 { ret name params; }     \
-    namespace isa_avx512 { ret name params; }
+    namespace isa_avx512 { ret name params; }   \
+    namespace isa_neon { ret name params; }
 
 // Evaluates to a pointer to the chosen copy. Only the copies this build compiled are named
 // (SSRT_BUILT_ISA_<name>, set by cmake/kernels.cmake from SSRT_ISAS); isaSupported() never
@@ -29,6 +30,7 @@
             SSRT_DISPATCH_CASE_sse42(name)                    \
             SSRT_DISPATCH_CASE_avx2(name)                     \
             SSRT_DISPATCH_CASE_avx512(name)                   \
+            SSRT_DISPATCH_CASE_neon(name)                     \
             default: return &isa_scalar::name;                \
         }                                                     \
     }())
@@ -52,6 +54,11 @@
 #define SSRT_DISPATCH_CASE_avx512(name) case ::ssrt::Isa::AVX512: return &isa_avx512::name;
 #else
 #define SSRT_DISPATCH_CASE_avx512(name)
+#endif
+#ifdef SSRT_BUILT_ISA_neon
+#define SSRT_DISPATCH_CASE_neon(name) case ::ssrt::Isa::NEON: return &isa_neon::name;
+#else
+#define SSRT_DISPATCH_CASE_neon(name)
 #endif
 // clang-format on
 

@@ -13,16 +13,56 @@ std::string_view isaName(Isa isa) {
         case Isa::SSE42: return "sse42";
         case Isa::AVX2: return "avx2";
         case Isa::AVX512: return "avx512";
+        case Isa::NEON: return "neon";
     }
     return "unknown";
 }
 
+bool isaOfThisArchitecture(Isa isa) {
+    if (isa == Isa::Scalar) return true;
+#if defined(__x86_64__)
+    return isa != Isa::NEON;
+#elif defined(__aarch64__)
+    return isa == Isa::NEON;
+#else
+    return false;
+#endif
+}
+
+namespace {
+
+// "a, b or c" of the given names.
+std::string nameList(const std::vector<std::string_view>& names) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        out += std::string(i == 0                  ? ""
+                           : i + 1 == names.size() ? " or "
+                                                   : ", ") +
+               std::string(names[i]);
+    return out;
+}
+
+// The architecture of ISAs other than scalar, for the error that names it.
+std::string_view architectureOf(Isa isa) { return isa == Isa::NEON ? "aarch64" : "x86-64"; }
+
+}  // namespace
+
+std::string isaChoices() {
+    std::vector<std::string_view> names;
+    for (Isa isa : kAllIsas)
+        if (isaOfThisArchitecture(isa)) names.push_back(isaName(isa));
+    return nameList(names);
+}
+
 std::optional<Isa> parseIsa(std::string_view name) {
     if (name == "auto") return std::nullopt;
-    for (Isa isa : kAllIsas)
+    std::vector<std::string_view> names = {"auto"};
+    for (Isa isa : kAllIsas) {
         if (isaName(isa) == name) return isa;
-    throw std::invalid_argument("unknown ISA '" + std::string(name) +
-                                "' (expected auto, scalar, sse2, sse42, avx2 or avx512)");
+        names.push_back(isaName(isa));
+    }
+    throw std::invalid_argument("unknown ISA '" + std::string(name) + "' (expected " +
+                                nameList(names) + ")");
 }
 
 bool isaBuilt(Isa isa) {
@@ -40,13 +80,17 @@ bool isaBuilt(Isa isa) {
 #ifdef SSRT_BUILT_ISA_avx512
         case Isa::AVX512: return true;
 #endif
+#ifdef SSRT_BUILT_ISA_neon
+        case Isa::NEON: return true;
+#endif
         default: return false;
     }
 }
 
 bool isaSupported(Isa isa) {
     if (!isaBuilt(isa)) return false;
-    // xsimd reads CPUID and XGETBV, so an ISA the OS does not save state for is not offered.
+    // xsimd reads CPUID and XGETBV on x86-64 (so an ISA the OS does not save state for is not
+    // offered) and the auxiliary vector's hardware capabilities on aarch64.
     const auto cpu = xsimd::available_architectures();
     switch (isa) {
         case Isa::Scalar: return true;
@@ -54,6 +98,7 @@ bool isaSupported(Isa isa) {
         case Isa::SSE42: return cpu.sse4_2;
         case Isa::AVX2: return cpu.avx2;
         case Isa::AVX512: return cpu.avx512bw && cpu.avx512dq && cpu.avx512cd;
+        case Isa::NEON: return cpu.neon64;
     }
     return false;
 }
@@ -74,12 +119,16 @@ Isa defaultIsa() {
 
 Isa resolveIsa(std::optional<Isa> requested) {
     if (!requested) return defaultIsa();
+    const std::string name(isaName(*requested));
+    if (!isaOfThisArchitecture(*requested))
+        throw std::runtime_error("ISA '" + name + "' is for " +
+                                 std::string(architectureOf(*requested)) +
+                                 " CPUs; this binary was built for another architecture");
     if (!isaBuilt(*requested))
-        throw std::runtime_error("ISA '" + std::string(isaName(*requested)) +
+        throw std::runtime_error("ISA '" + name +
                                  "' was not built into this binary (cmake -DSSRT_ISAS)");
     if (!isaSupported(*requested))
-        throw std::runtime_error("ISA '" + std::string(isaName(*requested)) +
-                                 "' is not supported by this CPU");
+        throw std::runtime_error("ISA '" + name + "' is not supported by this CPU");
     return *requested;
 }
 

@@ -8,13 +8,23 @@
 
 namespace ssrt {
 
-// Best last; the order is the preference order when choosing automatically.
-enum class Isa { Scalar, SSE2, SSE42, AVX2, AVX512 };
+// Best last within an architecture; the order is the preference order when choosing
+// automatically. Scalar runs everywhere; SSE2 to AVX512 are x86-64's, NEON is aarch64's.
+enum class Isa { Scalar, SSE2, SSE42, AVX2, AVX512, NEON };
 
-inline constexpr Isa kAllIsas[] = {Isa::Scalar, Isa::SSE2, Isa::SSE42, Isa::AVX2, Isa::AVX512};
+inline constexpr Isa kAllIsas[] = {Isa::Scalar, Isa::SSE2,   Isa::SSE42,
+                                   Isa::AVX2,   Isa::AVX512, Isa::NEON};
 
-// Lower-case name as used by --isa and SSRT_ISA: scalar, sse2, sse42, avx2, avx512.
+// Lower-case name as used by --isa and SSRT_ISA: scalar, sse2, sse42, avx2, avx512, neon.
 std::string_view isaName(Isa isa);
+
+// The ISAs of the architecture this binary was compiled for (scalar included), best last,
+// as one line: "scalar, sse2, sse42, avx2 or avx512" on x86-64, "scalar or neon" on aarch64.
+std::string isaChoices();
+
+// True when the ISA belongs to the architecture this binary was compiled for (scalar always):
+// only those can be built into it (cmake/kernels.cmake).
+bool isaOfThisArchitecture(Isa isa);
 
 // Parses a name from isaName(), or "auto" (returns nullopt for auto); throws on anything else.
 std::optional<Isa> parseIsa(std::string_view name);

@@ -3,7 +3,7 @@
 // xsimd::batch<float, Arch> otherwise. Kernels are written once over `Lane`.
 #pragma once
 
-#include <xsimd/xsimd.hpp>
+#include "core/xsimd_exact.h"
 
 #if defined(SSRT_ISA_scalar)
 #define SSRT_KERNEL_SCALAR 1
@@ -23,6 +23,11 @@
 #define SSRT_ARCH xsimd::avx512bw
 #if !defined(__AVX512BW__)
 #error "the avx512 kernels must be compiled with -mavx512bw"
+#endif
+#elif defined(SSRT_ISA_neon)
+#define SSRT_ARCH xsimd::neon64
+#if !defined(__aarch64__)
+#error "the neon kernels are aarch64's (xsimd::neon64)"
 #endif
 #else
 #error "kernel sources are compiled through ssrt_add_isa_kernels (cmake/kernels.cmake)"

@@ -12,6 +12,7 @@ static SSRT_INLINE Lane apply(MathFn fn, Lane a, Lane b) {
     switch (fn) {
         case MathFn::Floor: return ln::floor(a);
         case MathFn::Sqrt: return ln::sqrt(a);
+        case MathFn::Div: return a / b;
         case MathFn::Exp2: return ln::exp2(a);
         case MathFn::Log2: return ln::log2(a);
         case MathFn::Exp: return ln::exp(a);

@@ -17,7 +17,8 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
-#include <xsimd/xsimd.hpp>
+
+#include "core/xsimd_exact.h"
 
 #define SSRT_INLINE inline __attribute__((always_inline))
 
@@ -181,6 +182,13 @@ SSRT_INLINE uint64_t maskBits(bool m) { return m ? 1u : 0u; }
 template <class A>
 SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<float, A> m) {
     // xsimd 8.1 has no batch_bool::mask(): read the register with the ISA's own movemask.
+#if defined(__aarch64__)
+    static_assert(xsimd::batch_bool<float, A>::size == 4);
+    // NEON has no movemask: keep bit i of lane i (each lane is all ones or all zeros) and add.
+    const uint32x4_t bits = m;  // (a float mask's register is uint32x4_t on NEON)
+    const uint32x4_t laneBit = {1u, 2u, 4u, 8u};
+    return uint64_t(vaddvq_u32(vandq_u32(bits, laneBit)));
+#else
 #if defined(__AVX512F__)
     if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return uint64_t(__mmask16(m));
     else
@@ -191,6 +199,7 @@ SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<float, A> m) {
     else
 #endif
         return uint64_t(_mm_movemask_ps(m));
+#endif
 }
 template <class A>
 SSRT_INLINE uint64_t maskBits(xsimd::batch_bool<int32_t, A> m) {
@@ -224,6 +233,9 @@ SSRT_INLINE void store(int32_t* p, xsimd::batch<int32_t, A> x) {
 SSRT_INLINE void storeStream(float* p, float x) { *p = x; }
 template <class A>
 SSRT_INLINE void storeStream(float* p, xsimd::batch<float, A> x) {
+#if defined(__aarch64__)
+    x.store_aligned(p);  // (NEON's non-temporal pair stores are scalar; a plain store it is)
+#else
 #if defined(__AVX512F__)
     if constexpr (std::is_base_of_v<xsimd::avx512f, A>) _mm512_stream_ps(p, x);
     else
@@ -234,6 +246,7 @@ SSRT_INLINE void storeStream(float* p, xsimd::batch<float, A> x) {
     else
 #endif
         _mm_stream_ps(p, x);
+#endif
 }
 SSRT_INLINE void streamFence() {
 #if defined(__SSE2__)

@@ -1,11 +1,13 @@
 // What this machine allows, the limits a pass's bytes and gathers are set against
 // (perf/README.md, "The frame against the machine"): memory read and copy bandwidth over
 // buffers far past the caches, and the rate of hardware gathers (AVX-512, else AVX2) from a
-// table that fits L1, L2, or neither, with 1 and 2 threads.
+// table that fits L1, L2, or neither, with 1 and 2 threads (x86-64 only: NEON has no gather).
 //
 //   ./build/perf/ssrt_bench --benchmark_filter=Machine
 #include <benchmark/benchmark.h>
+#if defined(__x86_64__)
 #include <immintrin.h>
+#endif
 
 #include <cstdint>
 #include <cstring>
@@ -76,6 +78,7 @@ std::vector<int32_t> randomIndices(std::size_t tableFloats) {
     return idx;
 }
 
+#if defined(__x86_64__)
 __attribute__((target("avx512f"))) float gather512(const float* table, const int32_t* idx,
                                                    std::size_t n, int rounds) {
     __m512 acc = _mm512_setzero_ps();
@@ -122,6 +125,7 @@ void BM_MachineGather(benchmark::State& state) {
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(idx.size()) * kRounds * threads);
     state.SetLabel(avx512 ? "avx512" : "avx2");
 }
+#endif
 
 }  // namespace
 
@@ -137,8 +141,10 @@ BENCHMARK(BM_MachineCopy)
     ->ArgName("threads")
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+#if defined(__x86_64__)
 BENCHMARK(BM_MachineGather)
     ->ArgsProduct({{16, 512, 32768}, {1, 2}})
     ->ArgNames({"table_KiB", "threads"})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+#endif

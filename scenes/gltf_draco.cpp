@@ -1,5 +1,7 @@
 // KHR_draco_mesh_compression: compressed primitives decoded with Debian's libdraco.
 // https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_draco_mesh_compression
+#include <draco/attributes/attribute_octahedron_transform.h>
+#include <draco/compression/attributes/normal_compression_utils.h>
 #include <draco/compression/decode.h>
 #include <tiny_gltf.h>
 
@@ -43,6 +45,8 @@ std::unique_ptr<draco::Mesh> decodeMesh(const tinygltf::Model& model, const tiny
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(data.data() + view.byteOffset), view.byteLength);
     draco::Decoder decoder;
+    // Normals stay octahedral integers: octahedralNormals() turns them into vectors.
+    decoder.SetSkipAttributeTransform(draco::GeometryAttribute::NORMAL);
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
     if (!decoded.ok())
         fail(name + ": Draco cannot decode bufferView " + str(index) + ": " +
@@ -85,6 +89,35 @@ std::vector<unsigned char> pointValues(const draco::PointAttribute& att, std::si
     return out;
 }
 
+// Octahedral normals to unit vectors here rather than in libdraco: Debian builds libdraco
+// with gcc's default FMA contraction, which on aarch64 fuses the decoding's multiply-adds
+// and moves normals a few 1e-9 from x86-64's. Draco's OctahedronToolBox is inline in its
+// headers, so compiled here it follows the project's -ffp-contract=off on every architecture
+// and gives the bits libdraco gives on x86-64 (tests/scenes/gltf_draco_test.cpp).
+bool isOctahedral(const draco::PointAttribute& att) {
+    const draco::AttributeTransformData* data = att.GetAttributeTransformData();
+    return data && data->transform_type() == draco::ATTRIBUTE_OCTAHEDRON_TRANSFORM;
+}
+
+std::vector<unsigned char> octahedralNormals(const draco::PointAttribute& att, std::size_t points,
+                                             const std::string& name) {
+    draco::AttributeOctahedronTransform transform;
+    draco::OctahedronToolBox box;
+    if (!transform.InitFromAttribute(att) || att.num_components() != 2 ||
+        !box.SetQuantizationBits(transform.quantization_bits()))
+        fail(name + ": invalid octahedral normal encoding");
+    const std::vector<unsigned char> st = pointValues<int32_t>(att, points, 2, name);
+    std::vector<unsigned char> out(points * 3 * sizeof(float));
+    for (std::size_t p = 0; p < points; ++p) {
+        int32_t coords[2];
+        float normal[3];
+        std::memcpy(coords, st.data() + p * sizeof(coords), sizeof(coords));
+        box.QuantizedOctahedralCoordsToUnitVector(coords[0], coords[1], normal);
+        std::memcpy(out.data() + p * sizeof(normal), normal, sizeof(normal));
+    }
+    return out;
+}
+
 std::vector<unsigned char> attributeBytes(const draco::PointAttribute& att, std::size_t points,
                                           const tinygltf::Accessor& a, const std::string& name) {
     const int n = tinygltf::GetNumComponentsInType(uint32_t(a.type));
@@ -115,10 +148,17 @@ void fillAttribute(tinygltf::Model& model, int accessor, const draco::Mesh& mesh
         fail(what + " has count " + str(a.count) + " but the Draco mesh has " +
              str(mesh.num_points()) + " points");
     const int components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
-    if (components != att->num_components())
+    // (an octahedral normal decodes to 3 floats from Draco's 2 integers)
+    const bool octahedral = isOctahedral(*att);
+    const int decoded = octahedral ? 3 : att->num_components();
+    if (components != decoded)
         fail(what + " has " + std::to_string(components) + " components but Draco attribute " +
-             str(uniqueId) + " has " + std::to_string(att->num_components()));
-    std::vector<unsigned char> bytes = attributeBytes(*att, mesh.num_points(), a, what);
+             str(uniqueId) + " has " + std::to_string(decoded));
+    if (octahedral && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        fail(what + " must be float for Draco's octahedral normals");
+    std::vector<unsigned char> bytes = octahedral
+                                           ? octahedralNormals(*att, mesh.num_points(), what)
+                                           : attributeBytes(*att, mesh.num_points(), a, what);
     const int view = appendBufferView(model, std::move(bytes));
     model.accessors[accessor].bufferView = view;
     model.accessors[accessor].byteOffset = 0;

@@ -4,6 +4,7 @@
 #   scripts/install-deps.sh          # everything: build, render, test, benchmark and chart
 #   scripts/install-deps.sh render   # only what building and running `ssrt` needs
 #   scripts/install-deps.sh ci       # everything, and CI's compiler cache and debootstrap
+#   scripts/install-deps.sh arm      # the aarch64 cross build's (scripts/test-arm.sh), below
 #
 # Idempotent: packages already present are skipped, so the README commands can call it on
 # every run at the cost of one dpkg query.
@@ -45,11 +46,24 @@ test_packages=(
 # command does not fetch it and that test says it is skipped). Neither README command needs them.
 ci_packages=(ccache debootstrap wget chromium)
 
+# The aarch64 cross build of scripts/test-arm.sh (cmake/aarch64-linux-gnu.cmake): Debian's cross
+# compiler, qemu's user-mode emulator, and the arm64 copies of the libraries the test binary
+# and `ssrt` link, installed beside the amd64 ones (multiarch: this adds the arm64 architecture
+# to dpkg). OpenEXR comes as its run-time library only and OpenImageIO not at all: their -dev
+# packages are not co-installable with the amd64 ones (see the toolchain file). Nothing is
+# installed if apt would remove a package to do it: that fails with the package named.
+arm_host_packages=(g++-aarch64-linux-gnu qemu-user)
+arm64_packages=(libxsimd-dev libtbb-dev libpng-dev libjpeg62-turbo-dev libstb-dev
+                libopenexr-3-1-30 libimath-dev libembree-dev libtinygltf-dev libdraco-dev
+                libmeshoptimizer-dev)
+
 case "${1:-all}" in
     render) packages=("${render_packages[@]}") ;;
     all) packages=("${render_packages[@]}" "${test_packages[@]}") ;;
     ci) packages=("${render_packages[@]}" "${test_packages[@]}" "${ci_packages[@]}") ;;
-    *) echo "usage: $0 [render|all|ci]" >&2; exit 2 ;;
+    arm) packages=("${render_packages[@]}" "${test_packages[@]}" "${arm_host_packages[@]}"
+                   "${arm64_packages[@]/%/:arm64}") ;;
+    *) echo "usage: $0 [render|all|ci|arm]" >&2; exit 2 ;;
 esac
 
 missing=()
@@ -65,7 +79,19 @@ t0=$SECONDS
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 export DEBIAN_FRONTEND=noninteractive
+if [ "${1:-}" = arm ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    $sudo dpkg --add-architecture arm64
+fi
 $sudo apt-get update -qq
+if [ "${1:-}" = arm ]; then
+    # An arm64 package that is not Multi-Arch: same would replace its amd64 copy: refuse.
+    removed=$(apt-get -s install --no-install-recommends "${missing[@]}" |
+              awk '/^Remv /{print $2}' | tr '\n' ' ')
+    if [ -n "$removed" ]; then
+        echo "install-deps: installing the arm64 packages would remove ${removed% }" >&2
+        exit 1
+    fi
+fi
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 # (scripts/test-fresh.sh reads this line for the README's times.)
 echo "install-deps: installed ${#missing[@]} packages and their dependencies in $((SECONDS - t0)) s" >&2

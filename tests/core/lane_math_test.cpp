@@ -27,6 +27,9 @@ const Case kCases[] = {
      0},
     {MathFn::Sqrt, "sqrt", 0.0f, 1e4f, 0, 0, [](double a, double) { return std::sqrt(a); }, 0,
      1e-7},
+    // Division and sqrt are the hardware's, correctly rounded: within half an ulp (2^-24).
+    {MathFn::Div, "division", -100.0f, 100.0f, 0.001f, 100.0f,
+     [](double a, double b) { return a / b; }, 0, 6e-8},
     {MathFn::Exp2, "exp2", -30.0f, 30.0f, 0, 0, [](double a, double) { return std::exp2(a); }, 0,
      3e-7},
     {MathFn::Log2, "log2", 1e-6f, 1e6f, 0, 0, [](double a, double) { return std::log2(a); }, 3e-7,

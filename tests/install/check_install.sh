@@ -29,7 +29,7 @@ for lib in libembree3 libOpenEXR libpng libtinygltf libdraco; do
     ldd "$work/consumer/tool_example" | grep -q "$lib" ||
         { echo "FAIL: tool_example (every component) does not load $lib" >&2; exit 1; }
 done
-"$work/consumer/tool_example" "$src/tests/fuzz/seeds/material_maps_datauri.gltf" "$work/out.exr"
+"$work/consumer/tool_example" "$src/tests/fuzz/seeds/gltf/material_maps_datauri.gltf" "$work/out.exr"
 
 # What the package must refuse, each with its reason in the message.
 refuse() {  # refuse WHAT FIND_PACKAGE_ARGS EXPECTED_MESSAGE
