@@ -15,7 +15,7 @@ import pytest
 
 SOURCE = Path(os.environ.get("SSRT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("SSRT_CLI", str(SOURCE / "build" / "ssrt"))
-TEXTURED_GLTF = SOURCE / "tests" / "fuzz" / "seeds" / "material_maps_datauri.gltf"
+TEXTURED_GLTF = SOURCE / "tests" / "fuzz" / "seeds" / "gltf" / "material_maps_datauri.gltf"
 
 
 def plane_hash(array):
