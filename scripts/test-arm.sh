@@ -45,7 +45,8 @@ source scripts/lib/compiler-cache.sh
 t0=$SECONDS
 cmake -S . -B build-arm -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \
-    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF "-DSSRT_TEST_FILES=$test_files" \
+    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF -DSSRT_BUILD_PYTHON=OFF \
+    "-DSSRT_TEST_FILES=$test_files" \
     "${compiler_cache[@]}" >/dev/null
 cmake --build build-arm --target ssrt_cli ssrt_tests --parallel "$jobs"
 echo "test-arm: built build-arm/ in $((SECONDS - t0)) s" >&2

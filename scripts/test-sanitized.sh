@@ -38,6 +38,7 @@ t0=$SECONDS
 CC="$cc" CXX="$cxx" cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" \
       "-DSSRT_ISAS=scalar;avx2" -DSSRT_SANITIZE=ON -DSSRT_BUILD_PERF=OFF -DSSRT_BUILD_FUZZ=ON \
+      -DSSRT_BUILD_PYTHON=OFF \
       "${compiler_cache[@]}" >/dev/null
 cmake --build build-asan --target ssrt_tests ssrt_fuzz --parallel "${SSRT_BUILD_JOBS:-$(nproc)}"
 echo "test-sanitized: built build-asan/ in $((SECONDS - t0)) s" >&2
