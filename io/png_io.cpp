@@ -110,15 +110,20 @@ bool readInfo(png_structp png, png_infop info) {
     return true;
 }
 
+// libpng's read and info structs in `r`, reading from `reader` (which outlives them).
+void startRead(PngRead& r, MemoryReader& reader) {
+    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.error, onPngError, onPngWarning);
+    if (r.png) r.info = png_create_info_struct(r.png);
+    if (!r.info) failDecode("out of memory");
+    png_set_read_fn(r.png, &reader, readFromMemory);
+}
+
 }  // namespace
 
 PngTexts readPngTexts(const uint8_t* bytes, std::size_t size) {
     PngRead r;
-    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.error, onPngError, onPngWarning);
-    if (r.png) r.info = png_create_info_struct(r.png);
-    if (!r.info) failDecode("out of memory");
     MemoryReader reader{bytes, size, 0};
-    png_set_read_fn(r.png, &reader, readFromMemory);
+    startRead(r, reader);
     if (!readInfo(r.png, r.info)) failDecode(r.error.text);
     png_textp texts = nullptr;
     const int n = png_get_text(r.png, r.info, &texts, nullptr);
@@ -133,11 +138,8 @@ bool isPng(const uint8_t* bytes, std::size_t size) {
 
 DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha) {
     PngRead r;
-    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.error, onPngError, onPngWarning);
-    if (r.png) r.info = png_create_info_struct(r.png);
-    if (!r.info) failDecode("out of memory");
     MemoryReader reader{bytes, size, 0};
-    png_set_read_fn(r.png, &reader, readFromMemory);
+    startRead(r, reader);
     if (!readHeader(r.png, r.info)) failDecode(r.error.text);
 
     checkImageSize(png_get_image_width(r.png, r.info), png_get_image_height(r.png, r.info),
