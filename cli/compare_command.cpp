@@ -86,6 +86,29 @@ void printErrors(std::ostream& out, const ErrorTable& e) {
     out << "  relMSE = mean over pixels and RGB of (I - R)^2 / (R^2 + 0.01)\n";
 }
 
+// Beside the error against all the light: the frame against the one-bounce reference (the
+// method's error within its model) and that reference against the full one (the model's
+// own error, which no one-bounce method can remove). relMSE is not additive, so the total
+// is not their sum; each says which of the two to work on.
+void printModelErrors(std::ostream& out, const ErrorTable& method, const ErrorTable& model) {
+    out << std::left << std::setw(kLabel + 2) << "one-bounce model" << std::right
+        << std::setw(kValue) << "method" << std::setw(kValue) << "model"
+        << "\n";
+    const auto row = [&](const char* label, const ImageError& a, const ImageError& b) {
+        out << "  " << std::left << std::setw(kLabel) << label << std::right << std::scientific
+            << std::setprecision(3) << std::setw(kValue) << a.relMse << std::setw(kValue)
+            << b.relMse << std::defaultfloat << "\n";
+    };
+    row("color (exposed)", method.color, model.color);
+    if (method.parts) {
+        row("direct", method.direct, model.direct);
+        row("specular", method.specular, model.specular);
+        row("diffuse", method.diffuse, model.diffuse);
+    }
+    out << "  relMSE; method: the frame against the one-bounce reference; model: the one-bounce "
+           "reference against all bounces'\n";
+}
+
 // A pass without a checked ray is warned about: the frame is still judged by the other pass
 // and the image error (a frame without surface is refused: requireSurface).
 // `hidden`: where the pass draws no ray because the composite would not show what it found.
@@ -167,11 +190,14 @@ void addReferenceOptions(CLI::App& cmd, TruthOptions& o) {
     add("--reference-spp", o.referenceSpp, "INT",
         "Rays per pixel of the reference image for each of SSR and SSGI, 1 to " +
             std::to_string(kMaxReferenceSpp));
-    add("--reference-bounces", o.referenceBounces, "INT|auto",
-        "Diffuse bounces of the reference's SSGI paths, 1 to " +
-            std::to_string(ReferenceSettings::kMaxBounces) + "; auto: 1, or " +
-            std::to_string(kFeedbackReferenceBounces) +
-            " with --ssgi-feedback (which adds a bounce per frame of a still camera)");
+    add("--reference-bounces", o.referenceBounces, "INT|full",
+        "Diffuse bounces of the reference's SSGI paths: full (all the light: each path goes on "
+        "until its throughput is below 0.1 %), or 1 to " +
+            std::to_string(ReferenceSettings::kMaxBounces) +
+            " (1 is one-bounce SSGI's own model; N matches N frames of --ssgi-feedback). With "
+            "full, compare also reports the frame against the one-bounce reference and that "
+            "reference's own error, so the method's error and the one-bounce model's are told "
+            "apart");
     add("--visibility", o.visibility, "KIND",
         "Sun visibility in the reference: embree (shadow rays, the truth) or shadowmap (the "
         "frame's own shadow map, to isolate the tracing errors)");
@@ -207,15 +233,11 @@ void addTruthOptions(CLI::App& cmd, TruthOptions& o) {
         ->group("Truth");
 }
 
-int defaultReferenceBounces(const TraceSettings& trace) {
-    return trace.ssgi && trace.ssgiFeedback ? kFeedbackReferenceBounces : 1;
-}
-
-ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const TraceSettings& trace) {
+ReferenceSettings referenceSettingsFrom(const TruthOptions& o) {
     ReferenceSettings r;
     r.spp = int(parseInteger("--reference-spp", o.referenceSpp, 1, kMaxReferenceSpp));
-    r.bounces = o.referenceBounces == "auto"
-                    ? defaultReferenceBounces(trace)
+    r.bounces = o.referenceBounces == "full"
+                    ? ReferenceSettings::kConverged
                     : int(parseInteger("--reference-bounces", o.referenceBounces, 1,
                                        ReferenceSettings::kMaxBounces));
     r.visibility = parseChoice("--visibility", o.visibility, parseVisibility, "embree, shadowmap");
@@ -223,10 +245,15 @@ ReferenceSettings referenceSettingsFrom(const TruthOptions& o, const TraceSettin
     return r;
 }
 
+std::string bouncesName(int bounces) {
+    return bounces == ReferenceSettings::kConverged ? "full" : std::to_string(bounces);
+}
+
 std::string describeReference(const ReferenceSettings& r) {
-    std::string s = std::to_string(r.spp) + " spp";
-    if (r.bounces != 1) s += ", " + std::to_string(r.bounces) + " bounces";
-    return s;
+    const std::string bounces = r.bounces == ReferenceSettings::kConverged ? "all bounces"
+                                : r.bounces == 1 ? "one bounce"
+                                                 : std::to_string(r.bounces) + " bounces";
+    return std::to_string(r.spp) + " spp, " + bounces;
 }
 
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& o) {
@@ -267,13 +294,31 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
     return cmd;
 }
 
+namespace {
+
+// The one-bounce reference of the evaluated frame, when the reference is not one already.
+std::optional<ReferenceImage> oneBounceReference(const TruthContext& t, const FrameInput& input,
+                                                 const RenderSettings& settings) {
+    if (t.reference.bounces == 1) return std::nullopt;
+    ReferenceSettings one = t.reference;
+    one.bounces = 1;
+    bool fromCache = false;
+    ReferenceImage image = referenceFor(t.embree, t.scene, input, settings, one, t.source, fromCache);
+    if (t.progress)
+        *t.progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
+                    << describeReference(one) << ", for the model's error)\n";
+    return image;
+}
+
+}  // namespace
+
 int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
     const SequencePlan plan = sequencePlanFrom(o.render, request);
-    ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
+    ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
     const FrameWriteOptions writeOptions =
@@ -298,6 +343,8 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const SequenceEvaluation result = evaluateSequence(truth, sequence, settings, settings, frame);
     const Evaluation& ev = result.last;
     requireSurface(frame);
+    const std::optional<ReferenceImage> oneBounce =
+        oneBounceReference(truth, sequence.input(sequence.steps() - 1), settings);
     warnUnchecked(err, "ssr", "--no-ssr", "past the roughness fade", ev.ssr, ev.ssrCheck,
                   ev.stats.ssr.rays);
     warnUnchecked(err, "ssgi", "--no-ssgi", "without diffuse colour", ev.ssgi, ev.ssgiCheck,
@@ -315,6 +362,11 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                         : std::string())
         << "\n\n";
     printEvaluation(out, embree.stats(), ev);
+    if (oneBounce) {
+        out << "\n";
+        printModelErrors(out, imageErrors(frame, *oneBounce),
+                         referenceErrors(*oneBounce, result.reference));
+    }
     if (sequenceRun) {
         out << "\nper frame\n";
         printFrameErrors(out, result.frames);

@@ -27,7 +27,7 @@ inline constexpr long long kMaxReferenceSpp = 65536;
 // What compare and sweep add to the render options: the reference, the checks, the cache.
 struct TruthOptions {
     std::string referenceSpp = "64";
-    std::string referenceBounces = "auto";  // a count, or auto (defaultReferenceBounces)
+    std::string referenceBounces = "full";  // a count, or full (ReferenceSettings::kConverged)
     std::string visibility = "embree";
     std::string pixelTolerance, depthTolerance;  // filled from RayCheckSettings{}
     std::string repeats = "3";
@@ -57,17 +57,16 @@ ReferenceSource referenceSourceFrom(const TruthOptions& options, std::ostream& e
 void addReferenceOptions(CLI::App& cmd, TruthOptions& options);
 // addReferenceOptions, then the checks' options, --repeats and --per-frame (compare, sweep).
 void addTruthOptions(CLI::App& cmd, TruthOptions& options);
-// The reference's diffuse bounces that --reference-bounces auto gives: 1, or with SSGI
-// feedback kFeedbackReferenceBounces (what a still camera's feedback converges to, within
-// about 1 % of its energy on cornell).
-inline constexpr int kFeedbackReferenceBounces = 8;
-int defaultReferenceBounces(const TraceSettings& trace);
-// The reference's settings from the options and the frame's tracing settings (the bounce
-// count's default follows ssgiFeedback); its maxDistance is the march's, which the caller
-// sets once the scene (its diagonal) is known.
-ReferenceSettings referenceSettingsFrom(const TruthOptions& options, const TraceSettings& trace);
-// " spp" or " spp, N bounces" after the count: how compare and sweep name a reference.
+// The reference's settings from the options: the truth is all the light (--reference-bounces
+// full, the default), whatever the method models, so that every method and setting is judged
+// against one image; its maxDistance is the march's, which the caller sets once the scene
+// (its diagonal) is known.
+ReferenceSettings referenceSettingsFrom(const TruthOptions& options);
+// "64 spp, all bounces", "64 spp, one bounce" or "64 spp, N bounces": how compare and sweep
+// name a reference.
 std::string describeReference(const ReferenceSettings& settings);
+// --reference-bounces' value as the CSV's reference_bounces column writes it: full or a count.
+std::string bouncesName(int bounces);
 EvaluationSettings evaluationSettingsFrom(const TruthOptions& options);
 
 CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);

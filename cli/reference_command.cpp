@@ -37,7 +37,7 @@ CLI::App* addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
 int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
-    ReferenceSettings refSettings = referenceSettingsFrom(o.truth, settings.trace);
+    ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
     if (!isExrPath(o.output))
         throw std::invalid_argument("-o: '" + o.output +
                                     "': a reference is written as an EXR (.exr): its planes are "

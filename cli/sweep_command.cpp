@@ -42,6 +42,7 @@ struct Point {
     SsrMethod ssrMethod = SsrMethod::VndfBounded;
     float thickness = 0.0f;
     bool backFaces = false;  // MarchSettings::backFaces
+    bool feedback = false;   // TraceSettings::ssgiFeedback
     SsrResolveMode resolve = SsrResolveMode::Reuse;
 
     static Point off() {
@@ -104,6 +105,11 @@ std::vector<Point> grid(const SweepOptions& o) {
         if (s != "on" && s != "off") badValue("--back-faces", s, "on or off");
         return s == "on";
     });
+    const auto feedback =
+        parseEach<bool>("--ssgi-feedback", o.feedback, [](const std::string& s) {
+            if (s != "on" && s != "off") badValue("--ssgi-feedback", s, "on or off");
+            return s == "on";
+        });
     const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
     std::vector<Point> points;
     bool off = false;
@@ -119,8 +125,10 @@ std::vector<Point> grid(const SweepOptions& o) {
                     for (int gp : ssgiSpp)
                         for (float th : thickness)
                             for (bool bf : backFaces)
-                                for (SsrResolveMode re : resolves)
-                                    points.push_back({true, {}, 0, *m, st, sp, gp, me, th, bf, re});
+                                for (bool fb : feedback)
+                                    for (SsrResolveMode re : resolves)
+                                        points.push_back(
+                                            {true, {}, 0, *m, st, sp, gp, me, th, bf, fb, re});
     }
     for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
              const std::optional<Quality> q = parseQuality(s);
@@ -149,6 +157,7 @@ Point describedBy(Point p, const RenderSettings& s) {
     p.ssrMethod = t.ssrMethod;
     p.thickness = t.march.thickness;
     p.backFaces = t.march.backFaces;
+    p.feedback = t.ssgiFeedback;
     p.resolve = t.resolve.mode;
     return p;
 }
@@ -171,6 +180,7 @@ RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
         t.ssgiSpp = p.ssgiSpp;
         t.march.thickness = p.thickness;
         t.march.backFaces = p.backFaces;
+        t.ssgiFeedback = p.feedback;
         t.resolve.mode = p.resolve;
     }
     s.validate();
@@ -217,10 +227,11 @@ std::string csvRow(int setting, const std::string& scene, const RenderSettings& 
     optional(p.traced, p.maxSteps);
     optional(p.traced, p.thickness);
     optional(p.traced, p.backFaces ? 1 : 0);
+    optional(p.traced, p.feedback ? 1 : 0);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
     cell(reference.spp);
-    cell(reference.bounces);
+    cell(bouncesName(reference.bounces));
     cell(ev.frameMs);
     for (const char* pass : kPasses) {
         const double ms = passMs(ev, pass);
@@ -295,7 +306,7 @@ std::string describe(const Point& p) {
     std::ostringstream s;
     s << marcherName(p.marcher) << ", " << p.maxSteps << " steps, " << ssrMethodName(p.ssrMethod)
       << ", ssr x" << p.ssrSpp << ", ssgi x" << p.ssgiSpp << ", thickness " << p.thickness
-      << (p.backFaces ? ", back faces, " : ", ")
+      << (p.backFaces ? ", back faces, " : ", ") << (p.feedback ? "ssgi feedback, " : "")
       << (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse");
     return s.str();
 }
@@ -312,6 +323,7 @@ SweepOptions::SweepOptions() {
     t << d.march.thickness;
     thickness = t.str();
     backFaces = d.march.backFaces ? "on" : "off";
+    feedback = d.ssgiFeedback ? "on" : "off";
     resolves = std::string(resolveModeName(d.resolve.mode));
 }
 
@@ -321,7 +333,7 @@ const std::vector<std::string>& sweepColumns() {
             "setting",           "scene",    "width",        "height",
             "threads",           "marcher",  "quality",      "ssr_method",
             "ssr_spp",           "ssgi_spp", "max_steps",    "thickness",
-            "back_faces",        "resolve",  "trace_hidden", "reference_spp",
+            "back_faces",        "ssgi_feedback", "resolve", "trace_hidden", "reference_spp",
             "reference_bounces", "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
@@ -363,6 +375,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
          "Depth-buffer thickness (fractions of view depth, as --thickness)");
     list("--back-faces", o.backFaces,
          "Depth intervals from the back faces (as --back-faces): on, off (column back_faces)");
+    list("--ssgi-feedback", o.feedback,
+         "Multi-bounce diffuse from the frame before (as --ssgi-feedback): on, off (column "
+         "ssgi_feedback; it needs a sequence: --warmup-frames or --frames)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
     list("--presets", o.presets,
          "Quality presets as points of their own beside the grid (column quality): " +
@@ -402,7 +417,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     }
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth, request.settings.trace);
+    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
     std::string shardSource;
     const Shard shard = shardFrom(o.shard, &shardSource);
     const std::string output = shardFileName(o.output, shard);

@@ -24,7 +24,7 @@ struct SweepOptions {
     RenderOptions render;  // scene options only (the grid replaces the tracing options)
     TruthOptions truth;
     std::string marchers = "off,linear,dda,hiz";
-    std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, backFaces,
+    std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, backFaces, feedback,
         resolves;           // defaults: TraceSettings{}
     std::string presets;    // quality presets as points: "low,medium,..." (none by default)
     std::string embreeSpp;  // the Embree method's rays per pixel: "1,4,16" (none by default)

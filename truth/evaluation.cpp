@@ -65,6 +65,16 @@ ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     return t;
 }
 
+ErrorTable referenceErrors(const ReferenceImage& image, const ReferenceImage& ref) {
+    ErrorTable t;
+    t.color = planesError(image.color, ref.color);
+    t.parts = true;
+    t.direct = planesError(image.direct, ref.direct);
+    t.specular = planesError(image.specular, ref.specular);
+    t.diffuse = planesError(image.diffuse, ref.diffuse);
+    return t;
+}
+
 void EvaluationSettings::validate() const {
     if (repeats < 1 || repeats > 1000)
         throw std::invalid_argument("repeats must be between 1 and 1000");

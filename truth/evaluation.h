@@ -22,6 +22,9 @@ struct ErrorTable {
 
 // The frame's exposed colour against the reference's, and its parts when it has them.
 ErrorTable imageErrors(const Frame& frame, const ReferenceImage& reference);
+// One reference against another, every part (`ssrt compare`'s model error: the one-bounce
+// reference against the full one is what no one-bounce method can get right).
+ErrorTable referenceErrors(const ReferenceImage& image, const ReferenceImage& reference);
 
 struct EvaluationSettings {
     int repeats = 3;         // timed renders (the median of each pass is kept), >= 1

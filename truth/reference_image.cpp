@@ -315,12 +315,17 @@ glm::vec3 aroundNormal(glm::vec3 n, const ln::V3<float>& l) {
 glm::vec3 diffusePath(const Setup& s, const TracedRay& ray, glm::vec3 origin, const EmbreeHit& hit,
                       uint32_t sample, int bounces) {
     if (bounces == 1) return reference::hitRadiance(s.ctx, origin, ray.dir, hit, false);
+    // Converged: up to kMaxBounces hits, ending where the throughput is negligible. A fixed
+    // count ends only where it is 0, so its N bounces are exactly N.
+    const bool converged = bounces == ReferenceSettings::kConverged;
+    const float negligible = converged ? ReferenceSettings::kNegligibleThroughput : 0.0f;
+    if (converged) bounces = ReferenceSettings::kMaxBounces;
     const EmbreeScene& embree = *s.ctx.embree;
     const uint32_t pixel = uint32_t(ray.y) * uint32_t(s.frame.width) + uint32_t(ray.x);
     reference::DiffuseVertex v = reference::diffuseVertex(s.ctx, origin, ray.dir, hit);
     glm::vec3 radiance = v.radiance, throughput = v.reflectance;
     for (int k = 1; k < bounces; ++k) {
-        if (!(std::max({throughput.x, throughput.y, throughput.z}) > 0.0f)) break;
+        if (!(std::max({throughput.x, throughput.y, throughput.z}) > negligible)) break;
         // The next direction: cosine-weighted around x_k's shading normal.
         const uint32_t dim = kReferenceBounceDim + 2u * uint32_t(k - 1);
         const float u1 = randomFloat(pixel, s.frameIndex, sample, dim);
@@ -385,9 +390,9 @@ void ReferenceSettings::validate() const {
                                     std::to_string(kMaxSpp));
     if (!std::isfinite(maxDistance) || !(maxDistance > 0.0f))
         throw std::invalid_argument("reference maxDistance must be finite and > 0");
-    if (bounces < 1 || bounces > kMaxBounces)
+    if (bounces != kConverged && (bounces < 1 || bounces > kMaxBounces))
         throw std::invalid_argument("reference bounces must be between 1 and " +
-                                    std::to_string(kMaxBounces));
+                                    std::to_string(kMaxBounces) + ", or converged");
 }
 
 ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& renderer,

@@ -253,7 +253,7 @@ TEST_CASE("compare --frames: one row per frame, flicker on a still camera, the l
     CHECK(contains(r.out, "frame 2 of 3 frames after 1 warm-up frame"));
     CHECK(contains(r.out, "per frame"));
     // One reference serves the still camera's frames
-    CHECK(contains(r.err, "reference: rendered (2 spp) for frame 0 (frame index 0)"));
+    CHECK(contains(r.err, "reference: rendered (2 spp, all bounces) for frame 0 (frame index 0)"));
     CHECK(!contains(r.err, "for frame 1"));
     const std::vector<std::string> csv = lines(bytes(dir.file("frames.csv")));
     REQUIRE(csv.size() == 4);
@@ -301,8 +301,8 @@ TEST_CASE("compare --frames on a moving path: a reference per frame, cached -- n
         CAPTURE(i);
         const std::string frame =
             " for frame " + std::to_string(i) + " (frame index " + std::to_string(3 + i) + ")";
-        CHECK(contains(first.err, "reference: rendered (2 spp)" + frame));
-        CHECK(contains(second.err, "reference: from the cache (2 spp)" + frame));
+        CHECK(contains(first.err, "reference: rendered (2 spp, all bounces)" + frame));
+        CHECK(contains(second.err, "reference: from the cache (2 spp, all bounces)" + frame));
     }
     const std::vector<std::string> csv = lines(bytes(dir.file("frames.csv")));
     REQUIRE(csv.size() == 5);

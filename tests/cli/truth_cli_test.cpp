@@ -150,31 +150,63 @@ TEST_CASE(
     CHECK(!std::filesystem::exists(sweepCsv));
 }
 
-TEST_CASE("compare: the reference's bounces follow --ssgi-feedback and are cached apart") {
+// The relMSE cells of a row of compare's "one-bounce model" table: method, then model.
+std::vector<double> modelRow(const std::string& out, const std::string& label) {
+    const std::size_t table = out.find("one-bounce model");
+    if (table == std::string::npos) return {};
+    std::vector<double> cells;
+    for (const std::string& c : checkRow(out.substr(table), label)) cells.push_back(std::stod(c));
+    return cells;
+}
+
+TEST_CASE("compare: the reference is all the light; the one-bounce model's error beside it") {
     TempDir dir;
     const auto run = [&](std::vector<std::string> extra) {
         std::vector<std::string> args = {"compare", "--scene", "cornell"};
         args.insert(args.end(), extra.begin(), extra.end());
         return runSsrt(tiny(args, dir));
     };
-    const test::CliResult one = run({});
-    INFO(one.err);
+    // The default: all bounces, and the one-bounce reference for the model's error.
+    const test::CliResult full = run({});
+    INFO(full.err);
+    REQUIRE(full.code == 0);
+    CHECK(contains(full.out, "reference 4 spp, all bounces\n"));
+    CHECK(contains(full.err, "reference: rendered (4 spp, all bounces)"));
+    CHECK(contains(full.err, "reference: rendered (4 spp, one bounce, for the model's error)"));
+    const std::vector<double> color = modelRow(full.out, "color (exposed)");
+    const std::vector<double> direct = modelRow(full.out, "direct");
+    const std::vector<double> diffuse = modelRow(full.out, "diffuse");
+    REQUIRE(color.size() == 2);
+    REQUIRE(direct.size() == 2);
+    REQUIRE(diffuse.size() == 2);
+    // Cornell's walls bounce light further: the one-bounce model misses some of it, in its
+    // diffuse part only.
+    CHECK(color[1] > 1e-3);
+    CHECK(diffuse[1] > color[1]);
+    CHECK(direct[1] == 0.0);
+    // One bounce asked for: the method's error is the image error itself, and no model table.
+    const test::CliResult one = run({"--reference-bounces", "1"});
     REQUIRE(one.code == 0);
-    CHECK(contains(one.out, "reference 4 spp\n"));
-    // Feedback's default: kFeedbackReferenceBounces, a reference of its own.
-    const test::CliResult fed = run({"--ssgi-feedback"});
-    REQUIRE(fed.code == 0);
-    const std::string bounces = std::to_string(cli::kFeedbackReferenceBounces) + " bounces";
-    CHECK(contains(fed.out, "ssgi feedback, reference 4 spp, " + bounces));
-    CHECK(contains(fed.err, "reference: rendered (4 spp, " + bounces + ")"));
-    // The same count asked for: from the cache; another: rendered.
-    const test::CliResult same =
-        run({"--reference-bounces", std::to_string(cli::kFeedbackReferenceBounces)});
-    REQUIRE(same.code == 0);
-    CHECK(contains(same.err, "reference: from the cache (4 spp, " + bounces + ")"));
+    CHECK(contains(one.out, "reference 4 spp, one bounce\n"));
+    CHECK(contains(one.err, "reference: from the cache (4 spp, one bounce)"));
+    CHECK(!contains(one.out, "one-bounce model"));
+    // ... and the same frame against the same one-bounce reference as the table's method cell.
+    const std::vector<std::string> oneColor = checkRow(one.out, "color (exposed)");
+    REQUIRE(!oneColor.empty());
+    CHECK(std::stod(oneColor[0]) == color[0]);
+    // The full reference again: from the cache, both of them.
+    const test::CliResult again = run({});
+    REQUIRE(again.code == 0);
+    CHECK(contains(again.err, "reference: from the cache (4 spp, all bounces)"));
+    CHECK(contains(again.err, "reference: from the cache (4 spp, one bounce, for the model's"));
+    // A fixed count: cached apart.
     const test::CliResult three = run({"--ssgi-feedback", "--reference-bounces", "3"});
     REQUIRE(three.code == 0);
     CHECK(contains(three.err, "reference: rendered (4 spp, 3 bounces)"));
+    // What the option used to take is refused in one line.
+    const test::CliResult old = run({"--reference-bounces", "auto"});
+    CHECK(old.code == cli::kExitUsage);
+    CHECK(isOneErrorLine(old.err));
 }
 
 TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
@@ -203,7 +235,7 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
         CHECK(std::isfinite(relMse));
         CHECK(relMse >= 0.0);
         CHECK(std::stod(row[col("frame_ms")]) > 0.0);
-        CHECK(row[col("reference_bounces")] == "1");
+        CHECK(row[col("reference_bounces")] == "full");
         // (The rays the composite hides are not traced unless --trace-hidden.)
         CHECK(row[col("trace_hidden")] == (row[col("marcher")] == "off" ? "" : "0"));
         if (row[col("marcher")] == "off") {
@@ -224,6 +256,32 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
     CHECK(rows[2][col("max_steps")] == "128");
 }
 
+TEST_CASE("sweep: --ssgi-feedback off,on is an axis of the grid (column ssgi_feedback)") {
+    TempDir dir;
+    const std::string csv = dir.file("s.csv");
+    const test::CliResult r =
+        runSsrt(tiny({"sweep", "--scene", "cornell", "--marchers", "hiz", "--ssgi-feedback",
+                      "off,on", "--warmup-frames", "3", "-o", csv, "-q"},
+                     dir));
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    std::ifstream in(csv);
+    std::string line;
+    REQUIRE(std::getline(in, line));
+    const auto& columns = cli::sweepColumns();
+    const auto col = [&](const char* name) {
+        return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+    };
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+    REQUIRE(rows.size() == 2);
+    CHECK(rows[0][col("ssgi_feedback")] == "0");
+    CHECK(rows[1][col("ssgi_feedback")] == "1");
+    // Three frames of history: feedback has reflected light to add, so the images differ.
+    CHECK(rows[0][col("relmse")] != rows[1][col("relmse")]);
+    CHECK(rows[0][col("relmse_direct")] == rows[1][col("relmse_direct")]);
+}
+
 TEST_CASE("compare and sweep: bad input is one error line and nothing is written") {
     TempDir dir;
     const std::string csv = dir.file("s.csv");
@@ -236,6 +294,7 @@ TEST_CASE("compare and sweep: bad input is one error line and nothing is written
                                                {"sweep", "--reference-bounces", "0", "-o", csv},
                                                {"compare", "--reference-bounces", "257"},
                                                {"compare", "--reference-bounces", "many"},
+                                               {"sweep", "--ssgi-feedback", "yes", "-o", csv},
                                                {"compare", "--no-ssr", "--no-ssgi"},
                                                {"compare", "--visibility", "raytraced"},
                                                {"compare", "--depth-tolerance", "1.5"},
