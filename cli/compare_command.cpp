@@ -251,7 +251,7 @@ std::string bouncesName(int bounces) {
 
 std::string describeReference(const ReferenceSettings& r) {
     const std::string bounces = r.bounces == ReferenceSettings::kConverged ? "all bounces"
-                                : r.bounces == 1 ? "one bounce"
+                                : r.bounces == 1                           ? "one bounce"
                                                  : std::to_string(r.bounces) + " bounces";
     return std::to_string(r.spp) + " spp, " + bounces;
 }
@@ -303,7 +303,8 @@ std::optional<ReferenceImage> oneBounceReference(const TruthContext& t, const Fr
     ReferenceSettings one = t.reference;
     one.bounces = 1;
     bool fromCache = false;
-    ReferenceImage image = referenceFor(t.embree, t.scene, input, settings, one, t.source, fromCache);
+    ReferenceImage image =
+        referenceFor(t.embree, t.scene, input, settings, one, t.source, fromCache);
     if (t.progress)
         *t.progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
                     << describeReference(one) << ", for the model's error)\n";

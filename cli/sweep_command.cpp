@@ -105,11 +105,10 @@ std::vector<Point> grid(const SweepOptions& o) {
         if (s != "on" && s != "off") badValue("--back-faces", s, "on or off");
         return s == "on";
     });
-    const auto feedback =
-        parseEach<bool>("--ssgi-feedback", o.feedback, [](const std::string& s) {
-            if (s != "on" && s != "off") badValue("--ssgi-feedback", s, "on or off");
-            return s == "on";
-        });
+    const auto feedback = parseEach<bool>("--ssgi-feedback", o.feedback, [](const std::string& s) {
+        if (s != "on" && s != "off") badValue("--ssgi-feedback", s, "on or off");
+        return s == "on";
+    });
     const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
     std::vector<Point> points;
     bool off = false;
@@ -329,12 +328,13 @@ SweepOptions::SweepOptions() {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {
-            "setting",           "scene",    "width",        "height",
-            "threads",           "marcher",  "quality",      "ssr_method",
-            "ssr_spp",           "ssgi_spp", "max_steps",    "thickness",
-            "back_faces",        "ssgi_feedback", "resolve", "trace_hidden", "reference_spp",
-            "reference_bounces", "frame_ms"};
+        std::vector<std::string> c = {"setting",      "scene",         "width",
+                                      "height",       "threads",       "marcher",
+                                      "quality",      "ssr_method",    "ssr_spp",
+                                      "ssgi_spp",     "max_steps",     "thickness",
+                                      "back_faces",   "ssgi_feedback", "resolve",
+                                      "trace_hidden", "reference_spp", "reference_bounces",
+                                      "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;

@@ -28,8 +28,9 @@
 //           the sky; a direction below x_k's geometric surface, or a back face of a
 //           single-sided material, ends the path. N frames of SSGI feedback (ssgiFeedback)
 //           estimate the same N bounces. ReferenceSettings::kConverged: the path goes on
-//           until its throughput r_1 ... r_k is negligible (all the light, to 0.1 %). Its random numbers: randomFloat(pixel, frame,
-//           sample, kReferenceBounceDim + 2 (k - 1)) and the next dimension, at x_k.
+//           until its throughput r_1 ... r_k is negligible (all the light, to 0.1 %). Its random
+//           numbers: randomFloat(pixel, frame, sample, kReferenceBounceDim + 2 (k - 1)) and the
+//           next dimension, at x_k.
 // The chosen visibility holds at the hits too, so that ShadowMap differs from the frame only
 // by what was traced. Every ray (and shadow ray) leaves its pixel's point stepped
 // EmbreeScene::epsilon() off the surface along the geometric normal (Embree's primary hit):

@@ -158,7 +158,8 @@ TEST_CASE("reference bounces: converged cornell holds 64 bounces' light to 0.1 %
     const ReferenceImage all = renderReference(rig.embree, rig.renderer, rig.frame, s);
     s.bounces = 1;
     const ReferenceImage one = renderReference(rig.embree, rig.renderer, rig.frame, s);
-    const double dMany = meanOf(many.diffuse), dAll = meanOf(all.diffuse), dOne = meanOf(one.diffuse);
+    const double dMany = meanOf(many.diffuse), dAll = meanOf(all.diffuse),
+                 dOne = meanOf(one.diffuse);
     MESSAGE("mean diffuse part: one bounce " << dOne << ", converged " << dAll << ", 64 bounces "
                                              << dMany);
     CHECK(std::abs(dAll - dMany) <= 1e-3 * dMany);
