@@ -17,9 +17,9 @@ constexpr double kHalf = double(TraceLayout::Half);
 // What each preset traces and how the denoiser treats it: every preset sets the same keys
 // (one table, a row per preset), so that applying one after another leaves no trace of the
 // first. Measured (README): time and error of each at 1920x1080 and 640x360.
-constexpr std::array<std::string_view, 7> kKeys = {
-    "ssrLayout",     "ssgiLayout", "maxSteps", "diffusePrepassRadius", "specularPrepassRadius",
-    "blurMaxFrames", "backFaces"};
+constexpr std::array<std::string_view, 8> kKeys = {
+    "ssrLayout",     "ssgiLayout", "maxSteps",    "diffusePrepassRadius", "specularPrepassRadius",
+    "blurMaxFrames", "backFaces",  "ssgiFeedback"};
 using PresetRow = std::array<double, kKeys.size()>;  // a value per key, in kKeys' order
 
 constexpr std::array<PresetValue, kKeys.size()> preset(const PresetRow& row) {
@@ -31,18 +31,23 @@ constexpr std::array<PresetValue, kKeys.size()> preset(const PresetRow& row) {
 // ultra: today's full-resolution tracing, denoised with every pass (NRD's pre-blur radii),
 // and the marchers' depth intervals from the back faces (issue 29: a second raster and rays
 // that go on behind thin objects; colour error down on every built-in scene, the frame
-// 1.2-1.3x the time, so not in the presets below).
-constexpr auto kUltra = preset({kFull, kFull, 512, 30, 50, 64, 1});
-// high: SSGI in a checkerboard, SSR at every pixel, the back faces as ultra.
-constexpr auto kHigh = preset({kFull, kCheckerboard, 512, 30, 50, 64, 1});
+// 1.2-1.3x the time, so not in the presets below); and multi-bounce diffuse from the frame
+// before (ssgiFeedback), which the back faces make safe (issue 29, perf/feedback.py: on frame
+// 30 of a still camera against all the light, cornell 0.0348 -> 0.0265, corridor 0.094 ->
+// 0.057, bunny and occluded lower, spheres 4 % higher, 2CylinderEngine 0.0107 -> 0.0125; a
+// frame 1.02-1.05x the CPU time). Without the back faces the thickness guess's false hits
+// feed light back: the engine's error more than doubles (0.020 -> 0.047), so not below.
+constexpr auto kUltra = preset({kFull, kFull, 512, 30, 50, 64, 1, 1});
+// high: SSGI in a checkerboard, SSR at every pixel, the back faces and feedback as ultra.
+constexpr auto kHigh = preset({kFull, kCheckerboard, 512, 30, 50, 64, 1, 1});
 // medium (the default): SSR in a checkerboard, SSGI at half resolution; the denoiser without
 // its pre-blur, and one spatial pass (the post-blur) for pixels with 4 frames of history or
 // more (issue 18: half the denoiser's time; on cornell relMSE 0.0251 / 0.0239 on frames 1 /
 // 30 against 0.0255 / 0.0242 with both, camera paths within their bar, flicker 0.0025
 // against 0.0010).
-constexpr auto kMedium = preset({kCheckerboard, kHalf, 512, 0, 0, 4, 0});
+constexpr auto kMedium = preset({kCheckerboard, kHalf, 512, 0, 0, 4, 0, 0});
 // low: medium with a march of at most 48 Hi-Z iterations.
-constexpr auto kLow = preset({kCheckerboard, kHalf, 48, 0, 0, 4, 0});
+constexpr auto kLow = preset({kCheckerboard, kHalf, 48, 0, 0, 4, 0, 0});
 
 constexpr std::string_view kNames[kQualityCount] = {"low", "medium", "high", "ultra"};
 
