@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -677,19 +678,25 @@ bool readsHistory(const TraceSettings& s) {
 namespace {
 
 // The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
-// planes the composite multiplied by the diffuse colour. Today SSGI's own; the one place to
-// point at the denoised diffuse instead.
-// The incoming diffuse radiance the composite read: the denoiser's where it ran (a bounce
-// of one-ray noise fed back would come back as noise), else SSGI's.
+// planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
+// bounce of one-ray noise fed back would come back as noise), else SSGI's.
 const PlaneF* committedDiffuse(const Frame& frame) {
     const DenoiseOutputs& d = frame.trace.denoise.out;
     return d.diffuse[0].empty() ? frame.trace.ssgi.color : d.diffuse;
 }
 
-void copyPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
+// A non-finite value (a NaN from a bad input, an overflow) is committed as 0, no light: the
+// next frames read the history through the reprojection (SSR's reprojected radiance, SSGI
+// feedback), and a NaN kept there would spread to every pixel that reflects it, frame after
+// frame, long after the input that made it is gone.
+void commitPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
         dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
-        for (int y = 0; y < h; ++y) std::copy_n(src[ch].row(y), w, dst[ch].row(y));
+        for (int y = 0; y < h; ++y) {
+            const float* in = src[ch].row(y);
+            float* out = dst[ch].row(y);
+            for (int x = 0; x < w; ++x) out[x] = std::isfinite(in[x]) ? in[x] : 0.0f;
+        }
     }
 }
 
@@ -699,8 +706,8 @@ void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& his
     const int w = frame.width, h = frame.height;
     // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
     // feedback only.
-    copyPlanes(frame.image.color, history.color, w, h);
-    if (s.ssgi && s.ssgiFeedback) copyPlanes(committedDiffuse(frame), history.diffuse, w, h);
+    commitPlanes(frame.image.color, history.color, w, h);
+    if (s.ssgi && s.ssgiFeedback) commitPlanes(committedDiffuse(frame), history.diffuse, w, h);
     history.valid = true;
 }
 

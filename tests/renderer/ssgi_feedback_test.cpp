@@ -5,10 +5,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "plane_compare.h"
 #include "renderer/renderer.h"
+#include "renderer/trace_pass.h"
 #include "scenes/builtin_scenes.h"
 
 using namespace ssrt;
@@ -154,4 +156,41 @@ TEST_CASE("ssgi feedback: a sequence has the same bits on every ISA and thread c
             CAPTURE(threads);
             CHECK(sameImage(sequence(isa, threads), ref));
         }
+}
+
+TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames stay finite") {
+    // A bad input (a NaN in a vertex, a texture, a light) can make one frame non-finite; the
+    // history must not keep it, or every later frame would reflect it back (SSGI feedback,
+    // SSR's reprojected radiance).
+    const Scene scene = makeBuiltinScene("cornell");
+    const FrameInput input = FrameInput::still(scene);
+    const RenderSettings rs = smallFeedback(true);
+    const Renderer fed(rs);
+    FrameHistory history;
+    Frame f;
+    fed.render(scene, input, history, f);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    DenoiseOutputs& d = f.trace.denoise.out;
+    PlaneF* diffuse = d.diffuse[0].empty() ? f.trace.ssgi.color : d.diffuse;
+    for (int c = 0; c < 3; ++c) {
+        f.image.color[c].at(40, 30) = nan;
+        f.image.color[c].at(41, 30) = inf;
+        diffuse[c].at(40, 30) = nan;
+        diffuse[c].at(41, 30) = -inf;
+    }
+    commitHistory(rs.trace, f, history);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(history.color[c].at(40, 30) == 0.0f);
+        CHECK(history.color[c].at(41, 30) == 0.0f);
+        CHECK(history.diffuse[c].at(40, 30) == 0.0f);
+        CHECK(history.diffuse[c].at(41, 30) == 0.0f);
+        CHECK(history.color[c].at(42, 30) == f.image.color[c].at(42, 30));  // the rest as is
+    }
+    for (int k = 1; k < 4; ++k) {
+        FrameInput next = input;
+        next.frameIndex = uint32_t(k);
+        fed.render(scene, next, history, f);
+        CHECK(allFinite(f));
+    }
 }
