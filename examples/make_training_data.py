@@ -5,7 +5,7 @@ For each frame of a short sequence (a scene's still camera, or a shot's camera p
 writes one .npz holding
     noisy      the frame's colour with the denoiser off (1 ray per pixel for SSR and SSGI)
     guides     albedo, normal, viewZ, roughness, metallic and motion: the G-buffer
-    reference  the Embree reference of the same lighting model (--spp rays per pixel)
+    reference  the Embree reference of all the light (--spp rays per pixel, every bounce)
 each as float32 arrays of shape (channels, height, width), and prints the relMSE of the noisy
 colour against the reference. The frames carry one history from each to the next, so the
 motion vectors and the denoiser's history (were it on) are what a renderer would have.

@@ -169,7 +169,7 @@ py::dict errorDict(const ImageError& e) {
     return d;
 }
 
-// The frame against the Embree reference of its own lighting model (truth/reference_image.h):
+// The frame against the Embree reference of its lighting model (truth/reference_image.h):
 // image error of the exposed colour and of its parts, and the reference's planes.
 py::dict compareFrame(const PyFrame& frame, int spp, int bounces, const std::string& visibility) {
     ReferenceSettings rs;
@@ -237,11 +237,13 @@ void bindFiles(py::module_& m) {
           "differs by more than `threshold`; a layer passes within max_error, max_rel_mse and "
           "max_share (the share of pixels that differ).");
     m.def("compare", &compareFrame, py::arg("frame"), py::kw_only(), py::arg("spp") = 64,
-          py::arg("bounces") = 1, py::arg("visibility") = "embree",
+          py::arg("bounces") = ReferenceSettings::kConverged, py::arg("visibility") = "embree",
           "The frame against the Embree truth, as `ssrt compare` measures its image: the "
-          "reference of the frame's own lighting model (spp rays per pixel for SSR and SSGI), "
-          "the relMSE and RMSE of the colour and its parts, and the reference's planes. The "
-          "GIL is released while Embree works.");
+          "reference of the frame's lighting model (spp rays per pixel for SSR and SSGI; its "
+          "SSGI paths `bounces` diffuse hits long, 1 to 256, or 0: all the light, until a "
+          "path's throughput is below 0.1 %, as compare's default), the relMSE and RMSE of the "
+          "colour and its parts, and the reference's planes. The GIL is released while Embree "
+          "works.");
 }
 
 }  // namespace ssrt::python

@@ -81,6 +81,8 @@ CASES = [
     ("diff an empty file", lambda d, f, e: ssrt.diff(d / "size_a.exr", e), RuntimeError, r"size_a.exr"),
     ("negative threshold", lambda d, f, e: ssrt.diff(e, e, threshold=-1), ValueError, r"^threshold"),
     ("compare with no rays", lambda d, f, e: ssrt.compare(f, spp=0), ValueError, r"spp"),
+    ("compare with 257 bounces", lambda d, f, e: ssrt.compare(f, spp=1, bounces=257), ValueError,
+     r"bounces must be between 1 and 256, or converged"),
     ("compare without ssr", lambda d, f, e: ssrt.compare(R(S(width=16, height=16, ssr=False)).render(
         ssrt.Scene("cornell"))), ValueError, r"ssr and ssgi"),
 ]

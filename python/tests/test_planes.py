@@ -64,3 +64,12 @@ def test_pass_times_and_properties(frame):
     assert frame.width == 96 and frame.height == 54 and frame.index == 0
     assert frame.settings.width == 96
     assert all(ms >= 0 for ms in frame.pass_times.values()) and frame.pass_times
+
+
+def test_compare_is_against_all_the_light_by_default(frame):
+    # The default reference's SSGI paths go on until negligible (bounces=0, as `ssrt compare`):
+    # more incoming diffuse light than one bounce's, the reflections the same.
+    full = ssrt.compare(frame, spp=2)
+    one = ssrt.compare(frame, spp=2, bounces=1)
+    assert full["reference"]["ref.ssgi.R"].mean() > 1.1 * one["reference"]["ref.ssgi.R"].mean()
+    assert np.array_equal(full["reference"]["ref.ssr.G"], one["reference"]["ref.ssr.G"])
