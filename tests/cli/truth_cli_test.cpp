@@ -159,7 +159,7 @@ std::vector<double> modelRow(const std::string& out, const std::string& label) {
     return cells;
 }
 
-TEST_CASE("compare: the reference is all the light; the one-bounce model's error beside it") {
+TEST_CASE("compare: the reference is all the light -- the one-bounce model's error beside it") {
     TempDir dir;
     const auto run = [&](std::vector<std::string> extra) {
         std::vector<std::string> args = {"compare", "--scene", "cornell"};
