@@ -12,35 +12,18 @@ alternated whole runs. Run with Debian's /usr/bin/python3:
 
     perf/back_faces.py build/ssrt perf/charts/back_faces.csv perf/charts/back_faces.png
 """
-import csv
 import os
-import subprocess
-import sys
-import tempfile
 
-import matplotlib
+import scene_sweeps
 
-matplotlib.use("Agg")  # files only, no display
-import matplotlib.pyplot as plt  # noqa: E402
-
-SCENES = ("cornell", "spheres", "thin", "corridor", "offscreen", "occluded", "bunny", "fence",
-          "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb")
 MARCHERS = ("hiz", "dda")
-
-
-def sweep(ssrt, scene, out):
-    subprocess.run([ssrt, "sweep", "-q", "--scene", scene, "--marchers", ",".join(MARCHERS),
-                    "--back-faces", "off,on", "--reference-bounces", "1", "-o", out],
-                   check=True)
-    with open(out, newline="") as f:
-        return list(csv.DictReader(f))
+ARGS = ("--marchers", ",".join(MARCHERS), "--back-faces", "off,on", "--reference-bounces", "1")
 
 
 def chart(rows, png):
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
-    cols = 3
-    fig, axes = plt.subplots((len(scenes) + cols - 1) // cols, cols, figsize=(13, 11), dpi=110)
-    for ax, scene in zip(axes.flat, scenes):
+    fig, axes = scene_sweeps.panels(len(scenes))
+    for ax, scene in zip(axes, scenes):
         for marcher, colour in zip(MARCHERS, ("tab:blue", "tab:orange")):
             pts = {r["back_faces"]: (float(r["frame_ms"]), float(r["relmse"]))
                    for r in rows if r["scene"] == scene and r["marcher"] == marcher}
@@ -51,39 +34,11 @@ def chart(rows, png):
             ax.scatter([x1], [y1], marker="D", color=colour, label=f"{marcher}: back faces")
             ax.annotate("", (x1, y1), (x0, y0),
                         arrowprops={"arrowstyle": "->", "color": colour, "alpha": 0.6})
-        ax.set_title(os.path.basename(scene), fontsize=9)
-        ax.set_xlabel("frame (ms)", fontsize=8)
-        ax.set_ylabel("colour relMSE", fontsize=8)
-        ax.grid(True, alpha=0.3)
-        ax.tick_params(labelsize=7)
-        ax.legend(fontsize=6)
-    for ax in list(axes.flat)[len(scenes):]:
-        ax.axis("off")
-    fig.suptitle("Back-face depth intervals against the thickness guess (640x360, default "
-                 "layouts, one-bounce reference)", fontsize=10)
-    fig.tight_layout()
-    tmp = png + ".tmp.png"
-    fig.savefig(tmp)  # whole or not at all
-    os.replace(tmp, png)
-    plt.close(fig)
-
-
-def main():
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
-    ssrt, out_csv, out_png = sys.argv[1:]
-    rows = []
-    with tempfile.TemporaryDirectory() as d:
-        for i, scene in enumerate(SCENES):
-            print(f"back_faces.py: {scene} ({i + 1}/{len(SCENES)})", file=sys.stderr)
-            rows += sweep(ssrt, scene, os.path.join(d, f"{i}.csv"))
-    with open(out_csv + ".tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(out_csv + ".tmp", out_csv)
-    chart(rows, out_png)
+        scene_sweeps.label_panel(ax, os.path.basename(scene))
+    scene_sweeps.save(fig, axes, len(scenes),
+                      "Back-face depth intervals against the thickness guess (640x360, default "
+                      "layouts, one-bounce reference)", png)
 
 
 if __name__ == "__main__":
-    main()
+    scene_sweeps.run("back_faces.py", __doc__, ARGS, chart)
