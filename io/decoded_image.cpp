@@ -22,7 +22,7 @@ namespace {
 
 // OpenImageIO's convert_type for an integer sample: the value times 1 / max, in float.
 template <class T>
-std::vector<float> scaled(const std::vector<T>& samples, float max) {
+std::vector<float> scaled(const Samples<T>& samples, float max) {
     const float scale = 1.0f / max;
     std::vector<float> out(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) out[i] = float(samples[i]) * scale;
@@ -35,7 +35,7 @@ std::vector<float> toFloat(const DecodedImage& image) {
     switch (image.type) {
         case SampleType::U8: return scaled(image.u8, 255.0f);
         case SampleType::U16: return scaled(image.u16, 65535.0f);
-        case SampleType::F32: return image.f32;
+        case SampleType::F32: return {image.f32.begin(), image.f32.end()};
     }
     return {};
 }

@@ -6,10 +6,40 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ssrt::io_detail {
+
+// std::allocator, except that resize() leaves new samples uninitialised: a decoder writes
+// every sample or fails, and zeroing first would touch every page a header claims. A file of
+// a few bytes may claim 16384 x 8192 pixels; cut short, it is refused having touched only the
+// rows it held, not after the kernel has faulted in and zeroed gigabytes.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitialisedAllocator<U>;
+    };
+    UninitialisedAllocator() = default;
+    template <class U>
+    UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;  // default-initialised: no value for a sample type
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+// A decoder's samples (io/ only; callers get std::vector<float> from toFloat and the readers).
+template <class T>
+using Samples = std::vector<T, UninitialisedAllocator<T>>;
 
 enum class SampleType { U8, U16, F32 };
 
@@ -22,9 +52,9 @@ struct DecodedImage {
     int width = 0, height = 0, channels = 0;
     std::vector<std::string> channelNames;  // OpenImageIO's names and order ("R", "Y", "A", ...)
     SampleType type = SampleType::U8;
-    std::vector<uint8_t> u8;  // interleaved, row 0 first; the one vector `type` names is used
-    std::vector<uint16_t> u16;
-    std::vector<float> f32;
+    Samples<uint8_t> u8;  // interleaved, row 0 first; the one vector `type` names is used
+    Samples<uint16_t> u16;
+    Samples<float> f32;
     bool srgb = false;  // OpenImageIO's "oiio:ColorSpace" is "sRGB"
 
     std::size_t sampleCount() const { return std::size_t(width) * height * channels; }

@@ -80,7 +80,10 @@ DecodedImage decodeImageBytes(const void* bytes, std::size_t size, const std::st
                               AlphaMode alpha) {
     const auto* data = static_cast<const uint8_t*>(bytes);
     if (std::optional<DecodedImage> image = decodeOwn(data, size, alpha)) return std::move(*image);
-    if (isExr(data, size)) checkExrSize(data, size);  // before OpenImageIO reads its tables
+    if (isExr(data, size)) {
+        checkExrSize(data, size);                           // before OpenImageIO reads its tables
+        return oiioBytes(data, size, "memory.exr", alpha);  // EXR by its bytes, as ours go
+    }
     return oiioBytes(data, size, formatHint, alpha);
 }
 

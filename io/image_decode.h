@@ -4,7 +4,8 @@
 //   JPEG       libjpeg (io/jpeg_io.h; grey and colour files, CMYK goes to OpenImageIO)
 //   Radiance   stb_image (io/hdr_io.h; the usual -Y +X orientation, others to OpenImageIO)
 //   EXR        OpenEXR (io/exr_input.h; files; float and half channels)
-//   the rest   OpenImageIO, loaded on first need (io/oiio_module.h)
+//   the rest   OpenImageIO, loaded on first need (io/oiio_module.h), in the format the file's
+//              name (or the bytes' hint) says and no other
 // Each gives the samples, channel names and colour space OpenImageIO would
 // (tests/io/decoders_vs_oiio_test.cpp). Errors: DecodeFailure (io/io_errors.h), the reason in
 // one line, which the public readers word with the file's or the image's name.
@@ -20,7 +21,8 @@ namespace ssrt::io_detail {
 
 DecodedImage decodeImageFile(const std::string& path, AlphaMode alpha);
 
-// `formatHint` is a file name or extension, used only when the bytes go to OpenImageIO.
+// `formatHint` is a file name or extension, used only when the bytes go to OpenImageIO (EXR
+// goes by its bytes).
 DecodedImage decodeImageBytes(const void* bytes, std::size_t size, const std::string& formatHint,
                               AlphaMode alpha);
 

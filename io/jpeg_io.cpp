@@ -4,6 +4,7 @@
 #include <cstdio>
 // clang-format off
 #include <jpeglib.h>
+#include <jerror.h>
 // clang-format on
 #include <csetjmp>
 #include <vector>
@@ -27,9 +28,25 @@ struct JpegErrors {
     std::longjmp(errors->jump, 1);
 }
 
-// Warnings (a file cut short is filled with grey and warned about) do not stop OpenImageIO's
-// decoding, so they do not stop ours.
-void onJpegWarning(j_common_ptr) {}
+// Warnings about damaged data (a bad marker, a corrupt Huffman code) do not stop OpenImageIO's
+// decoding, so they do not stop ours; trace messages are dropped. A file cut short does stop
+// it: libjpeg would fill the missing rows with grey (OpenImageIO gives that image and a
+// warning), and a renderer given a damaged file should say so, not draw grey. It also keeps a
+// few bytes claiming 16384 x 8192 pixels from decoding all of them: the rows after the cut
+// are never touched.
+void onJpegMessage(j_common_ptr info, int level) {
+    // JWRN_JPEG_EOF: the file ends; JWRN_HIT_MARKER: a scan's data ends (at the next marker,
+    // an end of image after a cut, say) before its pixels.
+    const int code = info->err->msg_code;
+    if (level < 0 && (code == JWRN_JPEG_EOF || code == JWRN_HIT_MARKER)) {
+        auto* errors = reinterpret_cast<JpegErrors*>(info->err);
+        std::snprintf(errors->text, sizeof errors->text,
+                      "the file is cut short (its data ends before its %u x %u pixels)",
+                      unsigned(reinterpret_cast<j_decompress_ptr>(info)->image_width),
+                      unsigned(reinterpret_cast<j_decompress_ptr>(info)->image_height));
+        std::longjmp(errors->jump, 1);
+    }
+}
 
 // Owns libjpeg's decompressor; set up with the errors above before anything can fail.
 struct JpegRead {
@@ -78,7 +95,7 @@ std::optional<DecodedImage> decodeJpeg(const uint8_t* bytes, std::size_t size) {
     JpegRead r;
     r.info.err = jpeg_std_error(&r.errors.manager);
     r.errors.manager.error_exit = onJpegError;
-    r.errors.manager.output_message = onJpegWarning;
+    r.errors.manager.emit_message = onJpegMessage;
     const int header = readHeader(r, bytes, size);
     if (header == 1) failDecode(r.errors.text);
     if (header == 2) return std::nullopt;

@@ -60,7 +60,8 @@ const std::array<float, 256>& srgb8Table() {
 
 // Normalizes T values by one division each (8-bit sRGB colour by the table).
 template <class T>
-std::vector<float> normalized(const std::vector<T>& raw, int channels, float maxValue, bool srgb) {
+std::vector<float> normalized(const io_detail::Samples<T>& raw, int channels, float maxValue,
+                              bool srgb) {
     std::vector<float> out(raw.size());
     const std::size_t n = std::size_t(channels);
     for (std::size_t c = 0; c < n; ++c) {
@@ -99,7 +100,9 @@ InterleavedImage toTexture(const std::string& name, const DecodedImage& image,
     switch (image.type) {
         case SampleType::U8: pixels = normalized(image.u8, n, 255.0f, srgb); break;
         case SampleType::U16: pixels = normalized(image.u16, n, 65535.0f, srgb); break;
-        case SampleType::F32: pixels = linearFloat(image.f32, n, srgb); break;
+        case SampleType::F32:
+            pixels = linearFloat({image.f32.begin(), image.f32.end()}, n, srgb);
+            break;
     }
     InterleavedImage out{image.width, image.height, 4, toRgba(pixels, n, count)};
     for (const float v : out.pixels)

@@ -7,6 +7,8 @@
 #include "io/image_limits.h"
 
 #include <doctest/doctest.h>
+#include <sys/resource.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <fstream>
@@ -15,8 +17,11 @@
 #include <string>
 #include <vector>
 
+#include "image_files.h"
 #include "io/image_io.h"
 #include "io/texture_io.h"
+#include "png_files.h"
+#include "temp_dir.h"
 
 using namespace ssrt;
 
@@ -94,4 +99,108 @@ TEST_CASE("image limits: an EXR header OpenEXR's core library refuses is refused
     CHECK(message == "cannot read '" + path +
                          "': the header is damaged: Attribute 'Exif:ImageHistory', type "
                          "'string': Invalid size 1835622262");
+}
+
+namespace {
+
+// The pages this process has faulted in so far (each first touch of a page is one).
+long pagesTouched() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_minflt + usage.ru_majflt;
+}
+
+void putBigEndian(std::vector<unsigned char>& bytes, std::size_t at, uint32_t value) {
+    for (int i = 0; i < 4; ++i) bytes[at + std::size_t(i)] = uint8_t(value >> (24 - 8 * i));
+}
+
+// A 64 x 64 PNG whose header claims 16384 x 8192 (its CRC made right again), its data cut
+// to what a 64 x 64 image held.
+std::vector<unsigned char> pngClaimingLarge(test::TempDir& dir) {
+    test::writePng(dir.file("small.png"), {64, 64, PNG_COLOR_TYPE_RGB, 8});
+    std::vector<unsigned char> bytes = test::fileBytes(dir.file("small.png"));
+    putBigEndian(bytes, 16, 16384);  // IHDR: width, height, then the chunk's CRC
+    putBigEndian(bytes, 20, 8192);
+    putBigEndian(bytes, 29, uint32_t(crc32(0, bytes.data() + 12, 17)));
+    return bytes;
+}
+
+// A 64 x 64 JPEG whose frame header (SOF0) claims 16384 x 8192.
+std::vector<unsigned char> jpegClaimingLarge(test::TempDir& dir) {
+    test::writeImage(dir.file("small.jpg"), 64, 64, 3, std::vector<uint8_t>(64 * 64 * 3, 90));
+    std::vector<unsigned char> bytes = test::fileBytes(dir.file("small.jpg"));
+    for (std::size_t i = 2; i + 9 < bytes.size(); ++i)
+        if (bytes[i] == 0xff && bytes[i + 1] == 0xc0) {  // SOF0: length, precision, height, width
+            bytes[i + 5] = 8192 >> 8, bytes[i + 6] = 0;
+            bytes[i + 7] = 16384 >> 8, bytes[i + 8] = 0;
+            return bytes;
+        }
+    FAIL("no SOF0 in the test's JPEG");
+    return {};
+}
+
+// A Radiance file claiming 16384 x 8192 with 64 bytes of flat (not run-length) pixels: stb_image
+// reads the rest as zeros.
+std::vector<unsigned char> hdrClaimingLarge() {
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n";
+    std::vector<unsigned char> bytes(header.begin(), header.end());
+    bytes.insert(bytes.end(), 64, 0x80);
+    return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("image limits: a small file claiming a large image is refused having touched little") {
+    // 16384 x 8192 is within the limits; each file holds a few of those pixels. Each is refused
+    // as damaged (cut short), without its decoder first touching the claimed pixels: 128 Mi
+    // of them, 384 MiB as 8-bit RGB, 1.5 GiB as float, some 100 k pages or more. Zeroing the
+    // samples before decoding, or decoding the missing rows as grey (JPEG) or zeros (HDR),
+    // touches them all.
+    test::TempDir dir;
+    const std::vector<std::pair<std::string, std::vector<unsigned char>>> files = {
+        {"claims.png", pngClaimingLarge(dir)},
+        {"claims.jpg", jpegClaimingLarge(dir)},
+        {"claims.hdr", hdrClaimingLarge()}};
+    for (const auto& [name, bytes] : files) {
+        CAPTURE(name);
+        const std::string path = dir.file(name);
+        std::ofstream(path, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        const long before = pagesTouched();
+        const std::string message = thrownBy([&] { readSkyImage(path); });
+        const long touched = pagesTouched() - before;
+        INFO(message);
+        CHECK(message.rfind("cannot read '" + path + "': ", 0) == 0);
+        CHECK(std::count(message.begin(), message.end(), '\n') == 0);
+        CHECK(touched < 20000);  // 80 MB of 4 KB pages: a few of the claimed rows at most
+        const std::string asTexture = thrownBy([&] {
+            decodeTextureImage("embedded image 1", bytes.data(), bytes.size(), name,
+                               TextureEncoding::Srgb);
+        });
+        CHECK(asTexture.rfind("embedded image 1: cannot decode the image: ", 0) == 0);
+    }
+}
+
+TEST_CASE("image limits: a PNG chunk longer than the file is refused before its buffer") {
+    // The texture fuzzer's input (tests/fuzz/seeds/texture/regression_chunk_too_large.png): a
+    // text chunk claiming 1.8 GB in a 607-byte PNG. libpng 1.6.39 only warns that the chunk
+    // is too long, then allocates and zeroes 1.8 GB for it (8.5 s under ASan) before the file
+    // runs out.
+    test::TempDir dir;
+    test::writePng(dir.file("small.png"), {4, 4, PNG_COLOR_TYPE_RGB, 8});
+    const std::vector<unsigned char> png = test::fileBytes(dir.file("small.png"));
+    std::vector<unsigned char> bytes(png.begin(), png.begin() + 33);  // signature and IHDR
+    const unsigned char chunk[] = {0x70, 0x60, 0x00, 0x00, 't', 'E', 'X', 't', 'k', 'e', 'y', 0};
+    bytes.insert(bytes.end(), std::begin(chunk), std::end(chunk));
+    bytes.insert(bytes.end(), png.begin() + 33, png.end());  // the rest, inside the "text"
+    const std::string path = dir.file("long_chunk.png");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    const long before = pagesTouched();
+    const std::string message = thrownBy([&] { readSkyImage(path); });
+    const long touched = pagesTouched() - before;
+    INFO(message);
+    CHECK(message ==
+          "cannot read '" + path + "': tEXt: chunk data is too large: longer than the file");
+    CHECK(touched < 20000);
 }
