@@ -113,6 +113,11 @@ std::optional<int> CommandLine::parse(int argc, const char* const* argv, std::os
 
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     CommandLine line;
+    return runCli(line, argc, argv, out, err);
+}
+
+int runCli(CommandLine& line, int argc, const char* const* argv, std::ostream& out,
+           std::ostream& err) {
     if (const std::optional<int> status = line.parse(argc, argv, out, err)) return *status;
     switch (line.command()) {
         case Command::Render:

@@ -20,6 +20,13 @@ inline constexpr int kExitFailure = 3;  // bad shot/scene/image file, I/O, missi
 // `out`; progress and one-line "ssrt: error: ..." messages go to `err`. Returns the exit status.
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
 
+class CommandLine;  // cli/command_line.h
+
+// runCli with `line` (new, or reset()) for the parsing: what runs many command lines in one
+// process (the fuzzers) without building the app's hundreds of options for each.
+int runCli(CommandLine& line, int argc, const char* const* argv, std::ostream& out,
+           std::ostream& err);
+
 // Runs `command`, turning an escaping exception into one error line on `err` and a status:
 // std::invalid_argument means bad input (kExitUsage), any other exception kExitFailure.
 int reportErrors(std::ostream& err, const std::function<int()>& command);

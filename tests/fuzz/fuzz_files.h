@@ -3,6 +3,7 @@
 // command line run in-process, whose status must be one of ssrt's.
 #pragma once
 
+#include <oneapi/tbb/global_control.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -15,13 +16,17 @@
 #include <vector>
 
 #include "cli/cli.h"
+#include "cli/command_line.h"
 
 namespace ssrt::fuzz {
 
-// A folder for this process's files (libFuzzer's -jobs run several processes).
+// A folder for this process's files (libFuzzer's -jobs run several processes): in memory
+// (/dev/shm) where there is one, since creating and removing files on a disk's file system took
+// a tenth of a merge_fuzz run; else /tmp.
 inline const std::string& workDir() {
     static const std::string dir = [] {
-        std::string d = "/tmp/ssrt-fuzz-" + std::to_string(::getpid());
+        const char* root = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
+        std::string d = std::string(root) + "/ssrt-fuzz-" + std::to_string(::getpid());
         std::filesystem::create_directories(d);
         return d;
     }();
@@ -68,7 +73,12 @@ inline int runSsrt(std::vector<std::string> args) {
     std::vector<const char*> argv;
     for (const std::string& a : args) argv.push_back(a.c_str());
     std::ostringstream out, err;
-    const int status = cli::runCli(int(argv.size()), argv.data(), out, err);
+    // One thread: a campaign is one process per core, and the passes' results do not depend
+    // on the thread count (DESIGN.md), so TBB's workers would only spin beside it.
+    static const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
+    static cli::CommandLine line;  // built once: building it cost most of a short run
+    line.reset();
+    const int status = cli::runCli(line, int(argv.size()), argv.data(), out, err);
     if (status < cli::kExitOk || status > cli::kExitFailure) std::abort();
     if (status >= cli::kExitUsage && errorLines(err.str()) != 1) std::abort();
     return status;
