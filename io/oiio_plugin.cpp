@@ -70,9 +70,9 @@ bool readOpened(OIIO::ImageInput& in, DecodedImage& out, std::string& error) {
     out.channels = spec.nchannels;
     out.channelNames = spec.channelnames;
     out.srgb = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::HALF)
+        return readHalf(in, out, error);
     bool ok = false;
-    const bool oneType = spec.channelformats.empty();
-    if (oneType && spec.format == OIIO::TypeDesc::HALF) return readHalf(in, out, error);
     if (spec.format == OIIO::TypeDesc::UINT8) {
         out.type = SampleType::U8;
         out.u8.resize(out.sampleCount());

@@ -131,10 +131,12 @@ void startRead(PngRead& r, MemoryReader& reader) {
     if (!r.info) failDecode("out of memory");
     png_set_read_fn(r.png, &reader, readFromMemory);
     // A chunk's data is read into a buffer libpng allocates and zeroes at the length the chunk
-    // claims, before reading it: a 608-byte file claiming a 1.8 GB text chunk took 8.5 s and
-    // 2 GB. No chunk holds more than the file does; compressed text (which ssrt does not read)
-    // may inflate to more, so the limit is four times the file, and 1 MiB at least. Image data
-    // has libpng's own limit, from the image's size. (onPngWarning makes it an error.)
+    // claims, before reading it. Over the chunk limit libpng only warns (onPngWarning makes that
+    // an error: a 608-byte file claiming a 1.8 GB text chunk took 8.5 s and 2 GB), and the
+    // limit Debian's libpng is built with is 8,000,000 bytes whatever the file's size. No chunk
+    // holds more than the file does; compressed text (which ssrt does not read) may inflate to
+    // more, so the limit is four times the file, and 1 MiB at least. Image data has libpng's own
+    // limit, from the image's size.
     png_set_chunk_malloc_max(r.png, std::max<png_alloc_size_t>(4 * png_alloc_size_t(reader.size),
                                                                png_alloc_size_t(1) << 20));
 }
