@@ -67,8 +67,7 @@ std::optional<DecodedImage> decodeOwn(const uint8_t* bytes, std::size_t size, Al
 
 DecodedImage decodeImageFile(const std::string& path, AlphaMode alpha) {
     if (isExrFile(path)) {
-        if (std::optional<DecodedImage> image = readExr(path)) return std::move(*image);
-        return oiioFile(path, alpha);
+        return readExr(path);
     }
     const std::vector<uint8_t> bytes = fileBytes(path);
     if (std::optional<DecodedImage> image = decodeOwn(bytes.data(), bytes.size(), alpha))
@@ -80,10 +79,7 @@ DecodedImage decodeImageBytes(const void* bytes, std::size_t size, const std::st
                               AlphaMode alpha) {
     const auto* data = static_cast<const uint8_t*>(bytes);
     if (std::optional<DecodedImage> image = decodeOwn(data, size, alpha)) return std::move(*image);
-    if (isExr(data, size)) {
-        checkExrSize(data, size);                           // before OpenImageIO reads its tables
-        return oiioBytes(data, size, "memory.exr", alpha);  // EXR by its bytes, as ours go
-    }
+    if (isExr(data, size)) return readExr(data, size);  // EXR by its bytes, as ours go
     return oiioBytes(data, size, formatHint, alpha);
 }
 

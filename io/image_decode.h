@@ -3,7 +3,8 @@
 //   PNG        libpng (io/png_io.h)
 //   JPEG       libjpeg (io/jpeg_io.h; grey and colour files, CMYK goes to OpenImageIO)
 //   Radiance   stb_image (io/hdr_io.h; the usual -Y +X orientation, others to OpenImageIO)
-//   EXR        OpenEXR (io/exr_input.h; files; float and half channels)
+//   EXR        OpenEXR's core library (io/exr_input.h; files and bytes; half, float and
+//              unsigned channels, scanlines and tiles)
 //   the rest   OpenImageIO, loaded on first need (io/oiio_module.h), in the format the file's
 //              name (or the bytes' hint) says and no other
 // Each gives the samples, channel names and colour space OpenImageIO would

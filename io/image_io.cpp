@@ -3,7 +3,6 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
@@ -315,18 +314,11 @@ InterleavedImage readSkyImage(const std::string& path) {
 }
 
 std::map<std::string, std::string> readExrStringAttributes(const std::string& path) {
-    std::map<std::string, std::string> out;
     try {
-        io_detail::checkExrSize(path);
-        const Imf::InputFile file(path.c_str());
-        const Imf::Header& header = file.header();
-        for (auto it = header.begin(); it != header.end(); ++it)
-            if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-                out.emplace(it.name(), a->value());
-    } catch (const std::exception& e) {
+        return io_detail::exrStringAttributes(path);
+    } catch (const io_detail::DecodeFailure& e) {
         failRead(path, e.what());
     }
-    return out;
 }
 
 std::map<std::string, std::string> readImageAttributes(const std::string& path) {

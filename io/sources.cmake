@@ -18,7 +18,8 @@ find_package(OpenEXR REQUIRED)
 include(GNUInstallDirs)
 
 set(SSRT_IO_DECODE_SOURCES
-    ${root}/io/decoded_image.cpp ${root}/io/exr_input.cpp ${root}/io/hdr_io.cpp
+    ${root}/io/decoded_image.cpp ${root}/io/exr_channel_order.cpp ${root}/io/exr_imf_pixels.cpp
+    ${root}/io/exr_input.cpp ${root}/io/hdr_io.cpp
     ${root}/io/image_decode.cpp ${root}/io/jpeg_io.cpp ${root}/io/oiio_module.cpp
     ${root}/io/png_io.cpp ${root}/io/texture_io.cpp)
 set(SSRT_IO_DECODE_LIBRARIES PNG::PNG JPEG::JPEG OpenEXR::OpenEXR OpenEXR::OpenEXRCore

@@ -3,9 +3,11 @@
 // samples, bit for bit, for every PNG colour type and depth, JPEG, Radiance HDR and EXR, the
 // committed sky, the assimp sample files' textures, and bytes in memory; 8- and 16-bit
 // samples as float against OpenImageIO's own conversion; damaged files give one line.
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -138,6 +140,71 @@ TEST_CASE("decoders vs OpenImageIO: JPEG, Radiance HDR and EXR files") {
 #ifdef SSRT_SOURCE_DIR
     checkFile(SSRT_SOURCE_DIR "/examples/shots/sky.hdr");
 #endif
+}
+
+namespace {
+
+// An EXR as OpenImageIO writes it, in the layouts other programs' files come in.
+struct ExrLayout {
+    std::string compression = "zip";
+    int tile = 0;             // square tiles of this side; 0: scanlines
+    bool mipmap = false;      // with its smaller levels after level 0 (tiled)
+    bool decreasing = false;  // rows stored bottom first
+    int x = 0, y = 0;         // the data window's origin
+};
+
+void writeExr(const std::string& path, const ExrLayout& layout) {
+    // 45 x 70: more than one chunk of every compression but DWAB's 256 rows, none full.
+    OIIO::ImageSpec spec(45, 70, 5, OIIO::TypeDesc::HALF);
+    spec.channelnames = {"R", "G", "B", "A", "id"};
+    spec.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF,
+                           OIIO::TypeDesc::HALF, OIIO::TypeDesc::UINT};
+    spec.x = layout.x, spec.y = layout.y;
+    spec.attribute("compression", layout.compression);
+    if (layout.decreasing) spec.attribute("openexr:lineOrder", "decreasingY");
+    if (layout.tile) spec.tile_width = spec.tile_height = layout.tile;
+    std::vector<float> values(std::size_t(spec.width) * spec.height * 5);
+    for (std::size_t i = 0; i < values.size(); ++i)  // in [0, 1) for the unsigned channel
+        values[i] = float((i * 7919) % 1000) / 1000.0f + (i % 5 == 4 ? 0.0f : float(i % 3));
+    if (layout.mipmap) {  // every level, as a texture tool writes it
+        const OIIO::ImageBuf level0(spec, values.data());
+        OIIO::ImageSpec config;
+        config.tile_width = config.tile_height = layout.tile;
+        config.attribute("compression", layout.compression);
+        REQUIRE_MESSAGE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, level0,
+                                                         path, config),
+                        OIIO::geterror());
+        return;
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    REQUIRE(out);
+    REQUIRE_MESSAGE(out->open(path, spec), out->geterror());
+    REQUIRE_MESSAGE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()), out->geterror());
+    REQUIRE(out->close());
+}
+
+}  // namespace
+
+TEST_CASE("decoders vs OpenImageIO: EXR in every compression, tiles, levels, types, windows") {
+    TempDir dir;
+    std::vector<std::pair<std::string, ExrLayout>> files;
+    for (const char* c :
+         {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"})
+        files.push_back({std::string(c) + ".exr", ExrLayout{c}});
+    files.push_back({"tiled.exr", ExrLayout{"zip", 16}});
+    files.push_back({"mipmapped.exr", ExrLayout{"piz", 8, true}});
+    files.push_back({"bottom_first.exr", ExrLayout{"rle", 0, false, true}});
+    files.push_back({"window.exr", ExrLayout{"zips", 0, false, false, -3, 5}});
+    files.push_back({"tiled_window.exr", ExrLayout{"none", 16, false, false, 7, -2}});
+    for (const auto& [name, layout] : files) {
+        const std::string path = dir.file(name);
+        writeExr(path, layout);
+        checkFile(path);
+        // The same bytes in memory, as a glTF file embeds an image.
+        const std::vector<unsigned char> bytes = test::fileBytes(path);
+        checkSame(decodeImageBytes(bytes.data(), bytes.size(), "x.png", AlphaMode::Associated),
+                  oiioFile(path, AlphaMode::Associated));
+    }
 }
 
 TEST_CASE("decoders vs OpenImageIO: the assimp sample files' images") {
