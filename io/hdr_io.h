@@ -4,7 +4,8 @@
 // same arithmetic as OpenImageIO 2.4's (mantissa times 2^(exponent - 136), 0 for exponent 0:
 // exact in float), so the texels are the same bits. Only its HDR decoder is compiled
 // (STBI_ONLY_HDR), about 300 lines. It reads the usual orientation (-Y +X); a file it
-// refuses goes to OpenImageIO, which reads the other orientations or gives its error.
+// refuses goes to OpenImageIO, which reads the other orientations or gives its error. The size
+// a header claims, in any orientation, is checked here first, for both.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +19,8 @@ namespace ssrt::io_detail {
 // Whether the bytes start with a Radiance header's "#?".
 bool isRadianceHdr(const uint8_t* bytes, std::size_t size);
 
-// R, G, B float, linear; empty when stb_image refuses the file.
+// R, G, B float, linear; empty when stb_image refuses the file. DecodeFailure when the header's
+// size is over the limits or the file too short for it.
 std::optional<DecodedImage> decodeRadianceHdr(const uint8_t* bytes, std::size_t size);
 
 }  // namespace ssrt::io_detail

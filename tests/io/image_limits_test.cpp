@@ -158,6 +158,14 @@ std::vector<unsigned char> hdrClaimingLarge() {
     return bytes;
 }
 
+// The sky fuzzer's input (68 bytes): a first line stb_image refuses ("#?RAD2-bitE"), so
+// OpenImageIO read it, and 60000 rows of 2000 pixels claimed ("-Y 60000 +X 2000rgbe"), which
+// it allocated and tried row by row before failing (7.8 s under ASan).
+std::vector<unsigned char> hdrLenientClaimingLarge() {
+    return test::fileBytes(SSRT_SOURCE_DIR
+                           "/tests/fuzz/seeds/sky_image/regression_hdr_lenient_header.bin");
+}
+
 }  // namespace
 
 TEST_CASE("image limits: a small file claiming a large image is refused having touched little") {
@@ -170,7 +178,8 @@ TEST_CASE("image limits: a small file claiming a large image is refused having t
     const std::vector<std::pair<std::string, std::vector<unsigned char>>> files = {
         {"claims.png", pngClaimingLarge(dir)},
         {"claims.jpg", jpegClaimingLarge(dir)},
-        {"claims.hdr", hdrClaimingLarge()}};
+        {"claims.hdr", hdrClaimingLarge()},
+        {"claims_lenient.hdr", hdrLenientClaimingLarge()}};
     for (const auto& file : files) {
         // (Named variables, not a structured binding: clang 14's lambdas, in CAPTURE, cannot
         // capture one.)
@@ -188,6 +197,9 @@ TEST_CASE("image limits: a small file claiming a large image is refused having t
         // of its rows, libpng's and libjpeg's own buffers and, under ASan, the shadow of the
         // claim (an eighth of it: 24.6 k pages in all there, under 20 k without).
         CHECK(touched < 40000);
+        // A Radiance file is refused from its header by ssrt, not by the library reading it
+        // (OpenImageIO allocates the claim first, and under ASan poisons and frees all of it).
+        if (name.ends_with(".hdr")) CHECK(message.find("is cut short") != std::string::npos);
         const std::string asTexture = thrownBy([&] {
             decodeTextureImage("embedded image 1", bytes.data(), bytes.size(), name,
                                TextureEncoding::Srgb);
