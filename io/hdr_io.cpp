@@ -71,26 +71,30 @@ std::optional<RadianceSize> radianceSize(const uint8_t* bytes, std::size_t size)
 
 }  // namespace
 
-std::optional<DecodedImage> decodeRadianceHdr(const uint8_t* bytes, std::size_t size) {
-    if (size > std::size_t(std::numeric_limits<int>::max())) return std::nullopt;
+void checkRadianceClaim(const uint8_t* bytes, std::size_t size) {
     // The header's size first, in every orientation, for stb_image and for OpenImageIO (which
     // reads the files stb_image refuses) alike: either would allocate whatever it claims, and
     // read a flat file cut short as zeros to its end (the sky fuzzer's 68-byte file whose
     // first line stb_image refuses claimed 60000 x 2000: 7.8 s in OpenImageIO under ASan).
-    if (const std::optional<RadianceSize> claim = radianceSize(bytes, size)) {
-        const std::int64_t width = claim->scanlineLength, height = claim->scanlines;
-        checkImageSize(width, height, 3);
-        // The fewest bytes its pixels can take: a run-length scanline is 4 bytes of header
-        // and, for each of its 4 components, a 2-byte run per 127 pixels; a flat one (widths
-        // under 8 or from 32768, and any scanline not marked as runs) 4 bytes a pixel.
-        const std::int64_t runLine = 4 + 8 * ((width + 126) / 127);
-        const std::int64_t lineBytes = width < 8 || width >= 32768 ? 4 * width : runLine;
-        if (std::int64_t(size) < lineBytes * height)
-            failDecode("the file is cut short: its " + std::to_string(width) + " x " +
-                       std::to_string(height) + " pixels take at least " +
-                       std::to_string(lineBytes * height) + " bytes, and the file has " +
-                       std::to_string(size));
-    }
+    const std::optional<RadianceSize> claim = radianceSize(bytes, size);
+    if (!claim) return;
+    const std::int64_t width = claim->scanlineLength, height = claim->scanlines;
+    checkImageSize(width, height, 3);
+    // The fewest bytes its pixels can take: a run-length scanline is 4 bytes of header
+    // and, for each of its 4 components, a 2-byte run per 127 pixels; a flat one (widths
+    // under 8 or from 32768, and any scanline not marked as runs) 4 bytes a pixel.
+    const std::int64_t runLine = 4 + 8 * ((width + 126) / 127);
+    const std::int64_t lineBytes = width < 8 || width >= 32768 ? 4 * width : runLine;
+    if (std::int64_t(size) < lineBytes * height)
+        failDecode("the file is cut short: its " + std::to_string(width) + " x " +
+                   std::to_string(height) + " pixels take at least " +
+                   std::to_string(lineBytes * height) + " bytes, and the file has " +
+                   std::to_string(size));
+}
+
+std::optional<DecodedImage> decodeRadianceHdr(const uint8_t* bytes, std::size_t size) {
+    if (size > std::size_t(std::numeric_limits<int>::max())) return std::nullopt;
+    checkRadianceClaim(bytes, size);
     int width = 0, height = 0, fileChannels = 0;
     if (!stbi_info_from_memory(bytes, int(size), &width, &height, &fileChannels))
         return std::nullopt;

@@ -19,6 +19,12 @@ namespace ssrt::io_detail {
 // Whether the bytes start with a Radiance header's "#?".
 bool isRadianceHdr(const uint8_t* bytes, std::size_t size);
 
+// DecodeFailure when the bytes hold a Radiance resolution line (after a header's blank line, in
+// any orientation) whose size is over the limits or that the bytes are too short for; called
+// by decodeRadianceHdr, and for bytes OpenImageIO reads as Radiance by their name (its reader
+// takes headers without "#?").
+void checkRadianceClaim(const uint8_t* bytes, std::size_t size);
+
 // R, G, B float, linear; empty when stb_image refuses the file. DecodeFailure when the header's
 // size is over the limits or the file too short for it.
 std::optional<DecodedImage> decodeRadianceHdr(const uint8_t* bytes, std::size_t size);

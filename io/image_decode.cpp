@@ -1,7 +1,10 @@
 #include "io/image_decode.h"
 
+#include <strings.h>
+
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -55,6 +58,18 @@ DecodedImage oiioBytes(const uint8_t* bytes, std::size_t size, const std::string
     return viaOiio(ok, std::move(image), error);
 }
 
+// Whether OpenImageIO reads a file of this name as Radiance (by its extension, any case).
+bool namesRadiance(const std::string& name) {
+    const std::string ext = std::filesystem::path(name).extension().string();
+    return strcasecmp(ext.c_str(), ".hdr") == 0 || strcasecmp(ext.c_str(), ".rgbe") == 0;
+}
+
+// What is checked before bytes that our decoders leave go to OpenImageIO: a Radiance header's
+// claim (its reader takes a header without "#?", which ours do not see as Radiance).
+void checkBeforeOiio(const uint8_t* bytes, std::size_t size, const std::string& name) {
+    if (namesRadiance(name)) checkRadianceClaim(bytes, size);
+}
+
 // Our own decoders for what they read; nothing when the bytes are for OpenImageIO.
 std::optional<DecodedImage> decodeOwn(const uint8_t* bytes, std::size_t size, AlphaMode alpha) {
     if (isPng(bytes, size)) return decodePng(bytes, size, alpha);
@@ -66,12 +81,11 @@ std::optional<DecodedImage> decodeOwn(const uint8_t* bytes, std::size_t size, Al
 }  // namespace
 
 DecodedImage decodeImageFile(const std::string& path, AlphaMode alpha) {
-    if (isExrFile(path)) {
-        return readExr(path);
-    }
+    if (isExrFile(path)) return readExr(path);
     const std::vector<uint8_t> bytes = fileBytes(path);
     if (std::optional<DecodedImage> image = decodeOwn(bytes.data(), bytes.size(), alpha))
         return std::move(*image);
+    checkBeforeOiio(bytes.data(), bytes.size(), path);
     return oiioFile(path, alpha);
 }
 
@@ -80,6 +94,7 @@ DecodedImage decodeImageBytes(const void* bytes, std::size_t size, const std::st
     const auto* data = static_cast<const uint8_t*>(bytes);
     if (std::optional<DecodedImage> image = decodeOwn(data, size, alpha)) return std::move(*image);
     if (isExr(data, size)) return readExr(data, size);  // EXR by its bytes, as ours go
+    checkBeforeOiio(data, size, formatHint);
     return oiioBytes(data, size, formatHint, alpha);
 }
 
