@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <stdexcept>

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <string_view>
 
 #include "io/exr_channel_order.h"
 #include "io/exr_imf_pixels.h"
@@ -60,6 +59,8 @@ struct ExrContext {
     ~ExrContext() { exr_finish(&context); }
 };
 
+struct ExrDecoder;
+
 // Part 0 of an EXR file or of bytes, opened by the core library with its header checked:
 // parsed without a reported error (a damaged attribute may be reported and skipped with
 // success: any report counts), a size within io/image_limits.h's limits, and enough bytes for
@@ -85,14 +86,14 @@ public:
                             exr_get_chunk_count(context_, 0, &chunks_) == EXR_ERR_SUCCESS &&
                             exr_get_storage(context_, 0, &storage_) == EXR_ERR_SUCCESS;
         if (!parsed)
-            fail("the header is damaged: " +
-                 (source_.error.empty() ? std::string("unreadable") : source_.error));
+            failDecode("the header is damaged: " +
+                       (source_.error.empty() ? std::string("unreadable") : source_.error));
         checkImageSize(width(), height(), channels_->num_channels);
         if (kMinChunkBytes * chunks_ > size)
-            fail("the file is cut short: its " + std::to_string(width()) + " x " +
-                 std::to_string(height()) + " pixels come in " + std::to_string(chunks_) +
-                 " chunks, at least " + std::to_string(kMinChunkBytes * chunks_) +
-                 " bytes, and the file has " + std::to_string(size));
+            failDecode("the file is cut short: its " + std::to_string(width()) + " x " +
+                       std::to_string(height()) + " pixels come in " + std::to_string(chunks_) +
+                       " chunks, at least " + std::to_string(kMinChunkBytes * chunks_) +
+                       " bytes, and the file has " + std::to_string(size));
     }
     ExrPart(const ExrPart&) = delete;
     ExrPart& operator=(const ExrPart&) = delete;
@@ -127,19 +128,18 @@ public:
     DecodedImage pixels();
 
 private:
-    [[noreturn]] static void fail(const std::string& reason) { failDecode(reason); }
     // The core library's first message, or its code's.
     [[noreturn]] void failChunk(int chunk, exr_result_t result) const {
-        fail("chunk " + std::to_string(chunk) + " of " + std::to_string(chunks_) +
-             " cannot be read: " +
-             (source_.error.empty() ? std::string(exr_get_default_error_message(result))
-                                    : source_.error));
+        failDecode("chunk " + std::to_string(chunk) + " of " + std::to_string(chunks_) +
+                   " cannot be read: " +
+                   (source_.error.empty() ? std::string(exr_get_default_error_message(result))
+                                          : source_.error));
     }
     void checkChannels() const;
     template <class Visit>
     void forEachChunk(Visit visit);
-    void decodeChunk(int index, const exr_chunk_info_t& chunk, std::int64_t x, std::int64_t y,
-                     const std::vector<int>& outputOf, DecodedImage& image);
+    void decodeChunk(ExrDecoder& decoding, int index, const exr_chunk_info_t& chunk, std::int64_t x,
+                     std::int64_t y, const std::vector<int>& outputOf, DecodedImage& image);
 
     std::string name_;
     ExrSource source_;
@@ -154,28 +154,49 @@ private:
 // Every channel is one sample per pixel, of a type this reader converts.
 void ExrPart::checkChannels() const {
     if (storage_ != EXR_STORAGE_SCANLINE && storage_ != EXR_STORAGE_TILED)
-        fail("deep data (several samples per pixel) is not an image ssrt reads");
+        failDecode("deep data (several samples per pixel) is not an image ssrt reads");
     for (int i = 0; i < channels_->num_channels; ++i) {
         const exr_attr_chlist_entry_t& c = channels_->entries[i];
         if (c.x_sampling != 1 || c.y_sampling != 1)
-            fail("channel '" + std::string(c.name.str) + "' is subsampled (" +
-                 std::to_string(c.x_sampling) + " x " + std::to_string(c.y_sampling) +
-                 "): subsampled channels are not read");
+            failDecode("channel '" + std::string(c.name.str) + "' is subsampled (" +
+                       std::to_string(c.x_sampling) + " x " + std::to_string(c.y_sampling) +
+                       "): subsampled channels are not read");
     }
 }
+
+// The core library's decoding of one chunk after another, its buffers kept from chunk to chunk
+// (made anew for each, they were a third of a large file's read: every one a fresh mapping).
+struct ExrDecoder {
+    exr_const_context_t context;
+    exr_decode_pipeline_t pipeline = EXR_DECODE_PIPELINE_INITIALIZER;
+    bool started = false;
+    explicit ExrDecoder(exr_const_context_t c) : context(c) {}
+    ExrDecoder(const ExrDecoder&) = delete;
+    ExrDecoder& operator=(const ExrDecoder&) = delete;
+    ~ExrDecoder() {
+        if (started) exr_decoding_destroy(context, &pipeline);
+    }
+    // Set up for `chunk`: the first time, or again with the buffers kept.
+    exr_result_t start(const exr_chunk_info_t& chunk) {
+        if (started) return exr_decoding_update(context, 0, &chunk, &pipeline);
+        started = true;
+        return exr_decoding_initialize(context, 0, &chunk, &pipeline);
+    }
+};
 
 // Decodes one chunk, whose first pixel is (x, y) of the image, into its place: channel i of
 // the file becomes channel outputOf[i] of `image`, as float (unsigned integers as they are, for
 // pixels() to scale).
-void ExrPart::decodeChunk(int index, const exr_chunk_info_t& chunk, std::int64_t x, std::int64_t y,
-                          const std::vector<int>& outputOf, DecodedImage& image) {
+void ExrPart::decodeChunk(ExrDecoder& decoding, int index, const exr_chunk_info_t& chunk,
+                          std::int64_t x, std::int64_t y, const std::vector<int>& outputOf,
+                          DecodedImage& image) {
     // The core library sizes chunks from the header; a chunk outside the image is a bug there,
     // which must not become a write outside the pixels.
     if (x < 0 || y < 0 || chunk.width < 0 || chunk.height < 0 || x + chunk.width > image.width ||
         y + chunk.height > image.height)
-        fail("chunk " + std::to_string(index) + " lies outside the image");
-    exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
-    exr_result_t result = exr_decoding_initialize(context_, 0, &chunk, &decoder);
+        failDecode("chunk " + std::to_string(index) + " lies outside the image");
+    exr_decode_pipeline_t& decoder = decoding.pipeline;
+    exr_result_t result = decoding.start(chunk);
     const std::size_t pixelBytes = sizeof(float) * std::size_t(image.channels);
     if (result == EXR_ERR_SUCCESS && decoder.channel_count != channels_->num_channels)
         result = EXR_ERR_INCORRECT_CHUNK;
@@ -194,7 +215,6 @@ void ExrPart::decodeChunk(int index, const exr_chunk_info_t& chunk, std::int64_t
     if (result == EXR_ERR_SUCCESS)
         result = exr_decoding_choose_default_routines(context_, 0, &decoder);
     if (result == EXR_ERR_SUCCESS) result = exr_decoding_run(context_, 0, &decoder);
-    exr_decoding_destroy(context_, &decoder);
     if (result != EXR_ERR_SUCCESS) failChunk(index, result);
 }
 
@@ -221,7 +241,7 @@ void ExrPart::forEachChunk(Visit visit) {
     if (storage_ == EXR_STORAGE_SCANLINE) {
         int32_t lines = 0;
         if (exr_get_scanlines_per_chunk(context_, 0, &lines) != EXR_ERR_SUCCESS || lines < 1)
-            fail("the header is damaged: no scanlines per chunk");
+            failDecode("the header is damaged: no scanlines per chunk");
         for (int i = 0; i < chunks_; ++i) {
             exr_chunk_info_t chunk{};
             const std::int64_t y = std::int64_t(i) * lines;
@@ -239,7 +259,7 @@ void ExrPart::forEachChunk(Visit visit) {
             EXR_ERR_SUCCESS ||
         exr_get_level_sizes(context_, 0, 0, 0, &levelWidth, &levelHeight) != EXR_ERR_SUCCESS ||
         tileWidth < 1 || tileHeight < 1 || levelWidth != width() || levelHeight != height())
-        fail("the header is damaged: its tiles do not cover the image");
+        failDecode("the header is damaged: its tiles do not cover the image");
     const std::int64_t across = (levelWidth + std::int64_t(tileWidth) - 1) / tileWidth;
     const std::int64_t down = (levelHeight + std::int64_t(tileHeight) - 1) / tileHeight;
     int index = 0;
@@ -279,8 +299,9 @@ DecodedImage ExrPart::pixels() {
             facts.channelTypes.push_back(int(channels_->entries[i].pixel_type));
         readPixelsWithInputFile(name_, source_.bytes, source_.size, facts, outputOf, image);
     } else {
+        ExrDecoder decoding(context_);
         forEachChunk([&](int index, const exr_chunk_info_t& chunk, std::int64_t x, std::int64_t y) {
-            decodeChunk(index, chunk, x, y, outputOf, image);
+            decodeChunk(decoding, index, chunk, x, y, outputOf, image);
         });
     }
     scaleUnsigned(*channels_, outputOf, image);

@@ -1,7 +1,7 @@
 #include "io/image_decode.h"
 
-#include <strings.h>
-
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -58,16 +58,12 @@ DecodedImage oiioBytes(const uint8_t* bytes, std::size_t size, const std::string
     return viaOiio(ok, std::move(image), error);
 }
 
-// Whether OpenImageIO reads a file of this name as Radiance (by its extension, any case).
-bool namesRadiance(const std::string& name) {
-    const std::string ext = std::filesystem::path(name).extension().string();
-    return strcasecmp(ext.c_str(), ".hdr") == 0 || strcasecmp(ext.c_str(), ".rgbe") == 0;
-}
-
 // What is checked before bytes that our decoders leave go to OpenImageIO: a Radiance header's
-// claim (its reader takes a header without "#?", which ours do not see as Radiance).
+// claim when it reads them as Radiance by their name (its reader takes a header without "#?",
+// which ours do not see as Radiance).
 void checkBeforeOiio(const uint8_t* bytes, std::size_t size, const std::string& name) {
-    if (namesRadiance(name)) checkRadianceClaim(bytes, size);
+    const std::string ext = lowerExtension(name);
+    if (ext == ".hdr" || ext == ".rgbe") checkRadianceClaim(bytes, size);
 }
 
 // Our own decoders for what they read; nothing when the bytes are for OpenImageIO.
@@ -79,6 +75,13 @@ std::optional<DecodedImage> decodeOwn(const uint8_t* bytes, std::size_t size, Al
 }
 
 }  // namespace
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
 
 DecodedImage decodeImageFile(const std::string& path, AlphaMode alpha) {
     if (isExrFile(path)) return readExr(path);

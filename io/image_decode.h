@@ -20,6 +20,9 @@
 
 namespace ssrt::io_detail {
 
+// A path's extension, lower case (".exr"; "" for none).
+std::string lowerExtension(const std::string& path);
+
 DecodedImage decodeImageFile(const std::string& path, AlphaMode alpha);
 
 // `formatHint` is a file name or extension, used only when the bytes go to OpenImageIO (EXR

@@ -34,17 +34,12 @@ namespace ssrt {
 
 namespace fs = std::filesystem;
 
+using io_detail::lowerExtension;
+
 namespace {
 
 // ---------------------------------------------------------------------------------------
 // Paths and messages
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 std::string joinedExtensions() {
     std::string out;
