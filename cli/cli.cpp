@@ -18,7 +18,7 @@ namespace {
 
 // The commands, as the errors for a missing or mistyped one list them.
 constexpr const char* kCommandList =
-    "render, compare, sweep, diff, check, reference, merge or scenes";
+    "render, graph, compare, sweep, diff, check, reference, merge or scenes";
 
 }  // namespace
 
@@ -62,6 +62,7 @@ CommandLine::CommandLine()
     commands_[int(Command::Check)] = addCheckCommand(app, check);
     commands_[int(Command::Reference)] = addReferenceCommand(app, reference);
     commands_[int(Command::Merge)] = addMergeCommand(app, merge);
+    commands_[int(Command::Graph)] = addGraphCommand(app, graph);
     commands_[int(Command::Scenes)] = addScenesCommand(app);
 }
 
@@ -78,6 +79,7 @@ void CommandLine::reset() {
     check = {};
     reference = {};
     merge = {};
+    graph = {};
     command_ = Command::Scenes;
 }
 
@@ -132,6 +134,8 @@ int runCli(CommandLine& line, int argc, const char* const* argv, std::ostream& o
             return reportErrors(err, [&] { return runReference(line.reference, out, err); });
         case Command::Merge:
             return reportErrors(err, [&] { return runMerge(line.merge, out, err); });
+        case Command::Graph:
+            return reportErrors(err, [&] { return runGraph(line.graph, out, err); });
         case Command::Scenes: return reportErrors(err, [&] { return runScenes(out); });
     }
     return kExitUsage;  // unreachable: every command is a case

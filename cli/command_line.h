@@ -11,6 +11,7 @@
 #include "cli/check_command.h"
 #include "cli/compare_command.h"
 #include "cli/diff_command.h"
+#include "cli/graph_command.h"
 #include "cli/merge_command.h"
 #include "cli/reference_command.h"
 #include "cli/render_command.h"
@@ -22,7 +23,7 @@ class App;
 
 namespace ssrt::cli {
 
-enum class Command { Render, Compare, Sweep, Diff, Check, Reference, Merge, Scenes };
+enum class Command { Render, Compare, Sweep, Diff, Check, Reference, Merge, Graph, Scenes };
 inline constexpr int kCommandCount = int(Command::Scenes) + 1;
 
 class CommandLine {
@@ -47,6 +48,7 @@ public:
     CheckOptions check;
     ReferenceOptions reference;
     MergeOptions merge;
+    GraphOptions graph;
 
 private:
     std::unique_ptr<CLI::App> app_;

@@ -139,6 +139,12 @@ std::string sequenceFileName(const std::string& output, int index, int count) {
     return (path.parent_path() / name).string();
 }
 
+void planesForFile(const std::string& output, const LayerGroups& layers, RenderSettings& s) {
+    const bool exr = isExrPath(output);
+    if (!exr || !hasGroup(layers, LayerGroup::GBuffer)) s.idPlanes = false;
+    if (!exr || !hasGroup(layers, LayerGroup::Trace)) s.debugPlanes = false;
+}
+
 std::string renderOutput(const RenderOptions& o) {
     if (o.outputGiven || !o.compare) return o.output;
     return isExrPath(*o.compare) ? "ssrt.exr" : o.output;
@@ -175,13 +181,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     }
     checkWritable(sequenceFileName(output, int(block.begin), frames));
     const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
-    // The id planes and the debug planes exist to be looked at: a file that shows none of
-    // them (a PNG, or an EXR whose --layers leave out their group) does not make them.
-    const bool exr = isExrPath(output);
-    if (!exr || !hasGroup(writeOptions.layers, LayerGroup::GBuffer))
-        request.settings.idPlanes = false;
-    if (!exr || !hasGroup(writeOptions.layers, LayerGroup::Trace))
-        request.settings.debugPlanes = false;
+    planesForFile(output, writeOptions.layers, request.settings);
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
         throw std::invalid_argument(
             "--layers: a rendered frame has no truth layers (ssrt "

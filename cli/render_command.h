@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/diff_command.h"
+#include "renderer/layer_groups.h"
 #include "renderer/renderer.h"
 
 namespace CLI {
@@ -61,6 +62,10 @@ std::string sequenceFileName(const std::string& output, int index, int count);
 // reference's extension when it is one writeImage writes (.exr, .png), so that the two
 // files hold the same kind of layers.
 std::string renderOutput(const RenderOptions& options);
+
+// The id planes and the debug planes exist to be looked at: a file that shows none of them (a
+// PNG, or an EXR whose layer groups leave out theirs) does not make them.
+void planesForFile(const std::string& output, const LayerGroups& layers, RenderSettings& settings);
 
 // Validates everything (flags, the shot file, the output path) before any work, then renders
 // the warm-up frames and each frame of the sequence (cli/sequence.h) into one reused Frame

@@ -15,6 +15,7 @@
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
 #include "renderer/direct_lighting.h"
+#include "renderer/frame_graph.h"
 #include "renderer/memory_use.h"
 #include "renderer/pass_timer.h"
 #include "renderer/resolve_tables.h"
@@ -76,59 +77,33 @@ struct FrameContext {
 // The marchers' depth intervals (raster/back_depth.h), when a trace pass marches with them.
 bool wantsBackDepth(const RenderSettings& s) { return s.trace.any() && s.trace.march.backFaces; }
 
-// The frame's planes at this size, kept when they already are; the groups the settings leave
-// out are emptied. Every pixel of every plane is written by a pass, so none is cleared here.
-void ensurePlanes(const RenderSettings& s, const Scene& scene, Frame& f) {
-    const int w = s.width, h = s.height;
+// The frame's planes as the graph has them (renderer/frame_graph.h): a plane whose resource
+// the graph holds is of the frame's size (kept when it already is), the others are emptied.
+// Every pixel of every plane is written by a pass, so none is cleared here. The transient
+// traced signals (the denoiser's inputs, no file layers) are taken from the pool by their
+// pass (renderer/trace_pass.cpp): here they are empty too. The direct pass's parts are the
+// frame's own.
+void ensurePlanes(const CompiledGraph& graph, Frame& f) {
+    const int w = graph.width, h = graph.height;
     f.width = w;
     f.height = h;
-    f.image.ensureSize(w, h);
-    f.gbuffer.ensureSize(w, h);
     f.scratch.pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
-    const auto keepPlane = [&](bool on, PlaneF& p) {
-        if (on) p.ensureSize(w, h);
-        else p = PlaneF();
-    };
-    const auto keepIf = [&](bool on, auto& group) {
-        group.forEachPlane([&](std::string_view, PlaneF& p) { keepPlane(on, p); });
-    };
-    // A group whose `steps` plane is only made to be looked at (RenderSettings::debugPlanes).
-    const auto keepTraced = [&](bool on, auto& group) {
-        group.forEachPlane([&](std::string_view, PlaneF& p) {
-            keepPlane(on && (s.debugPlanes || &p != &group.steps), p);
+    const auto ensure = [&](auto& group, bool transientsHeld) {
+        group.forEachPlane([&](std::string_view name, PlaneF& p) {
+            const GraphResource* r = graph.find(resourceOfChannel(name));
+            if (r && (transientsHeld || r->lifetime != Lifetime::Transient)) p.ensureSize(w, h);
+            else p = PlaneF();
         });
     };
-    const bool denoise = s.trace.any() && s.trace.denoise.enabled;
-    // The full-resolution SSGI planes are only looked at where the denoiser takes the half
-    // frame's signal (renderer/trace_pass.cpp, denoiseHalfDiffuse).
-    const bool fullSsgi =
-        s.trace.ssgi && (s.debugPlanes || !denoise || s.trace.ssgiLayout != TraceLayout::Half);
-    keepIf(s.idPlanes, f.ids);
-    if (!wantsBackDepth(s)) f.scratch.backVisibility = {}, f.scratch.backZ = PlaneF();
-    keepTraced(s.trace.ssr && !tracedSignalsPooled(s), f.trace.ssr);
-    keepTraced(fullSsgi && !tracedSignalsPooled(s), f.trace.ssgi);
-    // The direct pass's parts that a later pass reads: SSGI's light replaces the sky's diffuse
-    // in the composite, SSGI reads the hit light, and nothing reads the emission of a scene
-    // where nothing emits.
-    const bool trace = s.trace.any(), emits = anyEmissive(scene);
-    DirectParts& parts = f.direct;
-    for (int c = 0; c < 3; ++c) {
-        keepPlane(trace, parts.direct[c]);
-        keepPlane(trace && emits, parts.emission[c]);
-        keepPlane(trace && !s.trace.ssgi, parts.envDiffuse[c]);
-        keepPlane(trace, parts.envSpecular[c]);
-        keepPlane(trace, parts.specWeight[c]);
-        keepPlane(trace && s.trace.ssgi && !hitLightAtHalf(s), parts.hitLight[c]);
-    }
-    // (the denoiser sizes the outputs of the signals it is given; a signal the settings leave
-    // out has none)
-    DenoiseOutputs& d = f.trace.denoise.out;
-    if (!denoise || !s.trace.ssgi || diffuseUpsampledInComposite(s))
-        for (PlaneF& p : d.diffuse) p = PlaneF();
-    if (!denoise || !s.trace.ssr)
-        for (PlaneF& p : d.specular) p = PlaneF();
-    if (!denoise || !s.trace.ssgi || !s.debugPlanes) d.diffuseFrames = PlaneF();
-    if (!denoise || !s.trace.ssr || !s.debugPlanes) d.specularFrames = PlaneF();
+    ensure(f.image, false);
+    ensure(f.gbuffer, false);
+    ensure(f.material, false);
+    ensure(f.ids, false);
+    ensure(f.direct, true);
+    ensure(f.trace.ssr, false);
+    ensure(f.trace.ssgi, false);
+    ensure(f.trace.denoise, false);
+    if (!graph.has(Res::BackZ)) f.scratch.backVisibility = {}, f.scratch.backZ = PlaneF();
 }
 
 void shadowPass(const FrameContext& c, const Scene& scene, Frame& frame) {
@@ -227,18 +202,6 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
     const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
     return tables;
-}
-
-// The material planes the scene needs (emission, occlusion) at the frame's size; the others
-// emptied.
-void ensureMaterialPlanes(const FrameContext& c, const Scene& scene, MaterialPlanes& m) {
-    const auto keepIf = [&](bool on, PlaneF& p) {
-        if (on) p.ensureSize(c.grid.width, c.grid.height);
-        else p = PlaneF();
-    };
-    const bool emissive = anyEmissiveTextured(scene);
-    for (PlaneF& p : m.emission) keepIf(emissive, p);
-    keepIf(anyOcclusionTextured(scene), m.occlusion);
 }
 
 // Base colour, metallic-roughness and normal-map texels into the G-buffer; emission and
@@ -429,12 +392,13 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
-    ensurePlanes(settings_, scene, frame);
+    const CompiledGraph graph =
+        compileFrameGraph({settings_, SceneFacts::of(scene), history != nullptr});
+    ensurePlanes(graph, frame);
 
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);
     const bool textured = anyTextured(scene);
-    ensureMaterialPlanes(c, scene, frame.material);
     const ResolveTables tables = resolvePass(c, scene, textured, frame);
     if (textured) texturePass(c, scene, frame);
     if (settings_.idPlanes) idPass(c, tables.triangles, frame);

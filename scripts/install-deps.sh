@@ -35,6 +35,8 @@ test_packages=(
     libopengl-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
     # Charts (Debian's interpreter: /usr/bin/python3)
     python3-matplotlib
+    # Graphviz's dot, which draws `ssrt graph --dot` (its test checks that dot accepts it)
+    graphviz
     # The Python module (python/: pybind11, built for /usr/bin/python3) and its pytest suite
     pybind11-dev python3-dev python3-numpy python3-pytest
 )

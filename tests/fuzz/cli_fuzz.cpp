@@ -40,6 +40,7 @@ int check(const CommandLine& line) {
             checkRenderOptions(line.reference.render, truthDefaults());
             shardFrom(line.reference.shard);
             break;
+        case Command::Graph: checkRenderOptions(line.graph.render, {}); break;
         case Command::Diff: diffSettingsFrom(line.diff.flags); break;
         case Command::Check:  // (its suite file is read when it runs: not fuzzed yet)
         case Command::Merge:

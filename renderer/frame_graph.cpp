@@ -1,0 +1,347 @@
+#include "renderer/frame_graph.h"
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+#include <stdexcept>
+
+#include "renderer/direct_lighting.h"
+#include "renderer/resolve_tables.h"
+
+namespace ssrt {
+
+std::string_view formatName(ResourceFormat f) {
+    switch (f) {
+        case ResourceFormat::F32: return "f32";
+        case ResourceFormat::F16: return "f16";
+        case ResourceFormat::Unorm8: return "unorm8";
+        case ResourceFormat::OctSnorm16: return "oct16";
+        case ResourceFormat::U8: return "u8";
+        case ResourceFormat::U16: return "u16";
+        case ResourceFormat::U32: return "u32";
+    }
+    return "?";
+}
+
+int formatBytes(ResourceFormat f) {
+    switch (f) {
+        case ResourceFormat::F32:
+        case ResourceFormat::U32: return 4;
+        case ResourceFormat::F16:
+        case ResourceFormat::U16: return 2;
+        case ResourceFormat::Unorm8:
+        case ResourceFormat::U8: return 1;
+        case ResourceFormat::OctSnorm16: return 4;  // per unit vector (three channels)
+    }
+    return 4;
+}
+
+std::string_view resolutionName(Resolution r) {
+    switch (r) {
+        case Resolution::Full: return "full";
+        case Resolution::Half: return "half";
+        case Resolution::ShadowMap: return "shadow map";
+        case Resolution::Pyramid: return "pyramid";
+        case Resolution::HalfPyramid: return "half pyramid";
+    }
+    return "?";
+}
+
+std::string_view lifetimeName(Lifetime l) {
+    switch (l) {
+        case Lifetime::Transient: return "transient";
+        case Lifetime::History: return "history";
+        case Lifetime::Output: return "output";
+    }
+    return "?";
+}
+
+SceneFacts SceneFacts::of(const Scene& scene) {
+    SceneFacts f;
+    f.textured = anyTextured(scene);
+    f.uvSet1 = anyUvSet1(scene);
+    f.normalMapped = anyNormalMapped(scene);
+    f.emissive = anyEmissive(scene);
+    f.emissiveTextured = anyEmissiveTextured(scene);
+    f.occlusionTextured = anyOcclusionTextured(scene);
+    return f;
+}
+
+int ResourceDecl::channelCount() const {
+    return channels.empty() ? 1 : int(std::count(channels.begin(), channels.end(), ',')) + 1;
+}
+
+std::vector<std::string> ResourceDecl::channelNames() const {
+    if (channels.empty()) return {std::string(name)};
+    std::vector<std::string> out;
+    std::size_t at = 0;
+    while (at <= channels.size()) {
+        const std::size_t end = std::min(channels.find(',', at), channels.size());
+        out.push_back(std::string(name) + "." + std::string(channels.substr(at, end - at)));
+        at = end + 1;
+    }
+    return out;
+}
+
+namespace {
+
+// Texels of one channel at a resolution.
+std::size_t texels(Resolution r, int w, int h, int shadowMapSize) {
+    const auto pyramid = [](std::size_t x, std::size_t y) {
+        std::size_t n = 0;
+        for (;;) {
+            n += x * y;
+            if (x == 1 && y == 1) return n;
+            x = (x + 1) / 2, y = (y + 1) / 2;
+        }
+    };
+    const std::size_t hw = std::size_t(w + 1) / 2, hh = std::size_t(h + 1) / 2;
+    switch (r) {
+        case Resolution::Full: return std::size_t(w) * std::size_t(h);
+        case Resolution::Half: return hw * hh;
+        case Resolution::ShadowMap: return std::size_t(shadowMapSize) * std::size_t(shadowMapSize);
+        case Resolution::Pyramid: return pyramid(std::size_t(w), std::size_t(h));
+        case Resolution::HalfPyramid: return pyramid(hw, hh);
+    }
+    return 0;
+}
+
+std::size_t resourceBytes(const ResourceDecl& d, int w, int h, int shadowMapSize) {
+    const std::size_t n = texels(d.resolution, w, h, shadowMapSize);
+    if (d.format == ResourceFormat::OctSnorm16)  // a unit vector's three channels in 4 bytes
+        return n * 4 * std::size_t((d.channelCount() + 2) / 3);
+    return n * std::size_t(formatBytes(d.format)) * std::size_t(d.channelCount());
+}
+
+bool holds(GraphCondition c, const GraphKey& k) { return c == nullptr || c(k); }
+
+std::vector<Access> kept(const std::vector<Access>& list, const GraphKey& k) {
+    std::vector<Access> out;
+    for (const Access& a : list)
+        if (holds(a.when, k) &&
+            std::none_of(out.begin(), out.end(), [&](const Access& b) { return b.res == a.res; }))
+            out.push_back(a);
+    return out;
+}
+
+bool contains(const std::vector<Access>& list, Res r) {
+    return std::any_of(list.begin(), list.end(), [&](const Access& a) { return a.res == r; });
+}
+
+// Whether a resource outlives the frame: history, and outputs the settings hand out.
+bool isRoot(const ResourceDecl& d, const GraphKey& k) {
+    return d.lifetime == Lifetime::History ||
+           (d.lifetime == Lifetime::Output && holds(d.handedOut, k));
+}
+
+// Culls, back to front: a pass is kept when it writes something that is a root or read by a
+// kept pass after it; writes nothing needs are dropped. A write that does not read the
+// resource ends the need for it (the value before is overwritten).
+void cull(const GraphKey& k, std::vector<GraphPass>& passes,
+          std::vector<std::string_view>& culled) {
+    std::array<bool, kResourceCount> needed{};
+    for (int r = 0; r < kResourceCount; ++r) needed[r] = isRoot(resourceDecl(Res(r)), k);
+    std::vector<GraphPass> out;
+    for (auto p = passes.rbegin(); p != passes.rend(); ++p) {
+        const bool live = std::any_of(p->writes.begin(), p->writes.end(),
+                                      [&](const Access& w) { return needed[int(w.res)]; });
+        if (!live) {
+            culled.push_back(p->decl->name);
+            continue;
+        }
+        // (a pass's own scratch, which it writes and then reads, stays with the pass)
+        std::vector<Access> writes;
+        for (const Access& w : p->writes)
+            if (needed[int(w.res)] || contains(p->reads, w.res)) writes.push_back(w);
+        p->writes = writes;
+        for (const Access& w : writes)
+            if (!contains(p->reads, w.res)) needed[int(w.res)] = false;
+        for (const Access& r : p->reads) needed[int(r.res)] = true;
+        out.push_back(*p);
+    }
+    std::reverse(out.begin(), out.end());
+    std::reverse(culled.begin(), culled.end());
+    passes = std::move(out);
+}
+
+// Chains: a pass joins the chain before it when everything it reads from that chain's passes
+// it reads at its own pixel, at the same resolution (so it could run on the tile just made).
+void markChains(std::vector<GraphPass>& passes) {
+    int chain = 0;
+    std::vector<Res> made;  // written by the current chain
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+        GraphPass& p = passes[i];
+        bool joins = i > 0;
+        for (const Access& r : p.reads)
+            if (std::find(made.begin(), made.end(), r.res) != made.end() &&
+                r.footprint != Footprint::Pixel)
+                joins = false;
+        if (joins && !p.writes.empty() && !passes[i - 1].writes.empty() &&
+            resourceDecl(p.writes[0].res).resolution !=
+                resourceDecl(passes[i - 1].writes[0].res).resolution)
+            joins = false;
+        if (!joins) {
+            ++chain;
+            made.clear();
+        }
+        p.chain = chain;
+        for (const Access& w : p.writes) made.push_back(w.res);
+    }
+}
+
+// Transient memory: each transient takes the first slot of its size whose last user ran
+// before its first pass (lifetimes as intervals over the pass order).
+std::size_t assignSlots(std::vector<GraphResource>& resources) {
+    struct Slot {
+        std::size_t bytes;
+        int freeAfter;
+    };
+    std::vector<GraphResource*> order;
+    for (GraphResource& r : resources)
+        if (r.lifetime == Lifetime::Transient) order.push_back(&r);
+    std::stable_sort(
+        order.begin(), order.end(),
+        [](const GraphResource* a, const GraphResource* b) { return a->first < b->first; });
+    std::vector<Slot> slots;
+    for (GraphResource* r : order) {
+        auto s = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) {
+            return s.bytes == r->bytes && s.freeAfter < r->first;
+        });
+        if (s == slots.end()) {
+            slots.push_back({r->bytes, r->last});
+            r->slot = int(slots.size()) - 1;
+        } else {
+            s->freeAfter = r->last;
+            r->slot = int(s - slots.begin());
+        }
+    }
+    std::size_t total = 0;
+    for (const Slot& s : slots) total += s.bytes;
+    return total;
+}
+
+}  // namespace
+
+Res resourceOfChannel(std::string_view channel) {
+    static const std::vector<std::pair<std::string, Res>> channels = [] {
+        std::vector<std::pair<std::string, Res>> all;
+        for (int r = 0; r < kResourceCount; ++r)
+            for (std::string& name : resourceDecl(Res(r)).channelNames())
+                all.emplace_back(std::move(name), Res(r));
+        return all;
+    }();
+    for (const auto& [name, id] : channels)
+        if (name == channel) return id;
+    return Res::Count;
+}
+
+bool CompiledGraph::runs(std::string_view name) const {
+    return std::any_of(passes.begin(), passes.end(),
+                       [&](const GraphPass& p) { return p.decl->name == name; });
+}
+
+const GraphResource* CompiledGraph::find(Res id) const {
+    for (const GraphResource& r : resources)
+        if (r.id == id) return &r;
+    return nullptr;
+}
+
+std::vector<std::string> CompiledGraph::layerNames() const {
+    std::vector<std::string> out;
+    for (const GraphResource& r : resources)
+        if (r.lifetime == Lifetime::Output)
+            for (std::string& n : resourceDecl(r.id).channelNames()) out.push_back(std::move(n));
+    return out;
+}
+
+CompiledGraph compileFrameGraph(const GraphKey& key) {
+    key.settings.validate();
+    CompiledGraph g;
+    const int w = key.settings.width, h = key.settings.height;
+    g.width = w;
+    g.height = h;
+    for (const PassDecl& d : passDecls())
+        if (holds(d.enabled, key))
+            g.passes.push_back({&d, kept(d.reads, key), kept(d.writes, key)});
+    cull(key, g.passes, g.culled);
+    markChains(g.passes);
+    // Each resource's first and last pass; every read of this frame's resource follows a write.
+    std::array<GraphResource, kResourceCount> all{};
+    for (int r = 0; r < kResourceCount; ++r) all[r].id = Res(r);
+    for (int i = 0; i < int(g.passes.size()); ++i) {
+        GraphPass& p = g.passes[i];
+        for (const Access& a : p.reads) {
+            GraphResource& r = all[int(a.res)];
+            const ResourceDecl& d = resourceDecl(a.res);
+            // (history is the last frame's; a pass's own scratch is written before it is read)
+            if (r.first < 0 && d.lifetime != Lifetime::History && !contains(p.writes, a.res))
+                throw std::logic_error("frame graph: pass '" + std::string(p.decl->name) +
+                                       "' reads '" + std::string(d.name) +
+                                       "' before any pass writes it");
+            if (r.first < 0) r.first = i;
+            r.last = i;
+        }
+        for (const Access& a : p.writes) {
+            GraphResource& r = all[int(a.res)];
+            if (r.first < 0) r.first = i;
+            r.last = std::max(r.last, i);
+        }
+    }
+    const int end = int(g.passes.size()) - 1;
+    for (GraphResource& r : all) {
+        if (r.first < 0) continue;
+        const ResourceDecl& d = resourceDecl(r.id);
+        r.lifetime = isRoot(d, key) ? d.lifetime : Lifetime::Transient;
+        if (r.lifetime != Lifetime::Transient) r.last = end;
+        r.bytes = resourceBytes(d, w, h, key.settings.shadowMapSize);
+        g.resources.push_back(r);
+    }
+    for (GraphPass& p : g.passes) {
+        for (const Access& a : p.reads) p.bytesRead += g.find(a.res)->bytes;
+        for (const Access& a : p.writes) p.bytesWritten += g.find(a.res)->bytes;
+    }
+    g.transientBytes = assignSlots(g.resources);
+    for (const GraphResource& r : g.resources) {
+        if (r.lifetime == Lifetime::Output) g.outputBytes += r.bytes;
+        if (r.lifetime == Lifetime::History) g.historyBytes += r.bytes;
+    }
+    return g;
+}
+
+std::string frameGraphDot(const CompiledGraph& g) {
+    std::ostringstream o;
+    const auto quoted = [](std::string_view s) { return "\"" + std::string(s) + "\""; };
+    o << "digraph frame {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
+    for (std::size_t i = 0; i < g.passes.size(); ++i)
+        o << "  p" << i << " [shape=box, style=filled, fillcolor=\"#dde8f5\", label="
+          << quoted(std::string(g.passes[i].decl->name) + "\\nchain " +
+                    std::to_string(g.passes[i].chain))
+          << "];\n";
+    for (const GraphResource& r : g.resources) {
+        const ResourceDecl& d = resourceDecl(r.id);
+        const char* colour = r.lifetime == Lifetime::Output    ? "#e3f2d9"
+                             : r.lifetime == Lifetime::History ? "#f8e1c8"
+                                                               : "#ffffff";
+        o << "  r" << int(r.id) << " [shape=ellipse, style=filled, fillcolor=\"" << colour
+          << "\", label="
+          << quoted(std::string(d.name) + "\\n" + std::to_string(d.channelCount()) + " x " +
+                    std::string(formatName(d.format)) + ", " +
+                    std::string(resolutionName(d.resolution)) + ", " +
+                    std::string(lifetimeName(r.lifetime)))
+          << "];\n";
+    }
+    for (std::size_t i = 0; i < g.passes.size(); ++i) {
+        for (const Access& a : g.passes[i].reads)
+            o << "  r" << int(a.res) << " -> p" << i
+              << (a.footprint == Footprint::Pixel    ? ""
+                  : a.footprint == Footprint::Around ? " [style=dashed]"
+                                                     : " [style=dotted]")
+              << ";\n";
+        for (const Access& a : g.passes[i].writes)
+            o << "  p" << i << " -> r" << int(a.res) << ";\n";
+    }
+    o << "}\n";
+    return o.str();
+}
+
+}  // namespace ssrt

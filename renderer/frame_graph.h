@@ -1,0 +1,239 @@
+// The frame graph: every resource a frame may hold, every pass with what it reads (and how far
+// around its pixel) and writes, and what follows from them for given settings and scene.
+//
+// The declarations (renderer/frame_graph_decl.cpp) are one table of resources and one list of
+// passes in the order data flows. compileFrameGraph() applies the settings: a pass the
+// settings turn off is gone with its reads and writes, and a pass none of whose writes is
+// read later, kept as an output or kept as history is culled (Filament's FrameGraph culls
+// so). What is left gives which resources a frame holds, each one's first and last pass, how
+// transient resources with disjoint lifetimes share memory, each pass's bytes per pixel,
+// which passes could run tile by tile as one chain (every read of an earlier pass's resource
+// at the reader's own pixel), the frame's file layers, and `ssrt graph`'s table and DOT.
+//
+// (After Filament's FrameGraph and Unreal's RDG: passes declare their resources, which are
+// virtual until the graph is compiled; and NRD's named resources with formats. A CPU adds the
+// footprint: what a pass reads around its pixel decides whether it can follow the pass that
+// wrote it in the same tile.)
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "renderer/frame.h"
+#include "renderer/settings.h"
+#include "scenes/scene.h"
+
+namespace ssrt {
+
+// How a resource stores a texel: what each channel takes in memory.
+enum class ResourceFormat : uint8_t { F32, F16, Unorm8, OctSnorm16, U8, U16, U32 };
+// "f32", "f16", "unorm8", "oct16", "u8", "u16", "u32".
+std::string_view formatName(ResourceFormat format);
+// Bytes a channel takes ("oct16": two snorm16 for a unit vector's three channels, 4 bytes in
+// all, counted as 4/3 per channel by resourceBytes).
+int formatBytes(ResourceFormat format);
+
+// Where a resource's texels lie: the frame's pixels, the half frame's (one per 2x2 block),
+// the shadow map's (RenderSettings::shadowMapSize squared), or a pyramid over the frame's or
+// the half frame's pixels (that size, then each level halved down to one texel: the Hi-Z and
+// colour pyramids).
+enum class Resolution : uint8_t { Full, Half, ShadowMap, Pyramid, HalfPyramid };
+// "full", "half", "shadow map", "pyramid", "half pyramid"
+std::string_view resolutionName(Resolution r);
+
+// How long a resource lives: within the frame (its memory reused once its last pass has run),
+// across frames (the caller's FrameHistory, exchanged each frame), or handed out in the Frame.
+enum class Lifetime : uint8_t { Transient, History, Output };
+std::string_view lifetimeName(Lifetime l);  // "transient", "history", "output"
+
+// How far around its own pixel a pass reads a resource.
+enum class Footprint : uint8_t { Pixel, Around, Anywhere };
+
+// The facts of a scene that decide which passes and resources a frame has.
+struct SceneFacts {
+    bool textured = false;           // some material has a texture: UVs are resolved
+    bool uvSet1 = false;             // a texture reads TEXCOORD_1
+    bool normalMapped = false;       // the tangent frame is resolved
+    bool emissive = false;           // something emits
+    bool emissiveTextured = false;   // an emissive texture: per-pixel emission
+    bool occlusionTextured = false;  // an occlusion texture: per-pixel occlusion
+    static SceneFacts of(const Scene& scene);
+};
+
+// What a graph is compiled for.
+struct GraphKey {
+    RenderSettings settings;
+    SceneFacts scene;
+    // A sequence with a history (FrameHistory): the passes that read the last frame's
+    // resources and the commit of this frame's run. false: a single image.
+    bool history = true;
+};
+
+using GraphCondition = bool (*)(const GraphKey&);
+
+// The resources, one per layer (a layer's channels share a name, format and lifetime).
+enum class Res : uint8_t {
+    // Colour (file layers)
+    Color,
+    Display,
+    Shadow,
+    // G-buffer (file layers)
+    ViewZ,
+    Normal,
+    Albedo,
+    Metallic,
+    Roughness,
+    MaterialId,
+    Motion,
+    Emissive,
+    Occlusion,
+    InstanceId,
+    TriangleId,
+    // Traced signals and the denoiser's outputs (file layers)
+    Ssr,
+    SsrOpacity,
+    SsrHit,
+    SsrHitDistance,
+    SsrSteps,
+    Ssgi,
+    SsgiHit,
+    SsgiHitDistance,
+    SsgiSteps,
+    DenoisedDiffuse,
+    DenoisedSpecular,
+    DiffuseFrames,
+    SpecularFrames,
+    // Raster
+    ShadowMap,
+    VisibilityDepth,
+    VisibilityIds,
+    BackDepth,
+    BackIds,
+    BackZ,
+    Uv0,
+    Uv1,
+    Tangent,
+    // The direct pass's parts
+    Direct,
+    Emission,
+    EnvDiffuse,
+    EnvSpecular,
+    SpecWeight,
+    HitLight,
+    // Tracing
+    HiZ,
+    HiZPacked,
+    ColorPyramid,
+    RayPdf,
+    MarchHit,
+    SsrHitRadiance,
+    SsrHitTarget,
+    // SSGI's half frame (TraceLayout::Half)
+    HalfGBuffer,
+    HalfHitLight,
+    HalfBackZ,
+    HalfGuides,
+    HalfHiZ,
+    HalfRayPdf,
+    HalfSsgi,
+    HalfSsgiSteps,
+    // The denoiser's scratch: at full resolution, and on the half frame for the diffuse
+    DenoiseNoisyDiffuse,
+    DenoiseNoisySpecular,
+    DenoisePingPong,
+    DenoiseDiffuseState,
+    DenoiseSpecularState,
+    HalfDenoiseNoisy,
+    HalfDenoisePingPong,
+    HalfDenoiseState,
+    HalfDenoised,
+    // History (FrameHistory)
+    HistoryColor,
+    HistoryDiffuse,
+    DenoiseHistoryGuides,
+    DenoiseHistoryDiffuse,
+    DenoiseHistorySpecular,
+    HalfDenoiseHistory,
+    Count
+};
+inline constexpr int kResourceCount = int(Res::Count);
+
+struct ResourceDecl {
+    Res id;
+    std::string_view name;      // the layer's name: "normal" (channels normal.X, ...)
+    std::string_view channels;  // comma-separated channel suffixes ("X,Y,Z"); "" for one
+    ResourceFormat format;
+    Resolution resolution;
+    Lifetime lifetime;
+    LayerGroup group = LayerGroup::Color;  // outputs only: which part of a file
+    // An output that exists only to be looked at: handed out when this holds, and otherwise
+    // transient (gone when no later pass reads it). Null: always handed out.
+    GraphCondition handedOut = nullptr;
+    int channelCount() const;
+    // The file's channel names ("normal.X", ...; "viewZ" for one channel).
+    std::vector<std::string> channelNames() const;
+};
+
+struct Access {
+    Res res;
+    Footprint footprint = Footprint::Pixel;
+    GraphCondition when = nullptr;  // null: always (while the pass runs)
+};
+
+struct PassDecl {
+    std::string_view name;      // as `--stats` names its time
+    GraphCondition enabled;     // null: always
+    std::vector<Access> reads;  // a resource a pass reads and writes is in both lists
+    std::vector<Access> writes;
+};
+
+// The table and the passes in the order they run.
+const ResourceDecl& resourceDecl(Res id);
+const std::vector<PassDecl>& passDecls();
+// The resource one of whose channels is called `channel` ("normal.X": Res::Normal), as the
+// Frame's plane tables name their planes (renderer/frame.h); Res::Count if none is.
+Res resourceOfChannel(std::string_view channel);
+
+// One resource of a compiled graph.
+struct GraphResource {
+    Res id;
+    Lifetime lifetime;          // the declared one, or transient for an output not handed out
+    int first = -1, last = -1;  // indices into CompiledGraph::passes: the writer, the last reader
+    std::size_t bytes = 0;      // at the graph's size, without row padding
+    int slot = -1;              // transient: the memory it shares with others of its size
+};
+
+struct GraphPass {
+    const PassDecl* decl;
+    std::vector<Access> reads, writes;            // those the settings keep
+    std::size_t bytesRead = 0, bytesWritten = 0;  // per frame, each resource once
+    int chain = 0;  // passes of one chain could run tile by tile together
+};
+
+struct CompiledGraph {
+    int width = 0, height = 0;
+    std::vector<GraphPass> passes;         // in order, culled ones gone
+    std::vector<GraphResource> resources;  // those that exist, in table order
+    std::vector<std::string_view> culled;  // passes the settings enable but nothing reads
+    std::size_t transientBytes = 0;        // after reuse: the largest of each slot, summed
+    std::size_t outputBytes = 0, historyBytes = 0;
+    const GraphResource* find(Res id) const;
+    // Whether the pass called `name` runs.
+    bool runs(std::string_view name) const;
+    bool has(Res id) const { return find(id) != nullptr; }
+    // The channel names of the outputs, in table order: a rendered Frame's layers.
+    std::vector<std::string> layerNames() const;
+    std::size_t totalBytes() const { return transientBytes + outputBytes + historyBytes; }
+};
+
+// Throws std::invalid_argument for settings that fail validate().
+CompiledGraph compileFrameGraph(const GraphKey& key);
+
+// Graphviz DOT of the compiled graph: passes as boxes, resources as ellipses (history and
+// outputs marked), an edge per read and write.
+std::string frameGraphDot(const CompiledGraph& graph);
+
+}  // namespace ssrt

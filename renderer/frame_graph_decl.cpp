@@ -1,0 +1,516 @@
+// The frame graph's declarations: the resource table and the passes in the order they run
+// (renderer/frame_graph.h). The conditions below say when the code runs a pass and makes a
+// resource; tests/renderer/frame_graph_test.cpp renders frames over many settings and checks
+// that the outputs compiled from here are the frame's layers, name for name.
+#include <array>
+#include <memory>
+#include <string>
+
+#include "renderer/frame_graph.h"
+#include "renderer/trace_pass.h"
+
+namespace ssrt {
+
+namespace {
+
+using F = ResourceFormat;
+using R = Resolution;
+using L = Lifetime;
+using G = LayerGroup;
+using P = Footprint;
+
+// --- Conditions (each a plain function, so that a declaration can point at it) ---
+const TraceSettings& tr(const GraphKey& k) { return k.settings.trace; }
+bool trace(const GraphKey& k) { return tr(k).any(); }
+bool ssr(const GraphKey& k) { return tr(k).ssr; }
+bool ssgi(const GraphKey& k) { return tr(k).ssgi; }
+bool denoise(const GraphKey& k) { return trace(k) && tr(k).denoise.enabled; }
+bool debug(const GraphKey& k) { return k.settings.debugPlanes; }
+bool noTrace(const GraphKey& k) { return !trace(k); }
+bool halfSsgi(const GraphKey& k) { return ssgi(k) && tr(k).ssgiLayout == TraceLayout::Half; }
+bool fullSsgi(const GraphKey& k) { return ssgi(k) && !halfSsgi(k); }
+bool backFaces(const GraphKey& k) { return trace(k) && tr(k).march.backFaces; }
+bool hiZMarcher(const GraphKey& k) { return tr(k).marcher == Marcher::HiZ; }
+bool notPooled(const GraphKey& k) { return !tracedSignalsPooled(k.settings); }
+bool textured(const GraphKey& k) { return k.scene.textured; }
+bool uvSet1(const GraphKey& k) { return k.scene.textured && k.scene.uvSet1; }
+bool normalMapped(const GraphKey& k) { return k.scene.textured && k.scene.normalMapped; }
+bool emissiveTextured(const GraphKey& k) { return k.scene.textured && k.scene.emissiveTextured; }
+bool occlusionTextured(const GraphKey& k) { return k.scene.textured && k.scene.occlusionTextured; }
+bool idPlanes(const GraphKey& k) { return k.settings.idPlanes; }
+bool traceEmissive(const GraphKey& k) { return trace(k) && k.scene.emissive; }
+bool traceNoSsgi(const GraphKey& k) { return trace(k) && !ssgi(k); }
+bool hitLightFull(const GraphKey& k) { return ssgi(k) && !hitLightAtHalf(k.settings); }
+bool hitLightHalf(const GraphKey& k) { return hitLightAtHalf(k.settings); }
+bool ssgiOcclusion(const GraphKey& k) { return ssgi(k) && occlusionTextured(k); }
+// The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
+bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
+bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
+bool mipResolve(const GraphKey& k) { return ssr(k) && tr(k).resolve.mode == SsrResolveMode::Mip; }
+bool reprojected(const GraphKey& k) {
+    return k.history && tr(k).resolve.radiance == HitRadiance::Reprojected;
+}
+bool current(const GraphKey& k) { return !reprojected(k); }
+bool ssrChecker(const GraphKey& k) {
+    return ssr(k) && tr(k).ssrLayout == TraceLayout::Checkerboard;
+}
+bool ssgiChecker(const GraphKey& k) {
+    return fullSsgi(k) && tr(k).ssgiLayout == TraceLayout::Checkerboard;
+}
+bool feedback(const GraphKey& k) { return k.history && ssgi(k) && tr(k).ssgiFeedback; }
+bool halfGuides(const GraphKey& k) { return halfSsgi(k) && denoise(k); }
+bool halfHiZ(const GraphKey& k) { return halfSsgi(k) && hiZMarcher(k); }
+bool halfBack(const GraphKey& k) { return halfSsgi(k) && backFaces(k); }
+bool debugHalfSsgi(const GraphKey& k) { return halfSsgi(k) && debug(k); }
+// The denoiser's signals: SSR's, and SSGI's at full resolution or on the half frame.
+bool denoiseSpecular(const GraphKey& k) { return denoise(k) && ssr(k); }
+bool denoiseFullDiffuse(const GraphKey& k) { return denoise(k) && fullSsgi(k); }
+bool denoiseFull(const GraphKey& k) { return denoiseSpecular(k) || denoiseFullDiffuse(k); }
+bool denoiseHalf(const GraphKey& k) { return denoise(k) && halfSsgi(k); }
+bool historyFull(const GraphKey& k) { return k.history && denoiseFull(k); }
+bool historyHalf(const GraphKey& k) { return k.history && denoiseHalf(k); }
+bool historySpecular(const GraphKey& k) { return k.history && denoiseSpecular(k); }
+bool historyFullDiffuse(const GraphKey& k) { return k.history && denoiseFullDiffuse(k); }
+bool upsampleInComposite(const GraphKey& k) { return diffuseUpsampledInComposite(k.settings); }
+bool denoiseUpsample(const GraphKey& k) { return denoiseHalf(k) && !upsampleInComposite(k); }
+bool compositeSsgiRaw(const GraphKey& k) { return ssgi(k) && !denoise(k); }
+bool compositeSsrRaw(const GraphKey& k) { return ssr(k) && !denoise(k); }
+bool commit(const GraphKey& k) { return k.history && trace(k) && readsHistory(tr(k)); }
+bool feedbackDenoised(const GraphKey& k) { return feedback(k) && denoise(k); }
+bool feedbackRaw(const GraphKey& k) { return feedback(k) && !denoise(k); }
+
+// --- The resource table, in Res order ---
+// (Every resource is f32 today but the ids, which are u32: the formats the data needs come
+// with the typed views.)
+const std::array<ResourceDecl, kResourceCount> kResources = {{
+    {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
+    {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
+    {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
+    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Ssr, "ssr", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrOpacity, "ssrOpacity", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrHit, "ssrHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrHitDistance, "ssrHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::Ssgi, "ssgi", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
+    {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
+    {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::ShadowMap, "shadowMap", "", F::F32, R::ShadowMap, L::Transient},
+    {Res::VisibilityDepth, "visibility.depth", "", F::F32, R::Full, L::Transient},
+    {Res::VisibilityIds, "visibility.ids", "", F::U32, R::Full, L::Transient},
+    {Res::BackDepth, "back.depth", "", F::F32, R::Full, L::Transient},
+    {Res::BackIds, "back.ids", "", F::U32, R::Full, L::Transient},
+    {Res::BackZ, "backZ", "", F::F32, R::Full, L::Transient},
+    {Res::Uv0, "uv0", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
+    {Res::Uv1, "uv1", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
+    {Res::Tangent, "tangent", "X,Y,Z,W", F::F32, R::Full, L::Transient},
+    {Res::Direct, "direct", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::Emission, "emission", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::EnvDiffuse, "envDiffuse", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::EnvSpecular, "envSpecular", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::SpecWeight, "specWeight", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::HitLight, "hitLight", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::HiZ, "hiz.minZ", "", F::F32, R::Pyramid, L::Transient},
+    {Res::HiZPacked, "hiz.packed", "", F::F32, R::Pyramid, L::Transient},
+    {Res::ColorPyramid, "colorPyramid", "R,G,B", F::F32, R::Pyramid, L::Transient},
+    {Res::RayPdf, "ray.pdf", "", F::F32, R::Full, L::Transient},
+    {Res::MarchHit, "march.hit", "", F::F32, R::Full, L::Transient},
+    {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::Full, L::Transient},
+    {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::Full, L::Transient},
+    {Res::HalfGBuffer, "half.gbuffer",
+     "viewZ,normal.X,normal.Y,normal.Z,albedo.R,albedo.G,"
+     "albedo.B,metallic",
+     F::F32, R::Half, L::Transient},
+    {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F32, R::Half, L::Transient},
+    {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},
+    {Res::HalfGuides, "half.guide", "viewZ,normal.X,normal.Y,normal.Z,motion.X,motion.Y", F::F32,
+     R::Half, L::Transient},
+    {Res::HalfHiZ, "half.hiz", "minZ,packed", F::F32, R::HalfPyramid, L::Transient},
+    {Res::HalfRayPdf, "half.ray.pdf", "", F::F32, R::Half, L::Transient},
+    {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
+    {Res::HalfSsgiSteps, "half.ssgiSteps", "", F::F32, R::Half, L::Transient},
+    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F32, R::Full, L::Transient},
+    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F32, R::Full, L::Transient},
+    {Res::DenoisePingPong, "pingPong",
+     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,pong.B,"
+     "pong.hit",
+     F::F32, R::Full, L::Transient},
+    {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames,fast", F::F32, R::Full,
+     L::Transient},
+    {Res::DenoiseSpecularState, "state.specular", "signalZ,frames,fast", F::F32, R::Full,
+     L::Transient},
+    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F32, R::Half, L::Transient},
+    {Res::HalfDenoisePingPong, "half.pingPong",
+     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,"
+     "pong.B,pong.hit",
+     F::F32, R::Half, L::Transient},
+    {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames,fast", F::F32, R::Half,
+     L::Transient},
+    {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
+    {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
+    {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
+    {Res::DenoiseHistoryGuides, "history.denoise.guide",
+     "viewZ,normal.X,normal.Y,normal.Z,"
+     "roughness",
+     F::F32, R::Full, L::History},
+    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,frames,fast", F::F32,
+     R::Full, L::History},
+    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,frames,fast", F::F32,
+     R::Full, L::History},
+    {Res::HalfDenoiseHistory, "history.half.denoise",
+     "viewZ,normal.X,normal.Y,normal.Z,"
+     "roughness,R,G,B,hit,frames,fast",
+     F::F32, R::Half, L::History},
+}};
+
+// The G-buffer as the passes after the resolve read it at their own pixel.
+void gbufferReads(std::vector<Access>& reads, Footprint f = P::Pixel) {
+    for (Res r : {Res::ViewZ, Res::Normal, Res::Albedo, Res::Metallic, Res::Roughness})
+        reads.push_back({r, f});
+}
+
+// The denoiser's passes over one set of signals (denoise/denoise.h): at full resolution
+// (SSR's and SSGI's when it traces at full resolution), or SSGI's on the half frame.
+struct DenoiseSite {
+    const char* suffix;  // "" or " (half)"
+    GraphCondition on;
+    std::vector<Access> signals;  // the traced signals the front end reads
+    std::vector<Access> guides;   // the frame's G-buffer, or the half frame's
+    Res noisy[2];                 // diffuse, specular (Res::Count: none at this site)
+    GraphCondition signal[2];
+    Res pingPong, state[2], outputs[2], frames[2];
+    Res history[3];  // guides, diffuse, specular (Res::Count: none)
+    GraphCondition historyOn[3];
+};
+
+// Names made once, with the list of passes (which keeps views of them).
+std::string_view keep(std::string s) {
+    static std::vector<std::unique_ptr<std::string>> names;
+    names.push_back(std::make_unique<std::string>(std::move(s)));
+    return *names.back();
+}
+
+std::vector<Access> around(std::vector<Access> a) {
+    for (Access& x : a) x.footprint = P::Around;
+    return a;
+}
+
+void append(std::vector<Access>& to, const std::vector<Access>& more) {
+    to.insert(to.end(), more.begin(), more.end());
+}
+
+void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
+    const auto name = [&](const char* pass) { return keep(std::string(pass) + s.suffix); };
+    // Per signal: its noisy input (around), its state (own pixel: signal depth, speeds).
+    std::vector<Access> noisy, state;
+    for (int i = 0; i < 2; ++i)
+        if (s.noisy[i] != Res::Count) {
+            noisy.push_back({s.noisy[i], P::Around, s.signal[i]});
+            state.push_back({s.state[i], P::Pixel, s.signal[i]});
+        }
+    // A spatial pass: the guides and the last result around, the state at the pixel.
+    const auto spatial = [&](const char* pass, std::vector<Access> reads) {
+        PassDecl d{name(pass), s.on, around(s.guides), {{s.pingPong}}};
+        append(d.reads, reads);
+        append(d.reads, state);
+        return d;
+    };
+    // Front end: the signals sanitised, hit distances normalised, where each signal exists.
+    PassDecl front{name("denoise front end"), s.on, s.guides, {}};
+    append(front.reads, s.signals);
+    for (const Access& a : noisy) front.writes.push_back({a.res, P::Pixel, a.when});
+    append(front.writes, state);
+    passes.push_back(front);
+    passes.push_back(spatial("denoise pre-blur", noisy));
+    // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma.
+    PassDecl temporal{name("denoise temporal"), s.on, s.guides, {{s.pingPong}}};
+    temporal.reads.push_back({s.pingPong});
+    append(temporal.reads, state);
+    append(temporal.writes, state);
+    for (int i = 0; i < 3; ++i)
+        if (s.history[i] != Res::Count)
+            temporal.reads.push_back({s.history[i], P::Anywhere, s.historyOn[i]});
+    passes.push_back(temporal);
+    passes.push_back(spatial("denoise history fix", {{s.pingPong, P::Around}}));
+    passes.push_back(spatial("denoise blur", {{s.pingPong, P::Around}}));
+    // Post-blur: the outputs, and the history the next frame reads.
+    PassDecl post = spatial("denoise post-blur", {{s.pingPong, P::Around}});
+    post.writes.clear();
+    for (int i = 0; i < 2; ++i) {
+        if (s.noisy[i] == Res::Count) continue;
+        post.writes.push_back({s.outputs[i], P::Pixel, s.signal[i]});
+        if (s.frames[i] != Res::Count) post.writes.push_back({s.frames[i], P::Pixel, s.signal[i]});
+    }
+    for (int i = 0; i < 3; ++i)
+        if (s.history[i] != Res::Count)
+            post.writes.push_back({s.history[i], P::Pixel, s.historyOn[i]});
+    passes.push_back(post);
+}
+
+std::vector<PassDecl> declarePasses() {
+    std::vector<PassDecl> p;
+    p.push_back({"shadow", nullptr, {}, {{Res::ShadowMap}}});
+    // (The rasters read their own depth: the depth test.)
+    p.push_back({"visibility",
+                 nullptr,
+                 {{Res::VisibilityDepth}},
+                 {{Res::VisibilityDepth}, {Res::VisibilityIds}}});
+    p.push_back({"back faces",
+                 backFaces,
+                 {{Res::VisibilityDepth}, {Res::VisibilityIds}, {Res::BackDepth}, {Res::BackIds}},
+                 {{Res::BackDepth}, {Res::BackIds}, {Res::BackZ}}});
+    p.push_back({"resolve",
+                 nullptr,
+                 {{Res::VisibilityIds}},
+                 {{Res::ViewZ},
+                  {Res::Normal},
+                  {Res::Albedo},
+                  {Res::Metallic},
+                  {Res::Roughness},
+                  {Res::MaterialId},
+                  {Res::Motion},
+                  {Res::Uv0, P::Pixel, textured},
+                  {Res::Uv1, P::Pixel, uvSet1},
+                  {Res::Tangent, P::Pixel, normalMapped}}});
+    p.push_back({"textures",
+                 textured,
+                 {{Res::Uv0},
+                  {Res::Uv1, P::Pixel, uvSet1},
+                  {Res::Tangent, P::Pixel, normalMapped},
+                  {Res::MaterialId},
+                  {Res::Albedo},
+                  {Res::Metallic},
+                  {Res::Roughness},
+                  {Res::Normal, P::Pixel, normalMapped}},
+                 {{Res::Albedo},
+                  {Res::Metallic},
+                  {Res::Roughness},
+                  {Res::Normal, P::Pixel, normalMapped},
+                  {Res::Emissive, P::Pixel, emissiveTextured},
+                  {Res::Occlusion, P::Pixel, occlusionTextured}}});
+    p.push_back({"ids", idPlanes, {{Res::VisibilityIds}}, {{Res::InstanceId}, {Res::TriangleId}}});
+    // Direct light, sky and tone map; with a trace pass, the parts the composite rebuilds
+    // the colour from.
+    PassDecl shading{"shading",
+                     nullptr,
+                     {{Res::ShadowMap, P::Anywhere},
+                      {Res::MaterialId},
+                      {Res::Motion},
+                      {Res::Emissive, P::Pixel, emissiveTextured},
+                      {Res::Occlusion, P::Pixel, occlusionTextured}},
+                     {{Res::Color},
+                      {Res::Shadow},
+                      {Res::Display, P::Pixel, noTrace},
+                      {Res::Direct, P::Pixel, trace},
+                      {Res::Emission, P::Pixel, traceEmissive},
+                      {Res::EnvDiffuse, P::Pixel, traceNoSsgi},
+                      {Res::EnvSpecular, P::Pixel, trace},
+                      {Res::SpecWeight, P::Pixel, trace},
+                      {Res::HitLight, P::Pixel, hitLightFull},
+                      {Res::HalfHitLight, P::Around, hitLightHalf}}};
+    gbufferReads(shading.reads);
+    p.push_back(shading);
+    p.push_back({"hi-z", hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
+    // SSR: rays from the G-buffer, the march through the depth (anywhere), the resolve.
+    p.push_back(
+        {"ssr colour pyramid",
+         mipResolve,
+         {{Res::Color, P::Anywhere, current}, {Res::HistoryColor, P::Anywhere, reprojected}},
+         {{Res::ColorPyramid}}});
+    p.push_back({"ssr",
+                 ssr,
+                 {{Res::ViewZ, P::Anywhere},
+                  {Res::Normal, P::Anywhere},
+                  {Res::Roughness},
+                  {Res::Motion},
+                  {Res::HiZ, P::Anywhere, hiZMarcher},
+                  {Res::HiZPacked, P::Anywhere, hiZMarcher},
+                  {Res::BackZ, P::Anywhere, backFaces},
+                  {Res::Color, P::Anywhere, current},
+                  {Res::HistoryColor, P::Anywhere, reprojected},
+                  {Res::ColorPyramid, P::Anywhere, mipResolve},
+                  {Res::MarchHit, P::Around, reuseResolve},
+                  {Res::SsrHitRadiance, P::Around},
+                  {Res::SsrHitTarget, P::Around, reuseResolve}},
+                 {{Res::Ssr},
+                  {Res::SsrOpacity},
+                  {Res::SsrHit},
+                  {Res::SsrHitDistance},
+                  {Res::SsrSteps},
+                  {Res::RayPdf},
+                  {Res::MarchHit, P::Pixel, reuseResolve},
+                  {Res::SsrHitRadiance},
+                  {Res::SsrHitTarget, P::Pixel, reuseResolve}}});
+    // The checkerboard's other phase, from the traced pixels around.
+    p.push_back({"ssr reconstruct",
+                 ssrChecker,
+                 {{Res::RayPdf, P::Around},
+                  {Res::ViewZ, P::Around},
+                  {Res::Normal, P::Around},
+                  {Res::Ssr, P::Around},
+                  {Res::SsrOpacity, P::Around},
+                  {Res::SsrHit, P::Around},
+                  {Res::SsrHitDistance, P::Around}},
+                 {{Res::Ssr}, {Res::SsrOpacity}, {Res::SsrHit}, {Res::SsrHitDistance}}});
+    // SSGI: last frame's diffuse light reflected into the hit light (multi-bounce).
+    p.push_back({"ssgi feedback",
+                 feedback,
+                 {{Res::HistoryDiffuse, P::Anywhere},
+                  {Res::Motion},
+                  {Res::ViewZ},
+                  {Res::Albedo},
+                  {Res::Metallic},
+                  {Res::Occlusion, P::Pixel, occlusionTextured},
+                  {Res::HitLight}},
+                 {{Res::HitLight}}});
+    // The half frame: one chosen pixel of each 2x2 block, its own pyramid.
+    p.push_back({"ssgi half frame",
+                 halfSsgi,
+                 {{Res::ViewZ, P::Around},
+                  {Res::Normal, P::Around},
+                  {Res::Albedo, P::Around},
+                  {Res::Metallic, P::Around},
+                  {Res::HitLight, P::Around, hitLightFull},
+                  {Res::Motion, P::Around, halfGuides},
+                  {Res::BackZ, P::Around, backFaces}},
+                 {{Res::HalfGBuffer},
+                  {Res::HalfHitLight, P::Pixel, hitLightFull},
+                  {Res::HalfBackZ, P::Pixel, halfBack},
+                  {Res::HalfGuides, P::Pixel, halfGuides},
+                  {Res::HalfHiZ, P::Pixel, halfHiZ}}});
+    p.push_back({"ssgi (half)",
+                 halfSsgi,
+                 {{Res::HalfGBuffer, P::Anywhere},
+                  {Res::HalfHitLight, P::Anywhere},
+                  {Res::HalfBackZ, P::Anywhere, halfBack},
+                  {Res::HalfHiZ, P::Anywhere, halfHiZ}},
+                 {{Res::HalfSsgi}, {Res::HalfRayPdf}, {Res::HalfSsgiSteps, P::Pixel, debug}}});
+    p.push_back({"ssgi upsample",
+                 halfSsgi,
+                 {{Res::HalfSsgi, P::Around},
+                  {Res::HalfSsgiSteps, P::Around, debugHalfSsgi},
+                  {Res::HalfRayPdf, P::Around},
+                  {Res::ViewZ},
+                  {Res::Normal}},
+                 {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps}}});
+    p.push_back(
+        {"ssgi",
+         fullSsgi,
+         {{Res::ViewZ, P::Anywhere},
+          {Res::Normal, P::Anywhere},
+          {Res::Albedo},
+          {Res::Metallic},
+          {Res::HiZ, P::Anywhere, hiZMarcher},
+          {Res::HiZPacked, P::Anywhere, hiZMarcher},
+          {Res::BackZ, P::Anywhere, backFaces},
+          {Res::HitLight, P::Anywhere}},
+         {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps}, {Res::RayPdf}}});
+    p.push_back({"ssgi reconstruct",
+                 ssgiChecker,
+                 {{Res::RayPdf, P::Around},
+                  {Res::ViewZ, P::Around},
+                  {Res::Normal, P::Around},
+                  {Res::Ssgi, P::Around},
+                  {Res::SsgiHit, P::Around},
+                  {Res::SsgiHitDistance, P::Around}},
+                 {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}}});
+    // The denoiser at full resolution: SSR's signal (over the environment) and SSGI's.
+    DenoiseSite full{
+        "",
+        denoiseFull,
+        {{Res::Ssgi, P::Pixel, denoiseFullDiffuse},
+         {Res::SsgiHitDistance, P::Pixel, denoiseFullDiffuse},
+         {Res::Ssr, P::Pixel, denoiseSpecular},
+         {Res::SsrOpacity, P::Pixel, denoiseSpecular},
+         {Res::SsrHitDistance, P::Pixel, denoiseSpecular},
+         {Res::EnvSpecular, P::Pixel, denoiseSpecular}},
+        {},
+        {Res::DenoiseNoisyDiffuse, Res::DenoiseNoisySpecular},
+        {denoiseFullDiffuse, denoiseSpecular},
+        Res::DenoisePingPong,
+        {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
+        {Res::DenoisedDiffuse, Res::DenoisedSpecular},
+        {Res::DiffuseFrames, Res::SpecularFrames},
+        {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
+        {historyFull, historyFullDiffuse, historySpecular}};
+    gbufferReads(full.guides);
+    full.guides.push_back({Res::Motion});
+    addDenoiser(p, full);
+    // SSGI's diffuse denoised on the half frame, on guides from each block's first pixel.
+    const DenoiseSite half{" (half)",
+                           denoiseHalf,
+                           {{Res::HalfSsgi}},
+                           {{Res::HalfGuides}, {Res::HalfGBuffer}},
+                           {Res::HalfDenoiseNoisy, Res::Count},
+                           {denoiseHalf, nullptr},
+                           Res::HalfDenoisePingPong,
+                           {Res::HalfDenoiseState, Res::Count},
+                           {Res::HalfDenoised, Res::Count},
+                           {Res::Count, Res::Count},
+                           {Res::HalfDenoiseHistory, Res::Count, Res::Count},
+                           {historyHalf, nullptr, nullptr}};
+    addDenoiser(p, half);
+    p.push_back({"denoise upsample",
+                 denoiseUpsample,
+                 {{Res::HalfDenoised, P::Around},
+                  {Res::HalfRayPdf, P::Around},
+                  {Res::ViewZ},
+                  {Res::Normal}},
+                 {{Res::DenoisedDiffuse}, {Res::DiffuseFrames, P::Pixel, debug}}});
+    // Direct + diffuse + specular, tone mapped, over the direct pass's colour.
+    p.push_back({"composite",
+                 trace,
+                 {{Res::Direct},
+                  {Res::Emission, P::Pixel, traceEmissive},
+                  {Res::EnvDiffuse, P::Pixel, traceNoSsgi},
+                  {Res::EnvSpecular},
+                  {Res::SpecWeight},
+                  {Res::Albedo, P::Pixel, ssgi},
+                  {Res::ViewZ, P::Pixel, ssgi},
+                  {Res::Metallic, P::Pixel, ssgi},
+                  {Res::Occlusion, P::Pixel, ssgiOcclusion},
+                  {Res::Ssgi, P::Pixel, compositeSsgiRaw},
+                  {Res::DenoisedDiffuse, P::Pixel, denoiseFullDiffuse},
+                  {Res::DenoisedDiffuse, P::Pixel, denoiseUpsample},
+                  {Res::HalfDenoised, P::Around, upsampleInComposite},
+                  {Res::HalfRayPdf, P::Around, upsampleInComposite},
+                  {Res::Normal, P::Around, upsampleInComposite},
+                  {Res::Ssr, P::Pixel, compositeSsrRaw},
+                  {Res::SsrOpacity, P::Pixel, compositeSsrRaw},
+                  {Res::DenoisedSpecular, P::Pixel, denoiseSpecular}},
+                 {{Res::Color}, {Res::Display}}});
+    // What the next frame reads.
+    p.push_back({"history commit",
+                 commit,
+                 {{Res::Color},
+                  {Res::DenoisedDiffuse, P::Pixel, feedbackDenoised},
+                  {Res::Ssgi, P::Pixel, feedbackRaw}},
+                 {{Res::HistoryColor}, {Res::HistoryDiffuse, P::Pixel, feedback}}});
+    return p;
+}
+
+}  // namespace
+
+const ResourceDecl& resourceDecl(Res id) { return kResources[std::size_t(id)]; }
+
+const std::vector<PassDecl>& passDecls() {
+    static const std::vector<PassDecl> passes = declarePasses();
+    return passes;
+}
+
+}  // namespace ssrt

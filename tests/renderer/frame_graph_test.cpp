@@ -1,0 +1,223 @@
+// The frame graph (renderer/frame_graph.h): compiled from the declarations, its outputs are a
+// rendered frame's layers, name for name, over presets, switches, layouts and scenes; culling
+// removes what the settings turn off; transient memory is shared only between lifetimes that
+// do not overlap.
+#include "renderer/frame_graph.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "material_maps.h"
+#include "renderer/quality.h"
+#include "renderer/renderer.h"
+#include "renderer/trace_pass.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace ssrt;
+
+namespace {
+
+std::vector<std::string> frameLayerNames(const Frame& f) {
+    std::vector<std::string> out;
+    for (const PlaneRef& p : f.layers()) out.emplace_back(p.name);
+    return out;
+}
+
+RenderSettings small(Quality q) {
+    RenderSettings s;
+    applyQuality(q, s);
+    s.width = 36;
+    s.height = 20;
+    s.shadowMapSize = 64;
+    s.threads = 1;
+    return s;
+}
+
+// Every pixel of every layer a number: the planes are NaN before the render below.
+bool allFinite(const Frame& f) {
+    for (const PlaneRef& p : f.layers())
+        for (int y = 0; y < p.plane->height(); ++y)
+            for (int x = 0; x < p.plane->width(); ++x)
+                if (!std::isfinite(p.plane->at(x, y))) {
+                    MESSAGE("layer " << p.name << " not written at " << x << ", " << y);
+                    return false;
+                }
+    return true;
+}
+
+// Renders one frame (of a sequence: after a first frame, so that the history is read; or
+// alone) and checks that the graph's outputs are its layers; then renders it again into the
+// same Frame, its planes kept (Frame reuses them) but filled with NaN first, and checks that
+// every pixel of every layer was written: the graph makes no plane that no pass fills, and
+// no pass reads a plane of the frame before a pass writes it.
+void checkLayers(const RenderSettings& s, const Scene& scene, bool history) {
+    const CompiledGraph g = compileFrameGraph({s, SceneFacts::of(scene), history});
+    Frame frame;
+    const Renderer renderer(s);
+    FrameHistory h;
+    const auto render = [&](uint32_t index) {
+        if (history) renderer.render(scene, FrameInput::still(scene, index), h, frame);
+        else renderer.renderWithoutHistory(scene, FrameInput::still(scene, index), frame);
+    };
+    render(0);
+    if (history) render(1);
+    CHECK(g.layerNames() == frameLayerNames(frame));
+    for (const PlaneRef& p : frame.layers())
+        const_cast<PlaneF*>(p.plane)->fill(std::numeric_limits<float>::quiet_NaN());
+    frame.direct.forEachPlane([](std::string_view, PlaneF& p) {
+        if (!p.empty()) p.fill(std::numeric_limits<float>::quiet_NaN());
+    });
+    render(2);
+    CHECK(allFinite(frame));
+}
+
+bool anyNamed(const CompiledGraph& g, const std::string& part) {
+    const auto lower = [](std::string s) {
+        for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
+    for (const GraphResource& r : g.resources)
+        if (lower(std::string(resourceDecl(r.id).name)).find(part) != std::string::npos)
+            return true;
+    for (const GraphPass& p : g.passes)
+        if (lower(std::string(p.decl->name)).find(part) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("frame graph: the resource table is in Res order, with channel names") {
+    for (int r = 0; r < kResourceCount; ++r) CHECK(int(resourceDecl(Res(r)).id) == r);
+    CHECK(resourceDecl(Res::Normal).channelNames() ==
+          std::vector<std::string>{"normal.X", "normal.Y", "normal.Z"});
+    CHECK(resourceDecl(Res::ViewZ).channelNames() == std::vector<std::string>{"viewZ"});
+}
+
+TEST_CASE("frame graph: its outputs are the rendered frame's layers") {
+    Scene cornell = makeBuiltinScene("cornell");
+    Scene textured = makeBuiltinScene("cornell");
+    test::addMaterialMaps(textured);
+    Scene emissive = makeBuiltinScene("cornell");
+    emissive.materials[0].emissive = glm::vec3(2.0f);
+    const Scene* scenes[] = {&cornell, &textured, &emissive};
+    for (int q = 0; q < kQualityCount; ++q)
+        for (const Scene* scene : scenes)
+            for (int variant = 0; variant < 10; ++variant) {
+                RenderSettings s = small(Quality(q));
+                switch (variant) {
+                    case 1: s.debugPlanes = false; break;
+                    case 2: s.idPlanes = false, s.debugPlanes = false; break;
+                    case 3: s.trace.ssr = false; break;
+                    case 4: s.trace.ssgi = false, s.debugPlanes = false; break;
+                    case 5: s.trace.ssr = s.trace.ssgi = false; break;
+                    case 6: s.trace.denoise.enabled = false, s.debugPlanes = false; break;
+                    case 7:
+                        s.trace.ssgiLayout = TraceLayout::Checkerboard;
+                        s.trace.ssrLayout = TraceLayout::Full;
+                        s.debugPlanes = false;
+                        break;
+                    case 8:
+                        s.trace.ssgiFeedback = !s.trace.ssgiFeedback;
+                        s.trace.resolve.mode = SsrResolveMode::Reuse;
+                        break;
+                    case 9:
+                        s.trace.ssgiLayout = TraceLayout::Full;
+                        s.trace.marcher = Marcher::Linear;
+                        s.trace.march.backFaces = !s.trace.march.backFaces;
+                        s.debugPlanes = false;
+                        break;
+                    default: break;
+                }
+                for (bool history : {true, false}) {
+                    CAPTURE(q);
+                    CAPTURE(variant);
+                    CAPTURE(history);
+                    CAPTURE(scene == &textured);
+                    checkLayers(s, *scene, history);
+                }
+            }
+}
+
+TEST_CASE("frame graph: a pass the settings turn off takes its resources with it") {
+    const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
+    RenderSettings s = small(Quality::Medium);
+    REQUIRE(anyNamed(compileFrameGraph({s, facts, true}), "ssr"));
+    s.trace.ssr = false;
+    const CompiledGraph noSsr = compileFrameGraph({s, facts, true});
+    CHECK_FALSE(anyNamed(noSsr, "ssr"));
+    CHECK_FALSE(noSsr.has(Res::DenoisedSpecular));
+    CHECK(noSsr.has(Res::DenoisedDiffuse) != diffuseUpsampledInComposite(s));
+    // Planes only looked at: made when asked for, culled otherwise; the traced signals the
+    // denoiser reads stay, as transients.
+    s = small(Quality::Medium);
+    s.trace.ssgiLayout = TraceLayout::Full;
+    CHECK(compileFrameGraph({s, facts, true}).has(Res::SsrSteps));
+    s.debugPlanes = false;
+    const CompiledGraph lean = compileFrameGraph({s, facts, true});
+    CHECK_FALSE(lean.has(Res::SsrSteps));
+    CHECK_FALSE(lean.has(Res::SpecularFrames));
+    REQUIRE(lean.has(Res::Ssr));
+    CHECK(lean.find(Res::Ssr)->lifetime == Lifetime::Transient);
+    // A single image has no history: nothing of it, and no commit.
+    const CompiledGraph single = compileFrameGraph({s, facts, false});
+    CHECK(single.historyBytes == 0);
+    for (const GraphResource& r : single.resources) CHECK(r.lifetime != Lifetime::History);
+    CHECK_FALSE(anyNamed(single, "history commit"));
+    s.trace.ssgiFeedback = true;  // (the next frame reads this one's diffuse light)
+    CHECK(anyNamed(compileFrameGraph({s, facts, true}), "history commit"));
+    CHECK(compileFrameGraph({s, facts, true}).has(Res::HistoryDiffuse));
+}
+
+TEST_CASE("frame graph: transients share memory only where their lifetimes do not overlap") {
+    const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
+    for (int q = 0; q < kQualityCount; ++q) {
+        const CompiledGraph g = compileFrameGraph({small(Quality(q)), facts, true});
+        std::size_t sum = 0;
+        for (const GraphResource& a : g.resources) {
+            if (a.lifetime != Lifetime::Transient) continue;
+            sum += a.bytes;
+            REQUIRE(a.slot >= 0);
+            for (const GraphResource& b : g.resources)
+                if (&a != &b && b.lifetime == Lifetime::Transient && a.slot == b.slot) {
+                    CHECK(a.bytes == b.bytes);
+                    CHECK((a.last < b.first || b.last < a.first));
+                }
+        }
+        CHECK(g.transientBytes < sum);  // some memory is shared
+        CHECK(g.totalBytes() == g.transientBytes + g.outputBytes + g.historyBytes);
+    }
+}
+
+TEST_CASE(
+    "frame graph: a pass joins a chain only when it reads the chain's resources at its pixel") {
+    const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
+    const CompiledGraph g = compileFrameGraph({small(Quality::Medium), facts, true});
+    for (std::size_t i = 1; i < g.passes.size(); ++i) {
+        if (g.passes[i].chain != g.passes[i - 1].chain) continue;
+        // Everything it reads that its chain wrote, it reads at its own pixel.
+        for (const Access& r : g.passes[i].reads)
+            for (std::size_t j = i; j-- > 0 && g.passes[j].chain == g.passes[i].chain;)
+                for (const Access& w : g.passes[j].writes)
+                    if (w.res == r.res) CHECK(r.footprint == Footprint::Pixel);
+    }
+    // The denoiser's spatial passes read their neighbours: each starts a chain.
+    for (std::size_t i = 0; i < g.passes.size(); ++i)
+        if (g.passes[i].decl->name == std::string_view("denoise blur"))
+            CHECK(g.passes[i].chain != g.passes[i - 1].chain);
+}
+
+TEST_CASE("frame graph: DOT output names every pass and resource") {
+    const CompiledGraph g = compileFrameGraph(
+        {small(Quality::Medium), SceneFacts::of(makeBuiltinScene("cornell")), true});
+    const std::string dot = frameGraphDot(g);
+    CHECK(dot.rfind("digraph frame {", 0) == 0);
+    for (const GraphPass& p : g.passes)
+        CHECK(dot.find(std::string(p.decl->name)) != std::string::npos);
+    for (const GraphResource& r : g.resources)
+        CHECK(dot.find("\"" + std::string(resourceDecl(r.id).name) + "\\n") != std::string::npos);
+}
