@@ -183,6 +183,14 @@ struct Access {
     GraphCondition when = nullptr;  // null: always (while the pass runs)
 };
 
+// The names of the passes the renderer asks the graph about (CompiledGraph::runs), spelt
+// once for the declarations and the renderer.
+namespace pass {
+inline constexpr std::string_view kBackFaces = "back faces";
+inline constexpr std::string_view kTextures = "textures";
+inline constexpr std::string_view kIds = "ids";
+}  // namespace pass
+
 struct PassDecl {
     std::string_view name;      // as `--stats` names its time
     GraphCondition enabled;     // null: always

@@ -270,7 +270,7 @@ std::vector<PassDecl> declarePasses() {
                  nullptr,
                  {{Res::VisibilityDepth}},
                  {{Res::VisibilityDepth}, {Res::VisibilityIds}}});
-    p.push_back({"back faces",
+    p.push_back({pass::kBackFaces,
                  backFaces,
                  {{Res::VisibilityDepth}, {Res::VisibilityIds}, {Res::BackDepth}, {Res::BackIds}},
                  {{Res::BackDepth}, {Res::BackIds}, {Res::BackZ}}});
@@ -287,7 +287,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Uv0, P::Pixel, textured},
                   {Res::Uv1, P::Pixel, uvSet1},
                   {Res::Tangent, P::Pixel, normalMapped}}});
-    p.push_back({"textures",
+    p.push_back({pass::kTextures,
                  textured,
                  {{Res::Uv0},
                   {Res::Uv1, P::Pixel, uvSet1},
@@ -303,7 +303,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Normal, P::Pixel, normalMapped},
                   {Res::Emissive, P::Pixel, emissiveTextured},
                   {Res::Occlusion, P::Pixel, occlusionTextured}}});
-    p.push_back({"ids", idPlanes, {{Res::VisibilityIds}}, {{Res::InstanceId}, {Res::TriangleId}}});
+    p.push_back(
+        {pass::kIds, idPlanes, {{Res::VisibilityIds}}, {{Res::InstanceId}, {Res::TriangleId}}});
     // Direct light, sky and tone map; with a trace pass, the parts the composite rebuilds
     // the colour from.
     PassDecl shading{"shading",

@@ -32,6 +32,7 @@ namespace {
 // What every pass of one frame shares.
 struct FrameContext {
     const RenderSettings& settings;
+    const CompiledGraph& graph;  // which passes run, which planes exist
     const Camera& camera;
     Isa isa;
     int threads;
@@ -40,8 +41,10 @@ struct FrameContext {
     glm::mat4 view, proj, prevViewProj;
     TraceCamera trace;  // the camera as the kernels take it (tanHalf*, near, far, rotation)
 
-    FrameContext(const RenderSettings& s, const Scene& scene, const FrameInput& input)
+    FrameContext(const RenderSettings& s, const CompiledGraph& g, const Scene& scene,
+                 const FrameInput& input)
         : settings(s),
+          graph(g),
           camera(input.camera),
           isa(resolveIsa(s.isa)),
           threads(s.threads),
@@ -73,9 +76,6 @@ struct FrameContext {
         return ro;
     }
 };
-
-// The marchers' depth intervals (raster/back_depth.h), when a trace pass marches with them.
-bool wantsBackDepth(const RenderSettings& s) { return s.trace.any() && s.trace.march.backFaces; }
 
 // The frame's planes as the graph has them (renderer/frame_graph.h): a plane whose resource
 // the graph holds is of the frame's size (kept when it already is), the others are emptied.
@@ -141,7 +141,8 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     rasterize(scene, tv, rv, ro, frame.scratch.visibility, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
     frame.stats.passes.push_back({"visibility", rt.rasterMs});
-    if (wantsBackDepth(c.settings)) backDepthPass(c, scene, tv, rv, ro, frame);
+    // (The marchers' depth intervals, raster/back_depth.h, when a trace pass marches with them.)
+    if (c.graph.runs(pass::kBackFaces)) backDepthPass(c, scene, tv, rv, ro, frame);
 }
 
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
@@ -388,20 +389,20 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
     scene.validate();
-    const FrameContext c(settings_, scene, input);
+    const CompiledGraph graph =
+        compileFrameGraph({settings_, SceneFacts::of(scene), history != nullptr});
+    const FrameContext c(settings_, graph, scene, input);
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
-    const CompiledGraph graph =
-        compileFrameGraph({settings_, SceneFacts::of(scene), history != nullptr});
     ensurePlanes(graph, frame);
 
     shadowPass(c, scene, frame);
     visibilityPass(c, scene, frame);
-    const bool textured = anyTextured(scene);
+    const bool textured = graph.runs(pass::kTextures);
     const ResolveTables tables = resolvePass(c, scene, textured, frame);
     if (textured) texturePass(c, scene, frame);
-    if (settings_.idPlanes) idPass(c, tables.triangles, frame);
+    if (graph.runs(pass::kIds)) idPass(c, tables.triangles, frame);
     DirectLighting lighting;
     directPass(c, scene, environmentPass(c, scene, frame), input.frameIndex, frame, lighting);
     frame.camera = c.trace;
