@@ -186,7 +186,11 @@ struct Access {
 // The names of the passes the renderer asks the graph about (CompiledGraph::runs), spelt
 // once for the declarations and the renderer.
 namespace pass {
+inline constexpr std::string_view kShadow = "shadow";
+inline constexpr std::string_view kVisibility = "visibility";
 inline constexpr std::string_view kBackFaces = "back faces";
+inline constexpr std::string_view kResolve = "resolve";
+inline constexpr std::string_view kShading = "shading";
 inline constexpr std::string_view kTextures = "textures";
 inline constexpr std::string_view kIds = "ids";
 }  // namespace pass

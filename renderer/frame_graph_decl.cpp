@@ -264,9 +264,9 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
 
 std::vector<PassDecl> declarePasses() {
     std::vector<PassDecl> p;
-    p.push_back({"shadow", nullptr, {}, {{Res::ShadowMap}}});
+    p.push_back({pass::kShadow, nullptr, {}, {{Res::ShadowMap}}});
     // (The rasters read their own depth: the depth test.)
-    p.push_back({"visibility",
+    p.push_back({pass::kVisibility,
                  nullptr,
                  {{Res::VisibilityDepth}},
                  {{Res::VisibilityDepth}, {Res::VisibilityIds}}});
@@ -274,7 +274,7 @@ std::vector<PassDecl> declarePasses() {
                  backFaces,
                  {{Res::VisibilityDepth}, {Res::VisibilityIds}, {Res::BackDepth}, {Res::BackIds}},
                  {{Res::BackDepth}, {Res::BackIds}, {Res::BackZ}}});
-    p.push_back({"resolve",
+    p.push_back({pass::kResolve,
                  nullptr,
                  {{Res::VisibilityIds}},
                  {{Res::ViewZ},
@@ -307,7 +307,7 @@ std::vector<PassDecl> declarePasses() {
         {pass::kIds, idPlanes, {{Res::VisibilityIds}}, {{Res::InstanceId}, {Res::TriangleId}}});
     // Direct light, sky and tone map; with a trace pass, the parts the composite rebuilds
     // the colour from.
-    PassDecl shading{"shading",
+    PassDecl shading{pass::kShading,
                      nullptr,
                      {{Res::ShadowMap, P::Anywhere},
                       {Res::MaterialId},

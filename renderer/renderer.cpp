@@ -16,6 +16,7 @@
 #include "raster/shadow_map.h"
 #include "renderer/direct_lighting.h"
 #include "renderer/frame_graph.h"
+#include "renderer/frame_scheduler.h"
 #include "renderer/memory_use.h"
 #include "renderer/pass_timer.h"
 #include "renderer/resolve_tables.h"
@@ -148,11 +149,10 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
 static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
 static_assert(sizeof(Frame::Scratch::tangent) / sizeof(PlaneF) == kResolveTangentOutputs);
 
-// The G-buffer of the visible pixels (and their UVs for the texture pass).
-ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textured, Frame& frame) {
-    const ScopedPass timer(frame.stats, "resolve");
-    ResolveTables tables =
-        buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
+// The resolve's arguments: the G-buffer of the visible pixels (and their UVs and tangent
+// frames for the texture pass), from the visibility buffer and the scene's tables.
+ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool textured,
+                        Frame& frame) {
     GBuffer& g = frame.gbuffer;
     ResolveArgs ra{};
     ra.triangles = tables.triangles.data();
@@ -200,15 +200,12 @@ ResolveTables resolvePass(const FrameContext& c, const Scene& scene, bool textur
                 ra.out[kResolveOutputs + planes + i] = p.row(0);
             }
     }
-    const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { resolve(ra, tile); });
-    return tables;
+    return ra;
 }
 
-// Base colour, metallic-roughness and normal-map texels into the G-buffer; emission and
-// occlusion into the material planes.
-void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
-    const ScopedPass timer(frame.stats, "textures");
+// The texture pass's planes: base colour, metallic-roughness and normal-map texels into the
+// G-buffer; emission and occlusion into the material planes.
+TexturePlanes texturePlanes(const Scene& scene, Frame& frame) {
     GBuffer& g = frame.gbuffer;
     TexturePlanes tp;
     const int sets = anyUvSet1(scene) ? 2 : 1;
@@ -228,24 +225,22 @@ void texturePass(const FrameContext& c, const Scene& scene, Frame& frame) {
     if (!m.emission[0].empty())
         for (int i = 0; i < 3; ++i) tp.emission[i] = &m.emission[i];
     if (!m.occlusion.empty()) tp.occlusion = &m.occlusion;
-    applyTextures(scene, tp, c.grid, c.threads);
+    return tp;
 }
 
-// Instance and triangle ids as float planes, from the visibility buffer.
-void idPass(const FrameContext& c, const std::vector<ResolveTriangle>& tris, Frame& frame) {
-    const ScopedPass timer(frame.stats, "ids");
+// One tile of the instance and triangle ids as float planes, from the visibility buffer.
+void idTile(const TileGrid& grid, const std::vector<ResolveTriangle>& tris, Frame& frame,
+            int tile) {
     const PlaneU32& ids = frame.scratch.visibility.ids;
     IdPlanes& out = frame.ids;
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
-        const TileRect r = c.grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) {
-                const uint32_t id = ids.at(x, y);
-                const bool hit = id != kNoPrimitive;
-                out.instanceId.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
-                out.triangleId.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
-            }
-    });
+    const TileRect r = grid.rect(tile);
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            const uint32_t id = ids.at(x, y);
+            const bool hit = id != kNoPrimitive;
+            out.instanceId.at(x, y) = hit ? float(tris[id].instance) : -1.0f;
+            out.triangleId.at(x, y) = hit ? float(tris[id].localTriangle) : -1.0f;
+        }
 }
 
 // An equirect sky's prefiltered levels and irradiance: built on its first frame, then taken
@@ -257,12 +252,12 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
     return cachedSkyLighting(scene.sky.image, c.threads);
 }
 
-// Direct light, sky and tone map into frame.image; with a trace pass on, the parts the
-// composite rebuilds the colour from (frame.direct; shading/direct_kernel.h) instead of the
-// tone map, which the composite does.
-void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const SkyLighting> sky,
-                uint32_t frameIndex, Frame& frame, DirectLighting& lighting) {
-    const ScopedPass timer(frame.stats, "shading");
+// The direct pass's arguments: direct light, sky and tone map into frame.image; with a trace
+// pass on, the parts the composite rebuilds the colour from (frame.direct;
+// shading/direct_kernel.h) instead of the tone map, which the composite does.
+void setDirectArgs(const FrameContext& c, const Scene& scene,
+                   std::shared_ptr<const SkyLighting> sky, uint32_t frameIndex, Frame& frame,
+                   DirectLighting& lighting) {
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
@@ -309,8 +304,6 @@ void directPass(const FrameContext& c, const Scene& scene, std::shared_ptr<const
             da.halfOffsetY = o.y;
         }
     }
-    const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { shade(da, tile); });
 }
 
 }  // namespace
@@ -397,14 +390,34 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
     ensurePlanes(graph, frame);
 
-    shadowPass(c, scene, frame);
-    visibilityPass(c, scene, frame);
+    // The passes up to the direct light: the rasters over the whole frame, then the resolve,
+    // textures, ids and shading tile by tile, one loop, as the graph chains them.
+    FrameScheduler passes(graph, c.grid, c.threads);
+    passes.whole(pass::kShadow, [&] { shadowPass(c, scene, frame); });
+    passes.whole(pass::kVisibility, [&] { visibilityPass(c, scene, frame); });
     const bool textured = graph.runs(pass::kTextures);
-    const ResolveTables tables = resolvePass(c, scene, textured, frame);
-    if (textured) texturePass(c, scene, frame);
-    if (graph.runs(pass::kIds)) idPass(c, tables.triangles, frame);
+    ResolveTables tables;
+    ResolveArgs ra{};
+    const auto resolve = SSRT_DISPATCH(c.isa, resolveTile);
+    passes.tiled(
+        pass::kResolve, [&](int tile) { resolve(ra, tile); },
+        [&] {
+            tables =
+                buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
+            ra = resolveArgs(c, tables, textured, frame);
+        });
+    TexturePlanes tp;
+    passes.tiled(
+        pass::kTextures, [&](int tile) { applyTexturesTile(scene, tp, c.grid, tile); },
+        [&] { tp = texturePlanes(scene, frame); });
+    passes.tiled(pass::kIds, [&](int tile) { idTile(c.grid, tables.triangles, frame, tile); });
     DirectLighting lighting;
-    directPass(c, scene, environmentPass(c, scene, frame), input.frameIndex, frame, lighting);
+    const std::shared_ptr<const SkyLighting> sky = environmentPass(c, scene, frame);
+    const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
+    passes.tiled(
+        pass::kShading, [&](int tile) { shade(lighting.args, tile); },
+        [&] { setDirectArgs(c, scene, sky, input.frameIndex, frame, lighting); });
+    passes.run(frame.stats);
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {

@@ -69,13 +69,11 @@ void texturePixel(const Scene& scene, const TexturePlanes& p, int x, int y) {
 
 }  // namespace
 
-void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
-                   int threads) {
-    parallelForTiles(grid.count(), threads, [&](int tile) {
-        const TileRect r = grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x) texturePixel(scene, planes, x, y);
-    });
+void applyTexturesTile(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
+                       int tile) {
+    const TileRect r = grid.rect(tile);
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) texturePixel(scene, planes, x, y);
 }
 
 }  // namespace ssrt

@@ -33,7 +33,9 @@ struct TexturePlanes {
     PlaneF* occlusion = nullptr;
 };
 
-void applyTextures(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
-                   int threads);
+// One tile of the pass (the frame scheduler runs it with the resolve and the shading,
+// renderer/frame_scheduler.h).
+void applyTexturesTile(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
+                       int tile);
 
 }  // namespace ssrt

@@ -1,0 +1,85 @@
+#include "renderer/frame_scheduler.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "renderer/pass_timer.h"
+
+namespace ssrt {
+
+void FrameScheduler::whole(std::string_view pass, std::function<void()> run) {
+    passes_.push_back({pass, std::move(run), {}, {}});
+}
+
+void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
+                           std::function<void()> setUp) {
+    passes_.push_back({pass, {}, std::move(setUp), std::move(tile)});
+}
+
+// The chain's set-ups in order, then one loop over the tiles, each tile through every pass.
+// Each pass's time is its busy time over the tiles, scaled so that the passes add up to the
+// loop's wall time (the threads' time shared out as they spent it).
+void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats& stats) {
+    using Clock = std::chrono::steady_clock;
+    std::vector<double> setUpMs(chain.size(), 0.0);
+    for (std::size_t i = 0; i < chain.size(); ++i)
+        if (chain[i]->setUp) addTime(setUpMs[i], chain[i]->setUp);
+    const Clock::time_point t1 = Clock::now();
+    const std::size_t n = chain.size();
+    std::vector<double> busy(std::size_t(grid_.count()) * n, 0.0);
+    parallelForTiles(grid_.count(), threads_, [&](int tile) {
+        Clock::time_point a = Clock::now();
+        for (std::size_t i = 0; i < n; ++i) {
+            chain[i]->tile(tile);
+            const Clock::time_point b = Clock::now();
+            busy[std::size_t(tile) * n + i] =
+                std::chrono::duration<double, std::milli>(b - a).count();
+            a = b;
+        }
+    });
+    const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
+    std::vector<double> ms(n, 0.0);
+    double sum = 0.0;
+    for (std::size_t t = 0; t < std::size_t(grid_.count()); ++t)
+        for (std::size_t i = 0; i < n; ++i) ms[i] += busy[t * n + i], sum += busy[t * n + i];
+    const double k = sum > 0.0 ? wall / sum : 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        stats.passes.push_back({std::string(chain[i]->name), setUpMs[i] + ms[i] * k});
+}
+
+void FrameScheduler::run(FrameStats& stats) {
+    for (const Pass& p : passes_)
+        if (std::none_of(graph_.passes.begin(), graph_.passes.end(),
+                         [&](const GraphPass& g) { return g.decl->name == p.name; }) &&
+            std::none_of(passDecls().begin(), passDecls().end(),
+                         [&](const PassDecl& d) { return d.name == p.name; }))
+            throw std::logic_error("frame scheduler: no pass '" + std::string(p.name) +
+                                   "' in the frame graph");
+    std::vector<const Pass*> chain;
+    int chainId = -1;
+    const auto flush = [&] {
+        if (!chain.empty()) runChain(chain, stats);
+        chain.clear();
+    };
+    for (const GraphPass& g : graph_.passes) {
+        const auto p = std::find_if(passes_.begin(), passes_.end(),
+                                    [&](const Pass& q) { return q.name == g.decl->name; });
+        if (p == passes_.end()) {  // (run elsewhere: a chain does not reach across it)
+            flush();
+            continue;
+        }
+        if (p->whole) {
+            flush();
+            p->whole();
+            continue;
+        }
+        if (g.chain != chainId) flush();
+        chainId = g.chain;
+        chain.push_back(&*p);
+    }
+    flush();
+}
+
+}  // namespace ssrt

@@ -1,0 +1,52 @@
+// Runs a frame's passes in the frame graph's order (renderer/frame_graph.h), and the passes of
+// one chain that run tile by tile as one loop over the tiles: each tile goes through every
+// pass of the chain while its pixels are in cache, and no pass waits for the whole frame of
+// the one before. The graph's chains say where that is allowed (a pass reads what its chain
+// wrote only at its own pixel); a tile kernel writes only its own tile, so the bits do not
+// depend on the order the threads take the tiles in (core/tiles.h).
+//
+// (The first form of the scheduler the design page describes: no halo yet, so a pass that
+// reads around its pixel starts a chain of its own.)
+#pragma once
+
+#include <functional>
+#include <string_view>
+#include <vector>
+
+#include "core/tiles.h"
+#include "renderer/frame.h"
+#include "renderer/frame_graph.h"
+
+namespace ssrt {
+
+class FrameScheduler {
+public:
+    FrameScheduler(const CompiledGraph& graph, const TileGrid& grid, int threads)
+        : graph_(graph), grid_(grid), threads_(threads) {}
+
+    // A pass that runs over the whole frame by itself (and times itself).
+    void whole(std::string_view pass, std::function<void()> run);
+    // A pass that runs tile by tile: `setUp` (optional) before the chain's first tile, then
+    // `tile` for each tile. Its time is its share of the chain's loop.
+    void tiled(std::string_view pass, std::function<void(int tile)> tile,
+               std::function<void()> setUp = {});
+
+    // Runs the passes given, those the graph runs, in the graph's order (std::logic_error for
+    // a pass the graph does not know); adds the tiled passes' times to `stats`.
+    void run(FrameStats& stats);
+
+private:
+    struct Pass {
+        std::string_view name;
+        std::function<void()> whole, setUp;
+        std::function<void(int)> tile;
+    };
+    void runChain(const std::vector<const Pass*>& chain, FrameStats& stats);
+
+    const CompiledGraph& graph_;
+    TileGrid grid_;
+    int threads_;
+    std::vector<Pass> passes_;
+};
+
+}  // namespace ssrt
