@@ -103,9 +103,10 @@ int runGraph(const GraphOptions& o, std::ostream& out, std::ostream& err) {
         writeOptionsFrom(o.render, request.settings, o.render.output, err);
     planesForFile(o.render.output, writeOptions.layers, request.settings);
     loadScene(request, err);
+    // (The graph of a sequence's middle frame: the last one's history read and its own kept.)
     const bool sequence = plan.frames + plan.warmup > 1;
     const CompiledGraph g =
-        compileFrameGraph({request.settings, SceneFacts::of(request.scene), sequence});
+        compileFrameGraph({request.settings, SceneFacts::of(request.scene), sequence, sequence});
     if (o.dot) out << frameGraphDot(g);
     else printTable(g, request, sequence, out);
     return kExitOk;

@@ -308,10 +308,12 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
 }
 
 // What the frame holds, by resource group: bytes per pixel of the frame, and megabytes.
-void printMemory(std::ostream& out, const std::vector<MemoryUse>& memory, double pixels) {
+// One table of memory rows and their sum, under `title`.
+void printMemory(std::ostream& out, const char* title, const std::vector<MemoryUse>& memory,
+                 double pixels) {
     out << "\n"
-        << std::left << std::setw(kLabelWidth + 2) << "memory" << std::right
-        << std::setw(kValueWidth) << "B/pixel" << std::setw(kValueWidth) << "MB"
+        << std::left << std::setw(kLabelWidth + 2) << title << std::right << std::setw(kValueWidth)
+        << "B/pixel" << std::setw(kValueWidth) << "MB"
         << "\n";
     std::size_t sum = 0;
     const auto row = [&](const std::string& label, std::size_t bytes) {
@@ -358,7 +360,9 @@ void printStats(std::ostream& out, const FrameStats& stats, double pixels, doubl
                      << std::setw(kValueWidth) << stats.shadow.*c.field << "\n";
     }
     if (stats.ssr.ran || stats.ssgi.ran) printTraceStats(out, stats);
-    if (!stats.memory.empty() && pixels > 0) printMemory(out, stats.memory, pixels);
+    if (!stats.memory.empty() && pixels > 0) printMemory(out, "memory", stats.memory, pixels);
+    if (!stats.declared.empty() && pixels > 0)
+        printMemory(out, "memory the frame graph declares", stats.declared, pixels);
     out.copyfmt(saved);
 }
 

@@ -245,6 +245,9 @@ struct MemoryUse {
 struct FrameStats {
     std::vector<PassTime> passes;
     std::vector<MemoryUse> memory;  // after the frame: its groups, scratch and history
+    // What the frame graph declares for the same frame (renderer/frame_graph.h, `ssrt graph`):
+    // transient memory after reuse, outputs, history; at the declared formats, no padding.
+    std::vector<MemoryUse> declared;
     TraceStats ssr, ssgi;
     RasterStats visibility;  // camera pass
     RasterStats shadow;      // light pass

@@ -189,8 +189,14 @@ void markChains(std::vector<GraphPass>& passes) {
     }
 }
 
-// Transient memory: each transient takes the first slot of its size whose last user ran
-// before its first pass (lifetimes as intervals over the pass order).
+// Planes a resource takes (a unit vector's three channels share one plane of oct16).
+int planesOf(const ResourceDecl& d) {
+    return d.format == ResourceFormat::OctSnorm16 ? (d.channelCount() + 2) / 3 : d.channelCount();
+}
+
+// Transient memory, plane by plane as the renderer's pool hands planes on: each of a
+// transient's planes takes the first plane of its size whose last user ran before the
+// transient's first pass (lifetimes as intervals over the pass order), else a new one.
 std::size_t assignSlots(std::vector<GraphResource>& resources) {
     struct Slot {
         std::size_t bytes;
@@ -204,15 +210,19 @@ std::size_t assignSlots(std::vector<GraphResource>& resources) {
         [](const GraphResource* a, const GraphResource* b) { return a->first < b->first; });
     std::vector<Slot> slots;
     for (GraphResource* r : order) {
-        auto s = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) {
-            return s.bytes == r->bytes && s.freeAfter < r->first;
-        });
-        if (s == slots.end()) {
-            slots.push_back({r->bytes, r->last});
-            r->slot = int(slots.size()) - 1;
-        } else {
-            s->freeAfter = r->last;
-            r->slot = int(s - slots.begin());
+        const int planes = planesOf(resourceDecl(r->id));
+        const std::size_t bytes = r->bytes / std::size_t(planes);
+        for (int i = 0; i < planes; ++i) {
+            auto s = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) {
+                return s.bytes == bytes && s.freeAfter < r->first;
+            });
+            if (s == slots.end()) {
+                slots.push_back({bytes, r->last});
+                r->slots.push_back(int(slots.size()) - 1);
+            } else {
+                s->freeAfter = r->last;
+                r->slots.push_back(int(s - slots.begin()));
+            }
         }
     }
     std::size_t total = 0;

@@ -67,9 +67,11 @@ struct SceneFacts {
 struct GraphKey {
     RenderSettings settings;
     SceneFacts scene;
-    // A sequence with a history (FrameHistory): the passes that read the last frame's
-    // resources and the commit of this frame's run. false: a single image.
+    // The last frame's history is read (FrameHistory, usable at this size, no cut).
     bool history = true;
+    // This frame's history is kept for the next (FrameInput::replaceHistory with a history
+    // given). Both false: a single image.
+    bool keepHistory = true;
 };
 
 using GraphCondition = bool (*)(const GraphKey&);
@@ -215,7 +217,9 @@ struct GraphResource {
     Lifetime lifetime;          // the declared one, or transient for an output not handed out
     int first = -1, last = -1;  // indices into CompiledGraph::passes: the writer, the last reader
     std::size_t bytes = 0;      // at the graph's size, without row padding
-    int slot = -1;              // transient: the memory it shares with others of its size
+    // Transient: the planes of memory it takes, one per plane it holds, each shared with
+    // transients of that plane size whose lifetimes do not overlap its own.
+    std::vector<int> slots;
 };
 
 struct GraphPass {

@@ -67,17 +67,23 @@ bool denoiseSpecular(const GraphKey& k) { return denoise(k) && ssr(k); }
 bool denoiseFullDiffuse(const GraphKey& k) { return denoise(k) && fullSsgi(k); }
 bool denoiseFull(const GraphKey& k) { return denoiseSpecular(k) || denoiseFullDiffuse(k); }
 bool denoiseHalf(const GraphKey& k) { return denoise(k) && halfSsgi(k); }
-bool historyFull(const GraphKey& k) { return k.history && denoiseFull(k); }
-bool historyHalf(const GraphKey& k) { return k.history && denoiseHalf(k); }
-bool historySpecular(const GraphKey& k) { return k.history && denoiseSpecular(k); }
-bool historyFullDiffuse(const GraphKey& k) { return k.history && denoiseFullDiffuse(k); }
+// The denoiser's history: read (the last frame's), kept (this frame's, for the next).
+bool readFull(const GraphKey& k) { return k.history && denoiseFull(k); }
+bool readHalf(const GraphKey& k) { return k.history && denoiseHalf(k); }
+bool readSpecular(const GraphKey& k) { return k.history && denoiseSpecular(k); }
+bool readFullDiffuse(const GraphKey& k) { return k.history && denoiseFullDiffuse(k); }
+bool keepFull(const GraphKey& k) { return k.keepHistory && denoiseFull(k); }
+bool keepHalf(const GraphKey& k) { return k.keepHistory && denoiseHalf(k); }
+bool keepSpecular(const GraphKey& k) { return k.keepHistory && denoiseSpecular(k); }
+bool keepFullDiffuse(const GraphKey& k) { return k.keepHistory && denoiseFullDiffuse(k); }
 bool upsampleInComposite(const GraphKey& k) { return diffuseUpsampledInComposite(k.settings); }
 bool denoiseUpsample(const GraphKey& k) { return denoiseHalf(k) && !upsampleInComposite(k); }
 bool compositeSsgiRaw(const GraphKey& k) { return ssgi(k) && !denoise(k); }
 bool compositeSsrRaw(const GraphKey& k) { return ssr(k) && !denoise(k); }
-bool commit(const GraphKey& k) { return k.history && trace(k) && readsHistory(tr(k)); }
-bool feedbackDenoised(const GraphKey& k) { return feedback(k) && denoise(k); }
-bool feedbackRaw(const GraphKey& k) { return feedback(k) && !denoise(k); }
+bool commit(const GraphKey& k) { return k.keepHistory && trace(k) && readsHistory(tr(k)); }
+bool keepDiffuse(const GraphKey& k) { return k.keepHistory && ssgi(k) && tr(k).ssgiFeedback; }
+bool keepDenoised(const GraphKey& k) { return keepDiffuse(k) && denoise(k); }
+bool keepRaw(const GraphKey& k) { return keepDiffuse(k) && !denoise(k); }
 
 // --- The resource table, in Res order ---
 // (Every resource is f32 today but the ids, which are u32: the formats the data needs come
@@ -195,7 +201,7 @@ struct DenoiseSite {
     GraphCondition signal[2];
     Res pingPong, state[2], outputs[2], frames[2];
     Res history[3];  // guides, diffuse, specular (Res::Count: none)
-    GraphCondition historyOn[3];
+    GraphCondition historyRead[3], historyKept[3];
 };
 
 // Names made once, with the list of passes (which keeps views of them).
@@ -244,7 +250,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     append(temporal.writes, state);
     for (int i = 0; i < 3; ++i)
         if (s.history[i] != Res::Count)
-            temporal.reads.push_back({s.history[i], P::Anywhere, s.historyOn[i]});
+            temporal.reads.push_back({s.history[i], P::Anywhere, s.historyRead[i]});
     passes.push_back(temporal);
     passes.push_back(spatial("denoise history fix", {{s.pingPong, P::Around}}));
     passes.push_back(spatial("denoise blur", {{s.pingPong, P::Around}}));
@@ -258,7 +264,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     }
     for (int i = 0; i < 3; ++i)
         if (s.history[i] != Res::Count)
-            post.writes.push_back({s.history[i], P::Pixel, s.historyOn[i]});
+            post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
     passes.push_back(post);
 }
 
@@ -448,7 +454,8 @@ std::vector<PassDecl> declarePasses() {
         {Res::DenoisedDiffuse, Res::DenoisedSpecular},
         {Res::DiffuseFrames, Res::SpecularFrames},
         {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
-        {historyFull, historyFullDiffuse, historySpecular}};
+        {readFull, readFullDiffuse, readSpecular},
+        {keepFull, keepFullDiffuse, keepSpecular}};
     gbufferReads(full.guides);
     full.guides.push_back({Res::Motion});
     addDenoiser(p, full);
@@ -464,7 +471,8 @@ std::vector<PassDecl> declarePasses() {
                            {Res::HalfDenoised, Res::Count},
                            {Res::Count, Res::Count},
                            {Res::HalfDenoiseHistory, Res::Count, Res::Count},
-                           {historyHalf, nullptr, nullptr}};
+                           {readHalf, nullptr, nullptr},
+                           {keepHalf, nullptr, nullptr}};
     addDenoiser(p, half);
     p.push_back({"denoise upsample",
                  denoiseUpsample,
@@ -499,9 +507,9 @@ std::vector<PassDecl> declarePasses() {
     p.push_back({"history commit",
                  commit,
                  {{Res::Color},
-                  {Res::DenoisedDiffuse, P::Pixel, feedbackDenoised},
-                  {Res::Ssgi, P::Pixel, feedbackRaw}},
-                 {{Res::HistoryColor}, {Res::HistoryDiffuse, P::Pixel, feedback}}});
+                  {Res::DenoisedDiffuse, P::Pixel, keepDenoised},
+                  {Res::Ssgi, P::Pixel, keepRaw}},
+                 {{Res::HistoryColor}, {Res::HistoryDiffuse, P::Pixel, keepDiffuse}}});
     return p;
 }
 

@@ -382,8 +382,10 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
     scene.validate();
-    const CompiledGraph graph =
-        compileFrameGraph({settings_, SceneFacts::of(scene), history != nullptr});
+    const bool readsLast =
+        history && !input.resetHistory && history->usableAt(settings_.width, settings_.height);
+    const CompiledGraph graph = compileFrameGraph(
+        {settings_, SceneFacts::of(scene), readsLast, history && input.replaceHistory});
     const FrameContext c(settings_, graph, scene, input);
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
@@ -432,6 +434,9 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
             commitHistory(settings_.trace, frame, *history);
     }
     frame.stats.memory = memoryUse(frame, history);
+    frame.stats.declared = {{"transient, reused", graph.transientBytes},
+                            {"outputs", graph.outputBytes},
+                            {"history", graph.historyBytes}};
 }
 
 }  // namespace ssrt

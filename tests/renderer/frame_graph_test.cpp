@@ -50,29 +50,45 @@ bool allFinite(const Frame& f) {
     return true;
 }
 
-// Renders one frame (of a sequence: after a first frame, so that the history is read; or
-// alone) and checks that the graph's outputs are its layers; then renders it again into the
-// same Frame, its planes kept (Frame reuses them) but filled with NaN first, and checks that
-// every pixel of every layer was written: the graph makes no plane that no pass fills, and
-// no pass reads a plane of the frame before a pass writes it.
-void checkLayers(const RenderSettings& s, const Scene& scene, bool history) {
-    const CompiledGraph g = compileFrameGraph({s, SceneFacts::of(scene), history});
+// How a frame meets its history: none (a single image), the first of a sequence (nothing to
+// read, its own kept), a middle one (read and kept), the last one (read, not replaced).
+struct HistoryCase {
+    bool read, keep;
+};
+constexpr HistoryCase kHistoryCases[] = {
+    {false, false}, {false, true}, {true, true}, {true, false}};
+
+// Renders a frame as `hc` says and checks that the graph's outputs are its layers; then
+// renders it again into the same Frame, its planes kept (Frame reuses them) but filled with
+// NaN first, and checks that every pixel of every layer was written: the graph makes no
+// plane that no pass fills, and no pass reads a plane of the frame before a pass writes it.
+void checkLayers(const RenderSettings& s, const Scene& scene, HistoryCase hc) {
+    const CompiledGraph g = compileFrameGraph({s, SceneFacts::of(scene), hc.read, hc.keep});
     Frame frame;
     const Renderer renderer(s);
     FrameHistory h;
     const auto render = [&](uint32_t index) {
-        if (history) renderer.render(scene, FrameInput::still(scene, index), h, frame);
-        else renderer.renderWithoutHistory(scene, FrameInput::still(scene, index), frame);
+        if (!hc.read && !hc.keep) {
+            renderer.renderWithoutHistory(scene, FrameInput::still(scene, index), frame);
+            return;
+        }
+        if (hc.read) {  // a first frame to read
+            FrameInput first = FrameInput::still(scene, index + 100);
+            renderer.render(scene, first, h, frame);
+        }
+        FrameInput in = FrameInput::still(scene, index);
+        in.replaceHistory = hc.keep;
+        renderer.render(scene, in, h, frame);
     };
     render(0);
-    if (history) render(1);
     CHECK(g.layerNames() == frameLayerNames(frame));
     for (const PlaneRef& p : frame.layers())
         const_cast<PlaneF*>(p.plane)->fill(std::numeric_limits<float>::quiet_NaN());
     frame.direct.forEachPlane([](std::string_view, PlaneF& p) {
         if (!p.empty()) p.fill(std::numeric_limits<float>::quiet_NaN());
     });
-    render(2);
+    h = FrameHistory();
+    render(1);
     CHECK(allFinite(frame));
 }
 
@@ -133,12 +149,13 @@ TEST_CASE("frame graph: its outputs are the rendered frame's layers") {
                         break;
                     default: break;
                 }
-                for (bool history : {true, false}) {
+                for (const HistoryCase hc : kHistoryCases) {
                     CAPTURE(q);
                     CAPTURE(variant);
-                    CAPTURE(history);
+                    CAPTURE(hc.read);
+                    CAPTURE(hc.keep);
                     CAPTURE(scene == &textured);
-                    checkLayers(s, *scene, history);
+                    checkLayers(s, *scene, hc);
                 }
             }
 }
@@ -164,8 +181,10 @@ TEST_CASE("frame graph: a pass the settings turn off takes its resources with it
     REQUIRE(lean.has(Res::Ssr));
     CHECK(lean.find(Res::Ssr)->lifetime == Lifetime::Transient);
     // A single image has no history: nothing of it, and no commit.
-    const CompiledGraph single = compileFrameGraph({s, facts, false});
+    const CompiledGraph single = compileFrameGraph({s, facts, false, false});
     CHECK(single.historyBytes == 0);
+    // The last frame of a sequence reads the history and keeps none: no commit.
+    CHECK_FALSE(compileFrameGraph({s, facts, true, false}).runs("history commit"));
     for (const GraphResource& r : single.resources) CHECK(r.lifetime != Lifetime::History);
     CHECK_FALSE(anyNamed(single, "history commit"));
     s.trace.ssgiFeedback = true;  // (the next frame reads this one's diffuse light)
@@ -179,14 +198,18 @@ TEST_CASE("frame graph: transients share memory only where their lifetimes do no
         const CompiledGraph g = compileFrameGraph({small(Quality(q)), facts, true});
         std::size_t sum = 0;
         for (const GraphResource& a : g.resources) {
-            if (a.lifetime != Lifetime::Transient) continue;
+            if (a.lifetime != Lifetime::Transient) {
+                CHECK(a.slots.empty());
+                continue;
+            }
             sum += a.bytes;
-            REQUIRE(a.slot >= 0);
+            REQUIRE(a.slots.size() == std::size_t(resourceDecl(a.id).channelCount()));
             for (const GraphResource& b : g.resources)
-                if (&a != &b && b.lifetime == Lifetime::Transient && a.slot == b.slot) {
-                    CHECK(a.bytes == b.bytes);
-                    CHECK((a.last < b.first || b.last < a.first));
-                }
+                for (int slot : a.slots)
+                    if (&a != &b && std::count(b.slots.begin(), b.slots.end(), slot) > 0) {
+                        CHECK(a.bytes / a.slots.size() == b.bytes / b.slots.size());
+                        CHECK((a.last < b.first || b.last < a.first));
+                    }
         }
         CHECK(g.transientBytes < sum);  // some memory is shared
         CHECK(g.totalBytes() == g.transientBytes + g.outputBytes + g.historyBytes);

@@ -19,7 +19,7 @@ CompiledGraph mediumGraph() {
     s.width = 200;
     s.height = 130;      // 4 x 3 tiles
     s.idPlanes = false;  // (the id pass would run between the resolve and the shading)
-    return compileFrameGraph({s, SceneFacts::of(makeBuiltinScene("cornell")), false});
+    return compileFrameGraph({s, SceneFacts::of(makeBuiltinScene("cornell")), false, false});
 }
 
 }  // namespace
