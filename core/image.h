@@ -56,6 +56,8 @@ private:
 
 using PlaneF = Plane<float>;
 using PlaneU32 = Plane<uint32_t>;
+using PlaneU16 = Plane<uint16_t>;  // f16 bits, u16, one channel of oct16 (core/pixel_formats.h)
+using PlaneU8 = Plane<uint8_t>;    // unorm8, u8
 
 // A float plane with a name ("viewZ", "normal.X", ...), as the renderer hands them out.
 struct NamedPlane {
@@ -88,8 +90,12 @@ struct InterleavedImage {
 // FNV-1a over the visible pixels (padding excluded), for golden hashes.
 uint64_t hashPlane(const PlaneF& plane, uint64_t seed = 0xcbf29ce484222325ull);
 uint64_t hashPlane(const PlaneU32& plane, uint64_t seed = 0xcbf29ce484222325ull);
+uint64_t hashPlane(const PlaneU16& plane, uint64_t seed = 0xcbf29ce484222325ull);
+uint64_t hashPlane(const PlaneU8& plane, uint64_t seed = 0xcbf29ce484222325ull);
 
 extern template class Plane<float>;
 extern template class Plane<uint32_t>;
+extern template class Plane<uint16_t>;
+extern template class Plane<uint8_t>;
 
 }  // namespace ssrt

@@ -1,0 +1,199 @@
+// The pixel format conversions of core/pixel_formats.h, written once over the lane type
+// (`float` or `xsimd::batch<float, A>`). Float operations are the correctly rounded ones only
+// (+ - * /, sqrt, floor, compare, select), the rest is exact integer and bit work, so every
+// ISA gives the scalar copy's bits. Codes travel in int32 lanes (IntOf<L>); narrowing them to
+// their 8- or 16-bit storage is the caller's (core/pixel_formats_kernel.cpp).
+//
+// No GLM and nothing that is not templated on the lane type: this is compiled per ISA.
+#pragma once
+
+#include "core/lanes.h"
+
+namespace ssrt::lanes {
+
+// ---- f16: IEEE 754-2008 binary16 -----------------------------------------------------------
+// After F. Giesen's float_to_half_fast3_rtne and half_to_float ("Half to float done quick",
+// 2012, public domain), with F16C's NaN rule: the payload's top bits are kept and quieted.
+// The same code on every ISA (F16C and FCVT are not used; the test holds them to the same
+// bits). It makes no float subnormal and needs none: flush-to-zero modes change nothing.
+
+// Binary16 bits (in [0, 65535]) of x, rounded to nearest even.
+template <class L>
+SSRT_INLINE IntOf<L> f16Bits(L x) {
+    using I = IntOf<L>;
+    const I bits = lanes::bitsOf(x);
+    const I sign = (bits >> 16) & I(0x8000);
+    const I a = bits & I(0x7fffffff);  // |x|, as bits
+    // |x| < 2^-14: the result is subnormal or zero. Adding 0.5 (ulp 2^-24, the subnormal
+    // step) rounds |x| to a multiple of 2^-24, to nearest even by the float addition itself;
+    // the bits above 0.5's are the half's (2^-14 comes out as 0x0400, the smallest normal).
+    const I sub = lanes::bitsOf(lanes::floatFromBits(a) + L(0.5f)) - I(126 << 23);
+    // Normal: rebias the exponent (127 -> 15) and round the 13 dropped bits to nearest even:
+    // add 0xfff plus the kept mantissa's lowest bit, then shift. A carry out of the mantissa
+    // steps the exponent, up to 0x7c00 (infinity) for |x| in [65520, 65536).
+    const I odd = (a >> 13) & I(1);
+    const I normal = (a + I(((15 - 127) << 23) + 0xfff) + odd) >> 13;
+    // |x| >= 65536 (2^16) is infinity, NaN keeps its sign and top payload bits, quieted.
+    const I nan = I(0x7e00) | ((a >> 13) & I(0x3ff));
+    const I big = lanes::select(a > I(0x7f800000), nan, I(0x7c00));
+    const I h = lanes::select(a >= I(143 << 23), big, lanes::select(a < I(113 << 23), sub, normal));
+    return h | sign;
+}
+
+// The float of binary16 bits h (in [0, 65535]): exact; a NaN comes back quieted.
+template <class L>
+SSRT_INLINE L f16Value(IntOf<L> h) {
+    using I = IntOf<L>;
+    const I o = (h & I(0x7fff)) << 13;  // exponent and mantissa in the float's place
+    const I e = o & I(0x7c00 << 13);
+    const I rebiased = o + I((127 - 15) << 23);
+    // Infinity and NaN: exponent 255; a NaN's quiet bit set (x86 and aarch64 both do)
+    const I special =
+        (rebiased + I((128 - 16) << 23)) | lanes::select(o > I(0x7c00 << 13), I(0x00400000), I(0));
+    // Zero and subnormals: m 2^-24 = (1 + m / 1024) 2^-14 - 2^-14, exact
+    const I sub = lanes::bitsOf(lanes::floatFromBits(rebiased + I(1 << 23)) -
+                                lanes::floatFromBits(I(113 << 23)));
+    const I r =
+        lanes::select(e == I(0x7c00 << 13), special, lanes::select(e == I(0), sub, rebiased));
+    return lanes::floatFromBits(r | ((h & I(0x8000)) << 16));
+}
+
+// ---- unorm8 --------------------------------------------------------------------------------
+
+// The integer nearest to 255 x, x clamped to [0, 1] (NaN to 0), from the exact product.
+template <class L>
+SSRT_INLINE IntOf<L> unorm8Bits(L x) {
+    using I = IntOf<L>;
+    x = lanes::select(x > L(0.0f), x, L(0.0f));
+    x = lanes::select(x < L(1.0f), x, L(1.0f));
+    // 255 x = 256 x - x = hi + lo exactly (256 x is exact; Fast2Sum, Dekker 1971, since
+    // |256 x| >= |x|): hi the float sum, lo its rounding error, |lo| <= ulp(hi) / 2.
+    const L a = x * L(256.0f);
+    const L hi = a - x;
+    const L lo = (a - hi) - x;
+    // Round hi + lo: d = frac(hi) - 0.5 is exact for hi >= 0.5 and has the right sign below;
+    // where d != 0, |d| >= ulp(hi) > |lo| and d decides; where d == 0, lo does. An exact tie
+    // (lo == 0 too) happens only at x = 0.5 (127.5): up, to 128.
+    const L t = lanes::floor(hi);
+    const L d = (hi - t) - L(0.5f);
+    const auto up = (d > L(0.0f)) | ((d == L(0.0f)) & (lo >= L(0.0f)));
+    return lanes::toIntTrunc(t) + lanes::select(lanes::toIntMask(up), I(1), I(0));
+}
+
+// k / 255, one correctly rounded division.
+template <class L>
+SSRT_INLINE L unorm8Value(IntOf<L> k) {
+    return lanes::toFloat(k) / L(255.0f);
+}
+
+// ---- oct16: Cigolle et al. 2014, "A Survey of Efficient Representations for Independent
+// Unit Vectors", JCGT 3(2), listings 1 and 2 (float32x2 <-> float32x3, then snorm16) --------
+
+// +1 for x >= 0 (either zero included), -1 below.
+template <class L>
+SSRT_INLINE L signNotZero(L x) {
+    return lanes::select(x >= L(0.0f), L(1.0f), L(-1.0f));
+}
+
+// k / 32767, with -32768 read as -1 (as graphics APIs read snorm). The code comes as a float
+// (an integer in [-32768, 32767], exact) so that the encoder can try codes without converting.
+template <class L>
+SSRT_INLINE L snorm16Value(L k) {
+    return lanes::max(k / L(32767.0f), L(-1.0f));
+}
+
+// Listing 2: the square back to the octahedron, unfolded, normalised; codes as floats.
+template <class L>
+SSRT_INLINE void octDecodeCodes(L cu, L cv, L& x, L& y, L& z) {
+    L px = lanes::snorm16Value(cu), py = lanes::snorm16Value(cv);
+    const L pz = (L(1.0f) - lanes::abs(px)) - lanes::abs(py);
+    // Unfold the lower hemisphere
+    const auto lower = pz < L(0.0f);
+    const L fx = (L(1.0f) - lanes::abs(py)) * lanes::signNotZero(px);
+    const L fy = (L(1.0f) - lanes::abs(px)) * lanes::signNotZero(py);
+    px = lanes::select(lower, fx, px);
+    py = lanes::select(lower, fy, py);
+    // Normalise (|p| >= 1/sqrt(3): no division by zero). Adding +0 turns a -0 (the fold's
+    // (1 - 1) * -1) into +0, so a direction has one set of bits and re-encodes to itself.
+    const L len = lanes::sqrt(px * px + py * py + pz * pz);
+    x = px / len + L(0.0f);
+    y = py / len + L(0.0f);
+    z = pz / len + L(0.0f);
+}
+
+template <class L>
+SSRT_INLINE void octDecode(IntOf<L> u, IntOf<L> v, L& x, L& y, L& z) {
+    lanes::octDecodeCodes(lanes::toFloat(u), lanes::toFloat(v), x, y, z);
+}
+
+// Squared distance between the decoding of codes (cu, cv) and the unit vector t.
+template <class L>
+SSRT_INLINE L octCodeDistance2(L cu, L cv, L tx, L ty, L tz) {
+    L x, y, z;
+    lanes::octDecodeCodes(cu, cv, x, y, z);
+    const L dx = x - tx, dy = y - ty, dz = z - tz;
+    return dx * dx + dy * dy + dz * dz;
+}
+
+// Listing 1 and the "precise" encoding of section 3.2 (float32x3_to_octn_precise): of the four
+// codes around the projected point (floor or ceil on each axis), the one that decodes nearest
+// to the direction. Nearer than rounding each axis (which ignores the map's stretch): the test
+// measures both maxima. Distance, not the paper's cosine: at 16 bits neighbouring codes'
+// cosines differ by ~1e-9, below a float's resolution near 1.
+template <class L>
+SSRT_INLINE void octEncode(L x, L y, L z, IntOf<L>& u, IntOf<L>& v) {
+    // Project onto the octahedron |x| + |y| + |z| = 1 (the zero vector as +z)
+    const L n = lanes::abs(x) + lanes::abs(y) + lanes::abs(z);
+    const auto zero = !(n > L(0.0f));
+    const L safeN = lanes::select(zero, L(1.0f), n);
+    const L px = x / safeN, py = y / safeN, pz = lanes::select(zero, L(1.0f), z / safeN);
+    // Fold the lower hemisphere over the diagonals
+    const auto lower = pz < L(0.0f);
+    const L sx = lanes::select(lower, (L(1.0f) - lanes::abs(py)) * lanes::signNotZero(px), px);
+    const L sy = lanes::select(lower, (L(1.0f) - lanes::abs(px)) * lanes::signNotZero(py), py);
+    // The direction as a unit vector, the target of the search
+    const L len = lanes::sqrt(px * px + py * py + pz * pz);
+    const L tx = px / len, ty = py / len, tz = pz / len;
+    // Codes below the point on each axis, then the other three corners (ceil capped at 32767;
+    // the first strictly nearer one wins, in this fixed order)
+    const L m(32767.0f);
+    const L fu = lanes::floor(lanes::clamp(sx, L(-1.0f), L(1.0f)) * m);
+    const L fv = lanes::floor(lanes::clamp(sy, L(-1.0f), L(1.0f)) * m);
+    L bu = fu, bv = fv, best = lanes::octCodeDistance2(fu, fv, tx, ty, tz);
+    for (int corner = 1; corner < 4; ++corner) {
+        const L cu = lanes::min(fu + L(float(corner & 1)), m);
+        const L cv = lanes::min(fv + L(float(corner >> 1)), m);
+        const L d = lanes::octCodeDistance2(cu, cv, tx, ty, tz);
+        const auto nearer = d < best;
+        bu = lanes::select(nearer, cu, bu);
+        bv = lanes::select(nearer, cv, bv);
+        best = lanes::select(nearer, d, best);
+    }
+    u = lanes::toIntTrunc(bu);
+    v = lanes::toIntTrunc(bv);
+}
+
+// ---- u8, u16, u32 from floats that hold integers --------------------------------------------
+
+// x clamped to [0, maxValue] (NaN to 0) and truncated; maxValue is 255, 65535 or the largest
+// float below 2^32 (4294967040). Values from 2^31 up go through x - 2^31 (exact, Sterbenz).
+template <class L>
+SSRT_INLINE IntOf<L> uintBits(L x, float maxValue) {
+    using I = IntOf<L>;
+    x = lanes::select(x > L(0.0f), x, L(0.0f));
+    x = lanes::select(x < L(maxValue), x, L(maxValue));
+    const auto high = x >= L(2147483648.0f);
+    const I k = lanes::toIntTrunc(lanes::select(high, x - L(2147483648.0f), x));
+    return k | lanes::select(lanes::toIntMask(high), I(INT32_MIN), I(0));
+}
+
+// The float nearest to the unsigned value of k's bits: 65536 hi + lo, one rounding.
+template <class L>
+SSRT_INLINE L uintValue(IntOf<L> k) {
+    using I = IntOf<L>;
+    const L hi = lanes::toFloat((k >> 16) & I(0xffff));
+    const L lo = lanes::toFloat(k & I(0xffff));
+    return hi * L(65536.0f) + lo;
+}
+
+}  // namespace ssrt::lanes
