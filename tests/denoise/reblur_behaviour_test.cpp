@@ -1,0 +1,260 @@
+// What each of REBLUR's passes does, pinned so that a rewrite of the denoiser (one pass over both
+// signals, packed signals) can be checked against it: the spatial weights stop at plane,
+// normal, roughness and hit-distance edges; the history read is Catmull-Rom where its 4x4
+// footprint is whole and bilinear where a tap is occluded; the fast history follows a step
+// within the window its cap implies; the history fix widens young pixels' reconstruction and
+// clamps the slow history to the fast one; the temporal pass's firefly suppressor.
+//
+// Every expected value comes from the formulas of denoise/reblur_math.h and the kernels,
+// restated here in double; every tolerance from the weight functions or float rounding. The
+// passes run through their per-ISA kernels (denoise/reblur_kernel.h), on every ISA this
+// machine runs. (tests/denoise/reblur_passes_test.cpp holds the passes' simpler invariants.)
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/image.h"
+#include "core/isa.h"
+#include "core/rng.h"
+#include "core/tiles.h"
+#include "denoise/denoise_settings.h"
+#include "denoise/reblur_kernel.h"
+
+using namespace ssrt;
+
+namespace {
+
+constexpr int kWidth = 80, kHeight = 48;  // two tiles across (the second with padding), one down
+
+// A wall facing the camera at depth 2 (view = world), both signals everywhere.
+struct Guides {
+    PlaneF viewZ{kWidth, kHeight, 2.0f}, normal[3], roughness{kWidth, kHeight, 0.3f};
+    PlaneF signalZ[2];
+    std::vector<uint8_t> tiles;
+
+    Guides() {
+        for (PlaneF& n : normal) n = PlaneF(kWidth, kHeight, 0.0f);
+        normal[2].fill(1.0f);
+        for (PlaneF& z : signalZ) z = PlaneF(kWidth, kHeight, 2.0f);
+        tiles.assign(std::size_t(TileGrid(kWidth, kHeight).count()), kTileDiffuse | kTileSpecular);
+    }
+    void setDepth(int x, int y, float z) {
+        viewZ.at(x, y) = z;
+        signalZ[0].at(x, y) = signalZ[1].at(x, y) = z;
+    }
+    ReblurView view() const {
+        ReblurView v;
+        v.width = kWidth;
+        v.height = kHeight;
+        v.tilesX = TileGrid(kWidth, kHeight).tilesX;
+        v.stride = viewZ.stride();
+        v.tanHalfY = 0.5f;
+        v.tanHalfX = 0.5f * float(kWidth) / float(kHeight);
+        for (int i = 0; i < 9; i += 4) v.viewToWorld[i] = 1.0f;
+        v.frustum = 1.0f;  // 2 tanHalfY: the short side at depth 1
+        v.viewZ = viewZ.row(0);
+        for (int i = 0; i < 3; ++i) v.normal[i] = normal[i].row(0);
+        v.roughness = roughness.row(0);
+        for (int i = 0; i < 2; ++i) v.signalZ[i] = signalZ[i].row(0);
+        v.tiles = tiles.data();
+        v.hitScale = {2.5f, 0.1f, 20.0f, -25.0f};
+        return v;
+    }
+};
+
+// A signal: RGB and the normalised hit distance.
+struct Signal {
+    PlaneF p[4];
+    explicit Signal(float value = 0.0f) {
+        for (PlaneF& c : p) c = PlaneF(kWidth, kHeight, value);
+    }
+    void setRgb(int x, int y, float v) {
+        for (int c = 0; c < 3; ++c) p[c].at(x, y) = v;
+    }
+    const float* in(int c) const { return p[c].row(0); }
+    float* out(int c) { return p[c].row(0); }
+};
+
+std::vector<Isa> runnableIsas() {
+    std::vector<Isa> isas;
+    for (Isa isa : kAllIsas)
+        if (isaSupported(isa)) isas.push_back(isa);
+    return isas;
+}
+
+template <class Fn>
+void forEachTile(Fn&& fn) {
+    const TileGrid grid(kWidth, kHeight);
+    for (int t = 0; t < grid.count(); ++t) fn(t);
+}
+
+double luma(double r, double g, double b) { return 0.25 * r + 0.5 * g + 0.25 * b; }
+
+// reblur_math.h's shapes, in double.
+double smoothstep01(double x) {
+    const double s = std::clamp(x, 0.0, 1.0);
+    return s * s * (3.0 - 2.0 * s);
+}
+double weightNonExp(double t) { return 1.0 - smoothstep01(std::abs(t)); }
+double weightExp(double t) {
+    const double a = std::abs(t);
+    return 1.0 / (9.0 * a * a + 3.0 * a + 1.0);
+}
+double lerp(double a, double b, double t) { return a + (b - a) * t; }
+
+// ---------------------------------------------------------------------------------------
+// Spatial edges.
+//
+// The blur's 8 taps (spatial_kernel.cpp's kSpecial8): 4 on the axes at the radius r with the
+// Gaussian weight g1 = exp(-0.66), 4 on the diagonals at r / 2 with g2 = exp(-0.66 / 4),
+// rotated by one angle in [0, pi/2) per group of 16 pixels. For the pixel just left of a
+// vertical edge (centre 0.5 px from it) a tap crosses where its x offset is >= 0.5: of the
+// axis taps' offsets {r c, -r c, -r s, r s} and the diagonals' r/(2 sqrt 2) {c - s, -c - s,
+// c + s, s - c} (c, s >= 0) at most two each are positive, so the crossing taps' Gaussians sum
+// to G_B <= GB = 2 g1 + 2 g2, of a total G = 4 g1 + 4 g2; where r >= 1 at least one axis tap
+// crosses (max(c, s) r >= r / sqrt 2 > 0.5), so G_B >= g1.
+//
+// Both sides flat and constant (a on the pixel's side, b across), every weight other than the
+// edge's factor is 1 (same plane, normal, roughness and hit distance on each side), and the
+// result is (a (1 + G - G_B) + b w G_B) / (1 + G - G_B + w G_B), with w the edge factor of the
+// crossing taps (1 without the edge: the control). Its pull toward b, as a share of b - a:
+//   control   f_c = G_B / (1 + G)                      >= g1 / (1 + G) ~ 0.080
+//   edge      f_e = w G_B / (1 + G - G_B + w G_B)      <= w (1 + G) / (1 + G - GB) f_c
+// with the same taps in both runs (the group's radius and rotation do not depend on the other
+// side: the edge is on a group boundary). So the edge test's bound is w x 1.73 x the control's
+// own pull, plus float rounding, where w is the edge factor from reblur_math.h's formulas.
+
+constexpr int kEdge = 32;  // the first pixel of side B (a multiple of the 16-pixel group)
+constexpr float kRadius = 4.0f;
+constexpr float kSideA = 0.2f, kSideB = 1.0f;
+constexpr float kFramesSpatial = 3.0f;  // the pixels' accumulation speed (alpha = 1/4)
+
+const double kG1 = std::exp(-0.66), kG2 = std::exp(-0.66 / 4.0);
+const double kGTotal = 4.0 * kG1 + 4.0 * kG2, kGCross = 2.0 * kG1 + 2.0 * kG2;
+
+enum class Edge { Plane, Normal, Roughness, HitDistance };
+
+// The weight every tap across the edge gets from the edge's own factor (reblur_math.h and
+// spatial_kernel.cpp's spatialPixel / spatialFilter, with the settings' defaults).
+double edgeFactor(Edge e, double fractionScale) {
+    const DenoiseSettings s;
+    const double alpha = 1.0 / (1.0 + kFramesSpatial);
+    switch (e) {
+        case Edge::Plane: {  // depth 2 against 3 on planes facing the camera: t = dz / (p f z)
+            const double t = 1.0 / (double(s.planeDistanceSensitivity) * 1.0 * 2.0);
+            return weightNonExp(t);
+        }
+        case Edge::Normal: {  // diffuse (r = 1), normals 90 degrees apart
+            const double lobe2 = double(s.lobeAngleFraction) * s.lobeAngleFraction;
+            const double percent = 0.75 * lerp(lobe2, 1.0, alpha);
+            const double angle =
+                std::max(std::atan(std::sqrt(percent / ((1.0 - percent) + 1e-6))), 0.5 / 255.0);
+            const double acosApprox = std::sqrt(2.0) * std::sqrt(1.0 - 0.0);
+            return weightNonExp(acosApprox / (angle * fractionScale));
+        }
+        case Edge::Roughness: {  // specular, the centre 0.9 rough, across 0.1
+            const double r = 0.9;
+            const double scale =
+                1.0 /
+                lerp(0.01, 1.0,
+                     std::clamp(r * std::min(1.0, s.roughnessFraction * fractionScale), 0.0, 1.0));
+            return weightNonExp(scale * (0.1 - r));
+        }
+        case Edge::HitDistance: {  // diffuse (magic curve 1), normalised hits 0.05 against 0.95
+            const double hitScale = 1.0 / lerp(0.0005, 1.0, std::min(alpha, 1.0));
+            const double minHit = s.minHitDistanceWeight * fractionScale;
+            return lerp(minHit, 1.0, weightExp(hitScale * (0.95 - 0.05)));
+        }
+    }
+    return 1.0;
+}
+
+// Runs one spatial pass over a two-sided frame (side A left of kEdge, side B right of it);
+// `edge` false: the same frame with side B's guides equal to side A's (the control).
+Signal runSpatialEdge(Isa isa, Edge e, bool edge, ReblurSpatial pass, uint32_t frameIndex) {
+    Guides g;
+    const bool specular = e == Edge::Roughness;
+    Signal in(kSideA), out(-1.0f);
+    in.p[3].fill(0.5f);
+    g.roughness.fill(0.9f);
+    PlaneF frames(kWidth, kHeight, kFramesSpatial);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const bool sideB = x >= kEdge;
+            if (sideB) in.setRgb(x, y, kSideB);
+            if (e == Edge::HitDistance) in.p[3].at(x, y) = sideB ? 0.95f : 0.05f;
+            if (!edge || !sideB) continue;
+            switch (e) {
+                case Edge::Plane: g.setDepth(x, y, 3.0f); break;
+                case Edge::Normal:
+                    g.normal[0].at(x, y) = 1.0f;  // facing +x: 90 degrees from side A's
+                    g.normal[2].at(x, y) = 0.0f;
+                    break;
+                case Edge::Roughness: g.roughness.at(x, y) = 0.1f; break;
+                case Edge::HitDistance: break;
+            }
+        }
+    // Without the edge, side B's hit distance is side A's.
+    if (!edge && e == Edge::HitDistance) in.p[3].fill(0.05f);
+    ReblurSpatialArgs a;
+    a.view = g.view();
+    a.pass = pass;
+    a.specular = specular;
+    for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
+    a.frames = frames.row(0);
+    a.frameIndex = frameIndex;
+    a.stream = 7;
+    // The radius and its floor alike: every pixel's radius is kRadius (for the 0.9-rough
+    // specular pixel, between the floor x its magic curve, 0.97, and kRadius).
+    a.radius = a.minRadius = kRadius;
+    a.fractionScale = pass == ReblurSpatial::PostBlur ? 0.5f : 1.0f;
+    const auto fn = SSRT_DISPATCH(isa, reblurSpatialTile);
+    forEachTile([&](int t) { fn(a, t); });
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("reblur behaviour: the spatial weights stop at plane, normal, roughness and hit edges") {
+    const char* names[] = {"plane", "normal", "roughness", "hit distance"};
+    const double crossBound = (1.0 + kGTotal) / (1.0 + kGTotal - kGCross);  // ~1.73
+    const double controlFloor = kG1 / (1.0 + kGTotal);                      // ~0.080
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        for (const Edge e : {Edge::Plane, Edge::Normal, Edge::Roughness, Edge::HitDistance}) {
+            for (const ReblurSpatial pass : {ReblurSpatial::Blur, ReblurSpatial::PostBlur}) {
+                const double fs = pass == ReblurSpatial::PostBlur ? 0.5 : 1.0;
+                const double w = edgeFactor(e, fs);
+                CAPTURE(names[int(e)]);
+                CAPTURE(fs);
+                CAPTURE(w);
+                // The weights stop: the first three cut to exactly 0, the hit distance's to its
+                // floor (minHitDistanceWeight) and a little over.
+                CHECK(w <= 0.11);
+                for (uint32_t frame = 0; frame < 4; ++frame) {
+                    CAPTURE(frame);
+                    const Signal withEdge = runSpatialEdge(isa, e, true, pass, frame);
+                    const Signal control = runSpatialEdge(isa, e, false, pass, frame);
+                    // Rows whose taps (at most kRadius up or down) stay in the frame.
+                    int blended = 0, stopped = 0, rows = 0;
+                    for (int y = 6; y < kHeight - 6; ++y) {
+                        const int x = kEdge - 1;  // side A, next to the edge
+                        for (int c = 0; c < 3; ++c) {
+                            const double pullC =
+                                (control.p[c].at(x, y) - kSideA) / (kSideB - kSideA);
+                            const double pullE =
+                                (withEdge.p[c].at(x, y) - kSideA) / (kSideB - kSideA);
+                            blended += pullC >= 0.999 * controlFloor;
+                            stopped += pullE <= w * crossBound * pullC + 1.0e-5;
+                        }
+                        ++rows;
+                    }
+                    CHECK(blended == 3 * rows);  // the control takes side B's value in
+                    CHECK(stopped == 3 * rows);  // the edge keeps it out
+                }
+            }
+        }
+    }
+}
