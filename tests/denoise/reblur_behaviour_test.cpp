@@ -258,3 +258,206 @@ TEST_CASE("reblur behaviour: the spatial weights stop at plane, normal, roughnes
         }
     }
 }
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// The temporal pass (diffuse: no parallax or virtual motion), on a still camera.
+
+// The previous frame's planes and this frame's, wired into the temporal kernel's arguments.
+struct Temporal {
+    Guides g;
+    PlaneF motion[2] = {PlaneF(kWidth, kHeight, 0.0f), PlaneF(kWidth, kHeight, 0.0f)};
+    Signal in, out{-1.0f}, previous;
+    PlaneF prevViewZ{kWidth, kHeight, 2.0f};
+    PlaneF prevFrames{kWidth, kHeight, 0.0f}, prevFast{kWidth, kHeight, 0.0f};
+    PlaneF outFrames{kWidth, kHeight, -1.0f}, outFast{kWidth, kHeight, -1.0f};
+    DenoiseSettings s;
+
+    // One frame over every tile; `history` false: none (the first frame).
+    void run(Isa isa, bool history = true) {
+        ReblurTemporalArgs a;
+        a.view = g.view();
+        a.specular = false;
+        a.motion[0] = motion[0].row(0), a.motion[1] = motion[1].row(0);
+        for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
+        a.outFrames = outFrames.row(0);
+        a.outFast = outFast.row(0);
+        if (history) {
+            a.prevViewZ = prevViewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.prevNormal[i] = g.normal[i].row(0);
+            a.prevRoughness = g.roughness.row(0);
+            for (int c = 0; c < 4; ++c) a.prevSignal[c] = previous.in(c);
+            a.prevFrames = prevFrames.row(0);
+            a.prevFast = prevFast.row(0);
+            for (int i = 0; i < 9; i += 4) a.prevViewToWorld[i] = 1.0f;
+            a.prevTanHalfX = a.view.tanHalfX;
+            a.prevTanHalfY = a.view.tanHalfY;
+        }
+        // As denoise.cpp fills them from the settings.
+        a.maxFrames = float(s.maxAccumulatedFrames);
+        a.maxFastFrames = float(s.maxFastAccumulatedFrames);
+        a.disocclusion = s.disocclusionThreshold;
+        a.fireflyScale = s.fireflyMinRelativeScale;
+        const auto fn = SSRT_DISPATCH(isa, reblurTemporalTile);
+        forEachTile([&](int t) { fn(a, t); });
+    }
+    // This frame's result becomes the next one's history (denoise.cpp's commitHistory: the
+    // speed + 1, the fast luma as it is).
+    void commit() {
+        for (int c = 0; c < 4; ++c) previous.p[c] = out.p[c].clone();
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) prevFrames.at(x, y) = outFrames.at(x, y) + 1.0f;
+        prevFast = outFast.clone();
+    }
+};
+
+// Catmull-Rom weights at fraction t (Keys' cubic convolution, a = -0.5).
+void catmullRomWeights(double t, double w[4]) {
+    const auto k = [](double x) {
+        x = std::abs(x);
+        return x < 1.0 ? 1.5 * x * x * x - 2.5 * x * x + 1.0
+                       : (x < 2.0 ? -0.5 * x * x * x + 2.5 * x * x - 4.0 * x + 2.0 : 0.0);
+    };
+    for (int i = 0; i < 4; ++i) w[i] = k(t + 1.0 - double(i));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "reblur behaviour: the history read is Catmull-Rom where whole, bilinear by an occluded tap") {
+    // A sub-pixel motion of (0.3, -0.2) pixels over a history with curvature: a parabola in R,
+    // sharp steps in G (across x) and B (across y). Catmull-Rom reproduces the parabola and
+    // undershoots at the steps where bilinear does not, so the two reads differ by up to
+    // 0.02 (R) and 0.05 (G, B).
+    constexpr float kMotionX = 0.3f, kMotionY = -0.2f;
+    const int occX = 41, occY = 22;  // the history pixel whose depth is far off
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        Temporal t;
+        t.motion[0].fill(kMotionX);
+        t.motion[1].fill(kMotionY);
+        t.in = Signal(0.0f);  // this frame's radiance 0: the result is the history x (1 - alpha)
+        t.in.p[3].fill(0.5f);
+        t.previous = Signal(0.0f);
+        t.previous.p[3].fill(0.5f);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                t.previous.p[0].at(x, y) = 0.2f + 0.01f * float((x - 40) * (x - 40));
+                t.previous.p[1].at(x, y) = x >= 40 ? 1.0f : 0.2f;
+                t.previous.p[2].at(x, y) = y >= 24 ? 0.9f : 0.3f;
+            }
+        const float kFrames = 20.0f;  // the history's speed (quality 1: the read keeps it)
+        t.prevFrames.fill(kFrames);
+        t.prevFast.fill(0.5f);
+        t.prevViewZ.at(occX, occY) = 10.0f;  // far behind: fails the occlusion test
+        t.run(isa);
+        const double alpha = 1.0 / (1.0 + kFrames);
+        int catmullRom = 0, bilinear = 0, apart = 0, reported = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                // The read's position in the previous frame and its 4x4 footprint, with the
+                // kernel's float steps: q = pixel centre + motion, s = q - 0.5.
+                const float sx = ((float(x) + 0.5f) + kMotionX) - 0.5f;
+                const float sy = ((float(y) + 0.5f) + kMotionY) - 0.5f;
+                const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+                const double fx = double(sx - float(x0)), fy = double(sy - float(y0));
+                if (x0 - 1 < 0 || x0 + 2 >= kWidth || y0 - 1 < 0 || y0 + 2 >= kHeight)
+                    continue;                              // part of the footprint off the frame
+                const int dx = occX - x0, dy = occY - y0;  // the occluded tap's place, -1 .. 2
+                const bool inFootprint = dx >= -1 && dx <= 2 && dy >= -1 && dy <= 2;
+                const bool inner = (dx == 0 || dx == 1) && (dy == 0 || dy == 1);
+                if (inFootprint && inner) continue;  // a partial bilinear: not pinned here
+                double wx[4], wy[4];
+                catmullRomWeights(fx, wx);
+                catmullRomWeights(fy, wy);
+                const double bx[2] = {1.0 - fx, fx}, by[2] = {1.0 - fy, fy};
+                for (int c = 0; c < 3; ++c) {
+                    double cr = 0.0, bil = 0.0;
+                    for (int j = 0; j < 4; ++j)
+                        for (int i = 0; i < 4; ++i)
+                            cr += wy[j] * wx[i] * t.previous.p[c].at(x0 - 1 + i, y0 - 1 + j);
+                    for (int j = 0; j < 2; ++j)
+                        for (int i = 0; i < 2; ++i)
+                            bil += by[j] * bx[i] * t.previous.p[c].at(x0 + i, y0 + j);
+                    cr = std::max(cr, 0.0);  // the kernel keeps radiance >= 0
+                    const double want = (inFootprint ? bil : cr) * (1.0 - alpha);
+                    const double got = t.out.p[c].at(x, y);
+                    // Float rounding of a 16-tap sum of values <= 2.
+                    const bool ok = std::abs(got - want) <= 2.0e-6 * (1.0 + std::abs(want));
+                    if (!ok && reported++ < 3) {  // the first few, not every pixel
+                        INFO("pixel ("
+                             << x << ", " << y << ") channel " << c
+                             << (inFootprint ? ": bilinear expected" : ": Catmull-Rom expected")
+                             << "; Catmull-Rom " << cr * (1.0 - alpha) << ", bilinear "
+                             << bil * (1.0 - alpha));
+                        CHECK(got == doctest::Approx(want));
+                    }
+                    (inFootprint ? bilinear : catmullRom) += ok;
+                    apart += std::abs(cr - bil) * (1.0 - alpha) > 1.0e-3;
+                }
+            }
+        // Both reads were seen, and told apart (the two filters differ by far more than the
+        // tolerance at many pixels).
+        CHECK(catmullRom > 2000);
+        CHECK(bilinear == 3 * (16 - 4));  // the 12 outer places of the occluded tap, 3 channels
+        CHECK(apart > 300);
+    }
+}
+
+TEST_CASE("reblur behaviour: the fast history follows a step within its capped window") {
+    // A grey signal, still camera: 40 frames at 1 (the speed reaches its cap, 30), then 2.
+    // The slow history is an exponential moving average with weight 1 / (1 + min(n, 30)) for
+    // the n-th frame of history, the fast one the same with min(n, 6): after the step each is
+    // left (1 - 1/(1 + cap))^k of the step behind after k frames, so the fast history comes
+    // within 10 % of the new value after ceil(ln 0.1 / ln(6/7)) = 15 frames, the slow one only
+    // after ceil(ln 0.1 / ln(30/31)) = 71.
+    const DenoiseSettings defaults;
+    CHECK(defaults.maxFastAccumulatedFrames == 6);  // REBLUR's maxFastAccumulatedFrameNum
+    const int slowCap = defaults.maxAccumulatedFrames, fastCap = defaults.maxFastAccumulatedFrames;
+    const int stepAt = 40, frames = stepAt + 90;
+    const auto within = [](double cap) {
+        return int(std::ceil(std::log(0.1) / std::log(1.0 - 1.0 / (1.0 + cap))));
+    };
+    const int fastWindow = within(fastCap), slowWindow = within(slowCap);
+    CHECK(fastWindow == 15);
+    CHECK(slowWindow == 71);
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        Temporal t;
+        double slow = 0.0, fast = 0.0;  // the model
+        std::vector<double> fastSeen, slowSeen;
+        for (int f = 0; f < frames; ++f) {
+            const float v = f < stepAt ? 1.0f : 2.0f;
+            t.in = Signal(v);
+            t.in.p[3].fill(0.5f);
+            t.run(isa, f > 0);
+            if (f == 0) {
+                slow = fast = v;  // no history: the sample itself
+            } else {              // the f-th frame of history, capped
+                const double speed = std::min(f, slowCap);
+                slow = lerp(slow, v, 1.0 / (1.0 + speed));
+                fast = lerp(fast, v, 1.0 / (1.0 + std::min(speed, double(fastCap))));
+            }
+            t.commit();
+            const double gotSlow =
+                luma(t.out.p[0].at(40, 24), t.out.p[1].at(40, 24), t.out.p[2].at(40, 24));
+            const double gotFast = t.outFast.at(40, 24);
+            CAPTURE(f);
+            CHECK(t.outFrames.at(40, 24) == float(std::min(f, slowCap)));
+            CHECK(gotSlow == doctest::Approx(slow).epsilon(1.0e-5));
+            CHECK(gotFast == doctest::Approx(fast).epsilon(1.0e-5));
+            fastSeen.push_back(gotFast);
+            slowSeen.push_back(gotSlow);
+        }
+        // Behind the step by a share of it (1) after k frames of the new value.
+        const auto behind = [&](const std::vector<double>& seen, int k) {
+            return 2.0 - seen[std::size_t(stepAt + k - 1)];
+        };
+        CHECK(behind(fastSeen, fastWindow) <= 0.1);
+        CHECK(behind(fastSeen, fastWindow - 1) > 0.1);
+        CHECK(behind(slowSeen, fastWindow) > 0.5);  // the slow one still over half a step behind
+        CHECK(behind(slowSeen, slowWindow) <= 0.1);
+        CHECK(behind(slowSeen, slowWindow - 1) > 0.1);
+    }
+}
