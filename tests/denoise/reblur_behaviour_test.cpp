@@ -461,3 +461,221 @@ TEST_CASE("reblur behaviour: the fast history follows a step within its capped w
         CHECK(behind(slowSeen, slowWindow - 1) > 0.1);
     }
 }
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// The history fix (diffuse), on the flat wall: every plane-distance and normal weight is 1.
+
+struct HistoryFix {
+    Guides g;
+    Signal in, out{-1.0f};
+    PlaneF frames{kWidth, kHeight, 0.0f}, fast{kWidth, kHeight, 0.0f};
+
+    void run(Isa isa, bool clamp) {
+        const DenoiseSettings s;
+        ReblurHistoryFixArgs a;
+        a.view = g.view();
+        a.specular = false;
+        for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
+        a.frames = frames.row(0);
+        a.fast = clamp ? fast.row(0) : nullptr;  // null: denoise.cpp's "clamp off"
+        a.fixFrames = float(s.historyFixFrames);
+        a.stride = float(s.historyFixStride);
+        a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+        a.planeDistance = s.planeDistanceSensitivity;
+        const auto fn = SSRT_DISPATCH(isa, reblurHistoryFixTile);
+        forEachTile([&](int t) { fn(a, t); });
+    }
+};
+
+// Noise in [1, 2) per pixel and channel.
+float noise(int x, int y, int c) { return 1.0f + randomFloat(uint32_t(y * kWidth + x), 0, 3, c); }
+
+}  // namespace
+
+TEST_CASE("reblur behaviour: the history fix widens young pixels' reconstruction") {
+    // A pixel with F < historyFixFrames (3) frames of history is replaced by the mean of
+    // itself (weight 1 + F) and 20 taps of a 5x5 without its corners, `stride` pixels apart,
+    // each weighted by 1 + its own F (plane and normal weights are 1 on the flat wall):
+    // stride = max(1, floor(historyFixStride / (2 + F))) = 7, 4, 3 for F = 0, 1, 2 (the
+    // diffuse magic curve is 1). Older pixels are left as they are.
+    const DenoiseSettings s;
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        HistoryFix h;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                for (int c = 0; c < 4; ++c) h.in.p[c].at(x, y) = noise(x, y, c);
+                h.in.p[3].at(x, y) *= 0.4f;  // a normalised hit distance in [0.4, 0.8)
+                h.frames.at(x, y) = float((x + 2 * y) % 5);  // 0 .. 4
+            }
+        h.run(isa, false);
+        int young = 0, old = 0, reported = 0;
+        double spreadYoung = 0.0, spreadIn = 0.0;  // mean |value - 1.5| of young pixels (R)
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                const int f = int(h.frames.at(x, y));
+                if (f >= s.historyFixFrames) {
+                    bool same = true;
+                    for (int c = 0; c < 4; ++c) same &= h.out.p[c].at(x, y) == h.in.p[c].at(x, y);
+                    old += same;
+                    continue;
+                }
+                const int stride = std::max(1, s.historyFixStride / (2 + f));
+                double sum[4], weightSum = 1.0 + f;
+                for (int c = 0; c < 4; ++c) sum[c] = weightSum * h.in.p[c].at(x, y);
+                for (int j = -2; j <= 2; ++j)
+                    for (int i = -2; i <= 2; ++i) {
+                        if ((i == 0 && j == 0) || (std::abs(i) == 2 && std::abs(j) == 2)) continue;
+                        const int tx = x + i * stride, ty = y + j * stride;
+                        if (tx < 0 || tx >= kWidth || ty < 0 || ty >= kHeight) continue;
+                        const double w = 1.0 + h.frames.at(tx, ty);
+                        for (int c = 0; c < 4; ++c) sum[c] += w * h.in.p[c].at(tx, ty);
+                        weightSum += w;
+                    }
+                bool ok = true;
+                for (int c = 0; c < 4; ++c) {
+                    const double want = sum[c] / weightSum;
+                    const double got = h.out.p[c].at(x, y);
+                    ok &= std::abs(got - want) <= 2.0e-6 * want;  // a float sum of 21 terms
+                    if (std::abs(got - want) > 2.0e-6 * want && reported++ < 3) {
+                        INFO("pixel (" << x << ", " << y << ") F " << f << " stride " << stride
+                                       << " channel " << c);
+                        CHECK(got == doctest::Approx(want));
+                    }
+                }
+                young += ok;
+                spreadYoung += std::abs(h.out.p[0].at(x, y) - 1.5);
+                spreadIn += std::abs(h.in.p[0].at(x, y) - 1.5);
+            }
+        CHECK(young == kWidth * kHeight * 3 / 5);  // F = 0, 1, 2: three in five pixels
+        CHECK(old == kWidth * kHeight * 2 / 5);
+        // The wide average took the noise down (uniform noise about 1.5: mean deviation 0.25).
+        CHECK(spreadYoung < 0.5 * spreadIn);
+    }
+}
+
+TEST_CASE("reblur behaviour: the history fix clamps the slow history to the fast one") {
+    // After a step up, the slow history's luma (y0 = 1) lags the fast history's (about 2).
+    // The fast luma's 5x5 mean m and deviation sigma bound it: y0 is clamped to
+    // [m - 2 sigma, m + 2 sigma], and the result is lerp(clamped, y0, 1 / (1 + 2 F)) for a
+    // pixel with F frames of history; RGB is scaled by (y1 + 1e-6) / (y0 + 1e-6). Without the
+    // fast history (denoise.cpp hands none when maxFastAccumulatedFrames >=
+    // maxAccumulatedFrames) the history is left as it is.
+    const DenoiseSettings s;
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        HistoryFix h;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                // Colour with luma 1 (left half) or 2 (right: inside the fast history's band).
+                const float k = x < kWidth / 2 ? 1.0f : 2.0f;
+                h.in.p[0].at(x, y) = 0.8f * k, h.in.p[1].at(x, y) = 1.0f * k;
+                h.in.p[2].at(x, y) = 1.2f * k, h.in.p[3].at(x, y) = 0.5f;
+                h.fast.at(x, y) = 2.0f + 0.1f * float((x + 2 * y) % 3 - 1);
+                h.frames.at(x, y) = float(s.historyFixFrames + (x + y) % 20);  // old: no fix
+            }
+        h.run(isa, false);
+        bool unclamped = true;
+        for (int c = 0; c < 4; ++c)
+            for (int y = 0; y < kHeight; ++y)
+                for (int x = 0; x < kWidth; ++x)
+                    unclamped &= h.out.p[c].at(x, y) == h.in.p[c].at(x, y);
+        CHECK(unclamped);
+        h.run(isa, true);
+        int clamped = 0, kept = 0, pulled = 0, reported = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                double m1 = 0.0, m2 = 0.0, n = 0.0;
+                for (int j = -2; j <= 2; ++j)
+                    for (int i = -2; i <= 2; ++i) {
+                        const int tx = x + i, ty = y + j;
+                        if (tx < 0 || tx >= kWidth || ty < 0 || ty >= kHeight) continue;
+                        const double f = h.fast.at(tx, ty);
+                        m1 += f, m2 += f * f, n += 1.0;
+                    }
+                m1 /= n;
+                const double sigma = std::sqrt(std::max(m2 / n - m1 * m1, 0.0));
+                const double y0 = luma(h.in.p[0].at(x, y), h.in.p[1].at(x, y), h.in.p[2].at(x, y));
+                const double bounded = std::clamp(y0, m1 - 2.0 * sigma, m1 + 2.0 * sigma);
+                const double frames = h.frames.at(x, y);
+                const double y1 = lerp(bounded, y0, 1.0 / (1.0 + 2.0 * frames));
+                const double scale = (y1 + 1.0e-6) / (y0 + 1.0e-6);
+                // Float: sigma from m2 - m1^2 near 4 loses ~1e-6 x 4 / sigma^2 of itself.
+                bool ok = h.out.p[3].at(x, y) == h.in.p[3].at(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    const double want = h.in.p[c].at(x, y) * scale;
+                    const double got = h.out.p[c].at(x, y);
+                    ok &= std::abs(got - want) <= 1.0e-4;
+                    if (std::abs(got - want) > 1.0e-4 && reported++ < 3) {
+                        INFO("pixel (" << x << ", " << y << ") channel " << c << " y0 " << y0
+                                       << " band " << m1 - 2.0 * sigma << " .. "
+                                       << m1 + 2.0 * sigma);
+                        CHECK(got == doctest::Approx(want));
+                    }
+                }
+                if (bounded != y0) {
+                    clamped += ok;
+                    // Pulled most of the way to the band: y1 - y0 >= (1 - 1/7) of the gap.
+                    pulled +=
+                        (y1 - y0) >=
+                        (1.0 - 1.0 / (1.0 + 2.0 * s.historyFixFrames)) * (bounded - y0) - 1.0e-9;
+                } else {
+                    kept += ok;
+                }
+            }
+        CHECK(clamped == kWidth * kHeight / 2);  // the lagging half
+        CHECK(pulled == kWidth * kHeight / 2);
+        CHECK(kept == kWidth * kHeight / 2);  // inside the band: as it was
+    }
+}
+
+TEST_CASE(
+    "reblur behaviour: the firefly suppressor holds a new sample to a multiple of its history") {
+    // The temporal pass's suppressor (REBLUR's, against the pixel's own history, not its
+    // neighbourhood): a sample of luma L over a history of luma H with F frames enters as
+    //   L' = lerp(L, min(L, H m), k),  m = fireflyMinRelativeScale + 38 / (F + 1),
+    //   k = 3F / (1 + 3F),
+    // its RGB scaled by (L' + 1e-6) / (L + 1e-6), and then averaged in with 1 / (1 + F). With
+    // F = 10, m = 5.45 and k = 30/31: a sample 1000x its history enters at most
+    // (1 - k) 1000 + k m = 37.5x it (not 1000x), and the result is under 4.4x the history
+    // (without the suppressor, 91.8x). A sample under m times its history enters as it is,
+    // and a pixel whose history is as bright is kept.
+    constexpr float kLow = 0.1f, kFrames = 10.0f;
+    const int fx = 40, fy = 24;  // the firefly, 1000x
+    const int mx = 20, my = 24;  // 1.5x its history: under m
+    const int bx = 60, by = 24;  // as bright as its history: a bright pixel that stays
+    for (const Isa isa : runnableIsas()) {
+        CAPTURE(isaName(isa));
+        Temporal t;
+        const double m = t.s.fireflyMinRelativeScale + 38.0 / (kFrames + 1.0);
+        const double k = 3.0 * kFrames / (1.0 + 3.0 * kFrames);
+        const double alpha = 1.0 / (1.0 + kFrames);
+        t.in = Signal(kLow);
+        t.in.p[3].fill(0.5f);
+        t.previous = Signal(kLow);
+        t.previous.p[3].fill(0.5f);
+        t.prevFrames.fill(kFrames);
+        t.prevFast.fill(kLow);
+        t.in.setRgb(fx, fy, 1000.0f * kLow);
+        t.in.setRgb(mx, my, 1.5f * kLow);
+        t.in.setRgb(bx, by, 1000.0f * kLow);
+        t.previous.setRgb(bx, by, 1000.0f * kLow);
+        t.run(isa);
+        const auto expected = [&](double sample, double history) {
+            const double kept = lerp(sample, std::min(sample, history * m), k);
+            const double scale = (kept + 1.0e-6) / (sample + 1.0e-6);
+            return lerp(history, sample * scale, alpha);
+        };
+        const double firefly = t.out.p[1].at(fx, fy);
+        CHECK(firefly == doctest::Approx(expected(1000.0 * kLow, kLow)).epsilon(1.0e-5));
+        const double bound = kLow * ((1.0 - alpha) + alpha * ((1.0 - k) * 1000.0 + k * m));
+        CHECK(firefly <= bound * (1.0 + 1.0e-5));
+        CHECK(bound < 4.4 * kLow);
+        CHECK(t.out.p[1].at(mx, my) ==
+              doctest::Approx(lerp(kLow, 1.5 * kLow, alpha)).epsilon(1.0e-5));
+        CHECK(t.out.p[1].at(bx, by) == doctest::Approx(1000.0 * kLow).epsilon(1.0e-5));
+        CHECK(t.out.p[1].at(fx + 2, fy) == doctest::Approx(kLow).epsilon(1.0e-5));
+    }
+}
