@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
@@ -218,7 +219,7 @@ Signal runSpatialEdge(Isa isa, Edge e, bool edge, ReblurSpatial pass, uint32_t f
 }  // namespace
 
 TEST_CASE("reblur behaviour: the spatial weights stop at plane, normal, roughness and hit edges") {
-    const char* names[] = {"plane", "normal", "roughness", "hit distance"};
+    const std::string names[] = {"plane", "normal", "roughness", "hit distance"};
     const double crossBound = (1.0 + kGTotal) / (1.0 + kGTotal - kGCross);  // ~1.73
     const double controlFloor = kG1 / (1.0 + kGTotal);                      // ~0.080
     for (const Isa isa : runnableIsas()) {
@@ -328,8 +329,8 @@ TEST_CASE(
     "reblur behaviour: the history read is Catmull-Rom where whole, bilinear by an occluded tap") {
     // A sub-pixel motion of (0.3, -0.2) pixels over a history with curvature: a parabola in R,
     // sharp steps in G (across x) and B (across y). Catmull-Rom reproduces the parabola and
-    // undershoots at the steps where bilinear does not, so the two reads differ by up to
-    // 0.02 (R) and 0.05 (G, B).
+    // undershoots at the steps where bilinear does not: the two reads differ by 0.002 (R, the
+    // parabola's 0.01 fx (1 - fx)) to a few hundredths (G, B, next to the steps).
     constexpr float kMotionX = 0.3f, kMotionY = -0.2f;
     const int occX = 41, occY = 22;  // the history pixel whose depth is far off
     for (const Isa isa : runnableIsas()) {
@@ -386,11 +387,11 @@ TEST_CASE(
                     // Float rounding of a 16-tap sum of values <= 2.
                     const bool ok = std::abs(got - want) <= 2.0e-6 * (1.0 + std::abs(want));
                     if (!ok && reported++ < 3) {  // the first few, not every pixel
-                        INFO("pixel ("
-                             << x << ", " << y << ") channel " << c
-                             << (inFootprint ? ": bilinear expected" : ": Catmull-Rom expected")
-                             << "; Catmull-Rom " << cr * (1.0 - alpha) << ", bilinear "
-                             << bil * (1.0 - alpha));
+                        INFO("pixel (" << x << ", " << y << ") channel " << c
+                                       << std::string(inFootprint ? ": bilinear expected"
+                                                                  : ": Catmull-Rom expected")
+                                       << "; Catmull-Rom " << cr * (1.0 - alpha) << ", bilinear "
+                                       << bil * (1.0 - alpha));
                         CHECK(got == doctest::Approx(want));
                     }
                     (inFootprint ? bilinear : catmullRom) += ok;
