@@ -74,7 +74,7 @@ void printTable(const CompiledGraph& g, const SceneRequest& r, bool sequence, st
     for (const GraphResource& res : g.resources) {
         const ResourceDecl& d = resourceDecl(res.id);
         out << "  " << padded(std::string(d.name), 26)
-            << padded(std::string(formatName(d.format)), 8)
+            << padded(std::string(pixelFormatName(d.format)), 8)
             << padded(std::to_string(d.channelCount()), 10)
             << padded(std::string(resolutionName(d.resolution)), 14)
             << padded(std::string(lifetimeName(res.lifetime)), 11)

@@ -10,32 +10,6 @@
 
 namespace ssrt {
 
-std::string_view formatName(ResourceFormat f) {
-    switch (f) {
-        case ResourceFormat::F32: return "f32";
-        case ResourceFormat::F16: return "f16";
-        case ResourceFormat::Unorm8: return "unorm8";
-        case ResourceFormat::OctSnorm16: return "oct16";
-        case ResourceFormat::U8: return "u8";
-        case ResourceFormat::U16: return "u16";
-        case ResourceFormat::U32: return "u32";
-    }
-    return "?";
-}
-
-int formatBytes(ResourceFormat f) {
-    switch (f) {
-        case ResourceFormat::F32:
-        case ResourceFormat::U32: return 4;
-        case ResourceFormat::F16:
-        case ResourceFormat::U16: return 2;
-        case ResourceFormat::Unorm8:
-        case ResourceFormat::U8: return 1;
-        case ResourceFormat::OctSnorm16: return 4;  // per unit vector (three channels)
-    }
-    return 4;
-}
-
 std::string_view resolutionName(Resolution r) {
     switch (r) {
         case Resolution::Full: return "full";
@@ -106,11 +80,14 @@ std::size_t texels(Resolution r, int w, int h, int shadowMapSize) {
     return 0;
 }
 
+// Planes a resource takes (a unit vector's three channels share one plane of oct16).
+int planesOf(const ResourceDecl& d) {
+    return d.format == PixelFormat::OctSnorm16 ? (d.channelCount() + 2) / 3 : d.channelCount();
+}
+
 std::size_t resourceBytes(const ResourceDecl& d, int w, int h, int shadowMapSize) {
     const std::size_t n = texels(d.resolution, w, h, shadowMapSize);
-    if (d.format == ResourceFormat::OctSnorm16)  // a unit vector's three channels in 4 bytes
-        return n * 4 * std::size_t((d.channelCount() + 2) / 3);
-    return n * std::size_t(formatBytes(d.format)) * std::size_t(d.channelCount());
+    return n * std::size_t(bytesPerTexel(d.format)) * std::size_t(planesOf(d));
 }
 
 bool holds(GraphCondition c, const GraphKey& k) { return c == nullptr || c(k); }
@@ -187,11 +164,6 @@ void markChains(std::vector<GraphPass>& passes) {
         p.chain = chain;
         for (const Access& w : p.writes) made.push_back(w.res);
     }
-}
-
-// Planes a resource takes (a unit vector's three channels share one plane of oct16).
-int planesOf(const ResourceDecl& d) {
-    return d.format == ResourceFormat::OctSnorm16 ? (d.channelCount() + 2) / 3 : d.channelCount();
 }
 
 // Transient memory, plane by plane as the renderer's pool hands planes on: each of a
@@ -335,7 +307,7 @@ std::string frameGraphDot(const CompiledGraph& g) {
         o << "  r" << int(r.id) << " [shape=ellipse, style=filled, fillcolor=\"" << colour
           << "\", label="
           << quoted(std::string(d.name) + "\\n" + std::to_string(d.channelCount()) + " x " +
-                    std::string(formatName(d.format)) + ", " +
+                    std::string(pixelFormatName(d.format)) + ", " +
                     std::string(resolutionName(d.resolution)) + ", " +
                     std::string(lifetimeName(r.lifetime)))
           << "];\n";

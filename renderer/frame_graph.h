@@ -22,19 +22,12 @@
 #include <string_view>
 #include <vector>
 
+#include "core/pixel_formats.h"
 #include "renderer/frame.h"
 #include "renderer/settings.h"
 #include "scenes/scene.h"
 
 namespace ssrt {
-
-// How a resource stores a texel: what each channel takes in memory.
-enum class ResourceFormat : uint8_t { F32, F16, Unorm8, OctSnorm16, U8, U16, U32 };
-// "f32", "f16", "unorm8", "oct16", "u8", "u16", "u32".
-std::string_view formatName(ResourceFormat format);
-// Bytes a channel takes ("oct16": two snorm16 for a unit vector's three channels, 4 bytes in
-// all, counted as 4/3 per channel by resourceBytes).
-int formatBytes(ResourceFormat format);
 
 // Where a resource's texels lie: the frame's pixels, the half frame's (one per 2x2 block),
 // the shadow map's (RenderSettings::shadowMapSize squared), or a pyramid over the frame's or
@@ -167,7 +160,7 @@ struct ResourceDecl {
     Res id;
     std::string_view name;      // the layer's name: "normal" (channels normal.X, ...)
     std::string_view channels;  // comma-separated channel suffixes ("X,Y,Z"); "" for one
-    ResourceFormat format;
+    PixelFormat format;         // how each channel is stored (core/pixel_formats.h)
     Resolution resolution;
     Lifetime lifetime;
     LayerGroup group = LayerGroup::Color;  // outputs only: which part of a file

@@ -13,7 +13,7 @@ namespace ssrt {
 
 namespace {
 
-using F = ResourceFormat;
+using F = PixelFormat;
 using R = Resolution;
 using L = Lifetime;
 using G = LayerGroup;
