@@ -1,10 +1,11 @@
 // What a frame is made of: typed groups of planes, each with one name table, and the
 // history a sequence carries from one frame to the next.
 //
-// Each group lists its planes once, in `table` (core/plane_table.h). That table is the only
-// place a plane's name is spelled: it gives the EXR channel names (io/image_io.h) and
-// Frame::plane(name). Passes take the members themselves. A group the settings leave out
-// (SSR off, no id planes) holds empty planes, and empty planes are not layers.
+// Each group lists its planes once, in `table` (core/plane_table.h), named from the frame's
+// resource table (renderer/resources.h), the only place a plane's name is spelled: it gives
+// the EXR channel names (io/image_io.h) and Frame::plane(name). Passes take the members themselves.
+// A group the settings leave out (SSR off, no id planes) holds empty planes, and empty planes are
+// not layers.
 #pragma once
 
 #include <string>
@@ -21,6 +22,7 @@
 #include "raster/raster.h"
 #include "raster/raster_stats.h"
 #include "raster/shadow_map.h"
+#include "renderer/resources.h"
 #include "trace/color_pyramid.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
@@ -29,16 +31,6 @@
 #include "trace/trace_types.h"
 
 namespace ssrt {
-
-// Which part of the frame a file layer belongs to, for choosing what a file holds (`ssrt
-// render --layers`, renderer/layer_groups.h). Frame::layers() gives each layer its group.
-enum class LayerGroup : uint8_t {
-    Color,    // ImagePlanes: colour, display, shadow
-    GBuffer,  // GBuffer, MaterialPlanes, IdPlanes
-    Trace,    // TraceOutputs: SSR, SSGI, the denoiser's
-    Truth,    // Frame::extraLayers (`ssrt compare`: the reference and the ray checks)
-};
-inline constexpr int kLayerGroupCount = 4;
 
 // A plane with its layer name and group.
 struct PlaneRef {
@@ -55,9 +47,9 @@ struct ImagePlanes : PlaneTable<ImagePlanes> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("color.R", g.color[0]), fn("color.G", g.color[1]), fn("color.B", g.color[2]);
-        fn("display.R", g.display[0]), fn("display.G", g.display[1]);
-        fn("display.B", g.display[2]), fn("shadow", g.shadow);
+        forEachChannel(Res::Color, g.color, fn);
+        forEachChannel(Res::Display, g.display, fn);
+        fn(channelName(Res::Shadow), g.shadow);
     }
 };
 
@@ -74,12 +66,12 @@ struct GBuffer : PlaneTable<GBuffer> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("viewZ", g.viewZ);
-        fn("normal.X", g.normal[0]), fn("normal.Y", g.normal[1]), fn("normal.Z", g.normal[2]);
-        fn("albedo.R", g.albedo[0]), fn("albedo.G", g.albedo[1]), fn("albedo.B", g.albedo[2]);
-        fn("metallic", g.metallic), fn("roughness", g.roughness);
-        fn("materialId", g.materialId);
-        fn("motion.X", g.motion[0]), fn("motion.Y", g.motion[1]);
+        fn(channelName(Res::ViewZ), g.viewZ);
+        forEachChannel(Res::Normal, g.normal, fn);
+        forEachChannel(Res::Albedo, g.albedo, fn);
+        fn(channelName(Res::Metallic), g.metallic), fn(channelName(Res::Roughness), g.roughness);
+        fn(channelName(Res::MaterialId), g.materialId);
+        forEachChannel(Res::Motion, g.motion, fn);
     }
     // Its planes as kernels read them (every plane of the frame's size, so one stride).
     GBufferRows rows() const;
@@ -97,8 +89,8 @@ struct MaterialPlanes : PlaneTable<MaterialPlanes> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("emissive.R", g.emission[0]), fn("emissive.G", g.emission[1]);
-        fn("emissive.B", g.emission[2]), fn("occlusion", g.occlusion);
+        forEachChannel(Res::Emissive, g.emission, fn);
+        fn(channelName(Res::Occlusion), g.occlusion);
     }
 };
 
@@ -109,7 +101,8 @@ struct IdPlanes : PlaneTable<IdPlanes> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("instanceId", g.instanceId), fn("triangleId", g.triangleId);
+        fn(channelName(Res::InstanceId), g.instanceId);
+        fn(channelName(Res::TriangleId), g.triangleId);
     }
 };
 
@@ -126,17 +119,12 @@ struct DirectParts : PlaneTable<DirectParts> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("direct.R", g.direct[0]), fn("direct.G", g.direct[1]), fn("direct.B", g.direct[2]);
-        fn("emission.R", g.emission[0]), fn("emission.G", g.emission[1]);
-        fn("emission.B", g.emission[2]);
-        fn("envDiffuse.R", g.envDiffuse[0]), fn("envDiffuse.G", g.envDiffuse[1]);
-        fn("envDiffuse.B", g.envDiffuse[2]);
-        fn("envSpecular.R", g.envSpecular[0]), fn("envSpecular.G", g.envSpecular[1]);
-        fn("envSpecular.B", g.envSpecular[2]);
-        fn("specWeight.R", g.specWeight[0]), fn("specWeight.G", g.specWeight[1]);
-        fn("specWeight.B", g.specWeight[2]);
-        fn("hitLight.R", g.hitLight[0]), fn("hitLight.G", g.hitLight[1]);
-        fn("hitLight.B", g.hitLight[2]);
+        forEachChannel(Res::Direct, g.direct, fn);
+        forEachChannel(Res::Emission, g.emission, fn);
+        forEachChannel(Res::EnvDiffuse, g.envDiffuse, fn);
+        forEachChannel(Res::EnvSpecular, g.envSpecular, fn);
+        forEachChannel(Res::SpecWeight, g.specWeight, fn);
+        forEachChannel(Res::HitLight, g.hitLight, fn);
     }
 };
 
@@ -150,9 +138,10 @@ struct SsrPlanes : PlaneTable<SsrPlanes> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("ssr.R", g.color[0]), fn("ssr.G", g.color[1]), fn("ssr.B", g.color[2]);
-        fn("ssrOpacity", g.opacity), fn("ssrHit", g.hit);
-        fn("ssrHitDistance", g.hitDistance), fn("ssrSteps", g.steps);
+        forEachChannel(Res::Ssr, g.color, fn);
+        fn(channelName(Res::SsrOpacity), g.opacity), fn(channelName(Res::SsrHit), g.hit);
+        fn(channelName(Res::SsrHitDistance), g.hitDistance);
+        fn(channelName(Res::SsrSteps), g.steps);
     }
 };
 
@@ -166,8 +155,10 @@ struct SsgiPlanes : PlaneTable<SsgiPlanes> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("ssgi.R", g.color[0]), fn("ssgi.G", g.color[1]), fn("ssgi.B", g.color[2]);
-        fn("ssgiHit", g.hit), fn("ssgiHitDistance", g.hitDistance), fn("ssgiSteps", g.steps);
+        forEachChannel(Res::Ssgi, g.color, fn);
+        fn(channelName(Res::SsgiHit), g.hit);
+        fn(channelName(Res::SsgiHitDistance), g.hitDistance);
+        fn(channelName(Res::SsgiSteps), g.steps);
     }
 };
 
@@ -179,11 +170,10 @@ struct DenoisePlanes : PlaneTable<DenoisePlanes> {
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         auto& o = g.out;
-        fn("denoisedDiffuse.R", o.diffuse[0]), fn("denoisedDiffuse.G", o.diffuse[1]);
-        fn("denoisedDiffuse.B", o.diffuse[2]);
-        fn("denoisedSpecular.R", o.specular[0]), fn("denoisedSpecular.G", o.specular[1]);
-        fn("denoisedSpecular.B", o.specular[2]);
-        fn("diffuseFrames", o.diffuseFrames), fn("specularFrames", o.specularFrames);
+        forEachChannel(Res::DenoisedDiffuse, o.diffuse, fn);
+        forEachChannel(Res::DenoisedSpecular, o.specular, fn);
+        fn(channelName(Res::DiffuseFrames), o.diffuseFrames);
+        fn(channelName(Res::SpecularFrames), o.specularFrames);
     }
 };
 
@@ -210,10 +200,8 @@ struct FrameHistory : PlaneTable<FrameHistory> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("history.color.R", g.color[0]), fn("history.color.G", g.color[1]);
-        fn("history.color.B", g.color[2]);
-        fn("history.diffuse.R", g.diffuse[0]), fn("history.diffuse.G", g.diffuse[1]);
-        fn("history.diffuse.B", g.diffuse[2]);
+        forEachChannel(Res::HistoryColor, g.color, fn);
+        forEachChannel(Res::HistoryDiffuse, g.diffuse, fn);
     }
     // Usable by a frame of this size.
     bool usableAt(int width, int height) const {

@@ -10,53 +10,6 @@
 
 namespace ssrt {
 
-std::string_view resolutionName(Resolution r) {
-    switch (r) {
-        case Resolution::Full: return "full";
-        case Resolution::Half: return "half";
-        case Resolution::ShadowMap: return "shadow map";
-        case Resolution::Pyramid: return "pyramid";
-        case Resolution::HalfPyramid: return "half pyramid";
-    }
-    return "?";
-}
-
-std::string_view lifetimeName(Lifetime l) {
-    switch (l) {
-        case Lifetime::Transient: return "transient";
-        case Lifetime::History: return "history";
-        case Lifetime::Output: return "output";
-    }
-    return "?";
-}
-
-SceneFacts SceneFacts::of(const Scene& scene) {
-    SceneFacts f;
-    f.textured = anyTextured(scene);
-    f.uvSet1 = anyUvSet1(scene);
-    f.normalMapped = anyNormalMapped(scene);
-    f.emissive = anyEmissive(scene);
-    f.emissiveTextured = anyEmissiveTextured(scene);
-    f.occlusionTextured = anyOcclusionTextured(scene);
-    return f;
-}
-
-int ResourceDecl::channelCount() const {
-    return channels.empty() ? 1 : int(std::count(channels.begin(), channels.end(), ',')) + 1;
-}
-
-std::vector<std::string> ResourceDecl::channelNames() const {
-    if (channels.empty()) return {std::string(name)};
-    std::vector<std::string> out;
-    std::size_t at = 0;
-    while (at <= channels.size()) {
-        const std::size_t end = std::min(channels.find(',', at), channels.size());
-        out.push_back(std::string(name) + "." + std::string(channels.substr(at, end - at)));
-        at = end + 1;
-    }
-    return out;
-}
-
 namespace {
 
 // Texels of one channel at a resolution.
@@ -203,19 +156,6 @@ std::size_t assignSlots(std::vector<GraphResource>& resources) {
 }
 
 }  // namespace
-
-Res resourceOfChannel(std::string_view channel) {
-    static const std::vector<std::pair<std::string, Res>> channels = [] {
-        std::vector<std::pair<std::string, Res>> all;
-        for (int r = 0; r < kResourceCount; ++r)
-            for (std::string& name : resourceDecl(Res(r)).channelNames())
-                all.emplace_back(std::move(name), Res(r));
-        return all;
-    }();
-    for (const auto& [name, id] : channels)
-        if (name == channel) return id;
-    return Res::Count;
-}
 
 bool CompiledGraph::runs(std::string_view name) const {
     return std::any_of(passes.begin(), passes.end(),

@@ -22,155 +22,13 @@
 #include <string_view>
 #include <vector>
 
-#include "core/pixel_formats.h"
 #include "renderer/frame.h"
-#include "renderer/settings.h"
-#include "scenes/scene.h"
+#include "renderer/resources.h"
 
 namespace ssrt {
 
-// Where a resource's texels lie: the frame's pixels, the half frame's (one per 2x2 block),
-// the shadow map's (RenderSettings::shadowMapSize squared), or a pyramid over the frame's or
-// the half frame's pixels (that size, then each level halved down to one texel: the Hi-Z and
-// colour pyramids).
-enum class Resolution : uint8_t { Full, Half, ShadowMap, Pyramid, HalfPyramid };
-// "full", "half", "shadow map", "pyramid", "half pyramid"
-std::string_view resolutionName(Resolution r);
-
-// How long a resource lives: within the frame (its memory reused once its last pass has run),
-// across frames (the caller's FrameHistory, exchanged each frame), or handed out in the Frame.
-enum class Lifetime : uint8_t { Transient, History, Output };
-std::string_view lifetimeName(Lifetime l);  // "transient", "history", "output"
-
 // How far around its own pixel a pass reads a resource.
 enum class Footprint : uint8_t { Pixel, Around, Anywhere };
-
-// The facts of a scene that decide which passes and resources a frame has.
-struct SceneFacts {
-    bool textured = false;           // some material has a texture: UVs are resolved
-    bool uvSet1 = false;             // a texture reads TEXCOORD_1
-    bool normalMapped = false;       // the tangent frame is resolved
-    bool emissive = false;           // something emits
-    bool emissiveTextured = false;   // an emissive texture: per-pixel emission
-    bool occlusionTextured = false;  // an occlusion texture: per-pixel occlusion
-    static SceneFacts of(const Scene& scene);
-};
-
-// What a graph is compiled for.
-struct GraphKey {
-    RenderSettings settings;
-    SceneFacts scene;
-    // The last frame's history is read (FrameHistory, usable at this size, no cut).
-    bool history = true;
-    // This frame's history is kept for the next (FrameInput::replaceHistory with a history
-    // given). Both false: a single image.
-    bool keepHistory = true;
-};
-
-using GraphCondition = bool (*)(const GraphKey&);
-
-// The resources, one per layer (a layer's channels share a name, format and lifetime).
-enum class Res : uint8_t {
-    // Colour (file layers)
-    Color,
-    Display,
-    Shadow,
-    // G-buffer (file layers)
-    ViewZ,
-    Normal,
-    Albedo,
-    Metallic,
-    Roughness,
-    MaterialId,
-    Motion,
-    Emissive,
-    Occlusion,
-    InstanceId,
-    TriangleId,
-    // Traced signals and the denoiser's outputs (file layers)
-    Ssr,
-    SsrOpacity,
-    SsrHit,
-    SsrHitDistance,
-    SsrSteps,
-    Ssgi,
-    SsgiHit,
-    SsgiHitDistance,
-    SsgiSteps,
-    DenoisedDiffuse,
-    DenoisedSpecular,
-    DiffuseFrames,
-    SpecularFrames,
-    // Raster
-    ShadowMap,
-    VisibilityDepth,
-    VisibilityIds,
-    BackDepth,
-    BackIds,
-    BackZ,
-    Uv0,
-    Uv1,
-    Tangent,
-    // The direct pass's parts
-    Direct,
-    Emission,
-    EnvDiffuse,
-    EnvSpecular,
-    SpecWeight,
-    HitLight,
-    // Tracing
-    HiZ,
-    HiZPacked,
-    ColorPyramid,
-    RayPdf,
-    MarchHit,
-    SsrHitRadiance,
-    SsrHitTarget,
-    // SSGI's half frame (TraceLayout::Half)
-    HalfGBuffer,
-    HalfHitLight,
-    HalfBackZ,
-    HalfGuides,
-    HalfHiZ,
-    HalfRayPdf,
-    HalfSsgi,
-    HalfSsgiSteps,
-    // The denoiser's scratch: at full resolution, and on the half frame for the diffuse
-    DenoiseNoisyDiffuse,
-    DenoiseNoisySpecular,
-    DenoisePingPong,
-    DenoiseDiffuseState,
-    DenoiseSpecularState,
-    HalfDenoiseNoisy,
-    HalfDenoisePingPong,
-    HalfDenoiseState,
-    HalfDenoised,
-    // History (FrameHistory)
-    HistoryColor,
-    HistoryDiffuse,
-    DenoiseHistoryGuides,
-    DenoiseHistoryDiffuse,
-    DenoiseHistorySpecular,
-    HalfDenoiseHistory,
-    Count
-};
-inline constexpr int kResourceCount = int(Res::Count);
-
-struct ResourceDecl {
-    Res id;
-    std::string_view name;      // the layer's name: "normal" (channels normal.X, ...)
-    std::string_view channels;  // comma-separated channel suffixes ("X,Y,Z"); "" for one
-    PixelFormat format;         // how each channel is stored (core/pixel_formats.h)
-    Resolution resolution;
-    Lifetime lifetime;
-    LayerGroup group = LayerGroup::Color;  // outputs only: which part of a file
-    // An output that exists only to be looked at: handed out when this holds, and otherwise
-    // transient (gone when no later pass reads it). Null: always handed out.
-    GraphCondition handedOut = nullptr;
-    int channelCount() const;
-    // The file's channel names ("normal.X", ...; "viewZ" for one channel).
-    std::vector<std::string> channelNames() const;
-};
 
 struct Access {
     Res res;
@@ -197,12 +55,8 @@ struct PassDecl {
     std::vector<Access> writes;
 };
 
-// The table and the passes in the order they run.
-const ResourceDecl& resourceDecl(Res id);
+// The passes in the order they run.
 const std::vector<PassDecl>& passDecls();
-// The resource one of whose channels is called `channel` ("normal.X": Res::Normal), as the
-// Frame's plane tables name their planes (renderer/frame.h); Res::Count if none is.
-Res resourceOfChannel(std::string_view channel);
 
 // One resource of a compiled graph.
 struct GraphResource {

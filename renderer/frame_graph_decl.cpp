@@ -13,10 +13,6 @@ namespace ssrt {
 
 namespace {
 
-using F = PixelFormat;
-using R = Resolution;
-using L = Lifetime;
-using G = LayerGroup;
 using P = Footprint;
 
 // --- Conditions (each a plain function, so that a declaration can point at it) ---
@@ -31,7 +27,6 @@ bool halfSsgi(const GraphKey& k) { return ssgi(k) && tr(k).ssgiLayout == TraceLa
 bool fullSsgi(const GraphKey& k) { return ssgi(k) && !halfSsgi(k); }
 bool backFaces(const GraphKey& k) { return trace(k) && tr(k).march.backFaces; }
 bool hiZMarcher(const GraphKey& k) { return tr(k).marcher == Marcher::HiZ; }
-bool notPooled(const GraphKey& k) { return !tracedSignalsPooled(k.settings); }
 bool textured(const GraphKey& k) { return k.scene.textured; }
 bool uvSet1(const GraphKey& k) { return k.scene.textured && k.scene.uvSet1; }
 bool normalMapped(const GraphKey& k) { return k.scene.textured && k.scene.normalMapped; }
@@ -84,105 +79,6 @@ bool commit(const GraphKey& k) { return k.keepHistory && trace(k) && readsHistor
 bool keepDiffuse(const GraphKey& k) { return k.keepHistory && ssgi(k) && tr(k).ssgiFeedback; }
 bool keepDenoised(const GraphKey& k) { return keepDiffuse(k) && denoise(k); }
 bool keepRaw(const GraphKey& k) { return keepDiffuse(k) && !denoise(k); }
-
-// --- The resource table, in Res order ---
-// (Every resource is f32 today but the ids, which are u32: the formats the data needs come
-// with the typed views.)
-const std::array<ResourceDecl, kResourceCount> kResources = {{
-    {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
-    {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
-    {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
-    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Ssr, "ssr", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsrOpacity, "ssrOpacity", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsrHit, "ssrHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsrHitDistance, "ssrHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::Ssgi, "ssgi", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
-    {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
-    {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::ShadowMap, "shadowMap", "", F::F32, R::ShadowMap, L::Transient},
-    {Res::VisibilityDepth, "visibility.depth", "", F::F32, R::Full, L::Transient},
-    {Res::VisibilityIds, "visibility.ids", "", F::U32, R::Full, L::Transient},
-    {Res::BackDepth, "back.depth", "", F::F32, R::Full, L::Transient},
-    {Res::BackIds, "back.ids", "", F::U32, R::Full, L::Transient},
-    {Res::BackZ, "backZ", "", F::F32, R::Full, L::Transient},
-    {Res::Uv0, "uv0", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
-    {Res::Uv1, "uv1", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
-    {Res::Tangent, "tangent", "X,Y,Z,W", F::F32, R::Full, L::Transient},
-    {Res::Direct, "direct", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::Emission, "emission", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::EnvDiffuse, "envDiffuse", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::EnvSpecular, "envSpecular", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::SpecWeight, "specWeight", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::HitLight, "hitLight", "R,G,B", F::F32, R::Full, L::Transient},
-    {Res::HiZ, "hiz.minZ", "", F::F32, R::Pyramid, L::Transient},
-    {Res::HiZPacked, "hiz.packed", "", F::F32, R::Pyramid, L::Transient},
-    {Res::ColorPyramid, "colorPyramid", "R,G,B", F::F32, R::Pyramid, L::Transient},
-    {Res::RayPdf, "ray.pdf", "", F::F32, R::Full, L::Transient},
-    {Res::MarchHit, "march.hit", "", F::F32, R::Full, L::Transient},
-    {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::Full, L::Transient},
-    {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::Full, L::Transient},
-    {Res::HalfGBuffer, "half.gbuffer",
-     "viewZ,normal.X,normal.Y,normal.Z,albedo.R,albedo.G,"
-     "albedo.B,metallic",
-     F::F32, R::Half, L::Transient},
-    {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F32, R::Half, L::Transient},
-    {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},
-    {Res::HalfGuides, "half.guide", "viewZ,normal.X,normal.Y,normal.Z,motion.X,motion.Y", F::F32,
-     R::Half, L::Transient},
-    {Res::HalfHiZ, "half.hiz", "minZ,packed", F::F32, R::HalfPyramid, L::Transient},
-    {Res::HalfRayPdf, "half.ray.pdf", "", F::F32, R::Half, L::Transient},
-    {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
-    {Res::HalfSsgiSteps, "half.ssgiSteps", "", F::F32, R::Half, L::Transient},
-    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F32, R::Full, L::Transient},
-    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F32, R::Full, L::Transient},
-    {Res::DenoisePingPong, "pingPong",
-     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,pong.B,"
-     "pong.hit",
-     F::F32, R::Full, L::Transient},
-    {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames,fast", F::F32, R::Full,
-     L::Transient},
-    {Res::DenoiseSpecularState, "state.specular", "signalZ,frames,fast", F::F32, R::Full,
-     L::Transient},
-    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F32, R::Half, L::Transient},
-    {Res::HalfDenoisePingPong, "half.pingPong",
-     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,"
-     "pong.B,pong.hit",
-     F::F32, R::Half, L::Transient},
-    {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames,fast", F::F32, R::Half,
-     L::Transient},
-    {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
-    {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
-    {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
-    {Res::DenoiseHistoryGuides, "history.denoise.guide",
-     "viewZ,normal.X,normal.Y,normal.Z,"
-     "roughness",
-     F::F32, R::Full, L::History},
-    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,frames,fast", F::F32,
-     R::Full, L::History},
-    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,frames,fast", F::F32,
-     R::Full, L::History},
-    {Res::HalfDenoiseHistory, "history.half.denoise",
-     "viewZ,normal.X,normal.Y,normal.Z,"
-     "roughness,R,G,B,hit,frames,fast",
-     F::F32, R::Half, L::History},
-}};
 
 // The G-buffer as the passes after the resolve read it at their own pixel.
 void gbufferReads(std::vector<Access>& reads, Footprint f = P::Pixel) {
@@ -514,8 +410,6 @@ std::vector<PassDecl> declarePasses() {
 }
 
 }  // namespace
-
-const ResourceDecl& resourceDecl(Res id) { return kResources[std::size_t(id)]; }
 
 const std::vector<PassDecl>& passDecls() {
     static const std::vector<PassDecl> passes = declarePasses();

@@ -114,6 +114,30 @@ TEST_CASE("frame graph: the resource table is in Res order, with channel names")
     CHECK(resourceDecl(Res::ViewZ).channelNames() == std::vector<std::string>{"viewZ"});
 }
 
+TEST_CASE("frame graph: the frame's plane groups are named from the resource table") {
+    Frame f;
+    FrameHistory h;
+    int planes = 0;
+    const auto known = [&](std::string_view name, const PlaneF&) {
+        ++planes;
+        CHECK(resourceOfChannel(name) != Res::Count);
+    };
+    f.image.forEachPlane(known);
+    f.gbuffer.forEachPlane(known);
+    f.material.forEachPlane(known);
+    f.ids.forEachPlane(known);
+    f.direct.forEachPlane(known);
+    f.trace.ssr.forEachPlane(known);
+    f.trace.ssgi.forEachPlane(known);
+    f.trace.denoise.forEachPlane(known);
+    h.forEachPlane(known);
+    CHECK(planes == 7 + 12 + 4 + 2 + 18 + 7 + 6 + 8 + 6);
+    CHECK(channelName(Res::Normal, 2) == "normal.Z");
+    PlaneF two[2];
+    const auto none = [](std::string_view, PlaneF&) {};
+    CHECK_THROWS_AS(forEachChannel(Res::Normal, two, none), std::logic_error);
+}
+
 TEST_CASE("frame graph: its outputs are the rendered frame's layers") {
     Scene cornell = makeBuiltinScene("cornell");
     Scene textured = makeBuiltinScene("cornell");

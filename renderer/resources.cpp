@@ -1,0 +1,212 @@
+#include "renderer/resources.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "renderer/direct_lighting.h"
+#include "renderer/resolve_tables.h"
+#include "renderer/trace_pass.h"
+
+namespace ssrt {
+
+namespace {
+
+using F = PixelFormat;
+using R = Resolution;
+using L = Lifetime;
+using G = LayerGroup;
+
+// When an output only looked at is handed out (ResourceDecl::handedOut).
+bool debug(const GraphKey& k) { return k.settings.debugPlanes; }
+bool notPooled(const GraphKey& k) { return !tracedSignalsPooled(k.settings); }
+
+// --- The resource table, in Res order ---
+// (Every resource is f32 today but the ids, which are u32: the formats the data needs come
+// with the typed views.)
+const std::array<ResourceDecl, kResourceCount> kResources = {{
+    {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
+    {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
+    {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
+    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::Ssr, "ssr", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrOpacity, "ssrOpacity", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrHit, "ssrHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrHitDistance, "ssrHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::Ssgi, "ssgi", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
+    {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
+    {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
+    {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::ShadowMap, "shadowMap", "", F::F32, R::ShadowMap, L::Transient},
+    {Res::VisibilityDepth, "visibility.depth", "", F::F32, R::Full, L::Transient},
+    {Res::VisibilityIds, "visibility.ids", "", F::U32, R::Full, L::Transient},
+    {Res::BackDepth, "back.depth", "", F::F32, R::Full, L::Transient},
+    {Res::BackIds, "back.ids", "", F::U32, R::Full, L::Transient},
+    {Res::BackZ, "backZ", "", F::F32, R::Full, L::Transient},
+    {Res::Uv0, "uv0", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
+    {Res::Uv1, "uv1", "u,v,dudx,dvdx,dudy,dvdy", F::F32, R::Full, L::Transient},
+    {Res::Tangent, "tangent", "X,Y,Z,W", F::F32, R::Full, L::Transient},
+    {Res::Direct, "direct", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::Emission, "emission", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::EnvDiffuse, "envDiffuse", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::EnvSpecular, "envSpecular", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::SpecWeight, "specWeight", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::HitLight, "hitLight", "R,G,B", F::F32, R::Full, L::Transient},
+    {Res::HiZ, "hiz.minZ", "", F::F32, R::Pyramid, L::Transient},
+    {Res::HiZPacked, "hiz.packed", "", F::F32, R::Pyramid, L::Transient},
+    {Res::ColorPyramid, "colorPyramid", "R,G,B", F::F32, R::Pyramid, L::Transient},
+    {Res::RayPdf, "ray.pdf", "", F::F32, R::Full, L::Transient},
+    {Res::MarchHit, "march.hit", "", F::F32, R::Full, L::Transient},
+    {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::Full, L::Transient},
+    {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::Full, L::Transient},
+    {Res::HalfGBuffer, "half.gbuffer",
+     "viewZ,normal.X,normal.Y,normal.Z,albedo.R,albedo.G,"
+     "albedo.B,metallic",
+     F::F32, R::Half, L::Transient},
+    {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F32, R::Half, L::Transient},
+    {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},
+    {Res::HalfGuides, "half.guide", "viewZ,normal.X,normal.Y,normal.Z,motion.X,motion.Y", F::F32,
+     R::Half, L::Transient},
+    {Res::HalfHiZ, "half.hiz", "minZ,packed", F::F32, R::HalfPyramid, L::Transient},
+    {Res::HalfRayPdf, "half.ray.pdf", "", F::F32, R::Half, L::Transient},
+    {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
+    {Res::HalfSsgiSteps, "half.ssgiSteps", "", F::F32, R::Half, L::Transient},
+    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F32, R::Full, L::Transient},
+    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F32, R::Full, L::Transient},
+    {Res::DenoisePingPong, "pingPong",
+     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,pong.B,"
+     "pong.hit",
+     F::F32, R::Full, L::Transient},
+    {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames,fast", F::F32, R::Full,
+     L::Transient},
+    {Res::DenoiseSpecularState, "state.specular", "signalZ,frames,fast", F::F32, R::Full,
+     L::Transient},
+    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F32, R::Half, L::Transient},
+    {Res::HalfDenoisePingPong, "half.pingPong",
+     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,"
+     "pong.B,pong.hit",
+     F::F32, R::Half, L::Transient},
+    {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames,fast", F::F32, R::Half,
+     L::Transient},
+    {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
+    {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
+    {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
+    {Res::DenoiseHistoryGuides, "history.denoise.guide",
+     "viewZ,normal.X,normal.Y,normal.Z,"
+     "roughness",
+     F::F32, R::Full, L::History},
+    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,frames,fast", F::F32,
+     R::Full, L::History},
+    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,frames,fast", F::F32,
+     R::Full, L::History},
+    {Res::HalfDenoiseHistory, "history.half.denoise",
+     "viewZ,normal.X,normal.Y,normal.Z,"
+     "roughness,R,G,B,hit,frames,fast",
+     F::F32, R::Half, L::History},
+}};
+
+// Every resource's channel names, made once.
+const std::array<std::vector<std::string>, kResourceCount>& allChannelNames() {
+    static const auto names = [] {
+        std::array<std::vector<std::string>, kResourceCount> n;
+        for (int r = 0; r < kResourceCount; ++r) n[r] = kResources[r].channelNames();
+        return n;
+    }();
+    return names;
+}
+
+}  // namespace
+
+const ResourceDecl& resourceDecl(Res id) { return kResources[std::size_t(id)]; }
+
+std::string_view resolutionName(Resolution r) {
+    switch (r) {
+        case Resolution::Full: return "full";
+        case Resolution::Half: return "half";
+        case Resolution::ShadowMap: return "shadow map";
+        case Resolution::Pyramid: return "pyramid";
+        case Resolution::HalfPyramid: return "half pyramid";
+    }
+    return "?";
+}
+
+std::string_view lifetimeName(Lifetime l) {
+    switch (l) {
+        case Lifetime::Transient: return "transient";
+        case Lifetime::History: return "history";
+        case Lifetime::Output: return "output";
+    }
+    return "?";
+}
+
+SceneFacts SceneFacts::of(const Scene& scene) {
+    SceneFacts f;
+    f.textured = anyTextured(scene);
+    f.uvSet1 = anyUvSet1(scene);
+    f.normalMapped = anyNormalMapped(scene);
+    f.emissive = anyEmissive(scene);
+    f.emissiveTextured = anyEmissiveTextured(scene);
+    f.occlusionTextured = anyOcclusionTextured(scene);
+    return f;
+}
+
+int ResourceDecl::channelCount() const {
+    return channels.empty() ? 1 : int(std::count(channels.begin(), channels.end(), ',')) + 1;
+}
+
+std::vector<std::string> ResourceDecl::channelNames() const {
+    if (channels.empty()) return {std::string(name)};
+    std::vector<std::string> out;
+    std::size_t at = 0;
+    while (at <= channels.size()) {
+        const std::size_t end = std::min(channels.find(',', at), channels.size());
+        out.push_back(std::string(name) + "." + std::string(channels.substr(at, end - at)));
+        at = end + 1;
+    }
+    return out;
+}
+
+Res resourceOfChannel(std::string_view channel) {
+    static const std::vector<std::pair<std::string, Res>> channels = [] {
+        std::vector<std::pair<std::string, Res>> all;
+        for (int r = 0; r < kResourceCount; ++r)
+            for (std::string& name : resourceDecl(Res(r)).channelNames())
+                all.emplace_back(std::move(name), Res(r));
+        return all;
+    }();
+    for (const auto& [name, id] : channels)
+        if (name == channel) return id;
+    return Res::Count;
+}
+
+std::string_view channelName(Res id, int i) {
+    const std::vector<std::string>& names = allChannelNames()[std::size_t(id)];
+    if (i < 0 || i >= int(names.size()))
+        throw std::logic_error("resource '" + std::string(resourceDecl(id).name) +
+                               "' has no channel " + std::to_string(i));
+    return names[std::size_t(i)];
+}
+
+void checkChannelCount(Res id, int count) {
+    if (count != resourceDecl(id).channelCount())
+        throw std::logic_error("resource '" + std::string(resourceDecl(id).name) + "' has " +
+                               std::to_string(resourceDecl(id).channelCount()) + " channels, not " +
+                               std::to_string(count));
+}
+
+}  // namespace ssrt
