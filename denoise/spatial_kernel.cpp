@@ -91,14 +91,9 @@ bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
         const Lane f = spec ? p.r * hitFactor : hitFactor;
         radius = Lane(a.radius) * ln::sqrt(ln::saturate(f * alphaBlur));
     }
-    if (spec) {
-        // No wider than the lobe's footprint on the surface, seen from the camera (NRD's
-        // lobe radius; the dominant direction's N.D taken as N.V).
-        const Lane dominant = rb::dominantFactor(p.noV, p.r);
-        const Lane footprint = hitWorld * p.noV * rb::lobeTanHalfAngle(p.r, Lane(0.3f));
-        const Lane pixel = Lane(2.0f * v.tanHalfY / float(v.height)) * (p.z + hitWorld * dominant);
-        radius = ln::min(radius, footprint / pixel);
-    }
+    // No wider than the reflection's lobe seen from the camera (NRD's lobe radius, with GGX's
+    // lobe and the mirror's curvature: specularLobePixels).
+    if (spec) radius = ln::min(radius, specularLobePixels(v, p, hitWorld, curvature(v, p, y)));
     q.radius = ln::max(radius, Lane(a.minRadius) * smc);
     // Edge-stopping parameters.
     q.invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
