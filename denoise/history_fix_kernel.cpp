@@ -15,15 +15,27 @@ using namespace reblur_lanes;
 // clamps the slow one (anti-lag).
 
 // Young pixels' reconstruction: the pixel and a sparse 5x5 of taps `stride` apart (wider the
-// younger), weighted by plane distance, normal (and roughness) and the taps' own history.
-void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, const Lane frames,
-                      const Lane c[4], Lane result[4]) {
+// younger), weighted by plane distance, normal (and roughness) and the taps' own history. A
+// specular pixel reaches (2 strides) no farther than its reflection's lobe spans
+// (specularLobePixels), and one whose lobe spans less than 2 pixels keeps its own signal: its
+// neighbours show other parts of the reflection (a mirror's: issue 44), and a lobe that narrow
+// gives the signal little noise to remove.
+void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, int y,
+                      const Lane frames, const Lane c[4], Lane result[4]) {
     const ReblurView& v = a.view;
     const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
-    const Lane stride = ln::max(
-        one, ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc)));
+    Lane stride =
+        ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc));
+    if (spec) {
+        const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+        const Lane reach = specularLobePixels(v, p, hitWorld, curvature(v, p, y));
+        young = young & (reach >= Lane(2.0f));
+        if (!ln::any(young)) return;
+        stride = ln::min(stride, ln::floor(reach * Lane(0.5f)));
+    }
+    stride = ln::max(one, stride);
     const Lane alpha = one / (one + frames);
     const Lane invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
     const Lane normalScale = normalWeightScale(p.r, alpha, a.lobeFraction2, 1.0f);
@@ -111,7 +123,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const Lane frames = loadAt(a.frames, o);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));
-    if (ln::any(young)) reconstructYoung(a, p, young, frames, c, result);
+    if (ln::any(young)) reconstructYoung(a, p, young, y, frames, c, result);
     if (a.fast && ln::any(valid)) clampToFast(a, p, valid, x, y, o, frames, result);
     for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, result[ch]);
 }

@@ -100,6 +100,60 @@ SSRT_INLINE Lane normalWeightScale(Lane r, Lane alpha, float lobeFraction2, floa
     return Lane(1.0f) / (angle * Lane(fractionScale));
 }
 
+// The surface's curvature at the centre from its right (or left) and lower (or upper)
+// neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
+// 0 across a depth edge.
+SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
+    const Lane zero(0.0f);
+    Lane sum = zero;
+    for (int axis = 0; axis < 2; ++axis) {
+        Lane tx = p.px, ty = p.py;
+        if (axis == 0)
+            tx = ln::select(tx + Lane(1.0f) < Lane(float(v.width)), tx + Lane(1.0f),
+                            tx - Lane(1.0f));
+        else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
+        const Tap t = tapAt(v, tx, ty);
+        const Lane zs = ln::gather(v.viewZ, t.index, t.run);
+        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 ns =
+            screen::worldToView(v.viewToWorld, V3{ln::gather(v.normal[0], t.index, t.run),
+                                                  ln::gather(v.normal[1], t.index, t.run),
+                                                  ln::gather(v.normal[2], t.index, t.run)});
+        const V3 d = xs - p.x;
+        const Lane d2 = ln::dot(d, d);
+        const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);
+        const Lane k = ln::dot(ns - p.nv, d) / ln::select(same, d2, Lane(1.0f));
+        sum = sum + ln::select(same, k, zero);
+    }
+    return sum * Lane(0.5f);
+}
+
+// How many of this frame's pixels the reflection's lobe spans on a specular pixel: what a
+// spatial filter may reach over without blurring the reflection more than the BRDF does.
+//   - The lobe: the reflected directions holding 30 % of it lie within twice the microfacet
+//     normal's angle theta_m, and a share P of GGX's microfacets lies within
+//     tan theta_m = alpha sqrt(P / (1 - P)) (Walter et al. 2007, "Microfacet Models for
+//     Refraction through Rough Surfaces", eq. 35; alpha as the BRDF's, brdf::roughnessToAlpha:
+//     r^2, at least 1e-3). At its hit, hitWorld away, it covers hitWorld N.V 2 tan theta_m.
+//   - Seen in the mirror: a convex mirror of curvature kappa images that patch smaller by
+//     1 + 2 kappa hitWorld, that far behind it (the mirror equation, focal length
+//     1 / (2 kappa); concave ones taken as flat), so from the camera it spans
+//     patch / (z (1 + 2 kappa hitWorld) + hitWorld dominant) radians, the distance to the
+//     reflection leaning to the surface's as the lobe widens (the dominant factor).
+// NRD bounds its radius by the lobe of perceptual roughness (lobeTanHalfAngle, r in place of
+// alpha), 1 / r times wider than GGX's below r = 0.5 and taken flat: on cornell's mirror sphere
+// (r 0.02, alpha 1e-3) 5 pixels at 1280x720 where the reflection is sharper than one (issue 44).
+SSRT_INLINE Lane specularLobePixels(const ReblurView& v, const Centre& p, Lane hitWorld,
+                                    Lane kappa) {
+    const Lane one(1.0f);
+    const Lane alpha = ln::max(p.r * p.r, Lane(1.0e-3f));
+    const Lane spread = Lane(2.0f * 0.65465367f) * alpha;  // 2 tan theta_m, sqrt(0.3 / 0.7)
+    const Lane patch = hitWorld * p.noV * spread;
+    const Lane minify = one + Lane(2.0f) * ln::max(kappa, Lane(0.0f)) * hitWorld;
+    const Lane distance = p.z * minify + hitWorld * rb::dominantFactor(p.noV, p.r);
+    return patch / (Lane(2.0f * v.tanHalfY / float(v.height)) * distance);
+}
+
 SSRT_INLINE Lane sanitize(Lane v) {
     const Mask finite = (v - v) == Lane(0.0f);  // false for NaN and both infinities
     return ln::select(finite, ln::clamp(v, Lane(0.0f), Lane(kMaxSignal)), Lane(0.0f));

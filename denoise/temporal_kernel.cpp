@@ -202,34 +202,6 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
     return finiteHistory(h);
 }
 
-// The surface's curvature at the centre from its right (or left) and lower (or upper)
-// neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
-// 0 across a depth edge.
-SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
-    const Lane zero(0.0f);
-    Lane sum = zero;
-    for (int axis = 0; axis < 2; ++axis) {
-        Lane tx = p.px, ty = p.py;
-        if (axis == 0)
-            tx = ln::select(tx + Lane(1.0f) < Lane(float(v.width)), tx + Lane(1.0f),
-                            tx - Lane(1.0f));
-        else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
-        const Tap t = tapAt(v, tx, ty);
-        const Lane zs = ln::gather(v.viewZ, t.index, t.run);
-        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-        const V3 ns =
-            screen::worldToView(v.viewToWorld, V3{ln::gather(v.normal[0], t.index, t.run),
-                                                  ln::gather(v.normal[1], t.index, t.run),
-                                                  ln::gather(v.normal[2], t.index, t.run)});
-        const V3 d = xs - p.x;
-        const Lane d2 = ln::dot(d, d);
-        const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);
-        const Lane k = ln::dot(ns - p.nv, d) / ln::select(same, d2, Lane(1.0f));
-        sum = sum + ln::select(same, k, zero);
-    }
-    return sum * Lane(0.5f);
-}
-
 // Specular history is only as good as the reflection it saw: the surface's history saw it
 // from a direction the parallax angle away, which a lobe narrower than that angle cannot hide
 // (REBLUR's surface-motion confidence: a mirror on a moving camera keeps few frames). Returns

@@ -156,8 +156,11 @@ TEST_CASE("denoise sequence: a mirror stays sharp on a moving camera (virtual mo
     const double surfaceOnly = run(0.75f, false, 10, 46);
     MESSAGE("specular relMSE: still frame 30 " << still << ", orbit frames 10-46 " << moving
                                                << ", orbit without virtual motion " << surfaceOnly);
-    // Measured: 0.031 still, 0.060 on the orbit, 0.244 following the surface alone.
-    CHECK(moving <= 2.5 * still);
+    // Measured: 0.0156 still, 0.0424 on the orbit, 0.244 following the surface alone. (Before
+    // issue 44 sharpened the mirror, 0.0251, 0.0469 and 0.234: the still frame gained more than
+    // the orbit, whose error is the motion's, so the orbit is bounded by its own level, not by
+    // a multiple of the still frame's.)
+    CHECK(moving < 0.05);
     CHECK(moving < 0.5 * surfaceOnly);
 }
 
