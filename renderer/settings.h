@@ -59,8 +59,9 @@ struct RenderSettings {
     int threads = 0;               // worker threads; 0 = every core
     std::optional<Isa> isa;        // nullopt: best the CPU runs (or $SSRT_ISA)
     int shadowMapSize = 2048;      // texels per side
-    float shadowBias = 1.5f;       // constant depth bias, in shadow-map texels of depth
-    float shadowSlopeBias = 2.0f;  // extra bias per unit of tan(angle to the light), texels
+    float shadowBias = 0.1f;       // texels of depth the map may lie off the receiver's plane
+    float shadowSlopeBias = 1.0f;  // more per unit of tan(angle to the light) (shading/
+                                   // direct_lanes.h, shade::shadowVisibility)
     int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
     float exposure = 1.0f;         // scale on linear radiance before the tone map
     bool idPlanes = true;          // also hand out instanceId and triangleId float planes

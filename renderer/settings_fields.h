@@ -108,12 +108,13 @@ inline constexpr std::array kRenderOwnFields = {
     field<&RenderSettings::shadowMapSize>("shadowMapSize", kCliShot | kFieldKey,
                                           "Shadow map texels per side")
         .ints(16, kMaxImageSize),
-    field<&RenderSettings::shadowBias>("shadowBias", kCliShot | kFieldKey,
-                                       "Constant shadow depth bias, in shadow-map texels of depth")
+    field<&RenderSettings::shadowBias>(
+        "shadowBias", kCliShot | kFieldKey,
+        "Shadow depth tolerance off the receiver's plane, in shadow-map texels of depth")
         .floats(0.0, false),
     field<&RenderSettings::shadowSlopeBias>(
         "shadowSlopeBias", kCliShot | kFieldKey,
-        "Extra shadow bias per unit of tan(angle to the light), in texels")
+        "Extra shadow depth tolerance per unit of tan(angle to the light), in texels")
         .floats(0.0, false),
     field<&RenderSettings::pcfRadius>("pcfRadius", kCliShot | kFieldKey,
                                       "Shadow PCF kernel radius r: (2r+1)^2 texels")

@@ -45,7 +45,7 @@ struct DirectArgs {
     std::size_t shadowStride;
     int shadowSize;
     float lightViewProj[16];     // column-major
-    float biasConst, biasSlope;  // depth-key units; slope term scales tan(angle to light)
+    float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
     int pcfRadius;
     float exposure;
     // Outputs (outStride), the renderer's ImagePlanes table in its order (renderer/frame.h):

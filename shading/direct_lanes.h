@@ -72,35 +72,115 @@ SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
     return sum * L(a.envIntensity);
 }
 
-// Fraction of PCF taps that see the light. Taps are clamped to the map's edge; points
-// outside the map are lit (nothing there casts a shadow).
+// The shadow map's answer at a surface point p with normal n, the fraction of its PCF taps
+// that see the light (taps clamped to the map's edge; points outside the map are lit:
+// nothing there casts a shadow).
+//
+// Receiver plane (Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques"): each tap
+// compares the map's depth at its texel centre with the receiver's plane extended to that
+// centre, not with p's own depth, so a tilted receiver meets itself in every tap and needs
+// no slope-scaled bias. The map is orthographic (raster/shadow_map.cpp), clip = A p + b with
+// the rows a_i of A orthogonal (a rotation scaled per axis), so the plane's clip-space
+// normal is A^-T n, n_c,i = (a_i . n) / |a_i|^2, and with texel coordinates
+// fu = (cx + 1) s / 2, fv = (1 - cy) s / 2 and key = (1 - cz) / 2 the plane's key changes
+// per texel by
+//   dkey/dfu = n_c,x / (s n_c,z),   dkey/dfv = -n_c,y / (s n_c,z),
+// n_c,z = (a_z . l)(n . l) / |a_z|^2 (a_z is parallel to the light), with n . l floored at
+// kShadowMinCos so that the plane stays finite at grazing light.
+//
+// Each tap's gap = map - plane (positive: something nearer the light) is
+//   receiver  |gap| <= tol: the map sees the receiver itself;
+//   occluder  gap > tol: something nearer the light; `far` past creaseTol;
+//   absent    gap < -tol: the map sees past the plane, so the receiver does not reach that
+//             texel (its edge, or a surface curving away): the tap knows nothing of p.
+// Where two surfaces meet (a crease: the green wall against the back wall and on the floor),
+// the one the light sees lies nearer the other's extended plane on its own side of the
+// crease, and plain PCF cannot tell a contact shadow from a lit corner: at the back wall's
+// corner by the green wall, the taps past the corner see nothing (lit, before: the bright
+// seam, and a slope-scaled bias let the green wall's own nearest taps pass as well); by the
+// red wall, which the light sees, the taps past the corner see the red wall (shadow: a dark
+// seam without that bias). Which side p is on, p's own texel (the centre tap) says, so
+// occluder taps within the crease's reach (creaseTol: how far two planes of slopes up to the
+// receiver's and kShadowCreaseTan part across the taps) and absent taps take p's answer:
+//   p is shadowed when the centre is an occluder; or when the centre is absent, or is the
+//   only tap that sees the receiver (a crease runs through it), and some tap is an occluder.
+// A shadowed p counts only the taps that see its plane to within exactTol (rounding: a flat
+// receiver's plane is exact) as lit, so a crease's neighbour is never light; a lit p counts
+// every tap but the far occluders, so the edge of a shadow cast from afar is filtered as
+// before. The counts are whole numbers of taps: every ISA adds them in the same bits.
+inline constexpr float kShadowCreaseTan = 10.0f;
+inline constexpr float kShadowMinCos = 1e-3f;  // tan about 1000
+
 template <class L>
-SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, L bias) {
+SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L tol, L exactTol,
+                               L tanL) {
     using IL = ln::IntOf<L>;
     const float* m = a.lightViewProj;
     const L cx = ((L(m[0]) * p.x + L(m[4]) * p.y) + L(m[8]) * p.z) + L(m[12]);
     const L cy = ((L(m[1]) * p.x + L(m[5]) * p.y) + L(m[9]) * p.z) + L(m[13]);
     const L cz = ((L(m[2]) * p.x + L(m[6]) * p.y) + L(m[10]) * p.z) + L(m[14]);
-    const L s(float(a.shadowSize));
-    const L u = ln::floor((cx * L(0.5f) + L(0.5f)) * s);
-    const L v = ln::floor((L(0.5f) - cy * L(0.5f)) * s);
-    const L key = (L(0.5f) - L(0.5f) * cz) + bias;
+    const float size = float(a.shadowSize);
+    const L s(size);
+    const L fu = (cx * L(0.5f) + L(0.5f)) * s;
+    const L fv = (L(0.5f) - cy * L(0.5f)) * s;
+    const L u = ln::floor(fu);
+    const L v = ln::floor(fv);
+    const L key = L(0.5f) - L(0.5f) * cz;
     const auto inMap = (u >= L(0.0f)) & (v >= L(0.0f)) & (u < s) & (v < s);
     if (!ln::any(inMap)) return L(1.0f);
-    const L last(float(a.shadowSize - 1));
+    // The receiver plane's key per texel (the derivation above); scalars once per call.
+    const float ax2 = (m[0] * m[0] + m[4] * m[4]) + m[8] * m[8];
+    const float ay2 = (m[1] * m[1] + m[5] * m[5]) + m[9] * m[9];
+    const float az2 = (m[2] * m[2] + m[6] * m[6]) + m[10] * m[10];
+    const float* l = a.toLight;
+    const float azl = ((m[2] * l[0] + m[6] * l[1]) + m[10] * l[2]) / az2;
+    const L ncx = (((L(m[0]) * n.x + L(m[4]) * n.y) + L(m[8]) * n.z)) / L(ax2);
+    const L ncy = (((L(m[1]) * n.x + L(m[5]) * n.y) + L(m[9]) * n.z)) / L(ay2);
+    const L sncz = s * (L(azl) * cosL);
+    const L gu = ncx / sncz;
+    const L gv = (L(0.0f) - ncy) / sncz;
+    // One texel of depth in key units (the larger texel side), for the crease's reach.
+    const float texelKey = ln::sqrt(az2) / (size * ln::sqrt(ln::min(ax2, ay2)));
     const int r = a.pcfRadius;
-    L lit(0.0f);
+    const L creaseTol = tol + (tanL + L(kShadowCreaseTan)) * L(float(2 * r + 2) * texelKey);
+    // The plane at the centre tap's texel centre, relative to p.
+    const L du0 = (u + L(0.5f)) - fu;
+    const L dv0 = (v + L(0.5f)) - fv;
+    const L last(float(a.shadowSize - 1));
+    const L zero(0.0f), one(1.0f);
+    L receiver = zero, exact = zero, occluderNear = zero, occluderFar = zero, absent = zero;
+    L centreOccluder = zero, centreAbsent = zero;
     for (int dy = -r; dy <= r; ++dy) {
-        const IL row = ln::toIntTrunc(ln::clamp(v + L(float(dy)), L(0.0f), last)) *
-                       IL(int32_t(a.shadowStride));
+        const IL row =
+            ln::toIntTrunc(ln::clamp(v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
+        const L planeRow = gv * (dv0 + L(float(dy)));
         for (int dx = -r; dx <= r; ++dx) {
-            const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), L(0.0f), last));
+            const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), zero, last));
             const L depth = ln::gather(a.shadow, row + col);
-            lit = lit + ln::select(key >= depth, L(1.0f), L(0.0f));
+            const L gap = depth - (key + (gu * (du0 + L(float(dx))) + planeRow));
+            const auto isOccluder = gap > tol;
+            const auto isAbsent = gap < L(0.0f) - tol;
+            const auto isFar = gap > creaseTol;
+            receiver = receiver + ln::select(isOccluder | isAbsent, zero, one);
+            exact = exact + ln::select(ln::abs(gap) <= exactTol, one, zero);
+            occluderFar = occluderFar + ln::select(isFar, one, zero);
+            occluderNear =
+                occluderNear + ln::select(isOccluder, ln::select(isFar, zero, one), zero);
+            absent = absent + ln::select(isAbsent, one, zero);
+            if (dx == 0 && dy == 0) {
+                centreOccluder = ln::select(isOccluder, one, zero);
+                centreAbsent = ln::select(isAbsent, one, zero);
+            }
         }
     }
+    // p's own answer: its texel's; where that texel is past the receiver, or is the only one
+    // that sees it (a crease through it), shadowed when any tap holds an occluder.
+    const L centreReceiver = one - (centreOccluder + centreAbsent);
+    const auto lone = (centreAbsent > zero) | ((centreReceiver > zero) & (receiver == one));
+    const auto shadowed = (centreOccluder > zero) | (lone & ((occluderNear + occluderFar) > zero));
+    const L lit = ln::select(shadowed, exact, (receiver + occluderNear) + absent);
     const L taps(float((2 * r + 1) * (2 * r + 1)));
-    return ln::select(inMap, lit / taps, L(1.0f));
+    return ln::select(inMap, lit / taps, one);
 }
 
 // Kulla and Conty 2017, "Revisiting Physically Based Shading at Imageworks": the tint of the
@@ -128,16 +208,20 @@ struct Parts {
     V3<L> sun, envDiffuse, specWeight, envSpecular;
 };
 
-// The sun's visibility at s by the shadow map, with the slope-scaled bias: 0 facing away.
+// The sun's visibility at s by the shadow map (shadowVisibility, the receiver's plane from
+// its normal): 0 facing away. The tolerance that tells the receiver from an occluder is
+// biasConst plus biasSlope per unit of tan(angle to the light), for what the plane cannot
+// know: a shading normal that is not the facet's, which tilts the plane the more the more
+// grazing the light (the terminator of a smooth sphere). exactTol is biasConst alone.
 template <class L>
 SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
     const L zero(0.0f), one(1.0f);
     const L NoLraw = ln::dot(s.n, splat3<L>(a.toLight));
-    // Slope-scaled bias: grows with tan(angle to the light), capped at grazing angles.
-    const L cosL = ln::max(NoLraw, L(1e-3f));
-    const L tanL = ln::min(ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL, L(10.0f));
-    return ln::select(NoLraw > zero,
-                      shadowVisibility(a, s.p, L(a.biasConst) + L(a.biasSlope) * tanL), zero);
+    const L cosL = ln::max(NoLraw, L(kShadowMinCos));
+    const L tanL = ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL;
+    const L tol = L(a.biasConst) + L(a.biasSlope) * tanL;
+    return ln::select(NoLraw > zero, shadowVisibility(a, s.p, s.n, cosL, tol, L(a.biasConst), tanL),
+                      zero);
 }
 
 // The Lambert part of the sun light leaving a surface point, emission aside:

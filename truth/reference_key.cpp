@@ -17,7 +17,9 @@ namespace {
 //    maxDistance (the same image to within float rounding, not to the bit).
 // 4: the primary hit that gives a pixel its geometric normal starts at the near plane, as the
 //    rasterizer clips (the same bits where nothing lies nearer than the near plane).
-constexpr uint64_t kReferenceVersion = 4;
+// 5: the shadow map's visibility (Visibility::ShadowMap) compares each PCF tap with the
+//    receiver's plane (shade::shadowVisibility); Embree's visibility is unchanged.
+constexpr uint64_t kReferenceVersion = 5;
 
 // Fowler-Noll-Vo 1a, 64 bits (http://www.isthe.com/chongo/tech/comp/fnv/).
 class Fnv1a {
