@@ -1,0 +1,116 @@
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "renderer/trace_stages.h"
+#include "trace/reconstruct.h"
+
+namespace ssrt::trace_stages {
+
+namespace {
+
+// What both of the frame's denoiser calls share: the camera they run at, the frame, whether
+// the history is replaced, the debug planes and the frame's pool of scratch.
+DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera) {
+    DenoiseInputs in;
+    in.camera = camera;
+    in.frameIndex = c.args.frameIndex;
+    in.replaceHistory = c.args.replaceHistory;
+    in.historyLengths = c.args.settings.debugPlanes;
+    in.pool = &frame.scratch.pool;
+    return in;
+}
+
+// The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
+// quarter of the pixels, at the resolution it was traced), on guides from each block's first
+// pixel (HalfFrame::guideZ), then brought to the frame by the guided upsample that brings the
+// raw signal (trace/reconstruct.h), placing each half pixel at that first pixel.
+void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
+    Frame::Scratch::HalfTrace& ht = frame.scratch.half;
+    const HalfFrame& hf = ht.frame;
+    DenoiseInputs in = denoiseCall(c, frame, hf.camera);
+    in.viewZ = &hf.guideZ;
+    in.metallic = &hf.metallic;
+    for (int i = 0; i < 3; ++i) {
+        in.normal[i] = &hf.guideNormal[i];
+        in.albedo[i] = &hf.albedo[i];
+        in.diffuse[i] = &ht.resolved.color[i];
+    }
+    in.motion[0] = &hf.guideMotion[0];
+    in.motion[1] = &hf.guideMotion[1];
+    in.diffuseHitDistance = &ht.resolved.hitDistance;
+    if (tracedSignalsPooled(c.args.settings))
+        in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
+    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
+    DenoiseOutputs& half = ht.denoised.out;
+    denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
+            ht.denoise, half, c.threads(), &times);
+    if (diffuseUpsampledInComposite(c.args.settings)) return;  // (compositePass)
+    const auto t0 = std::chrono::steady_clock::now();
+    DenoiseOutputs& out = frame.trace.denoise.out;
+    // (The history length, a plane to look at, is blended as the hit share is.)
+    const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]},
+                                 nullptr,
+                                 c.debugPlane(half.diffuseFrames)};
+    const ReconstructPlanes to{{&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
+                               nullptr,
+                               c.debugPlane(out.diffuseFrames)};
+    upsampleHalf(c.args.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to,
+                 c.threads());
+    const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
+    times.push_back({"denoise upsample", ms.count()});
+}
+
+}  // namespace
+
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
+// composite then reads; the traced planes stay as they were (the undenoised layers).
+void denoisePass(const TraceContext& c, Frame& frame) {
+    const TraceSettings& ts = c.ts;
+    const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
+    const GBuffer& g = frame.gbuffer;
+    DenoiseInputs in = denoiseCall(c, frame, c.camera);
+    in.viewZ = &g.viewZ;
+    in.roughness = &g.roughness;
+    in.metallic = &g.metallic;
+    for (int i = 0; i < 3; ++i) {
+        in.normal[i] = &g.normal[i];
+        in.albedo[i] = &g.albedo[i];
+    }
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    if (ts.ssgi && !halfDiffuse) {
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
+        in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;
+    }
+    if (ts.ssr) {
+        for (int ch = 0; ch < 3; ++ch) {
+            in.ssr[ch] = &frame.trace.ssr.color[ch];
+            in.envSpecular[ch] = &frame.direct.envSpecular[ch];
+        }
+        in.ssrOpacity = &frame.trace.ssr.opacity;
+        in.specularHitDistance = &frame.trace.ssr.hitDistance;
+        // Where SSR has faded out the blend is the environment alone: nothing to denoise.
+        in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
+    }
+    if (tracedSignalsPooled(c.args.settings))
+        in.signalsRead = [&frame] {
+            frame.scratch.pool.give(frame.trace.ssr);
+            frame.scratch.pool.give(frame.trace.ssgi);
+        };
+    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
+    std::vector<DenoisePassTime> times;
+    if (in.diffuse[0] || in.ssr[0])
+        denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
+                frame.trace.denoise.out, c.threads(), &times);
+    if (halfDiffuse) denoiseHalfDiffuse(c, frame, times);
+    // One line per pass, summed over the two calls.
+    for (const DenoisePassTime& t : times) {
+        auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
+                                 [&](const PassTime& p) { return p.name == t.name; });
+        if (same != frame.stats.passes.end()) same->ms += t.ms;
+        else frame.stats.passes.push_back({t.name, t.ms});
+    }
+}
+
+}  // namespace ssrt::trace_stages

@@ -1,0 +1,208 @@
+#include "renderer/trace_stages.h"
+#include "trace/reconstruct.h"
+#include "trace/ssgi.h"
+
+namespace ssrt::trace_stages {
+
+namespace {
+
+// One SSGI sample's stages on a camera (the frame's, or the half frame's) and its G-buffer:
+// tile by tile (trace/tile_chain.h), the rays' pdf copied into rays.pdf for the layouts'
+// reconstruction; or, for the observer, stage by stage over the batches `rays` and `result`.
+struct SsgiSample {
+    const TraceContext& c;
+    MarchFrame on;
+    const RayGenGBuffer& rayGen;
+    const SsgiInputs& in;
+    const HitStatsPlanes& hp;
+    DiffuseCut cut;
+    RayGenCheckerboard checker;
+    PlaneF* out;  // the resolve's colour planes
+};
+
+RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
+                       TraceStats& st, StageTimes& times) {
+    const TraceContext& c = q.c;
+    const Isa isa = c.args.isa;
+    const int spp = c.ts.ssgiSpp;
+    const TraceCamera& camera = q.on.camera;
+    const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), camera,
+                                                   q.rayGen, q.cut, q.checker);
+    const RaySeed seed{c.args.frameIndex, uint32_t(s)};
+    if (!tiled(c)) {
+        RayGenStats rs;
+        addTime(times.rays, [&] { rs = gen.frame(rays, c.threads()); });
+        marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times);
+        addTime(times.resolve, [&] {
+            resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads());
+            accumulateHitStats(isa, camera, rays, result, q.hp, s, spp, c.threads());
+        });
+        return rs;
+    }
+    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, camera, q.on.gbuffer, q.on.hiz,
+                           c.threads());
+    const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
+    rays.corner = {};
+    const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
+    const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
+        resolve.tile(t, b, m);
+    };
+    return traceTiles(c, gen, march, resolveTile, hitStats, st, times);
+}
+
+// SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a
+// half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
+// run on it, and the upsample brings them to the frame's planes. The observer sees the half
+// frame's batches with the half frame (TraceObserver).
+void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, DiffuseCut cut,
+              TraceStats& st, StageTimes& times) {
+    const TraceSettings& ts = c.ts;
+    const Isa isa = c.args.isa;
+    const GBuffer& g = frame.gbuffer;
+    Frame::Scratch::HalfTrace& ht = frame.scratch.half;
+    HalfFrame& hf = ht.frame;
+    addTime(times.rays, [&] {
+        HalfFrameSource src{
+            &g.viewZ,
+            {&g.normal[0], &g.normal[1], &g.normal[2]},
+            {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
+            &g.metallic,
+            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
+            {},
+            backZ(frame.scratch.backZ)};
+        // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
+        if (hitLightAtHalf(c.args.settings))
+            for (const PlaneF*& p : src.hitLight) p = nullptr;
+        // (Motion for the denoiser, which runs on the half frame: denoisePass.)
+        if (ts.denoise.enabled) src.motion[0] = &g.motion[0], src.motion[1] = &g.motion[1];
+        buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
+        if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
+    });
+    const RayGenGBuffer rayGen{&hf.viewZ,
+                               {&hf.normal[0], &hf.normal[1], &hf.normal[2]},
+                               nullptr,
+                               {&hf.albedo[0], &hf.albedo[1], &hf.albedo[2]},
+                               &hf.metallic};
+    const MarchGBuffer march{
+        &hf.viewZ, {&hf.normal[0], &hf.normal[1], &hf.normal[2]}, backZ(hf.backZ)};
+    SsgiInputs in = full;
+    in.camera = hf.camera;
+    in.viewZ = &hf.viewZ;
+    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
+        takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
+    const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
+                            &ht.resolved.hitDistance};
+    const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
+    const SsgiSample q{c, {hf.camera, march, hiz, &hf}, rayGen, in, hp, cut, {}, ht.resolved.color};
+    for (int s = 0; s < ts.ssgiSpp; ++s) {
+        RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
+        // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
+        // and background stay counts of half pixels).
+        rs.pixels += hf.cutPixels;
+        rs.cut += hf.cutPixels;
+        st.rays.add(rs);
+    }
+    // The full-resolution planes: what the composite reads without the denoiser, and only to
+    // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
+    SsgiPlanes& planes = frame.trace.ssgi;
+    if (planes.color[0].empty()) return;
+    times.reconstruct = 0.0;
+    addTime(times.reconstruct, [&] {
+        const ReconstructSource from{
+            {&ht.resolved.color[0], &ht.resolved.color[1], &ht.resolved.color[2]},
+            nullptr,
+            &ht.resolved.hit,
+            &ht.resolved.hitDistance,
+            c.debugPlane(ht.resolved.steps)};
+        const ReconstructPlanes to{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                   nullptr,
+                                   &planes.hit,
+                                   &planes.hitDistance,
+                                   c.debugPlane(planes.steps)};
+        upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
+    });
+}
+
+// Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
+// radiance, where the history has it at this size, reflected into the hit light SSGI reads
+// (trace/ssgi.h); none (one bounce) otherwise.
+void feedbackPass(const TraceContext& c, Frame& frame) {
+    const FrameHistory* h = c.args.history;
+    if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
+        h->diffuse[0].height() != frame.height)
+        return;
+    const GBuffer& g = frame.gbuffer;
+    SsgiFeedbackInputs in;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.albedo[ch] = &g.albedo[ch];
+        in.prevDiffuse[ch] = &h->diffuse[ch];
+    }
+    in.metallic = &g.metallic;
+    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    const ScopedPass timer(frame.stats, "ssgi feedback");
+    addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
+}
+
+}  // namespace
+
+void ssgiPass(const TraceContext& c, Frame& frame) {
+    const TraceSettings& ts = c.ts;
+    const Isa isa = c.args.isa;
+    const GBuffer& g = frame.gbuffer;
+    const DirectParts& parts = frame.direct;
+    Frame::Scratch& sc = frame.scratch;
+    SsgiPlanes& planes = frame.trace.ssgi;
+    SsgiInputs in;
+    in.camera = c.camera;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.normal[ch] = &g.normal[ch];
+        in.albedo[ch] = &g.albedo[ch];
+        in.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
+        // The direct pass's hit light (then the G-buffer planes above are not read).
+        in.hitLight[ch] = &parts.hitLight[ch];
+    }
+    in.metallic = &g.metallic;
+    in.shadow = &frame.image.shadow;
+    in.lighting = &c.args.direct;
+    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
+    TraceStats& st = frame.stats.ssgi;
+    st.ran = true;
+    st.spp = ts.ssgiSpp;
+    StageTimes times;
+    feedbackPass(c, frame);
+    const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
+    if (ts.ssgiLayout == TraceLayout::Half) {
+        ssgiHalf(c, frame, in, cut, st, times);
+        times.report(frame.stats, "ssgi");
+        return;
+    }
+    const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
+                                     kSsgiCheckerboardPhase};
+    takeBatches(c, frame, false);
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
+        takeSignal(sc.pool, planes, frame.width, frame.height);
+    const SsgiSample q{
+        c, {c.camera, c.march, c.hiz, nullptr}, c.rayGen, in, hp, cut, checker, planes.color};
+    for (int s = 0; s < ts.ssgiSpp; ++s)
+        st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
+    if (checker.on) {
+        times.reconstruct = 0.0;
+        addTime(times.reconstruct, [&] {
+            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                       nullptr,
+                                       &planes.hit,
+                                       &planes.hitDistance};
+            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+        });
+    }
+    sc.pool.give(sc.rays);
+    sc.pool.give(sc.march);
+    times.report(frame.stats, "ssgi");
+}
+
+}  // namespace ssrt::trace_stages

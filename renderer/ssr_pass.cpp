@@ -1,0 +1,143 @@
+#include <limits>
+#include <utility>
+
+#include "renderer/trace_stages.h"
+#include "trace/reconstruct.h"
+
+namespace ssrt::trace_stages {
+
+namespace {
+
+// The SSR resolve's inputs: this frame's direct light, or the last frame's composite (when the
+// history has one) through the motion vectors; the colour pyramid for the mip mode.
+SsrResolveInputs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
+                           double& pyramidMs) {
+    const GBuffer& g = frame.gbuffer;
+    const bool reproject = rs.radiance == HitRadiance::Reprojected && c.args.history;
+    if (!reproject) rs.radiance = HitRadiance::Current;
+    SsrResolveInputs in;
+    in.camera = c.camera;
+    in.viewZ = &g.viewZ;
+    for (int ch = 0; ch < 3; ++ch) {
+        in.normal[ch] = &g.normal[ch];
+        in.color[ch] = &frame.image.color[ch];
+        in.prevColor[ch] = reproject ? &c.args.history->color[ch] : nullptr;
+    }
+    in.motion[0] = &g.motion[0];
+    in.motion[1] = &g.motion[1];
+    in.roughness = &g.roughness;
+    in.radianceScale = 1.0f / c.args.settings.exposure;
+    if (rs.mode == SsrResolveMode::Mip) {
+        addTime(pyramidMs, [&] {
+            buildColorPyramid(reproject ? in.prevColor : in.color, frame.scratch.colorPyramid,
+                              c.threads());
+        });
+        in.pyramid = &frame.scratch.colorPyramid;
+    }
+    return in;
+}
+
+// The frame's SSR colour and opacity planes, lent to the resolve's output while it runs.
+void swapSsrOutput(SsrPlanes& planes, SsrOutput& out) {
+    for (int ch = 0; ch < 3; ++ch) std::swap(out.color[ch], planes.color[ch]);
+    std::swap(out.opacity, planes.opacity);
+}
+
+// What one sample of SSR needs besides its rays and march results.
+struct SsrSample {
+    const TraceContext& c;
+    const SsrResolveSettings& rs;
+    const SsrResolveInputs& in;
+    const HitStatsPlanes& hp;
+    float maxRoughness;
+    RayGenCheckerboard checker;
+
+    RayGenerator rays(int s) const {
+        return RayGenerator::specular(c.args.isa, c.ts.ssrMethod, c.args.frameIndex, uint32_t(s),
+                                      c.camera, c.rayGen, maxRoughness, checker);
+    }
+};
+
+// Stage by stage over the frame, for the observer, which reads the frame's batches.
+void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
+    const TraceContext& c = q.c;
+    Frame::Scratch& sc = frame.scratch;
+    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+        addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
+        marchSample(c, {c.camera, c.march, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays, sc.march,
+                    st, times);
+        addTime(times.resolve, [&] {
+            resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
+                       c.threads());
+            accumulateHitStats(c.args.isa, c.camera, sc.rays, sc.march, q.hp, s, c.ts.ssrSpp,
+                               c.threads());
+        });
+    }
+}
+
+// Tile by tile: the resolve's first pass and the hit statistics take each tile's batches.
+void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
+    const TraceContext& c = q.c;
+    const Isa isa = c.args.isa;
+    Frame::Scratch& sc = frame.scratch;
+    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+        const RayGenerator rays = q.rays(s);
+        const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
+                               c.camera, c.march, c.hiz, c.threads());
+        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march);
+        const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
+        const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
+            resolve.hitTile(t, b, m);
+        };
+        st.rays.add(traceTiles(c, rays, march, resolveTile, hitStats, st, times));
+        addTime(times.resolve, [&] { resolve.resolveFrame(c.threads()); });
+    }
+}
+
+}  // namespace
+
+void ssrPass(const TraceContext& c, Frame& frame) {
+    const TraceSettings& ts = c.ts;
+    Frame::Scratch& sc = frame.scratch;
+    SsrPlanes& planes = frame.trace.ssr;
+    StageTimes times;
+    SsrResolveSettings rs = ts.resolve;
+    const SsrResolveInputs in = ssrInputs(c, frame, rs, times.resolve);
+    // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
+    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
+    TraceStats& st = frame.stats.ssr;
+    st.ran = true;
+    st.spp = ts.ssrSpp;
+    const float maxRoughness =
+        ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
+    const SsrSample q{
+        c,  rs,           in,
+        hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
+    // The batches and the resolve's scratch come from the pool and go back to it once the
+    // checkerboard fill has read the rays' pdf (the denoiser takes them next).
+    takeBatches(c, frame, rs.mode == SsrResolveMode::Reuse);
+    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
+        takeSignal(sc.pool, planes, frame.width, frame.height);
+    swapSsrOutput(planes, sc.ssr);
+    sc.pool.take(sc.ssr, frame.width, frame.height);
+    if (tiled(c)) ssrTileSamples(q, frame, st, times);
+    else ssrFrameSamples(q, frame, st, times);
+    swapSsrOutput(planes, sc.ssr);
+    sc.pool.give(sc.ssr);
+    // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
+    if (q.checker.on) {
+        times.reconstruct = 0.0;
+        addTime(times.reconstruct, [&] {
+            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
+                                       &planes.opacity,
+                                       &planes.hit,
+                                       &planes.hitDistance};
+            fillCheckerboard(c.args.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+        });
+    }
+    sc.pool.give(sc.rays);
+    sc.pool.give(sc.march);
+    times.report(frame.stats, "ssr");
+}
+
+}  // namespace ssrt::trace_stages

@@ -1,0 +1,120 @@
+// What the screen-space passes share (renderer/trace_pass.cpp runs them; one file each:
+// ssr_pass.cpp, ssgi_pass.cpp, denoise_pass.cpp, composite_pass.cpp): the frame's G-buffer as
+// their stages read it, their stage times, the march of one sample, the tile chain.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "renderer/pass_timer.h"
+#include "renderer/trace_pass.h"
+#include "trace/hit_stats.h"
+#include "trace/reconstruct.h"
+#include "trace/tile_chain.h"
+
+namespace ssrt::trace_stages {
+
+// The back-face depth layer when the frame has one (renderer.cpp, backDepthPass), else null.
+inline const PlaneF* backZ(const PlaneF& p) { return p.empty() ? nullptr : &p; }
+
+// What the passes below share: the frame's G-buffer as each stage reads it, the pyramid.
+struct TraceContext {
+    const TracePassArgs& args;
+    const TraceSettings& ts;
+    TraceCamera camera;
+    MarchGBuffer march;
+    RayGenGBuffer rayGen;
+    const HiZPyramid* hiz = nullptr;
+
+    TraceContext(const TracePassArgs& a, const Frame& f) : args(a), ts(a.settings.trace) {
+        const GBuffer& g = f.gbuffer;
+        camera = f.camera;
+        march = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}, backZ(f.scratch.backZ)};
+        // (albedo and metallic: the diffuse colour the composite multiplies SSGI by)
+        rayGen = {&g.viewZ,
+                  {&g.normal[0], &g.normal[1], &g.normal[2]},
+                  &g.roughness,
+                  {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
+                  &g.metallic};
+    }
+    int threads() const { return args.settings.threads; }
+    // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
+    PlaneF* debugPlane(PlaneF& p) const { return args.settings.debugPlanes ? &p : nullptr; }
+    // What the reconstruction of a layout's untraced pixels is guided by.
+    ReconstructGuides guides(const Frame& f) const {
+        const GBuffer& g = f.gbuffer;
+        return {camera, &g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}};
+    }
+};
+
+// Times of one trace pass's stages, summed over its samples.
+struct StageTimes {
+    double rays = 0.0, march = 0.0, resolve = 0.0;
+    double reconstruct = -1.0;  // reported when a layout other than full ran (>= 0)
+    void report(FrameStats& stats, const char* pass) const {
+        const std::string p(pass);
+        stats.passes.push_back({p + " rays", rays});
+        stats.passes.push_back({p + " march", march});
+        stats.passes.push_back({p + " resolve", resolve});
+        if (reconstruct >= 0.0) stats.passes.push_back({p + " reconstruct", reconstruct});
+    }
+};
+
+// The frame a pass's rays are generated and marched on: the frame's own camera, G-buffer and
+// pyramid, or the half frame's (`half`, TraceLayout::Half).
+struct MarchFrame {
+    const TraceCamera& camera;
+    const MarchGBuffer& gbuffer;
+    const HiZPyramid* hiz;
+    const HalfFrame* half;
+};
+
+// One sample's march of the frame's batch `rays` into `result`, shown to the observer.
+void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
+                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times);
+
+// A traced signal's planes from the pool (tracedSignalsPooled; the denoiser gives them back
+// once its front end has read them), its march steps aside: only looked at, not made then.
+template <class Group>
+void takeSignal(PlanePool& pool, Group& g, int w, int h) {
+    g.forEachPlane([&](std::string_view, PlaneF& p) {
+        if (&p != &g.steps) pool.take(p, w, h);
+    });
+}
+
+// Whether the trace runs tile by tile (trace/tile_chain.h): unless the observer (the truth's
+// ray check) asks for the frame's rays and march results.
+inline bool tiled(const TraceContext& c) { return !(c.args.observer && *c.args.observer); }
+
+// The frame's batches where the passes read them: every plane for the observer's stage-by-stage
+// path; for the tile chain only the pdf (and the hits: `hits`) that what runs after the chain
+// reads around each pixel.
+void takeBatches(const TraceContext& c, Frame& frame, bool hits);
+
+// One sample's tile chain (trace/tile_chain.h): on each tile's batches the resolve's
+// per-pixel pass, then the hit statistics. Adds the march's counters and the stages' times;
+// returns the rays' counters.
+template <class Resolve>
+RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const RayMarcher& march,
+                       const Resolve& resolveTile, const HitStatsAccumulator& hitStats,
+                       TraceStats& st, StageTimes& times) {
+    const TileChainStats r = runTileChain({rays, march,
+                                           [&](int t, const RayBatch& b, const MarchResult& m) {
+                                               resolveTile(t, b, m);
+                                               hitStats.tile(t, b, m);
+                                           }},
+                                          c.threads());
+    st.march.add(r.march);
+    times.rays += r.raysMs;
+    times.march += r.marchMs;
+    times.resolve += r.consumeMs;
+    return r.rays;
+}
+
+// The passes, in the order runTracePasses calls them.
+void ssrPass(const TraceContext& c, Frame& frame);
+void ssgiPass(const TraceContext& c, Frame& frame);
+void denoisePass(const TraceContext& c, Frame& frame);
+void compositePass(const TraceContext& c, Frame& frame);
+
+}  // namespace ssrt::trace_stages
