@@ -46,6 +46,14 @@ inline constexpr std::string_view kResolve = "resolve";
 inline constexpr std::string_view kShading = "shading";
 inline constexpr std::string_view kTextures = "textures";
 inline constexpr std::string_view kIds = "ids";
+inline constexpr std::string_view kHiZ = "hi-z";
+inline constexpr std::string_view kSsr = "ssr";
+inline constexpr std::string_view kSsgi = "ssgi";
+inline constexpr std::string_view kSsgiHalf = "ssgi (half)";
+inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";
+inline constexpr std::string_view kDenoiseFrontEndHalf = "denoise front end (half)";
+inline constexpr std::string_view kComposite = "composite";
+inline constexpr std::string_view kHistoryCommit = "history commit";
 }  // namespace pass
 
 struct PassDecl {

@@ -228,14 +228,14 @@ std::vector<PassDecl> declarePasses() {
                       {Res::HalfHitLight, P::Around, hitLightHalf}}};
     gbufferReads(shading.reads);
     p.push_back(shading);
-    p.push_back({"hi-z", hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
+    p.push_back({pass::kHiZ, hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
     // SSR: rays from the G-buffer, the march through the depth (anywhere), the resolve.
     p.push_back(
         {"ssr colour pyramid",
          mipResolve,
          {{Res::Color, P::Anywhere, current}, {Res::HistoryColor, P::Anywhere, reprojected}},
          {{Res::ColorPyramid}}});
-    p.push_back({"ssr",
+    p.push_back({pass::kSsr,
                  ssr,
                  {{Res::ViewZ, P::Anywhere},
                   {Res::Normal, P::Anywhere},
@@ -296,7 +296,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HalfBackZ, P::Pixel, halfBack},
                   {Res::HalfGuides, P::Pixel, halfGuides},
                   {Res::HalfHiZ, P::Pixel, halfHiZ}}});
-    p.push_back({"ssgi (half)",
+    p.push_back({pass::kSsgiHalf,
                  halfSsgi,
                  {{Res::HalfGBuffer, P::Anywhere},
                   {Res::HalfHitLight, P::Anywhere},
@@ -312,7 +312,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Normal}},
                  {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps}}});
     p.push_back(
-        {"ssgi",
+        {pass::kSsgi,
          fullSsgi,
          {{Res::ViewZ, P::Anywhere},
           {Res::Normal, P::Anywhere},
@@ -378,7 +378,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Normal}},
                  {{Res::DenoisedDiffuse}, {Res::DiffuseFrames, P::Pixel, debug}}});
     // Direct + diffuse + specular, tone mapped, over the direct pass's colour.
-    p.push_back({"composite",
+    p.push_back({pass::kComposite,
                  trace,
                  {{Res::Direct},
                   {Res::Emission, P::Pixel, traceEmissive},
@@ -400,7 +400,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::DenoisedSpecular, P::Pixel, denoiseSpecular}},
                  {{Res::Color}, {Res::Display}}});
     // What the next frame reads.
-    p.push_back({"history commit",
+    p.push_back({pass::kHistoryCommit,
                  commit,
                  {{Res::Color},
                   {Res::DenoisedDiffuse, P::Pixel, keepDenoised},

@@ -427,11 +427,10 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
             history && !input.resetHistory && history->usableAt(frame.width, frame.height)
                 ? history
                 : nullptr;
-        runTracePasses({settings_, c.isa, input.frameIndex, lighting.args, previous, history,
+        runTracePasses({settings_, graph, c.isa, input.frameIndex, lighting.args, previous, history,
                         input.resetHistory, input.replaceHistory, observer},
                        frame);
-        if (history && input.replaceHistory && readsHistory(settings_.trace))
-            commitHistory(settings_.trace, frame, *history);
+        if (graph.runs(pass::kHistoryCommit)) commitHistory(settings_.trace, frame, *history);
     }
     frame.stats.memory = memoryUse(frame, history);
     frame.stats.declared = {{"transient, reused", graph.transientBytes},

@@ -11,11 +11,9 @@ using namespace trace_stages;
 
 namespace {
 
-// Hi-Z pyramid of the depth buffer, shared by both passes.
+// Hi-Z pyramid of the depth buffer, shared by both passes (half-resolution SSGI marches on
+// its own pyramid).
 void hiZPass(TraceContext& c, Frame& frame) {
-    if (c.ts.marcher != Marcher::HiZ) return;
-    // (Half-resolution SSGI marches on its own pyramid.)
-    if (!c.ts.ssr && c.ts.ssgiLayout == TraceLayout::Half) return;
     const ScopedPass timer(frame.stats, "hi-z");
     buildHiZ(frame.gbuffer.viewZ, frame.scratch.hiz, c.threads());
     c.hiz = &frame.scratch.hiz;
@@ -40,11 +38,12 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
 
 void runTracePasses(const TracePassArgs& args, Frame& frame) {
     TraceContext c(args, frame);
-    hiZPass(c, frame);
-    if (c.ts.ssr) ssrPass(c, frame);
-    if (c.ts.ssgi) ssgiPass(c, frame);
-    if (c.ts.denoise.enabled) denoisePass(c, frame);
-    compositePass(c, frame);
+    const CompiledGraph& g = args.graph;
+    if (g.runs(pass::kHiZ)) hiZPass(c, frame);
+    if (g.runs(pass::kSsr)) ssrPass(c, frame);
+    if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
+    if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf)) denoisePass(c, frame);
+    if (g.runs(pass::kComposite)) compositePass(c, frame);
 }
 
 bool readsHistory(const TraceSettings& s) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "renderer/frame.h"
+#include "renderer/frame_graph.h"
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 #include "shading/direct_kernel.h"
@@ -12,6 +13,7 @@ namespace ssrt {
 
 struct TracePassArgs {
     const RenderSettings& settings;
+    const CompiledGraph& graph;  // which passes run (renderer/frame_graph.h)
     Isa isa;
     uint32_t frameIndex;
     // The direct pass's argument block (sky, light, shadow map), as it ran; its parts went
