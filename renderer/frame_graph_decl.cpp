@@ -71,6 +71,20 @@ bool keepFull(const GraphKey& k) { return k.keepHistory && denoiseFull(k); }
 bool keepHalf(const GraphKey& k) { return k.keepHistory && denoiseHalf(k); }
 bool keepSpecular(const GraphKey& k) { return k.keepHistory && denoiseSpecular(k); }
 bool keepFullDiffuse(const GraphKey& k) { return k.keepHistory && denoiseFullDiffuse(k); }
+// The pre-blur per signal (DenoiseSettings' prepass radii; the half diffuse always has one:
+// halfResolutionDiffuse).
+bool preBlurFullDiffuse(const GraphKey& k) {
+    return denoiseFullDiffuse(k) && tr(k).denoise.diffusePrepassRadius > 0.0f;
+}
+bool preBlurSpecular(const GraphKey& k) {
+    return denoiseSpecular(k) && tr(k).denoise.specularPrepassRadius > 0.0f;
+}
+bool preBlurFull(const GraphKey& k) { return preBlurFullDiffuse(k) || preBlurSpecular(k); }
+bool unblurredFullDiffuse(const GraphKey& k) {
+    return denoiseFullDiffuse(k) && !preBlurFullDiffuse(k);
+}
+bool unblurredSpecular(const GraphKey& k) { return denoiseSpecular(k) && !preBlurSpecular(k); }
+bool never(const GraphKey&) { return false; }
 bool upsampleInComposite(const GraphKey& k) { return diffuseUpsampledInComposite(k.settings); }
 bool denoiseUpsample(const GraphKey& k) { return denoiseHalf(k) && !upsampleInComposite(k); }
 bool compositeSsgiRaw(const GraphKey& k) { return ssgi(k) && !denoise(k); }
@@ -95,6 +109,9 @@ struct DenoiseSite {
     std::vector<Access> guides;   // the frame's G-buffer, or the half frame's
     Res noisy[2];                 // diffuse, specular (Res::Count: none at this site)
     GraphCondition signal[2];
+    // The pre-blur: whether it runs, and per signal whether it filters it (else the temporal
+    // pass reads the front end's output directly).
+    GraphCondition preBlur, preBlurred[2], unblurred[2];
     Res pingPong, state[2], outputs[2], frames[2];
     Res history[3];  // guides, diffuse, specular (Res::Count: none)
     GraphCondition historyRead[3], historyKept[3];
@@ -118,13 +135,10 @@ void append(std::vector<Access>& to, const std::vector<Access>& more) {
 
 void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     const auto name = [&](const char* pass) { return keep(std::string(pass) + s.suffix); };
-    // Per signal: its noisy input (around), its state (own pixel: signal depth, speeds).
-    std::vector<Access> noisy, state;
+    // Per signal: its state (own pixel: signal depth, speeds).
+    std::vector<Access> state;
     for (int i = 0; i < 2; ++i)
-        if (s.noisy[i] != Res::Count) {
-            noisy.push_back({s.noisy[i], P::Around, s.signal[i]});
-            state.push_back({s.state[i], P::Pixel, s.signal[i]});
-        }
+        if (s.noisy[i] != Res::Count) state.push_back({s.state[i], P::Pixel, s.signal[i]});
     // A spatial pass: the guides and the last result around, the state at the pixel.
     const auto spatial = [&](const char* pass, std::vector<Access> reads) {
         PassDecl d{name(pass), s.on, around(s.guides), {{s.pingPong}}};
@@ -135,13 +149,22 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     // Front end: the signals sanitised, hit distances normalised, where each signal exists.
     PassDecl front{name("denoise front end"), s.on, s.guides, {}};
     append(front.reads, s.signals);
-    for (const Access& a : noisy) front.writes.push_back({a.res, P::Pixel, a.when});
+    for (int i = 0; i < 2; ++i)
+        if (s.noisy[i] != Res::Count) front.writes.push_back({s.noisy[i], P::Pixel, s.signal[i]});
     append(front.writes, state);
     passes.push_back(front);
-    passes.push_back(spatial("denoise pre-blur", noisy));
-    // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma.
+    PassDecl pre = spatial("denoise pre-blur", {});
+    pre.enabled = s.preBlur;
+    for (int i = 0; i < 2; ++i)
+        if (s.noisy[i] != Res::Count) pre.reads.push_back({s.noisy[i], P::Around, s.preBlurred[i]});
+    passes.push_back(pre);
+    // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma;
+    // this frame's signal pre-blurred, or as the front end left it.
     PassDecl temporal{name("denoise temporal"), s.on, s.guides, {{s.pingPong}}};
-    temporal.reads.push_back({s.pingPong});
+    temporal.reads.push_back({s.pingPong, P::Pixel, s.preBlur});
+    for (int i = 0; i < 2; ++i)
+        if (s.noisy[i] != Res::Count)
+            temporal.reads.push_back({s.noisy[i], P::Pixel, s.unblurred[i]});
     append(temporal.reads, state);
     append(temporal.writes, state);
     for (int i = 0; i < 3; ++i)
@@ -158,10 +181,19 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         post.writes.push_back({s.outputs[i], P::Pixel, s.signal[i]});
         if (s.frames[i] != Res::Count) post.writes.push_back({s.frames[i], P::Pixel, s.signal[i]});
     }
-    for (int i = 0; i < 3; ++i)
+    // (The signals' history planes; where one resource holds the guides and the signal, the
+    // half frame's, the post-blur writes its signal part and the commit below the rest.)
+    const bool oneHistory = s.history[1] == Res::Count && s.history[2] == Res::Count;
+    for (int i = oneHistory ? 0 : 1; i < 3; ++i)
         if (s.history[i] != Res::Count)
             post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
     passes.push_back(post);
+    // The history's guides, speeds and fast luma for the next frame.
+    PassDecl commit{name("denoise history"), s.historyKept[0], s.guides, {}};
+    append(commit.reads, state);
+    if (oneHistory) commit.reads.push_back({s.history[0], P::Pixel, s.historyKept[0]});
+    commit.writes.push_back({s.history[0], P::Pixel, s.historyKept[0]});
+    passes.push_back(commit);
 }
 
 std::vector<PassDecl> declarePasses() {
@@ -345,6 +377,9 @@ std::vector<PassDecl> declarePasses() {
         {},
         {Res::DenoiseNoisyDiffuse, Res::DenoiseNoisySpecular},
         {denoiseFullDiffuse, denoiseSpecular},
+        preBlurFull,
+        {preBlurFullDiffuse, preBlurSpecular},
+        {unblurredFullDiffuse, unblurredSpecular},
         Res::DenoisePingPong,
         {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
         {Res::DenoisedDiffuse, Res::DenoisedSpecular},
@@ -362,6 +397,9 @@ std::vector<PassDecl> declarePasses() {
                            {{Res::HalfGuides}, {Res::HalfGBuffer}},
                            {Res::HalfDenoiseNoisy, Res::Count},
                            {denoiseHalf, nullptr},
+                           denoiseHalf,
+                           {denoiseHalf, nullptr},
+                           {never, nullptr},
                            Res::HalfDenoisePingPong,
                            {Res::HalfDenoiseState, Res::Count},
                            {Res::HalfDenoised, Res::Count},

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,31 @@ bool allFinite(const Frame& f) {
     return true;
 }
 
+// The denoiser's passes the graph runs, as `--stats` names them: the half frame's under the
+// full one's name, the upsample inside the composite as its own line.
+std::set<std::string> denoiserPasses(const CompiledGraph& g) {
+    std::set<std::string> out;
+    for (const GraphPass& p : g.passes) {
+        std::string name(p.decl->name);
+        if (name.rfind("denoise ", 0) != 0) continue;
+        const std::size_t half = name.find(" (half)");
+        if (half != std::string::npos) name.erase(half);
+        out.insert(name);
+    }
+    if (g.runs(pass::kComposite) && g.find(Res::HalfDenoised) &&
+        g.find(Res::HalfDenoised)->last == int(g.passes.size()) - 1)
+        out.insert("denoise upsample");
+    return out;
+}
+
+// The denoiser's passes a frame timed.
+std::set<std::string> timedDenoiserPasses(const FrameStats& stats) {
+    std::set<std::string> out;
+    for (const PassTime& p : stats.passes)
+        if (p.name.rfind("denoise ", 0) == 0) out.insert(p.name);
+    return out;
+}
+
 // How a frame meets its history: none (a single image), the first of a sequence (nothing to
 // read, its own kept), a middle one (read and kept), the last one (read, not replaced).
 struct HistoryCase {
@@ -82,6 +108,7 @@ void checkLayers(const RenderSettings& s, const Scene& scene, HistoryCase hc) {
     };
     render(0);
     CHECK(g.layerNames() == frameLayerNames(frame));
+    CHECK(denoiserPasses(g) == timedDenoiserPasses(frame.stats));
     for (const PlaneRef& p : frame.layers())
         const_cast<PlaneF*>(p.plane)->fill(std::numeric_limits<float>::quiet_NaN());
     frame.direct.forEachPlane([](std::string_view, PlaneF& p) {
@@ -214,6 +241,26 @@ TEST_CASE("frame graph: a pass the settings turn off takes its resources with it
     s.trace.ssgiFeedback = true;  // (the next frame reads this one's diffuse light)
     CHECK(anyNamed(compileFrameGraph({s, facts, true}), "history commit"));
     CHECK(compileFrameGraph({s, facts, true}).has(Res::HistoryDiffuse));
+}
+
+TEST_CASE("frame graph: the pre-blur runs where a prepass radius asks for it") {
+    const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
+    RenderSettings s = small(Quality::Medium);
+    s.trace.ssgiLayout = TraceLayout::Full;
+    const CompiledGraph medium = compileFrameGraph({s, facts, true});
+    CHECK_FALSE(medium.runs("denoise pre-blur"));
+    // The front end then hands its output straight to the temporal pass, at the pixel: one chain.
+    REQUIRE(medium.runs("denoise temporal"));
+    const auto chainOf = [](const CompiledGraph& g, std::string_view name) {
+        for (const GraphPass& p : g.passes)
+            if (p.decl->name == name) return p.chain;
+        return -1;
+    };
+    CHECK(chainOf(medium, "denoise front end") == chainOf(medium, "denoise temporal"));
+    s.trace.denoise.specularPrepassRadius = 50.0f;
+    const CompiledGraph specular = compileFrameGraph({s, facts, true});
+    CHECK(specular.runs("denoise pre-blur"));
+    CHECK(chainOf(specular, "denoise front end") != chainOf(specular, "denoise temporal"));
 }
 
 TEST_CASE("frame graph: transients share memory only where their lifetimes do not overlap") {
