@@ -19,6 +19,7 @@
 #include "core/rng.h"
 
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -44,7 +45,13 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
 
 // ---- The CPU's own half conversions: F16C on x86-64, FCVT on aarch64 -------------------------
 #if defined(__x86_64__)
-bool haveHardwareHalf() { return __builtin_cpu_supports("f16c"); }
+// F16C: CPUID leaf 1, ECX bit 29, with the AVX state the OS saves (its instructions are VEX
+// encoded). (clang 14's __builtin_cpu_supports does not know "f16c"; gcc 12's does.)
+bool haveHardwareHalf() {
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
+    return (c & bit_F16C) != 0 && __builtin_cpu_supports("avx");
+}
 __attribute__((target("f16c"))) void hardwareEncodeF16(const float* in, uint16_t* out,
                                                        std::size_t n) {
     for (std::size_t i = 0; i < n; i += 4) {
