@@ -1,7 +1,8 @@
-// The frame graph's declarations: the resource table and the passes in the order they run
-// (renderer/frame_graph.h). The conditions below say when the code runs a pass and makes a
-// resource; tests/renderer/frame_graph_test.cpp renders frames over many settings and checks
-// that the outputs compiled from here are the frame's layers, name for name.
+// The frame graph's passes, in the order they run, over the resources of renderer/resources.h
+// (renderer/frame_graph.h). The conditions below say when the code runs a pass and which
+// resources it reads and writes; tests/renderer/frame_graph_test.cpp renders frames over many
+// settings and checks that the outputs compiled from here are the frame's layers, name for
+// name, every pixel written, and that the denoiser's passes are the ones the frame timed.
 #include <array>
 #include <memory>
 #include <string>
