@@ -94,18 +94,24 @@ void cull(const GraphKey& k, std::vector<GraphPass>& passes,
     passes = std::move(out);
 }
 
-// Chains: a pass joins the chain before it when everything it reads from that chain's passes
-// it reads at its own pixel, at the same resolution (so it could run on the tile just made).
+// Chains: a pass joins the chain before it when it could run on the tile the chain just made:
+// everything it reads from that chain's passes it reads at its own pixel, it writes nothing an
+// earlier pass of the chain reads around its pixel or anywhere (that pass's later tiles would
+// read the new values), and it works at the chain's resolution.
 void markChains(std::vector<GraphPass>& passes) {
     int chain = 0;
-    std::vector<Res> made;  // written by the current chain
+    std::vector<Res> made;     // written by the current chain
+    std::vector<Res> reached;  // read by the current chain beyond the reading pixel
+    const auto in = [](const std::vector<Res>& list, Res r) {
+        return std::find(list.begin(), list.end(), r) != list.end();
+    };
     for (std::size_t i = 0; i < passes.size(); ++i) {
         GraphPass& p = passes[i];
         bool joins = i > 0;
         for (const Access& r : p.reads)
-            if (std::find(made.begin(), made.end(), r.res) != made.end() &&
-                r.footprint != Footprint::Pixel)
-                joins = false;
+            if (in(made, r.res) && r.footprint != Footprint::Pixel) joins = false;
+        for (const Access& w : p.writes)
+            if (in(reached, w.res)) joins = false;
         if (joins && !p.writes.empty() && !passes[i - 1].writes.empty() &&
             resourceDecl(p.writes[0].res).resolution !=
                 resourceDecl(passes[i - 1].writes[0].res).resolution)
@@ -113,9 +119,12 @@ void markChains(std::vector<GraphPass>& passes) {
         if (!joins) {
             ++chain;
             made.clear();
+            reached.clear();
         }
         p.chain = chain;
         for (const Access& w : p.writes) made.push_back(w.res);
+        for (const Access& r : p.reads)
+            if (r.footprint != Footprint::Pixel) reached.push_back(r.res);
     }
 }
 

@@ -1,14 +1,15 @@
 // The frame graph: every resource a frame may hold, every pass with what it reads (and how far
 // around its pixel) and writes, and what follows from them for given settings and scene.
 //
-// The declarations (renderer/frame_graph_decl.cpp) are one table of resources and one list of
-// passes in the order data flows. compileFrameGraph() applies the settings: a pass the
-// settings turn off is gone with its reads and writes, and a pass none of whose writes is
-// read later, kept as an output or kept as history is culled (Filament's FrameGraph culls
-// so). What is left gives which resources a frame holds, each one's first and last pass, how
+// The declarations are one table of resources (renderer/resources.h) and one list of passes
+// in the order data flows (renderer/frame_graph_decl.cpp). compileFrameGraph() applies the
+// settings: a pass the settings turn off is gone with its reads and writes, and a pass none of
+// whose writes is read later, kept as an output or kept as history is culled (Filament's FrameGraph
+// culls so). What is left gives which resources a frame holds, each one's first and last pass, how
 // transient resources with disjoint lifetimes share memory, each pass's bytes per pixel,
 // which passes could run tile by tile as one chain (every read of an earlier pass's resource
-// at the reader's own pixel), the frame's file layers, and `ssrt graph`'s table and DOT.
+// at the reader's own pixel, and no write of what an earlier pass reads around its own), the
+// frame's file layers, and `ssrt graph`'s table and DOT.
 //
 // (After Filament's FrameGraph and Unreal's RDG: passes declare their resources, which are
 // virtual until the graph is compiled; and NRD's named resources with formats. A CPU adds the

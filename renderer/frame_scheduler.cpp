@@ -9,12 +9,24 @@
 
 namespace ssrt {
 
+namespace {
+
+void checkNew(const std::vector<FrameScheduler::Pass>& passes, std::string_view name) {
+    for (const FrameScheduler::Pass& p : passes)
+        if (p.name == name)
+            throw std::logic_error("frame scheduler: pass '" + std::string(name) + "' given twice");
+}
+
+}  // namespace
+
 void FrameScheduler::whole(std::string_view pass, std::function<void()> run) {
+    checkNew(passes_, pass);
     passes_.push_back({pass, std::move(run), {}, {}});
 }
 
 void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
                            std::function<void()> setUp) {
+    checkNew(passes_, pass);
     passes_.push_back({pass, {}, std::move(setUp), std::move(tile)});
 }
 

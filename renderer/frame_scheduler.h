@@ -2,8 +2,10 @@
 // one chain that run tile by tile as one loop over the tiles: each tile goes through every
 // pass of the chain while its pixels are in cache, and no pass waits for the whole frame of
 // the one before. The graph's chains say where that is allowed (a pass reads what its chain
-// wrote only at its own pixel); a tile kernel writes only its own tile, so the bits do not
-// depend on the order the threads take the tiles in (core/tiles.h).
+// wrote only at its own pixel, and overwrites nothing an earlier pass of the chain reads
+// around its own); a tile kernel writes only its own tile, so the bits do not depend on the
+// order the threads take the tiles in (core/tiles.h). A chain's set-ups all run before its
+// first tile: a set-up may not read what an earlier pass of its chain writes.
 //
 // (The first form of the scheduler the design page describes: no halo yet, so a pass that
 // reads around its pixel starts a chain of its own.)
@@ -24,7 +26,8 @@ public:
     FrameScheduler(const CompiledGraph& graph, const TileGrid& grid, int threads)
         : graph_(graph), grid_(grid), threads_(threads) {}
 
-    // A pass that runs over the whole frame by itself (and times itself).
+    // A pass that runs over the whole frame by itself (and times itself). A name given twice
+    // is a std::logic_error.
     void whole(std::string_view pass, std::function<void()> run);
     // A pass that runs tile by tile: `setUp` (optional) before the chain's first tile, then
     // `tile` for each tile. Its time is its share of the chain's loop.
@@ -35,12 +38,13 @@ public:
     // a pass the graph does not know); adds the tiled passes' times to `stats`.
     void run(FrameStats& stats);
 
-private:
     struct Pass {
         std::string_view name;
         std::function<void()> whole, setUp;
         std::function<void(int)> tile;
     };
+
+private:
     void runChain(const std::vector<const Pass*>& chain, FrameStats& stats);
 
     const CompiledGraph& graph_;

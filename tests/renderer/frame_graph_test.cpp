@@ -299,6 +299,27 @@ TEST_CASE(
                 for (const Access& w : g.passes[j].writes)
                     if (w.res == r.res) CHECK(r.footprint == Footprint::Pixel);
     }
+    // No pass joins a chain that read around its pixel what the pass writes: SSR reads the
+    // colour anywhere, which the composite overwrites (here in what would be one chain).
+    RenderSettings s = small(Quality::Medium);
+    s.trace.denoise.enabled = false;
+    s.trace.ssgi = false;
+    s.trace.ssrLayout = TraceLayout::Full;
+    const CompiledGraph raw = compileFrameGraph({s, facts, false, false});
+    const auto chainOf = [](const CompiledGraph& cg, std::string_view name) {
+        for (const GraphPass& p : cg.passes)
+            if (p.decl->name == name) return p.chain;
+        return -1;
+    };
+    REQUIRE(raw.runs("ssr"));
+    CHECK(chainOf(raw, "ssr") != chainOf(raw, "composite"));
+    for (std::size_t i = 1; i < raw.passes.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j) {
+            if (raw.passes[j].chain != raw.passes[i].chain) continue;
+            for (const Access& r : raw.passes[j].reads)
+                if (r.footprint != Footprint::Pixel)
+                    for (const Access& w : raw.passes[i].writes) CHECK(w.res != r.res);
+        }
     // The denoiser's spatial passes read their neighbours: each starts a chain.
     for (std::size_t i = 0; i < g.passes.size(); ++i)
         if (g.passes[i].decl->name == std::string_view("denoise blur"))

@@ -72,4 +72,7 @@ TEST_CASE("frame scheduler: a pass the graph does not know is a programming erro
     s.whole("no such pass", [] {});
     FrameStats stats;
     CHECK_THROWS_AS(s.run(stats), std::logic_error);
+    FrameScheduler twice(g, TileGrid(g.width, g.height), 1);
+    twice.whole(pass::kShadow, [] {});
+    CHECK_THROWS_AS(twice.tiled(pass::kShadow, [](int) {}), std::logic_error);
 }
