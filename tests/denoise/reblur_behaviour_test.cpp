@@ -22,6 +22,7 @@
 #include "core/tiles.h"
 #include "denoise/denoise_settings.h"
 #include "denoise/reblur_kernel.h"
+#include "denoise/reblur_wall.h"
 
 using namespace ssrt;
 
@@ -30,38 +31,11 @@ namespace {
 constexpr int kWidth = 80, kHeight = 48;  // two tiles across (the second with padding), one down
 
 // A wall facing the camera at depth 2 (view = world), both signals everywhere.
-struct Guides {
-    PlaneF viewZ{kWidth, kHeight, 2.0f}, normal[3], roughness{kWidth, kHeight, 0.3f};
-    PlaneF signalZ[2];
-    std::vector<uint8_t> tiles;
-
-    Guides() {
-        for (PlaneF& n : normal) n = PlaneF(kWidth, kHeight, 0.0f);
-        normal[2].fill(1.0f);
-        for (PlaneF& z : signalZ) z = PlaneF(kWidth, kHeight, 2.0f);
-        tiles.assign(std::size_t(TileGrid(kWidth, kHeight).count()), kTileDiffuse | kTileSpecular);
-    }
+struct Guides : test::WallGuides {
+    Guides() : WallGuides(kWidth, kHeight) {}
     void setDepth(int x, int y, float z) {
         viewZ.at(x, y) = z;
         signalZ[0].at(x, y) = signalZ[1].at(x, y) = z;
-    }
-    ReblurView view() const {
-        ReblurView v;
-        v.width = kWidth;
-        v.height = kHeight;
-        v.tilesX = TileGrid(kWidth, kHeight).tilesX;
-        v.stride = viewZ.stride();
-        v.tanHalfY = 0.5f;
-        v.tanHalfX = 0.5f * float(kWidth) / float(kHeight);
-        for (int i = 0; i < 9; i += 4) v.viewToWorld[i] = 1.0f;
-        v.frustum = 1.0f;  // 2 tanHalfY: the short side at depth 1
-        v.viewZ = viewZ.row(0);
-        for (int i = 0; i < 3; ++i) v.normal[i] = normal[i].row(0);
-        v.roughness = roughness.row(0);
-        for (int i = 0; i < 2; ++i) v.signalZ[i] = signalZ[i].row(0);
-        v.tiles = tiles.data();
-        v.hitScale = {2.5f, 0.1f, 20.0f, -25.0f};
-        return v;
     }
 };
 

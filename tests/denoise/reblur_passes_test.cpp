@@ -14,6 +14,7 @@
 #include "core/isa.h"
 #include "core/tiles.h"
 #include "denoise/reblur_kernel.h"
+#include "denoise/reblur_wall.h"
 #include "plane_compare.h"
 
 using namespace ssrt;
@@ -22,41 +23,15 @@ namespace {
 
 // Two tiles across (the second 16 pixels wide, with padding), one down; a wall facing the
 // camera at depth 2 (view = world), every pixel a surface unless a test says otherwise.
-struct Planes {
+struct Planes : test::WallGuides {
     static constexpr int kWidth = kTileSize + 16, kHeight = 24;
-    PlaneF viewZ{kWidth, kHeight, 2.0f}, normal[3], roughness{kWidth, kHeight, 0.3f};
-    PlaneF signalZ[2];
-    std::vector<uint8_t> tiles = std::vector<uint8_t>(2, kTileDiffuse | kTileSpecular);
-
-    Planes() {
-        for (PlaneF& n : normal) n = PlaneF(kWidth, kHeight, 0.0f);
-        normal[2].fill(1.0f);
-        for (PlaneF& z : signalZ) z = PlaneF(kWidth, kHeight, 2.0f);
-    }
+    Planes() : WallGuides(kWidth, kHeight) {}
     // The second tile without either signal (its tile class and signalZ say so).
     void noSignalRight() {
         tiles[1] = 0;
         for (PlaneF& z : signalZ)
             for (int y = 0; y < kHeight; ++y)
                 for (int x = kTileSize; x < kWidth; ++x) z.at(x, y) = 0.0f;
-    }
-    ReblurView view() const {
-        ReblurView v;
-        v.width = kWidth;
-        v.height = kHeight;
-        v.tilesX = TileGrid(kWidth, kHeight).tilesX;
-        v.stride = viewZ.stride();
-        v.tanHalfY = 0.5f;
-        v.tanHalfX = 0.5f * float(kWidth) / float(kHeight);
-        for (int i = 0; i < 9; i += 4) v.viewToWorld[i] = 1.0f;
-        v.frustum = 1.0f;
-        v.viewZ = viewZ.row(0);
-        for (int i = 0; i < 3; ++i) v.normal[i] = normal[i].row(0);
-        v.roughness = roughness.row(0);
-        for (int i = 0; i < 2; ++i) v.signalZ[i] = signalZ[i].row(0);
-        v.tiles = tiles.data();
-        v.hitScale = {2.5f, 0.1f, 20.0f, -25.0f};
-        return v;
     }
 };
 
