@@ -141,8 +141,8 @@ std::string sequenceFileName(const std::string& output, int index, int count) {
 
 void planesForFile(const std::string& output, const LayerGroups& layers, RenderSettings& s) {
     const bool exr = isExrPath(output);
-    if (!exr || !hasGroup(layers, LayerGroup::GBuffer)) s.idPlanes = false;
-    if (!exr || !hasGroup(layers, LayerGroup::Trace)) s.debugPlanes = false;
+    if (!exr || !hasGroup(layers, LayerGroup::GBuffer)) s.idPlanes = s.gbufferPlanes = false;
+    if (!exr || !hasGroup(layers, LayerGroup::Trace)) s.debugPlanes = s.tracePlanes = false;
 }
 
 std::string renderOutput(const RenderOptions& o) {

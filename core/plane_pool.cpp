@@ -20,6 +20,7 @@ void PlanePool::take(PlaneF& p, int width, int height) {
 }
 
 void PlanePool::give(PlaneF& p) {
+    if (!p.empty() && poison_) p.fill(*poison_);
     if (!p.empty()) free_.push_back(std::move(p));
     p = PlaneF();
 }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +32,10 @@ public:
     void give(PlaneTable<Group>& group) {
         group.forEachPlane([&](std::string_view, PlaneF& p) { give(p); });
     }
+    // Fills every plane given back from now on with `value` (a NaN: a pass that reads a plane
+    // after its memory went back, or before it wrote it, spreads the NaN to the image; the
+    // frame graph's tests render so); nullopt: planes keep what they hold.
+    void poison(std::optional<float> value) { poison_ = value; }
     // Frees the pooled planes of any other size (the frame's size changed).
     void keepOnly(int width, int height, int halfWidth, int halfHeight);
     std::size_t bytes() const;
@@ -38,6 +43,7 @@ public:
 
 private:
     std::vector<PlaneF> free_;
+    std::optional<float> poison_;
 };
 
 }  // namespace ssrt

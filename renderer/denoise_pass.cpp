@@ -93,11 +93,9 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
-    if (tracedSignalsPooled(c.args.settings))
-        in.signalsRead = [&frame] {
-            frame.scratch.pool.give(frame.trace.ssr);
-            frame.scratch.pool.give(frame.trace.ssgi);
-        };
+    // The traced signals no later pass reads go back to the pool before the denoiser's
+    // scratch is taken from it.
+    in.signalsRead = [&c] { c.args.memory.giveThrough(pass::kDenoiseFrontEnd); };
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     if (in.diffuse[0] || in.ssr[0])

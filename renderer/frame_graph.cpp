@@ -82,7 +82,7 @@ void cull(const GraphKey& k, std::vector<GraphPass>& passes,
         // (a pass's own scratch, which it writes and then reads, stays with the pass)
         std::vector<Access> writes;
         for (const Access& w : p->writes)
-            if (needed[int(w.res)] || contains(p->reads, w.res)) writes.push_back(w);
+            (needed[int(w.res)] || contains(p->reads, w.res) ? writes : p->unread).push_back(w);
         p->writes = writes;
         for (const Access& w : writes)
             if (!contains(p->reads, w.res)) needed[int(w.res)] = false;
@@ -212,11 +212,12 @@ CompiledGraph compileFrameGraph(const GraphKey& key) {
             if (r.first < 0) r.first = i;
             r.last = i;
         }
-        for (const Access& a : p.writes) {
-            GraphResource& r = all[int(a.res)];
-            if (r.first < 0) r.first = i;
-            r.last = std::max(r.last, i);
-        }
+        for (const std::vector<Access>* list : {&p.writes, &p.unread})
+            for (const Access& a : *list) {
+                GraphResource& r = all[int(a.res)];
+                if (r.first < 0) r.first = i;
+                r.last = std::max(r.last, i);
+            }
     }
     const int end = int(g.passes.size()) - 1;
     for (GraphResource& r : all) {
@@ -230,6 +231,7 @@ CompiledGraph compileFrameGraph(const GraphKey& key) {
     for (GraphPass& p : g.passes) {
         for (const Access& a : p.reads) p.bytesRead += g.find(a.res)->bytes;
         for (const Access& a : p.writes) p.bytesWritten += g.find(a.res)->bytes;
+        for (const Access& a : p.unread) p.bytesWritten += g.find(a.res)->bytes;
     }
     g.transientBytes = assignSlots(g.resources);
     for (const GraphResource& r : g.resources) {

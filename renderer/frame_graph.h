@@ -49,10 +49,13 @@ inline constexpr std::string_view kTextures = "textures";
 inline constexpr std::string_view kIds = "ids";
 inline constexpr std::string_view kHiZ = "hi-z";
 inline constexpr std::string_view kSsr = "ssr";
+inline constexpr std::string_view kSsrReconstruct = "ssr reconstruct";
 inline constexpr std::string_view kSsgi = "ssgi";
 inline constexpr std::string_view kSsgiHalf = "ssgi (half)";
+inline constexpr std::string_view kSsgiReconstruct = "ssgi reconstruct";
 inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";
 inline constexpr std::string_view kDenoiseFrontEndHalf = "denoise front end (half)";
+inline constexpr std::string_view kDenoiseUpsample = "denoise upsample";
 inline constexpr std::string_view kComposite = "composite";
 inline constexpr std::string_view kHistoryCommit = "history commit";
 }  // namespace pass
@@ -80,7 +83,11 @@ struct GraphResource {
 
 struct GraphPass {
     const PassDecl* decl;
-    std::vector<Access> reads, writes;            // those the settings keep
+    std::vector<Access> reads, writes;  // those the settings keep
+    // Writes nothing reads (culled from `writes`) that the pass's kernel makes all the same:
+    // they take memory while the pass runs (the shading's colour where the composite
+    // overwrites it unread).
+    std::vector<Access> unread;
     std::size_t bytesRead = 0, bytesWritten = 0;  // per frame, each resource once
     int chain = 0;  // passes of one chain could run tile by tile together
 };

@@ -22,7 +22,8 @@ bool trace(const GraphKey& k) { return tr(k).any(); }
 bool ssr(const GraphKey& k) { return tr(k).ssr; }
 bool ssgi(const GraphKey& k) { return tr(k).ssgi; }
 bool denoise(const GraphKey& k) { return trace(k) && tr(k).denoise.enabled; }
-bool debug(const GraphKey& k) { return k.settings.debugPlanes; }
+// (the planes only looked at are trace planes: none without those)
+bool debug(const GraphKey& k) { return k.settings.debugPlanes && k.settings.tracePlanes; }
 bool noTrace(const GraphKey& k) { return !trace(k); }
 bool halfSsgi(const GraphKey& k) { return ssgi(k) && tr(k).ssgiLayout == TraceLayout::Half; }
 bool fullSsgi(const GraphKey& k) { return ssgi(k) && !halfSsgi(k); }
@@ -61,6 +62,8 @@ bool debugHalfSsgi(const GraphKey& k) { return halfSsgi(k) && debug(k); }
 // The denoiser's signals: SSR's, and SSGI's at full resolution or on the half frame.
 bool denoiseSpecular(const GraphKey& k) { return denoise(k) && ssr(k); }
 bool denoiseFullDiffuse(const GraphKey& k) { return denoise(k) && fullSsgi(k); }
+bool debugSpecular(const GraphKey& k) { return denoiseSpecular(k) && debug(k); }
+bool debugFullDiffuse(const GraphKey& k) { return denoiseFullDiffuse(k) && debug(k); }
 bool denoiseFull(const GraphKey& k) { return denoiseSpecular(k) || denoiseFullDiffuse(k); }
 bool denoiseHalf(const GraphKey& k) { return denoise(k) && halfSsgi(k); }
 // The denoiser's history: read (the last frame's), kept (this frame's, for the next).
@@ -114,7 +117,8 @@ struct DenoiseSite {
     // pass reads the front end's output directly).
     GraphCondition preBlur, preBlurred[2], unblurred[2];
     Res pingPong, state[2], outputs[2], frames[2];
-    Res history[3];  // guides, diffuse, specular (Res::Count: none)
+    GraphCondition framesMade[2];  // the history lengths, a plane only looked at: when made
+    Res history[3];                // guides, diffuse, specular (Res::Count: none)
     GraphCondition historyRead[3], historyKept[3];
 };
 
@@ -180,7 +184,8 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     for (int i = 0; i < 2; ++i) {
         if (s.noisy[i] == Res::Count) continue;
         post.writes.push_back({s.outputs[i], P::Pixel, s.signal[i]});
-        if (s.frames[i] != Res::Count) post.writes.push_back({s.frames[i], P::Pixel, s.signal[i]});
+        if (s.frames[i] != Res::Count)
+            post.writes.push_back({s.frames[i], P::Pixel, s.framesMade[i]});
     }
     // (The signals' history planes; where one resource holds the guides and the signal, the
     // half frame's, the post-blur writes its signal part and the commit below the rest.)
@@ -287,13 +292,13 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsrOpacity},
                   {Res::SsrHit},
                   {Res::SsrHitDistance},
-                  {Res::SsrSteps},
+                  {Res::SsrSteps, P::Pixel, debug},
                   {Res::RayPdf},
                   {Res::MarchHit, P::Pixel, reuseResolve},
                   {Res::SsrHitRadiance},
                   {Res::SsrHitTarget, P::Pixel, reuseResolve}}});
     // The checkerboard's other phase, from the traced pixels around.
-    p.push_back({"ssr reconstruct",
+    p.push_back({pass::kSsrReconstruct,
                  ssrChecker,
                  {{Res::RayPdf, P::Around},
                   {Res::ViewZ, P::Around},
@@ -336,27 +341,31 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HalfBackZ, P::Anywhere, halfBack},
                   {Res::HalfHiZ, P::Anywhere, halfHiZ}},
                  {{Res::HalfSsgi}, {Res::HalfRayPdf}, {Res::HalfSsgiSteps, P::Pixel, debug}}});
-    p.push_back({"ssgi upsample",
-                 halfSsgi,
-                 {{Res::HalfSsgi, P::Around},
-                  {Res::HalfSsgiSteps, P::Around, debugHalfSsgi},
-                  {Res::HalfRayPdf, P::Around},
-                  {Res::ViewZ},
-                  {Res::Normal}},
-                 {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps}}});
     p.push_back(
-        {pass::kSsgi,
-         fullSsgi,
-         {{Res::ViewZ, P::Anywhere},
-          {Res::Normal, P::Anywhere},
-          {Res::Albedo},
-          {Res::Metallic},
-          {Res::HiZ, P::Anywhere, hiZMarcher},
-          {Res::HiZPacked, P::Anywhere, hiZMarcher},
-          {Res::BackZ, P::Anywhere, backFaces},
-          {Res::HitLight, P::Anywhere}},
-         {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps}, {Res::RayPdf}}});
-    p.push_back({"ssgi reconstruct",
+        {"ssgi upsample",
+         halfSsgi,
+         {{Res::HalfSsgi, P::Around},
+          {Res::HalfSsgiSteps, P::Around, debugHalfSsgi},
+          {Res::HalfRayPdf, P::Around},
+          {Res::ViewZ},
+          {Res::Normal}},
+         {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}, {Res::SsgiSteps, P::Pixel, debug}}});
+    p.push_back({pass::kSsgi,
+                 fullSsgi,
+                 {{Res::ViewZ, P::Anywhere},
+                  {Res::Normal, P::Anywhere},
+                  {Res::Albedo},
+                  {Res::Metallic},
+                  {Res::HiZ, P::Anywhere, hiZMarcher},
+                  {Res::HiZPacked, P::Anywhere, hiZMarcher},
+                  {Res::BackZ, P::Anywhere, backFaces},
+                  {Res::HitLight, P::Anywhere}},
+                 {{Res::Ssgi},
+                  {Res::SsgiHit},
+                  {Res::SsgiHitDistance},
+                  {Res::SsgiSteps, P::Pixel, debug},
+                  {Res::RayPdf}}});
+    p.push_back({pass::kSsgiReconstruct,
                  ssgiChecker,
                  {{Res::RayPdf, P::Around},
                   {Res::ViewZ, P::Around},
@@ -385,6 +394,7 @@ std::vector<PassDecl> declarePasses() {
         {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
         {Res::DenoisedDiffuse, Res::DenoisedSpecular},
         {Res::DiffuseFrames, Res::SpecularFrames},
+        {debugFullDiffuse, debugSpecular},
         {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
         {readFull, readFullDiffuse, readSpecular},
         {keepFull, keepFullDiffuse, keepSpecular}};
@@ -405,11 +415,12 @@ std::vector<PassDecl> declarePasses() {
                            {Res::HalfDenoiseState, Res::Count},
                            {Res::HalfDenoised, Res::Count},
                            {Res::Count, Res::Count},
+                           {nullptr, nullptr},
                            {Res::HalfDenoiseHistory, Res::Count, Res::Count},
                            {readHalf, nullptr, nullptr},
                            {keepHalf, nullptr, nullptr}};
     addDenoiser(p, half);
-    p.push_back({"denoise upsample",
+    p.push_back({pass::kDenoiseUpsample,
                  denoiseUpsample,
                  {{Res::HalfDenoised, P::Around},
                   {Res::HalfRayPdf, P::Around},

@@ -16,6 +16,7 @@
 #include "raster/shadow_map.h"
 #include "renderer/direct_lighting.h"
 #include "renderer/frame_graph.h"
+#include "renderer/frame_memory.h"
 #include "renderer/frame_scheduler.h"
 #include "renderer/memory_use.h"
 #include "renderer/pass_timer.h"
@@ -78,32 +79,9 @@ struct FrameContext {
     }
 };
 
-// The frame's planes as the graph has them (renderer/frame_graph.h): a plane whose resource
-// the graph holds is of the frame's size (kept when it already is), the others are emptied.
-// Every pixel of every plane is written by a pass, so none is cleared here. The transient
-// traced signals (the denoiser's inputs, no file layers) are taken from the pool by their
-// pass (renderer/trace_pass.cpp): here they are empty too. The direct pass's parts are the
-// frame's own.
-void ensurePlanes(const CompiledGraph& graph, Frame& f) {
-    const int w = graph.width, h = graph.height;
-    f.width = w;
-    f.height = h;
-    f.scratch.pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
-    const auto ensure = [&](auto& group, bool transientsHeld) {
-        group.forEachPlane([&](std::string_view name, PlaneF& p) {
-            const GraphResource* r = graph.find(resourceOfChannel(name));
-            if (r && (transientsHeld || r->lifetime != Lifetime::Transient)) p.ensureSize(w, h);
-            else p = PlaneF();
-        });
-    };
-    ensure(f.image, false);
-    ensure(f.gbuffer, false);
-    ensure(f.material, false);
-    ensure(f.ids, false);
-    ensure(f.direct, true);
-    ensure(f.trace.ssr, false);
-    ensure(f.trace.ssgi, false);
-    ensure(f.trace.denoise, false);
+// The back-face layer's own buffers, which the frame memory does not hold: emptied when the
+// graph has no back faces.
+void dropBackFaces(const CompiledGraph& graph, Frame& f) {
     if (!graph.has(Res::BackZ)) f.scratch.backVisibility = {}, f.scratch.backZ = PlaneF();
 }
 
@@ -355,7 +333,11 @@ bool Frame::has(std::string_view name) const {
     return false;
 }
 
-Renderer::Renderer(RenderSettings settings) : settings_(settings) { settings_.validate(); }
+Renderer::Renderer(RenderSettings settings) : settings_(settings) {
+    settings_.validate();
+    // The planes only looked at are trace planes (renderer/frame_graph_decl.cpp's debug()).
+    if (!settings_.tracePlanes) settings_.debugPlanes = false;
+}
 
 void Renderer::render(const Scene& scene, const FrameInput& input, FrameHistory& history,
                       Frame& frame, const TraceObserver* observer) const {
@@ -390,7 +372,8 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
     frame.stats.threads = c.threads > 0 ? c.threads : tbb::this_task_arena::max_concurrency();
-    ensurePlanes(graph, frame);
+    FrameMemory memory(graph, frame, settings_.tracePlanes);
+    dropBackFaces(graph, frame);
 
     // The passes up to the direct light: the rasters over the whole frame, then the resolve,
     // textures, ids and shading tile by tile, one loop, as the graph chains them.
@@ -419,7 +402,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     passes.tiled(
         pass::kShading, [&](int tile) { shade(lighting.args, tile); },
         [&] { setDirectArgs(c, scene, sky, input.frameIndex, frame, lighting); });
-    passes.run(frame.stats);
+    memory.step(pass::kShading, [&] { passes.run(frame.stats); });
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {
@@ -427,10 +410,12 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
             history && !input.resetHistory && history->usableAt(frame.width, frame.height)
                 ? history
                 : nullptr;
-        runTracePasses({settings_, graph, c.isa, input.frameIndex, lighting.args, previous, history,
-                        input.resetHistory, input.replaceHistory, observer},
+        runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
+                        history, input.resetHistory, input.replaceHistory, observer},
                        frame);
-        if (graph.runs(pass::kHistoryCommit)) commitHistory(settings_.trace, frame, *history);
+        memory.step(pass::kHistoryCommit, [&] {
+            if (graph.runs(pass::kHistoryCommit)) commitHistory(settings_.trace, frame, *history);
+        });
     }
     frame.stats.memory = memoryUse(frame, history);
     frame.stats.declared = {{"transient, reused", graph.transientBytes},

@@ -18,8 +18,10 @@ using L = Lifetime;
 using G = LayerGroup;
 
 // When an output only looked at is handed out (ResourceDecl::handedOut).
-bool debug(const GraphKey& k) { return k.settings.debugPlanes; }
-bool notPooled(const GraphKey& k) { return !tracedSignalsPooled(k.settings); }
+bool gbuffer(const GraphKey& k) { return k.settings.gbufferPlanes; }
+bool trace(const GraphKey& k) { return k.settings.tracePlanes; }
+bool debug(const GraphKey& k) { return trace(k) && k.settings.debugPlanes; }
+bool notPooled(const GraphKey& k) { return trace(k) && !tracedSignalsPooled(k.settings); }
 
 // --- The resource table, in Res order ---
 // (Every resource is f32 today but the ids, which are u32: the formats the data needs come
@@ -28,15 +30,15 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
-    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
+    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
     {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
     {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
     {Res::Ssr, "ssr", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
@@ -48,8 +50,9 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
-    {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace},
+    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace, trace},
+    {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace,
+     trace},
     {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
     {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
     {Res::ShadowMap, "shadowMap", "", F::F32, R::ShadowMap, L::Transient},

@@ -65,12 +65,18 @@ struct RenderSettings {
     int pcfRadius = 1;             // PCF kernel is (2r+1)^2 texels
     float exposure = 1.0f;         // scale on linear radiance before the tone map
     bool idPlanes = true;          // also hand out instanceId and triangleId float planes
+    // Hand out the G-buffer and material planes, and the traced and denoised planes, in the
+    // Frame (file layers; with tracePlanes also the direct pass's parts, Frame::direct, which
+    // the truth reads). Off (`ssrt render` to a PNG): each is transient, its memory reused
+    // once its last pass has read it, and every other plane keeps its bits.
+    bool gbufferPlanes = true;
+    bool tracePlanes = true;
     // Also make the planes that only a file or a person reads (renderer/frame.h says which):
     // the march steps, the undenoised full-resolution SSGI where the diffuse is denoised at
     // half resolution, the denoiser's history lengths. Off (`ssrt render` to a PNG): not made,
     // and every other plane keeps its bits.
-    bool debugPlanes = true;
-    TraceSettings trace;  // SSR and SSGI (on by default)
+    bool debugPlanes = true;  // (a trace plane: none without tracePlanes)
+    TraceSettings trace;      // SSR and SSGI (on by default)
 
     // Throws std::invalid_argument with a one-line message naming the bad field.
     void validate() const;

@@ -124,6 +124,12 @@ inline constexpr std::array kRenderOwnFields = {
         .floats(0.0, true),
     field<&RenderSettings::idPlanes>("idPlanes", kCliShot,
                                      "The instanceId and triangleId planes (EXR layers)"),
+    field<&RenderSettings::gbufferPlanes>(
+        "gbufferPlanes", kCliShot,
+        "The G-buffer and material planes (EXR layers); off, they are freed once read"),
+    field<&RenderSettings::tracePlanes>(
+        "tracePlanes", kCliShot,
+        "The traced and denoised planes (EXR layers); off, they are freed once read"),
     field<&RenderSettings::debugPlanes>(
         "debugPlanes", kCliShot,
         "The planes made only to be looked at (EXR layers): march steps, the undenoised and "

@@ -184,8 +184,6 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
     takeBatches(c, frame, false);
-    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
-        takeSignal(sc.pool, planes, frame.width, frame.height);
     const SsgiSample q{
         c, {c.camera, c.march, c.hiz, nullptr}, c.rayGen, in, hp, cut, checker, planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)

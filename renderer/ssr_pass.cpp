@@ -114,10 +114,9 @@ void ssrPass(const TraceContext& c, Frame& frame) {
         c,  rs,           in,
         hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
     // The batches and the resolve's scratch come from the pool and go back to it once the
-    // checkerboard fill has read the rays' pdf (the denoiser takes them next).
+    // checkerboard fill has read the rays' pdf (the denoiser takes them next). The signal's
+    // planes are the frame memory's (renderer/frame_memory.h).
     takeBatches(c, frame, rs.mode == SsrResolveMode::Reuse);
-    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoisePass)
-        takeSignal(sc.pool, planes, frame.width, frame.height);
     swapSsrOutput(planes, sc.ssr);
     sc.pool.take(sc.ssr, frame.width, frame.height);
     if (tiled(c)) ssrTileSamples(q, frame, st, times);

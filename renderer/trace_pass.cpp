@@ -39,11 +39,23 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
 void runTracePasses(const TracePassArgs& args, Frame& frame) {
     TraceContext c(args, frame);
     const CompiledGraph& g = args.graph;
-    if (g.runs(pass::kHiZ)) hiZPass(c, frame);
-    if (g.runs(pass::kSsr)) ssrPass(c, frame);
-    if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
-    if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf)) denoisePass(c, frame);
-    if (g.runs(pass::kComposite)) compositePass(c, frame);
+    FrameMemory& m = args.memory;
+    m.step(pass::kHiZ, [&] {
+        if (g.runs(pass::kHiZ)) hiZPass(c, frame);
+    });
+    m.step(pass::kSsrReconstruct, [&] {
+        if (g.runs(pass::kSsr)) ssrPass(c, frame);
+    });
+    m.step(pass::kSsgiReconstruct, [&] {
+        if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
+    });
+    m.step(pass::kDenoiseUpsample, [&] {
+        if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf))
+            denoisePass(c, frame);
+    });
+    m.step(pass::kComposite, [&] {
+        if (g.runs(pass::kComposite)) compositePass(c, frame);
+    });
 }
 
 bool readsHistory(const TraceSettings& s) {

@@ -5,6 +5,7 @@
 
 #include "renderer/frame.h"
 #include "renderer/frame_graph.h"
+#include "renderer/frame_memory.h"
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 #include "shading/direct_kernel.h"
@@ -14,6 +15,7 @@ namespace ssrt {
 struct TracePassArgs {
     const RenderSettings& settings;
     const CompiledGraph& graph;  // which passes run (renderer/frame_graph.h)
+    FrameMemory& memory;         // takes and gives back the frame's planes around each pass
     Isa isa;
     uint32_t frameIndex;
     // The direct pass's argument block (sky, light, shadow map), as it ran; its parts went

@@ -28,10 +28,10 @@
 //                field-table key
 //                (renderer/settings_fields.h; README.md, "Shot files", lists them): width,
 //                height, shadowMapSize, shadowBias, shadowSlopeBias, pcfRadius, exposure,
-//                idPlanes, debugPlanes, ssr, ssgi, ssrMethod, marcher, ssrSpp, ssgiSpp,
-//                traceHidden, maxSteps, maxDistance, linearStep, thickness, ddaStride,
-//                ddaJitter, refineSteps, hizMostDetailedLevel, hizStartLevel, ssrResolve,
-//                hitRadiance, hitBilinear, edgeFadeLength, roughnessFadeStart,
+//                idPlanes, gbufferPlanes, tracePlanes, debugPlanes, ssr, ssgi, ssrMethod,
+//                marcher, ssrSpp, ssgiSpp, traceHidden, maxSteps, maxDistance, linearStep,
+//                thickness, ddaStride, ddaJitter, refineSteps, hizMostDetailedLevel, hizStartLevel,
+//                ssrResolve, hitRadiance, hitBilinear, edgeFadeLength, roughnessFadeStart,
 //                roughnessFadeEnd. Booleans are true/false, choices are names ("marcher":
 //                "dda"). The parser keeps these settings as written; applying them
 //                (cli/shot_settings.h) checks each against its table entry, unknown keys

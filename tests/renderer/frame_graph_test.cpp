@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "material_maps.h"
+#include "plane_compare.h"
 #include "renderer/quality.h"
 #include "renderer/renderer.h"
 #include "renderer/trace_pass.h"
@@ -174,7 +175,7 @@ TEST_CASE("frame graph: its outputs are the rendered frame's layers") {
     const Scene* scenes[] = {&cornell, &textured, &emissive};
     for (int q = 0; q < kQualityCount; ++q)
         for (const Scene* scene : scenes)
-            for (int variant = 0; variant < 10; ++variant) {
+            for (int variant = 0; variant < 12; ++variant) {
                 RenderSettings s = small(Quality(q));
                 switch (variant) {
                     case 1: s.debugPlanes = false; break;
@@ -197,6 +198,10 @@ TEST_CASE("frame graph: its outputs are the rendered frame's layers") {
                         s.trace.marcher = Marcher::Linear;
                         s.trace.march.backFaces = !s.trace.march.backFaces;
                         s.debugPlanes = false;
+                        break;
+                    case 10: s.gbufferPlanes = false; break;  // a PNG's frame
+                    case 11:
+                        s.tracePlanes = s.debugPlanes = s.idPlanes = s.gbufferPlanes = false;
                         break;
                     default: break;
                 }
@@ -335,4 +340,33 @@ TEST_CASE("frame graph: DOT output names every pass and resource") {
         CHECK(dot.find(std::string(p.decl->name)) != std::string::npos);
     for (const GraphResource& r : g.resources)
         CHECK(dot.find("\"" + std::string(resourceDecl(r.id).name) + "\\n") != std::string::npos);
+}
+
+// The frame's memory follows the graph's lifetimes (renderer/frame_memory.h): with every plane
+// that goes back to the pool filled with NaN, no pass reads one after its last declared pass
+// or before its first, and the image keeps its bits.
+TEST_CASE("frame graph: no pass reads a plane outside the lifetime the graph gives it") {
+    const Scene scene = makeBuiltinScene("cornell");
+    for (int q = 0; q < kQualityCount; ++q)
+        for (int variant = 0; variant < 3; ++variant) {
+            RenderSettings s = small(Quality(q));
+            if (variant >= 1) s.gbufferPlanes = s.tracePlanes = s.debugPlanes = s.idPlanes = false;
+            if (variant == 2) s.trace.ssgiLayout = TraceLayout::Full;
+            CAPTURE(q);
+            CAPTURE(variant);
+            const Renderer renderer(s);
+            Frame plain, poisoned;
+            FrameHistory hp, hq;
+            poisoned.scratch.pool.poison(std::numeric_limits<float>::quiet_NaN());
+            for (uint32_t i = 0; i < 3; ++i) {  // a first frame, then two with history
+                renderer.render(scene, FrameInput::still(scene, i), hp, plain);
+                renderer.render(scene, FrameInput::still(scene, i), hq, poisoned);
+                const std::vector<PlaneRef> a = plain.layers(), b = poisoned.layers();
+                REQUIRE(a.size() == b.size());
+                for (std::size_t k = 0; k < a.size(); ++k) {
+                    CAPTURE(a[k].name);
+                    CHECK(test::sameBits(*a[k].plane, *b[k].plane));
+                }
+            }
+        }
 }

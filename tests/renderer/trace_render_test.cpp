@@ -280,10 +280,11 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
             for (int e = 0; e < kMarchEndCount; ++e) CHECK(sa.march.ends[e] == sb.march.ends[e]);
             CHECK(sa.march.stepHistogram == sb.march.stepHistogram);
         }
-        // The tile chain made no frame of rays or march results: its pool holds less (where
-        // the denoiser's scratch does not outgrow both: with SSGI's diffuse at half resolution).
+        // The tile chain made no frame of rays or march results: its pool holds no more (the
+        // denoiser's scratch, which reuses the display's planes before the composite, is as
+        // large as the stage-by-stage frame's rays and march results).
         if (k.ssgiLayout == L::Half)
-            CHECK(tiled.scratch.pool.bytes() < staged.scratch.pool.bytes());
+            CHECK(tiled.scratch.pool.bytes() <= staged.scratch.pool.bytes());
     }
 }
 
@@ -326,9 +327,14 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
         CHECK(a.trace.denoise.out.diffuse[0].empty());
         CHECK_FALSE(b.trace.denoise.out.diffuse[0].empty());
         // SSR's planes went back to the pool once the denoiser read them, and its passes
-        // reused them: the pool is no larger for holding them (tracedSignalsPooled).
+        // reused them: the frame holds less in all for not showing them.
         CHECK(a.trace.ssr.color[0].empty());
         CHECK_FALSE(b.trace.ssr.color[0].empty());
-        CHECK(a.scratch.pool.bytes() == b.scratch.pool.bytes());
+        const auto total = [](const Frame& f) {
+            std::size_t n = 0;
+            for (const MemoryUse& m : f.stats.memory) n += m.bytes;
+            return n;
+        };
+        CHECK(total(a) < total(b));
     }
 }

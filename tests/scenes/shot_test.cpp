@@ -171,7 +171,8 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
          "intensity)"},
         {R"({"render": {"samples": 4}})",
          "render.samples: unknown key (expected one of: width, height, shadowMapSize, "
-         "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, debugPlanes, ssr, ssgi, "
+         "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, gbufferPlanes, tracePlanes, "
+         "debugPlanes, ssr, ssgi, "
          "ssrMethod, "
          "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssgiLayout, maxSteps, "},
         // Wrong types
