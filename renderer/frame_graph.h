@@ -53,6 +53,8 @@ inline constexpr std::string_view kSsgi = "ssgi";
 inline constexpr std::string_view kSsgiHalf = "ssgi (half)";
 inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";
 inline constexpr std::string_view kDenoiseFrontEndHalf = "denoise front end (half)";
+inline constexpr std::string_view kDenoiseTemporal = "denoise temporal";
+inline constexpr std::string_view kDenoiseTemporalHalf = "denoise temporal (half)";
 inline constexpr std::string_view kComposite = "composite";
 inline constexpr std::string_view kHistoryCommit = "history commit";
 }  // namespace pass
