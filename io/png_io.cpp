@@ -241,8 +241,10 @@ struct Band {
     bool failed = false;
 };
 
+// (`raw` and `packed`: the thread's buffers, reused band after band; the band keeps only
+// its compressed bytes.)
 void compressBand(const PngRows& rows, int width, int y0, int y1, bool last, int level,
-                  std::vector<uint8_t>& raw, Band& band) {
+                  std::vector<uint8_t>& raw, std::vector<uint8_t>& packed, Band& band) {
     const std::size_t line = std::size_t(width) * 3 + 1;
     raw.resize(line * std::size_t(y1 - y0));
     for (int y = y0; y < y1; ++y) {
@@ -257,14 +259,15 @@ void compressBand(const PngRows& rows, int width, int y0, int y1, bool last, int
         band.failed = true;
         return;
     }
-    band.bytes.resize(deflateBound(&z, uLong(raw.size())) + 16);
+    packed.resize(deflateBound(&z, uLong(raw.size())) + 16);
     z.next_in = raw.data();
     z.avail_in = uInt(raw.size());
-    z.next_out = band.bytes.data();
-    z.avail_out = uInt(band.bytes.size());
+    z.next_out = packed.data();
+    z.avail_out = uInt(packed.size());
     const int rc = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
-    band.failed = last ? rc != Z_STREAM_END : (rc != Z_OK || z.avail_in != 0);
-    band.bytes.resize(z.total_out);
+    // (A sync flush that filled the buffer may hold more back: deflateBound says it cannot.)
+    band.failed = last ? rc != Z_STREAM_END : (rc != Z_OK || z.avail_in != 0 || z.avail_out == 0);
+    band.bytes.assign(packed.begin(), packed.begin() + std::ptrdiff_t(z.total_out));
     deflateEnd(&z);
 }
 
@@ -290,10 +293,10 @@ void writePngRgb8(const std::string& path, const std::string& file, int width, i
     std::vector<Band> done(static_cast<std::size_t>(bands));
     std::atomic<int> next{0};
     const auto work = [&] {
-        std::vector<uint8_t> raw;
+        std::vector<uint8_t> raw, packed;
         for (int b = next++; b < bands; b = next++) try {
                 compressBand(rows, width, b * kBandRows, std::min(height, (b + 1) * kBandRows),
-                             b + 1 == bands, compressionLevel, raw, done[std::size_t(b)]);
+                             b + 1 == bands, compressionLevel, raw, packed, done[std::size_t(b)]);
             } catch (...) {  // (out of memory: said below, on the calling thread)
                 done[std::size_t(b)].failed = true;
             }
