@@ -172,6 +172,7 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in
         a.copy[ch] = copy ? copy[ch].row(0) : nullptr;
     }
     a.frames = frames ? frames->row(0) : nullptr;
+    if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
     a.frameIndex = c.in.frameIndex;
     a.stream = kRotationStream + uint32_t(pass) * 2u + (sig.specular ? 1u : 0u);
     const float blur = pass == ReblurSpatial::PostBlur ? 2.0f * s.maxBlurRadius : s.maxBlurRadius;
@@ -239,9 +240,13 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
         a.in[ch] = in[ch].row(0);
         a.out[ch] = out[ch].row(0);
     }
-    a.frames = c.sc.frames[k].row(0);
+    // (Without the temporal pass no pixel has a history, and the fast history is the input's
+    // luma, as that pass would have left them.)
+    a.frames = c.in.temporal ? c.sc.frames[k].row(0) : nullptr;
     // The fast history clamps the slow one only where it is faster.
-    a.fast = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames ? c.sc.fast[k].row(0) : nullptr;
+    const bool clamp = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames;
+    a.fast = clamp && c.in.temporal ? c.sc.fast[k].row(0) : nullptr;
+    a.fastIsInputLuma = clamp && !c.in.temporal;
     a.fixFrames = float(s.historyFixFrames);
     a.stride = float(s.historyFixStride);
     a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
@@ -261,13 +266,15 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
         times.run(name, [&] { pass(current, out); });
         current = out;
     };
-    const PlaneF* frames = &sc.frames[sig.specular ? 1 : 0];
+    // (null without the temporal pass: the blurs take 0 frames)
+    const PlaneF* frames = c.in.temporal ? &sc.frames[sig.specular ? 1 : 0] : nullptr;
     const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
     if (preRadius > 0.0f)
         step("pre-blur", [&](PlaneF* in, PlaneF* out) {
             spatial(c, sig, ReblurSpatial::PreBlur, in, Four(out).p, nullptr, nullptr);
         });
-    step("temporal", [&](PlaneF* in, PlaneF* out) { temporal(c, sig, in, out); });
+    if (c.in.temporal)
+        step("temporal", [&](PlaneF* in, PlaneF* out) { temporal(c, sig, in, out); });
     step("history fix", [&](PlaneF* in, PlaneF* out) { historyFix(c, sig, in, out); });
     step("blur", [&](PlaneF* in, PlaneF* out) {
         spatial(c, sig, ReblurSpatial::Blur, in, Four(out).p, nullptr, frames);
@@ -282,9 +289,9 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
     if (!c.in.historyLengths) return;
-    PlaneF& src = sc.frames[sig.specular ? 1 : 0];
+    if (!frames) return sig.framesOut->fill(0.0f);
     for (int y = 0; y < c.grid.height; ++y)
-        std::copy_n(src.row(y), c.grid.width, sig.framesOut->row(y));
+        std::copy_n(frames->row(y), c.grid.width, sig.framesOut->row(y));
 }
 
 // The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
@@ -332,15 +339,16 @@ void keepScratch(bool on, PlaneF& p, int w, int h, PlanePool* pool) {
 }
 
 // The scratch the passes after the front end write: the ping-pong pair, the accumulation
-// speeds and the fast histories (taken once the front end has read the signals).
-void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool specular,
+// speeds and the fast histories (the temporal pass's; taken once the front end has read the
+// signals).
+void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool specular, bool temporal,
                        PlanePool* pool) {
     for (int i = 0; i < 4; ++i) {
         keepScratch(diffuse || specular, sc.ping[i], w, h, pool);
         keepScratch(diffuse || specular, sc.pong[i], w, h, pool);
     }
     for (int i = 0; i < 2; ++i) {
-        const bool on = i == 0 ? diffuse : specular;
+        const bool on = (i == 0 ? diffuse : specular) && temporal;
         keepScratch(on, sc.frames[i], w, h, pool);
         keepScratch(on, sc.fast[i], w, h, pool);
     }
@@ -397,6 +405,8 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const DenoiseHistory* previous = readHistory ? history : nullptr;
     DenoiseHistory* next = in.replaceHistory ? history : nullptr;
     if (next && !readHistory) next->valid = false;
+    if (!in.temporal && (previous || next))
+        throw std::logic_error("denoise: a history is read or kept without the temporal pass");
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
     ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
@@ -408,7 +418,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();
-    ensurePassScratch(w, h, scratch, diffuse, specular, in.pool);
+    ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
     if (diffuse)
         denoiseSignal(c,
                       {false,

@@ -13,7 +13,8 @@
 //   temporal      surface-motion reprojection with disocclusion by depth, Catmull-Rom history
 //                 with a bilinear fallback where a tap is occluded, the accumulation speed
 //                 (frames, capped), the fast history, the firefly suppressor; for specular
-//                 also the virtual motion of the reflection, blended by confidence
+//                 also the virtual motion of the reflection, blended by confidence (only
+//                 with a history to read or keep: DenoiseInputs::temporal)
 //   history fix   a wider reconstruction for pixels younger than historyFixFrames, and the
 //                 fast history's clamp of the slow one (anti-lag)
 //   blur          8 taps, radius shrinking as the history grows
@@ -63,6 +64,11 @@ struct DenoiseInputs {
     bool replaceHistory = true;
     // false: DenoiseOutputs' history lengths (planes only to be looked at) are not made.
     bool historyLengths = true;
+    // false: the temporal pass does not run (the frame graph culls it where no history is read
+    // or kept: it would copy its input, with no speed and its own luma as the fast history);
+    // the history fix reads its input instead, and the same output follows, bit for bit.
+    // Throws std::logic_error if a history is read or replaced.
+    bool temporal = true;
     // Where the scratch's planes come from, and go back to after the call (null: the scratch
     // keeps its own between calls).
     PlanePool* pool = nullptr;

@@ -59,7 +59,7 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
                 const Lane rs = ln::gather(v.roughness, t.index, t.run);
                 w = w * rb::weightExp((rs - p.r) / (Lane(0.05f) + Lane(0.15f) * p.r));
             }
-            w = w * (one + ln::gather(a.frames, t.index, t.run));
+            if (a.frames) w = w * (one + ln::gather(a.frames, t.index, t.run));  // (else * 1)
             w = ln::select(ok, w, zero);
             for (int ch = 0; ch < 4; ++ch)
                 sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
@@ -88,12 +88,17 @@ void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int
                 const std::size_t at =
                     std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
                 ms = loadAt(mask, at);
-                f = loadAt(a.fast, at);
+                f = a.fastIsInputLuma
+                        ? rb::luma(loadAt(a.in[0], at), loadAt(a.in[1], at), loadAt(a.in[2], at))
+                        : loadAt(a.fast, at);
                 inside = valid;
             } else {
                 const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
                 ms = ln::gather(mask, t.index, t.run);
-                f = ln::gather(a.fast, t.index, t.run);
+                f = a.fastIsInputLuma ? rb::luma(ln::gather(a.in[0], t.index, t.run),
+                                                 ln::gather(a.in[1], t.index, t.run),
+                                                 ln::gather(a.in[2], t.index, t.run))
+                                      : ln::gather(a.fast, t.index, t.run);
                 inside = valid & t.inside;
             }
             const Mask ok = inside & (ms > zero);
@@ -120,11 +125,12 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
     const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
-    const Lane frames = loadAt(a.frames, o);
+    const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(0.0f);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));
     if (ln::any(young)) reconstructYoung(a, p, young, y, frames, c, result);
-    if (a.fast && ln::any(valid)) clampToFast(a, p, valid, x, y, o, frames, result);
+    if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
+        clampToFast(a, p, valid, x, y, o, frames, result);
     for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, result[ch]);
 }
 

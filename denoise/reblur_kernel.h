@@ -54,8 +54,9 @@ struct ReblurSpatialArgs {
     bool specular = false;
     const float* in[4] = {};
     float* out[4] = {};
-    float* copy[4] = {};                  // a second destination (the history), or null
-    const float* frames = nullptr;        // accumulation speed (blur, post-blur); null: pre-blur's
+    float* copy[4] = {};            // a second destination (the history), or null
+    const float* frames = nullptr;  // accumulation speed (blur, post-blur); null: noFrames
+    float noFrames = 10.0f;         // every pixel's speed without `frames`: the pre-blur's 10, or 0
     uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
     float radius = 30.0f;                 // pre-blur's radius, or the blur's largest
     float minRadius = 1.0f;
@@ -95,8 +96,11 @@ struct ReblurHistoryFixArgs {
     ReblurView view;
     bool specular = false;
     const float* in[4] = {};
-    const float* frames = nullptr;
-    const float* fast = nullptr;  // null: no anti-lag clamp
+    const float* frames = nullptr;  // null: no pixel has a history (0 frames)
+    const float* fast = nullptr;    // null: no anti-lag clamp, unless fastIsInputLuma
+    // The fast history is the input's own luma (a frame without history, where the temporal
+    // pass, which would have written it so, does not run).
+    bool fastIsInputLuma = false;
     float* out[4] = {};
     float fixFrames = 3.0f, stride = 14.0f;
     float lobeFraction2 = 0.0225f;

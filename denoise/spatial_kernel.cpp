@@ -66,8 +66,9 @@ bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
     q.o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
     for (int ch = 0; ch < 4; ++ch) q.c[ch] = loadAt(a.in[ch], q.o);
-    // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history).
-    const Lane frames = q.frames = a.frames ? loadAt(a.frames, q.o) : Lane(10.0f);
+    // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history); a frame without
+    // history has none.
+    const Lane frames = q.frames = a.frames ? loadAt(a.frames, q.o) : Lane(a.noFrames);
     // A pixel with a long history leaves the blur as it came (the post-blur filters it).
     q.valid = validAt(v, q.o, spec) & (frames < Lane(a.maxFrames));
     if (!ln::any(q.valid)) {

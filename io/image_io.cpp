@@ -148,10 +148,14 @@ void checkFrame(const std::string& path, const ImageLayers& image, const std::st
         if (!findPlane(image, name)) fail(std::string("the frame has no '") + name + "' plane");
 }
 
-// round(clamp(v, 0, 1) * 255); the comparisons are written so that NaN lands on 0.
+// round(clamp(v, 0, 1) * 255), halves away from zero (std::lround's rounding, without the
+// call); the comparisons are written so that NaN lands on 0. (x - int(x) is exact for
+// 0 <= x < 2^23, so the comparison with 0.5 decides as lround does.)
 uint8_t quantise(float v) {
     const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-    return uint8_t(std::lround(c * 255.0f));
+    const float x = c * 255.0f;
+    const int whole = int(x);
+    return uint8_t(whole + (x - float(whole) >= 0.5f ? 1 : 0));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -161,20 +165,21 @@ uint8_t quantise(float v) {
 // spent about half a second on one 1920x1080 frame (as long as rendering it).
 constexpr int kPngCompressionLevel = 1;
 
-// 8-bit RGB from the display planes, through libpng (io/png_io.h).
-void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image) {
+// 8-bit RGB from the display planes (io/png_io.h), quantised row by row as the bands are
+// compressed, on the write's threads.
+void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& image,
+              const WriteOptions& options) {
     const PlaneF* planes[3];
     for (int c = 0; c < 3; ++c) planes[c] = findPlane(image, kDisplayPlanes[c]);
     const std::size_t w = std::size_t(image.width);
-    std::vector<uint8_t> rgb(w * std::size_t(image.height) * 3);
-    for (int y = 0; y < image.height; ++y)
+    const auto row = [&](int y, uint8_t* rgb) {
         for (int c = 0; c < 3; ++c) {
             const float* src = planes[c]->row(y);
-            uint8_t* row = rgb.data() + std::size_t(y) * w * 3;
-            for (std::size_t x = 0; x < w; ++x) row[x * 3 + c] = quantise(src[x]);
+            for (std::size_t x = 0; x < w; ++x) rgb[x * 3 + c] = quantise(src[x]);
         }
-    io_detail::writePngRgb8(path, tmp.string(), image.width, image.height, rgb,
-                            kPngCompressionLevel, image.attributes);
+    };
+    io_detail::writePngRgb8(path, tmp.string(), image.width, image.height, row,
+                            kPngCompressionLevel, image.attributes, options.threads);
 }
 
 // OpenEXR's compression for ours (all lossless).
@@ -262,7 +267,7 @@ void writeImage(const std::string& path, const ImageLayers& image, const WriteOp
     checkDirectory(path);
     const fs::path tmp = reserveTemporary(path, ext);
     try {
-        if (ext == ".png") writePng(path, tmp, image);
+        if (ext == ".png") writePng(path, tmp, image, options);
         else writeExr(path, tmp, image, options);
         // rename() within one directory replaces the target atomically: readers see the old
         // file or the new one, never a half-written one.

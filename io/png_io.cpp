@@ -4,12 +4,14 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string_view>
+#include <thread>
 
 #include "io/io_errors.h"
 
@@ -197,71 +199,137 @@ DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha) 
 }
 
 // ---------------------------------------------------------------------------------------
-// Writing
+// Writing: the chunks by hand, the pixels through zlib in bands of rows compressed side by
+// side (as pigz does): each band its own raw deflate stream, ended by a sync flush (the last
+// by the final block), the streams concatenated into one zlib stream. The bands are fixed
+// (kBandRows), so the bytes do not depend on the thread count.
 
 namespace {
 
-// Owns libpng's write state.
-struct PngWrite {
-    png_structp png = nullptr;
-    png_infop info = nullptr;
-    PngErrorText error;
-    ~PngWrite() { png_destroy_write_struct(&png, info ? &info : nullptr); }
+constexpr int kBandRows = 64;
+
+void putU32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out.push_back(uint8_t(v >> shift));
+}
+
+// A chunk: its length, type, data and the CRC of type and data.
+void putChunk(std::vector<uint8_t>& out, const char (&type)[5], const uint8_t* data,
+              std::size_t size) {
+    putU32(out, uint32_t(size));
+    const std::size_t at = out.size();
+    out.insert(out.end(), type, type + 4);
+    if (size > 0) out.insert(out.end(), data, data + size);
+    putU32(out, uint32_t(crc32(0, out.data() + at, uInt(size + 4))));
+}
+
+// A tEXt chunk (keywords of 1 to 79 characters, as libpng checks them).
+void putText(std::vector<uint8_t>& out, const std::string& path, const std::string& key,
+             const std::string& value) {
+    if (key.empty() || key.size() > 79 || key.find('\0') != std::string::npos)
+        failWrite(path, "invalid PNG text keyword '" + key + "'");
+    std::vector<uint8_t> data(key.begin(), key.end());
+    data.push_back(0);
+    data.insert(data.end(), value.begin(), value.end());
+    putChunk(out, "tEXt", data.data(), data.size());
+}
+
+// One band of rows, filtered (type 0: none) and deflated.
+struct Band {
+    std::vector<uint8_t> bytes;
+    uLong adler = 1;
+    std::size_t rawSize = 0;
+    bool failed = false;
 };
 
-// OpenImageIO 2.4's PNG writer's calls, in its order, for 8-bit RGB and its default settings.
-bool writeRgb8(png_structp png, png_infop info, std::FILE* file, png_uint_32 width,
-               png_uint_32 height, png_bytepp rows, int level, png_textp more, int moreCount) {
-    if (setjmp(png_jmpbuf(png))) return false;
-    png_init_io(png, file);
-    png_set_compression_level(png, level);
-    png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
-    png_set_filter(png, 0, PNG_NO_FILTERS);
-    png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
-    char key[] = "Software", value[] = "ssrt";
-    png_text text{};
-    text.compression = PNG_TEXT_COMPRESSION_NONE;
-    text.key = key;
-    text.text = value;
-    png_set_text(png, info, &text, 1);
-    if (moreCount > 0) png_set_text(png, info, more, moreCount);
-    png_write_info(png, info);
-    for (png_uint_32 y = 0; y < height; ++y) png_write_row(png, rows[y]);
-    png_write_end(png, info);
-    return true;
+// (`raw` and `packed`: the thread's buffers, reused band after band; the band keeps only
+// its compressed bytes.)
+void compressBand(const PngRows& rows, int width, int y0, int y1, bool last, int level,
+                  std::vector<uint8_t>& raw, std::vector<uint8_t>& packed, Band& band) {
+    const std::size_t line = std::size_t(width) * 3 + 1;
+    raw.resize(line * std::size_t(y1 - y0));
+    for (int y = y0; y < y1; ++y) {
+        uint8_t* r = raw.data() + line * std::size_t(y - y0);
+        r[0] = 0;
+        rows(y, r + 1);
+    }
+    band.rawSize = raw.size();
+    band.adler = adler32(1, raw.data(), uInt(raw.size()));
+    z_stream z{};
+    if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+        band.failed = true;
+        return;
+    }
+    packed.resize(deflateBound(&z, uLong(raw.size())) + 16);
+    z.next_in = raw.data();
+    z.avail_in = uInt(raw.size());
+    z.next_out = packed.data();
+    z.avail_out = uInt(packed.size());
+    const int rc = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    // (A sync flush that filled the buffer may hold more back: deflateBound says it cannot.)
+    band.failed = last ? rc != Z_STREAM_END : (rc != Z_OK || z.avail_in != 0 || z.avail_out == 0);
+    band.bytes.assign(packed.begin(), packed.begin() + std::ptrdiff_t(z.total_out));
+    deflateEnd(&z);
 }
 
 }  // namespace
 
 void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
-                  const std::vector<uint8_t>& rgb, int compressionLevel, const PngTexts& texts) {
-    // libpng takes the texts by pointer; these strings outlive the write.
-    std::vector<std::string> keys, values;
-    for (const auto& [key, value] : texts) keys.push_back(key), values.push_back(value);
-    std::vector<png_text> more(texts.size());
-    for (std::size_t i = 0; i < texts.size(); ++i) {
-        more[i].compression = PNG_TEXT_COMPRESSION_NONE;
-        more[i].key = keys[i].data();
-        more[i].text = values[i].data();
+                  const PngRows& rows, int compressionLevel, const PngTexts& texts, int threads) {
+    if (width <= 0 || height <= 0) failWrite(path, "the image is empty");
+    std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    // IHDR: 8-bit RGB, deflate, filter method 0, not interlaced.
+    std::vector<uint8_t> header;
+    putU32(header, uint32_t(width));
+    putU32(header, uint32_t(height));
+    header.insert(header.end(), {8, 2, 0, 0, 0});
+    putChunk(out, "IHDR", header.data(), header.size());
+    // oFFs at 0, 0 in pixels (as OpenImageIO wrote it).
+    const uint8_t offsets[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    putChunk(out, "oFFs", offsets, sizeof offsets);
+    putText(out, path, "Software", "ssrt");
+    for (const auto& [key, value] : texts) putText(out, path, key, value);
+
+    const int bands = (height + kBandRows - 1) / kBandRows;
+    std::vector<Band> done(static_cast<std::size_t>(bands));
+    std::atomic<int> next{0};
+    const auto work = [&] {
+        std::vector<uint8_t> raw, packed;
+        for (int b = next++; b < bands; b = next++) try {
+                compressBand(rows, width, b * kBandRows, std::min(height, (b + 1) * kBandRows),
+                             b + 1 == bands, compressionLevel, raw, packed, done[std::size_t(b)]);
+            } catch (...) {  // (out of memory: said below, on the calling thread)
+                done[std::size_t(b)].failed = true;
+            }
+    };
+    const int workers =
+        std::clamp(threads > 0 ? threads : int(std::thread::hardware_concurrency()), 1, bands);
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < workers; ++i) pool.emplace_back(work);
+        work();
     }
-    PngWrite w;
-    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w.error, onPngError, onPngWarning);
-    if (w.png) w.info = png_create_info_struct(w.png);
-    if (!w.info) failWrite(path, "out of memory");
-    std::vector<png_bytep> rows(static_cast<std::size_t>(height));
-    for (int y = 0; y < height; ++y)
-        rows[y] = const_cast<png_bytep>(rgb.data() + std::size_t(y) * width * 3);
-    std::FILE* out = std::fopen(file.c_str(), "wb");
-    if (!out) failWrite(path, std::strerror(errno));
-    const bool ok = writeRgb8(w.png, w.info, out, png_uint_32(width), png_uint_32(height),
-                              rows.data(), compressionLevel, more.data(), int(more.size()));
-    // A full disk shows at the flush or the close, not in libpng.
-    const bool flushed = std::fflush(out) == 0 && !std::ferror(out);
+    // The zlib stream: its header (deflate, 32 KiB window, the level's flag), the bands, the
+    // Adler-32 of every filtered row.
+    const int level = compressionLevel < 0 ? 6 : compressionLevel;
+    const int cmf = 0x78, flg = (level < 2 ? 0 : level < 6 ? 1 : level == 6 ? 2 : 3) << 6;
+    std::vector<uint8_t> idat = {uint8_t(cmf), uint8_t(flg + (31 - (cmf * 256 + flg) % 31) % 31)};
+    uLong adler = 1;
+    for (const Band& b : done) {
+        if (b.failed) failWrite(path, "zlib failed to compress the pixels");
+        idat.insert(idat.end(), b.bytes.begin(), b.bytes.end());
+        adler = adler32_combine(adler, b.adler, z_off_t(b.rawSize));
+    }
+    putU32(idat, uint32_t(adler));
+    putChunk(out, "IDAT", idat.data(), idat.size());
+    putChunk(out, "IEND", nullptr, 0);
+
+    std::FILE* f = std::fopen(file.c_str(), "wb");
+    if (!f) failWrite(path, std::strerror(errno));
+    const bool written = std::fwrite(out.data(), 1, out.size(), f) == out.size();
+    // A full disk shows at the write, the flush or the close.
+    const bool flushed = written && std::fflush(f) == 0 && !std::ferror(f);
     const int err = errno;
-    const bool closed = std::fclose(out) == 0;
-    if (!ok) failWrite(path, w.error.text);
+    const bool closed = std::fclose(f) == 0;
     if (!flushed || !closed) failWrite(path, std::strerror(err));
 }
 

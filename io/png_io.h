@@ -1,6 +1,7 @@
-// PNG through libpng (inside io/ only): decoding every PNG OpenImageIO 2.4 reads, to the same
-// samples, names and colour space, and writing ssrt's 8-bit RGB previews to the same bytes
-// its PNG writer gave them (tests/io/decoders_vs_oiio_test.cpp, tests/io/image_io_test.cpp).
+// PNG (inside io/ only): decoding through libpng every PNG OpenImageIO 2.4 reads, to the same
+// samples, names and colour space (tests/io/decoders_vs_oiio_test.cpp); and writing ssrt's
+// 8-bit RGB previews with zlib (the chunks by hand, the pixels compressed in parallel), which
+// decode to the pixels OpenImageIO's writer gave them (tests/io/image_io_test.cpp).
 //
 // libpng reports an error by longjmp. Every setjmp here sits in a function whose frame holds
 // no C++ object with a destructor, and the jump never crosses one: the error's text is kept
@@ -9,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,13 +29,16 @@ DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha);
 // A PNG's tEXt chunks: keyword and text (keywords of 1 to 79 Latin-1 characters).
 using PngTexts = std::vector<std::pair<std::string, std::string>>;
 
-// Writes 8-bit RGB rows (width * 3 bytes each, row 0 first) to `file`, as OpenImageIO 2.4
-// wrote ssrt's previews: an oFFs chunk at 0, 0, the text "Software" = "ssrt" (then `texts`, if
-// any, before the pixels), no filter, zlib at `compressionLevel`. `path` names the file in
-// errors.
+// Fills row y's 8-bit RGB (width * 3 bytes); called for every row, from several threads.
+using PngRows = std::function<void(int y, uint8_t* rgb)>;
+
+// Writes 8-bit RGB to `file` with the chunks OpenImageIO 2.4 gave ssrt's previews (an oFFs
+// chunk at 0, 0, the text "Software" = "ssrt", then `texts`, if any, before the pixels; no
+// filter), its pixels deflated at `compressionLevel` in fixed bands of rows on `threads`
+// threads (0: every core; the bytes do not depend on it). `path` names the file in errors.
 void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
-                  const std::vector<uint8_t>& rgb, int compressionLevel,
-                  const PngTexts& texts = {});
+                  const PngRows& rows, int compressionLevel, const PngTexts& texts = {},
+                  int threads = 0);
 
 // The tEXt chunks before a PNG's pixels, in file order. Throws as decodePng does.
 PngTexts readPngTexts(const uint8_t* bytes, std::size_t size);

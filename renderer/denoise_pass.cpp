@@ -9,14 +9,18 @@ namespace ssrt::trace_stages {
 
 namespace {
 
-// What both of the frame's denoiser calls share: the camera they run at, the frame, whether
-// the history is replaced, the debug planes and the frame's pool of scratch.
-DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera) {
+// What both of the frame's denoiser calls share: the camera they run at (the half frame's or
+// the frame's), the frame, whether the history is replaced and the temporal pass runs, the debug
+// planes and the frame's pool of scratch.
+DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera,
+                          bool half) {
     DenoiseInputs in;
     in.camera = camera;
     in.frameIndex = c.args.frameIndex;
     in.replaceHistory = c.args.replaceHistory;
     in.historyLengths = c.args.settings.debugPlanes;
+    // (Where the graph culls the temporal pass: no history to read or keep.)
+    in.temporal = c.args.graph.runs(half ? pass::kDenoiseTemporalHalf : pass::kDenoiseTemporal);
     in.pool = &frame.scratch.pool;
     return in;
 }
@@ -28,7 +32,7 @@ DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera
 void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     const HalfFrame& hf = ht.frame;
-    DenoiseInputs in = denoiseCall(c, frame, hf.camera);
+    DenoiseInputs in = denoiseCall(c, frame, hf.camera, true);
     in.viewZ = &hf.guideZ;
     in.metallic = &hf.metallic;
     for (int i = 0; i < 3; ++i) {
@@ -69,7 +73,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
     const GBuffer& g = frame.gbuffer;
-    DenoiseInputs in = denoiseCall(c, frame, c.camera);
+    DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
     in.viewZ = &g.viewZ;
     in.roughness = &g.roughness;
     in.metallic = &g.metallic;

@@ -207,6 +207,12 @@ struct FrameHistory : PlaneTable<FrameHistory> {
     bool usableAt(int width, int height) const {
         return valid && color[0].width() == width && color[0].height() == height;
     }
+    // Whether a frame of this size reads any of it: the colour, or the denoiser's own history
+    // (which the default preset keeps without the colour; the half one at half the size).
+    bool readableAt(int width, int height) const {
+        return usableAt(width, height) || denoise.usableAt(width, height) ||
+               denoiseHalf.usableAt((width + 1) / 2, (height + 1) / 2);
+    }
 };
 
 // Wall-clock time of one pass, in milliseconds.

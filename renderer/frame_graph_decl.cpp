@@ -89,6 +89,18 @@ bool unblurredFullDiffuse(const GraphKey& k) {
 }
 bool unblurredSpecular(const GraphKey& k) { return denoiseSpecular(k) && !preBlurSpecular(k); }
 bool never(const GraphKey&) { return false; }
+// The temporal pass: where a history is read, or kept (the speeds and fast luma it writes are
+// what the commit keeps). A single image has neither: the pass would copy its input, with no
+// speed and its own luma as the fast history, which the passes after take as read.
+bool temporalFull(const GraphKey& k) { return denoiseFull(k) && (k.history || k.keepHistory); }
+bool temporalHalf(const GraphKey& k) { return denoiseHalf(k) && (k.history || k.keepHistory); }
+// What the history fix reads where the temporal pass does not run: the pre-blur's result, or
+// the front end's.
+bool fixReadsPingPongFull(const GraphKey& k) { return temporalFull(k) || preBlurFull(k); }
+bool fixReadsNoisyFullDiffuse(const GraphKey& k) {
+    return unblurredFullDiffuse(k) && !temporalFull(k);
+}
+bool fixReadsNoisySpecular(const GraphKey& k) { return unblurredSpecular(k) && !temporalFull(k); }
 bool upsampleInComposite(const GraphKey& k) { return diffuseUpsampledInComposite(k.settings); }
 bool denoiseUpsample(const GraphKey& k) { return denoiseHalf(k) && !upsampleInComposite(k); }
 bool compositeSsgiRaw(const GraphKey& k) { return ssgi(k) && !denoise(k); }
@@ -120,6 +132,9 @@ struct DenoiseSite {
     GraphCondition framesMade[2];  // the history lengths, a plane only looked at: when made
     Res history[3];                // guides, diffuse, specular (Res::Count: none)
     GraphCondition historyRead[3], historyKept[3];
+    // The temporal pass, and what the history fix reads: the temporal pass's result, or
+    // without it the pre-blur's (pingPong) or the front end's (noisy) signal.
+    GraphCondition temporal, fixReadsPingPong, fixReadsNoisy[2];
 };
 
 // Names made once, with the list of passes (which keeps views of them).
@@ -165,7 +180,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     passes.push_back(pre);
     // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma;
     // this frame's signal pre-blurred, or as the front end left it.
-    PassDecl temporal{name("denoise temporal"), s.on, s.guides, {{s.pingPong}}};
+    PassDecl temporal{name("denoise temporal"), s.temporal, s.guides, {{s.pingPong}}};
     temporal.reads.push_back({s.pingPong, P::Pixel, s.preBlur});
     for (int i = 0; i < 2; ++i)
         if (s.noisy[i] != Res::Count)
@@ -176,7 +191,11 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         if (s.history[i] != Res::Count)
             temporal.reads.push_back({s.history[i], P::Anywhere, s.historyRead[i]});
     passes.push_back(temporal);
-    passes.push_back(spatial("denoise history fix", {{s.pingPong, P::Around}}));
+    PassDecl fix = spatial("denoise history fix", {{s.pingPong, P::Around, s.fixReadsPingPong}});
+    for (int i = 0; i < 2; ++i)
+        if (s.noisy[i] != Res::Count)
+            fix.reads.push_back({s.noisy[i], P::Around, s.fixReadsNoisy[i]});
+    passes.push_back(fix);
     passes.push_back(spatial("denoise blur", {{s.pingPong, P::Around}}));
     // Post-blur: the outputs, and the history the next frame reads.
     PassDecl post = spatial("denoise post-blur", {{s.pingPong, P::Around}});
@@ -397,7 +416,10 @@ std::vector<PassDecl> declarePasses() {
         {debugFullDiffuse, debugSpecular},
         {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
         {readFull, readFullDiffuse, readSpecular},
-        {keepFull, keepFullDiffuse, keepSpecular}};
+        {keepFull, keepFullDiffuse, keepSpecular},
+        temporalFull,
+        fixReadsPingPongFull,
+        {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};
     gbufferReads(full.guides);
     full.guides.push_back({Res::Motion});
     addDenoiser(p, full);
@@ -418,7 +440,10 @@ std::vector<PassDecl> declarePasses() {
                            {nullptr, nullptr},
                            {Res::HalfDenoiseHistory, Res::Count, Res::Count},
                            {readHalf, nullptr, nullptr},
-                           {keepHalf, nullptr, nullptr}};
+                           {keepHalf, nullptr, nullptr},
+                           temporalHalf,
+                           denoiseHalf,  // (it always pre-blurs)
+                           {never, nullptr}};
     addDenoiser(p, half);
     p.push_back({pass::kDenoiseUpsample,
                  denoiseUpsample,

@@ -365,7 +365,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
                            Frame& frame, const TraceObserver* observer) const {
     scene.validate();
     const bool readsLast =
-        history && !input.resetHistory && history->usableAt(settings_.width, settings_.height);
+        history && !input.resetHistory && history->readableAt(settings_.width, settings_.height);
     const CompiledGraph graph = compileFrameGraph(
         {settings_, SceneFacts::of(scene), readsLast, history && input.replaceHistory});
     const FrameContext c(settings_, graph, scene, input);

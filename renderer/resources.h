@@ -55,7 +55,8 @@ struct SceneFacts {
 struct GraphKey {
     RenderSettings settings;
     SceneFacts scene;
-    // The last frame's history is read (FrameHistory, usable at this size, no cut).
+    // The last frame's history is read (FrameHistory::readableAt: its colour or the
+    // denoiser's, at this size; no cut).
     bool history = true;
     // This frame's history is kept for the next (FrameInput::replaceHistory with a history
     // given). Both false: a single image.

@@ -65,5 +65,10 @@ TEST_CASE("graph: bad flags are one usage line, and --dot is a digraph") {
     const CliResult dot = runSsrt({"graph", "--dot", "--quality", "ultra"});
     REQUIRE(dot.code == 0);
     CHECK(dot.out.rfind("digraph frame {", 0) == 0);
-    CHECK(contains(dot.out, "\"denoise temporal\\nchain "));
+    // A single image: no temporal pass (no history to read or keep); a sequence's frame has one.
+    CHECK(contains(dot.out, "\"denoise history fix\\nchain "));
+    CHECK_FALSE(contains(dot.out, "\"denoise temporal"));
+    const CliResult seq = runSsrt({"graph", "--dot", "--quality", "ultra", "--frames", "2"});
+    REQUIRE(seq.code == 0);
+    CHECK(contains(seq.out, "\"denoise temporal\\nchain "));
 }

@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "core/rng.h"
@@ -227,6 +228,54 @@ TEST_CASE("denoise: pixels with a long history skip the blur, younger ones keep 
         if (f < 3) CHECK(outputHash(both) == outputHash(skip));
         else CHECK(outputHash(both) != outputHash(skip));
     }
+}
+
+TEST_CASE("denoise: a frame without history skips the temporal pass, to the same bits") {
+    // Noise on two surfaces (an edge for the history fix and the blurs to stop at), a few
+    // fireflies for the fast history's clamp.
+    Synthetic s(64, 48);
+    for (int y = 0; y < s.h; ++y)
+        for (int x = 0; x < s.w; ++x) {
+            if (x >= 40) s.viewZ.at(x, y) = 5.0f;
+            const float spike = (x * 7 + y * 3) % 53 == 0 ? 40.0f : 1.0f;
+            for (int c = 0; c < 3; ++c) {
+                s.diffuse[c].at(x, y) = noise(x, y, 3, uint32_t(c)) * spike;
+                s.ssr[c].at(x, y) = 0.5f * noise(x, y, 3, uint32_t(c + 3));
+            }
+            s.diffuseHit.at(x, y) = noise(x, y, 3, 6);
+            s.specHit.at(x, y) = noise(x, y, 3, 7);
+        }
+    const auto timed = [](const std::vector<DenoisePassTime>& times, const char* name) {
+        for (const DenoisePassTime& t : times)
+            if (t.name == name) return true;
+        return false;
+    };
+    for (const DenoiseSettings& settings : {DenoiseSettings(), everyPass()}) {
+        DenoiseInputs in = s.inputs(5);
+        DenoiseScratch scratch[2];
+        DenoiseOutputs out[2];
+        std::vector<DenoisePassTime> times[2];
+        for (int k = 0; k < 2; ++k) {
+            in.temporal = k == 0;
+            denoise(defaultIsa(), settings, in, nullptr, false, scratch[k], out[k], 2, &times[k]);
+        }
+        CHECK(timed(times[0], "denoise temporal"));
+        CHECK_FALSE(timed(times[1], "denoise temporal"));
+        for (int c = 0; c < 3; ++c) {
+            CHECK(hashPlane(out[0].diffuse[c]) == hashPlane(out[1].diffuse[c]));
+            CHECK(hashPlane(out[0].specular[c]) == hashPlane(out[1].specular[c]));
+        }
+        CHECK(hashPlane(out[0].diffuseFrames) == hashPlane(out[1].diffuseFrames));
+        CHECK(hashPlane(out[0].specularFrames) == hashPlane(out[1].specularFrames));
+    }
+    // A history to read or to keep needs the pass.
+    DenoiseInputs in = s.inputs(5);
+    in.temporal = false;
+    DenoiseHistory history;
+    DenoiseScratch scratch;
+    DenoiseOutputs out;
+    CHECK_THROWS_AS(denoise(defaultIsa(), DenoiseSettings(), in, &history, false, scratch, out, 2),
+                    std::logic_error);
 }
 
 TEST_CASE("denoise: a camera cut gives the frame a fresh history, bit for bit") {

@@ -229,6 +229,50 @@ TEST_CASE("PNG quantises display planes as round(clamp(v, 0, 1) * 255)") {
     }
 }
 
+TEST_CASE("PNG: halves round away from zero, and the bytes do not depend on the thread count") {
+    TempDir dir;
+    // Every level's half-way value and its neighbours (rounding to even, or adding 0.5 in
+    // float, gets some of them wrong), in rows enough for several of the writer's bands.
+    std::vector<float> values;
+    for (int k = 0; k < 255; ++k) {
+        const float half = (float(k) + 0.5f) / 255.0f;
+        values.push_back(std::nextafter(half, 0.0f));
+        values.push_back(half);
+        values.push_back(std::nextafter(half, 1.0f));
+    }
+    const int width = 61, height = 200;
+    Frame frame = makeFrame(width, height, {"display.R", "display.G", "display.B"});
+    const auto at = [&](int c, int x, int y) {
+        return values[std::size_t((y * width + x) * 3 + c) % values.size()];
+    };
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) frame.extraLayers[c].plane.at(x, y) = at(c, x, y);
+    WriteOptions one, three;
+    one.threads = 1;
+    three.threads = 3;
+    writeImage(dir.file("one.png"), frame, one);
+    writeImage(dir.file("three.png"), frame, three);
+    const auto bytes = [&](const char* name) {
+        std::ifstream in(dir.file(name), std::ios::binary);
+        return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(bytes("one.png") == bytes("three.png"));
+    int w = 0, h = 0;
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        const auto got = readChannel(dir.file("three.png"), names[c], w, h);
+        REQUIRE(w == width);
+        REQUIRE(h == height);
+        int wrong = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                wrong += std::lround(got[std::size_t(y * width + x)] * 255.0f) !=
+                         std::lround(at(c, x, y) * 255.0f);
+        CHECK(wrong == 0);
+    }
+}
+
 TEST_CASE("extensions are checked, case-insensitively, before anything is written") {
     TempDir dir;
     const Frame frame = makeFrame(2, 2, {"display.R", "display.G", "display.B"});

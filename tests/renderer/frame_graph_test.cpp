@@ -248,6 +248,38 @@ TEST_CASE("frame graph: a pass the settings turn off takes its resources with it
     CHECK(compileFrameGraph({s, facts, true}).has(Res::HistoryDiffuse));
 }
 
+TEST_CASE("frame graph: a frame without history runs no temporal pass, one with either does") {
+    const Scene scene = makeBuiltinScene("cornell");
+    const SceneFacts facts = SceneFacts::of(scene);
+    for (const TraceLayout layout : {TraceLayout::Half, TraceLayout::Full}) {
+        CAPTURE(int(layout));
+        RenderSettings s = small(Quality::Medium);
+        s.trace.ssgiLayout = layout;
+        const bool half = layout == TraceLayout::Half;
+        for (const HistoryCase hc : kHistoryCases) {
+            CAPTURE(hc.read);
+            CAPTURE(hc.keep);
+            const CompiledGraph g = compileFrameGraph({s, facts, hc.read, hc.keep});
+            const bool history = hc.read || hc.keep;
+            CHECK(g.runs(pass::kDenoiseTemporal) == history);
+            CHECK(g.runs(pass::kDenoiseTemporalHalf) == (history && half));
+        }
+        // The renderer obeys: a single image times no temporal pass, while a sequence's last
+        // frame, which reads the denoiser's history (the preset keeps no colour), does.
+        const Renderer renderer(s);
+        Frame single;
+        renderer.renderWithoutHistory(scene, FrameInput::still(scene, 0), single);
+        CHECK_FALSE(timedDenoiserPasses(single.stats).count("denoise temporal"));
+        FrameHistory h;
+        Frame frame;
+        renderer.render(scene, FrameInput::still(scene, 0), h, frame);
+        FrameInput last = FrameInput::still(scene, 1);
+        last.replaceHistory = false;
+        renderer.render(scene, last, h, frame);
+        CHECK(timedDenoiserPasses(frame.stats).count("denoise temporal"));
+    }
+}
+
 TEST_CASE("frame graph: the pre-blur runs where a prepass radius asks for it") {
     const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
     RenderSettings s = small(Quality::Medium);
