@@ -129,7 +129,8 @@ inline constexpr std::array kRenderOwnFields = {
         "The G-buffer and material planes (EXR layers); off, they are freed once read"),
     field<&RenderSettings::tracePlanes>(
         "tracePlanes", kCliShot,
-        "The traced and denoised planes (EXR layers); off, they are freed once read"),
+        "The traced and denoised planes (EXR layers), the debug planes among them; off, they "
+        "are freed once read"),
     field<&RenderSettings::debugPlanes>(
         "debugPlanes", kCliShot,
         "The planes made only to be looked at (EXR layers): march steps, the undenoised and "
