@@ -267,7 +267,8 @@ struct Frame {
     // Frame again reuses every allocation (no page faults, no clears).
     struct Scratch {
         // The planes of the groups below marked "pooled" while their pass is not running
-        // (renderer/trace_pass.cpp): those groups are empty between frames.
+        // (renderer/trace_pass.cpp): those groups are empty between frames; and the planes of
+        // the frame's own groups outside their lifetimes (renderer/frame_memory.h).
         PlanePool pool;
         VisibilityBuffer visibility;
         // The back faces' raster and the depth layer made of it (raster/back_depth.h), when

@@ -73,8 +73,9 @@ struct MarchFrame {
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times);
 
-// A traced signal's planes from the pool (tracedSignalsPooled; the denoiser gives them back
-// once its front end has read them), its march steps aside: only looked at, not made then.
+// The half frame's traced signal's planes from the pool (tracedSignalsPooled; the denoiser
+// gives them back once its front end has read them), its march steps aside: only looked at,
+// not made then. (The frame's own signals are the frame memory's: renderer/frame_memory.h.)
 template <class Group>
 void takeSignal(PlanePool& pool, Group& g, int w, int h) {
     g.forEachPlane([&](std::string_view, PlaneF& p) {
