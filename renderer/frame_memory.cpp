@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace ssrt {
 
@@ -18,6 +19,27 @@ void forEachFramePlane(Frame& f, Fn&& fn) {
     f.trace.ssr.forEachPlane(fn);
     f.trace.ssgi.forEachPlane(fn);
     f.trace.denoise.forEachPlane(fn);
+}
+
+// Whether `id` lives in Frame::Scratch's own buffers; with `release`, frees them.
+bool inScratch(Frame& f, Res id, bool release) {
+    Frame::Scratch& s = f.scratch;
+    const auto free = [release](auto& p) {
+        if (release) p = std::decay_t<decltype(p)>();
+        return true;
+    };
+    switch (id) {
+        case Res::ShadowMap: return free(s.shadow.depth);
+        case Res::VisibilityDepth: return free(s.visibility.depth);
+        case Res::VisibilityIds: return free(s.visibility.ids);
+        case Res::BackDepth: return free(s.backVisibility.depth);
+        case Res::BackIds: return free(s.backVisibility.ids);
+        case Res::BackZ: return free(s.backZ);
+        case Res::HiZ:
+            for (PlaneF& level : s.hiz.minZ) free(level);
+            return true;
+        default: return false;
+    }
 }
 
 bool isDirectPart(Frame& f, const PlaneF& p) {
@@ -43,7 +65,7 @@ int FrameMemory::declIndex(std::string_view pass) {
     throw std::logic_error("frame memory: no pass is called '" + std::string(pass) + "'");
 }
 
-FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool keepParts)
+FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth)
     : graph_(graph), frame_(frame) {
     const int w = graph.width, h = graph.height;
     frame.width = w;
@@ -57,16 +79,21 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool keepPart
         return !planes.empty() && isDirectPart(frame, *planes[0]);
     };
     for (const GraphResource& r : graph.resources) {
+        const int from = int(graph.passes[r.first].decl - first);
+        const int to = int(graph.passes[r.last].decl - first);
+        const bool transient = r.lifetime == Lifetime::Transient;
+        if (inScratch(frame, r.id, false)) {
+            if (transient && !forTruth) held_.push_back({r.id, from, to, true, true, true});
+            continue;
+        }
         if (framePlanes(frame, r.id).empty()) continue;
-        held_.push_back({r.id, int(graph.passes[r.first].decl - first),
-                         int(graph.passes[r.last].decl - first),
-                         r.lifetime == Lifetime::Transient && !(keepParts && part(r.id))});
+        held_.push_back({r.id, from, to, transient && !(forTruth && part(r.id)), false});
     }
 }
 
 void FrameMemory::take(int through) {
     for (Held& r : held_) {
-        if (r.taken || r.first > through) continue;
+        if (r.taken || r.first > through) continue;  // (scratch: its pass sizes its own)
         if (r.first <= done_)
             throw std::logic_error("frame memory: '" + std::string(resourceDecl(r.id).name) +
                                    "' is first written by a pass no step ran");
@@ -79,6 +106,7 @@ void FrameMemory::take(int through) {
 void FrameMemory::give(int through) {
     for (Held& r : held_) {
         if (!r.transient || r.given || !r.taken || r.last > through) continue;
+        if (r.scratch) inScratch(frame_, r.id, true);
         for (PlaneF* p : framePlanes(frame_, r.id)) frame_.scratch.pool.give(*p);
         r.given = true;
     }

@@ -4,8 +4,11 @@
 // back to the pool just after the last pass that reads it, where a later pass's planes take
 // its memory. So the resources with disjoint lifetimes share memory at run time as the graph's
 // slots share it on paper, and an output nothing asked for (a PNG's G-buffer) is gone once
-// read. (Filament's FrameGraph realises its virtual resources before their first pass and
-// destroys them after their last, so.)
+// read. The scratch's own buffers of a transient (the shadow map, the visibility buffers, the
+// back-face layer, the Hi-Z levels) are freed after its last pass: their memory goes back to
+// the planes' range (core/plane_memory.h), where later planes of any size take it; its pages
+// stay resident, so a frame rendered again faults none in. (Filament's FrameGraph realises
+// its virtual resources before their first pass and destroys them after their last, so.)
 //
 // The renderer runs its passes in steps (a chain of the scheduler, the SSR pass, the
 // denoiser ...): each step() covers the declared passes after the last step's, through the
@@ -28,10 +31,12 @@ std::vector<PlaneF*> framePlanes(Frame& frame, Res id);
 class FrameMemory {
 public:
     // Every plane of the frame's groups goes back to the pool (a Frame rendered into again
-    // keeps its memory there), the pool keeps only planes of this frame's sizes. `keepParts`:
-    // the direct pass's parts (Frame::direct) stay to the frame's end, as the truth reads
-    // them after it (truth/parts.h); RenderSettings::tracePlanes says so.
-    FrameMemory(const CompiledGraph& graph, Frame& frame, bool keepParts);
+    // keeps its memory there), the pool keeps only planes of this frame's sizes. `forTruth`:
+    // the direct pass's parts (Frame::direct) and the scratch's buffers stay to the frame's
+    // end, as the truth and the tests read them after it (truth/parts.h: the parts;
+    // truth/reference_image.h: the shadow map; the back-face layer); RenderSettings::
+    // tracePlanes says so.
+    FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth);
 
     // Runs `fn` as the passes through `last`: takes the planes they write first before it,
     // gives back the transients they read last after it.
@@ -52,6 +57,7 @@ private:
         Res id;
         int first, last;  // declaration indices of its first and last pass
         bool transient;
+        bool scratch;  // in Frame::Scratch's own buffers: freed, not pooled, after its last pass
         bool taken = false, given = false;
     };
     static int declIndex(std::string_view pass);
