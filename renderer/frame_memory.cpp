@@ -1,5 +1,6 @@
 #include "renderer/frame_memory.h"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -42,21 +43,7 @@ bool inScratch(Frame& f, Res id, bool release) {
     }
 }
 
-bool isDirectPart(Frame& f, const PlaneF& p) {
-    bool in = false;
-    f.direct.forEachPlane([&](std::string_view, PlaneF& q) { in = in || &q == &p; });
-    return in;
-}
-
 }  // namespace
-
-std::vector<PlaneF*> framePlanes(Frame& frame, Res id) {
-    std::vector<PlaneF*> out;
-    forEachFramePlane(frame, [&](std::string_view name, PlaneF& p) {
-        if (resourceOfChannel(name) == id) out.push_back(&p);
-    });
-    return out;
-}
 
 int FrameMemory::declIndex(std::string_view pass) {
     const std::vector<PassDecl>& decls = passDecls();
@@ -70,35 +57,45 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth
     const int w = graph.width, h = graph.height;
     frame.width = w;
     frame.height = h;
+    // Every plane of the frame's groups back to the pool, each found under its resource (the
+    // groups name their planes from the resource table; Res::Count, one past the table, for a
+    // name it lacks), and the direct pass's parts marked.
     PlanePool& pool = frame.scratch.pool;
-    forEachFramePlane(frame, [&](std::string_view, PlaneF& p) { pool.give(p); });
+    std::array<std::vector<PlaneF*>, kResourceCount + 1> planes;
+    forEachFramePlane(frame, [&](std::string_view name, PlaneF& p) {
+        pool.give(p);
+        planes[std::size_t(resourceOfChannel(name))].push_back(&p);
+    });
     pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
+    std::array<bool, kResourceCount + 1> part{};
+    frame.direct.forEachPlane(
+        [&](std::string_view name, PlaneF&) { part[std::size_t(resourceOfChannel(name))] = true; });
     const PassDecl* first = passDecls().data();
-    const auto part = [&](Res id) {
-        std::vector<PlaneF*> planes = framePlanes(frame, id);
-        return !planes.empty() && isDirectPart(frame, *planes[0]);
-    };
     for (const GraphResource& r : graph.resources) {
-        const int from = int(graph.passes[r.first].decl - first);
-        const int to = int(graph.passes[r.last].decl - first);
-        const bool transient = r.lifetime == Lifetime::Transient;
+        const std::size_t id = std::size_t(r.id);
+        Held held{.id = r.id,
+                  .first = int(graph.passes[r.first].decl - first),
+                  .last = int(graph.passes[r.last].decl - first),
+                  .transient = r.lifetime == Lifetime::Transient,
+                  .planes = std::move(planes[id])};
         if (inScratch(frame, r.id, false)) {
-            if (transient && !forTruth) held_.push_back({r.id, from, to, true, true, true});
-            continue;
+            // (its pass sizes its own buffers: nothing to take)
+            held.taken = true;
+            if (held.transient && !forTruth) held_.push_back(std::move(held));
+        } else if (!held.planes.empty()) {
+            held.transient = held.transient && !(forTruth && part[id]);
+            held_.push_back(std::move(held));
         }
-        if (framePlanes(frame, r.id).empty()) continue;
-        held_.push_back({r.id, from, to, transient && !(forTruth && part(r.id)), false});
     }
 }
 
 void FrameMemory::take(int through) {
     for (Held& r : held_) {
-        if (r.taken || r.first > through) continue;  // (scratch: its pass sizes its own)
+        if (r.taken || r.first > through) continue;
         if (r.first <= done_)
             throw std::logic_error("frame memory: '" + std::string(resourceDecl(r.id).name) +
                                    "' is first written by a pass no step ran");
-        for (PlaneF* p : framePlanes(frame_, r.id))
-            frame_.scratch.pool.take(*p, graph_.width, graph_.height);
+        for (PlaneF* p : r.planes) frame_.scratch.pool.take(*p, graph_.width, graph_.height);
         r.taken = true;
     }
 }
@@ -106,8 +103,8 @@ void FrameMemory::take(int through) {
 void FrameMemory::give(int through) {
     for (Held& r : held_) {
         if (!r.transient || r.given || !r.taken || r.last > through) continue;
-        if (r.scratch) inScratch(frame_, r.id, true);
-        for (PlaneF* p : framePlanes(frame_, r.id)) frame_.scratch.pool.give(*p);
+        if (r.planes.empty()) inScratch(frame_, r.id, true);
+        for (PlaneF* p : r.planes) frame_.scratch.pool.give(*p);
         r.given = true;
     }
 }

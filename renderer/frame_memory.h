@@ -23,11 +23,6 @@
 
 namespace ssrt {
 
-// The Frame's planes of `id` in channel order (its groups named from the resource table);
-// none when the Frame holds that resource elsewhere (the scratch's own groups, the pyramids,
-// the denoiser's scratch, the history).
-std::vector<PlaneF*> framePlanes(Frame& frame, Res id);
-
 class FrameMemory {
 public:
     // Every plane of the frame's groups goes back to the pool (a Frame rendered into again
@@ -57,7 +52,9 @@ private:
         Res id;
         int first, last;  // declaration indices of its first and last pass
         bool transient;
-        bool scratch;  // in Frame::Scratch's own buffers: freed, not pooled, after its last pass
+        // Its planes in the Frame's groups, in channel order; none for a resource in
+        // Frame::Scratch's own buffers, which are freed, not pooled, after its last pass.
+        std::vector<PlaneF*> planes;
         bool taken = false, given = false;
     };
     static int declIndex(std::string_view pass);
