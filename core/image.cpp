@@ -52,7 +52,7 @@ void Plane<T>::ensureSize(int width, int height) {
 template <class T>
 Plane<T>::Plane(int width, int height, Uninitialized) : width_(width), height_(height) {
     if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
-    constexpr std::size_t perLine = kRowAlignment / sizeof(T);
+    constexpr std::size_t perLine = kRowElements;
     stride_ = (std::size_t(width) + perLine - 1) / perLine * perLine;
     const std::size_t bytes = std::max<std::size_t>(stride_ * height * sizeof(T), kRowAlignment);
     data_.reset(static_cast<T*>(allocatePlane(bytes)));

@@ -5,6 +5,12 @@
 // allocation once the first frame has run) and in a single frame (fewer fresh pages to fault
 // in). (Filament's FrameGraph aliases transient resources so; here the passes say it.)
 //
+// Planes of two element types are pooled: f32 (PlaneF) and 16-bit (PlaneU16: the denoiser's
+// f16 signals). A take that finds no free plane of its type and size, but free planes of the
+// other type at that size, frees those first: their memory goes back to the planes' range
+// (core/plane_memory.h), which merges neighbouring free blocks and hands them out best fit,
+// so two f16 planes reuse one f32 plane's memory and no fresh page is touched for them.
+//
 // A plane taken holds whatever its last user left (finite values: every pass writes every
 // pixel of the planes it takes before it reads them), as a plane kept across frames does.
 #pragma once
@@ -21,23 +27,32 @@ class PlanePool {
 public:
     // `p` at width x height: kept when it is, else a pooled plane of that size, else a new one.
     void take(PlaneF& p, int width, int height);
+    void take(PlaneU16& p, int width, int height);
     template <class Group>
     void take(PlaneTable<Group>& group, int width, int height) {
-        group.forEachPlane([&](std::string_view, PlaneF& p) { take(p, width, height); });
+        group.forEachPlane([&](std::string_view, auto& p) { take(p, width, height); });
     }
     // Moves `p` (when it holds memory) into the pool, leaving it empty.
     void give(PlaneF& p);
+    void give(PlaneU16& p);
     template <class Group>
     void give(PlaneTable<Group>& group) {
-        group.forEachPlane([&](std::string_view, PlaneF& p) { give(p); });
+        group.forEachPlane([&](std::string_view, auto& p) { give(p); });
     }
     // Frees the pooled planes of any other size (the frame's size changed).
     void keepOnly(int width, int height, int halfWidth, int halfHeight);
     std::size_t bytes() const;
-    std::size_t size() const { return free_.size(); }
+    std::size_t size() const { return f32_.size() + f16_.size(); }
 
 private:
-    std::vector<PlaneF> free_;
+    template <class T, class U>
+    static void takeFrom(Plane<T>& p, std::vector<Plane<T>>& same, std::vector<Plane<U>>& other,
+                         int width, int height);
+    template <class T>
+    static void giveTo(Plane<T>& p, std::vector<Plane<T>>& free);
+
+    std::vector<PlaneF> f32_;
+    std::vector<PlaneU16> f16_;
 };
 
 }  // namespace ssrt
