@@ -50,15 +50,48 @@ void Plane<T>::ensureSize(int width, int height) {
 }
 
 template <class T>
+std::size_t Plane<T>::blockBytes(std::size_t stride, int height) {
+    const std::size_t slack = sizeof(T) < 4 ? kRowAlignment : 0;
+    return std::max<std::size_t>(stride * std::size_t(height) * sizeof(T), kRowAlignment) + slack;
+}
+
+template <class T>
+void Plane<T>::zeroPadding() {
+    // Row padding is zeroed: kernels read whole lane groups there and must see defined values.
+    for (int y = 0; y < height_; ++y) std::fill(row(y) + width_, row(y) + stride_, T{});
+}
+
+template <class T>
 Plane<T>::Plane(int width, int height, Uninitialized) : width_(width), height_(height) {
     if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
     constexpr std::size_t perLine = kRowElements;
     stride_ = (std::size_t(width) + perLine - 1) / perLine * perLine;
-    const std::size_t bytes = std::max<std::size_t>(stride_ * height * sizeof(T), kRowAlignment);
-    data_.reset(static_cast<T*>(allocatePlane(bytes)));
-    // Row padding is zeroed: kernels read whole lane groups there and must see defined values.
-    for (int y = 0; y < height; ++y) std::fill(row(y) + width, row(y) + stride_, T{});
+    capacity_ = blockBytes(stride_, height);
+    data_.reset(static_cast<T*>(allocatePlane(capacity_)));
+    zeroPadding();
 }
+
+template <class T>
+template <class U>
+Plane<T> Plane<T>::reuse(Plane<U>& from, int width, int height) {
+    if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
+    const std::size_t stride =
+        (std::size_t(width) + kRowElements - 1) / kRowElements * kRowElements;
+    if (!from.data_ || from.capacity_ < blockBytes(stride, height))
+        return Plane(width, height, kUninitialized);
+    Plane p;
+    p.width_ = width;
+    p.height_ = height;
+    p.stride_ = stride;
+    p.capacity_ = from.capacity_;
+    p.data_.reset(reinterpret_cast<T*>(from.data_.release()));
+    from = Plane<U>();
+    p.zeroPadding();
+    return p;
+}
+
+template PlaneF PlaneF::reuse(PlaneU16&, int, int);
+template PlaneU16 PlaneU16::reuse(PlaneF&, int, int);
 
 template <class T>
 void Plane<T>::fill(T value) {

@@ -42,6 +42,16 @@ public:
     bool empty() const { return width_ == 0 || height_ == 0; }
     // What it holds, row padding included (0 when empty).
     std::size_t bytes() const { return stride_ * std::size_t(height_) * sizeof(T); }
+    // The bytes of its memory block: bytes() and a little more, or more again when the block
+    // was another plane's (reuse).
+    std::size_t capacity() const { return capacity_; }
+
+    // A plane of width x height in `from`'s memory block when it is large enough (`from` is
+    // then left empty; contents undefined but finite bits of `from`'s), else a new one (`from`
+    // left as it was). So a pool hands a block on between planes of other element types
+    // without freeing and allocating it (core/plane_pool.h).
+    template <class U>
+    static Plane reuse(Plane<U>& from, int width, int height);
 
     T* row(int y) { return data_.get() + std::size_t(y) * stride_; }
     const T* row(int y) const { return data_.get() + std::size_t(y) * stride_; }
@@ -52,11 +62,17 @@ public:
     Plane clone() const;
 
 private:
+    template <class>
+    friend class Plane;
     struct Free {
         void operator()(T* p) const;
     };
+    // The bytes a plane of this size needs (a line more for elements narrower than 32 bits: a
+    // 32-bit hardware gather of the last one reads past it, core/lanes.h gatherU16).
+    static std::size_t blockBytes(std::size_t stride, int height);
+    void zeroPadding();
     int width_ = 0, height_ = 0;
-    std::size_t stride_ = 0;
+    std::size_t stride_ = 0, capacity_ = 0;
     std::unique_ptr<T[], Free> data_;
 };
 

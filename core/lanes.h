@@ -362,10 +362,26 @@ SSRT_INLINE IntOf<L> gatherU16(const uint16_t* base, IntOf<L> index, Run run) {
         return int32_t(base[index]);
     } else {
         if (run.consecutive) return loadU16<L>(base + run.first);
-        alignas(64) int32_t lane[L::size];
-        index.store_aligned(lane);
-        for (std::size_t i = 0; i < L::size; ++i) lane[i] = int32_t(base[lane[i]]);
-        return IntOf<L>::load_aligned(lane);
+            // The hardware gathers read 32 bits at 2 x index bytes and keep the low 16 (x86 is
+            // little-endian): 2 bytes past the last element are read, which a 16-bit plane's
+            // allocation leaves room for (core/image.cpp).
+#if defined(__AVX512F__)
+        if constexpr (std::is_base_of_v<xsimd::avx512f, typename L::arch_type>)
+            return IntOf<L>(_mm512_i32gather_epi32(index, base, 2)) & IntOf<L>(0xffff);
+        else
+#endif
+#if defined(__AVX2__)
+            if constexpr (std::is_base_of_v<xsimd::avx2, typename L::arch_type>)
+            return IntOf<L>(_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index, 2)) &
+                   IntOf<L>(0xffff);
+        else
+#endif
+        {
+            alignas(64) int32_t lane[L::size];
+            index.store_aligned(lane);
+            for (std::size_t i = 0; i < L::size; ++i) lane[i] = int32_t(base[lane[i]]);
+            return IntOf<L>::load_aligned(lane);
+        }
     }
 }
 

@@ -26,9 +26,20 @@ void PlanePool::takeFrom(Plane<T>& p, std::vector<Plane<T>>& same, std::vector<P
         same.erase(it);
         return;
     }
-    // None of this type: the other type's planes of this size make room for it (their blocks,
-    // freed together, merge; the allocation below reuses them).
-    std::erase_if(other, [&](const Plane<U>& f) { return sized(f, width, height); });
+    // None of this type: a plane of the other type of this size whose block holds it lends its
+    // block (an f16 plane in an f32 plane's; the block keeps its size and goes back to an f32
+    // plane later), so blocks change hands and never return to the allocator: a sequence
+    // allocates in its first frame only.
+    auto lender = other.end();
+    for (auto it = other.begin(); it != other.end(); ++it)
+        if (sized(*it, width, height) &&
+            (lender == other.end() || it->capacity() > lender->capacity()))
+            lender = it;
+    if (lender != other.end()) {
+        p = Plane<T>::reuse(*lender, width, height);  // (a new plane where the block is too small)
+        if (lender->empty()) other.erase(lender);
+        return;
+    }
     p.ensureSize(width, height);
 }
 
@@ -51,10 +62,11 @@ void PlanePool::keepOnly(int width, int height, int halfWidth, int halfHeight) {
     std::erase_if(f16_, drop);
 }
 
+// (Their blocks' bytes: an f16 plane in an f32 plane's block holds all of it.)
 std::size_t PlanePool::bytes() const {
     std::size_t n = 0;
-    for (const PlaneF& p : f32_) n += p.bytes();
-    for (const PlaneU16& p : f16_) n += p.bytes();
+    for (const PlaneF& p : f32_) n += p.capacity();
+    for (const PlaneU16& p : f16_) n += p.capacity();
     return n;
 }
 

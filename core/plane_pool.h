@@ -6,10 +6,12 @@
 // in). (Filament's FrameGraph aliases transient resources so; here the passes say it.)
 //
 // Planes of two element types are pooled: f32 (PlaneF) and 16-bit (PlaneU16: the denoiser's
-// f16 signals). A take that finds no free plane of its type and size, but free planes of the
-// other type at that size, frees those first: their memory goes back to the planes' range
-// (core/plane_memory.h), which merges neighbouring free blocks and hands them out best fit,
-// so two f16 planes reuse one f32 plane's memory and no fresh page is touched for them.
+// f16 signals). A take that finds no free plane of its type and size, but a plane of the other
+// type at that size whose memory block holds it, takes that block (Plane::reuse: an f16 plane
+// in an f32 plane's block, which goes back to an f32 plane when one asks), so blocks change
+// hands without going back to the allocator: a sequence allocates in its first frame only, and
+// its memory does not fragment. (An f16 plane so made holds a whole f32 block: only f16 planes
+// allocated new take half.)
 //
 // A plane taken holds whatever its last user left (finite values: every pass writes every
 // pixel of the planes it takes before it reads them), as a plane kept across frames does.

@@ -62,7 +62,7 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
             w = w * (one + ln::gather(a.frames, t.index, t.run));
             w = ln::select(ok, w, zero);
             for (int ch = 0; ch < 4; ++ch)
-                sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
+                sum[ch] = sum[ch] + w * gatherAt(a.in[ch], t.index, t.run);
             weightSum = weightSum + w;
         }
     for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
@@ -93,7 +93,7 @@ void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int
             } else {
                 const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
                 ms = ln::gather(mask, t.index, t.run);
-                f = ln::gather(a.fast, t.index, t.run);
+                f = gatherAt(a.fast, t.index, t.run);
                 inside = valid & t.inside;
             }
             const Mask ok = inside & (ms > zero);
@@ -125,7 +125,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const Mask young = valid & (frames < Lane(a.fixFrames));
     if (ln::any(young)) reconstructYoung(a, p, young, y, frames, c, result);
     if (a.fast && ln::any(valid)) clampToFast(a, p, valid, x, y, o, frames, result);
-    for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, result[ch]);
+    for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, result[ch]);
 }
 
 }  // namespace
@@ -133,7 +133,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
 void reblurHistoryFixTile(const ReblurHistoryFixArgs& a, int tile) {
     const ReblurView& v = a.view;
     if (!(v.tiles[tile] & (a.specular ? kTileSpecular : kTileDiffuse))) {
-        float* const none[4] = {};
+        const SignalOut none[4] = {};
         return copyTile(v, a.in, a.out, none, tile);
     }
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);

@@ -30,10 +30,21 @@ std::size_t bytesOf(const ColorPyramid& pyramid) {
     return n;
 }
 
+// A group's planes and the bytes a pixel takes in them (each plane's own element size).
+struct PlaneCount {
+    int planes = 0;
+    std::size_t pixelBytes = 0;
+    PlaneCount operator+(const PlaneCount& o) const {
+        return {planes + o.planes, pixelBytes + o.pixelBytes};
+    }
+};
 template <class Group>
-int planesOf(const PlaneTable<Group>& g) {
-    int n = 0;
-    g.forEachPlane([&](std::string_view, const PlaneF&) { ++n; });
+PlaneCount planesOf(const PlaneTable<Group>& g) {
+    PlaneCount n;
+    g.forEachPlane([&](std::string_view, const auto& p) {
+        ++n.planes;
+        n.pixelBytes += sizeof(*p.row(0));
+    });
     return n;
 }
 
@@ -42,15 +53,16 @@ int planesOf(const PlaneTable<Group>& g) {
 FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
     const Frame f;
     const FrameHistory h;
+    const PlaneCount count = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) +
+                             planesOf(f.ids) + planesOf(f.direct) + planesOf(f.trace.ssr) +
+                             planesOf(f.trace.ssgi) + planesOf(f.trace.denoise) + planesOf(h) +
+                             planesOf(h.denoise) + planesOf(h.denoiseHalf);
     FrameMemoryNeed need;
-    need.planes = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) + planesOf(f.ids) +
-                  planesOf(f.direct) + planesOf(f.trace.ssr) + planesOf(f.trace.ssgi) +
-                  planesOf(f.trace.denoise) + planesOf(h) + planesOf(h.denoise) +
-                  planesOf(h.denoiseHalf);
+    need.planes = count.planes;
+    need.pixelBytes = count.pixelBytes;
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    need.bytes = (std::size_t(need.planes) * pixels +
-                  std::size_t(shadowMapSize) * std::size_t(shadowMapSize)) *
-                 sizeof(float);
+    need.bytes = count.pixelBytes * pixels +
+                 std::size_t(shadowMapSize) * std::size_t(shadowMapSize) * sizeof(float);
     return need;
 }
 

@@ -280,10 +280,10 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
             for (int e = 0; e < kMarchEndCount; ++e) CHECK(sa.march.ends[e] == sb.march.ends[e]);
             CHECK(sa.march.stepHistogram == sb.march.stepHistogram);
         }
-        // The tile chain made no frame of rays or march results: its pool holds less (where
-        // the denoiser's scratch does not outgrow both: with SSGI's diffuse at half resolution).
-        if (k.ssgiLayout == L::Half)
-            CHECK(tiled.scratch.pool.bytes() < staged.scratch.pool.bytes());
+        // The tile chain made no frame of rays or march results: its pool holds no more. (Not
+        // less: the denoiser's f16 scratch frees every f32 plane of its size left in the pool,
+        // core/plane_pool.h, so after the frame both pools hold the denoiser's planes.)
+        CHECK(tiled.scratch.pool.bytes() <= staged.scratch.pool.bytes());
     }
 }
 
@@ -326,9 +326,11 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
         CHECK(a.trace.denoise.out.diffuse[0].empty());
         CHECK_FALSE(b.trace.denoise.out.diffuse[0].empty());
         // SSR's planes went back to the pool once the denoiser read them, and its passes
-        // reused them: the pool is no larger for holding them (tracedSignalsPooled).
+        // reused them: the pool holds no more than the other frame's pool and SSR's planes
+        // (tracedSignalsPooled). (More than its pool alone: the denoiser's f16 planes take
+        // the blocks of SSR's f32 ones whole, core/plane_pool.h.)
         CHECK(a.trace.ssr.color[0].empty());
         CHECK_FALSE(b.trace.ssr.color[0].empty());
-        CHECK(a.scratch.pool.bytes() == b.scratch.pool.bytes());
+        CHECK(a.scratch.pool.bytes() <= b.scratch.pool.bytes() + b.trace.ssr.bytes());
     }
 }
