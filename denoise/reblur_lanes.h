@@ -41,15 +41,16 @@ SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
 }
 
 // Signal planes (reblur_kernel.h: f16 or f32): f16 decoded and encoded with the library's
-// conversions (core/pixel_formats_lanes.h, the same bits on every ISA). A value above f16's
-// largest finite one is stored as that (65504, the front end's clamp: a Catmull-Rom overshoot
-// must not become infinity); NaN stays NaN.
+// conversions (core/pixel_formats_lanes.h: F16C in the avx2 and avx512 copies, the integer
+// code elsewhere, the same bits on every ISA). A value above f16's largest finite one is
+// stored as that (65504, the front end's clamp: a Catmull-Rom overshoot must not become
+// infinity); NaN stays NaN.
 SSRT_INLINE Lane loadAt(SignalIn plane, std::size_t offset) {
-    if (plane.f16) return ln::f16Value<Lane>(ln::loadU16<Lane>(plane.f16 + offset));
+    if (plane.f16) return ln::loadF16<Lane>(plane.f16 + offset);
     return ln::load<Lane>(plane.f32 + offset);
 }
 SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
-    if (plane.f16) return ln::f16Value<Lane>(ln::gatherU16<Lane>(plane.f16, index, run));
+    if (plane.f16) return ln::gatherF16<Lane>(plane.f16, index, run);
     return ln::gather(plane.f32, index, run);
 }
 SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
@@ -58,7 +59,7 @@ SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
 SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
     if (plane.f16) {
         const Lane big(65504.0f);
-        ln::storeU16(plane.f16 + offset, ln::f16Bits(ln::select(x > big, big, x)));
+        ln::storeF16(plane.f16 + offset, ln::select(x > big, big, x));
     } else {
         ln::store(plane.f32 + offset, x);
     }
