@@ -32,11 +32,13 @@ endif()
 set(SSRT_ISA_FLAGS_scalar "")
 set(SSRT_ISA_FLAGS_sse2 "")
 set(SSRT_ISA_FLAGS_sse42 -msse4.2)
-set(SSRT_ISA_FLAGS_avx2 -mavx2)
+# F16C (the half conversions, vcvtph2ps and vcvtps2ph) comes with every AVX2 and AVX-512 CPU
+# but with neither flag: the two families get it, and core/isa.cpp requires it for both.
+set(SSRT_ISA_FLAGS_avx2 -mavx2 -mf16c)
 # (GCC 12 warns inside its own AVX-512 headers, of their _mm512_undefined_* pass-through
 # operands, under -Wmaybe-uninitialized and -Wuninitialized; the same sources compiled for
 # every other ISA still get both warnings.)
-set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl
+set(SSRT_ISA_FLAGS_avx512 -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl -mf16c
     -Wno-maybe-uninitialized -Wno-uninitialized)
 set(SSRT_ISA_FLAGS_neon "")
 

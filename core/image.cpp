@@ -50,14 +50,24 @@ void Plane<T>::ensureSize(int width, int height) {
 }
 
 template <class T>
+std::size_t Plane<T>::blockBytes(std::size_t stride, int height) {
+    const std::size_t slack = sizeof(T) < 4 ? kRowAlignment : 0;
+    return std::max<std::size_t>(stride * std::size_t(height) * sizeof(T), kRowAlignment) + slack;
+}
+
+template <class T>
+void Plane<T>::zeroPadding() {
+    // Row padding is zeroed: kernels read whole lane groups there and must see defined values.
+    for (int y = 0; y < height_; ++y) std::fill(row(y) + width_, row(y) + stride_, T{});
+}
+
+template <class T>
 Plane<T>::Plane(int width, int height, Uninitialized) : width_(width), height_(height) {
     if (width < 0 || height < 0) throw std::invalid_argument("plane size must not be negative");
-    constexpr std::size_t perLine = kRowAlignment / sizeof(T);
+    constexpr std::size_t perLine = kRowElements;
     stride_ = (std::size_t(width) + perLine - 1) / perLine * perLine;
-    const std::size_t bytes = std::max<std::size_t>(stride_ * height * sizeof(T), kRowAlignment);
-    data_.reset(static_cast<T*>(allocatePlane(bytes)));
-    // Row padding is zeroed: kernels read whole lane groups there and must see defined values.
-    for (int y = 0; y < height; ++y) std::fill(row(y) + width, row(y) + stride_, T{});
+    data_.reset(static_cast<T*>(allocatePlane(blockBytes(stride_, height))));
+    zeroPadding();
 }
 
 template <class T>

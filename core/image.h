@@ -1,4 +1,5 @@
-// Image planes: one channel each (structure of arrays), rows aligned to 64 bytes.
+// Image planes: one channel each (structure of arrays), rows kRowElements elements apart
+// (64 bytes for floats).
 #pragma once
 
 #include <cstddef>
@@ -12,6 +13,11 @@
 namespace ssrt {
 
 inline constexpr std::size_t kRowAlignment = 64;  // one cache line, one AVX-512 register
+// A row's stride is a multiple of this many elements whatever the element type: 64 bytes of
+// floats (and u32), 32 of u16, 16 of u8. So planes of one size have one stride in elements
+// whatever their formats, and a kernel reading an f32 plane and an f16 one (the denoiser's
+// guides and signals) addresses both pixels with one offset.
+inline constexpr std::size_t kRowElements = kRowAlignment / sizeof(float);
 
 // Tag for planes whose every pixel the caller writes next: only the row padding is zeroed,
 // so no pass over the image (nor its page faults) is spent on a value about to be replaced.
@@ -31,7 +37,7 @@ public:
 
     int width() const { return width_; }
     int height() const { return height_; }
-    // Elements between the starts of two rows (>= width, a multiple of 64 bytes).
+    // Elements between the starts of two rows (>= width, a multiple of kRowElements).
     std::size_t stride() const { return stride_; }
     bool empty() const { return width_ == 0 || height_ == 0; }
     // What it holds, row padding included (0 when empty).
@@ -49,6 +55,10 @@ private:
     struct Free {
         void operator()(T* p) const;
     };
+    // The bytes a plane of this size needs (a line more for elements narrower than 32 bits: a
+    // 32-bit hardware gather of the last one reads past it, core/lanes.h gatherU16).
+    static std::size_t blockBytes(std::size_t stride, int height);
+    void zeroPadding();
     int width_ = 0, height_ = 0;
     std::size_t stride_ = 0;
     std::unique_ptr<T[], Free> data_;

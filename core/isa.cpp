@@ -4,6 +4,10 @@
 #include <stdexcept>
 #include <xsimd/xsimd.hpp>
 
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
+
 namespace ssrt {
 
 std::string_view isaName(Isa isa) {
@@ -30,6 +34,19 @@ bool isaOfThisArchitecture(Isa isa) {
 }
 
 namespace {
+
+// F16C (CPUID leaf 1, ECX bit 29): the avx2 and avx512 kernels are compiled with it
+// (cmake/kernels.cmake) and convert halves with it. Every AVX2 CPU has it, but a hypervisor
+// may hide the bit: without it neither family is offered. (xsimd 8 does not report it; its
+// AVX2 check already covers the AVX state the OS must save for these VEX instructions.)
+bool cpuHasF16C() {
+#if defined(__x86_64__)
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    return __get_cpuid(1, &a, &b, &c, &d) && (c & bit_F16C) != 0;
+#else
+    return false;
+#endif
+}
 
 // "a, b or c" of the given names.
 std::string nameList(const std::vector<std::string_view>& names) {
@@ -96,8 +113,8 @@ bool isaSupported(Isa isa) {
         case Isa::Scalar: return true;
         case Isa::SSE2: return cpu.sse2;
         case Isa::SSE42: return cpu.sse4_2;
-        case Isa::AVX2: return cpu.avx2;
-        case Isa::AVX512: return cpu.avx512bw && cpu.avx512dq && cpu.avx512cd;
+        case Isa::AVX2: return cpu.avx2 && cpuHasF16C();
+        case Isa::AVX512: return cpu.avx512bw && cpu.avx512dq && cpu.avx512cd && cpuHasF16C();
         case Isa::NEON: return cpu.neon64;
     }
     return false;

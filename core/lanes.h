@@ -254,6 +254,55 @@ SSRT_INLINE void streamFence() {
 #endif
 }
 
+// 16-bit codes (f16 bits, core/pixel_formats_lanes.h) to and from int32 lanes, zero-extended;
+// a store keeps each lane's low 16 bits (the codes are in [0, 65535]). Memory only.
+template <class L>
+SSRT_INLINE IntOf<L> loadU16(const uint16_t* p) {
+    if constexpr (std::is_same_v<L, float>) {
+        return int32_t(*p);
+    } else {
+#if defined(__AVX512F__)
+        if constexpr (std::is_base_of_v<xsimd::avx512f, typename L::arch_type>)
+            return IntOf<L>(
+                _mm512_cvtepu16_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p))));
+        else
+#endif
+#if defined(__AVX2__)
+            if constexpr (std::is_base_of_v<xsimd::avx2, typename L::arch_type>)
+            return IntOf<L>(
+                _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
+        else
+#endif
+        {
+            alignas(64) int32_t t[L::size];
+            for (std::size_t i = 0; i < L::size; ++i) t[i] = int32_t(p[i]);
+            return IntOf<L>::load_aligned(t);
+        }
+    }
+}
+SSRT_INLINE void storeU16(uint16_t* p, int32_t k) { *p = uint16_t(uint32_t(k)); }
+template <class A>
+SSRT_INLINE void storeU16(uint16_t* p, xsimd::batch<int32_t, A> k) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>)
+        return _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm512_cvtepi32_epi16(k));
+    else
+#endif
+#if defined(__AVX2__)
+        if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
+        const __m256i v = k;
+        const __m128i packed =
+            _mm_packus_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+        return _mm_storeu_si128(reinterpret_cast<__m128i*>(p), packed);
+    } else
+#endif
+    {
+        alignas(64) int32_t t[xsimd::batch<int32_t, A>::size];
+        k.store_aligned(t);
+        for (std::size_t i = 0; i < xsimd::batch<int32_t, A>::size; ++i)
+            p[i] = uint16_t(uint32_t(t[i]));
+    }
+}
 // Lane i holds float(i).
 template <class L>
 SSRT_INLINE L laneIndex() {
@@ -304,6 +353,36 @@ SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_
                                           Run run) {
     if (run.consecutive) return xsimd::batch<float, A>::load_unaligned(base + run.first);
     return gather(base, index);
+}
+
+// Per-lane base[index] of 16-bit codes (loadU16), as one load where `run` is consecutive.
+template <class L>
+SSRT_INLINE IntOf<L> gatherU16(const uint16_t* base, IntOf<L> index, Run run) {
+    if constexpr (std::is_same_v<L, float>) {
+        return int32_t(base[index]);
+    } else {
+        if (run.consecutive) return loadU16<L>(base + run.first);
+            // The hardware gathers read 32 bits at 2 x index bytes and keep the low 16 (x86 is
+            // little-endian): 2 bytes past the last element are read, which a 16-bit plane's
+            // allocation leaves room for (core/image.cpp).
+#if defined(__AVX512F__)
+        if constexpr (std::is_base_of_v<xsimd::avx512f, typename L::arch_type>)
+            return IntOf<L>(_mm512_i32gather_epi32(index, base, 2)) & IntOf<L>(0xffff);
+        else
+#endif
+#if defined(__AVX2__)
+            if constexpr (std::is_base_of_v<xsimd::avx2, typename L::arch_type>)
+            return IntOf<L>(_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index, 2)) &
+                   IntOf<L>(0xffff);
+        else
+#endif
+        {
+            alignas(64) int32_t lane[L::size];
+            index.store_aligned(lane);
+            for (std::size_t i = 0; i < L::size; ++i) lane[i] = int32_t(base[lane[i]]);
+            return IntOf<L>::load_aligned(lane);
+        }
+    }
 }
 
 }  // namespace ssrt::lanes

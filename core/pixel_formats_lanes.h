@@ -14,13 +14,62 @@ namespace ssrt::lanes {
 // ---- f16: IEEE 754-2008 binary16 -----------------------------------------------------------
 // After F. Giesen's float_to_half_fast3_rtne and half_to_float ("Half to float done quick",
 // 2012, public domain), with F16C's NaN rule: the payload's top bits are kept and quieted.
-// The same code on every ISA (F16C and FCVT are not used; the test holds them to the same
-// bits). It makes no float subnormal and needs none: flush-to-zero modes change nothing.
+// It makes no float subnormal and needs none: flush-to-zero modes change nothing.
+//
+// Where the ISA converts halves itself (x86's F16C, which the avx2 and avx512 copies are
+// compiled with: cmake/kernels.cmake, core/isa.cpp) its instructions do the same work with the
+// same bits: vcvtps2ph rounds to nearest even by its immediate (not MXCSR's mode) and keeps a
+// NaN's top payload bits, quieted; vcvtph2ps is exact (the project sets no DAZ or FTZ, and a
+// float subnormal rounds to a signed zero either way). The scalar, SSE and NEON copies keep
+// the integer code (aarch64's FCVT is not used).
+// tests/core/pixel_formats_test.cpp holds every ISA to the scalar copy's bits, and those to
+// the CPU's own conversions and to an oracle in double.
+
+// 256 for an AVX2 batch compiled with F16C, 512 for an AVX-512 one, 0 where the ISA's halves
+// are converted in software (scalar, SSE, NEON, or an AVX2 build without -mf16c).
+template <class L>
+constexpr int hardwareHalfBits() {
+    if constexpr (std::is_same_v<L, float>) {
+        return 0;
+    } else {
+#if defined(__AVX512F__)
+        if constexpr (std::is_base_of_v<xsimd::avx512f, typename L::arch_type>) return 512;
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+        if constexpr (std::is_base_of_v<xsimd::avx2, typename L::arch_type>) return 256;
+#endif
+        return 0;
+    }
+}
+
+#if defined(__F16C__) || defined(__AVX512F__)
+// vcvtps2ph's immediate: round to nearest even whatever MXCSR's mode, no precision exception.
+inline constexpr int kHalfRounding = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+// The low 16 bits of each of the 8 int32 lanes, packed into 128 bits (truncated, as
+// _mm512_cvtepi32_epi16 does: the lanes' high bits are dropped whatever they hold).
+template <class A>
+SSRT_INLINE __m128i low16Of(xsimd::batch<int32_t, A> k) {
+    const __m256i pick = _mm256_setr_epi8(0, 1, 4, 5, 8, 9, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1,
+                                          0, 1, 4, 5, 8, 9, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1);
+    return _mm256_castsi256_si128(
+        _mm256_permute4x64_epi64(_mm256_shuffle_epi8(__m256i(k), pick), 0x08));
+}
+#endif
 
 // Binary16 bits (in [0, 65535]) of x, rounded to nearest even.
 template <class L>
 SSRT_INLINE IntOf<L> f16Bits(L x) {
     using I = IntOf<L>;
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512)
+        return I(_mm512_cvtepu16_epi32(_mm512_cvtps_ph(x, kHalfRounding)));
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256)
+        return I(_mm256_cvtepu16_epi32(_mm256_cvtps_ph(x, kHalfRounding)));
+#endif
     const I bits = lanes::bitsOf(x);
     const I sign = (bits >> 16) & I(0x8000);
     const I a = bits & I(0x7fffffff);  // |x|, as bits
@@ -44,6 +93,13 @@ SSRT_INLINE IntOf<L> f16Bits(L x) {
 template <class L>
 SSRT_INLINE L f16Value(IntOf<L> h) {
     using I = IntOf<L>;
+    // (The hardware reads each lane's low 16 bits, as the code below does.)
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) return L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(h)));
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) return L(_mm256_cvtph_ps(low16Of(h)));
+#endif
     const I o = (h & I(0x7fff)) << 13;  // exponent and mantissa in the float's place
     const I e = o & I(0x7c00 << 13);
     const I rebiased = o + I((127 - 15) << 23);
@@ -56,6 +112,54 @@ SSRT_INLINE L f16Value(IntOf<L> h) {
     const I r =
         lanes::select(e == I(0x7c00 << 13), special, lanes::select(e == I(0), sub, rebiased));
     return lanes::floatFromBits(r | ((h & I(0x8000)) << 16));
+}
+
+// f16 planes: binary16 values loaded, stored and gathered as floats, f16Value and f16Bits of
+// loadU16, storeU16 and gatherU16 with the same bits, without the int32 lanes in between where
+// the hardware converts. A store rounds to nearest even (a value above 65504 may become
+// infinity: the caller clamps).
+template <class L>
+SSRT_INLINE L loadF16(const uint16_t* p) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512)
+        return L(_mm512_cvtph_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p))));
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256)
+        return L(_mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
+#endif
+    return lanes::f16Value<L>(lanes::loadU16<L>(p));
+}
+template <class L>
+SSRT_INLINE void storeF16(uint16_t* p, L x) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512)
+        return _mm256_storeu_si256(reinterpret_cast<__m256i*>(p),
+                                   _mm512_cvtps_ph(x, kHalfRounding));
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256)
+        return _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm256_cvtps_ph(x, kHalfRounding));
+#endif
+    lanes::storeU16(p, lanes::f16Bits(x));
+}
+// Per-lane f16 value of base[index], as one load where `run` (runOf(index)) is consecutive.
+// The hardware gathers read 32 bits at 2 x index bytes (gatherU16: a 16-bit plane's
+// allocation leaves room for the 2 bytes past its end) and the narrowing keeps the low 16.
+template <class L>
+SSRT_INLINE L gatherF16(const uint16_t* base, IntOf<L> index, Run run) {
+    if constexpr (hardwareHalfBits<L>() != 0)
+        if (run.consecutive) return lanes::loadF16<L>(base + run.first);
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512)
+        return L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(_mm512_i32gather_epi32(index, base, 2))));
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256)
+        return L(_mm256_cvtph_ps(lanes::low16Of(
+            IntOf<L>(_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index, 2)))));
+#endif
+    return lanes::f16Value<L>(lanes::gatherU16<L>(base, index, run));
 }
 
 // ---- unorm8 --------------------------------------------------------------------------------

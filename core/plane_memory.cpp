@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <map>
@@ -69,6 +70,7 @@ public:
         free_.erase(best);
         if (left) free_[start + bytes] = left;
         inUse_ += bytes;
+        top_ = std::max(top_, start + bytes);
         return base_ + start;
     }
 
@@ -94,7 +96,7 @@ public:
 
     PlaneMemoryUse use() {
         std::lock_guard lock(mutex_);
-        return {inUse_, free_.size(), true};
+        return {inUse_, free_.size(), true, top_};
     }
 
 private:
@@ -102,6 +104,7 @@ private:
     std::mutex mutex_;
     std::map<std::size_t, std::size_t> free_;  // offset -> bytes, in address order
     std::size_t inUse_ = 0;
+    std::size_t top_ = 0;  // the highest end a block has had
 };
 
 // Never destroyed: planes in static objects may be freed after any other static's end.

@@ -19,12 +19,15 @@ namespace ssrt {
 void* allocatePlaneMemory(std::size_t bytes, std::size_t stagger);
 void freePlaneMemory(void* p);
 
-// What the range holds now, for tests: the bytes handed out and the free blocks' count
-// (0 and 0 where planes come from malloc: a sanitizer's build, or no range could be reserved).
+// What the range holds now: the bytes handed out, the free blocks' count, and the bytes below
+// the highest end any block has had: the range's resident memory, as freed blocks keep their
+// pages (all 0 where planes come from malloc: a sanitizer's build, or no range could be
+// reserved).
 struct PlaneMemoryUse {
     std::size_t bytesInUse = 0;
     std::size_t freeBlocks = 0;
     bool fromRange = false;
+    std::size_t bytesTouched = 0;
 };
 PlaneMemoryUse planeMemoryUse();
 

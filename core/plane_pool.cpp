@@ -1,41 +1,26 @@
 #include "core/plane_pool.h"
 
-#include <algorithm>
-#include <utility>
+#include "core/pixel_formats.h"
 
 namespace ssrt {
 
-void PlanePool::take(PlaneF& p, int width, int height) {
+namespace {
+
+void fill(PlaneF& p, float value) { p.fill(value); }
+void fill(PlaneU16& p, float value) { p.fill(encodeF16(value)); }
+
+template <class T>
+void takePlane(Plane<T>& p, int width, int height, std::optional<float> poison) {
     if (p.width() == width && p.height() == height && !p.empty()) return;
-    give(p);
-    const auto same = std::find_if(free_.begin(), free_.end(), [&](const PlaneF& f) {
-        return f.width() == width && f.height() == height;
-    });
-    if (same == free_.end()) {
-        p.ensureSize(width, height);
-        return;
-    }
-    p = std::move(*same);
-    free_.erase(same);
+    p.ensureSize(width, height);
+    if (poison) fill(p, *poison);
 }
 
-void PlanePool::give(PlaneF& p) {
-    if (!p.empty() && poison_) p.fill(*poison_);
-    if (!p.empty()) free_.push_back(std::move(p));
-    p = PlaneF();
-}
+}  // namespace
 
-void PlanePool::keepOnly(int width, int height, int halfWidth, int halfHeight) {
-    std::erase_if(free_, [&](const PlaneF& f) {
-        return !(f.width() == width && f.height() == height) &&
-               !(f.width() == halfWidth && f.height() == halfHeight);
-    });
-}
-
-std::size_t PlanePool::bytes() const {
-    std::size_t n = 0;
-    for (const PlaneF& p : free_) n += p.bytes();
-    return n;
-}
+void PlanePool::take(PlaneF& p, int width, int height) { takePlane(p, width, height, poison_); }
+void PlanePool::take(PlaneU16& p, int width, int height) { takePlane(p, width, height, poison_); }
+void PlanePool::give(PlaneF& p) { p = PlaneF(); }
+void PlanePool::give(PlaneU16& p) { p = PlaneU16(); }
 
 }  // namespace ssrt

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/plane_check.h"
 #include "core/tiles.h"
@@ -50,16 +51,18 @@ private:
     std::vector<DenoisePassTime>* out_;
 };
 
-// Pointers to four planes of a group.
+// Four f16 planes of a group as a pass's destinations.
 struct Four {
-    PlaneF* p[4];
-    explicit Four(PlaneF* group) : p{group, group + 1, group + 2, group + 3} {}
+    SignalOut p[4];
+    explicit Four(PlaneU16* group) {
+        for (int ch = 0; ch < 4; ++ch) p[ch] = group[ch].row(0);
+    }
 };
 
 // One signal's planes through the passes: 0-3 diffuse, 4-7 specular of the scratch arrays.
 struct SignalPlanes {
     bool specular;
-    PlaneF* noisy;  // the front end's planes of this signal (DenoiseScratch)
+    PlaneU16* noisy;  // the front end's planes of this signal (DenoiseScratch)
     PlaneF* outputs[3];
     PlaneF* framesOut;
 };
@@ -159,8 +162,8 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in,
-             PlaneF* const out[4], PlaneF* copy, const PlaneF* frames) {
+void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU16* in,
+             const SignalOut out[4], PlaneU16* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
     ReblurSpatialArgs a;
     a.view = c.view;
@@ -168,8 +171,8 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in
     a.specular = sig.specular;
     for (int ch = 0; ch < 4; ++ch) {
         a.in[ch] = in[ch].row(0);
-        a.out[ch] = out[ch]->row(0);
-        a.copy[ch] = copy ? copy[ch].row(0) : nullptr;
+        a.out[ch] = out[ch];
+        if (copy) a.copy[ch] = copy[ch].row(0);
     }
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
@@ -192,7 +195,7 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneF* in
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
+void temporal(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) {
     const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
     ReblurTemporalArgs a;
@@ -210,7 +213,7 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
         a.prevViewZ = h.viewZ.row(0);
         for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
         a.prevRoughness = h.roughness.row(0);
-        const PlaneF* signal = sig.specular ? h.specular : h.diffuse;
+        const PlaneU16* signal = sig.specular ? h.specular : h.diffuse;
         for (int ch = 0; ch < 4; ++ch) a.prevSignal[ch] = signal[ch].row(0);
         a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
         a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
@@ -230,7 +233,7 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
+void historyFix(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) {
     const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
     ReblurHistoryFixArgs a;
@@ -260,9 +263,9 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneF* in, PlaneF* out) {
 void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneF* current = sig.noisy;
+    PlaneU16* current = sig.noisy;
     const auto step = [&](const char* name, auto&& pass) {
-        PlaneF* out = current == sc.ping ? sc.pong : sc.ping;
+        PlaneU16* out = current == sc.ping ? sc.pong : sc.ping;
         times.run(name, [&] { pass(current, out); });
         current = out;
     };
@@ -270,21 +273,21 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     const PlaneF* frames = c.in.temporal ? &sc.frames[sig.specular ? 1 : 0] : nullptr;
     const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
     if (preRadius > 0.0f)
-        step("pre-blur", [&](PlaneF* in, PlaneF* out) {
+        step("pre-blur", [&](PlaneU16* in, PlaneU16* out) {
             spatial(c, sig, ReblurSpatial::PreBlur, in, Four(out).p, nullptr, nullptr);
         });
     if (c.in.temporal)
-        step("temporal", [&](PlaneF* in, PlaneF* out) { temporal(c, sig, in, out); });
-    step("history fix", [&](PlaneF* in, PlaneF* out) { historyFix(c, sig, in, out); });
-    step("blur", [&](PlaneF* in, PlaneF* out) {
+        step("temporal", [&](PlaneU16* in, PlaneU16* out) { temporal(c, sig, in, out); });
+    step("history fix", [&](PlaneU16* in, PlaneU16* out) { historyFix(c, sig, in, out); });
+    step("blur", [&](PlaneU16* in, PlaneU16* out) {
         spatial(c, sig, ReblurSpatial::Blur, in, Four(out).p, nullptr, frames);
     });
     // The post-blur's result, RGB to the output and all four channels to the history.
-    PlaneF* history = nullptr;
+    PlaneU16* history = nullptr;
     if (c.next) history = sig.specular ? c.next->specular : c.next->diffuse;
-    // (The output has no hit distance: that channel goes to the signal's noisy plane, which
-    // nothing reads after the first pass.)
-    PlaneF* const out[4] = {sig.outputs[0], sig.outputs[1], sig.outputs[2], &sig.noisy[3]};
+    // (The output has no hit distance: the post-blur writes that channel to the history only.)
+    const SignalOut out[4] = {sig.outputs[0]->row(0), sig.outputs[1]->row(0),
+                              sig.outputs[2]->row(0), nullptr};
     times.run("post-blur",
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
@@ -327,10 +330,11 @@ void commitHistory(Context& c) {
 }
 
 // A scratch plane sized for the signals present (`on`), from the pool where there is one.
-void keepScratch(bool on, PlaneF& p, int w, int h, PlanePool* pool) {
+template <class T>
+void keepScratch(bool on, Plane<T>& p, int w, int h, PlanePool* pool) {
     if (!pool) {
         if (on) p.ensureSize(w, h);
-        else p = PlaneF();
+        else p = Plane<T>();
     } else if (on) {
         pool->take(p, w, h);
     } else {
@@ -358,9 +362,9 @@ void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool spec
 // history.
 void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
                  bool diffuse, bool specular, bool lengths, const TileGrid& grid, PlanePool* pool) {
-    const auto keepIf = [&](bool on, PlaneF& p) {
+    const auto keepIf = [&](bool on, auto& p) {
         if (on) p.ensureSize(w, h);
-        else p = PlaneF();
+        else p = std::decay_t<decltype(p)>();
     };
     // Only the signals present.
     for (int i = 0; i < 4; ++i) {
@@ -386,8 +390,8 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         keepIf(diffuse, history->diffuse[i]);
         keepIf(specular, history->specular[i]);
     }
-    for (PlaneF* p : {&history->diffuseFrames, &history->diffuseFast}) keepIf(diffuse, *p);
-    for (PlaneF* p : {&history->specularFrames, &history->specularFast}) keepIf(specular, *p);
+    keepIf(diffuse, history->diffuseFrames), keepIf(diffuse, history->diffuseFast);
+    keepIf(specular, history->specularFrames), keepIf(specular, history->specularFast);
 }
 
 }  // namespace

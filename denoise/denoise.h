@@ -91,23 +91,35 @@ struct DenoiseOutputs {
 // signal's planes are kept only when that frame had the signal (hasSignal); a signal without
 // them starts afresh.
 struct DenoiseHistory : PlaneTable<DenoiseHistory> {
-    PlaneF viewZ, normal[3], roughness;
-    PlaneF diffuse[4], specular[4];  // RGB and normalised hit distance
+    PlaneF viewZ, normal[3], roughness;  // guides of the edge stops: f32
+    PlaneU16 diffuse[4], specular[4];    // RGB and normalised hit distance, f16
     PlaneF diffuseFrames, specularFrames;
-    PlaneF diffuseFast, specularFast;  // luma
+    PlaneU16 diffuseFast, specularFast;  // luma, f16
     TraceCamera camera;
     bool valid = false;
 
+    // (Named as the renderer's resource table names their channels at full resolution,
+    // renderer/resources.cpp: tests/renderer/denoise_formats_test.cpp holds each plane's element
+    // size to the format declared there.)
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("viewZ", g.viewZ), fn("roughness", g.roughness);
-        fn("normal.X", g.normal[0]), fn("normal.Y", g.normal[1]), fn("normal.Z", g.normal[2]);
-        fn("diffuse.R", g.diffuse[0]), fn("diffuse.G", g.diffuse[1]);
-        fn("diffuse.B", g.diffuse[2]), fn("diffuse.hit", g.diffuse[3]);
-        fn("specular.R", g.specular[0]), fn("specular.G", g.specular[1]);
-        fn("specular.B", g.specular[2]), fn("specular.hit", g.specular[3]);
-        fn("diffuseFrames", g.diffuseFrames), fn("specularFrames", g.specularFrames);
-        fn("diffuseFast", g.diffuseFast), fn("specularFast", g.specularFast);
+        fn("history.denoise.guide.viewZ", g.viewZ);
+        fn("history.denoise.guide.normal.X", g.normal[0]);
+        fn("history.denoise.guide.normal.Y", g.normal[1]);
+        fn("history.denoise.guide.normal.Z", g.normal[2]);
+        fn("history.denoise.guide.roughness", g.roughness);
+        fn("history.denoise.diffuse.R", g.diffuse[0]),
+            fn("history.denoise.diffuse.G", g.diffuse[1]);
+        fn("history.denoise.diffuse.B", g.diffuse[2]);
+        fn("history.denoise.diffuse.hit", g.diffuse[3]);
+        fn("history.denoise.specular.R", g.specular[0]);
+        fn("history.denoise.specular.G", g.specular[1]);
+        fn("history.denoise.specular.B", g.specular[2]);
+        fn("history.denoise.specular.hit", g.specular[3]);
+        fn("history.denoise.diffuseFrames", g.diffuseFrames);
+        fn("history.denoise.specularFrames", g.specularFrames);
+        fn("history.denoise.diffuse.fast", g.diffuseFast);
+        fn("history.denoise.specular.fast", g.specularFast);
     }
 
     bool usableAt(int width, int height) const {
@@ -119,34 +131,41 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     }
 };
 
-// Transient planes, kept between frames so that no pass allocates. Each pass reads only the
+// Transient planes, kept between frames so that no pass allocates. The signals (radiance,
+// hit distance, fast luma) are f16 (core/pixel_formats.h), decoded on load and encoded on
+// store by the passes, which compute in f32; where the signal exists, its depth and the
+// accumulation speeds are f32. Each pass reads only the
 // one before it, and the two signals run one after the other, so a signal's passes alternate
 // between the two ping-pong groups, which both signals share: 16 planes, not one group per
 // pass and signal (40).
 struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     // The front end's, per signal: RGB and the normalised hit distance.
-    PlaneF noisyDiffuse[4], noisySpecular[4];
-    PlaneF ping[4], pong[4];
+    PlaneU16 noisyDiffuse[4], noisySpecular[4];
+    PlaneU16 ping[4], pong[4];
     // Per signal (diffuse, specular), sized only for the signals given:
     PlaneF signalZ[2];           // viewZ where the signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
-    PlaneF fast[2];              // this frame's fast luma
+    PlaneU16 fast[2];            // this frame's fast luma
     std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular
 
+    // (Named as the renderer's resource table names their channels at full resolution,
+    // renderer/resources.cpp; the half frame's add "half.".)
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         static constexpr const char* kDiffuse[4] = {"noisy.diffuse.R", "noisy.diffuse.G",
                                                     "noisy.diffuse.B", "noisy.diffuse.hit"};
         static constexpr const char* kSpecular[4] = {"noisy.specular.R", "noisy.specular.G",
                                                      "noisy.specular.B", "noisy.specular.hit"};
-        static constexpr const char* kPing[4] = {"ping.R", "ping.G", "ping.B", "ping.hit"};
-        static constexpr const char* kPong[4] = {"pong.R", "pong.G", "pong.B", "pong.hit"};
+        static constexpr const char* kPing[4] = {"pingPong.ping.R", "pingPong.ping.G",
+                                                 "pingPong.ping.B", "pingPong.ping.hit"};
+        static constexpr const char* kPong[4] = {"pingPong.pong.R", "pingPong.pong.G",
+                                                 "pingPong.pong.B", "pingPong.pong.hit"};
         for (int i = 0; i < 4; ++i) fn(std::string_view(kDiffuse[i]), g.noisyDiffuse[i]);
         for (int i = 0; i < 4; ++i) fn(std::string_view(kSpecular[i]), g.noisySpecular[i]);
         for (int i = 0; i < 4; ++i) fn(std::string_view(kPing[i]), g.ping[i]);
         for (int i = 0; i < 4; ++i) fn(std::string_view(kPong[i]), g.pong[i]);
-        fn("signalZ.diffuse", g.signalZ[0]), fn("signalZ.specular", g.signalZ[1]);
-        fn("frames.diffuse", g.frames[0]), fn("frames.specular", g.frames[1]);
+        fn("state.diffuse.signalZ", g.signalZ[0]), fn("state.specular.signalZ", g.signalZ[1]);
+        fn("state.diffuse.frames", g.frames[0]), fn("state.specular.frames", g.frames[1]);
         fn("fast.diffuse", g.fast[0]), fn("fast.specular", g.fast[1]);
     }
 };

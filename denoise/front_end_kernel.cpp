@@ -28,8 +28,8 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
                             (one - loadAt(a.metallic, o));
         const Mask has = surface & inFrame & (colour > zero);
         for (int ch = 0; ch < 3; ++ch)
-            ln::store(a.noisyDiffuse[ch] + o, sanitize(loadAt(a.diffuse[ch], o)));
-        ln::store(a.noisyDiffuse[3] + o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
+            storeAt(a.noisyDiffuse[ch], o, sanitize(loadAt(a.diffuse[ch], o)));
+        storeAt(a.noisyDiffuse[3], o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
         ln::store(a.signalZ[0] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileDiffuse;
     }
@@ -40,9 +40,9 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         for (int ch = 0; ch < 3; ++ch) {
             const Lane ssr = sanitize(loadAt(a.ssr[ch], o));
             const Lane env = sanitize(loadAt(a.envSpecular[ch], o));
-            ln::store(a.noisySpecular[ch] + o, opacity * ssr + (one - opacity) * env);
+            storeAt(a.noisySpecular[ch], o, opacity * ssr + (one - opacity) * env);
         }
-        ln::store(a.noisySpecular[3] + o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
+        storeAt(a.noisySpecular[3], o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
         ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileSpecular;
     }

@@ -62,11 +62,15 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
             if (a.frames) w = w * (one + ln::gather(a.frames, t.index, t.run));  // (else * 1)
             w = ln::select(ok, w, zero);
             for (int ch = 0; ch < 4; ++ch)
-                sum[ch] = sum[ch] + w * ln::gather(a.in[ch], t.index, t.run);
+                sum[ch] = sum[ch] + w * gatherAt(a.in[ch], t.index, t.run);
             weightSum = weightSum + w;
         }
     for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
 }
+
+// The fast history a frame without history has: the input's luma, as the temporal pass
+// would have stored it in its f16 plane.
+Lane inputLuma(Lane r, Lane g, Lane b) { return roundedToF16(rb::luma(r, g, b)); }
 
 // The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
 // "fast history" clamp), more firmly the older the pixel.
@@ -89,16 +93,16 @@ void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int
                     std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
                 ms = loadAt(mask, at);
                 f = a.fastIsInputLuma
-                        ? rb::luma(loadAt(a.in[0], at), loadAt(a.in[1], at), loadAt(a.in[2], at))
+                        ? inputLuma(loadAt(a.in[0], at), loadAt(a.in[1], at), loadAt(a.in[2], at))
                         : loadAt(a.fast, at);
                 inside = valid;
             } else {
                 const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
                 ms = ln::gather(mask, t.index, t.run);
-                f = a.fastIsInputLuma ? rb::luma(ln::gather(a.in[0], t.index, t.run),
-                                                 ln::gather(a.in[1], t.index, t.run),
-                                                 ln::gather(a.in[2], t.index, t.run))
-                                      : ln::gather(a.fast, t.index, t.run);
+                f = a.fastIsInputLuma ? inputLuma(gatherAt(a.in[0], t.index, t.run),
+                                                  gatherAt(a.in[1], t.index, t.run),
+                                                  gatherAt(a.in[2], t.index, t.run))
+                                      : gatherAt(a.fast, t.index, t.run);
                 inside = valid & t.inside;
             }
             const Mask ok = inside & (ms > zero);
@@ -131,7 +135,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     if (ln::any(young)) reconstructYoung(a, p, young, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
         clampToFast(a, p, valid, x, y, o, frames, result);
-    for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, result[ch]);
+    for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, result[ch]);
 }
 
 }  // namespace
@@ -139,7 +143,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
 void reblurHistoryFixTile(const ReblurHistoryFixArgs& a, int tile) {
     const ReblurView& v = a.view;
     if (!(v.tiles[tile] & (a.specular ? kTileSpecular : kTileDiffuse))) {
-        float* const none[4] = {};
+        const SignalOut none[4] = {};
         return copyTile(v, a.in, a.out, none, tile);
     }
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);

@@ -28,6 +28,30 @@ struct ReblurView {
 
 inline constexpr uint8_t kTileDiffuse = 1, kTileSpecular = 2;
 
+// A signal plane (radiance, normalised hit distance, fast luma) as a pass reads it: the
+// denoiser keeps its own in f16 (core/pixel_formats.h: decoded on load, the arithmetic in
+// f32); a caller may hand f32 planes (the tests' walls). Row 0 of one of the two, or null. Its
+// stride is the view's (core/image.h: planes of one size share a stride whatever the format).
+struct SignalIn {
+    const float* f32 = nullptr;
+    const uint16_t* f16 = nullptr;
+    SignalIn() = default;
+    SignalIn(std::nullptr_t) {}
+    SignalIn(const float* p) : f32(p) {}
+    SignalIn(const uint16_t* p) : f16(p) {}
+    explicit operator bool() const { return f32 || f16; }
+};
+// A signal plane a pass writes: f16 (encoded, round to nearest even) or f32.
+struct SignalOut {
+    float* f32 = nullptr;
+    uint16_t* f16 = nullptr;
+    SignalOut() = default;
+    SignalOut(std::nullptr_t) {}
+    SignalOut(float* p) : f32(p) {}
+    SignalOut(uint16_t* p) : f16(p) {}
+    explicit operator bool() const { return f32 || f16; }
+};
+
 struct ReblurFrontEndArgs {
     ReblurView view;
     const float* diffuse[3] = {};  // null: no diffuse signal
@@ -40,8 +64,8 @@ struct ReblurFrontEndArgs {
     const float* specularHit = nullptr;
     float specularMaxRoughness = 1.0f;
     // RGB and the normalised hit distance of each signal given.
-    float* noisyDiffuse[4] = {};
-    float* noisySpecular[4] = {};
+    SignalOut noisyDiffuse[4] = {};
+    SignalOut noisySpecular[4] = {};
     float* signalZ[2] = {};
     uint8_t* tiles = nullptr;
 };
@@ -52,9 +76,9 @@ struct ReblurSpatialArgs {
     ReblurView view;
     ReblurSpatial pass = ReblurSpatial::PreBlur;
     bool specular = false;
-    const float* in[4] = {};
-    float* out[4] = {};
-    float* copy[4] = {};            // a second destination (the history), or null
+    SignalIn in[4] = {};
+    SignalOut out[4] = {};          // null: not written (the post-blur's hit distance)
+    SignalOut copy[4] = {};         // a second destination (the history), or null
     const float* frames = nullptr;  // accumulation speed (blur, post-blur); null: noFrames
     float noFrames = 10.0f;         // every pixel's speed without `frames`: the pre-blur's 10, or 0
     uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
@@ -72,14 +96,14 @@ struct ReblurTemporalArgs {
     ReblurView view;
     bool specular = false;
     const float* motion[2] = {};
-    const float* in[4] = {};
+    SignalIn in[4] = {};
     // The previous frame's (all null: no history).
     const float* prevViewZ = nullptr;
     const float* prevNormal[3] = {};
     const float* prevRoughness = nullptr;
-    const float* prevSignal[4] = {};
+    SignalIn prevSignal[4] = {};
     const float* prevFrames = nullptr;  // accumulation speed + 1 (REBLUR's internal data)
-    const float* prevFast = nullptr;
+    SignalIn prevFast;
     float prevViewToWorld[9] = {};
     float prevTanHalfX = 1.0f, prevTanHalfY = 1.0f;
     float cameraDelta[3] = {};  // this camera's position minus the previous one's
@@ -87,21 +111,21 @@ struct ReblurTemporalArgs {
     float disocclusion = 0.01f;
     float fireflyScale = 2.0f;
     bool virtualMotion = true;
-    float* out[4] = {};
+    SignalOut out[4] = {};
     float* outFrames = nullptr;
-    float* outFast = nullptr;
+    SignalOut outFast;
 };
 
 struct ReblurHistoryFixArgs {
     ReblurView view;
     bool specular = false;
-    const float* in[4] = {};
+    SignalIn in[4] = {};
     const float* frames = nullptr;  // null: no pixel has a history (0 frames)
-    const float* fast = nullptr;    // null: no anti-lag clamp, unless fastIsInputLuma
+    SignalIn fast;                  // null: no anti-lag clamp, unless fastIsInputLuma
     // The fast history is the input's own luma (a frame without history, where the temporal
     // pass, which would have written it so, does not run).
     bool fastIsInputLuma = false;
-    float* out[4] = {};
+    SignalOut out[4] = {};
     float fixFrames = 3.0f, stride = 14.0f;
     float lobeFraction2 = 0.0225f;
     float planeDistance = 0.02f;

@@ -16,6 +16,7 @@
 #include <algorithm>
 
 #include "core/lane_math.h"
+#include "core/pixel_formats_lanes.h"
 #include "core/rng.h"
 #include "core/screen_lanes.h"
 #include "core/tiles.h"
@@ -37,6 +38,36 @@ constexpr float kMaxSignal = 65504.0f;       // the front end's clamp (NRD's fp1
 
 SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
     return ln::load<Lane>(plane + offset);
+}
+
+// Signal planes (reblur_kernel.h: f16 or f32): f16 decoded and encoded with the library's
+// conversions (core/pixel_formats_lanes.h: F16C in the avx2 and avx512 copies, the integer
+// code elsewhere, the same bits on every ISA). A value above f16's largest finite one is
+// stored as that (65504, the front end's clamp: a Catmull-Rom overshoot must not become
+// infinity); NaN stays NaN.
+SSRT_INLINE Lane loadAt(SignalIn plane, std::size_t offset) {
+    if (plane.f16) return ln::loadF16<Lane>(plane.f16 + offset);
+    return ln::load<Lane>(plane.f32 + offset);
+}
+SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
+    if (plane.f16) return ln::gatherF16<Lane>(plane.f16, index, run);
+    return ln::gather(plane.f32, index, run);
+}
+SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
+    return ln::gather(plane, index, run);
+}
+// What an f16 signal plane gives back for `x` (storeAt then loadAt).
+SSRT_INLINE Lane roundedToF16(Lane x) {
+    const Lane big(65504.0f);
+    return ln::f16Value<Lane>(ln::f16Bits(ln::select(x > big, big, x)));
+}
+SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
+    if (plane.f16) {
+        const Lane big(65504.0f);
+        ln::storeF16(plane.f16 + offset, ln::select(x > big, big, x));
+    } else {
+        ln::store(plane.f32 + offset, x);
+    }
 }
 
 // The centre pixel of a chunk: position, guides, and the view-space frame.
@@ -169,17 +200,22 @@ SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
     return ln::select(d > Lane(0.0f), ln::saturate(d / scale), Lane(1.0f));
 }
 
-// Copies a tile's rows of in[] to out[] (and copy[]): the passes on tiles without the signal.
-inline void copyTile(const ReblurView& v, const float* const in[4], float* const out[4],
-                     float* const copy[4], int tile) {
+// Copies a tile's rows of in[] to out[] (and copy[], where not null): the passes on tiles
+// without the signal. A lane group at a time through loadAt and storeAt, so a copy between
+// formats converts as the passes do (f16 to f16 keeps the bits). Stores may run past the
+// tile's last pixel into the row padding only (tiles are whole lane groups wide).
+inline void copyTile(const ReblurView& v, const SignalIn in[4], const SignalOut out[4],
+                     const SignalOut copy[4], int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
-    for (int y = y0; y < y1; ++y) {
-        const std::size_t o = std::size_t(y) * v.stride;
-        for (int ch = 0; ch < 4; ++ch) {
-            std::copy(in[ch] + o + x0, in[ch] + o + x1, out[ch] + o + x0);
-            if (copy[ch]) std::copy(in[ch] + o + x0, in[ch] + o + x1, copy[ch] + o + x0);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; x += kW) {
+            const std::size_t o = std::size_t(y) * v.stride + x;
+            for (int ch = 0; ch < 4; ++ch) {
+                const Lane s = loadAt(in[ch], o);
+                if (out[ch]) storeAt(out[ch], o, s);
+                if (copy[ch]) storeAt(copy[ch], o, s);
+            }
         }
-    }
 }
 
 }  // namespace reblur_lanes

@@ -55,8 +55,8 @@ struct SpatialPixel {
 
 void storeSpatial(const ReblurSpatialArgs& a, std::size_t o, const Lane s[4]) {
     for (int ch = 0; ch < 4; ++ch) {
-        ln::store(a.out[ch] + o, s[ch]);
-        if (a.copy[ch]) ln::store(a.copy[ch] + o, s[ch]);
+        if (a.out[ch]) storeAt(a.out[ch], o, s[ch]);
+        if (a.copy[ch]) storeAt(a.copy[ch], o, s[ch]);
     }
 }
 
@@ -149,7 +149,7 @@ void addTaps(const ReblurSpatialArgs& a, const SpatialPixel& q, Mask lanes, cons
             w = w * rb::weightNonExp(q.roughScale * (rs - p.r));
         }
         Lane s[4];
-        for (int ch = 0; ch < 4; ++ch) s[ch] = ln::gather(a.in[ch], t.index, t.run);
+        for (int ch = 0; ch < 4; ++ch) s[ch] = gatherAt(a.in[ch], t.index, t.run);
         w = w * rb::lerp(q.minHit, one, rb::weightExp(q.hitScale * (s[3] - q.c[3])));
         if (spec && pre) {
             const V3 d = xs - p.x;

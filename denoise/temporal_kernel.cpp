@@ -130,11 +130,11 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
             const ln::Run r = f.run[j + 1][i + 1];
             const Lane wn = w[j][i] * inv;
             frames = frames + wn * ln::gather(a.prevFrames, idx, r);
-            fast = fast + wn * ln::gather(a.prevFast, idx, r);
+            fast = fast + wn * gatherAt(a.prevFast, idx, r);
             if (!surface)  // (only the virtual read's confidence asks for it)
                 normal = normal + f.innerNormal[j][i] * wn;
             for (int ch = 0; ch < 4; ++ch) {
-                inner[j][i][ch] = ln::gather(a.prevSignal[ch], idx, r);
+                inner[j][i][ch] = gatherAt(a.prevSignal[ch], idx, r);
                 bil[ch] = bil[ch] + wn * inner[j][i][ch];
             }
         }
@@ -161,7 +161,7 @@ SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint&
             const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
             for (int ch = 0; ch < 4; ++ch) {
                 const Lane s = isInner ? inner[j - 1][i - 1][ch]
-                                       : ln::gather(a.prevSignal[ch], f.index[j][i], f.run[j][i]);
+                                       : gatherAt(a.prevSignal[ch], f.index[j][i], f.run[j][i]);
                 row[ch] = row[ch] + wx[i] * s;
             }
         }
@@ -280,9 +280,9 @@ SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask v
     const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
     const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
     const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
-    for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, ln::select(valid, out[ch], c[ch]));
+    for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, ln::select(valid, out[ch], c[ch]));
     ln::store(a.outFrames + o, ln::select(valid, frames, zero));
-    ln::store(a.outFast + o, ln::select(valid, fast, lumaNow));
+    storeAt(a.outFast, o, ln::select(valid, fast, lumaNow));
 }
 
 void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
@@ -296,9 +296,9 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     const Mask valid = validAt(v, o, spec);
     const Lane lumaNow = rb::luma(c[0], c[1], c[2]);
     if (!a.prevViewZ || !ln::any(valid)) {
-        for (int ch = 0; ch < 4; ++ch) ln::store(a.out[ch] + o, c[ch]);
+        for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, c[ch]);
         ln::store(a.outFrames + o, zero);
-        ln::store(a.outFast + o, lumaNow);
+        storeAt(a.outFast, o, lumaNow);
         return;
     }
     // Surface motion: where the pixel was, and the depth the previous camera saw it at (the

@@ -24,6 +24,7 @@
 #include <string>
 
 #include "cli/shard.h"
+#include "core/pixel_formats.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/camera_path.h"
@@ -131,9 +132,17 @@ int poisonHistory(FrameHistory& history) {
     };
     for (PlaneF& p : history.color) poison(p);
     for (PlaneF& p : history.diffuse) poison(p);
+    // (The denoiser's f16 signals: a NaN's bits, as encodeF16 gives them.)
+    const auto poison16 = [&](PlaneU16& p) {
+        if (p.width() < 16 || p.height() < 16) return;
+        for (int y = p.height() / 2 - 8; y < p.height() / 2 + 8; ++y)
+            for (int x = p.width() / 2 - 8; x < p.width() / 2 + 8; ++x)
+                p.at(x, y) = encodeF16(std::nanf(""));
+        ++planes;
+    };
     for (DenoiseHistory* d : {&history.denoise, &history.denoiseHalf}) {
-        for (PlaneF& p : d->diffuse) poison(p);
-        for (PlaneF& p : d->specular) poison(p);
+        for (PlaneU16& p : d->diffuse) poison16(p);
+        for (PlaneU16& p : d->specular) poison16(p);
     }
     return planes;
 }

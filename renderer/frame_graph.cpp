@@ -130,7 +130,9 @@ void markChains(std::vector<GraphPass>& passes) {
 
 // Transient memory, plane by plane as the renderer's pool hands planes on: each of a
 // transient's planes takes the first plane of its size whose last user ran before the
-// transient's first pass (lifetimes as intervals over the pass order), else a new one.
+// transient's first pass (lifetimes as intervals over the pass order), else the smallest larger
+// one, split (the pool frees a plane of another format for it and the planes' memory range
+// hands out the block best fit: two f16 planes in an f32 plane's memory), else a new one.
 std::size_t assignSlots(std::vector<GraphResource>& resources) {
     struct Slot {
         std::size_t bytes;
@@ -150,6 +152,19 @@ std::size_t assignSlots(std::vector<GraphResource>& resources) {
             auto s = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) {
                 return s.bytes == bytes && s.freeAfter < r->first;
             });
+            if (s == slots.end()) {
+                for (auto t = slots.begin(); t != slots.end(); ++t)
+                    if (t->bytes > bytes && t->freeAfter < r->first &&
+                        (s == slots.end() || t->bytes < s->bytes))
+                        s = t;
+                if (s != slots.end()) {  // split: the rest stays free
+                    const std::size_t at = std::size_t(s - slots.begin());
+                    const Slot rest{s->bytes - bytes, s->freeAfter};
+                    s->bytes = bytes;
+                    slots.push_back(rest);
+                    s = slots.begin() + std::ptrdiff_t(at);
+                }
+            }
             if (s == slots.end()) {
                 slots.push_back({bytes, r->last});
                 r->slots.push_back(int(slots.size()) - 1);

@@ -128,10 +128,12 @@ struct DenoiseSite {
     // The pre-blur: whether it runs, and per signal whether it filters it (else the temporal
     // pass reads the front end's output directly).
     GraphCondition preBlur, preBlurred[2], unblurred[2];
-    Res pingPong, state[2], outputs[2], frames[2];
+    Res pingPong, state[2], fast[2], outputs[2], frames[2];
     GraphCondition framesMade[2];  // the history lengths, a plane only looked at: when made
     Res history[3];                // guides, diffuse, specular (Res::Count: none)
     GraphCondition historyRead[3], historyKept[3];
+    // Each signal's history accumulation speeds (f32; Res::Count: in history[0], the guides')
+    Res historyFrames[2];
     // The temporal pass, and what the history fix reads: the temporal pass's result, or
     // without it the pre-blur's (pingPong) or the front end's (noisy) signal.
     GraphCondition temporal, fixReadsPingPong, fixReadsNoisy[2];
@@ -155,10 +157,13 @@ void append(std::vector<Access>& to, const std::vector<Access>& more) {
 
 void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     const auto name = [&](const char* pass) { return keep(std::string(pass) + s.suffix); };
-    // Per signal: its state (own pixel: signal depth, speeds).
+    // Per signal: its state (own pixel: signal depth, speeds, fast luma).
     std::vector<Access> state;
     for (int i = 0; i < 2; ++i)
-        if (s.noisy[i] != Res::Count) state.push_back({s.state[i], P::Pixel, s.signal[i]});
+        if (s.noisy[i] != Res::Count) {
+            state.push_back({s.state[i], P::Pixel, s.signal[i]});
+            state.push_back({s.fast[i], P::Pixel, s.signal[i]});
+        }
     // A spatial pass: the guides and the last result around, the state at the pixel.
     const auto spatial = [&](const char* pass, std::vector<Access> reads) {
         PassDecl d{name(pass), s.on, around(s.guides), {{s.pingPong}}};
@@ -190,6 +195,9 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     for (int i = 0; i < 3; ++i)
         if (s.history[i] != Res::Count)
             temporal.reads.push_back({s.history[i], P::Anywhere, s.historyRead[i]});
+    for (int i = 0; i < 2; ++i)
+        if (s.historyFrames[i] != Res::Count)
+            temporal.reads.push_back({s.historyFrames[i], P::Anywhere, s.historyRead[i + 1]});
     passes.push_back(temporal);
     PassDecl fix = spatial("denoise history fix", {{s.pingPong, P::Around, s.fixReadsPingPong}});
     for (int i = 0; i < 2; ++i)
@@ -206,18 +214,18 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         if (s.frames[i] != Res::Count)
             post.writes.push_back({s.frames[i], P::Pixel, s.framesMade[i]});
     }
-    // (The signals' history planes; where one resource holds the guides and the signal, the
-    // half frame's, the post-blur writes its signal part and the commit below the rest.)
-    const bool oneHistory = s.history[1] == Res::Count && s.history[2] == Res::Count;
-    for (int i = oneHistory ? 0 : 1; i < 3; ++i)
+    // (The signals' history planes: radiance, hit distance and fast luma.)
+    for (int i = 1; i < 3; ++i)
         if (s.history[i] != Res::Count)
             post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
     passes.push_back(post);
     // The history's guides, speeds and fast luma for the next frame.
     PassDecl commit{name("denoise history"), s.historyKept[0], s.guides, {}};
     append(commit.reads, state);
-    if (oneHistory) commit.reads.push_back({s.history[0], P::Pixel, s.historyKept[0]});
     commit.writes.push_back({s.history[0], P::Pixel, s.historyKept[0]});
+    for (int i = 0; i < 2; ++i)
+        if (s.historyFrames[i] != Res::Count)
+            commit.writes.push_back({s.historyFrames[i], P::Pixel, s.historyKept[i + 1]});
     passes.push_back(commit);
 }
 
@@ -411,12 +419,14 @@ std::vector<PassDecl> declarePasses() {
         {unblurredFullDiffuse, unblurredSpecular},
         Res::DenoisePingPong,
         {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
+        {Res::DenoiseDiffuseFast, Res::DenoiseSpecularFast},
         {Res::DenoisedDiffuse, Res::DenoisedSpecular},
         {Res::DiffuseFrames, Res::SpecularFrames},
         {debugFullDiffuse, debugSpecular},
         {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
         {readFull, readFullDiffuse, readSpecular},
         {keepFull, keepFullDiffuse, keepSpecular},
+        {Res::DenoiseHistoryDiffuseFrames, Res::DenoiseHistorySpecularFrames},
         temporalFull,
         fixReadsPingPongFull,
         {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};
@@ -435,12 +445,14 @@ std::vector<PassDecl> declarePasses() {
                            {never, nullptr},
                            Res::HalfDenoisePingPong,
                            {Res::HalfDenoiseState, Res::Count},
+                           {Res::HalfDenoiseFast, Res::Count},
                            {Res::HalfDenoised, Res::Count},
                            {Res::Count, Res::Count},
                            {nullptr, nullptr},
-                           {Res::HalfDenoiseHistory, Res::Count, Res::Count},
-                           {readHalf, nullptr, nullptr},
-                           {keepHalf, nullptr, nullptr},
+                           {Res::HalfDenoiseHistory, Res::HalfDenoiseHistorySignal, Res::Count},
+                           {readHalf, readHalf, nullptr},
+                           {keepHalf, keepHalf, nullptr},
+                           {Res::Count, Res::Count},
                            temporalHalf,
                            denoiseHalf,  // (it always pre-blurs)
                            {never, nullptr}};

@@ -66,7 +66,6 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth
         pool.give(p);
         planes[std::size_t(resourceOfChannel(name))].push_back(&p);
     });
-    pool.keepOnly(w, h, (w + 1) / 2, (h + 1) / 2);
     std::array<bool, kResourceCount + 1> part{};
     frame.direct.forEachPlane(
         [&](std::string_view name, PlaneF&) { part[std::size_t(resourceOfChannel(name))] = true; });

@@ -1,5 +1,7 @@
 #include "renderer/memory_use.h"
 
+#include "core/plane_memory.h"
+
 namespace ssrt {
 
 namespace {
@@ -30,10 +32,21 @@ std::size_t bytesOf(const ColorPyramid& pyramid) {
     return n;
 }
 
+// A group's planes and the bytes a pixel takes in them (each plane's own element size).
+struct PlaneCount {
+    int planes = 0;
+    std::size_t pixelBytes = 0;
+    PlaneCount operator+(const PlaneCount& o) const {
+        return {planes + o.planes, pixelBytes + o.pixelBytes};
+    }
+};
 template <class Group>
-int planesOf(const PlaneTable<Group>& g) {
-    int n = 0;
-    g.forEachPlane([&](std::string_view, const PlaneF&) { ++n; });
+PlaneCount planesOf(const PlaneTable<Group>& g) {
+    PlaneCount n;
+    g.forEachPlane([&](std::string_view, const auto& p) {
+        ++n.planes;
+        n.pixelBytes += sizeof(*p.row(0));
+    });
     return n;
 }
 
@@ -42,15 +55,16 @@ int planesOf(const PlaneTable<Group>& g) {
 FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
     const Frame f;
     const FrameHistory h;
+    const PlaneCount count = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) +
+                             planesOf(f.ids) + planesOf(f.direct) + planesOf(f.trace.ssr) +
+                             planesOf(f.trace.ssgi) + planesOf(f.trace.denoise) + planesOf(h) +
+                             planesOf(h.denoise) + planesOf(h.denoiseHalf);
     FrameMemoryNeed need;
-    need.planes = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) + planesOf(f.ids) +
-                  planesOf(f.direct) + planesOf(f.trace.ssr) + planesOf(f.trace.ssgi) +
-                  planesOf(f.trace.denoise) + planesOf(h) + planesOf(h.denoise) +
-                  planesOf(h.denoiseHalf);
+    need.planes = count.planes;
+    need.pixelBytes = count.pixelBytes;
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    need.bytes = (std::size_t(need.planes) * pixels +
-                  std::size_t(shadowMapSize) * std::size_t(shadowMapSize)) *
-                 sizeof(float);
+    need.bytes = count.pixelBytes * pixels +
+                 std::size_t(shadowMapSize) * std::size_t(shadowMapSize) * sizeof(float);
     return need;
 }
 
@@ -80,7 +94,6 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
     add("colour pyramid", bytesOf(s.colorPyramid));
     add("ssr resolve", bytesOf(s.ssr));
     add("denoise scratch", bytesOf(s.denoise));
-    add("pooled scratch", s.pool.bytes());
     add("half frame", bytesOf(s.half.frame));
     add("half hi-z", bytesOf(s.half.hiz));
     add("half rays", bytesOf(s.half.rays));
@@ -93,6 +106,11 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
         add("denoise history", bytesOf(history->denoise));
         add("half denoise history", bytesOf(history->denoiseHalf));
     }
+    // The planes' range keeps the pages of planes freed (given back after their last pass)
+    // for the next: memory this process holds that no plane uses now (the process's, not the
+    // frame's alone: another renderer's planes share the range).
+    const PlaneMemoryUse range = planeMemoryUse();
+    add("free plane memory", range.bytesTouched - range.bytesInUse);
     return out;
 }
 

@@ -24,8 +24,8 @@ bool debug(const GraphKey& k) { return trace(k) && k.settings.debugPlanes; }
 bool notPooled(const GraphKey& k) { return trace(k) && !tracedSignalsPooled(k.settings); }
 
 // --- The resource table, in Res order ---
-// (Every resource is f32 today but the ids, which are u32: the formats the data needs come
-// with the typed views.)
+// (Every resource is f32 today but the ids, which are u32, and the denoiser's signals, which
+// are f16: the formats the data needs come with the typed views.)
 const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
@@ -89,23 +89,25 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HalfRayPdf, "half.ray.pdf", "", F::F32, R::Half, L::Transient},
     {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
     {Res::HalfSsgiSteps, "half.ssgiSteps", "", F::F32, R::Half, L::Transient},
-    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F32, R::Full, L::Transient},
-    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F32, R::Full, L::Transient},
+    // The denoiser's signals are f16 (radiance, normalised hit distance, fast luma: decoded to
+    // f32 by each pass), its guides and accumulation speeds f32 (denoise/denoise.h).
+    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F16, R::Full, L::Transient},
+    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F16, R::Full, L::Transient},
     {Res::DenoisePingPong, "pingPong",
      "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,pong.B,"
      "pong.hit",
-     F::F32, R::Full, L::Transient},
-    {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames,fast", F::F32, R::Full,
-     L::Transient},
-    {Res::DenoiseSpecularState, "state.specular", "signalZ,frames,fast", F::F32, R::Full,
-     L::Transient},
-    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F32, R::Half, L::Transient},
+     F::F16, R::Full, L::Transient},
+    {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames", F::F32, R::Full, L::Transient},
+    {Res::DenoiseSpecularState, "state.specular", "signalZ,frames", F::F32, R::Full, L::Transient},
+    {Res::DenoiseDiffuseFast, "fast.diffuse", "", F::F16, R::Full, L::Transient},
+    {Res::DenoiseSpecularFast, "fast.specular", "", F::F16, R::Full, L::Transient},
+    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F16, R::Half, L::Transient},
     {Res::HalfDenoisePingPong, "half.pingPong",
      "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,"
      "pong.B,pong.hit",
-     F::F32, R::Half, L::Transient},
-    {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames,fast", F::F32, R::Half,
-     L::Transient},
+     F::F16, R::Half, L::Transient},
+    {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames", F::F32, R::Half, L::Transient},
+    {Res::HalfDenoiseFast, "half.fast.diffuse", "", F::F16, R::Half, L::Transient},
     {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
     {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
     {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
@@ -113,14 +115,20 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
      "viewZ,normal.X,normal.Y,normal.Z,"
      "roughness",
      F::F32, R::Full, L::History},
-    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,frames,fast", F::F32,
-     R::Full, L::History},
-    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,frames,fast", F::F32,
-     R::Full, L::History},
+    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,fast", F::F16, R::Full,
+     L::History},
+    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,fast", F::F16, R::Full,
+     L::History},
+    {Res::DenoiseHistoryDiffuseFrames, "history.denoise.diffuseFrames", "", F::F32, R::Full,
+     L::History},
+    {Res::DenoiseHistorySpecularFrames, "history.denoise.specularFrames", "", F::F32, R::Full,
+     L::History},
     {Res::HalfDenoiseHistory, "history.half.denoise",
      "viewZ,normal.X,normal.Y,normal.Z,"
-     "roughness,R,G,B,hit,frames,fast",
+     "roughness,frames",
      F::F32, R::Half, L::History},
+    {Res::HalfDenoiseHistorySignal, "history.half.denoise.diffuse", "R,G,B,hit,fast", F::F16,
+     R::Half, L::History},
 }};
 
 // Every resource's channel names, made once.

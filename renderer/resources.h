@@ -137,9 +137,12 @@ enum class Res : uint8_t {
     DenoisePingPong,
     DenoiseDiffuseState,
     DenoiseSpecularState,
+    DenoiseDiffuseFast,
+    DenoiseSpecularFast,
     HalfDenoiseNoisy,
     HalfDenoisePingPong,
     HalfDenoiseState,
+    HalfDenoiseFast,
     HalfDenoised,
     // History (FrameHistory)
     HistoryColor,
@@ -147,7 +150,10 @@ enum class Res : uint8_t {
     DenoiseHistoryGuides,
     DenoiseHistoryDiffuse,
     DenoiseHistorySpecular,
+    DenoiseHistoryDiffuseFrames,
+    DenoiseHistorySpecularFrames,
     HalfDenoiseHistory,
+    HalfDenoiseHistorySignal,
     Count
 };
 inline constexpr int kResourceCount = int(Res::Count);

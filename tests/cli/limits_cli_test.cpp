@@ -49,7 +49,10 @@ TEST_CASE("cli limits: a frame is checked against the memory available before an
     settings.shadowMapSize = 2048;
     const FrameMemoryNeed need = frameMemoryNeed(8192, 8192, 2048);
     CHECK(need.planes > 50);  // the frame's and the history's tables
-    CHECK(need.bytes == (std::size_t(need.planes) * 8192 * 8192 + 2048 * 2048) * 4);
+    // Each plane its element's bytes (the denoiser's f16 signals 2, the rest 4).
+    CHECK(need.bytes == need.pixelBytes * 8192 * 8192 + std::size_t(2048 * 2048) * 4);
+    CHECK(need.pixelBytes < std::size_t(need.planes) * 4);
+    CHECK(need.pixelBytes > std::size_t(need.planes) * 2);
     try {
         cli::checkFrameMemory(settings, {std::size_t(4000000) * 1024, "ulimit -v"});
         FAIL("an 8192 x 8192 frame passed in 4 GB");

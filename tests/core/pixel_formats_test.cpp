@@ -556,11 +556,16 @@ TEST_CASE("integer formats: set-up validation names the value") {
     }
 }
 
-TEST_CASE("Plane<uint16_t> and Plane<uint8_t>: rows aligned, hashes of the visible pixels") {
+TEST_CASE(
+    "Plane<uint16_t> and Plane<uint8_t>: a float plane's stride, hashes of the visible "
+    "pixels") {
     PlaneU16 a(37, 5, 0x1234);
     PlaneU8 b(37, 5, 7);
-    CHECK(a.stride() * sizeof(uint16_t) % kRowAlignment == 0);
-    CHECK(b.stride() % kRowAlignment == 0);
+    // One offset addresses a pixel in planes of one size whatever their formats.
+    CHECK(a.stride() == PlaneF(37, 5).stride());
+    CHECK(b.stride() == PlaneF(37, 5).stride());
+    CHECK(a.stride() % kRowElements == 0);
+    CHECK(PlaneU16(48, 1).stride() == PlaneF(48, 1).stride());
     CHECK(a.stride() >= 37);
     CHECK(b.stride() >= 37);
     const uint64_t ha = hashPlane(a), hb = hashPlane(b);
