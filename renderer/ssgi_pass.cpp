@@ -183,7 +183,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
-    takeBatches(c, frame, false);
+    takeBatches(c, frame);
     const SsgiSample q{
         c, {c.camera, c.march, c.hiz, nullptr}, c.rayGen, in, hp, cut, checker, planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)

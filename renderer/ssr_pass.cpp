@@ -84,13 +84,15 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
         const RayGenerator rays = q.rays(s);
         const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
                                c.camera, c.march, c.hiz, c.threads());
-        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march);
+        // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
+        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march,
+                                  kChainRingTileRows * kTileSize);
         const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
-        const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
+        const auto hitTile = [&](int t, const RayBatch& b, const MarchResult& m) {
             resolve.hitTile(t, b, m);
         };
-        st.rays.add(traceTiles(c, rays, march, resolveTile, hitStats, st, times));
-        addTime(times.resolve, [&] { resolve.resolveFrame(c.threads()); });
+        st.rays.add(traceTiles(c, rays, march, hitTile, hitStats, st, times,
+                               [&](int t) { resolve.resolveTile(t); }));
     }
 }
 
@@ -113,12 +115,12 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     const SsrSample q{
         c,  rs,           in,
         hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
-    // The batches and the resolve's scratch come from the pool and go back to it once the
-    // checkerboard fill has read the rays' pdf (the denoiser takes them next). The signal's
-    // planes are the frame memory's (renderer/frame_memory.h).
-    takeBatches(c, frame, rs.mode == SsrResolveMode::Reuse);
+    // The batches and the resolve's scratch (which the resolver sizes: the frame's, or a tile
+    // chain's ring) go back to the pool once the checkerboard fill has read the rays' pdf (the
+    // denoiser takes their memory next). The signal's planes are the frame memory's
+    // (renderer/frame_memory.h).
+    takeBatches(c, frame);
     swapSsrOutput(planes, sc.ssr);
-    sc.pool.take(sc.ssr, frame.width, frame.height);
     if (tiled(c)) ssrTileSamples(q, frame, st, times);
     else ssrFrameSamples(q, frame, st, times);
     swapSsrOutput(planes, sc.ssr);

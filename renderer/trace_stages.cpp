@@ -14,10 +14,7 @@ void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, in
         (*c.args.observer)(pass, sample, rays, result, on.half);
 }
 
-// The frame's batches where the passes read them: every plane for the observer's stage-by-stage
-// path; for the tile chain only the pdf (and the hits: `hits`) that what runs after the chain
-// reads around each pixel.
-void takeBatches(const TraceContext& c, Frame& frame, bool hits) {
+void takeBatches(const TraceContext& c, Frame& frame) {
     Frame::Scratch& sc = frame.scratch;
     const int w = frame.width, h = frame.height;
     if (!tiled(c)) {
@@ -26,7 +23,6 @@ void takeBatches(const TraceContext& c, Frame& frame, bool hits) {
         return;
     }
     sc.pool.take(sc.rays.pdf, w, h);
-    if (hits) sc.pool.take(sc.march.hit, w, h);
 }
 
 }  // namespace ssrt::trace_stages

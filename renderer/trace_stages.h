@@ -88,27 +88,30 @@ void takeSignal(PlanePool& pool, Group& g, int w, int h) {
 inline bool tiled(const TraceContext& c) { return !(c.args.observer && *c.args.observer); }
 
 // The frame's batches where the passes read them: every plane for the observer's stage-by-stage
-// path; for the tile chain only the pdf (and the hits: `hits`) that what runs after the chain
-// reads around each pixel.
-void takeBatches(const TraceContext& c, Frame& frame, bool hits);
+// path; for the tile chain only the pdf, which what runs after the chain reads around each
+// pixel (the SSR resolve sizes the ring of hits its finish stage reads: trace/ssr_resolve.h).
+void takeBatches(const TraceContext& c, Frame& frame);
 
 // One sample's tile chain (trace/tile_chain.h): on each tile's batches the resolve's
-// per-pixel pass, then the hit statistics. Adds the march's counters and the stages' times;
-// returns the rays' counters.
+// per-pixel pass, then the hit statistics; and the resolve's pass over a tile's neighbours
+// (`finish`, when given) a tile row at a time behind it. Adds the march's counters and the
+// stages' times; returns the rays' counters.
 template <class Resolve>
 RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const RayMarcher& march,
                        const Resolve& resolveTile, const HitStatsAccumulator& hitStats,
-                       TraceStats& st, StageTimes& times) {
+                       TraceStats& st, StageTimes& times,
+                       std::function<void(int tile)> finish = {}) {
     const TileChainStats r = runTileChain({rays, march,
                                            [&](int t, const RayBatch& b, const MarchResult& m) {
                                                resolveTile(t, b, m);
                                                hitStats.tile(t, b, m);
-                                           }},
+                                           },
+                                           std::move(finish)},
                                           c.threads());
     st.march.add(r.march);
     times.rays += r.raysMs;
     times.march += r.marchMs;
-    times.resolve += r.consumeMs;
+    times.resolve += r.consumeMs + r.finishMs;
     return r.rays;
 }
 

@@ -18,23 +18,31 @@ std::string_view hitRadianceName(HitRadiance radiance) {
     return radiance == HitRadiance::Current ? "current" : "reprojected";
 }
 
-void SsrOutput::ensureSize(int width, int height) {
+void SsrOutput::ensureSize(int width, int height, int scratchRows, bool reuse) {
     for (PlaneF& p : color) p.ensureSize(width, height);
     opacity.ensureSize(width, height);
-    for (PlaneF& p : hitRadiance) p.ensureSize(width, height);
-    hitFade.ensureSize(width, height);
+    for (PlaneF& p : hitRadiance) p.ensureSize(width, scratchRows);
+    hitFade.ensureSize(width, scratchRows);
+    if (reuse)
+        for (PlaneF& p : hitTarget) p.ensureSize(width, scratchRows);
 }
 
 SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
                          SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
-                         MarchResult& frameMarch)
+                         MarchResult& frameMarch, int scratchRows)
     : grid_(in.camera.width, in.camera.height), frameRays_(&frameRays), frameMarch_(&frameMarch) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsr: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
         throw std::invalid_argument("resolveSsr: sample must be in [0, sampleCount)");
-    out.ensureSize(w, h);
+    if (scratchRows != 0 && (scratchRows < 0 || scratchRows % kTileSize != 0))
+        throw std::invalid_argument("resolveSsr: scratch rows must be whole tile rows");
+    // (A ring at least the frame's height is the frame's.)
+    const int rows = scratchRows == 0 ? h : std::min(scratchRows, h);
+    const bool reuse = settings.mode == SsrResolveMode::Reuse;
+    out.ensureSize(w, h, rows, reuse);
     SsrResolveArgs& a = args_;
+    a.scratchRows = scratchRows == 0 || scratchRows >= h ? h : scratchRows;
     a.width = w;
     a.height = h;
     a.tilesX = grid_.tilesX;
@@ -44,7 +52,7 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     PlaneCheck need("resolveSsr", w, h);
     a.viewZ = need(in.viewZ, "viewZ");
     a.roughness = need(in.roughness, "roughness");
-    a.reuse = settings.mode == SsrResolveMode::Reuse;
+    a.reuse = reuse;
     a.mip = settings.mode == SsrResolveMode::Mip;
     if (a.reuse)
         for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], "normal");
@@ -80,16 +88,14 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     const float span = settings.roughnessFadeEnd - settings.roughnessFadeStart;
     a.roughnessFadeScale = span > 0.0f ? 1.0f / span : 1.0e30f;
     a.radianceScale = in.radianceScale;
+    PlaneCheck scratch("resolveSsr", w, rows);
     for (int c = 0; c < 3; ++c) {
-        a.hitRadiance[c] = need.output(out.hitRadiance[c], "hit radiance");
+        a.hitRadiance[c] = scratch.output(out.hitRadiance[c], "hit radiance");
         a.outColor[c] = need.output(out.color[c], "colour");
     }
-    a.hitFade = need.output(out.hitFade, "hit fade");
+    a.hitFade = scratch.output(out.hitFade, "hit fade");
     if (a.reuse)
-        for (int c = 0; c < 3; ++c) {
-            out.hitTarget[c].ensureSize(w, h);  // only the reuse mode needs it
-            a.hitTarget[c] = need.output(out.hitTarget[c], "hit target");
-        }
+        for (int c = 0; c < 3; ++c) a.hitTarget[c] = scratch.output(out.hitTarget[c], "hit target");
     a.outOpacity = need.output(out.opacity, "opacity");
     // What pass 2 reads around each pixel (the hits only for the reuse).
     frameRays.corner = {};
@@ -97,10 +103,10 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     a.framePdf = pdfTarget_ = need.output(frameRays.pdf, "ray pdf");
     if (a.reuse) {
         frameMarch.corner = {};
-        frameMarch.hit.ensureSize(w, h);
-        a.frameHit = hitTarget_ = need.output(frameMarch.hit, "march hit");
+        frameMarch.hit.ensureSize(w, rows);
+        a.frameHit = hitTarget_ = scratch.output(frameMarch.hit, "march hit");
     }
-    a.stride = need.stride();
+    a.stride = need.stride();  // (scratch.stride() too: planes of one width)
     a.sample = sample;
     a.sampleCount = sampleCount;
     hitKernel_ = SSRT_DISPATCH(isa, ssrHitTile);
@@ -131,7 +137,11 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     hitKernel_(a, tile);
 }
 
+void SsrResolver::resolveTile(int tile) const { resolveKernel_(args_, tile); }
+
 void SsrResolver::resolveFrame(int threads) const {
+    if (args_.scratchRows != args_.height)
+        throw std::logic_error("resolveSsr: a ring's scratch is resolved tile row by tile row");
     parallelForTiles(grid_.count(), threads, [&](int t) { resolveKernel_(args_, t); });
 }
 

@@ -85,7 +85,8 @@ struct SsrOutput : PlaneTable<SsrOutput> {
     PlaneF color[3];  // reflected radiance where SSR found something (not premultiplied)
     PlaneF opacity;   // how much of it to use, [0, 1]
     // Scratch (per-pixel hit radiance and fade; for the reuse mode also the view-space hit
-    // point, or the ray's direction for a miss), kept to reuse memory.
+    // point, or the ray's direction for a miss): of the frame's height, or a ring of tile rows
+    // in a tile chain (SsrResolver's scratchRows).
     PlaneF hitRadiance[3], hitFade, hitTarget[3];
 
     template <class G, class Fn>
@@ -98,8 +99,9 @@ struct SsrOutput : PlaneTable<SsrOutput> {
         fn("resolve.hitTarget.X", g.hitTarget[0]), fn("resolve.hitTarget.Y", g.hitTarget[1]);
         fn("resolve.hitTarget.Z", g.hitTarget[2]);
     }
-    // color, opacity, hitRadiance and hitFade (hitTarget only where the reuse mode asks).
-    void ensureSize(int width, int height);
+    // color and opacity at width x height; hitRadiance and hitFade (hitTarget only where the
+    // reuse mode asks) at width x scratchRows.
+    void ensureSize(int width, int height, int scratchRows, bool reuse);
 };
 
 // Resolves one sample's rays into `out`. sample 0 overwrites, later samples accumulate, and
@@ -112,21 +114,28 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
                 int sampleCount, int threads);
 
 // The same, checked and set up once, then run in its two passes tile by tile: over the frame
-// by resolveSsr, or with the first pass one tile at a time in a trace pass's tile chain
-// (trace/tile_chain.h). The second pass reads the pdf and hits around each pixel in the
-// frame's batches, `frameRays.pdf` and `frameMarch.hit`: a first pass given a tile's batches,
-// which do not outlive their tile, copies the tile's there (and only those two planes of the
-// frame's batches need exist, of the frame's size).
+// by resolveSsr, or in a trace pass's tile chain (trace/tile_chain.h) with the first pass one
+// tile at a time as its `consume` and the second as its `finish`. The second pass reads the pdf
+// and hits around each pixel in the frame's batches, `frameRays.pdf` and `frameMarch.hit`: a
+// first pass given a tile's batches, which do not outlive their tile, copies the tile's there
+// (and only those two planes of the frame's batches need exist).
+//
+// `scratchRows` is the rows of the scratch planes (the output's hit radiance, fade and target,
+// and `frameMarch.hit`): 0 for the frame's height (resolveSsr, resolveFrame), or
+// kChainRingTileRows * kTileSize for a tile chain's ring (resolveTile as its finish), whose
+// memory does not grow with the frame.
 class SsrResolver {
 public:
     // resolveSsr's arguments less threads.
     SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& inputs,
                 SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
-                MarchResult& frameMarch);
+                MarchResult& frameMarch, int scratchRows = 0);
     const TileGrid& grid() const { return grid_; }
     // Pass 1 on tile `tile`: the batches are the frame's or the tile's (one corner).
     void hitTile(int tile, const RayBatch& rays, const MarchResult& march) const;
-    // Pass 2 on every tile, once pass 1 ran on all of them.
+    // Pass 2 on one tile, once pass 1 ran on it and on the tiles around it.
+    void resolveTile(int tile) const;
+    // Pass 2 on every tile, once pass 1 ran on all of them (scratch of the frame's height).
     void resolveFrame(int threads) const;
 
 private:

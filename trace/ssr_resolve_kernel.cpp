@@ -59,14 +59,19 @@ SSRT_INLINE V3 pyramidSample(const SsrResolveArgs& a, Lane x, Lane y, Lane mip,
     return sum;
 }
 
+// Where frame row y's pixel x lies in the scratch planes (SsrResolveArgs::scratchRows).
+SSRT_INLINE std::size_t scratchAt(const SsrResolveArgs& a, int x, int y) {
+    return std::size_t(y % a.scratchRows) * a.stride + std::size_t(x);
+}
+
 // One lane group of pass 1: the pixel's own hit radiance and fade.
 void hitChunk(const SsrResolveArgs& a, int x, int y) {
-    const std::size_t o = std::size_t(y) * a.stride + x;
+    const std::size_t o = std::size_t(y) * a.stride + x, so = scratchAt(a, x, y);
     const std::size_t r = std::size_t(y - a.rayY0) * a.rayStride + std::size_t(x - a.rayX0);
     const Lane zero(0.0f), one(1.0f);
     const Lane pdf = loadAt(a.pdf, r), hit = loadAt(a.hit, r);
     if (a.copyPdf) ln::store(a.copyPdf + o, pdf);
-    if (a.copyHit) ln::store(a.copyHit + o, hit);
+    if (a.copyHit) ln::store(a.copyHit + so, hit);
     const Lane hx = loadAt(a.hitPos[0], r), hy = loadAt(a.hitPos[1], r);
     auto valid = (pdf > zero) & (hit > Lane(0.5f));
     V3 radiance{zero, zero, zero};
@@ -101,10 +106,10 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
         radiance = ln::select(valid, radiance, V3{zero, zero, zero});
         fade = ln::select(valid, fade, zero);
     }
-    ln::store(a.hitRadiance[0] + o, radiance.x);
-    ln::store(a.hitRadiance[1] + o, radiance.y);
-    ln::store(a.hitRadiance[2] + o, radiance.z);
-    ln::store(a.hitFade + o, fade);
+    ln::store(a.hitRadiance[0] + so, radiance.x);
+    ln::store(a.hitRadiance[1] + so, radiance.y);
+    ln::store(a.hitRadiance[2] + so, radiance.z);
+    ln::store(a.hitFade + so, fade);
     if (a.reuse) {
         // What the 3x3 reuse aims at: the hit point in view space, or the ray's direction for
         // a miss (computed once here instead of once per neighbour there).
@@ -112,9 +117,9 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
                                           a.tanHalfX, a.tanHalfY);
         const V3 dir{loadAt(a.rayDir[0], r), loadAt(a.rayDir[1], r), loadAt(a.rayDir[2], r)};
         const V3 target = ln::select(hit > Lane(0.5f), hitP, dir);
-        ln::store(a.hitTarget[0] + o, target.x);
-        ln::store(a.hitTarget[1] + o, target.y);
-        ln::store(a.hitTarget[2] + o, target.z);
+        ln::store(a.hitTarget[0] + so, target.x);
+        ln::store(a.hitTarget[1] + so, target.y);
+        ln::store(a.hitTarget[2] + so, target.z);
     }
 }
 
@@ -129,19 +134,20 @@ struct ReuseSums {
     V3 wfl;
 };
 
-// One neighbour's ray weighted for this pixel; `at(plane)` reads the neighbour's value of a
-// plane for every lane (a load where the neighbours are contiguous, else a clamped gather).
+// One neighbour's ray weighted for this pixel; `at(plane, scratch)` reads the neighbour's value
+// of a frame plane (the pdf) or of a scratch plane for every lane (a load where the neighbours
+// are contiguous, else a clamped gather).
 template <class At>
 SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
                                 ln::MaskOf<Lane> inFrame, At&& at, ReuseSums& sum) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane pdf = at(a.framePdf);
+    const Lane pdf = at(a.framePdf, false);
     const auto hasRay = inFrame & (pdf > zero);
     if (!ln::any(hasRay)) return;
     // Direction from this pixel to the neighbour's hit, or the neighbour's own for a miss.
-    const V3 target{at(a.hitTarget[0]), at(a.hitTarget[1]), at(a.hitTarget[2])};
+    const V3 target{at(a.hitTarget[0], true), at(a.hitTarget[1], true), at(a.hitTarget[2], true)};
     const V3 toHit = ln::normalize(target - s.p);
-    const V3 l = ln::select(at(a.frameHit) > Lane(0.5f), toHit, target);
+    const V3 l = ln::select(at(a.frameHit, true) > Lane(0.5f), toHit, target);
     // This pixel's lobe towards l.
     const Lane NoLraw = ln::dot(s.n, l);
     const Lane NoL = ln::saturate(NoLraw);
@@ -151,8 +157,8 @@ SSRT_INLINE void reuseNeighbour(const SsrResolveArgs& a, const ReusePixel& s,
     const auto ok = hasRay & (NoLraw > zero);
     const Lane w =
         ln::select(ok, ln::min(brdfCos / ln::select(ok, pdf, one), Lane(kMaxWeight)), zero);
-    const Lane wf = w * at(a.hitFade);
-    const V3 L{at(a.hitRadiance[0]), at(a.hitRadiance[1]), at(a.hitRadiance[2])};
+    const Lane wf = w * at(a.hitFade, true);
+    const V3 L{at(a.hitRadiance[0], true), at(a.hitRadiance[1], true), at(a.hitRadiance[2], true)};
     sum.w = sum.w + w;
     sum.wf = sum.wf + wf;
     sum.wfl = sum.wfl + L * wf;
@@ -200,15 +206,26 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
             if (x + dx >= 0 && x + dx + kW <= a.width) {
                 // Every lane's neighbour is in the frame: they sit side by side in memory.
                 const std::size_t on = std::size_t(yy) * a.stride + std::size_t(x + dx);
+                const std::size_t sn = scratchAt(a, x + dx, yy);
                 reuseNeighbour(
-                    a, s, zero == zero, [&](const float* plane) { return loadAt(plane, on); }, sum);
+                    a, s, zero == zero,
+                    [&](const float* plane, bool scratch) {
+                        return loadAt(plane, scratch ? sn : on);
+                    },
+                    sum);
             } else {
                 const Lane nx = px + Lane(float(dx));
                 const auto inFrame = (nx >= zero) & (nx < Lane(float(a.width)));
                 const ILane i =
                     screen::pixelIndex(nx, Lane(float(yy)), a.width, a.height, a.stride);
+                const ILane si = screen::pixelIndex(nx, Lane(float(yy % a.scratchRows)), a.width,
+                                                    a.scratchRows, a.stride);
                 reuseNeighbour(
-                    a, s, inFrame, [&](const float* plane) { return ln::gather(plane, i); }, sum);
+                    a, s, inFrame,
+                    [&](const float* plane, bool scratch) {
+                        return ln::gather(plane, scratch ? si : i);
+                    },
+                    sum);
             }
         }
     }
@@ -233,9 +250,10 @@ void resolveChunk(const SsrResolveArgs& a, int x, int y) {
         if (a.reuse) {
             if (anyNeighbourRay(a, x, y)) reuse(a, x, y, viewZ, rough, color, opacity);
         } else {
-            color = {loadAt(a.hitRadiance[0], o), loadAt(a.hitRadiance[1], o),
-                     loadAt(a.hitRadiance[2], o)};
-            opacity = loadAt(a.hitFade, o);
+            const std::size_t so = scratchAt(a, x, y);
+            color = {loadAt(a.hitRadiance[0], so), loadAt(a.hitRadiance[1], so),
+                     loadAt(a.hitRadiance[2], so)};
+            opacity = loadAt(a.hitFade, so);
         }
         // HDRP's roughness (smoothness) fade.
         const Lane fadeR =

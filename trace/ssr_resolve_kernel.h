@@ -50,7 +50,11 @@ struct SsrResolveArgs {
     float roughnessFadeEnd, roughnessFadeScale;  // fade = saturate((end - r) * scale)
     float radianceScale;
     // Scratch written by ssrHitTile, read by ssrResolveTile. hitTarget (reuse only): the hit
-    // point in view space, or the ray's direction for a miss.
+    // point in view space, or the ray's direction for a miss. The scratch planes (these and
+    // frameHit) have `scratchRows` rows: the frame's height, or a ring of tile rows that frame
+    // row y maps to at y % scratchRows (the tile chain's, trace/tile_chain.h, which resolves
+    // a tile row while the rows around it are still in the ring).
+    int scratchRows;
     float* hitRadiance[3];
     float* hitFade;
     float* hitTarget[3];

@@ -31,7 +31,7 @@ struct TileBatches {
 struct TileResult {
     RayGenStats rays;
     MarchStats march;
-    double ms[3] = {};  // rays, march, consume
+    double ms[4] = {};  // rays, march, consume, finish
 };
 
 }  // namespace
@@ -42,8 +42,7 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
     if (marchGrid.width != grid.width || marchGrid.height != grid.height)
         throw std::invalid_argument("runTileChain: the stages' frames differ");
     std::vector<TileResult> tiles(std::size_t(grid.count()));
-    const Clock::time_point t0 = Clock::now();
-    parallelForTiles(grid.count(), threads, [&](int tile) {
+    const auto runChain = [&](int tile) {
         thread_local TileBatches b;
         const TileRect r = grid.rect(tile);
         b.rays.corner = b.march.corner = {r.x0, r.y0};
@@ -56,18 +55,38 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
         chain.consume(tile, b.rays, b.march);
         const Clock::time_point e = Clock::now();
         out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[2] = msBetween(h, e);
-    });
+    };
+    const Clock::time_point t0 = Clock::now();
+    if (!chain.finish) {
+        parallelForTiles(grid.count(), threads, runChain);
+    } else {
+        // Step k: row k's chains and, in the same loop, row k - 2's finish, which reads rows
+        // k - 3 .. k - 1, all completed by earlier steps (row k, being written, is the ring's
+        // fourth).
+        const int tx = grid.tilesX;
+        for (int k = 0; k < grid.tilesY + 2; ++k) {
+            const int chains = k < grid.tilesY ? tx : 0, finishes = k >= 2 ? tx : 0;
+            parallelFor(chains + finishes, threads, [&](int i) {
+                if (i < chains) return runChain(k * tx + i);
+                const int tile = (k - 2) * tx + (i - chains);
+                const Clock::time_point a = Clock::now();
+                chain.finish(tile);
+                tiles[std::size_t(tile)].ms[3] = msBetween(a, Clock::now());
+            });
+        }
+    }
     const double wall = msBetween(t0, Clock::now());
     TileChainStats s;
-    double busy[3] = {};
+    double busy[4] = {};
     for (const TileResult& t : tiles) {
         s.rays.add(t.rays);
         s.march.add(t.march);
-        for (int i = 0; i < 3; ++i) busy[i] += t.ms[i];
+        for (int i = 0; i < 4; ++i) busy[i] += t.ms[i];
     }
     // The loop's wall time, shared out by the threads' time in each stage.
-    const double sum = busy[0] + busy[1] + busy[2], k = sum > 0.0 ? wall / sum : 0.0;
+    const double sum = busy[0] + busy[1] + busy[2] + busy[3], k = sum > 0.0 ? wall / sum : 0.0;
     s.raysMs = busy[0] * k, s.marchMs = busy[1] * k, s.consumeMs = busy[2] * k;
+    s.finishMs = busy[3] * k;
     return s;
 }
 

@@ -239,7 +239,9 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
         CAPTURE(k.spp);
         RenderSettings rs = smallTraced();
         rs.width = 150;  // the last tile column is 22 pixels wide, not a lane multiple
-        rs.height = 70;
+        // 6 tile rows, the last 10 pixels tall: the SSR resolve's ring of kChainRingTileRows
+        // tile rows (trace/tile_chain.h) wraps round in the tile chain.
+        rs.height = 330;
         rs.trace.marcher = k.marcher;
         rs.trace.ssrLayout = k.layout;
         rs.trace.ssgiLayout = k.ssgiLayout;
