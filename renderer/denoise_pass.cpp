@@ -102,10 +102,15 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     in.signalsRead = [&c] { c.args.memory.giveThrough(pass::kDenoiseFrontEnd); };
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
+    // The half frame's diffuse first (the graph's order): its planes go back before the
+    // full-resolution denoiser takes its scratch.
+    if (halfDiffuse) {
+        denoiseHalfDiffuse(c, frame, times);
+        c.args.memory.giveThrough(pass::kDenoiseUpsample);
+    }
     if (in.diffuse[0] || in.ssr[0])
         denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
                 frame.trace.denoise.out, c.threads(), &times);
-    if (halfDiffuse) denoiseHalfDiffuse(c, frame, times);
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),

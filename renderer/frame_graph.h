@@ -57,6 +57,7 @@ inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";
 inline constexpr std::string_view kDenoiseFrontEndHalf = "denoise front end (half)";
 inline constexpr std::string_view kDenoiseTemporal = "denoise temporal";
 inline constexpr std::string_view kDenoiseTemporalHalf = "denoise temporal (half)";
+inline constexpr std::string_view kDenoiseHistory = "denoise history";  // its commit
 inline constexpr std::string_view kDenoiseUpsample = "denoise upsample";
 inline constexpr std::string_view kComposite = "composite";
 inline constexpr std::string_view kHistoryCommit = "history commit";

@@ -156,7 +156,7 @@ void append(std::vector<Access>& to, const std::vector<Access>& more) {
 }
 
 void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
-    const auto name = [&](const char* pass) { return keep(std::string(pass) + s.suffix); };
+    const auto name = [&](std::string_view pass) { return keep(std::string(pass) + s.suffix); };
     // Per signal: its state (own pixel: signal depth, speeds, fast luma).
     std::vector<Access> state;
     for (int i = 0; i < 2; ++i)
@@ -220,7 +220,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
             post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
     passes.push_back(post);
     // The history's guides, speeds and fast luma for the next frame.
-    PassDecl commit{name("denoise history"), s.historyKept[0], s.guides, {}};
+    PassDecl commit{name(pass::kDenoiseHistory), s.historyKept[0], s.guides, {}};
     append(commit.reads, state);
     commit.writes.push_back({s.history[0], P::Pixel, s.historyKept[0]});
     for (int i = 0; i < 2; ++i)
@@ -401,38 +401,6 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsgiHit, P::Around},
                   {Res::SsgiHitDistance, P::Around}},
                  {{Res::Ssgi}, {Res::SsgiHit}, {Res::SsgiHitDistance}}});
-    // The denoiser at full resolution: SSR's signal (over the environment) and SSGI's.
-    DenoiseSite full{
-        "",
-        denoiseFull,
-        {{Res::Ssgi, P::Pixel, denoiseFullDiffuse},
-         {Res::SsgiHitDistance, P::Pixel, denoiseFullDiffuse},
-         {Res::Ssr, P::Pixel, denoiseSpecular},
-         {Res::SsrOpacity, P::Pixel, denoiseSpecular},
-         {Res::SsrHitDistance, P::Pixel, denoiseSpecular},
-         {Res::EnvSpecular, P::Pixel, denoiseSpecular}},
-        {},
-        {Res::DenoiseNoisyDiffuse, Res::DenoiseNoisySpecular},
-        {denoiseFullDiffuse, denoiseSpecular},
-        preBlurFull,
-        {preBlurFullDiffuse, preBlurSpecular},
-        {unblurredFullDiffuse, unblurredSpecular},
-        Res::DenoisePingPong,
-        {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
-        {Res::DenoiseDiffuseFast, Res::DenoiseSpecularFast},
-        {Res::DenoisedDiffuse, Res::DenoisedSpecular},
-        {Res::DiffuseFrames, Res::SpecularFrames},
-        {debugFullDiffuse, debugSpecular},
-        {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
-        {readFull, readFullDiffuse, readSpecular},
-        {keepFull, keepFullDiffuse, keepSpecular},
-        {Res::DenoiseHistoryDiffuseFrames, Res::DenoiseHistorySpecularFrames},
-        temporalFull,
-        fixReadsPingPongFull,
-        {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};
-    gbufferReads(full.guides);
-    full.guides.push_back({Res::Motion});
-    addDenoiser(p, full);
     // SSGI's diffuse denoised on the half frame, on guides from each block's first pixel.
     const DenoiseSite half{" (half)",
                            denoiseHalf,
@@ -464,6 +432,39 @@ std::vector<PassDecl> declarePasses() {
                   {Res::ViewZ},
                   {Res::Normal}},
                  {{Res::DenoisedDiffuse}, {Res::DiffuseFrames, P::Pixel, debug}}});
+    // The denoiser at full resolution: SSR's signal (over the environment) and SSGI's. (After
+    // the half frame's, whose planes are then gone: the two never hold their scratch at once.)
+    DenoiseSite full{
+        "",
+        denoiseFull,
+        {{Res::Ssgi, P::Pixel, denoiseFullDiffuse},
+         {Res::SsgiHitDistance, P::Pixel, denoiseFullDiffuse},
+         {Res::Ssr, P::Pixel, denoiseSpecular},
+         {Res::SsrOpacity, P::Pixel, denoiseSpecular},
+         {Res::SsrHitDistance, P::Pixel, denoiseSpecular},
+         {Res::EnvSpecular, P::Pixel, denoiseSpecular}},
+        {},
+        {Res::DenoiseNoisyDiffuse, Res::DenoiseNoisySpecular},
+        {denoiseFullDiffuse, denoiseSpecular},
+        preBlurFull,
+        {preBlurFullDiffuse, preBlurSpecular},
+        {unblurredFullDiffuse, unblurredSpecular},
+        Res::DenoisePingPong,
+        {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
+        {Res::DenoiseDiffuseFast, Res::DenoiseSpecularFast},
+        {Res::DenoisedDiffuse, Res::DenoisedSpecular},
+        {Res::DiffuseFrames, Res::SpecularFrames},
+        {debugFullDiffuse, debugSpecular},
+        {Res::DenoiseHistoryGuides, Res::DenoiseHistoryDiffuse, Res::DenoiseHistorySpecular},
+        {readFull, readFullDiffuse, readSpecular},
+        {keepFull, keepFullDiffuse, keepSpecular},
+        {Res::DenoiseHistoryDiffuseFrames, Res::DenoiseHistorySpecularFrames},
+        temporalFull,
+        fixReadsPingPongFull,
+        {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};
+    gbufferReads(full.guides);
+    full.guides.push_back({Res::Motion});
+    addDenoiser(p, full);
     // Direct + diffuse + specular, tone mapped, over the direct pass's colour.
     p.push_back({pass::kComposite,
                  trace,

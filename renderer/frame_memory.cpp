@@ -22,6 +22,12 @@ void forEachFramePlane(Frame& f, Fn&& fn) {
     f.trace.denoise.forEachPlane(fn);
 }
 
+// A pyramid's levels and their packed copy.
+bool freeHiZ(HiZPyramid& hiz, bool release) {
+    if (release) hiz = HiZPyramid();
+    return true;
+}
+
 // Whether `id` lives in Frame::Scratch's own buffers; with `release`, frees them.
 bool inScratch(Frame& f, Res id, bool release) {
     Frame::Scratch& s = f.scratch;
@@ -36,9 +42,27 @@ bool inScratch(Frame& f, Res id, bool release) {
         case Res::BackDepth: return free(s.backVisibility.depth);
         case Res::BackIds: return free(s.backVisibility.ids);
         case Res::BackZ: return free(s.backZ);
-        case Res::HiZ:
-            for (PlaneF& level : s.hiz.minZ) free(level);
+        case Res::HiZ: return freeHiZ(s.hiz, release);
+        case Res::HalfGBuffer: {
+            HalfFrame& h = s.half.frame;
+            for (PlaneF* p : {&h.viewZ, &h.normal[0], &h.normal[1], &h.normal[2], &h.albedo[0],
+                              &h.albedo[1], &h.albedo[2], &h.metallic})
+                free(*p);
             return true;
+        }
+        case Res::HalfHitLight:
+            for (PlaneF& p : s.half.frame.hitLight) free(p);
+            return true;
+        case Res::HalfBackZ: return free(s.half.frame.backZ);
+        case Res::HalfGuides: {
+            HalfFrame& h = s.half.frame;
+            for (PlaneF* p : {&h.guideZ, &h.guideNormal[0], &h.guideNormal[1], &h.guideNormal[2],
+                              &h.guideMotion[0], &h.guideMotion[1]})
+                free(*p);
+            return true;
+        }
+        case Res::HalfHiZ: return freeHiZ(s.half.hiz, release);
+        case Res::HalfRayPdf: return free(s.half.rays.pdf);
         default: return false;
     }
 }

@@ -49,7 +49,7 @@ void runTracePasses(const TracePassArgs& args, Frame& frame) {
     m.step(pass::kSsgiReconstruct, [&] {
         if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
     });
-    m.step(pass::kDenoiseUpsample, [&] {
+    m.step(pass::kDenoiseHistory, [&] {
         if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf))
             denoisePass(c, frame);
     });

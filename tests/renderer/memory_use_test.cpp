@@ -111,3 +111,21 @@ TEST_CASE("memory use: a sequence takes no new memory after its second frame") {
         if (i > 1) CHECK(planeMemoryUse().bytesTouched == touched);
     }
 }
+
+TEST_CASE("memory use: a frame that shows no trace planes keeps no scratch past its last pass") {
+    RenderSettings rs;
+    rs.width = 40;
+    rs.height = 24;
+    rs.shadowMapSize = 64;
+    // (As for a PNG: renderer/settings.h.)
+    rs.gbufferPlanes = false;
+    rs.tracePlanes = false;
+    const Scene scene = makeBuiltinScene("cornell");
+    Frame frame;
+    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
+    const auto m = byName(frame.stats.memory);
+    for (const char* freed : {"visibility buffer", "back faces", "shadow map", "hi-z", "half frame",
+                              "half hi-z", "half rays", "ssr resolve", "rays", "march"})
+        CHECK_MESSAGE(m.count(freed) == 0, freed);
+    CHECK(m.count("image") == 1);
+}
