@@ -5,8 +5,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/tiles.h"
 #include "renderer/direct_lighting.h"
 #include "renderer/resolve_tables.h"
+#include "trace/tile_chain.h"
 
 namespace ssrt {
 
@@ -29,6 +31,8 @@ std::size_t texels(Resolution r, int w, int h, int shadowMapSize) {
         case Resolution::ShadowMap: return std::size_t(shadowMapSize) * std::size_t(shadowMapSize);
         case Resolution::Pyramid: return pyramid(std::size_t(w), std::size_t(h));
         case Resolution::HalfPyramid: return pyramid(hw, hh);
+        case Resolution::TileRing:
+            return std::size_t(w) * std::size_t(std::min(h, kChainRingTileRows * kTileSize));
     }
     return 0;
 }

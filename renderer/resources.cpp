@@ -74,9 +74,9 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HiZPacked, "hiz.packed", "", F::F32, R::Pyramid, L::Transient},
     {Res::ColorPyramid, "colorPyramid", "R,G,B", F::F32, R::Pyramid, L::Transient},
     {Res::RayPdf, "ray.pdf", "", F::F32, R::Full, L::Transient},
-    {Res::MarchHit, "march.hit", "", F::F32, R::Full, L::Transient},
-    {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::Full, L::Transient},
-    {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::Full, L::Transient},
+    {Res::MarchHit, "march.hit", "", F::F32, R::TileRing, L::Transient},
+    {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::TileRing, L::Transient},
+    {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::TileRing, L::Transient},
     {Res::HalfGBuffer, "half.gbuffer",
      "viewZ,normal.X,normal.Y,normal.Z,albedo.R,albedo.G,"
      "albedo.B,metallic",
@@ -152,6 +152,7 @@ std::string_view resolutionName(Resolution r) {
         case Resolution::ShadowMap: return "shadow map";
         case Resolution::Pyramid: return "pyramid";
         case Resolution::HalfPyramid: return "half pyramid";
+        case Resolution::TileRing: return "tile ring";
     }
     return "?";
 }

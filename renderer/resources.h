@@ -28,11 +28,13 @@ enum class LayerGroup : uint8_t {
 inline constexpr int kLayerGroupCount = 4;
 
 // Where a resource's texels lie: the frame's pixels, the half frame's (one per 2x2 block),
-// the shadow map's (RenderSettings::shadowMapSize squared), or a pyramid over the frame's or
+// the shadow map's (RenderSettings::shadowMapSize squared), a pyramid over the frame's or
 // the half frame's pixels (that size, then each level halved down to one texel: the Hi-Z and
-// colour pyramids).
-enum class Resolution : uint8_t { Full, Half, ShadowMap, Pyramid, HalfPyramid };
-// "full", "half", "shadow map", "pyramid", "half pyramid"
+// colour pyramids), or a tile chain's ring (trace/tile_chain.h: kChainRingTileRows tile rows
+// of the frame's width, the frame's height where that is less; the frame's on the truth's
+// stage-by-stage path).
+enum class Resolution : uint8_t { Full, Half, ShadowMap, Pyramid, HalfPyramid, TileRing };
+// "full", "half", "shadow map", "pyramid", "half pyramid", "tile ring"
 std::string_view resolutionName(Resolution r);
 
 // How long a resource lives: within the frame (its memory reused once its last pass has run),
