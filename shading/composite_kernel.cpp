@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/lane_vec.h"
+#include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "shading/composite_kernel.h"
 #include "shading/direct_lanes.h"
@@ -18,6 +19,10 @@ constexpr int kW = int(ln::kWidth<Lane>);
 
 SSRT_INLINE V3 load3(const float* const* p, std::size_t o) {
     return {ln::load<Lane>(p[0] + o), ln::load<Lane>(p[1] + o), ln::load<Lane>(p[2] + o)};
+}
+SSRT_INLINE V3 load3(const SignalIn* p, std::size_t o) {
+    return {ln::loadSignal<Lane>(p[0], o), ln::loadSignal<Lane>(p[1], o),
+            ln::loadSignal<Lane>(p[2], o)};
 }
 
 void compositeChunk(const CompositeArgs& a, int x, int y) {

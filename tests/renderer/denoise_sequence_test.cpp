@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "core/pixel_formats.h"
 #include "frame_hash.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
@@ -83,9 +84,9 @@ double specularError(const Frame& f, const Frame& ref) {
             if (!(f.gbuffer.viewZ.at(x, y) > 0.0f) || !(f.gbuffer.roughness.at(x, y) < 0.3f))
                 continue;
             for (int c = 0; c < 3; ++c) {
-                const double r =
-                    ref.trace.ssr.color[c].at(x, y) * ref.trace.ssr.opacity.at(x, y) +
-                    ref.direct.envSpecular[c].at(x, y) * (1.0 - ref.trace.ssr.opacity.at(x, y));
+                const double r = ref.trace.ssr.color[c].at(x, y) * ref.trace.ssr.opacity.at(x, y) +
+                                 decodeF16(ref.direct.envSpecular[c].at(x, y)) *
+                                     (1.0 - ref.trace.ssr.opacity.at(x, y));
                 const double d = f.trace.denoise.out.specular[c].at(x, y) - r;
                 sum += d * d / (r * r + 0.01);
             }
