@@ -64,8 +64,16 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
 
 void compositeTile(const CompositeArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+        // The direct pass's f16 parts: the row two below fetched ahead (prefetchRowF16).
+        if (y + 2 < y1) {
+            const std::size_t ahead = std::size_t(y + 2) * args.stride;
+            for (const SignalIn* part :
+                 {args.direct, args.emission, args.envDiffuse, args.envSpecular, args.specWeight})
+                ln::prefetchRowF16(part, 3, ahead, x0, x1);
+        }
         for (int x = x0; x < x1; x += kW) compositeChunk(args, x, y);
+    }
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

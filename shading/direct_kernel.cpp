@@ -145,6 +145,13 @@ void shadeTile(const DirectArgs& args, int tile) {
     for (int p = 0; p < 7; ++p) bufPtr[p] = args.out[p] ? rowBuf[p] : nullptr;
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
+        // The f16 parts: the row two below fetched ahead (core/signal_lanes.h).
+        if (y + 2 < y1) {
+            const std::size_t ahead = std::size_t(y + 2) * args.outStride;
+            for (const SignalOut* part : {args.direct, args.emission, args.envDiffuse,
+                                          args.envSpecular, args.specWeight, args.hitLight})
+                ln::prefetchRowF16(part, 3, ahead, x0, x1);
+        }
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
         for (int p = 0; p < 7; ++p) {
             if (!bufPtr[p]) continue;
