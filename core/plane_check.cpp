@@ -4,7 +4,8 @@
 
 namespace ssrt {
 
-void PlaneCheck::check(const PlaneF* p, std::string_view what) {
+template <class T>
+void PlaneCheck::check(const Plane<T>* p, std::string_view what) {
     const std::string name = pass_ + ": " + std::string(what);
     if (!p || p->empty()) throw std::invalid_argument(name + " is missing");
     if (p->width() != width_ || p->height() != height_)
@@ -13,5 +14,7 @@ void PlaneCheck::check(const PlaneF* p, std::string_view what) {
                                     std::to_string(width_) + "x" + std::to_string(height_));
     stride_ = p->stride();
 }
+template void PlaneCheck::check(const PlaneF*, std::string_view);
+template void PlaneCheck::check(const PlaneU16*, std::string_view);
 
 }  // namespace ssrt

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/float_planes.h"
 #include "core/image.h"
 
 namespace ssrt {
@@ -26,8 +27,21 @@ public:
         return p->row(0);
     }
     const float* operator()(const PlaneF& p, std::string_view what) { return (*this)(&p, what); }
+    const uint16_t* operator()(const PlaneU16* p, std::string_view what) {
+        check(p, what);
+        return p->row(0);
+    }
+    // A plane of either format (FloatPlane): its first row as a kernel reads it.
+    SignalIn operator()(FloatPlane p, std::string_view what) {
+        if (p.f16) return (*this)(p.f16, what);
+        return (*this)(p.f32, what);
+    }
     // An output plane: the same check, a writable row.
     float* output(PlaneF& p, std::string_view what) {
+        check(&p, what);
+        return p.row(0);
+    }
+    uint16_t* output(PlaneU16& p, std::string_view what) {
         check(&p, what);
         return p.row(0);
     }
@@ -35,7 +49,8 @@ public:
     std::size_t stride() const { return stride_; }
 
 private:
-    void check(const PlaneF* p, std::string_view what);
+    template <class T>
+    void check(const Plane<T>* p, std::string_view what);
 
     std::string pass_;
     int width_, height_;

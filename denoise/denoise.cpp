@@ -145,7 +145,8 @@ void frontEnd(Context& c) {
     if (in.ssr[0]) {
         for (int i = 0; i < 3; ++i) {
             a.ssr[i] = in.ssr[i]->row(0);
-            a.envSpecular[i] = in.envSpecular[i]->row(0);
+            a.envSpecular[i] = in.envSpecular[i].f16 ? SignalIn(in.envSpecular[i].f16->row(0))
+                                                     : SignalIn(in.envSpecular[i].f32->row(0));
         }
         a.ssrOpacity = in.ssrOpacity->row(0);
         a.specularHit = in.specularHitDistance->row(0);

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/float_planes.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/plane_pool.h"
@@ -55,7 +56,7 @@ struct DenoiseInputs {
     // opacity ssr + (1 - opacity) environment; the mean hit distance (0: no hit).
     const PlaneF* ssr[3] = {};
     const PlaneF* ssrOpacity = nullptr;
-    const PlaneF* envSpecular[3] = {};
+    FloatPlane envSpecular[3] = {};  // f32 or f16 (the direct pass's)
     const PlaneF* specularHitDistance = nullptr;
     // Pixels this rough or rougher have no specular signal (SSR's roughness fade end).
     float specularMaxRoughness = 1.0f;

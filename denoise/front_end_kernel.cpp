@@ -1,5 +1,6 @@
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
+#include "core/signal_lanes.h"
 #include "denoise/reblur_lanes.h"
 
 // REBLUR's front end, one copy per ISA (denoise/reblur_lanes.h has what the passes share).
@@ -54,8 +55,13 @@ void reblurFrontEndTile(const ReblurFrontEndArgs& a, int tile) {
     const ReblurView& v = a.view;
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
     uint8_t flags = 0;
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+        // The direct pass's f16 envSpecular: the row two below fetched ahead (core/
+        // signal_lanes.h, prefetchRowF16).
+        if (a.ssr[0] && y + 2 < y1)
+            ln::prefetchRowF16(a.envSpecular, 3, std::size_t(y + 2) * v.stride, x0, x1);
         for (int x = x0; x < x1; x += kW) frontEndChunk(a, x, y, flags);
+    }
     a.tiles[tile] = flags;
 }
 

@@ -1,5 +1,6 @@
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
+#include "core/signal_lanes.h"
 #include "denoise/reblur_lanes.h"
 
 // REBLUR's history fix, one copy per ISA (denoise/reblur_lanes.h has what the passes share).
@@ -70,7 +71,7 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
 
 // The fast history a frame without history has: the input's luma, as the temporal pass
 // would have stored it in its f16 plane.
-Lane inputLuma(Lane r, Lane g, Lane b) { return roundedToF16(rb::luma(r, g, b)); }
+Lane inputLuma(Lane r, Lane g, Lane b) { return ln::roundedToF16<Lane>(rb::luma(r, g, b)); }
 
 // The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
 // "fast history" clamp), more firmly the older the pixel.

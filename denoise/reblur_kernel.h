@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "core/float_planes.h"
 #include "denoise/reblur_math.h"
 
 namespace ssrt {
@@ -28,29 +29,10 @@ struct ReblurView {
 
 inline constexpr uint8_t kTileDiffuse = 1, kTileSpecular = 2;
 
-// A signal plane (radiance, normalised hit distance, fast luma) as a pass reads it: the
-// denoiser keeps its own in f16 (core/pixel_formats.h: decoded on load, the arithmetic in
-// f32); a caller may hand f32 planes (the tests' walls). Row 0 of one of the two, or null. Its
-// stride is the view's (core/image.h: planes of one size share a stride whatever the format).
-struct SignalIn {
-    const float* f32 = nullptr;
-    const uint16_t* f16 = nullptr;
-    SignalIn() = default;
-    SignalIn(std::nullptr_t) {}
-    SignalIn(const float* p) : f32(p) {}
-    SignalIn(const uint16_t* p) : f16(p) {}
-    explicit operator bool() const { return f32 || f16; }
-};
-// A signal plane a pass writes: f16 (encoded, round to nearest even) or f32.
-struct SignalOut {
-    float* f32 = nullptr;
-    uint16_t* f16 = nullptr;
-    SignalOut() = default;
-    SignalOut(std::nullptr_t) {}
-    SignalOut(float* p) : f32(p) {}
-    SignalOut(uint16_t* p) : f16(p) {}
-    explicit operator bool() const { return f32 || f16; }
-};
+// Signal planes (radiance, normalised hit distance, fast luma) as a pass reads and writes them
+// (SignalIn, SignalOut: core/float_planes.h): the denoiser keeps its own in f16 (decoded on
+// load, the arithmetic in f32); a caller may hand f32 planes (the tests' walls). Their stride
+// is the view's.
 
 struct ReblurFrontEndArgs {
     ReblurView view;
@@ -60,7 +42,7 @@ struct ReblurFrontEndArgs {
     const float* metallic = nullptr;
     const float* ssr[3] = {};  // null: no specular signal
     const float* ssrOpacity = nullptr;
-    const float* envSpecular[3] = {};
+    SignalIn envSpecular[3] = {};  // f32 or f16 (the direct pass's)
     const float* specularHit = nullptr;
     float specularMaxRoughness = 1.0f;
     // RGB and the normalised hit distance of each signal given.

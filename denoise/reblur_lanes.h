@@ -56,11 +56,6 @@ SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
 SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
     return ln::gather(plane, index, run);
 }
-// What an f16 signal plane gives back for `x` (storeAt then loadAt).
-SSRT_INLINE Lane roundedToF16(Lane x) {
-    const Lane big(65504.0f);
-    return ln::f16Value<Lane>(ln::f16Bits(ln::select(x > big, big, x)));
-}
 SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
     if (plane.f16) {
         const Lane big(65504.0f);

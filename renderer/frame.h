@@ -108,14 +108,17 @@ struct IdPlanes : PlaneTable<IdPlanes> {
 
 // The direct pass's parts for the composite and the truth (shading/direct_kernel.h, DirectArgs
 // says what each holds), scene-linear; and the light SSGI reads at its hits. Not file layers.
+// f16 (IEEE binary16 bits, clamped to 65504: core/float_planes.h), half an f32's memory: they
+// live from the direct pass to the composite, across SSR and the denoiser, where the frame's
+// memory peaks; readers decode them (core/signal_lanes.h; FloatPlane::at).
 struct DirectParts : PlaneTable<DirectParts> {
-    PlaneF direct[3];
-    PlaneF emission[3];    // only where some material emits (DirectArgs::anyEmissive)
-    PlaneF envDiffuse[3];  // only without SSGI (whose light the composite reads instead)
-    PlaneF envSpecular[3];
-    PlaneF specWeight[3];
-    PlaneF hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
-                         // pass adds the reflected last frame's light: addSsgiFeedback)
+    PlaneU16 direct[3];
+    PlaneU16 emission[3];    // only where some material emits (DirectArgs::anyEmissive)
+    PlaneU16 envDiffuse[3];  // only without SSGI (whose light the composite reads instead)
+    PlaneU16 envSpecular[3];
+    PlaneU16 specWeight[3];
+    PlaneU16 hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
+                           // pass adds the reflected last frame's light: addSsgiFeedback)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {

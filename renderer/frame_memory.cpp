@@ -51,7 +51,7 @@ bool inScratch(Frame& f, Res id, bool release) {
             return true;
         }
         case Res::HalfHitLight:
-            for (PlaneF& p : s.half.frame.hitLight) free(p);
+            for (auto& p : s.half.frame.hitLight) free(p);
             return true;
         case Res::HalfBackZ: return free(s.half.frame.backZ);
         case Res::HalfGuides: {
@@ -86,13 +86,17 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth
     // name it lacks), and the direct pass's parts marked.
     PlanePool& pool = frame.scratch.pool;
     std::array<std::vector<PlaneF*>, kResourceCount + 1> planes;
-    forEachFramePlane(frame, [&](std::string_view name, PlaneF& p) {
+    std::array<std::vector<PlaneU16*>, kResourceCount + 1> planesU16;
+    forEachFramePlane(frame, [&](std::string_view name, auto& p) {
         pool.give(p);
-        planes[std::size_t(resourceOfChannel(name))].push_back(&p);
+        const std::size_t id = std::size_t(resourceOfChannel(name));
+        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, PlaneU16>)
+            planesU16[id].push_back(&p);
+        else planes[id].push_back(&p);
     });
     std::array<bool, kResourceCount + 1> part{};
     frame.direct.forEachPlane(
-        [&](std::string_view name, PlaneF&) { part[std::size_t(resourceOfChannel(name))] = true; });
+        [&](std::string_view name, auto&) { part[std::size_t(resourceOfChannel(name))] = true; });
     const PassDecl* first = passDecls().data();
     for (const GraphResource& r : graph.resources) {
         const std::size_t id = std::size_t(r.id);
@@ -100,12 +104,13 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth
                   .first = int(graph.passes[r.first].decl - first),
                   .last = int(graph.passes[r.last].decl - first),
                   .transient = r.lifetime == Lifetime::Transient,
-                  .planes = std::move(planes[id])};
+                  .planes = std::move(planes[id]),
+                  .planesU16 = std::move(planesU16[id])};
         if (inScratch(frame, r.id, false)) {
             // (its pass sizes its own buffers: nothing to take)
             held.taken = true;
             if (held.transient && !forTruth) held_.push_back(std::move(held));
-        } else if (!held.planes.empty()) {
+        } else if (!held.planes.empty() || !held.planesU16.empty()) {
             held.transient = held.transient && !(forTruth && part[id]);
             held_.push_back(std::move(held));
         }
@@ -119,6 +124,7 @@ void FrameMemory::take(int through) {
             throw std::logic_error("frame memory: '" + std::string(resourceDecl(r.id).name) +
                                    "' is first written by a pass no step ran");
         for (PlaneF* p : r.planes) frame_.scratch.pool.take(*p, graph_.width, graph_.height);
+        for (PlaneU16* p : r.planesU16) frame_.scratch.pool.take(*p, graph_.width, graph_.height);
         r.taken = true;
     }
 }
@@ -126,8 +132,9 @@ void FrameMemory::take(int through) {
 void FrameMemory::give(int through) {
     for (Held& r : held_) {
         if (!r.transient || r.given || !r.taken || r.last > through) continue;
-        if (r.planes.empty()) inScratch(frame_, r.id, true);
+        if (r.planes.empty() && r.planesU16.empty()) inScratch(frame_, r.id, true);
         for (PlaneF* p : r.planes) frame_.scratch.pool.give(*p);
+        for (PlaneU16* p : r.planesU16) frame_.scratch.pool.give(*p);
         r.given = true;
     }
 }

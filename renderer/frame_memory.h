@@ -54,7 +54,9 @@ private:
         bool transient;
         // Its planes in the Frame's groups, in channel order; none for a resource in
         // Frame::Scratch's own buffers, which are freed, not pooled, after its last pass.
+        // (A resource's planes are of one format: f32 or f16.)
         std::vector<PlaneF*> planes;
+        std::vector<PlaneU16*> planesU16;
         bool taken = false, given = false;
     };
     static int declIndex(std::string_view pass);

@@ -274,7 +274,7 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
             // Straight into the half frame that SSGI traces (its chosen pixels this frame).
             HalfFrame& hf = frame.scratch.half.frame;
             const TraceCamera half = halfCamera(c.trace);
-            for (PlaneF& p : hf.hitLight) p.ensureSize(half.width, half.height);
+            for (PlaneU16& p : hf.hitLight) p.ensureSize(half.width, half.height);
             for (int ch = 0; ch < 3; ++ch) da.hitLightHalf[ch] = hf.hitLight[ch].row(0);
             da.halfStride = hf.hitLight[0].stride();
             const PixelOffset o = halfOffset(frameIndex);

@@ -72,7 +72,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
             backZ(frame.scratch.backZ)};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
         if (hitLightAtHalf(c.args.settings))
-            for (const PlaneF*& p : src.hitLight) p = nullptr;
+            for (const PlaneU16*& p : src.hitLight) p = nullptr;
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         if (ts.denoise.enabled) src.motion[0] = &g.motion[0], src.motion[1] = &g.motion[1];
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());

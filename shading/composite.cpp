@@ -11,6 +11,7 @@ namespace ssrt {
 namespace {
 
 bool anyOf(const PlaneF* const p[3]) { return p[0] || p[1] || p[2]; }
+bool anyOf(const FloatPlane p[3]) { return p[0] || p[1] || p[2]; }
 
 }  // namespace
 
@@ -18,7 +19,7 @@ Compositor::Compositor(Isa isa, const CompositeInputs& in, PlaneF color[3], Plan
                        bool tileSsgi)
     : tileSsgi_(tileSsgi) {
     if (!in.direct[0]) throw std::invalid_argument("composite: direct missing");
-    const int w = in.direct[0]->width(), h = in.direct[0]->height();
+    const int w = in.direct[0].width(), h = in.direct[0].height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("composite: empty planes");
     for (int c = 0; c < 3; ++c) {
         color[c].ensureSize(w, h);

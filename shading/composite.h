@@ -9,10 +9,12 @@
 //              SSR off:  specWeight envSpecular
 //   color    = (((direct + diffuse) + specular) + emission) exposure
 //   display  = sRGB(ACES(color))
-// With both off this is the direct pass's own sum, in its order: `color` and `display` equal
-// the direct kernel's to the bit (tests/shading/composite_test.cpp).
+// With both off this is the direct pass's own sum, in its order: from f32 parts `color` and
+// `display` equal the direct kernel's to the bit (tests/shading/composite_test.cpp); from the
+// renderer's f16 parts, to their rounding.
 #pragma once
 
+#include "core/float_planes.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -20,13 +22,14 @@
 
 namespace ssrt {
 
-// All planes of one size; scene-linear (before exposure) like the direct pass's parts.
+// All planes of one size; scene-linear (before exposure) like the direct pass's parts, which
+// may be f32 or f16 (FloatPlane).
 struct CompositeInputs {
-    const PlaneF* direct[3] = {};       // DirectArgs::direct
-    const PlaneF* emission[3] = {};     // DirectArgs::emission (null: no emission)
-    const PlaneF* envDiffuse[3] = {};   // DirectArgs::envDiffuse (may be null with SSGI on)
-    const PlaneF* envSpecular[3] = {};  // DirectArgs::envSpecular
-    const PlaneF* specWeight[3] = {};   // DirectArgs::specWeight
+    FloatPlane direct[3] = {};       // DirectArgs::direct
+    FloatPlane emission[3] = {};     // DirectArgs::emission (null: no emission)
+    FloatPlane envDiffuse[3] = {};   // DirectArgs::envDiffuse (may be null with SSGI on)
+    FloatPlane envSpecular[3] = {};  // DirectArgs::envSpecular
+    FloatPlane specWeight[3] = {};   // DirectArgs::specWeight
     // SSGI (trace/ssgi.h): null = off. With it on, the G-buffer's viewZ, albedo and metallic.
     const PlaneF* ssgi[3] = {};
     const PlaneF* viewZ = nullptr;

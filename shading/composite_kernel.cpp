@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/lane_vec.h"
+#include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "shading/composite_kernel.h"
 #include "shading/direct_lanes.h"
@@ -18,6 +19,10 @@ constexpr int kW = int(ln::kWidth<Lane>);
 
 SSRT_INLINE V3 load3(const float* const* p, std::size_t o) {
     return {ln::load<Lane>(p[0] + o), ln::load<Lane>(p[1] + o), ln::load<Lane>(p[2] + o)};
+}
+SSRT_INLINE V3 load3(const SignalIn* p, std::size_t o) {
+    return {ln::loadSignal<Lane>(p[0], o), ln::loadSignal<Lane>(p[1], o),
+            ln::loadSignal<Lane>(p[2], o)};
 }
 
 void compositeChunk(const CompositeArgs& a, int x, int y) {
@@ -59,8 +64,16 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
 
 void compositeTile(const CompositeArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+        // The direct pass's f16 parts: the row two below fetched ahead (prefetchRowF16).
+        if (y + 2 < y1) {
+            const std::size_t ahead = std::size_t(y + 2) * args.stride;
+            for (const SignalIn* part :
+                 {args.direct, args.emission, args.envDiffuse, args.envSpecular, args.specWeight})
+                ln::prefetchRowF16(part, 3, ahead, x0, x1);
+        }
         for (int x = x0; x < x1; x += kW) compositeChunk(args, x, y);
+    }
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "core/float_planes.h"
 
 namespace ssrt {
 
@@ -13,11 +14,12 @@ namespace ssrt {
 struct CompositeArgs {
     int width, height, tilesX;
     std::size_t stride;
-    const float* direct[3];
-    const float* emission[3];  // null: none
-    const float* envDiffuse[3];
-    const float* envSpecular[3];
-    const float* specWeight[3];
+    // The direct pass's parts, f32 or f16 (core/float_planes.h)
+    SignalIn direct[3];
+    SignalIn emission[3];  // null: none
+    SignalIn envDiffuse[3];
+    SignalIn envSpecular[3];
+    SignalIn specWeight[3];
     const float* ssgi[3];  // null: SSGI off
     // ssgi's planes may be a tile's (the renderer's upsample run tile by tile into them): their
     // own stride, and their element (0, 0) the frame's pixel (ssgiX0, ssgiY0).

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/lane_vec.h"
+#include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "shading/direct_kernel.h"
 #include "shading/direct_lanes.h"
@@ -32,10 +33,10 @@ void hitLightToHalf(const DirectArgs& a, int x, int y, const V3& light) {
         return (q < size ? q : size - 1) == p;
     };
     if (!chosen(y, a.halfOffsetY, a.height)) return;
-    alignas(64) float v[3][kW];
-    ln::store(v[0], light.x);
-    ln::store(v[1], light.y);
-    ln::store(v[2], light.z);
+    alignas(64) uint16_t v[3][kW];
+    ln::storeF16(v[0], ln::clampedToF16(light.x));
+    ln::storeF16(v[1], ln::clampedToF16(light.y));
+    ln::storeF16(v[2], ln::clampedToF16(light.z));
     const std::size_t row = std::size_t(y / 2) * a.halfStride;
     for (int i = 0; i < kW && x + i < a.width; ++i) {
         const int px = x + i;
@@ -111,11 +112,11 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     }
     // The optional parts, straight into their planes (scene-linear, before the exposure).
     const std::size_t oo = std::size_t(y) * a.outStride + x;
-    const auto put = [&](float* const* dst, const V3& v) {
+    const auto put = [&](const SignalOut* dst, const V3& v) {
         if (!dst[0]) return;
-        ln::store(dst[0] + oo, v.x);
-        ln::store(dst[1] + oo, v.y);
-        ln::store(dst[2] + oo, v.z);
+        ln::storeSignal(dst[0], oo, v.x);
+        ln::storeSignal(dst[1], oo, v.y);
+        ln::storeSignal(dst[2], oo, v.z);
     };
     put(a.direct, sun);
     put(a.emission, emission);
@@ -144,6 +145,13 @@ void shadeTile(const DirectArgs& args, int tile) {
     for (int p = 0; p < 7; ++p) bufPtr[p] = args.out[p] ? rowBuf[p] : nullptr;
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
+        // The f16 parts: the row two below fetched ahead (core/signal_lanes.h).
+        if (y + 2 < y1) {
+            const std::size_t ahead = std::size_t(y + 2) * args.outStride;
+            for (const SignalOut* part : {args.direct, args.emission, args.envDiffuse,
+                                          args.envSpecular, args.specWeight, args.hitLight})
+                ln::prefetchRowF16(part, 3, ahead, x0, x1);
+        }
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
         for (int p = 0; p < 7; ++p) {
             if (!bufPtr[p]) continue;

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "core/float_planes.h"
 #include "core/gbuffer_rows.h"
 #include "shading/energy_tables.h"
 #include "shading/environment.h"
@@ -55,10 +56,13 @@ struct DirectArgs {
     float* out[7];
     std::size_t outStride;
     // Optional parts of `color`, for the composite (shading/composite_kernel.h); each an RGB
-    // triple of planes with outStride, null = not written (the outputs above keep their bits
-    // either way). Scene-linear: BEFORE the exposure, which the composite applies. Per pixel
+    // triple of planes with outStride, f32 or f16 (the renderer's are f16: core/float_planes.h,
+    // stored rounded to nearest even, clamped to 65504), null = not written (the outputs above
+    // keep their bits either way). Scene-linear: BEFORE the exposure, which the composite
+    // applies. Per pixel
     //   color = (((direct + envDiffuse) + specWeight * envSpecular) + emission) * exposure
-    // to the bit, in that order (so the composite can rebuild it exactly).
+    // in that order, before the parts are stored (f32 parts rebuild it to the bit; f16 ones
+    // to their rounding).
     //   direct:      sun light, Lambert + GGX with Kulla-Conty's multiple-scattering lobe,
     //                shadowed; on background pixels the sky seen through the pixel (the whole
     //                of `color` there, the other parts 0). Emission is NOT in it (a separate
@@ -73,22 +77,23 @@ struct DirectArgs {
     //                derivation over shade::shadeSurface, shading/direct_lanes.h), times the
     //                occlusion where there is one. `color` holds the same factor, so the sum
     //                above holds in every pixel.
-    float* direct[3];
-    float* emission[3];
-    float* envDiffuse[3];
-    float* envSpecular[3];
-    float* specWeight[3];
+    SignalOut direct[3];
+    SignalOut emission[3];
+    SignalOut envDiffuse[3];
+    SignalOut envSpecular[3];
+    SignalOut specWeight[3];
     // Optional too (null = not written): the Lambert part of the sun light leaving each
     // surface pixel, plus its emission where any material emits,
     //   albedo (1 - metallic) / pi  lightRadiance  saturate(n.l)  shadow  (+ emission),
     // the radiance SSGI reads at its hits (trace/ssgi.h), by the function SSGI's G-buffer path
     // uses (shade::lambertSunLight), so reading it gives the same bits; 0 on background.
-    float* hitLight[3];
+    SignalOut hitLight[3];
     // Optional (null = not written): hitLight at half resolution, for SSGI traced on a half
     // frame (trace/trace_layout.h): each half pixel (hx, hy) gets the value of its chosen
     // pixel, halfSource(hx, hy, {halfOffsetX, halfOffsetY}, width, height), as buildHalfFrame
-    // would copy it from hitLight, which then need not exist at full resolution.
-    float* hitLightHalf[3];
+    // would copy it from hitLight, which then need not exist at full resolution. f16, as the
+    // frame's hitLight (the same bits as a copy of it).
+    uint16_t* hitLightHalf[3];
     std::size_t halfStride;
     int halfOffsetX, halfOffsetY;
     // The GGX energy tables (E, E_avg, DFG; shading/energy_tables.h) that shade the

@@ -9,11 +9,11 @@
 
 namespace ssrt::test {
 
-inline bool sameBits(const PlaneF& a, const PlaneF& b) {
+template <class T>
+inline bool sameBits(const Plane<T>& a, const Plane<T>& b) {
     if (a.width() != b.width() || a.height() != b.height()) return false;
     for (int y = 0; y < a.height(); ++y)
-        if (std::memcmp(a.row(y), b.row(y), sizeof(float) * std::size_t(a.width())) != 0)
-            return false;
+        if (std::memcmp(a.row(y), b.row(y), sizeof(T) * std::size_t(a.width())) != 0) return false;
     return true;
 }
 

@@ -8,7 +8,10 @@
 
 namespace ssrt {
 
-void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], int threads) {
+namespace {
+
+template <class T>
+void feedback(Isa isa, const SsgiFeedbackInputs& in, Plane<T> hitLight[3], int threads) {
     const int w = hitLight[0].width(), h = hitLight[0].height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("addSsgiFeedback: empty hitLight");
     const TileGrid grid(w, h);
@@ -30,6 +33,15 @@ void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], 
     a.stride = need.stride();
     const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
+}
+
+}  // namespace
+
+void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneU16 hitLight[3], int threads) {
+    feedback(isa, in, hitLight, threads);
+}
+void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], int threads) {
+    feedback(isa, in, hitLight, threads);
 }
 
 SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sample,

@@ -50,11 +50,12 @@ struct SsgiInputs {
     const PlaneF* albedo[3] = {};      // "albedo.R/G/B"
     const PlaneF* metallic = nullptr;  // "metallic"
     const PlaneF* shadow = nullptr;    // the direct pass's "shadow"
-    const PlaneF* emission[3] = {};    // optional: DirectArgs::emission planes (null: none)
-    // Optional: DirectArgs::hitLight planes, L(x1 -> x0) of every pixel as above, computed
-    // by the direct pass; when given, normal, albedo, metallic, shadow and emission are not
-    // read (the same bits, fewer gathers).
-    const PlaneF* hitLight[3] = {};
+    FloatPlane emission[3] = {};       // optional: DirectArgs::emission planes (null: none)
+    // Optional: DirectArgs::hitLight planes (f16 as the renderer's, or f32), L(x1 -> x0) of
+    // every pixel as above, computed by the direct pass; when given, normal, albedo, metallic,
+    // shadow and emission are not read (the same light, fewer gathers; f16 planes hold it
+    // rounded to nearest even).
+    FloatPlane hitLight[3] = {};
     // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
     // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
     // renderer fills them; their plane pointers are not used.
@@ -74,6 +75,8 @@ struct SsgiFeedbackInputs {
 // Adds the feedback above to every surface pixel of hitLight[3] (the direct pass's
 // DirectArgs::hitLight, in place), so that resolveSsgi's hits read it. Throws
 // std::invalid_argument when a plane is missing or not of hitLight's size.
+void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneU16 hitLight[3], int threads);
+// The same on f32 planes.
 void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneF hitLight[3], int threads);
 
 // One sample's diffuse rays into out[3] (ensured to the frame's size): sample 0 overwrites,

@@ -4,6 +4,7 @@
 
 #include "core/lane_vec.h"
 #include "core/screen_lanes.h"
+#include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "shading/direct_lanes.h"
 #include "trace/ssgi_kernel.h"
@@ -21,9 +22,15 @@ constexpr int kW = int(ln::kWidth<Lane>);
 SSRT_INLINE V3 gather3(const float* const* planes, ILane i) {
     return {ln::gather(planes[0], i), ln::gather(planes[1], i), ln::gather(planes[2], i)};
 }
+SSRT_INLINE V3 gather3(const SignalIn* planes, ILane i) {
+    const ln::Run run = ln::runOf(i);
+    return {ln::gatherSignal<Lane>(planes[0], i, run), ln::gatherSignal<Lane>(planes[1], i, run),
+            ln::gatherSignal<Lane>(planes[2], i, run)};
+}
 
 // The Lambert direct light leaving the pixels i (plus their emission) from the G-buffer.
-// (The direct pass's hitLight planes hold the same bits: 3 gathers instead of 8 to 11.)
+// (The direct pass's hitLight planes hold the same light, f16 rounded: 3 gathers instead of 8
+// to 11.)
 SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
     const V3 lit = shade::lambertSunLight(a.lighting, gather3(a.normal, i), gather3(a.albedo, i),
                                           ln::gather(a.metallic, i), ln::gather(a.shadow, i));
@@ -90,8 +97,8 @@ void feedbackChunk(const SsgiFeedbackArgs& a, int x, int y) {
     const V3 reflected = albedo * keep * gather3(a.prevDiffuse, j);
     const Lane add[3] = {reflected.x, reflected.y, reflected.z};
     for (int c = 0; c < 3; ++c) {
-        const Lane lit = ln::load<Lane>(a.hitLight[c] + o);
-        ln::store(a.hitLight[c] + o, ln::select(use, lit + add[c], lit));
+        const Lane lit = ln::loadSignal<Lane>(a.hitLight[c].in(), o);
+        ln::storeSignal(a.hitLight[c], o, ln::select(use, lit + add[c], lit));
     }
 }
 

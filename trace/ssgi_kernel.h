@@ -19,8 +19,8 @@ struct SsgiArgs {
     const float* albedo[3];
     const float* metallic;
     const float* shadow;
-    const float* emission[3];  // all null: no emission
-    const float* hitLight[3];  // all null: computed from the planes above (SsgiInputs)
+    SignalIn emission[3];  // all null: no emission (f32 or f16: core/float_planes.h)
+    SignalIn hitLight[3];  // all null: computed from the planes above (SsgiInputs)
     // Rays and march: a batch's planes, with their own stride, whose element (0, 0) is the
     // frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
     const float* rayDir[3];  // view space
@@ -48,7 +48,7 @@ struct SsgiFeedbackArgs {
     const float* occlusion;  // null: 1
     const float* motion[2];
     const float* prevDiffuse[3];
-    float* hitLight[3];  // read and written in place
+    SignalOut hitLight[3];  // read and written in place (f32 or f16)
 };
 
 SSRT_DECLARE_KERNEL(void, ssgiFeedbackTile, (const SsgiFeedbackArgs& args, int tile))

@@ -58,7 +58,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     const int w = full.width, h = full.height;
     if (!hitLight) {
         PlaneCheck given("buildHalfFrame", hw, hh);
-        for (PlaneF& p : out.hitLight) given(p, "the half frame's hitLight");
+        for (PlaneU16& p : out.hitLight) given(&p, "the half frame's hitLight");
     }
     // What each half pixel copies from its chosen pixel (`chosen`), and from its block's
     // first pixel for the denoiser's guides (`guides`; motion halved).
@@ -77,8 +77,9 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     for (int c = 0; c < 3; ++c) {
         chosen.push_back({&out.normal[c], src.normal[c]});
         chosen.push_back({&out.albedo[c], src.albedo[c]});
-        if (hitLight) chosen.push_back({&out.hitLight[c], src.hitLight[c]});
     }
+    if (hitLight)
+        for (PlaneU16& p : out.hitLight) p.ensureSize(hw, hh);
     const bool withGuides = src.motion[0] != nullptr;
     if (withGuides)
         for (int c = 0; c < 2; ++c) need(src.motion[c], "motion");
@@ -105,6 +106,12 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
             float* to = p.to->row(hy);
             for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
         }
+        if (hitLight)
+            for (int c = 0; c < 3; ++c) {  // (f16 bits)
+                const uint16_t* in = src.hitLight[c]->row(sy);
+                uint16_t* to = out.hitLight[c].row(hy);
+                for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
+            }
         if (withGuides)
             for (const Copy& p : guides) {
                 const float* in = p.from->row(gy);

@@ -83,7 +83,8 @@ TraceCamera halfCamera(const TraceCamera& full);
 struct HalfFrame : PlaneTable<HalfFrame> {
     TraceCamera camera;  // halfCamera of the full one
     PixelOffset offset;  // the frame's chosen pixel in each block
-    PlaneF viewZ, normal[3], albedo[3], metallic, hitLight[3];
+    PlaneF viewZ, normal[3], albedo[3], metallic;
+    PlaneU16 hitLight[3];  // f16, as the direct pass's (renderer/frame.h, DirectParts)
     PlaneF backZ;  // the chosen pixels' back-face depth (HalfFrameSource::backZ given; empty
                    // otherwise)
     // The guides of a signal denoised on the half frame (HalfFrameSource::motion given; empty
@@ -118,7 +119,7 @@ struct HalfFrameSource {
     const PlaneF* metallic = nullptr;
     // DirectArgs::hitLight (SSGI's radiance at a hit); all null: out.hitLight holds the
     // chosen pixels' already, at the half frame's size (DirectArgs::hitLightHalf).
-    const PlaneF* hitLight[3] = {};
+    const PlaneU16* hitLight[3] = {};  // f16
     // Optional: the G-buffer's motion (full pixels); given, the denoiser's guides are made.
     const PlaneF* motion[2] = {};
     // Optional: the back-face depth layer (raster/back_depth.h), which the march reads.

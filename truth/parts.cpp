@@ -20,8 +20,8 @@ PlaneF surfaceOpacity(const Frame& frame) {
 
 }  // namespace
 
-void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const PlaneF& opacity,
-                     const PlaneF* const ssgi[3], PlaneF specular[3], PlaneF diffuse[3]) {
+void specularDiffuse(const Frame& frame, const FloatPlane ssr[3], const PlaneF& opacity,
+                     const FloatPlane ssgi[3], PlaneF specular[3], PlaneF diffuse[3]) {
     const DirectParts& parts = frame.direct;
     const PlaneF& viewZ = frame.gbuffer.viewZ;
     const PlaneF& metallic = frame.gbuffer.metallic;
@@ -37,10 +37,10 @@ void specularDiffuse(const Frame& frame, const PlaneF* const ssr[3], const Plane
                 // The composite's operations, in its order.
                 const float o = opacity.at(x, y);
                 const float incoming =
-                    ssr[c]->at(x, y) * o + parts.envSpecular[c].at(x, y) * (1.0f - o);
-                specular[c].at(x, y) = parts.specWeight[c].at(x, y) * incoming;
+                    ssr[c].at(x, y) * o + decodeF16(parts.envSpecular[c].at(x, y)) * (1.0f - o);
+                specular[c].at(x, y) = decodeF16(parts.specWeight[c].at(x, y)) * incoming;
                 const float colour = albedo.at(x, y) * (1.0f - metallic.at(x, y));
-                float bounce = colour * ssgi[c]->at(x, y);
+                float bounce = colour * ssgi[c].at(x, y);
                 if (occlusion) bounce *= occlusion->at(x, y);
                 diffuse[c].at(x, y) = viewZ.at(x, y) <= 0.0f ? 0.0f : bounce;
             }
@@ -68,21 +68,21 @@ FrameParts frameParts(const Frame& frame) {
     const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
                            : specDenoised ? PlaneF(frame.width, frame.height, 1.0f)
                                           : PlaneF();
-    const PlaneF* ssr[3];
-    const PlaneF* ssgi[3];
+    FloatPlane ssr[3];
+    FloatPlane ssgi[3];
     for (int c = 0; c < 3; ++c) {
-        ssr[c] = !ssrOn         ? &parts.envSpecular[c]
-                 : specDenoised ? &denoised.specular[c]
-                                : &ssrPlanes.color[c];
-        ssgi[c] = !ssgiOn        ? &parts.envDiffuse[c]
-                  : diffDenoised ? &denoised.diffuse[c]
-                                 : &frame.trace.ssgi.color[c];
+        ssr[c] = !ssrOn         ? FloatPlane(&parts.envSpecular[c])
+                 : specDenoised ? FloatPlane(&denoised.specular[c])
+                                : FloatPlane(&ssrPlanes.color[c]);
+        ssgi[c] = !ssgiOn        ? FloatPlane(&parts.envDiffuse[c])
+                  : diffDenoised ? FloatPlane(&denoised.diffuse[c])
+                                 : FloatPlane(&frame.trace.ssgi.color[c]);
     }
     specularDiffuse(frame, ssr, ssrOn && !specDenoised ? ssrPlanes.opacity : opacity, ssgi,
                     fp.specular, fp.diffuse);
     for (int c = 0; c < 3; ++c) {
-        fp.direct[c] = parts.direct[c].clone();
-        if (!ssgiOn) fp.diffuse[c] = parts.envDiffuse[c].clone();
+        fp.direct[c] = decodedF16(parts.direct[c]);
+        if (!ssgiOn) fp.diffuse[c] = decodedF16(parts.envDiffuse[c]);
     }
     return fp;
 }
@@ -109,8 +109,8 @@ void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmiss
     ci.exposure = exposure;
     PlaneF display[3];
     composite(isa, ci, ref.color, display, threads);
-    const PlaneF* ssr[3] = {&ref.ssr[0], &ref.ssr[1], &ref.ssr[2]};
-    const PlaneF* ssgi[3] = {&ref.ssgi[0], &ref.ssgi[1], &ref.ssgi[2]};
+    const FloatPlane ssr[3] = {&ref.ssr[0], &ref.ssr[1], &ref.ssr[2]};
+    const FloatPlane ssgi[3] = {&ref.ssgi[0], &ref.ssgi[1], &ref.ssgi[2]};
     specularDiffuse(frame, ssr, opacity, ssgi, ref.specular, ref.diffuse);
 }
 

@@ -169,13 +169,14 @@ glm::vec3 pointOf(const PointSurface& ps) { return {ps.p.x, ps.p.y, ps.p.z}; }
 // own direct part) on background pixels.
 void renderDirect(const Setup& s, PlaneF out[3]) {
     const DirectArgs& a = s.lighting.args;
-    const PlaneF* frameDirect = s.frame.direct.direct;
+    const PlaneU16* frameDirect = s.frame.direct.direct;  // f16
     forBandTiles(s, [&](int tile) {
         const TileRect r = s.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 if (!(a.g.viewZ[std::size_t(y) * a.g.stride + x] > 0.0f)) {
-                    for (int c = 0; c < 3; ++c) out[c].at(x, y) = frameDirect[c].at(x, y);
+                    for (int c = 0; c < 3; ++c)
+                        out[c].at(x, y) = decodeF16(frameDirect[c].at(x, y));
                     continue;
                 }
                 const PointSurface ps = reference::pixelSurface(a, x, y);
@@ -286,7 +287,7 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
         });
         progress.step();
     }
-    const PlaneF* envSpecular = f.direct.envSpecular;
+    const PlaneU16* envSpecular = f.direct.envSpecular;  // f16
     const PlaneF& viewZ = f.gbuffer.viewZ;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
@@ -294,7 +295,7 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
             for (int c = 0; c < 3; ++c)
                 out[c].at(x, y) = !(viewZ.at(x, y) > 0.0f) ? 0.0f
                                   : sums.w[i] > 0.0        ? float(sums.l[c][i] / sums.w[i])
-                                                           : envSpecular[c].at(x, y);
+                                                           : decodeF16(envSpecular[c].at(x, y));
         }
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pixel_formats.h"
 #include "material_maps.h"
 #include "plane_compare.h"
 #include "renderer/quality.h"
@@ -112,8 +113,8 @@ void checkLayers(const RenderSettings& s, const Scene& scene, HistoryCase hc) {
     CHECK(denoiserPasses(g) == timedDenoiserPasses(frame.stats));
     for (const PlaneRef& p : frame.layers())
         const_cast<PlaneF*>(p.plane)->fill(std::numeric_limits<float>::quiet_NaN());
-    frame.direct.forEachPlane([](std::string_view, PlaneF& p) {
-        if (!p.empty()) p.fill(std::numeric_limits<float>::quiet_NaN());
+    frame.direct.forEachPlane([](std::string_view, PlaneU16& p) {
+        if (!p.empty()) p.fill(encodeF16(std::numeric_limits<float>::quiet_NaN()));
     });
     h = FrameHistory();
     render(1);
@@ -146,7 +147,7 @@ TEST_CASE("frame graph: the frame's plane groups are named from the resource tab
     Frame f;
     FrameHistory h;
     int planes = 0;
-    const auto known = [&](std::string_view name, const PlaneF&) {
+    const auto known = [&](std::string_view name, const auto&) {
         ++planes;
         CHECK(resourceOfChannel(name) != Res::Count);
     };

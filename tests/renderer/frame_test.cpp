@@ -119,7 +119,7 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     // Names are unique across every table, the history's and the parts' included.
     std::set<std::string> names;
     int count = 0;
-    const auto add = [&](std::string_view n, const PlaneF&) {
+    const auto add = [&](std::string_view n, const auto&) {
         names.emplace(n);
         ++count;
     };

@@ -48,8 +48,8 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     CHECK(m.at("gbuffer") == 12 * plane);
     CHECK(m.at("ssr") == 7 * plane);
     // direct, sky specular and its weight, SSGI's hit light: no sky diffuse (SSGI's light
-    // replaces it), no emission (nothing in cornell emits).
-    CHECK(m.at("direct parts") == 12 * plane);
+    // replaces it), no emission (nothing in cornell emits); f16, half a float plane each.
+    CHECK(m.at("direct parts") == 12 * plane / 2);
     CHECK(m.at("denoised") == 8 * plane);
     // Between frames no scratch that passes hand on is held: its planes went back to the
     // planes' range after their last pass (renderer/frame_memory.h), whose pages stay the

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/pixel_formats.h"
 #include "core/rng.h"
 #include "core/tiles.h"
 #include "plane_compare.h"
@@ -95,8 +96,8 @@ struct DirectFixture {
         const int w = frame.width, h = frame.height;
         for (int c = 0; c < 3; ++c) {
             PlaneF* groups[5] = {direct, emission, envDiffuse, envSpecular, specWeight};
-            float** ptrs[5] = {args.direct, args.emission, args.envDiffuse, args.envSpecular,
-                               args.specWeight};
+            SignalOut* ptrs[5] = {args.direct, args.emission, args.envDiffuse, args.envSpecular,
+                                  args.specWeight};
             for (int k = 0; k < 5; ++k) {
                 groups[k][c] = PlaneF(w, h);
                 ptrs[k][c] = parts ? groups[k][c].row(0) : nullptr;
@@ -104,6 +105,35 @@ struct DirectFixture {
         }
         const auto fn = SSRT_DISPATCH(isa, shadeTile);
         parallelForTiles(TileGrid(w, h).count(), threads, [&](int t) { fn(args, t); });
+    }
+
+    // The same with f16 parts, as the renderer stores them (DirectParts).
+    PlaneU16 direct16[3], emission16[3], envDiffuse16[3], envSpecular16[3], specWeight16[3];
+    void shadeF16(Isa isa, int threads = 2) {
+        const int w = frame.width, h = frame.height;
+        for (int c = 0; c < 3; ++c) {
+            PlaneU16* groups[5] = {direct16, emission16, envDiffuse16, envSpecular16, specWeight16};
+            SignalOut* ptrs[5] = {args.direct, args.emission, args.envDiffuse, args.envSpecular,
+                                  args.specWeight};
+            for (int k = 0; k < 5; ++k) {
+                groups[k][c] = PlaneU16(w, h);
+                ptrs[k][c] = groups[k][c].row(0);
+            }
+        }
+        const auto fn = SSRT_DISPATCH(isa, shadeTile);
+        parallelForTiles(TileGrid(w, h).count(), threads, [&](int t) { fn(args, t); });
+    }
+    CompositeInputs inputsF16(float exposure) const {
+        CompositeInputs in;
+        for (int c = 0; c < 3; ++c) {
+            in.direct[c] = &direct16[c];
+            in.emission[c] = &emission16[c];
+            in.envDiffuse[c] = &envDiffuse16[c];
+            in.envSpecular[c] = &envSpecular16[c];
+            in.specWeight[c] = &specWeight16[c];
+        }
+        in.exposure = exposure;
+        return in;
     }
 
     CompositeInputs inputs(float exposure) const {
@@ -158,6 +188,63 @@ TEST_CASE(
                 }
             }
         }
+    }
+}
+
+// The renderer's parts are f16: each the f32 part rounded to nearest even (clamped to 65504),
+// the same bits on every ISA (F16C in the avx2 and avx512 copies, integer code elsewhere), and
+// the composite of them the same bits on every ISA and thread count, within f16's rounding of
+// the direct kernel's own colour.
+TEST_CASE("composite: f16 parts are the f32 ones rounded, the same bits on every ISA") {
+    for (const char* scene : {"cornell", "spheres"}) {
+        CAPTURE(scene);
+        DirectFixture f(scene, 1.3f);
+        f.shade(Isa::Scalar, true);
+        const PlaneF* f32[5] = {f.direct, f.emission, f.envDiffuse, f.envSpecular, f.specWeight};
+        const PlaneU16* f16[5] = {f.direct16, f.emission16, f.envDiffuse16, f.envSpecular16,
+                                  f.specWeight16};
+        PlaneF refColor[3];
+        for (int c = 0; c < 3; ++c) refColor[c] = f.out[c].clone();
+        PlaneF color0[3], display0[3];
+        bool first = true;
+        for (Isa isa : supportedIsas()) {
+            CAPTURE(isaName(isa));
+            f.shadeF16(isa);
+            int wrong = 0;
+            for (int k = 0; k < 5; ++k)
+                for (int c = 0; c < 3; ++c)
+                    for (int y = 0; y < f.frame.height; ++y)
+                        for (int x = 0; x < f.frame.width; ++x)
+                            wrong += f16[k][c].at(x, y) !=
+                                     encodeF16(std::min(f32[k][c].at(x, y), 65504.0f));
+            CHECK(wrong == 0);
+            for (int threads : {1, 2, 8}) {
+                PlaneF color[3], display[3];
+                composite(isa, f.inputsF16(1.3f), color, display, threads);
+                if (first) {
+                    for (int c = 0; c < 3; ++c) {
+                        color0[c] = color[c].clone();
+                        display0[c] = display[c].clone();
+                    }
+                    first = false;
+                }
+                for (int c = 0; c < 3; ++c) {
+                    CHECK(sameBits(color[c], color0[c]));
+                    CHECK(sameBits(display[c], display0[c]));
+                }
+            }
+        }
+        // Within a few f16 ulps (2^-11 relative) of the f32 parts' colour.
+        float worst = 0.0f;
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < f.frame.height; ++y)
+                for (int x = 0; x < f.frame.width; ++x) {
+                    const float want = refColor[c].at(x, y);
+                    worst = std::max(worst, std::abs(color0[c].at(x, y) - want) /
+                                                std::max(std::abs(want), 1e-3f));
+                }
+        MESSAGE(scene << ": largest relative difference from f32 parts " << worst);
+        CHECK(worst < 4.0f / 2048.0f);
     }
 }
 

@@ -157,8 +157,8 @@ TEST_CASE("half resolution: the chosen pixel of each block rotates over the four
     TraceCamera cam;
     cam.width = w, cam.height = h;
     PlaneF z(w, h), n[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)}, alb[3], met(w, h);
-    PlaneF light[3];
-    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneF(w, h);
+    PlaneU16 light[3];  // f16, as the direct pass's
+    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneU16(w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) z.at(x, y) = 1.0f + float(y * w + x);
     const HalfFrameSource src{&z,
@@ -235,8 +235,9 @@ TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, 
     TraceCamera cam;
     cam.width = w, cam.height = h;
     PlaneF z(w, h), n[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)}, alb[3], met(w, h);
-    PlaneF light[3], motion[2] = {PlaneF(w, h), PlaneF(w, h)};
-    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneF(w, h);
+    PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
+    PlaneU16 light[3];
+    for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneU16(w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             z.at(x, y) = 1.0f + float(y * w + x);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/pixel_formats.h"
 #include "io/flip.h"
 #include "tests/truth/reference_test_rig.h"
 
@@ -33,7 +34,7 @@ void tracedSpecular(const Frame& f, PlaneF (&out)[3]) {
             for (int x = 0; x < f.width; ++x) {
                 const float o = f.trace.ssr.opacity.at(x, y);
                 out[c].at(x, y) = o * f.trace.ssr.color[c].at(x, y) +
-                                  (1.0f - o) * f.direct.envSpecular[c].at(x, y);
+                                  (1.0f - o) * decodeF16(f.direct.envSpecular[c].at(x, y));
             }
     }
 }

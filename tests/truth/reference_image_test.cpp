@@ -9,6 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/pixel_formats.h"
 #include "tests/truth/reference_test_rig.h"
 #include "truth/image_error.h"
 
@@ -51,14 +52,14 @@ namespace {
 // and the frame's colour, over every pixel and channel.
 float partsVersusColour(const Frame& frame, float exposure) {
     const FrameParts p = frameParts(frame);
-    const PlaneF* emission = frame.direct.emission;  // (none where nothing emits)
+    const PlaneU16* emission = frame.direct.emission;  // (none where nothing emits; f16)
     float worst = 0.0f;
     for (int c = 0; c < 3; ++c)
         for (int y = 0; y < frame.height; ++y)
             for (int x = 0; x < frame.width; ++x) {
                 const float sum =
                     (((p.direct[c].at(x, y) + p.diffuse[c].at(x, y)) + p.specular[c].at(x, y)) +
-                     (emission[c].empty() ? 0.0f : emission[c].at(x, y))) *
+                     (emission[c].empty() ? 0.0f : decodeF16(emission[c].at(x, y)))) *
                     exposure;
                 const float want = frame.image.color[c].at(x, y);
                 worst = std::max(worst, std::abs(sum - want) / std::max(want, 1e-3f));

@@ -1,0 +1,71 @@
+// Loads, stores and gathers of f32-or-f16 planes (core/float_planes.h: SignalIn, SignalOut) on
+// lanes, through core/pixel_formats_lanes.h's conversions (F16C in the avx2 and avx512 copies,
+// the integer code elsewhere: the same bits on every ISA). A value above f16's largest finite
+// one is stored as that, 65504 (as the denoiser's signals: nothing becomes infinity); NaN stays
+// NaN. Compiled per ISA, like the lanes it is written over.
+#pragma once
+
+#include <cstddef>
+
+#include "core/float_planes.h"
+#include "core/lanes.h"
+#include "core/pixel_formats_lanes.h"
+
+namespace ssrt::lanes {
+
+template <class L>
+SSRT_INLINE L loadSignal(SignalIn p, std::size_t offset) {
+    if (p.f16) return lanes::loadF16<L>(p.f16 + offset);
+    return lanes::load<L>(p.f32 + offset);
+}
+template <class L>
+SSRT_INLINE L gatherSignal(SignalIn p, IntOf<L> index, Run run) {
+    if (p.f16) return lanes::gatherF16<L>(p.f16, index, run);
+    return lanes::gather(p.f32, index, run);
+}
+template <class L>
+SSRT_INLINE L gatherSignal(SignalIn p, IntOf<L> index) {
+    if (p.f16) return lanes::gatherF16<L>(p.f16, index, lanes::runOf(index));
+    return lanes::gather(p.f32, index);
+}
+// x clamped to f16's largest finite value (NaN kept): what an f16 store keeps of it.
+template <class L>
+SSRT_INLINE L clampedToF16(L x) {
+    const L big(65504.0f);
+    return lanes::select(x > big, big, x);
+}
+// What an f16 plane gives back for x (storeSignal then loadSignal).
+template <class L>
+SSRT_INLINE L roundedToF16(L x) {
+    return lanes::f16Value<L>(lanes::f16Bits(lanes::clampedToF16(x)));
+}
+template <class L>
+SSRT_INLINE void storeSignal(SignalOut p, std::size_t offset, L x) {
+    if (p.f16) return lanes::storeF16(p.f16 + offset, lanes::clampedToF16(x));
+    lanes::store(p.f32 + offset, x);
+}
+
+// Fetches ahead pixels [x0, x1) of the row at `rowOffset` of the f16 planes among `planes` (f32
+// ones are left to the hardware). A kernel run tile by tile reads a few cache lines of a row of
+// each plane, then jumps a row: an f16 plane's run (2 lines for a 64-pixel tile) is too short
+// for the hardware's stream prefetch to follow, and each row's first load waits on memory
+// (measured: the composite reading the direct pass's f16 parts took twice the time it took
+// with f32 ones, the same with the row two below fetched ahead). No value depends on it.
+inline void prefetchRowF16(const SignalIn* planes, int count, std::size_t rowOffset, int x0,
+                           int x1) {
+    for (int i = 0; i < count; ++i)
+        if (planes[i].f16)
+            for (int x = x0; x < x1; x += 32)  // (64-byte lines of 2-byte values)
+                __builtin_prefetch(planes[i].f16 + rowOffset + std::size_t(x));
+}
+
+// The same for planes about to be written (a store's line is read first).
+inline void prefetchRowF16(const SignalOut* planes, int count, std::size_t rowOffset, int x0,
+                           int x1) {
+    for (int i = 0; i < count; ++i)
+        if (planes[i].f16)
+            for (int x = x0; x < x1; x += 32)
+                __builtin_prefetch(planes[i].f16 + rowOffset + std::size_t(x), 1);
+}
+
+}  // namespace ssrt::lanes
