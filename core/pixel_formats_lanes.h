@@ -162,6 +162,38 @@ SSRT_INLINE L gatherF16(const uint16_t* base, IntOf<L> index, Run run) {
     return lanes::f16Value<L>(lanes::gatherU16<L>(base, index, run));
 }
 
+// Per-lane f16 values of base[index] and base[index + 1] (two horizontally neighbouring
+// taps): where the hardware gathers, one 32-bit gather reads both (the low half is
+// base[index], x86 being little-endian), half the gathers of two gatherF16; the same bits.
+// base[index + 1] must be readable in every lane (the caller's: the plane's own pixel or its
+// row padding).
+template <class L>
+SSRT_INLINE void gatherF16Pair(const uint16_t* base, IntOf<L> index, L& lo, L& hi) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) {
+        const __m512i g = _mm512_i32gather_epi32(index, base, 2);
+        lo = L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(g)));
+        hi = L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(_mm512_srli_epi32(g, 16))));
+        return;
+    }
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) {
+        const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index, 2);
+        // Per 128 bits: the low halves, then the high ones; then the 64-bit quarters in order
+        // (lo of lanes 0-3, 4-7, hi of lanes 0-3, 4-7).
+        const __m256i pick = _mm256_setr_epi8(0, 1, 4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15,
+                                              0, 1, 4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15);
+        const __m256i s = _mm256_permute4x64_epi64(_mm256_shuffle_epi8(g, pick), 0xd8);
+        lo = L(_mm256_cvtph_ps(_mm256_castsi256_si128(s)));
+        hi = L(_mm256_cvtph_ps(_mm256_extracti128_si256(s, 1)));
+        return;
+    }
+#endif
+    lo = lanes::gatherF16<L>(base, index, Run{false, 0});
+    hi = lanes::gatherF16<L>(base, index + IntOf<L>(1), Run{false, 0});
+}
+
 // ---- unorm8 --------------------------------------------------------------------------------
 
 // The integer nearest to 255 x, x clamped to [0, 1] (NaN to 0), from the exact product.

@@ -56,6 +56,29 @@ SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
 SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
     return ln::gather(plane, index, run);
 }
+// Two taps of one row side by side, i1 = i0 + 1 in every lane, read by one pair gather
+// (ln::gatherPair, ln::gatherF16Pair: half the gathered elements): not where i0 is a run (two
+// loads are cheaper), nor where tapAt's clamp at the frame's edge broke the neighbourhood in a
+// lane (there i1 may equal i0). Either way the same values.
+SSRT_INLINE bool pairable(ILane i0, ln::Run r0, ILane i1) {
+    if constexpr (kW == 1) return false;
+    else return !r0.consecutive && ln::all(i1 == i0 + ILane(1));
+}
+SSRT_INLINE void gatherTwo(const float* plane, bool pair, ILane i0, ln::Run r0, ILane i1,
+                           ln::Run r1, Lane& a, Lane& b) {
+    if (pair) return ln::gatherPair(plane, i0, a, b);
+    a = ln::gather(plane, i0, r0);
+    b = ln::gather(plane, i1, r1);
+}
+SSRT_INLINE void gatherTwo(SignalIn plane, bool pair, ILane i0, ln::Run r0, ILane i1, ln::Run r1,
+                           Lane& a, Lane& b) {
+    if (pair) {
+        if (plane.f16) return ln::gatherF16Pair<Lane>(plane.f16, i0, a, b);
+        return ln::gatherPair(plane.f32, i0, a, b);
+    }
+    a = gatherAt(plane, i0, r0);
+    b = gatherAt(plane, i1, r1);
+}
 // What an f16 signal plane gives back for `x` (storeAt then loadAt).
 SSRT_INLINE Lane roundedToF16(Lane x) {
     const Lane big(65504.0f);
