@@ -138,10 +138,28 @@ SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p
     return f;
 }
 
+// The signals of a row of the footprint (taps[i][ch]): four neighbouring taps of an f16 plane
+// in one row gather (ln::gatherF16Row4), else in two pairs (gatherTwo).
+SSRT_INLINE void gatherRow(const ReblurTemporalArgs& a, const Footprint& f, int j,
+                           Lane taps[4][4]) {
+    const bool row4 = f.pair[j][0] && f.pair[j][1] && f.pair[j][2];
+    for (int ch = 0; ch < 4; ++ch) {
+        if (row4 && a.prevSignal[ch].f16) {
+            Lane t[4];
+            ln::gatherF16Row4<Lane>(a.prevSignal[ch].f16, f.index[j][0], t);
+            for (int i = 0; i < 4; ++i) taps[i][ch] = t[i];
+        } else {
+            gatherTwoAt(a.prevSignal[ch], f, j, 0, taps[0][ch], taps[1][ch]);
+            gatherTwoAt(a.prevSignal[ch], f, j, 2, taps[2][ch], taps[3][ch]);
+        }
+    }
+}
+
 // The history bilinear over the inner 2x2 with the surviving weights (and, for a virtual
-// read, the taps' mean normal); the inner taps' signals go to `inner` for the Catmull-Rom.
+// read, the taps' mean normal). taps[j][i][ch]: the footprint's signals, the inner 2x2 read
+// here unless `haveSignals` (the whole 4x4 read for the Catmull-Rom).
 SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint& f, bool surface,
-                                    Lane inner[2][2][4]) {
+                                    bool haveSignals, Lane taps[4][4][4]) {
     const Lane zero(0.0f), one(1.0f);
     const Lane fx = f.fx, fy = f.fy;
     const Lane bw[2][2] = {{(one - fx) * (one - fy), fx * (one - fy)}, {(one - fx) * fy, fx * fy}};
@@ -162,8 +180,9 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
     for (int j = 0; j < 2; ++j) {
         gatherTwoAt(a.prevFrames, f, j + 1, 1, tapFrames[j][0], tapFrames[j][1]);
         gatherTwoAt(a.prevFast, f, j + 1, 1, tapFast[j][0], tapFast[j][1]);
-        for (int ch = 0; ch < 4; ++ch)
-            gatherTwoAt(a.prevSignal[ch], f, j + 1, 1, inner[j][0][ch], inner[j][1][ch]);
+        if (!haveSignals)
+            for (int ch = 0; ch < 4; ++ch)
+                gatherTwoAt(a.prevSignal[ch], f, j + 1, 1, taps[j + 1][1][ch], taps[j + 1][2][ch]);
     }
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
@@ -172,7 +191,7 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
             fast = fast + wn * tapFast[j][i];
             if (!surface)  // (only the virtual read's confidence asks for it)
                 normal = normal + f.innerNormal[j][i] * wn;
-            for (int ch = 0; ch < 4; ++ch) bil[ch] = bil[ch] + wn * inner[j][i][ch];
+            for (int ch = 0; ch < 4; ++ch) bil[ch] = bil[ch] + wn * taps[j + 1][i + 1][ch];
         }
     h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
     h.frames = ln::select(h.found, frames, zero);
@@ -184,31 +203,16 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
 
 // Catmull-Rom over the whole 4x4 where every tap passed (sharper history: less blur over 30
 // frames), in place of the bilinear signal.
-SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint& f,
-                                   const Lane inner[2][2][4], History& h) {
+SSRT_INLINE void catmullRomHistory(const Footprint& f, const Lane taps[4][4][4], History& h) {
     const Lane zero(0.0f);
     Lane wx[4], wy[4];
     catmullRom(f.fx, wx);
     catmullRom(f.fy, wy);
     Lane cr[4] = {zero, zero, zero, zero};
     for (int j = 0; j < 4; ++j) {
-        // The row's signals: the outer rows' taps in two pairs, the inner rows' outer taps
-        // one by one (their inner ones the bilinear read's).
-        Lane s[4][4];
-        for (int ch = 0; ch < 4; ++ch) {
-            if (j == 0 || j == 3) {
-                gatherTwoAt(a.prevSignal[ch], f, j, 0, s[0][ch], s[1][ch]);
-                gatherTwoAt(a.prevSignal[ch], f, j, 2, s[2][ch], s[3][ch]);
-            } else {
-                s[0][ch] = gatherAt(a.prevSignal[ch], f.index[j][0], f.run[j][0]);
-                s[1][ch] = inner[j - 1][0][ch];
-                s[2][ch] = inner[j - 1][1][ch];
-                s[3][ch] = gatherAt(a.prevSignal[ch], f.index[j][3], f.run[j][3]);
-            }
-        }
         Lane row[4] = {zero, zero, zero, zero};
         for (int i = 0; i < 4; ++i)
-            for (int ch = 0; ch < 4; ++ch) row[ch] = row[ch] + wx[i] * s[i][ch];
+            for (int ch = 0; ch < 4; ++ch) row[ch] = row[ch] + wx[i] * taps[j][i][ch];
         for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
     }
     // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
@@ -238,9 +242,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                     bool surface, Lane zExpected, V3 xw, Lane threshold) {
     const Lane one(1.0f);
     const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
-    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
-    History h = bilinearHistory(a, f, surface, inner);
-    if (surface && ln::any(f.allOk)) catmullRomHistory(a, f, inner, h);
+    // The footprint's signals, read once for both filters: the whole 4x4 where a lane takes
+    // the Catmull-Rom, else the bilinear's inner 2x2.
+    const bool whole = surface && ln::any(f.allOk);
+    Lane taps[4][4][4];
+    if (whole)
+        for (int j = 0; j < 4; ++j) gatherRow(a, f, j, taps[j]);
+    History h = bilinearHistory(a, f, surface, whole, taps);
+    if (whole) catmullRomHistory(f, taps, h);
     // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
     h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
     return finiteHistory(h);
