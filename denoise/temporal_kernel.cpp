@@ -277,15 +277,15 @@ SSRT_INLINE Lane parallaxConfidence(const ReblurTemporalArgs& a, const Centre& p
 // Virtual motion: the reflection seen in a mirror sits the hit distance behind it, along the
 // view ray; reproject that point (NRD's virtual motion, flat-mirror form, leaning to the
 // surface as the lobe widens: the dominant factor) and blend its history into `h`.
-SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int y,
-                               Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
+SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int x,
+                               int y, Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
     const ReblurView& v = a.view;
     const Lane zero(0.0f), one(1.0f);
     const Lane dominant = rb::dominantFactor(p.noV, p.r);
     const Lane hitWorld = hit * rb::hitDistanceScale(v.hitScale, p.z, p.r);
     // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
     // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
-    const Lane kappa = ln::max(curvature(v, p, y), zero);
+    const Lane kappa = ln::max(curvature(v, p, x, y), zero);
     const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
     const V3 dir = ln::normalize(xw);
     const V3 xv = xw + dir * (virtualDistance * dominant);
@@ -369,7 +369,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
     History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
     const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
-    if (spec && a.virtualMotion) virtualMotion(a, p, valid, y, c[3], xw, threshold, lobe, h);
+    if (spec && a.virtualMotion) virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
     accumulate(a, p, valid, o, c, lumaNow, h);
 }
 
