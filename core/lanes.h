@@ -355,6 +355,52 @@ SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_
     return gather(base, index);
 }
 
+// Per-lane base[index] and base[index + 1] (two horizontally neighbouring taps): where the
+// hardware gathers, one 64-bit element a lane reads both (two 8-lane gathers on AVX-512, two
+// 4-lane ones on AVX2, then one shuffle apart), half the elements of two 32-bit gathers; the
+// same bits as gather(base, index) and gather(base, index + 1). base[index + 1] must be
+// readable in every lane (the caller's: the plane's own pixel or its row padding).
+SSRT_INLINE void gatherPair(const float* base, int32_t index, float& lo, float& hi) {
+    lo = base[index];
+    hi = base[index + 1];
+}
+template <class A>
+SSRT_INLINE void gatherPair(const float* base, xsimd::batch<int32_t, A> index,
+                            xsimd::batch<float, A>& lo, xsimd::batch<float, A>& hi) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+        const __m512i i = index;
+        const __m512 a =
+            _mm512_castsi512_ps(_mm512_i32gather_epi64(_mm512_castsi512_si256(i), base, 4));
+        const __m512 b =
+            _mm512_castsi512_ps(_mm512_i32gather_epi64(_mm512_extracti64x4_epi64(i, 1), base, 4));
+        const __m512i even =
+            _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+        lo = _mm512_permutex2var_ps(a, even, b);
+        hi = _mm512_permutex2var_ps(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
+        return;
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
+        const __m256i i = index;
+        const auto* p = reinterpret_cast<const long long*>(base);
+        const __m256 a =
+            _mm256_castsi256_ps(_mm256_i32gather_epi64(p, _mm256_castsi256_si128(i), 4));
+        const __m256 b =
+            _mm256_castsi256_ps(_mm256_i32gather_epi64(p, _mm256_extracti128_si256(i, 1), 4));
+        // (per 128 bits: a's and b's even (odd) floats, then the 64-bit quarters in order)
+        lo = _mm256_castpd_ps(
+            _mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, 0x88)), 0xd8));
+        hi = _mm256_castpd_ps(
+            _mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(a, b, 0xdd)), 0xd8));
+        return;
+    }
+#endif
+    lo = gather(base, index);
+    hi = gather(base, index + xsimd::batch<int32_t, A>(1));
+}
+
 // Per-lane base[index] of 16-bit codes (loadU16), as one load where `run` is consecutive.
 template <class L>
 SSRT_INLINE IntOf<L> gatherU16(const uint16_t* base, IntOf<L> index, Run run) {

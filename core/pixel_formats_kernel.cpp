@@ -118,4 +118,16 @@ void decodeU32(const uint32_t* in, float* out, std::size_t n) {
     decodeRow(in, out, n, [](Int k) { return ln::uintValue<Lane>(k); });
 }
 
+void gatherNeighbours(const uint16_t* f16, const float* f32, const int32_t* index, std::size_t n,
+                      float* out) {
+    for (std::size_t i = 0; i < n; i += kW) {
+        const Int idx = ln::loadInt<Lane>(index + i);
+        Lane t[8];
+        ln::gatherF16Row4<Lane>(f16, idx, t);
+        ln::gatherF16Pair<Lane>(f16, idx, t[4], t[5]);
+        ln::gatherPair(f32, idx, t[6], t[7]);
+        for (int k = 0; k < 8; ++k) ln::store(out + std::size_t(k) * n + i, t[k]);
+    }
+}
+
 }  // namespace ssrt::SSRT_ISA_NS

@@ -26,6 +26,11 @@ SSRT_DECLARE_KERNEL(void, encodeU32, (const float* in, uint32_t* out, std::size_
 SSRT_DECLARE_KERNEL(void, decodeU8, (const uint8_t* in, float* out, std::size_t n))
 SSRT_DECLARE_KERNEL(void, decodeU16, (const uint16_t* in, float* out, std::size_t n))
 SSRT_DECLARE_KERNEL(void, decodeU32, (const uint32_t* in, float* out, std::size_t n))
+// The neighbouring-tap gathers (the denoiser's history reads) at index[i], i < n (n a multiple
+// of 16): out[k n + i] is lanes::gatherF16Row4's tap k (k < 4), gatherF16Pair's low and high
+// (k = 4, 5) and lanes::gatherPair's (k = 6, 7). f16 and f32 must be readable at index + 3.
+SSRT_DECLARE_KERNEL(void, gatherNeighbours, (const uint16_t* f16, const float* f32,
+                                             const int32_t* index, std::size_t n, float* out))
 // clang-format on
 
 inline void encodeF16(Isa isa, const float* in, uint16_t* out, std::size_t n) {
@@ -67,6 +72,11 @@ inline void decodeU16(Isa isa, const uint16_t* in, float* out, std::size_t n) {
 }
 inline void decodeU32(Isa isa, const uint32_t* in, float* out, std::size_t n) {
     SSRT_DISPATCH(isa, decodeU32)(in, out, n);
+}
+
+inline void gatherNeighbours(Isa isa, const uint16_t* f16, const float* f32, const int32_t* index,
+                             std::size_t n, float* out) {
+    SSRT_DISPATCH(isa, gatherNeighbours)(f16, f32, index, n, out);
 }
 
 }  // namespace ssrt

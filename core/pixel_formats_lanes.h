@@ -162,6 +162,91 @@ SSRT_INLINE L gatherF16(const uint16_t* base, IntOf<L> index, Run run) {
     return lanes::f16Value<L>(lanes::gatherU16<L>(base, index, run));
 }
 
+// Per-lane f16 values of base[index] and base[index + 1] (two horizontally neighbouring
+// taps): where the hardware gathers, one 32-bit gather reads both (the low half is
+// base[index], x86 being little-endian), half the gathers of two gatherF16; the same bits.
+// base[index + 1] must be readable in every lane (the caller's: the plane's own pixel or its
+// row padding).
+template <class L>
+SSRT_INLINE void gatherF16Pair(const uint16_t* base, IntOf<L> index, L& lo, L& hi) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) {
+        const __m512i g = _mm512_i32gather_epi32(index, base, 2);
+        lo = L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(g)));
+        hi = L(_mm512_cvtph_ps(_mm512_cvtepi32_epi16(_mm512_srli_epi32(g, 16))));
+        return;
+    }
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) {
+        const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index, 2);
+        // Per 128 bits: the low halves, then the high ones; then the 64-bit quarters in order
+        // (lo of lanes 0-3, 4-7, hi of lanes 0-3, 4-7).
+        const __m256i pick = _mm256_setr_epi8(0, 1, 4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15,
+                                              0, 1, 4, 5, 8, 9, 12, 13, 2, 3, 6, 7, 10, 11, 14, 15);
+        const __m256i s = _mm256_permute4x64_epi64(_mm256_shuffle_epi8(g, pick), 0xd8);
+        lo = L(_mm256_cvtph_ps(_mm256_castsi256_si128(s)));
+        hi = L(_mm256_cvtph_ps(_mm256_extracti128_si256(s, 1)));
+        return;
+    }
+#endif
+    lo = lanes::gatherF16<L>(base, index, Run{false, 0});
+    hi = lanes::gatherF16<L>(base, index + IntOf<L>(1), Run{false, 0});
+}
+
+// Per-lane f16 values of base[index + k], k = 0..3 (a row of four neighbouring taps): where
+// the hardware gathers, one 64-bit element a lane reads all four (two 8-lane gathers on
+// AVX-512, two 4-lane ones on AVX2, then shuffled apart), a quarter of the elements of four
+// gatherF16; the same bits. base[index + 3] must be readable in every lane (the caller's).
+template <class L>
+SSRT_INLINE void gatherF16Row4(const uint16_t* base, IntOf<L> index, L out[4]) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) {
+        const __m512i i = index;
+        // Lane l's tap k is half 4 l + k of a (lanes 0-7) or of b (lanes 8-15, 32 on).
+        const __m512i a = _mm512_i32gather_epi64(_mm512_castsi512_si256(i), base, 2);
+        const __m512i b = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(i, 1), base, 2);
+        alignas(64) static constexpr uint16_t kTaps01[32] = {
+            0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44, 48, 52, 56, 60,
+            1, 5, 9, 13, 17, 21, 25, 29, 33, 37, 41, 45, 49, 53, 57, 61};
+        const __m512i pick01 = _mm512_load_si512(kTaps01);
+        const __m512i t01 = _mm512_permutex2var_epi16(a, pick01, b);
+        const __m512i t23 =
+            _mm512_permutex2var_epi16(a, _mm512_add_epi16(pick01, _mm512_set1_epi16(2)), b);
+        out[0] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t01)));
+        out[1] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t01, 1)));
+        out[2] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t23)));
+        out[3] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t23, 1)));
+        return;
+    }
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) {
+        const __m256i i = index;
+        const auto* p = reinterpret_cast<const long long*>(base);
+        // a: lanes 0-3, b: lanes 4-7; per 128 bits two lanes' four halves each.
+        const __m256i a = _mm256_i32gather_epi64(p, _mm256_castsi256_si128(i), 2);
+        const __m256i b = _mm256_i32gather_epi64(p, _mm256_extracti128_si256(i, 1), 2);
+        // Per 128 bits, 32-bit element k = tap k of the two lanes.
+        const __m256i byTap =
+            _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15, 0, 1, 8, 9, 2, 3,
+                             10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
+        const __m256i ta = _mm256_shuffle_epi8(a, byTap), tb = _mm256_shuffle_epi8(b, byTap);
+        // unpacklo: [tap 0 of lanes 0-1, 4-5, tap 1 of 0-1, 4-5 | the same of lanes 2-3, 6-7]
+        const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+        const __m256i t01 = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(ta, tb), order);
+        const __m256i t23 = _mm256_permutevar8x32_epi32(_mm256_unpackhi_epi32(ta, tb), order);
+        out[0] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t01)));
+        out[1] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t01, 1)));
+        out[2] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t23)));
+        out[3] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t23, 1)));
+        return;
+    }
+#endif
+    for (int k = 0; k < 4; ++k)
+        out[k] = lanes::gatherF16<L>(base, index + IntOf<L>(k), Run{false, 0});
+}
+
 // ---- unorm8 --------------------------------------------------------------------------------
 
 // The integer nearest to 255 x, x clamped to [0, 1] (NaN to 0), from the exact product.

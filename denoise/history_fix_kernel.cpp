@@ -21,7 +21,7 @@ using namespace reblur_lanes;
 // (specularLobePixels), and one whose lobe spans less than 2 pixels keeps its own signal: its
 // neighbours show other parts of the reflection (a mirror's: issue 44), and a lobe that narrow
 // gives the signal little noise to remove.
-void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, int y,
+void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, int x, int y,
                       const Lane frames, const Lane c[4], Lane result[4]) {
     const ReblurView& v = a.view;
     const bool spec = a.specular;
@@ -31,7 +31,7 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
         ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc));
     if (spec) {
         const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
-        const Lane reach = specularLobePixels(v, p, hitWorld, curvature(v, p, y));
+        const Lane reach = specularLobePixels(v, p, hitWorld, curvature(v, p, x, y));
         young = young & (reach >= Lane(2.0f));
         if (!ln::any(young)) return;
         stride = ln::min(stride, ln::floor(reach * Lane(0.5f)));
@@ -133,7 +133,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(0.0f);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.fixFrames));
-    if (ln::any(young)) reconstructYoung(a, p, young, y, frames, c, result);
+    if (ln::any(young)) reconstructYoung(a, p, young, x, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
         clampToFast(a, p, valid, x, y, o, frames, result);
     for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, result[ch]);

@@ -19,6 +19,7 @@
 #include "core/pixel_formats_lanes.h"
 #include "core/rng.h"
 #include "core/screen_lanes.h"
+#include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "denoise/reblur_kernel.h"
 
@@ -56,13 +57,31 @@ SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
 SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
     return ln::gather(plane, index, run);
 }
-SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
-    if (plane.f16) {
-        const Lane big(65504.0f);
-        ln::storeF16(plane.f16 + offset, ln::select(x > big, big, x));
-    } else {
-        ln::store(plane.f32 + offset, x);
+// Two taps of one row side by side, i1 = i0 + 1 in every lane, read by one pair gather
+// (ln::gatherPair, ln::gatherF16Pair: half the gathered elements): not where i0 is a run (two
+// loads are cheaper), nor where tapAt's clamp at the frame's edge broke the neighbourhood in a
+// lane (there i1 may equal i0). Either way the same values.
+SSRT_INLINE bool pairable(ILane i0, ln::Run r0, ILane i1) {
+    if constexpr (kW == 1) return false;
+    else return !r0.consecutive && ln::all(i1 == i0 + ILane(1));
+}
+SSRT_INLINE void gatherTwo(const float* plane, bool pair, ILane i0, ln::Run r0, ILane i1,
+                           ln::Run r1, Lane& a, Lane& b) {
+    if (pair) return ln::gatherPair(plane, i0, a, b);
+    a = ln::gather(plane, i0, r0);
+    b = ln::gather(plane, i1, r1);
+}
+SSRT_INLINE void gatherTwo(SignalIn plane, bool pair, ILane i0, ln::Run r0, ILane i1, ln::Run r1,
+                           Lane& a, Lane& b) {
+    if (pair) {
+        if (plane.f16) return ln::gatherF16Pair<Lane>(plane.f16, i0, a, b);
+        return ln::gatherPair(plane.f32, i0, a, b);
     }
+    a = gatherAt(plane, i0, r0);
+    b = gatherAt(plane, i1, r1);
+}
+SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
+    ln::storeSignal(plane, offset, x);
 }
 
 // The centre pixel of a chunk: position, guides, and the view-space frame.
@@ -126,25 +145,42 @@ SSRT_INLINE Lane normalWeightScale(Lane r, Lane alpha, float lobeFraction2, floa
     return Lane(1.0f) / (angle * Lane(fractionScale));
 }
 
-// The surface's curvature at the centre from its right (or left) and lower (or upper)
-// neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere, averaged over the two;
-// 0 across a depth edge.
-SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int y) {
+// The surface's curvature at the centre (pixels x .. x + kW of row y) from its right (or left)
+// and lower (or upper) neighbour: dot(n' - n, x' - x) / |x' - x|^2, 1 / radius on a sphere,
+// averaged over the two; 0 across a depth edge. A neighbour every lane has (not across the
+// frame's edge) is read at its offset, a load, without tapAt's floor, clamp and run test: the
+// same pixel and the same pixel centre (px + 1 and y +- 1 + 0.5 are exact), so the same bits.
+SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
     const Lane zero(0.0f);
     Lane sum = zero;
+    const std::size_t o = std::size_t(y) * v.stride + std::size_t(x);
     for (int axis = 0; axis < 2; ++axis) {
         Lane tx = p.px, ty = p.py;
+        const int ny = y + 1 < v.height ? y + 1 : y - 1;
         if (axis == 0)
             tx = ln::select(tx + Lane(1.0f) < Lane(float(v.width)), tx + Lane(1.0f),
                             tx - Lane(1.0f));
-        else ty = Lane(float(y + 1 < v.height ? y + 1 : y - 1) + 0.5f);
-        const Tap t = tapAt(v, tx, ty);
-        const Lane zs = ln::gather(v.viewZ, t.index, t.run);
-        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
-        const V3 ns =
-            screen::worldToView(v.viewToWorld, V3{ln::gather(v.normal[0], t.index, t.run),
-                                                  ln::gather(v.normal[1], t.index, t.run),
-                                                  ln::gather(v.normal[2], t.index, t.run)});
+        else ty = Lane(float(ny) + 0.5f);
+        Lane zs, nx, nyv, nz;
+        Lane sx = tx, sy = ty;
+        // (Lanes past the frame's right edge, a last chunk's padding, are clamped by tapAt.)
+        if (axis == 0 ? x + kW < v.width : ny >= 0 && x + kW <= v.width) {
+            const std::size_t n = axis == 0 ? o + 1 : std::size_t(ny) * v.stride + std::size_t(x);
+            zs = loadAt(v.viewZ, n);
+            nx = loadAt(v.normal[0], n);
+            nyv = loadAt(v.normal[1], n);
+            nz = loadAt(v.normal[2], n);
+        } else {
+            const Tap t = tapAt(v, tx, ty);
+            sx = t.x;
+            sy = t.y;
+            zs = ln::gather(v.viewZ, t.index, t.run);
+            nx = ln::gather(v.normal[0], t.index, t.run);
+            nyv = ln::gather(v.normal[1], t.index, t.run);
+            nz = ln::gather(v.normal[2], t.index, t.run);
+        }
+        const V3 xs = screen::viewPoint(sx, sy, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 ns = screen::worldToView(v.viewToWorld, V3{nx, nyv, nz});
         const V3 d = xs - p.x;
         const Lane d2 = ln::dot(d, d);
         const Mask same = (zs > zero) & (ln::abs(zs - p.z) < Lane(0.05f) * p.z) & (d2 > zero);

@@ -51,13 +51,21 @@ struct Footprint {
     Mask ok[4][4];
     ILane index[4][4];
     ln::Run run[4][4];
+    bool pair[4][3];       // taps (j, i) and (j, i + 1) read by one pair gather (pairable)
     V3 innerNormal[2][2];  // the inner taps' normals, gathered once for the test and the mean
     Mask allOk;
 };
 
+// Plane values at footprint taps (j, i) and (j, i + 1).
+template <class P>
+SSRT_INLINE void gatherTwoAt(P plane, const Footprint& f, int j, int i, Lane& a, Lane& b) {
+    gatherTwo(plane, f.pair[j][i], f.index[j][i], f.run[j][i], f.index[j][i + 1], f.run[j][i + 1],
+              a, b);
+}
+
 // `surface`: the footprint is the surface's own (occlusion by the expected depth zExpected);
 // otherwise a virtual-motion read (occlusion by the plane of the centre, whose point in this
-// camera's world frame is xw).
+// camera's world frame is xw). Neighbouring taps of a row are read in pairs (gatherTwo).
 SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p, Mask valid,
                                     Lane qx, Lane qy, bool surface, Lane zExpected, V3 xw,
                                     Lane threshold) {
@@ -69,46 +77,89 @@ SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p
     f.fx = sx - x0;
     f.fy = sy - y0;
     f.allOk = valid;
-    for (int j = 0; j < 4; ++j)
+    for (int j = 0; j < 4; ++j) {
+        const bool innerRow = j == 1 || j == 2;
         for (int i = 0; i < 4; ++i) {
-            const bool inner = (i == 1 || i == 2) && (j == 1 || j == 2);
             f.ok[j][i] = Mask(false);
             f.index[j][i] = ILane(0);
             f.run[j][i] = ln::Run{false, 0};
-            if (!surface && !inner) continue;
+        }
+        for (int i = 0; i < 3; ++i) f.pair[j][i] = false;
+        if (!surface && !innerRow) continue;
+        // The row's taps: all 4 (surface), or the inner 2.
+        const int i0 = surface ? 0 : 1, i1 = surface ? 4 : 3;
+        Lane tx[4], ty[4];
+        Mask inside[4];
+        for (int i = i0; i < i1; ++i) {
             const Tap t = tapAt(v, x0 + Lane(float(i - 1) + 0.5f), y0 + Lane(float(j - 1) + 0.5f));
             f.index[j][i] = t.index;
             f.run[j][i] = t.run;
-            const Lane zp = ln::gather(a.prevViewZ, t.index, t.run);
-            Mask pass = valid & t.inside & (zp > zero);
+            tx[i] = t.x;
+            ty[i] = t.y;
+            inside[i] = t.inside;
+        }
+        for (int i = i0; i + 1 < i1; ++i)
+            f.pair[j][i] = pairable(f.index[j][i], f.run[j][i], f.index[j][i + 1]);
+        Lane zp[4];
+        if (surface) {
+            gatherTwoAt(a.prevViewZ, f, j, 0, zp[0], zp[1]);
+            gatherTwoAt(a.prevViewZ, f, j, 2, zp[2], zp[3]);
+        } else {
+            gatherTwoAt(a.prevViewZ, f, j, 1, zp[1], zp[2]);
+        }
+        Lane nx[4], ny[4], nz[4], rp[4];
+        if (innerRow) {
+            gatherTwoAt(a.prevNormal[0], f, j, 1, nx[1], nx[2]);
+            gatherTwoAt(a.prevNormal[1], f, j, 1, ny[1], ny[2]);
+            gatherTwoAt(a.prevNormal[2], f, j, 1, nz[1], nz[2]);
+            if (a.specular) gatherTwoAt(a.prevRoughness, f, j, 1, rp[1], rp[2]);
+        }
+        for (int i = i0; i < i1; ++i) {
+            const bool inner = innerRow && (i == 1 || i == 2);
+            Mask pass = valid & inside[i] & (zp[i] > zero);
             if (surface) {
-                pass = pass & (ln::abs(zp - zExpected) <= threshold);
+                pass = pass & (ln::abs(zp[i] - zExpected) <= threshold);
             } else {
-                const V3 q = prevPointInThisFrame(a, t.x, t.y, zp);
+                const V3 q = prevPointInThisFrame(a, tx[i], ty[i], zp[i]);
                 pass = pass & (ln::abs(ln::dot(p.n, q - xw)) <= threshold);
             }
             if (inner) {
-                const V3 np{ln::gather(a.prevNormal[0], t.index, t.run),
-                            ln::gather(a.prevNormal[1], t.index, t.run),
-                            ln::gather(a.prevNormal[2], t.index, t.run)};
+                const V3 np{nx[i], ny[i], nz[i]};
                 f.innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
-                if (a.specular) {
-                    const Lane rp = ln::gather(a.prevRoughness, t.index, t.run);
-                    pass = pass & (ln::abs(rp - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
-                }
+                if (a.specular)
+                    pass = pass & (ln::abs(rp[i] - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
             }
             f.ok[j][i] = pass;
             f.allOk = f.allOk & pass;
         }
+    }
     return f;
 }
 
+// The signals of a row of the footprint (taps[i][ch]): four neighbouring taps of an f16 plane
+// in one row gather (ln::gatherF16Row4), else in two pairs (gatherTwo).
+SSRT_INLINE void gatherRow(const ReblurTemporalArgs& a, const Footprint& f, int j,
+                           Lane taps[4][4]) {
+    const bool row4 = f.pair[j][0] && f.pair[j][1] && f.pair[j][2];
+    for (int ch = 0; ch < 4; ++ch) {
+        if (row4 && a.prevSignal[ch].f16) {
+            Lane t[4];
+            ln::gatherF16Row4<Lane>(a.prevSignal[ch].f16, f.index[j][0], t);
+            for (int i = 0; i < 4; ++i) taps[i][ch] = t[i];
+        } else {
+            gatherTwoAt(a.prevSignal[ch], f, j, 0, taps[0][ch], taps[1][ch]);
+            gatherTwoAt(a.prevSignal[ch], f, j, 2, taps[2][ch], taps[3][ch]);
+        }
+    }
+}
+
 // The history bilinear over the inner 2x2 with the surviving weights (and, for a virtual
-// read, the taps' mean normal); the inner taps' signals go to `inner` for the Catmull-Rom.
+// read, the taps' mean normal). taps[j][i][ch]: the footprint's signals, the inner 2x2 read
+// here unless `haveSignals` (the whole 4x4 read for the Catmull-Rom).
 SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint& f, bool surface,
-                                    Lane inner[2][2][4]) {
+                                    bool haveSignals, Lane taps[4][4][4]) {
     const Lane zero(0.0f), one(1.0f);
     const Lane fx = f.fx, fy = f.fy;
     const Lane bw[2][2] = {{(one - fx) * (one - fy), fx * (one - fy)}, {(one - fx) * fy, fx * fy}};
@@ -124,19 +175,23 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
     History h;
     h.found = wsum > Lane(1.0e-4f);
     const Lane inv = one / ln::select(h.found, wsum, one);
+    // The inner taps' values, a row's two in one pair gather.
+    Lane tapFrames[2][2], tapFast[2][2];
+    for (int j = 0; j < 2; ++j) {
+        gatherTwoAt(a.prevFrames, f, j + 1, 1, tapFrames[j][0], tapFrames[j][1]);
+        gatherTwoAt(a.prevFast, f, j + 1, 1, tapFast[j][0], tapFast[j][1]);
+        if (!haveSignals)
+            for (int ch = 0; ch < 4; ++ch)
+                gatherTwoAt(a.prevSignal[ch], f, j + 1, 1, taps[j + 1][1][ch], taps[j + 1][2][ch]);
+    }
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-            const ILane idx = f.index[j + 1][i + 1];
-            const ln::Run r = f.run[j + 1][i + 1];
             const Lane wn = w[j][i] * inv;
-            frames = frames + wn * ln::gather(a.prevFrames, idx, r);
-            fast = fast + wn * gatherAt(a.prevFast, idx, r);
+            frames = frames + wn * tapFrames[j][i];
+            fast = fast + wn * tapFast[j][i];
             if (!surface)  // (only the virtual read's confidence asks for it)
                 normal = normal + f.innerNormal[j][i] * wn;
-            for (int ch = 0; ch < 4; ++ch) {
-                inner[j][i][ch] = gatherAt(a.prevSignal[ch], idx, r);
-                bil[ch] = bil[ch] + wn * inner[j][i][ch];
-            }
+            for (int ch = 0; ch < 4; ++ch) bil[ch] = bil[ch] + wn * taps[j + 1][i + 1][ch];
         }
     h.quality = ln::sqrt(ln::select(h.found, wsum, zero));
     h.frames = ln::select(h.found, frames, zero);
@@ -148,8 +203,7 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
 
 // Catmull-Rom over the whole 4x4 where every tap passed (sharper history: less blur over 30
 // frames), in place of the bilinear signal.
-SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint& f,
-                                   const Lane inner[2][2][4], History& h) {
+SSRT_INLINE void catmullRomHistory(const Footprint& f, const Lane taps[4][4][4], History& h) {
     const Lane zero(0.0f);
     Lane wx[4], wy[4];
     catmullRom(f.fx, wx);
@@ -157,14 +211,8 @@ SSRT_INLINE void catmullRomHistory(const ReblurTemporalArgs& a, const Footprint&
     Lane cr[4] = {zero, zero, zero, zero};
     for (int j = 0; j < 4; ++j) {
         Lane row[4] = {zero, zero, zero, zero};
-        for (int i = 0; i < 4; ++i) {
-            const bool isInner = (i == 1 || i == 2) && (j == 1 || j == 2);
-            for (int ch = 0; ch < 4; ++ch) {
-                const Lane s = isInner ? inner[j - 1][i - 1][ch]
-                                       : gatherAt(a.prevSignal[ch], f.index[j][i], f.run[j][i]);
-                row[ch] = row[ch] + wx[i] * s;
-            }
-        }
+        for (int i = 0; i < 4; ++i)
+            for (int ch = 0; ch < 4; ++ch) row[ch] = row[ch] + wx[i] * taps[j][i][ch];
         for (int ch = 0; ch < 4; ++ch) cr[ch] = cr[ch] + wy[j] * row[ch];
     }
     // Its negative lobes may undershoot: radiance stays >= 0, hit distances in [0, 1].
@@ -194,9 +242,14 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
                     bool surface, Lane zExpected, V3 xw, Lane threshold) {
     const Lane one(1.0f);
     const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
-    Lane inner[2][2][4];  // the inner taps' signals, gathered once for both filters
-    History h = bilinearHistory(a, f, surface, inner);
-    if (surface && ln::any(f.allOk)) catmullRomHistory(a, f, inner, h);
+    // The footprint's signals, read once for both filters: the whole 4x4 where a lane takes
+    // the Catmull-Rom, else the bilinear's inner 2x2.
+    const bool whole = surface && ln::any(f.allOk);
+    Lane taps[4][4][4];
+    if (whole)
+        for (int j = 0; j < 4; ++j) gatherRow(a, f, j, taps[j]);
+    History h = bilinearHistory(a, f, surface, whole, taps);
+    if (whole) catmullRomHistory(f, taps, h);
     // The accumulation speed drops with the footprint's quality (REBLUR: a *= lerp(Q, 1, alpha)).
     h.frames = h.frames * rb::lerp(h.quality, one, one / (one + h.frames));
     return finiteHistory(h);
@@ -224,15 +277,15 @@ SSRT_INLINE Lane parallaxConfidence(const ReblurTemporalArgs& a, const Centre& p
 // Virtual motion: the reflection seen in a mirror sits the hit distance behind it, along the
 // view ray; reproject that point (NRD's virtual motion, flat-mirror form, leaning to the
 // surface as the lobe widens: the dominant factor) and blend its history into `h`.
-SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int y,
-                               Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
+SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int x,
+                               int y, Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
     const ReblurView& v = a.view;
     const Lane zero(0.0f), one(1.0f);
     const Lane dominant = rb::dominantFactor(p.noV, p.r);
     const Lane hitWorld = hit * rb::hitDistanceScale(v.hitScale, p.z, p.r);
     // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
     // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
-    const Lane kappa = ln::max(curvature(v, p, y), zero);
+    const Lane kappa = ln::max(curvature(v, p, x, y), zero);
     const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
     const V3 dir = ln::normalize(xw);
     const V3 xv = xw + dir * (virtualDistance * dominant);
@@ -316,7 +369,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
         ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
     History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
     const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
-    if (spec && a.virtualMotion) virtualMotion(a, p, valid, y, c[3], xw, threshold, lobe, h);
+    if (spec && a.virtualMotion) virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
     accumulate(a, p, valid, o, c, lumaNow, h);
 }
 

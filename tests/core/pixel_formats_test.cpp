@@ -589,3 +589,38 @@ TEST_CASE(
     CHECK(b.at(0, 0) == 3);
     CHECK(b.at(36, 4) == 3);
 }
+
+TEST_CASE(
+    "neighbouring-tap gathers: a row of four f16 taps, an f16 pair and an f32 pair, every "
+    "ISA the same bits as reading each tap") {
+    // Every half (NaNs with their payloads included) and f32 values of every class, NaNs with
+    // payloads and both signs among them, at random indices (4 taps readable from each).
+    const std::size_t size = 65536 + 3, n = 4096;
+    std::vector<uint16_t> f16(size);
+    std::vector<float> f32(size);
+    for (std::size_t i = 0; i < size; ++i) {
+        f16[i] = uint16_t((i * 40503u) & 0xffffu);
+        const uint32_t bits = uint32_t(i * 2654435761u);
+        std::memcpy(&f32[i], &bits, sizeof bits);
+    }
+    std::vector<int32_t> index(n);
+    for (std::size_t i = 0; i < n; ++i)
+        index[i] = int32_t(randomFloat(uint32_t(i), 1, 7, 0) * float(size - 3)) % int32_t(size - 3);
+    std::vector<float> expected(8 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const int32_t x = index[i];
+        for (int k = 0; k < 4; ++k) expected[k * n + i] = decodeF16(f16[x + k]);
+        expected[4 * n + i] = decodeF16(f16[x]);
+        expected[5 * n + i] = decodeF16(f16[x + 1]);
+        expected[6 * n + i] = f32[x];
+        expected[7 * n + i] = f32[x + 1];
+    }
+    std::vector<float> got(8 * n);
+    for (Isa isa : supportedIsas()) {
+        const std::string isaStr(isaName(isa));
+        CAPTURE(isaStr);
+        std::fill(got.begin(), got.end(), 0.0f);
+        gatherNeighbours(isa, f16.data(), f32.data(), index.data(), n, got.data());
+        REQUIRE(sameBits(expected, got));
+    }
+}
