@@ -31,4 +31,21 @@ struct PlaneMemoryUse {
 };
 PlaneMemoryUse planeMemoryUse();
 
+// An allocator for std::vector whose storage comes from the planes' range (64-byte aligned), for
+// a frame's buffers that are not planes (the Hi-Z pyramid's packed copy): freed each frame
+// after its last pass, its pages stay resident for the next frame's, as a plane's do, instead
+// of going back to the kernel and faulting in again.
+template <class T>
+struct PlaneMemoryAllocator {
+    using value_type = T;
+    PlaneMemoryAllocator() = default;
+    template <class U>
+    PlaneMemoryAllocator(const PlaneMemoryAllocator<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(allocatePlaneMemory(n * sizeof(T), 0)); }
+    void deallocate(T* p, std::size_t) { freePlaneMemory(p); }
+    friend bool operator==(const PlaneMemoryAllocator&, const PlaneMemoryAllocator&) {
+        return true;
+    }
+};
+
 }  // namespace ssrt

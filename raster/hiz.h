@@ -13,14 +13,14 @@
 
 #include <vector>
 
-#include "core/aligned.h"
 #include "core/image.h"
+#include "core/plane_memory.h"
 #include "raster/hiz_layout.h"
 
 namespace ssrt {
 
 // The packed 1/minZ copy: 64-byte aligned, so that each 4x4 tile is one cache line.
-using HiZPacked = std::vector<float, AlignedAllocator<float, 64>>;
+using HiZPacked = std::vector<float, PlaneMemoryAllocator<float>>;
 
 // The packed copy's layout: each level in 4x4 tiles of 16 floats (row-major within a tile,
 // tiles row-major), its height rounded up to whole tiles and its rows of tiles to a power of
