@@ -148,7 +148,9 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
     const L dv0 = (v + L(0.5f)) - fv;
     const L last(float(a.shadowSize - 1));
     const L zero(0.0f), one(1.0f);
-    L receiver = zero, exact = zero, occluderNear = zero, occluderFar = zero, absent = zero;
+    // Counts of taps (whole numbers, exact in floats): occluders, the far ones among them (a far
+    // tap is an occluder: creaseTol > tol), absent, and exact; the receivers are the rest.
+    L occluder = zero, far = zero, absent = zero, exact = zero;
     L centreOccluder = zero, centreAbsent = zero;
     for (int dy = -r; dy <= r; ++dy) {
         const IL row =
@@ -160,26 +162,25 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
             const L gap = depth - (key + (gu * (du0 + L(float(dx))) + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;
-            const auto isFar = gap > creaseTol;
-            receiver = receiver + ln::select(isOccluder | isAbsent, zero, one);
-            exact = exact + ln::select(ln::abs(gap) <= exactTol, one, zero);
-            occluderFar = occluderFar + ln::select(isFar, one, zero);
-            occluderNear =
-                occluderNear + ln::select(isOccluder, ln::select(isFar, zero, one), zero);
+            occluder = occluder + ln::select(isOccluder, one, zero);
+            far = far + ln::select(gap > creaseTol, one, zero);
             absent = absent + ln::select(isAbsent, one, zero);
+            exact = exact + ln::select(ln::abs(gap) <= exactTol, one, zero);
             if (dx == 0 && dy == 0) {
                 centreOccluder = ln::select(isOccluder, one, zero);
                 centreAbsent = ln::select(isAbsent, one, zero);
             }
         }
     }
+    const L taps(float((2 * r + 1) * (2 * r + 1)));
+    const L receiver = (taps - occluder) - absent;
     // p's own answer: its texel's; where that texel is past the receiver, or is the only one
     // that sees it (a crease through it), shadowed when any tap holds an occluder.
     const L centreReceiver = one - (centreOccluder + centreAbsent);
     const auto lone = (centreAbsent > zero) | ((centreReceiver > zero) & (receiver == one));
-    const auto shadowed = (centreOccluder > zero) | (lone & ((occluderNear + occluderFar) > zero));
-    const L lit = ln::select(shadowed, exact, (receiver + occluderNear) + absent);
-    const L taps(float((2 * r + 1) * (2 * r + 1)));
+    const auto shadowed = (centreOccluder > zero) | (lone & (occluder > zero));
+    // (receivers, near occluders and absent taps: every tap but the far ones)
+    const L lit = ln::select(shadowed, exact, taps - far);
     return ln::select(inMap, lit / taps, one);
 }
 
