@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -132,55 +133,62 @@ void markChains(std::vector<GraphPass>& passes) {
     }
 }
 
-// Transient memory, plane by plane as the renderer's pool hands planes on: each of a
-// transient's planes takes the first plane of its size whose last user ran before the
-// transient's first pass (lifetimes as intervals over the pass order), else the smallest larger
-// one, split (the pool frees a plane of another format for it and the planes' memory range
-// hands out the block best fit: two f16 planes in an f32 plane's memory), else a new one.
-std::size_t assignSlots(std::vector<GraphResource>& resources) {
-    struct Slot {
-        std::size_t bytes;
-        int freeAfter;
+// Transient memory as the planes' range hands it out (core/plane_memory.h): over the passes in
+// order, each transient's planes are placed just before its first pass (best fit among the
+// free blocks, the lowest of equals, else at the top of what has been used) and freed just
+// after its last, a freed block merged with its free neighbours. Returns the highest top:
+// what the transients need at once, planes of any size and format packed by bytes.
+std::size_t placeTransients(std::vector<GraphResource>& resources, std::size_t passCount) {
+    std::map<std::size_t, std::size_t> free;  // offset -> bytes, in address order
+    std::size_t top = 0, highest = 0;
+    const auto place = [&](std::size_t bytes) {
+        auto best = free.end();
+        for (auto it = free.begin(); it != free.end(); ++it)
+            if (it->second >= bytes && (best == free.end() || it->second < best->second)) best = it;
+        if (best == free.end()) {
+            // At the top, from the last free block where it reaches the top.
+            std::size_t at = top;
+            if (!free.empty() &&
+                std::prev(free.end())->first + std::prev(free.end())->second == top) {
+                at = std::prev(free.end())->first;
+                free.erase(std::prev(free.end()));
+            }
+            top = at + bytes;
+            highest = std::max(highest, top);
+            return at;
+        }
+        const std::size_t at = best->first, left = best->second - bytes;
+        free.erase(best);
+        if (left) free[at + bytes] = left;
+        return at;
     };
-    std::vector<GraphResource*> order;
-    for (GraphResource& r : resources)
-        if (r.lifetime == Lifetime::Transient) order.push_back(&r);
-    std::stable_sort(
-        order.begin(), order.end(),
-        [](const GraphResource* a, const GraphResource* b) { return a->first < b->first; });
-    std::vector<Slot> slots;
-    for (GraphResource* r : order) {
-        const int planes = planesOf(resourceDecl(r->id));
-        const std::size_t bytes = r->bytes / std::size_t(planes);
-        for (int i = 0; i < planes; ++i) {
-            auto s = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) {
-                return s.bytes == bytes && s.freeAfter < r->first;
-            });
-            if (s == slots.end()) {
-                for (auto t = slots.begin(); t != slots.end(); ++t)
-                    if (t->bytes > bytes && t->freeAfter < r->first &&
-                        (s == slots.end() || t->bytes < s->bytes))
-                        s = t;
-                if (s != slots.end()) {  // split: the rest stays free
-                    const std::size_t at = std::size_t(s - slots.begin());
-                    const Slot rest{s->bytes - bytes, s->freeAfter};
-                    s->bytes = bytes;
-                    slots.push_back(rest);
-                    s = slots.begin() + std::ptrdiff_t(at);
-                }
-            }
-            if (s == slots.end()) {
-                slots.push_back({bytes, r->last});
-                r->slots.push_back(int(slots.size()) - 1);
-            } else {
-                s->freeAfter = r->last;
-                r->slots.push_back(int(s - slots.begin()));
-            }
+    const auto release = [&](std::size_t at, std::size_t bytes) {
+        auto next = free.lower_bound(at);
+        if (next != free.begin() && std::prev(next)->first + std::prev(next)->second == at) {
+            at = std::prev(next)->first;
+            bytes += std::prev(next)->second;
+            free.erase(std::prev(next));
+        }
+        if (next != free.end() && at + bytes == next->first) {
+            bytes += next->second;
+            free.erase(next);
+        }
+        free[at] = bytes;
+    };
+    for (std::size_t p = 0; p < passCount; ++p) {
+        for (GraphResource& r : resources) {
+            if (r.lifetime != Lifetime::Transient || r.first != int(p)) continue;
+            const int planes = planesOf(resourceDecl(r.id));
+            for (int i = 0; i < planes; ++i)
+                r.offsets.push_back(place(r.bytes / std::size_t(planes)));
+        }
+        for (GraphResource& r : resources) {
+            if (r.lifetime != Lifetime::Transient || r.last != int(p)) continue;
+            const std::size_t planeBytes = r.bytes / r.offsets.size();
+            for (std::size_t at : r.offsets) release(at, planeBytes);
         }
     }
-    std::size_t total = 0;
-    for (const Slot& s : slots) total += s.bytes;
-    return total;
+    return highest;
 }
 
 }  // namespace
@@ -252,7 +260,7 @@ CompiledGraph compileFrameGraph(const GraphKey& key) {
         for (const Access& a : p.writes) p.bytesWritten += g.find(a.res)->bytes;
         for (const Access& a : p.unread) p.bytesWritten += g.find(a.res)->bytes;
     }
-    g.transientBytes = assignSlots(g.resources);
+    g.transientBytes = placeTransients(g.resources, g.passes.size());
     for (const GraphResource& r : g.resources) {
         if (r.lifetime == Lifetime::Output) g.outputBytes += r.bytes;
         if (r.lifetime == Lifetime::History) g.historyBytes += r.bytes;

@@ -79,9 +79,10 @@ struct GraphResource {
     Lifetime lifetime;          // the declared one, or transient for an output not handed out
     int first = -1, last = -1;  // indices into CompiledGraph::passes: the writer, the last reader
     std::size_t bytes = 0;      // at the graph's size, without row padding
-    // Transient: the planes of memory it takes, one per plane it holds, each shared with
-    // transients of that plane size whose lifetimes do not overlap its own.
-    std::vector<int> slots;
+    // Transient: where each of its planes lies in the transients' memory (byte offsets, as
+    // the planes' range would place them: core/plane_memory.h), shared only with transients
+    // whose lifetimes do not overlap its own.
+    std::vector<std::size_t> offsets;
 };
 
 struct GraphPass {
@@ -100,7 +101,7 @@ struct CompiledGraph {
     std::vector<GraphPass> passes;         // in order, culled ones gone
     std::vector<GraphResource> resources;  // those that exist, in table order
     std::vector<std::string_view> culled;  // passes the settings enable but nothing reads
-    std::size_t transientBytes = 0;        // after reuse: the largest of each slot, summed
+    std::size_t transientBytes = 0;        // after reuse: the highest the placed planes reach
     std::size_t outputBytes = 0, historyBytes = 0;
     const GraphResource* find(Res id) const;
     // Whether the pass called `name` runs.

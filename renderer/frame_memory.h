@@ -3,12 +3,13 @@
 // from the frame's pool just before the first pass that writes them, and a transient one goes
 // back to the pool just after the last pass that reads it, where a later pass's planes take
 // its memory. So the resources with disjoint lifetimes share memory at run time as the graph's
-// slots share it on paper, and an output nothing asked for (a PNG's G-buffer) is gone once
-// read. The scratch's own buffers of a transient (the shadow map, the visibility buffers, the
-// back-face layer, the Hi-Z levels) are freed after its last pass: their memory goes back to
-// the planes' range (core/plane_memory.h), where later planes of any size take it; its pages
-// stay resident, so a frame rendered again faults none in. (Filament's FrameGraph realises
-// its virtual resources before their first pass and destroys them after their last, so.)
+// placement shares it on paper (CompiledGraph::transientBytes), and an output nothing asked
+// for (a PNG's G-buffer) is gone once read. The scratch's own buffers of a transient (the shadow
+// map, the visibility buffers, the back-face layer, the Hi-Z levels) are freed after its last pass:
+// their memory goes back to the planes' range (core/plane_memory.h), where later planes of any size
+// take it; its pages stay resident, so a frame rendered again faults none in. (Filament's
+// FrameGraph realises its virtual resources before their first pass and destroys them after their
+// last, so.)
 //
 // The renderer runs its passes in steps (a chain of the scheduler, the SSR pass, the
 // denoiser ...): each step() covers the declared passes after the last step's, through the

@@ -305,28 +305,34 @@ TEST_CASE("frame graph: transients share memory only where their lifetimes do no
     const SceneFacts facts = SceneFacts::of(makeBuiltinScene("cornell"));
     for (int q = 0; q < kQualityCount; ++q) {
         const CompiledGraph g = compileFrameGraph({small(Quality(q)), facts, true});
-        std::size_t sum = 0;
+        std::size_t sum = 0, highest = 0;
         for (const GraphResource& a : g.resources) {
             if (a.lifetime != Lifetime::Transient) {
-                CHECK(a.slots.empty());
+                CHECK(a.offsets.empty());
                 continue;
             }
             sum += a.bytes;
-            REQUIRE(a.slots.size() == std::size_t(resourceDecl(a.id).channelCount()));
-            for (const GraphResource& b : g.resources)
-                for (int slot : a.slots)
-                    if (&a != &b && std::count(b.slots.begin(), b.slots.end(), slot) > 0) {
-                        CHECK((a.last < b.first || b.last < a.first));
-                        // The later one's plane fits in the earlier one's (an f16 plane in an
-                        // f32 one's memory, the rest of it split off as another slot).
-                        const bool aFirst = a.last < b.first;
-                        const std::size_t earlier =
-                            (aFirst ? a : b).bytes / (aFirst ? a : b).slots.size();
-                        const std::size_t later =
-                            (aFirst ? b : a).bytes / (aFirst ? b : a).slots.size();
-                        CHECK(later <= earlier);
-                    }
+            REQUIRE(a.offsets.size() == std::size_t(resourceDecl(a.id).channelCount()));
+            const std::size_t aPlane = a.bytes / a.offsets.size();
+            for (std::size_t at : a.offsets) highest = std::max(highest, at + aPlane);
+            for (const GraphResource& b : g.resources) {
+                if (&a == &b || b.offsets.empty()) continue;
+                const std::size_t bPlane = b.bytes / b.offsets.size();
+                for (std::size_t x : a.offsets)
+                    for (std::size_t y : b.offsets)
+                        if (x < y + bPlane && y < x + aPlane) {  // their bytes overlap
+                            CAPTURE(resourceDecl(a.id).name);
+                            CAPTURE(resourceDecl(b.id).name);
+                            CHECK((a.last < b.first || b.last < a.first));
+                        }
+            }
+            // (A resource's own planes never overlap.)
+            for (std::size_t i = 0; i < a.offsets.size(); ++i)
+                for (std::size_t j = i + 1; j < a.offsets.size(); ++j)
+                    CHECK((a.offsets[i] + aPlane <= a.offsets[j] ||
+                           a.offsets[j] + aPlane <= a.offsets[i]));
         }
+        CHECK(g.transientBytes == highest);
         CHECK(g.transientBytes < sum);  // some memory is shared
         CHECK(g.totalBytes() == g.transientBytes + g.outputBytes + g.historyBytes);
     }
