@@ -41,18 +41,14 @@ SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
     return ln::load<Lane>(plane + offset);
 }
 
-// Signal planes (reblur_kernel.h: f16 or f32): f16 decoded and encoded with the library's
-// conversions (core/pixel_formats_lanes.h: F16C in the avx2 and avx512 copies, the integer
-// code elsewhere, the same bits on every ISA). A value above f16's largest finite one is
-// stored as that (65504, the front end's clamp: a Catmull-Rom overshoot must not become
-// infinity); NaN stays NaN.
+// Signal planes (reblur_kernel.h: f16 or f32), through the shared conversions
+// (core/signal_lanes.h: the same bits on every ISA; stores clamp to 65504, so a Catmull-Rom
+// overshoot never becomes infinity).
 SSRT_INLINE Lane loadAt(SignalIn plane, std::size_t offset) {
-    if (plane.f16) return ln::loadF16<Lane>(plane.f16 + offset);
-    return ln::load<Lane>(plane.f32 + offset);
+    return ln::loadSignal<Lane>(plane, offset);
 }
 SSRT_INLINE Lane gatherAt(SignalIn plane, ILane index, ln::Run run) {
-    if (plane.f16) return ln::gatherF16<Lane>(plane.f16, index, run);
-    return ln::gather(plane.f32, index, run);
+    return ln::gatherSignal<Lane>(plane, index, run);
 }
 SSRT_INLINE Lane gatherAt(const float* plane, ILane index, ln::Run run) {
     return ln::gather(plane, index, run);
