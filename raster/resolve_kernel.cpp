@@ -15,8 +15,10 @@ using V3 = ln::V3<Lane>;
 namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
-constexpr int kOutputs = kResolveOutputs;
-constexpr int kMaxOutputs = kResolveMaxOutputs;
+// The planes a tile writes, in the order resolveChunk computes them: the G-buffer's 12, then
+// each UV set's, then the tangent frame's (outputPlanes).
+constexpr int kOutputs = 12;
+constexpr int kMaxOutputs = kOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
@@ -44,6 +46,19 @@ SSRT_INLINE int uvOutputCount(const ResolveArgs& a) {
 }
 SSRT_INLINE int outputCount(const ResolveArgs& a) {
     return kOutputs + uvOutputCount(a) + (a.tangent[0] ? kResolveTangentOutputs : 0);
+}
+
+// The output planes in that order (outputCount of them).
+void outputPlanes(const ResolveArgs& a, float* (&out)[kMaxOutputs]) {
+    float* const gbuffer[kOutputs] = {a.viewZ,     a.normal[0],  a.normal[1], a.normal[2],
+                                      a.albedo[0], a.albedo[1],  a.albedo[2], a.metallic,
+                                      a.roughness, a.materialId, a.motion[0], a.motion[1]};
+    int n = 0;
+    for (float* p : gbuffer) out[n++] = p;
+    for (int s = 0; s < (a.u1 ? 2 : a.u ? 1 : 0); ++s)
+        for (float* p : a.uv[s]) out[n++] = p;
+    if (a.tangent[0])
+        for (float* p : a.tangentFrame) out[n++] = p;
 }
 
 // Structure-of-arrays view of the triangles under kW pixels (a scalar gather loop: the
@@ -151,12 +166,12 @@ SSRT_INLINE void uvAndDerivatives(const ResolveArgs& a, const Fields& g, const V
         interpolateUv(g, row, bx1, bx2, ux, vx);
         interpolateUv(g, row, by1, by2, uy, vy);
         Lane* o = out + s * kResolveUvOutputs;
-        o[0] = u;
-        o[1] = v;
-        o[2] = ux - u;
-        o[3] = vx - v;
-        o[4] = uy - u;
-        o[5] = vy - v;
+        o[kUvU] = u;
+        o[kUvV] = v;
+        o[kUvDuDx] = ux - u;
+        o[kUvDvDx] = vx - v;
+        o[kUvDuDy] = uy - u;
+        o[kUvDvDy] = vy - v;
     }
 }
 
@@ -275,13 +290,15 @@ void resolveTile(const ResolveArgs& args, int tile) {
     float* bufPtr[kMaxOutputs];
     for (int p = 0; p < kMaxOutputs; ++p) bufPtr[p] = rowBuf[p];
     const int outputs = outputCount(args);
+    float* planes[kMaxOutputs] = {};
+    outputPlanes(args, planes);
     // Lane groups past the right edge land in the rows' 64-byte padding.
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     FieldCache cache;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) resolveChunk(args, x, y, cache, bufPtr, x0);
         for (int p = 0; p < outputs; ++p) {
-            float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
+            float* dst = planes[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW)
                 ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }

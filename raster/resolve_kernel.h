@@ -24,17 +24,14 @@ struct ResolveInstance {
     float viewToPrevClip[16];  // column-major
 };
 
-inline constexpr int kResolveOutputs = 12;
 // With texturing on (ResolveArgs::u set), per UV set: u, v and their screen derivatives
-// du/dx, dv/dx, du/dy, dv/dy (per pixel, x right and y down), for the texture pass.
-inline constexpr int kResolveUvOutputs = 6;
+// (per pixel, x right and y down), for the texture pass; named by ResolveUv.
+enum ResolveUv : int { kUvU, kUvV, kUvDuDx, kUvDvDx, kUvDuDy, kUvDvDy, kResolveUvOutputs };
 inline constexpr int kResolveUvSets = 2;  // TEXCOORD_0, and TEXCOORD_1 when u1 is set
 // With normal maps (ResolveArgs::tangent set): the interpolated world tangent xyz (not unit)
 // and its handedness w (between -1 and 1 where a triangle's vertices disagree), all four
 // negated where the normal is (a back face seen), so the whole tangent frame turns over.
 inline constexpr int kResolveTangentOutputs = 4;
-inline constexpr int kResolveMaxOutputs =
-    kResolveOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
 
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
@@ -59,11 +56,19 @@ struct ResolveArgs {
     // transform; zero for instances without a normal map), or all null: then no tangent
     // outputs (a scene without normal maps gathers and writes nothing more).
     const float* tangent[4] = {};
-    // viewZ, normal XYZ, albedo RGB, metallic, roughness, materialId, motion XY (the
-    // renderer's GBuffer table, renderer/frame.h, in its order), then the
-    // UV outputs of set 0 (with u) and of set 1 (with u1), then the tangent outputs (with
-    // tangent), packed in that order (all with outStride)
-    float* out[kResolveMaxOutputs];
+    // Outputs, every one with outStride: the G-buffer (renderer/frame.h's GBuffer says what
+    // each holds; background: viewZ 0, materialId -1, the rest 0) ...
+    float* viewZ;
+    float* normal[3];
+    float* albedo[3];
+    float* metallic;
+    float* roughness;
+    float* materialId;
+    float* motion[2];
+    // ... each UV set's outputs (set 0 with u, set 1 with u1; null otherwise) ...
+    float* uv[kResolveUvSets][kResolveUvOutputs];
+    // ... and the tangent frame x, y, z, w (with tangent; null otherwise).
+    float* tangentFrame[kResolveTangentOutputs];
     std::size_t outStride;
 };
 

@@ -36,7 +36,7 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.emissive = out.emissive.data();
     da.anyEmissive = anyEmissive(scene);
     // Shadow map.
-    da.shadow = shadow.depth.row(0);
+    da.shadowMap = shadow.depth.row(0);
     da.shadowStride = shadow.depth.stride();
     da.shadowSize = s.shadowMapSize;
     std::copy_n(glm::value_ptr(shadow.lightViewProj), 16, da.lightViewProj);

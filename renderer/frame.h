@@ -21,6 +21,7 @@
 #include "raster/hiz.h"
 #include "raster/raster.h"
 #include "raster/raster_stats.h"
+#include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
 #include "renderer/resources.h"
 #include "trace/color_pyramid.h"
@@ -279,10 +280,11 @@ struct Frame {
         VisibilityBuffer backVisibility;
         PlaneF backZ;
         ShadowMap shadow;
-        // UV and its screen derivatives, for textured scenes: set 0, then set 1 when read
-        PlaneF uv[12];  // kResolveUvSets * kResolveUvOutputs (asserted in renderer.cpp)
+        // UV and its screen derivatives per set (raster/resolve_kernel.h: ResolveUv), for
+        // textured scenes: set 0, and set 1 when read
+        PlaneF uv[kResolveUvSets][kResolveUvOutputs];
         // The tangent frame (x, y, z, w) for normal maps (raster/resolve_kernel.h)
-        PlaneF tangent[4];
+        PlaneF tangent[kResolveTangentOutputs];
         HiZPyramid hiz;
         RayBatch rays;      // pooled
         MarchResult march;  // pooled

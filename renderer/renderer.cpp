@@ -124,9 +124,6 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     if (c.graph.runs(pass::kBackFaces)) backDepthPass(c, scene, tv, rv, ro, frame);
 }
 
-static_assert(sizeof(Frame::Scratch::uv) / sizeof(PlaneF) == kResolveUvSets * kResolveUvOutputs);
-static_assert(sizeof(Frame::Scratch::tangent) / sizeof(PlaneF) == kResolveTangentOutputs);
-
 // The resolve's arguments: the G-buffer of the visible pixels (and their UVs and tangent
 // frames for the texture pass), from the visibility buffer and the scene's tables.
 ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool textured,
@@ -147,14 +144,16 @@ ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool
     ra.tanHalfY = c.trace.tanHalfY;
     ra.nearZ = c.trace.nearZ;
     ra.farZ = c.trace.farZ;
-    // The kernel's output order (raster/resolve_kernel.h) is the G-buffer's table's; every
-    // plane with one stride.
-    int k = 0;
-    g.forEachPlane([&](std::string_view, PlaneF& p) {
-        if (k < kResolveOutputs) ra.out[k] = p.row(0);
-        ++k;
-    });
-    if (k != kResolveOutputs) throw std::logic_error("resolve: the G-buffer's table changed");
+    // Every output with one stride.
+    ra.viewZ = g.viewZ.row(0);
+    for (int i = 0; i < 3; ++i) {
+        ra.normal[i] = g.normal[i].row(0);
+        ra.albedo[i] = g.albedo[i].row(0);
+    }
+    ra.metallic = g.metallic.row(0);
+    ra.roughness = g.roughness.row(0);
+    ra.materialId = g.materialId.row(0);
+    for (int i = 0; i < 2; ++i) ra.motion[i] = g.motion[i].row(0);
     ra.outStride = g.viewZ.stride();
     if (textured) {
         ra.u = tables.u.data();
@@ -163,47 +162,22 @@ ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool
             ra.u1 = tables.u1.data();
             ra.v1 = tables.v1.data();
         }
-        const int planes = (ra.u1 ? 2 : 1) * kResolveUvOutputs;
-        for (int i = 0; i < planes; ++i) {
-            PlaneF& p = frame.scratch.uv[i];
-            p.ensureSize(c.grid.width, c.grid.height);
-            ra.out[kResolveOutputs + i] = p.row(0);
-        }
-        // The tangent frame after the UV planes, for the normal maps.
+        for (int s = 0; s < (ra.u1 ? 2 : 1); ++s)
+            for (int i = 0; i < kResolveUvOutputs; ++i) {
+                PlaneF& p = frame.scratch.uv[s][i];
+                p.ensureSize(c.grid.width, c.grid.height);
+                ra.uv[s][i] = p.row(0);
+            }
+        // The tangent frame, for the normal maps.
         if (!tables.tangent[0].empty())
             for (int i = 0; i < kResolveTangentOutputs; ++i) {
                 ra.tangent[i] = tables.tangent[i].data();
                 PlaneF& p = frame.scratch.tangent[i];
                 p.ensureSize(c.grid.width, c.grid.height);
-                ra.out[kResolveOutputs + planes + i] = p.row(0);
+                ra.tangentFrame[i] = p.row(0);
             }
     }
     return ra;
-}
-
-// The texture pass's planes: base colour, metallic-roughness and normal-map texels into the
-// G-buffer; emission and occlusion into the material planes.
-TexturePlanes texturePlanes(const Scene& scene, Frame& frame) {
-    GBuffer& g = frame.gbuffer;
-    TexturePlanes tp;
-    const int sets = anyUvSet1(scene) ? 2 : 1;
-    for (int s = 0; s < sets; ++s)
-        for (int i = 0; i < kResolveUvOutputs; ++i)
-            tp.uv[s][i] = &frame.scratch.uv[s * kResolveUvOutputs + i];
-    tp.materialId = &g.materialId;
-    for (int i = 0; i < 3; ++i) tp.albedo[i] = &g.albedo[i];
-    tp.metallic = &g.metallic;
-    tp.roughness = &g.roughness;
-    if (anyNormalMapped(scene))
-        for (int i = 0; i < 4; ++i) {
-            tp.tangent[i] = &frame.scratch.tangent[i];
-            if (i < 3) tp.normal[i] = &g.normal[i];
-        }
-    MaterialPlanes& m = frame.material;
-    if (!m.emission[0].empty())
-        for (int i = 0; i < 3; ++i) tp.emission[i] = &m.emission[i];
-    if (!m.occlusion.empty()) tp.occlusion = &m.occlusion;
-    return tp;
 }
 
 // One tile of the instance and triangle ids as float planes, from the visibility buffer.
@@ -248,18 +222,15 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
     std::copy_n(c.trace.viewToWorld, 9, da.viewToWorld);
     std::copy_n(c.trace.position, 3, da.camPos);
     ImagePlanes& im = frame.image;
-    // The kernel's outputs are the image's table in its order (colour, display, shadow), all
-    // with one stride.
-    int k = 0;
-    im.forEachPlane([&](std::string_view, PlaneF& p) {
-        if (k < 7) da.out[k] = p.row(0);
-        ++k;
-    });
-    if (k != 7) throw std::logic_error("shading: the image's table changed");
+    for (int ch = 0; ch < 3; ++ch) {
+        da.color[ch] = im.color[ch].row(0);
+        da.display[ch] = im.display[ch].row(0);
+    }
+    da.shadow = im.shadow.row(0);
     da.outStride = im.color[0].stride();
     if (c.settings.trace.any()) {
         // The composite overwrites the display (and the colour, which SSR reads before it).
-        for (int i = 3; i < 6; ++i) da.out[i] = nullptr;
+        for (float*& p : da.display) p = nullptr;
         DirectParts& p = frame.direct;
         for (int ch = 0; ch < 3; ++ch) {
             da.direct[ch] = p.direct[ch].row(0);
@@ -391,10 +362,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
                 buildResolveTables(scene, c.origin, c.view, c.prevViewProj, textured, c.threads);
             ra = resolveArgs(c, tables, textured, frame);
         });
-    TexturePlanes tp;
-    passes.tiled(
-        pass::kTextures, [&](int tile) { applyTexturesTile(scene, tp, c.grid, tile); },
-        [&] { tp = texturePlanes(scene, frame); });
+    passes.tiled(pass::kTextures, [&](int tile) { applyTexturesTile(scene, frame, c.grid, tile); });
     passes.tiled(pass::kIds, [&](int tile) { idTile(c.grid, tables.triangles, frame, tile); });
     DirectLighting lighting;
     const std::shared_ptr<const SkyLighting> sky = environmentPass(c, scene, frame);

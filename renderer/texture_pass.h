@@ -8,34 +8,18 @@
 // every ISA and thread count, and pixels of untextured materials keep their G-buffer values.
 #pragma once
 
-#include "core/image.h"
 #include "core/tiles.h"
+#include "renderer/frame.h"
 #include "scenes/scene.h"
 
 namespace ssrt {
 
-struct TexturePlanes {
-    // Per UV set: u, v, du/dx, dv/dx, du/dy, dv/dy (raster/resolve_kernel.h); set 1 only
-    // when a material reads it.
-    const PlaneF* uv[2][6] = {};
-    const PlaneF* materialId = nullptr;
-    PlaneF* albedo[3] = {};
-    PlaneF* metallic = nullptr;
-    PlaneF* roughness = nullptr;
-    // With normal maps: the resolve's tangent frame (x, y, z, w) and the G-buffer normal it
-    // bends (scenes/tangents.h, perturbNormal); all null otherwise.
-    const PlaneF* tangent[4] = {};
-    PlaneF* normal[3] = {};
-    // Written for every pixel when set: emission (the material's factor times its emissive
-    // texel, 0 on background) and occlusion (1 + strength (R - 1), 1 without a texture and
-    // on background).
-    PlaneF* emission[3] = {};
-    PlaneF* occlusion = nullptr;
-};
-
 // One tile of the pass (the frame scheduler runs it with the resolve and the shading,
-// renderer/frame_scheduler.h).
-void applyTexturesTile(const Scene& scene, const TexturePlanes& planes, const TileGrid& grid,
-                       int tile);
+// renderer/frame_scheduler.h). It reads the resolve's UV planes (Frame::Scratch::uv; set 1
+// only where a material reads it) and, with normal maps, its tangent frame; it writes the
+// G-buffer's albedo, metallic, roughness and normal in place, and the material planes the
+// frame holds (emission: the material's factor times its emissive texel, 0 on background;
+// occlusion: 1 + strength (R - 1), 1 without a texture and on background).
+void applyTexturesTile(const Scene& scene, Frame& frame, const TileGrid& grid, int tile);
 
 }  // namespace ssrt

@@ -16,6 +16,9 @@ using V3 = ln::V3<Lane>;
 namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
+// The planes a tile writes through its row buffers: colour RGB, display RGB, shadow.
+constexpr int kOutputs = 7;
+enum Out { kColor = 0, kDisplay = 3, kShadow = 6 };
 
 using shade::skyRadiance;
 SSRT_INLINE V3 splat3(const float* v) { return shade::splat3<Lane>(v); }
@@ -128,10 +131,11 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),
                          color.z * Lane(a.exposure)};
-    for (int c = 0; c < 3; ++c) ln::store(out[c] + o, rgb[c]);
-    if (out[3])
-        for (int c = 0; c < 3; ++c) ln::store(out[3 + c] + o, srgbEncode(tonemapAces(rgb[c])));
-    ln::store(out[6] + o, visibility);
+    for (int c = 0; c < 3; ++c) ln::store(out[kColor + c] + o, rgb[c]);
+    if (out[kDisplay])
+        for (int c = 0; c < 3; ++c)
+            ln::store(out[kDisplay + c] + o, srgbEncode(tonemapAces(rgb[c])));
+    ln::store(out[kShadow] + o, visibility);
 }
 
 }  // namespace
@@ -140,9 +144,12 @@ void shadeTile(const DirectArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     // Row buffer, streamed out in whole cache lines (see raster/resolve_kernel.cpp); lane
     // groups past the right edge land in the rows' 64-byte padding.
-    alignas(64) float rowBuf[7][kTileSize];
-    float* bufPtr[7];
-    for (int p = 0; p < 7; ++p) bufPtr[p] = args.out[p] ? rowBuf[p] : nullptr;
+    float* const planes[kOutputs] = {args.color[0],   args.color[1],   args.color[2],
+                                     args.display[0], args.display[1], args.display[2],
+                                     args.shadow};
+    alignas(64) float rowBuf[kOutputs][kTileSize];
+    float* bufPtr[kOutputs];
+    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = planes[p] ? rowBuf[p] : nullptr;
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
         // The f16 parts: the row two below fetched ahead (core/signal_lanes.h).
@@ -153,9 +160,9 @@ void shadeTile(const DirectArgs& args, int tile) {
                 ln::prefetchRowF16(part, 3, ahead, x0, x1);
         }
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
-        for (int p = 0; p < 7; ++p) {
+        for (int p = 0; p < kOutputs; ++p) {
             if (!bufPtr[p]) continue;
-            float* dst = args.out[p] + std::size_t(y) * args.outStride + x0;
+            float* dst = planes[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW)
                 ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));
         }

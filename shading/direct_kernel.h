@@ -42,18 +42,20 @@ struct DirectArgs {
     // emission (shade::occludeIndirect).
     const float* occlusion;
     // Shadow map: depth key 1 - z01 (larger = nearer the light)
-    const float* shadow;
+    const float* shadowMap;
     std::size_t shadowStride;
     int shadowSize;
     float lightViewProj[16];     // column-major
     float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
     int pcfRadius;
     float exposure;
-    // Outputs (outStride), the renderer's ImagePlanes table in its order (renderer/frame.h):
-    // color RGB (linear), display RGB (tone mapped, sRGB), shadow. The
-    // display triple may be null (not written, its tone map skipped): with a trace pass the
-    // composite writes the display from its own colour.
-    float* out[7];
+    // Outputs (outStride; renderer/frame.h's ImagePlanes says what each holds): colour
+    // (linear), display (tone mapped, sRGB) and the sun's shadow. The display may be null
+    // (not written, its tone map skipped): with a trace pass the composite writes the
+    // display from its own colour.
+    float* color[3];
+    float* display[3];
+    float* shadow;
     std::size_t outStride;
     // Optional parts of `color`, for the composite (shading/composite_kernel.h); each an RGB
     // triple of planes with outStride, f32 or f16 (the renderer's are f16: core/float_planes.h,

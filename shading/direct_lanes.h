@@ -158,7 +158,7 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
         const L planeRow = gv * (dv0 + L(float(dy)));
         for (int dx = -r; dx <= r; ++dx) {
             const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), zero, last));
-            const L depth = ln::gather(a.shadow, row + col);
+            const L depth = ln::gather(a.shadowMap, row + col);
             const L gap = depth - (key + (gu * (du0 + L(float(dx))) + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;

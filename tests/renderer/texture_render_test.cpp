@@ -221,11 +221,12 @@ TEST_CASE("texture render: a texture on the second UV set samples by it, on ever
         for (int c = 0; c < 3; ++c)
             CHECK(test::sameBits(f.gbuffer.albedo[c], ref.gbuffer.albedo[c]));
         CHECK(test::sameBits(f.gbuffer.roughness, ref.gbuffer.roughness));
-        for (int i = 0; i < 2 * kResolveUvOutputs; ++i)
-            CHECK(test::sameBits(f.scratch.uv[i], ref.scratch.uv[i]));
+        for (int s = 0; s < kResolveUvSets; ++s)
+            for (int i = 0; i < kResolveUvOutputs; ++i)
+                CHECK(test::sameBits(f.scratch.uv[s][i], ref.scratch.uv[s][i]));
     }
-    CHECK(ref.scratch.uv[kResolveUvOutputs].width() == kSize);
+    CHECK(ref.scratch.uv[1][kUvU].width() == kSize);
     // Without a texture on set 1, set 1 is neither resolved nor given planes.
     scene.materials[0].baseColorUv.set = 0;
-    CHECK(render(scene, kSize).scratch.uv[kResolveUvOutputs].width() == 0);
+    CHECK(render(scene, kSize).scratch.uv[1][kUvU].width() == 0);
 }

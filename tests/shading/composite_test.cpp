@@ -76,7 +76,7 @@ struct DirectFixture {
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x)
                 shadowMap.at(x, y) = randomFloat(uint32_t(y * 16 + x), 3, 0, 0);
-        args.shadow = shadowMap.row(0);
+        args.shadowMap = shadowMap.row(0);
         args.shadowStride = shadowMap.stride();
         args.shadowSize = 16;
         const float vp[16] = {0.2f, 0, 0, 0, 0, 0, 0.2f, 0, 0, 0.2f, 0, 0, 0, 0, 0.5f, 1};
@@ -86,7 +86,11 @@ struct DirectFixture {
         args.pcfRadius = 1;
         args.exposure = exposure;
         for (PlaneF& p : out) p = PlaneF(w, h);
-        for (int i = 0; i < 7; ++i) args.out[i] = out[i].row(0);
+        for (int c = 0; c < 3; ++c) {
+            args.color[c] = out[c].row(0);
+            args.display[c] = out[3 + c].row(0);
+        }
+        args.shadow = out[6].row(0);
         args.outStride = out[0].stride();
         args.energy = &energyTables();
     }
