@@ -305,8 +305,8 @@ struct Frame {
                 template <class G, class Fn>
                 static void table(G& g, Fn& fn) {
                     fn("half.ssgi.R", g.color[0]), fn("half.ssgi.G", g.color[1]);
-                    fn("half.ssgi.B", g.color[2]), fn("half.ssgiHit", g.hit);
-                    fn("half.ssgiHitDistance", g.hitDistance), fn("half.ssgiSteps", g.steps);
+                    fn("half.ssgi.B", g.color[2]), fn("half.ssgi.hit", g.hit);
+                    fn("half.ssgi.hitDistance", g.hitDistance), fn("half.ssgiSteps", g.steps);
                 }
             } resolved;
             // The diffuse signal denoised on the half frame (with the denoiser), before the
@@ -314,7 +314,28 @@ struct Frame {
             DenoiseScratch denoise;
             DenoisePlanes denoised;
         } half;
+
+        // Every buffer above but the pool, once: fn(group, name, buffer), where `name` is the
+        // plane's channel name in the resource table (renderer/resources.h) where it holds a
+        // declared resource (a pyramid: its resource's first channel), `group` what `--stats`
+        // calls the struct it lies in, and `buffer` a plane, a pyramid or a vector. The --stats
+        // memory table counts the scratch by it (renderer/memory_use.h).
+        template <class Fn>
+        void forEachBuffer(Fn&& fn) const;
     } scratch;
+
+    // Every plane of the frame's own groups (image, G-buffer, material, ids, direct parts,
+    // traced signals, denoised), named from the resource table: fn(name, plane), PlaneF and
+    // PlaneU16 planes. The one list of them: the file's layers (each an output's), the frame's
+    // memory (renderer/frame_memory.h) and the --stats memory table walk it.
+    template <class Fn>
+    void forEachPlane(Fn&& fn) {
+        forEachPlaneOf(*this, fn);
+    }
+    template <class Fn>
+    void forEachPlane(Fn&& fn) const {
+        forEachPlaneOf(*this, fn);
+    }
 
     // Every non-empty plane of image, gbuffer, material, ids and trace, in that order, then
     // extraLayers: the file's layers, each with its LayerGroup.
@@ -322,6 +343,53 @@ struct Frame {
     // The layer called `name`; throws std::out_of_range if there is none.
     const PlaneF& plane(std::string_view name) const;
     bool has(std::string_view name) const;
+
+private:
+    template <class F, class Fn>
+    static void forEachPlaneOf(F& f, Fn& fn) {
+        f.image.forEachPlane(fn);
+        f.gbuffer.forEachPlane(fn);
+        f.material.forEachPlane(fn);
+        f.ids.forEachPlane(fn);
+        f.direct.forEachPlane(fn);
+        f.trace.ssr.forEachPlane(fn);
+        f.trace.ssgi.forEachPlane(fn);
+        f.trace.denoise.forEachPlane(fn);
+    }
 };
+
+template <class Fn>
+void Frame::Scratch::forEachBuffer(Fn&& fn) const {
+    const auto in = [&fn](std::string_view group, const auto& table, std::string_view prefix = "") {
+        table.forEachPlane([&](std::string_view name, const auto& p) {
+            fn(group, prefix.empty() ? std::string(name) : std::string(prefix) + std::string(name),
+               p);
+        });
+    };
+    fn("visibility buffer", "visibility.depth", visibility.depth);
+    fn("visibility buffer", "visibility.ids", visibility.ids);
+    fn("back faces", "back.depth", backVisibility.depth);
+    fn("back faces", "back.ids", backVisibility.ids);
+    fn("back faces", "backZ", backZ);
+    fn("shadow map", "shadowMap", shadow.depth);
+    for (int set = 0; set < kResolveUvSets; ++set)
+        for (int i = 0; i < kResolveUvOutputs; ++i)
+            fn("uv", channelName(set == 0 ? Res::Uv0 : Res::Uv1, i), uv[set][i]);
+    for (int i = 0; i < kResolveTangentOutputs; ++i)
+        fn("tangent", channelName(Res::Tangent, i), tangent[i]);
+    fn("hi-z", "hiz.minZ", hiz);
+    in("rays", rays);
+    in("march", march);
+    fn("colour pyramid", "colorPyramid.R", colorPyramid);
+    in("ssr resolve", ssr);
+    in("denoise scratch", denoise);
+    in("half frame", half.frame);
+    fn("half hi-z", "half.hiz.minZ", half.hiz);
+    in("half rays", half.rays, "half.");
+    in("half march", half.march, "half.");
+    in("half resolved", half.resolved);
+    in("half denoise scratch", half.denoise, "half.");
+    in("half denoised", half.denoised, "half.");
+}
 
 }  // namespace ssrt

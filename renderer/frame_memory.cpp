@@ -9,19 +9,6 @@ namespace ssrt {
 
 namespace {
 
-// Calls fn(name, plane) for every plane of the Frame's own groups.
-template <class Fn>
-void forEachFramePlane(Frame& f, Fn&& fn) {
-    f.image.forEachPlane(fn);
-    f.gbuffer.forEachPlane(fn);
-    f.material.forEachPlane(fn);
-    f.ids.forEachPlane(fn);
-    f.direct.forEachPlane(fn);
-    f.trace.ssr.forEachPlane(fn);
-    f.trace.ssgi.forEachPlane(fn);
-    f.trace.denoise.forEachPlane(fn);
-}
-
 // A pyramid's levels and their packed copy.
 bool freeHiZ(HiZPyramid& hiz, bool release) {
     if (release) hiz = HiZPyramid();
@@ -87,7 +74,7 @@ FrameMemory::FrameMemory(const CompiledGraph& graph, Frame& frame, bool forTruth
     PlanePool& pool = frame.scratch.pool;
     std::array<std::vector<PlaneF*>, kResourceCount + 1> planes;
     std::array<std::vector<PlaneU16*>, kResourceCount + 1> planesU16;
-    forEachFramePlane(frame, [&](std::string_view name, auto& p) {
+    frame.forEachPlane([&](std::string_view name, auto& p) {
         pool.give(p);
         const std::size_t id = std::size_t(resourceOfChannel(name));
         if constexpr (std::is_same_v<std::decay_t<decltype(p)>, PlaneU16>)

@@ -69,43 +69,36 @@ FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
 }
 
 std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
+    // Bytes by resource (table order), then by the group of what no resource declares.
+    std::vector<std::size_t> declared(kResourceCount, 0);
+    std::vector<MemoryUse> undeclared;
+    const auto count = [&](std::string_view group, std::string_view name, const auto& buffer) {
+        const std::size_t bytes = bytesOf(buffer);
+        if (bytes == 0) return;
+        const Res id = resourceOfChannel(name);
+        if (id != Res::Count) return void(declared[std::size_t(id)] += bytes);
+        for (MemoryUse& m : undeclared)
+            if (m.name == group) return void(m.bytes += bytes);
+        undeclared.push_back({std::string(group), bytes});
+    };
+    f.forEachPlane([&](std::string_view name, const auto& p) { count("", name, p); });
+    f.scratch.forEachBuffer(count);
+    if (history) {
+        history->forEachPlane([&](std::string_view name, const auto& p) { count("", name, p); });
+        history->denoise.forEachPlane(
+            [&](std::string_view name, const auto& p) { count("denoise history", name, p); });
+        // (named as the full frame's: counted apart)
+        history->denoiseHalf.forEachPlane(
+            [&](std::string_view, const auto& p) { count("half denoise history", "", p); });
+    }
     std::vector<MemoryUse> out;
+    for (int r = 0; r < kResourceCount; ++r)
+        if (declared[std::size_t(r)] > 0)
+            out.push_back({std::string(resourceDecl(Res(r)).name), declared[std::size_t(r)]});
+    out.insert(out.end(), undeclared.begin(), undeclared.end());
     const auto add = [&](const char* name, std::size_t bytes) {
         if (bytes > 0) out.push_back({name, bytes});
     };
-    add("image", bytesOf(f.image));
-    add("gbuffer", bytesOf(f.gbuffer));
-    add("material", bytesOf(f.material));
-    add("ids", bytesOf(f.ids));
-    add("direct parts", bytesOf(f.direct));
-    add("ssr", bytesOf(f.trace.ssr));
-    add("ssgi", bytesOf(f.trace.ssgi));
-    add("denoised", bytesOf(f.trace.denoise));
-    const Frame::Scratch& s = f.scratch;
-    add("visibility buffer", bytesOf(s.visibility.depth) + bytesOf(s.visibility.ids));
-    add("back faces",
-        bytesOf(s.backVisibility.depth) + bytesOf(s.backVisibility.ids) + bytesOf(s.backZ));
-    add("shadow map", bytesOf(s.shadow.depth));
-    add("uv", bytesOf(s.uv));
-    add("tangent", bytesOf(s.tangent));
-    add("hi-z", bytesOf(s.hiz));
-    add("rays", bytesOf(s.rays));
-    add("march", bytesOf(s.march));
-    add("colour pyramid", bytesOf(s.colorPyramid));
-    add("ssr resolve", bytesOf(s.ssr));
-    add("denoise scratch", bytesOf(s.denoise));
-    add("half frame", bytesOf(s.half.frame));
-    add("half hi-z", bytesOf(s.half.hiz));
-    add("half rays", bytesOf(s.half.rays));
-    add("half march", bytesOf(s.half.march));
-    add("half resolved", bytesOf(s.half.resolved));
-    add("half denoise scratch", bytesOf(s.half.denoise));
-    add("half denoised", bytesOf(s.half.denoised));
-    if (history) {
-        add("history", bytesOf(*history));
-        add("denoise history", bytesOf(history->denoise));
-        add("half denoise history", bytesOf(history->denoiseHalf));
-    }
     // The planes' range keeps the pages of planes freed (given back after their last pass)
     // for the next: memory this process holds that no plane uses now (the process's, not the
     // frame's alone: another renderer's planes share the range).

@@ -1,6 +1,6 @@
-// What a frame holds in memory, by resource group: the planes it hands out, the scratch its
-// passes keep between frames, and the caller's history. `ssrt render --stats` prints it as
-// bytes per pixel, the budget issue 27 sets (DESIGN.md: 150 B per pixel in all).
+// What a frame holds in memory, by resource: the planes it hands out, the scratch its passes
+// keep between frames, and the caller's history. `ssrt render --stats` prints it as bytes per
+// pixel beside what the frame graph declares (150 B per pixel in all is the budget).
 #pragma once
 
 #include <vector>
@@ -9,8 +9,12 @@
 
 namespace ssrt {
 
-// Every group that holds memory, in frame order (hand-outs, scratch, history; empty groups
-// left out). `history` may be null.
+// Every resource that holds memory, named and in order as the resource table
+// (renderer/resources.h) has them; then, by the group they lie in (Frame::Scratch::
+// forEachBuffer: "rays", "march", ...), buffers that hold no declared resource; then the
+// planes' range's free memory. Nothing that holds no memory. `history` may be null. Found by
+// walking what the frame holds (Frame::forEachPlane, Frame::Scratch::forEachBuffer, the
+// history's tables), not from a list of its own.
 std::vector<MemoryUse> memoryUse(const Frame& frame, const FrameHistory* history);
 
 // What a frame of these settings needs before it is rendered, for a caller that must refuse a

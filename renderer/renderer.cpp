@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/tiles.h"
 #include "raster/back_depth.h"
@@ -274,20 +275,14 @@ GBufferRows GBuffer::rows() const {
 }
 
 std::vector<PlaneRef> Frame::layers() const {
+    // The outputs' planes, each with its file part from the resource table.
     std::vector<PlaneRef> out;
-    LayerGroup group = LayerGroup::Color;
-    const auto add = [&](std::string_view name, const PlaneF& p) {
-        if (!p.empty()) out.push_back({name, &p, group});
-    };
-    image.forEachPlane(add);
-    group = LayerGroup::GBuffer;
-    gbuffer.forEachPlane(add);
-    material.forEachPlane(add);
-    ids.forEachPlane(add);
-    group = LayerGroup::Trace;
-    trace.ssr.forEachPlane(add);
-    trace.ssgi.forEachPlane(add);
-    trace.denoise.forEachPlane(add);
+    forEachPlane([&](std::string_view name, const auto& p) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, PlaneF>) {
+            const ResourceDecl& d = resourceDecl(resourceOfChannel(name));
+            if (!p.empty() && d.lifetime == Lifetime::Output) out.push_back({name, &p, d.group});
+        }
+    });
     for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane, LayerGroup::Truth});
     return out;
 }

@@ -95,7 +95,7 @@ struct SsrOutput : PlaneTable<SsrOutput> {
         fn("resolve.opacity", g.opacity);
         fn("resolve.hitRadiance.R", g.hitRadiance[0]),
             fn("resolve.hitRadiance.G", g.hitRadiance[1]);
-        fn("resolve.hitRadiance.B", g.hitRadiance[2]), fn("resolve.hitFade", g.hitFade);
+        fn("resolve.hitRadiance.B", g.hitRadiance[2]), fn("resolve.hitRadiance.fade", g.hitFade);
         fn("resolve.hitTarget.X", g.hitTarget[0]), fn("resolve.hitTarget.Y", g.hitTarget[1]);
         fn("resolve.hitTarget.Z", g.hitTarget[2]);
     }

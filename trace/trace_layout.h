@@ -95,16 +95,17 @@ struct HalfFrame : PlaneTable<HalfFrame> {
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("half.viewZ", g.viewZ);
+        // (Named as the renderer's resource table names their channels, renderer/resources.cpp.)
+        fn("half.gbuffer.viewZ", g.viewZ);
         fn("half.backZ", g.backZ);
         fn("half.guide.viewZ", g.guideZ);
         fn("half.guide.normal.X", g.guideNormal[0]), fn("half.guide.normal.Y", g.guideNormal[1]);
         fn("half.guide.normal.Z", g.guideNormal[2]);
         fn("half.guide.motion.X", g.guideMotion[0]), fn("half.guide.motion.Y", g.guideMotion[1]);
-        fn("half.normal.X", g.normal[0]), fn("half.normal.Y", g.normal[1]);
-        fn("half.normal.Z", g.normal[2]);
-        fn("half.albedo.R", g.albedo[0]), fn("half.albedo.G", g.albedo[1]);
-        fn("half.albedo.B", g.albedo[2]), fn("half.metallic", g.metallic);
+        fn("half.gbuffer.normal.X", g.normal[0]), fn("half.gbuffer.normal.Y", g.normal[1]);
+        fn("half.gbuffer.normal.Z", g.normal[2]);
+        fn("half.gbuffer.albedo.R", g.albedo[0]), fn("half.gbuffer.albedo.G", g.albedo[1]);
+        fn("half.gbuffer.albedo.B", g.albedo[2]), fn("half.gbuffer.metallic", g.metallic);
         fn("half.hitLight.R", g.hitLight[0]), fn("half.hitLight.G", g.hitLight[1]);
         fn("half.hitLight.B", g.hitLight[2]);
     }

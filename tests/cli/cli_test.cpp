@@ -370,9 +370,9 @@ TEST_CASE("cli: a PNG render makes no plane only an EXR shows (the --stats memor
                               dir.file(name), "--stats"});
         REQUIRE_MESSAGE(r.code == 0, r.err);
         // (a PNG's G-buffer and traced planes went back to the pool once read)
-        CHECK(contains(r.out, "  gbuffer ") == exr);
-        CHECK(contains(r.out, "  ids ") == exr);
-        CHECK(contains(r.out, "  denoised ") == exr);
+        CHECK(contains(r.out, "  normal ") == exr);
+        CHECK(contains(r.out, "  instanceId ") == exr);
+        CHECK(contains(r.out, "  denoisedDiffuse ") == exr);
     }
 }
 

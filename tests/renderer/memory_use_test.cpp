@@ -1,9 +1,10 @@
-// The --stats memory table (renderer/memory_use.h): every group that holds memory, with the
-// bytes its planes hold, and nothing a frame does not hold.
+// The --stats memory table (renderer/memory_use.h): every resource that holds memory, named as
+// the resource table names it, with the bytes its planes hold, and nothing a frame does not hold.
 #include "renderer/memory_use.h"
 
 #include <doctest/doctest.h>
 
+#include <initializer_list>
 #include <map>
 #include <string>
 
@@ -19,16 +20,46 @@ namespace {
 std::map<std::string, std::size_t> byName(const std::vector<MemoryUse>& rows) {
     std::map<std::string, std::size_t> m;
     for (const MemoryUse& r : rows) {
-        CHECK(m.count(r.name) == 0);  // each group once
-        CHECK(r.bytes > 0);           // empty groups are left out
+        CHECK(m.count(r.name) == 0);  // each resource once
+        CHECK(r.bytes > 0);           // empty ones are left out
         m[r.name] = r.bytes;
     }
     return m;
 }
 
+// The bytes of the rows named (0 for those not there).
+std::size_t sum(const std::map<std::string, std::size_t>& m,
+                std::initializer_list<const char*> names) {
+    std::size_t n = 0;
+    for (const char* name : names) n += m.count(name) ? m.at(name) : 0;
+    return n;
+}
+
+// The G-buffer's resources, and the rows of scratch that no pass hands on.
+const std::initializer_list<const char*> kGBuffer = {
+    "viewZ", "normal", "albedo", "metallic", "roughness", "materialId", "motion"};
+const std::initializer_list<const char*> kPassScratch = {"ray.pdf",
+                                                         "rays",
+                                                         "march.hit",
+                                                         "march",
+                                                         "resolve.hitRadiance",
+                                                         "resolve.hitTarget",
+                                                         "ssr resolve",
+                                                         "noisy.diffuse",
+                                                         "noisy.specular",
+                                                         "pingPong",
+                                                         "state.diffuse",
+                                                         "state.specular",
+                                                         "fast.diffuse",
+                                                         "fast.specular",
+                                                         "half.noisy.diffuse",
+                                                         "half.pingPong",
+                                                         "half.state.diffuse",
+                                                         "half.fast.diffuse"};
+
 }  // namespace
 
-TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scratch") {
+TEST_CASE("memory use: each resource's planes, named from the resource table") {
     RenderSettings rs;
     rs.width = 40;
     rs.height = 24;
@@ -45,29 +76,38 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     // A plane of the frame: 40 floats padded to 48 (64-byte rows), 24 rows.
     const std::size_t plane = 48 * 24 * sizeof(float);
     REQUIRE(frame.gbuffer.viewZ.bytes() == plane);
-    CHECK(m.at("image") == 7 * plane);
-    CHECK(m.at("gbuffer") == 12 * plane);
-    CHECK(m.at("ssr") == 7 * plane);
+    CHECK(m.at("color") == 3 * plane);
+    CHECK(m.at("display") == 3 * plane);
+    CHECK(m.at("shadow") == plane);
+    CHECK(m.at("normal") == 3 * plane);
+    CHECK(sum(m, kGBuffer) == 12 * plane);
+    CHECK(m.at("ssr") == 3 * plane);
+    CHECK(sum(m, {"ssrOpacity", "ssrHit", "ssrHitDistance", "ssrSteps"}) == 4 * plane);
     // direct, sky specular and its weight, SSGI's hit light: no sky diffuse (SSGI's light
     // replaces it), no emission (nothing in cornell emits); f16, half a float plane each.
-    CHECK(m.at("direct parts") == 12 * plane / 2);
-    CHECK(m.at("denoised") == 8 * plane);
+    for (const char* part : {"direct", "envSpecular", "specWeight", "hitLight"})
+        CHECK_MESSAGE(m.at(part) == 3 * plane / 2, part);
+    CHECK(m.count("envDiffuse") == 0);
+    CHECK(m.count("emission") == 0);
+    CHECK(sum(m, {"denoisedDiffuse", "denoisedSpecular", "diffuseFrames", "specularFrames"}) ==
+          8 * plane);
     // Between frames no scratch that passes hand on is held: its planes went back to the
     // planes' range after their last pass (renderer/frame_memory.h), whose pages stay the
     // process's; the table says how much of them no plane uses.
     const std::size_t plane16 = PlaneU16(40, 24).bytes();
     REQUIRE(plane16 == plane / 2);
     if (planeMemoryUse().fromRange) CHECK(m.at("free plane memory") > 0);
-    for (const char* pooled :
-         {"rays", "march", "ssr resolve", "denoise scratch", "half denoise scratch"})
-        CHECK(m.count(pooled) == 0);
-    // The denoiser's history: the guides (viewZ, normal 3, roughness) and frames in f32, the
-    // signal 4 and fast in f16.
-    CHECK(m.at("denoise history") == 6 * plane + 5 * plane16);
+    for (const char* pooled : kPassScratch) CHECK_MESSAGE(m.count(pooled) == 0, pooled);
+    // The denoiser's history (the specular's: the diffuse is denoised on the half frame): the
+    // guides (viewZ, normal 3, roughness) and frames in f32, the signal 4 and fast in f16.
+    CHECK(m.at("history.denoise.guide") == 5 * plane);
+    CHECK(m.at("history.denoise.specularFrames") == plane);
+    CHECK(m.at("history.denoise.specular") == 5 * plane16);
+    CHECK(m.count("history.denoise.diffuse") == 0);
     CHECK(m.count("half denoise history") == 1);
-    CHECK(m.at("shadow map") == 64 * 64 * sizeof(float));
+    CHECK(m.at("shadowMap") == 64 * 64 * sizeof(float));
     // (The colour history only where a setting reads it: not by default.)
-    CHECK(m.count("history") == 0);
+    CHECK(m.count("history.color") == 0);
     // SSR off: the full-resolution denoiser has no signal and does not run; the diffuse is
     // denoised on the half frame and still reaches the frame.
     {
@@ -77,8 +117,10 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
         FrameHistory h;
         Renderer(d).render(scene, FrameInput::still(scene), h, diffuseOnly);
         const auto dm = byName(diffuseOnly.stats.memory);
-        CHECK(dm.count("denoise scratch") == 0);
-        CHECK(dm.at("denoised") == 4 * plane);  // diffuse RGB and its history length
+        CHECK(dm.count("noisy.specular") == 0);
+        CHECK(dm.count("pingPong") == 0);
+        // diffuse RGB and its history length
+        CHECK(dm.at("denoisedDiffuse") + dm.at("diffuseFrames") == 4 * plane);
         CHECK(diffuseOnly.trace.denoise.out.specular[0].empty());
     }
     // Without a history, and without the trace, those groups are gone.
@@ -86,10 +128,10 @@ TEST_CASE("memory use: each group's planes, the denoiser's shared ping-pong scra
     rs.trace.ssr = rs.trace.ssgi = false;
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), still);
     const auto n = byName(still.stats.memory);
-    CHECK(n.count("denoise history") == 0);
-    CHECK(n.count("denoise scratch") == 0);
+    CHECK(n.count("history.denoise.guide") == 0);
+    CHECK(n.count("pingPong") == 0);
     CHECK(n.count("ssr") == 0);
-    CHECK(n.at("gbuffer") == 12 * plane);
+    CHECK(sum(n, kGBuffer) == 12 * plane);
 }
 
 TEST_CASE("memory use: a sequence takes no new memory after its second frame") {
@@ -125,10 +167,12 @@ TEST_CASE("memory use: a frame that shows no trace planes keeps no scratch past 
     Frame frame;
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
     const auto m = byName(frame.stats.memory);
-    for (const char* freed : {"visibility buffer", "back faces", "shadow map", "hi-z", "half frame",
-                              "half hi-z", "half rays", "ssr resolve", "rays", "march"})
+    for (const char* freed : {"visibility.depth", "visibility.ids", "back.depth", "back.ids",
+                              "backZ", "shadowMap", "hiz.minZ", "half.gbuffer", "half.hitLight",
+                              "half.guide", "half.hiz", "half.ray.pdf", "half rays", "half march"})
         CHECK_MESSAGE(m.count(freed) == 0, freed);
-    CHECK(m.count("image") == 1);
+    for (const char* freed : kPassScratch) CHECK_MESSAGE(m.count(freed) == 0, freed);
+    CHECK(m.count("color") == 1);
 }
 
 // What a PNG frees early (its scratch after the last pass, the half frame's denoiser first) no
