@@ -286,20 +286,20 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
 
 }  // namespace
 
-GBufferRows GBuffer::rows() const {
-    GBufferRows r;
-    r.viewZ = viewZ.row(0);
-    for (int c = 0; c < 3; ++c) {
-        r.normal[c] = normal[c].row(0);
-        r.albedo[c] = albedo[c].row(0);
-    }
-    r.metallic = metallic.row(0);
-    r.roughness = roughness.row(0);
-    r.materialId = materialId.row(0);
-    r.motion[0] = motion[0].row(0);
-    r.motion[1] = motion[1].row(0);
-    r.stride = viewZ.stride();
-    return r;
+GBufferView GBuffer::view() const {
+    return gbufferView("the G-buffer", viewZ.width(), viewZ.height(),
+                       {{kGViewZ, &viewZ},
+                        {kGNormalX, &normal[0]},
+                        {kGNormalY, &normal[1]},
+                        {kGNormalZ, &normal[2]},
+                        {kGAlbedoR, &albedo[0]},
+                        {kGAlbedoG, &albedo[1]},
+                        {kGAlbedoB, &albedo[2]},
+                        {kGMetallic, &metallic},
+                        {kGRoughness, &roughness},
+                        {kGMaterialId, &materialId},
+                        {kGMotionX, &motion[0]},
+                        {kGMotionY, &motion[1]}});
 }
 
 std::vector<PlaneRef> Frame::layers() const {
