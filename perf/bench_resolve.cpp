@@ -137,10 +137,9 @@ void benchComposite(benchmark::State& state, Isa isa) {
     CompositeInputs in;
     for (int c = 0; c < 3; ++c) {
         in.direct[c] = in.envDiffuse[c] = in.envSpecular[c] = in.specWeight[c] = &s.color[c];
-        in.ssgi[c] = in.albedo[c] = in.ssrColor[c] = &s.albedo[c];
+        in.ssgi[c] = in.ssrColor[c] = &s.albedo[c];
     }
-    in.viewZ = &s.viewZ;
-    in.metallic = &s.metallic;
+    in.g = s.g();
     in.ssrOpacity = &s.shadow;
     PlaneF color[3], display[3];
     for (auto _ : state) {
