@@ -18,8 +18,8 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeIn
     using Clock = std::chrono::steady_clock;
     const DenoiseOutputs& half = frame.scratch.half.denoised.out;
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
-    const HalfUpsampler up(c.args.isa, c.guides(), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
-                           from);
+    const HalfUpsampler up(c.args.isa, c.guides(frame), PixelOffset{0, 0},
+                           frame.scratch.half.rays.pdf, from);
     const Compositor comp(c.args.isa, ci, frame.image.color, frame.image.display, true);
     const TileGrid& grid = comp.grid();
     std::vector<double> busy(std::size_t(2 * grid.count()), 0.0);
@@ -70,7 +70,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
         }
     }
     if (ts.ssgi) {
-        ci.g = c.g;
+        ci.g = frame.gbuffer.view();
         if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     }
     if (ts.ssr && !ts.denoise.enabled) ci.ssrOpacity = &frame.trace.ssr.opacity;

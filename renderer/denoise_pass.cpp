@@ -59,7 +59,8 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     const ReconstructPlanes to{{&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
                                nullptr,
                                c.debugPlane(out.diffuseFrames)};
-    upsampleHalf(c.args.isa, c.guides(), PixelOffset{0, 0}, ht.rays.pdf, from, to, c.threads());
+    upsampleHalf(c.args.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to,
+                 c.threads());
     const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
     times.push_back({"denoise upsample", ms.count()});
 }

@@ -73,8 +73,8 @@ struct GBuffer : PlaneTable<GBuffer> {
         fn(channelName(Res::MaterialId), g.materialId);
         forEachChannel(Res::Motion, g.motion, fn);
     }
-    // Its planes as passes and kernels read them (every plane of viewZ's size, so one
-    // stride; the view checks it).
+    // Its planes as passes and kernels read them (every plane of one size, so one stride;
+    // the view checks it); a freed plane is missing from it.
     GBufferView view() const;
 };
 

@@ -287,7 +287,13 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
 }  // namespace
 
 GBufferView GBuffer::view() const {
-    return gbufferView("the G-buffer", viewZ.width(), viewZ.height(),
+    // (Of the planes' size: any still held, as the frame's memory frees each after its last
+    // reader.)
+    int w = 0, h = 0;
+    forEachPlane([&](std::string_view, const PlaneF& p) {
+        if (w == 0 && !p.empty()) w = p.width(), h = p.height();
+    });
+    return gbufferView("the G-buffer", w, h,
                        {{kGViewZ, &viewZ},
                         {kGNormalX, &normal[0]},
                         {kGNormalY, &normal[1]},

@@ -62,7 +62,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     addTime(times.rays, [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         HalfFrameSource src{
-            c.g,
+            full.g,
             ts.denoise.enabled,
             {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
             c.backZ};
@@ -109,7 +109,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
                                    &planes.hit,
                                    &planes.hitDistance,
                                    c.debugPlane(planes.steps)};
-        upsampleHalf(isa, c.guides(), hf.offset, ht.rays.pdf, from, to, c.threads());
+        upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
     });
 }
 
@@ -122,7 +122,7 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
         h->diffuse[0].height() != frame.height)
         return;
     SsgiFeedbackInputs in;
-    in.g = c.g;
+    in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
     if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
     const ScopedPass timer(frame.stats, "ssgi feedback");
@@ -139,7 +139,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     SsgiPlanes& planes = frame.trace.ssgi;
     SsgiInputs in;
     in.camera = c.camera;
-    in.g = c.g;
+    in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
         in.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
         // The direct pass's hit light (then the G-buffer planes above are not read).
@@ -162,7 +162,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
     takeBatches(c, frame);
-    const SsgiSample q{c,           {c.camera, c.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
+    const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
                        planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
@@ -173,7 +173,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                                        nullptr,
                                        &planes.hit,
                                        &planes.hitDistance};
-            fillCheckerboard(isa, c.guides(), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
     sc.pool.give(sc.rays);

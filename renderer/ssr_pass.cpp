@@ -16,7 +16,7 @@ SsrResolveInputs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettin
     if (!reproject) rs.radiance = HitRadiance::Current;
     SsrResolveInputs in;
     in.camera = c.camera;
-    in.g = c.g;
+    in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
         in.color[ch] = &frame.image.color[ch];
         in.prevColor[ch] = reproject ? &c.args.history->color[ch] : nullptr;
@@ -49,7 +49,7 @@ struct SsrSample {
 
     RayGenerator rays(int s) const {
         return RayGenerator::specular(c.args.isa, c.ts.ssrMethod, c.args.frameIndex, uint32_t(s),
-                                      c.camera, c.g, maxRoughness, checker);
+                                      c.camera, in.g, maxRoughness, checker);
     }
 };
 
@@ -59,7 +59,7 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
-        marchSample(c, {c.camera, c.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
+        marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
                     sc.march, st, times);
         addTime(times.resolve, [&] {
             resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
@@ -78,7 +78,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
         const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
-                               c.camera, c.g, c.backZ, c.hiz, c.threads());
+                               c.camera, q.in.g, c.backZ, c.hiz, c.threads());
         // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);
@@ -128,7 +128,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
                                        &planes.opacity,
                                        &planes.hit,
                                        &planes.hitDistance};
-            fillCheckerboard(c.args.isa, c.guides(), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(c.args.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
     sc.pool.give(sc.rays);

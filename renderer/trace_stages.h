@@ -22,21 +22,22 @@ struct TraceContext {
     const TracePassArgs& args;
     const TraceSettings& ts;
     TraceCamera camera;
-    GBufferView g;
     const PlaneF* backZ = nullptr;  // the march's (trace/march.h)
     const HiZPyramid* hiz = nullptr;
+    // (Each pass takes the G-buffer's view, GBuffer::view, as it starts: the frame's memory
+    // frees a plane after its last reader, and a freed plane is then missing from the view,
+    // never a stale row.)
 
     TraceContext(const TracePassArgs& a, const Frame& f)
         : args(a),
           ts(a.settings.trace),
           camera(f.camera),
-          g(f.gbuffer.view()),
           backZ(trace_stages::backZ(f.scratch.backZ)) {}
     int threads() const { return args.settings.threads; }
     // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
     PlaneF* debugPlane(PlaneF& p) const { return args.settings.debugPlanes ? &p : nullptr; }
     // What the reconstruction of a layout's untraced pixels is guided by.
-    ReconstructGuides guides() const { return {camera, g}; }
+    ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
 // Times of one trace pass's stages, summed over its samples.
