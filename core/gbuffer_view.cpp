@@ -9,8 +9,9 @@ namespace ssrt {
 
 namespace {
 
-// The view's member for plane `which` (GBufferView's order).
-const float*& member(GBufferView& g, GBufferPlane which) {
+// The view's member for plane `which` (GBufferView's order); V: GBufferView, const or not.
+template <class V>
+auto& member(V& g, GBufferPlane which) {
     switch (which) {
         case kGViewZ: return g.viewZ;
         case kGNormalX: return g.normal[0];
@@ -69,10 +70,9 @@ void requireGBuffer(std::string_view pass, const GBufferView& g, GBufferPlanes n
         throw std::invalid_argument(who + " is " + std::to_string(g.width) + "x" +
                                     std::to_string(g.height) + ", not " + std::to_string(width) +
                                     "x" + std::to_string(height));
-    GBufferView v = g;
     for (int i = 0; i < kGBufferPlaneCount; ++i) {
         const auto which = GBufferPlane(1u << i);
-        if ((need & which) && !member(v, which))
+        if ((need & which) && !member(g, which))
             throw std::invalid_argument(std::string(pass) + ": " +
                                         std::string(gbufferPlaneName(which)) + " is missing");
     }
