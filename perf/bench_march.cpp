@@ -34,7 +34,7 @@ const Workload& workload(const std::string& scene) {
         w = std::make_unique<Workload>();
         w->g = renderGBuffer(scene, 1920, 1080, &w->roughness);
         w->rays[int(Rays::Mirror)] = mirrorRays(w->g);
-        const RayGenGBuffer rg{&w->g.viewZ, {&w->g.nx, &w->g.ny, &w->g.nz}, &w->roughness};
+        const GBufferView rg = w->g.view(&w->roughness);
         generateSpecularRays(defaultIsa(), SsrMethod::VndfBounded, 0, 0, w->g.camera, rg,
                              w->rays[int(Rays::Vndf)], 0);
         generateDiffuseRays(defaultIsa(), 0, 0, w->g.camera, rg, w->rays[int(Rays::Cosine)], 0);
@@ -52,7 +52,7 @@ void marchBench(benchmark::State& state, std::string scene, Marcher marcher,
     MarchResult result;
     MarchStats stats;
     for (auto _ : state) {
-        stats = marchRays(isa, marcher, settings, {}, w.g.camera, w.g.view(),
+        stats = marchRays(isa, marcher, settings, {}, w.g.camera, w.g.view(), nullptr,
                           marcher == Marcher::HiZ ? &w.hiz : nullptr, w.rays[int(kind)], result,
                           threads);
         benchmark::DoNotOptimize(result.hit.row(0));

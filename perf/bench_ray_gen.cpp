@@ -37,11 +37,7 @@ struct GBuffer {
         const glm::mat3 viewToWorld = glm::mat3(glm::inverse(scene.camera.view()));
         std::copy_n(glm::value_ptr(viewToWorld), 9, camera.viewToWorld);
     }
-    RayGenGBuffer g() const {
-        return {&frame.gbuffer.viewZ,
-                {&frame.gbuffer.normal[0], &frame.gbuffer.normal[1], &frame.gbuffer.normal[2]},
-                &frame.gbuffer.roughness};
-    }
+    GBufferView g() const { return frame.gbuffer.view(); }
 };
 
 const GBuffer& gbuffer() {

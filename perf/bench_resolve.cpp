@@ -39,6 +39,20 @@ struct Scene {
     MarchResult march;
     ColorPyramid pyramid;
     DirectArgs light{};
+    GBufferView g() const {
+        return gbufferView("bench", kW, kH,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGAlbedoR, &albedo[0]},
+                            {kGAlbedoG, &albedo[1]},
+                            {kGAlbedoB, &albedo[2]},
+                            {kGMetallic, &metallic},
+                            {kGRoughness, &roughness},
+                            {kGMotionX, &motion[0]},
+                            {kGMotionY, &motion[1]}});
+    }
     Scene() {
         rays.ensureSize(kW, kH);
         march.ensureSize(kW, kH);
@@ -81,12 +95,8 @@ void benchSsr(benchmark::State& state, Isa isa, SsrResolveMode mode) {
     SsrResolveInputs in;
     in.camera.width = kW;
     in.camera.height = kH;
-    in.viewZ = &s.viewZ;
-    in.roughness = &s.roughness;
-    for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &s.normal[c];
-        in.color[c] = &s.color[c];
-    }
+    in.g = s.g();
+    for (int c = 0; c < 3; ++c) in.color[c] = &s.color[c];
     in.pyramid = &s.pyramid;
     SsrResolveSettings settings;
     settings.mode = mode;
@@ -107,12 +117,7 @@ void benchSsgi(benchmark::State& state, Isa isa) {
     SsgiInputs in;
     in.camera.width = kW;
     in.camera.height = kH;
-    in.viewZ = &s.viewZ;
-    for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &s.normal[c];
-        in.albedo[c] = &s.albedo[c];
-    }
-    in.metallic = &s.metallic;
+    in.g = s.g();
     in.shadow = &s.shadow;
     in.lighting = &s.light;
     PlaneF out[3];
@@ -132,10 +137,9 @@ void benchComposite(benchmark::State& state, Isa isa) {
     CompositeInputs in;
     for (int c = 0; c < 3; ++c) {
         in.direct[c] = in.envDiffuse[c] = in.envSpecular[c] = in.specWeight[c] = &s.color[c];
-        in.ssgi[c] = in.albedo[c] = in.ssrColor[c] = &s.albedo[c];
+        in.ssgi[c] = in.ssrColor[c] = &s.albedo[c];
     }
-    in.viewZ = &s.viewZ;
-    in.metallic = &s.metallic;
+    in.g = s.g();
     in.ssrOpacity = &s.shadow;
     PlaneF color[3], display[3];
     for (auto _ : state) {

@@ -175,7 +175,14 @@ struct Workload {
     float diagonal = 0.0f;
     std::map<SsrMethod, std::unique_ptr<RayKind>> kinds;
 
-    MarchGBuffer march() const { return {&viewZ, {&normal[0], &normal[1], &normal[2]}}; }
+    GBufferView g() const {
+        return gbufferView("bench", camera.width, camera.height,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGRoughness, &roughness}});
+    }
     glm::mat3 viewToWorld() const { return glm::make_mat3(camera.viewToWorld); }
 };
 
@@ -221,8 +228,7 @@ const RayKind& rayKind(Workload& w, SsrMethod method) {
     auto& k = w.kinds[method];
     if (k) return *k;
     k = std::make_unique<RayKind>();
-    const RayGenGBuffer rg{&w.viewZ, {&w.normal[0], &w.normal[1], &w.normal[2]}, &w.roughness};
-    generateSpecularRays(defaultIsa(), method, 0, 0, w.camera, rg, k->rays, 0);
+    generateSpecularRays(defaultIsa(), method, 0, 0, w.camera, w.g(), k->rays, 0);
     k->world =
         toWorld(k->rays, w.viewToWorld(), w.scene.camera.position - w.embree->origin(),
                 w.embree->epsilon(), marchLengths(MarchSettings{}, w.scene.diagonal()).maxDistance);
@@ -315,7 +321,7 @@ void marcherBench(benchmark::State& state, std::string scene, SsrMethod method, 
         if (marcher == Marcher::HiZ) buildHiZ(w.viewZ, hiz, threads);
         hizSec += secondsSince(t0);
         t0 = Clock::now();
-        stats = marchRays(isa, marcher, settings, {}, w.camera, w.march(),
+        stats = marchRays(isa, marcher, settings, {}, w.camera, w.g(), nullptr,
                           marcher == Marcher::HiZ ? &hiz : nullptr, k.rays, result, threads);
         const double marchIter = secondsSince(t0);
         marchSec += marchIter;

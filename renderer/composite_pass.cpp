@@ -51,7 +51,6 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeIn
 void compositePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool inComposite = diffuseUpsampledInComposite(c.args.settings);
-    const GBuffer& g = frame.gbuffer;
     const DirectParts& parts = frame.direct;
     CompositeInputs ci;
     for (int ch = 0; ch < 3; ++ch) {
@@ -64,7 +63,6 @@ void compositePass(const TraceContext& c, Frame& frame) {
         if (ts.ssgi) {
             if (!inComposite)
                 ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
-            ci.albedo[ch] = &g.albedo[ch];
         }
         if (ts.ssr) {  // the denoiser's output, or SSR's own
             if (ts.denoise.enabled) ci.specular[ch] = &d.specular[ch];
@@ -72,8 +70,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
         }
     }
     if (ts.ssgi) {
-        ci.viewZ = &g.viewZ;
-        ci.metallic = &g.metallic;
+        ci.g = frame.gbuffer.view();
         if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     }
     if (ts.ssr && !ts.denoise.enabled) ci.ssrOpacity = &frame.trace.ssr.opacity;

@@ -54,7 +54,7 @@ bool anyEmissive(const Scene& scene) {
     });
 }
 
-void setDirectGBuffer(const GBuffer& g, DirectArgs& a) { a.g = g.rows(); }
+void setDirectGBuffer(const GBuffer& g, DirectArgs& a) { a.g = g.view(); }
 
 void setDirectMaterialPlanes(const MaterialPlanes& m, DirectArgs& a) {
     for (int c = 0; c < 3; ++c)

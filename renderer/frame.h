@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/gbuffer_rows.h"
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/plane_pool.h"
@@ -74,8 +74,9 @@ struct GBuffer : PlaneTable<GBuffer> {
         fn(channelName(Res::MaterialId), g.materialId);
         forEachChannel(Res::Motion, g.motion, fn);
     }
-    // Its planes as kernels read them (every plane of the frame's size, so one stride).
-    GBufferRows rows() const;
+    // Its planes as passes and kernels read them (every plane of one size, so one stride;
+    // the view checks it); a freed plane is missing from it.
+    GBufferView view() const;
 };
 
 // Per-pixel material terms the texture pass writes when some material needs them, each

@@ -258,20 +258,26 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
 
 }  // namespace
 
-GBufferRows GBuffer::rows() const {
-    GBufferRows r;
-    r.viewZ = viewZ.row(0);
-    for (int c = 0; c < 3; ++c) {
-        r.normal[c] = normal[c].row(0);
-        r.albedo[c] = albedo[c].row(0);
-    }
-    r.metallic = metallic.row(0);
-    r.roughness = roughness.row(0);
-    r.materialId = materialId.row(0);
-    r.motion[0] = motion[0].row(0);
-    r.motion[1] = motion[1].row(0);
-    r.stride = viewZ.stride();
-    return r;
+GBufferView GBuffer::view() const {
+    // (Of the planes' size: any still held, as the frame's memory frees each after its last
+    // reader.)
+    int w = 0, h = 0;
+    forEachPlane([&](std::string_view, const PlaneF& p) {
+        if (w == 0 && !p.empty()) w = p.width(), h = p.height();
+    });
+    return gbufferView("the G-buffer", w, h,
+                       {{kGViewZ, &viewZ},
+                        {kGNormalX, &normal[0]},
+                        {kGNormalY, &normal[1]},
+                        {kGNormalZ, &normal[2]},
+                        {kGAlbedoR, &albedo[0]},
+                        {kGAlbedoG, &albedo[1]},
+                        {kGAlbedoB, &albedo[2]},
+                        {kGMetallic, &metallic},
+                        {kGRoughness, &roughness},
+                        {kGMaterialId, &materialId},
+                        {kGMotionX, &motion[0]},
+                        {kGMotionY, &motion[1]}});
 }
 
 std::vector<PlaneRef> Frame::layers() const {

@@ -12,7 +12,6 @@ namespace {
 struct SsgiSample {
     const TraceContext& c;
     MarchFrame on;
-    const RayGenGBuffer& rayGen;
     const SsgiInputs& in;
     const HitStatsPlanes& hp;
     DiffuseCut cut;
@@ -27,7 +26,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
     const int spp = c.ts.ssgiSpp;
     const TraceCamera& camera = q.on.camera;
     const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), camera,
-                                                   q.rayGen, q.cut, q.checker);
+                                                   q.on.g, q.cut, q.checker);
     const RaySeed seed{c.args.frameIndex, uint32_t(s)};
     if (!tiled(c)) {
         RayGenStats rs;
@@ -39,8 +38,8 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         });
         return rs;
     }
-    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, camera, q.on.gbuffer, q.on.hiz,
-                           c.threads());
+    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, camera, q.on.g, q.on.backZ,
+                           q.on.hiz, c.threads());
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
     const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
@@ -58,43 +57,33 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
               TraceStats& st, StageTimes& times) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
-    const GBuffer& g = frame.gbuffer;
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     HalfFrame& hf = ht.frame;
     addTime(times.rays, [&] {
+        // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         HalfFrameSource src{
-            &g.viewZ,
-            {&g.normal[0], &g.normal[1], &g.normal[2]},
-            {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
-            &g.metallic,
+            full.g,
+            ts.denoise.enabled,
             {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
-            {},
-            backZ(frame.scratch.backZ)};
+            c.backZ};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
         if (hitLightAtHalf(c.args.settings))
             for (const PlaneU16*& p : src.hitLight) p = nullptr;
-        // (Motion for the denoiser, which runs on the half frame: denoisePass.)
-        if (ts.denoise.enabled) src.motion[0] = &g.motion[0], src.motion[1] = &g.motion[1];
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
-    const RayGenGBuffer rayGen{&hf.viewZ,
-                               {&hf.normal[0], &hf.normal[1], &hf.normal[2]},
-                               nullptr,
-                               {&hf.albedo[0], &hf.albedo[1], &hf.albedo[2]},
-                               &hf.metallic};
-    const MarchGBuffer march{
-        &hf.viewZ, {&hf.normal[0], &hf.normal[1], &hf.normal[2]}, backZ(hf.backZ)};
+    const GBufferView hg = hf.view();
     SsgiInputs in = full;
     in.camera = hf.camera;
-    in.viewZ = &hf.viewZ;
+    in.g = hg;
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
     if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
         takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
     const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
                             &ht.resolved.hitDistance};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
-    const SsgiSample q{c, {hf.camera, march, hiz, &hf}, rayGen, in, hp, cut, {}, ht.resolved.color};
+    const SsgiSample q{
+        c, {hf.camera, hg, backZ(hf.backZ), hiz, &hf}, in, hp, cut, {}, ht.resolved.color};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
         // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
@@ -132,17 +121,10 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
     if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
         h->diffuse[0].height() != frame.height)
         return;
-    const GBuffer& g = frame.gbuffer;
     SsgiFeedbackInputs in;
-    in.viewZ = &g.viewZ;
-    for (int ch = 0; ch < 3; ++ch) {
-        in.albedo[ch] = &g.albedo[ch];
-        in.prevDiffuse[ch] = &h->diffuse[ch];
-    }
-    in.metallic = &g.metallic;
+    in.g = frame.gbuffer.view();
+    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
     if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
-    in.motion[0] = &g.motion[0];
-    in.motion[1] = &g.motion[1];
     const ScopedPass timer(frame.stats, "ssgi feedback");
     addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
 }
@@ -152,21 +134,17 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
 void ssgiPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
-    const GBuffer& g = frame.gbuffer;
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
     SsgiPlanes& planes = frame.trace.ssgi;
     SsgiInputs in;
     in.camera = c.camera;
-    in.viewZ = &g.viewZ;
+    in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
-        in.normal[ch] = &g.normal[ch];
-        in.albedo[ch] = &g.albedo[ch];
         in.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
         // The direct pass's hit light (then the G-buffer planes above are not read).
         in.hitLight[ch] = &parts.hitLight[ch];
     }
-    in.metallic = &g.metallic;
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
     const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
@@ -184,8 +162,8 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
     takeBatches(c, frame);
-    const SsgiSample q{
-        c, {c.camera, c.march, c.hiz, nullptr}, c.rayGen, in, hp, cut, checker, planes.color};
+    const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
+                       planes.color};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
     if (checker.on) {

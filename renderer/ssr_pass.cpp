@@ -12,20 +12,15 @@ namespace {
 // history has one) through the motion vectors; the colour pyramid for the mip mode.
 SsrResolveInputs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
                            double& pyramidMs) {
-    const GBuffer& g = frame.gbuffer;
     const bool reproject = rs.radiance == HitRadiance::Reprojected && c.args.history;
     if (!reproject) rs.radiance = HitRadiance::Current;
     SsrResolveInputs in;
     in.camera = c.camera;
-    in.viewZ = &g.viewZ;
+    in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
-        in.normal[ch] = &g.normal[ch];
         in.color[ch] = &frame.image.color[ch];
         in.prevColor[ch] = reproject ? &c.args.history->color[ch] : nullptr;
     }
-    in.motion[0] = &g.motion[0];
-    in.motion[1] = &g.motion[1];
-    in.roughness = &g.roughness;
     in.radianceScale = 1.0f / c.args.settings.exposure;
     if (rs.mode == SsrResolveMode::Mip) {
         addTime(pyramidMs, [&] {
@@ -54,7 +49,7 @@ struct SsrSample {
 
     RayGenerator rays(int s) const {
         return RayGenerator::specular(c.args.isa, c.ts.ssrMethod, c.args.frameIndex, uint32_t(s),
-                                      c.camera, c.rayGen, maxRoughness, checker);
+                                      c.camera, in.g, maxRoughness, checker);
     }
 };
 
@@ -64,8 +59,8 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
-        marchSample(c, {c.camera, c.march, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays, sc.march,
-                    st, times);
+        marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
+                    sc.march, st, times);
         addTime(times.resolve, [&] {
             resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
                        c.threads());
@@ -83,7 +78,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
     for (int s = 0; s < c.ts.ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
         const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
-                               c.camera, c.march, c.hiz, c.threads());
+                               c.camera, q.in.g, c.backZ, c.hiz, c.threads());
         // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);

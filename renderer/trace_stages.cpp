@@ -7,7 +7,7 @@ void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, in
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times) {
     addTime(times.march, [&] {
         stats.march.add(marchRays(c.args.isa, c.ts.marcher, c.ts.march,
-                                  {c.args.frameIndex, uint32_t(sample)}, on.camera, on.gbuffer,
+                                  {c.args.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
                                   on.hiz, rays, result, c.threads()));
     });
     if (c.args.observer && *c.args.observer)

@@ -22,29 +22,22 @@ struct TraceContext {
     const TracePassArgs& args;
     const TraceSettings& ts;
     TraceCamera camera;
-    MarchGBuffer march;
-    RayGenGBuffer rayGen;
+    const PlaneF* backZ = nullptr;  // the march's (trace/march.h)
     const HiZPyramid* hiz = nullptr;
+    // (Each pass takes the G-buffer's view, GBuffer::view, as it starts: the frame's memory
+    // frees a plane after its last reader, and a freed plane is then missing from the view,
+    // never a stale row.)
 
-    TraceContext(const TracePassArgs& a, const Frame& f) : args(a), ts(a.settings.trace) {
-        const GBuffer& g = f.gbuffer;
-        camera = f.camera;
-        march = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}, backZ(f.scratch.backZ)};
-        // (albedo and metallic: the diffuse colour the composite multiplies SSGI by)
-        rayGen = {&g.viewZ,
-                  {&g.normal[0], &g.normal[1], &g.normal[2]},
-                  &g.roughness,
-                  {&g.albedo[0], &g.albedo[1], &g.albedo[2]},
-                  &g.metallic};
-    }
+    TraceContext(const TracePassArgs& a, const Frame& f)
+        : args(a),
+          ts(a.settings.trace),
+          camera(f.camera),
+          backZ(trace_stages::backZ(f.scratch.backZ)) {}
     int threads() const { return args.settings.threads; }
     // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
     PlaneF* debugPlane(PlaneF& p) const { return args.settings.debugPlanes ? &p : nullptr; }
     // What the reconstruction of a layout's untraced pixels is guided by.
-    ReconstructGuides guides(const Frame& f) const {
-        const GBuffer& g = f.gbuffer;
-        return {camera, &g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}};
-    }
+    ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
 // Times of one trace pass's stages, summed over its samples.
@@ -64,7 +57,8 @@ struct StageTimes {
 // pyramid, or the half frame's (`half`, TraceLayout::Half).
 struct MarchFrame {
     const TraceCamera& camera;
-    const MarchGBuffer& gbuffer;
+    const GBufferView& g;
+    const PlaneF* backZ;
     const HiZPyramid* hiz;
     const HalfFrame* half;
 };

@@ -39,7 +39,6 @@ Compositor::Compositor(Isa isa, const CompositeInputs& in, PlaneF color[3], Plan
         if (anyOf(in.emission)) a.emission[c] = need(in.emission[c], "emission");
         if (ssgi) {
             if (!tileSsgi) a.ssgi[c] = need(in.ssgi[c], "ssgi");
-            a.albedo[c] = need(in.albedo[c], "albedo");
         } else {
             a.envDiffuse[c] = need(in.envDiffuse[c], "envDiffuse");
         }
@@ -49,8 +48,8 @@ Compositor::Compositor(Isa isa, const CompositeInputs& in, PlaneF color[3], Plan
         a.display[c] = need.output(display[c], "display");
     }
     if (ssgi) {
-        a.viewZ = need(in.viewZ, "viewZ");
-        a.metallic = need(in.metallic, "metallic");
+        requireGBuffer("composite", in.g, kGViewZ | kGAlbedo | kGMetallic, w, h);
+        a.g = in.g;
         if (in.occlusion) a.occlusion = need(in.occlusion, "occlusion");
     }
     if (ssr) a.ssrOpacity = need(in.ssrOpacity, "ssrOpacity");

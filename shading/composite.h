@@ -15,6 +15,7 @@
 #pragma once
 
 #include "core/float_planes.h"
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -32,9 +33,7 @@ struct CompositeInputs {
     FloatPlane specWeight[3] = {};   // DirectArgs::specWeight
     // SSGI (trace/ssgi.h): null = off. With it on, the G-buffer's viewZ, albedo and metallic.
     const PlaneF* ssgi[3] = {};
-    const PlaneF* viewZ = nullptr;
-    const PlaneF* albedo[3] = {};
-    const PlaneF* metallic = nullptr;
+    GBufferView g;
     // MaterialPlanes::occlusion (null: none), read with SSGI on; envDiffuse and specWeight
     // hold it already (DirectArgs::occlusion).
     const PlaneF* occlusion = nullptr;

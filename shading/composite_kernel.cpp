@@ -31,9 +31,9 @@ void compositeChunk(const CompositeArgs& a, int x, int y) {
     // Diffuse: SSGI times the diffuse colour, or the sky's irradiance term.
     V3 diffuse;
     if (a.ssgi[0]) {
-        const Lane metallic = ln::load<Lane>(a.metallic + o);
-        const V3 colour = load3(a.albedo, o) * (one - metallic);
-        const auto background = ln::load<Lane>(a.viewZ + o) <= zero;
+        const Lane metallic = ln::load<Lane>(a.g.metallic + o);
+        const V3 colour = load3(a.g.albedo, o) * (one - metallic);
+        const auto background = ln::load<Lane>(a.g.viewZ + o) <= zero;
         const std::size_t so = std::size_t(y - a.ssgiY0) * a.ssgiStride + std::size_t(x - a.ssgiX0);
         V3 bounce = colour * load3(a.ssgi, so);
         if (a.occlusion) bounce = bounce * ln::load<Lane>(a.occlusion + o);

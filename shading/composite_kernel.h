@@ -6,6 +6,7 @@
 
 #include "core/dispatch.h"
 #include "core/float_planes.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -25,9 +26,7 @@ struct CompositeArgs {
     // own stride, and their element (0, 0) the frame's pixel (ssgiX0, ssgiY0).
     std::size_t ssgiStride;
     int ssgiX0, ssgiY0;
-    const float* viewZ;
-    const float* albedo[3];
-    const float* metallic;
+    GBufferView g;             // viewZ, albedo, metallic (SSGI on only)
     const float* occlusion;    // null: none (SSGI on only)
     const float* ssrColor[3];  // null: SSR off
     const float* specular[3];  // null: from ssrColor, ssrOpacity and envSpecular

@@ -5,7 +5,7 @@
 
 #include "core/dispatch.h"
 #include "core/float_planes.h"
-#include "core/gbuffer_rows.h"
+#include "core/gbuffer_view.h"
 #include "shading/energy_tables.h"
 #include "shading/environment.h"
 
@@ -13,7 +13,7 @@ namespace ssrt {
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
 struct DirectArgs {
-    GBufferRows g;  // viewZ, normal, albedo, metallic, roughness, materialId (not motion)
+    GBufferView g;  // viewZ, normal, albedo, metallic, roughness, materialId (not motion)
     int width, height, tilesX;
     float tanHalfX, tanHalfY;
     float camPos[3];

@@ -142,17 +142,15 @@ static_assert(kTileSize % kMarchPad == 0);
 }  // namespace
 
 RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
-                       const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
-                       int threads)
+                       const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
+                       const HiZPyramid* hiz, int threads)
     : grid_(camera.width, camera.height), seed_(seed), maxSteps_(settings.maxSteps) {
     settings.validate();
     const int w = camera.width, h = camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the camera has no pixels");
-    PlaneCheck need("marchRays", w, h);
     if (!(camera.tanHalfX > 0.0f) || !(camera.tanHalfY > 0.0f) || !(camera.nearZ > 0.0f))
         throw std::invalid_argument("marchRays: camera needs tanHalfX, tanHalfY, nearZ > 0");
-    need(g.viewZ, "viewZ");
-    for (const PlaneF* n : g.normal) need(n, "normal");
+    requireGBuffer("marchRays", g, kGViewZ | kGNormal, w, h);
 
     MarchKernelArgs& proto = proto_;
     proto.width = w;
@@ -165,17 +163,13 @@ RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, 
     proto.cy = float(h) * 0.5f - (camera.pointY - 0.5f);
     proto.nearZ = camera.nearZ;
     std::copy(camera.viewToWorld, camera.viewToWorld + 9, proto.viewToWorld);
-    proto.viewZ = g.viewZ->row(0);
-    proto.zStride = g.viewZ->stride();
+    proto.g = g;
     proto.backZ = nullptr;
-    if (settings.backFaces && g.backZ) {
-        need(g.backZ, "backZ");
-        if (g.backZ->stride() != g.viewZ->stride())
+    if (settings.backFaces && backZ) {
+        proto.backZ = PlaneCheck("marchRays", w, h)(backZ, "backZ");
+        if (backZ->stride() != g.stride)
             throw std::invalid_argument("marchRays: backZ and viewZ of different strides");
-        proto.backZ = g.backZ->row(0);
     }
-    for (int c = 0; c < 3; ++c) proto.normal[c] = g.normal[c]->row(0);
-    proto.nStride = g.normal[0]->stride();
     proto.maxSteps = settings.maxSteps;
     const MarchLengths lengths = marchLengths(settings, camera.sceneDiagonal);
     proto.maxDistance = lengths.maxDistance;
@@ -359,14 +353,15 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
 }
 
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
-                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
-                     const RayBatch& rays, MarchResult& result, int threads) {
+                     const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
+                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result,
+                     int threads) {
     settings.validate();
     const int w = rays.width(), h = rays.height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
     if (camera.width != w || camera.height != h)
         throw std::invalid_argument("marchRays: camera size does not match the ray batch");
-    const RayMarcher march(isa, marcher, settings, seed, camera, g, hiz, threads);
+    const RayMarcher march(isa, marcher, settings, seed, camera, g, backZ, hiz, threads);
     result.ensureSize(w, h);
     result.corner = {};
     const TileGrid& grid = march.grid();

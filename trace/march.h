@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -53,7 +54,7 @@ struct MarchSettings {
     float thickness = 0.03f;
     float thicknessAbsolute = 0.0f;  // view-space depth (scene units); 0: use thickness
     // The depth interval from the scene (raster/back_depth.h): where a pixel's back face is
-    // known (MarchGBuffer::backZ), a ray hits it only within [z, back face]; the thickness
+    // known (marchRays' backZ), a ray hits it only within [z, back face]; the thickness
     // above is then the fallback where it is not. Off: the thickness everywhere. (Off by
     // default, the medium preset's; high and ultra turn it on: renderer/quality.cpp.)
     bool backFaces = false;
@@ -103,32 +104,26 @@ struct MarchStats {
     }
 };
 
-struct MarchGBuffer {
-    const PlaneF* viewZ = nullptr;
-    const PlaneF* normal[3] = {nullptr, nullptr, nullptr};  // world-space normals
-    // The back-face depth layer (raster/back_depth.h: 0 where unknown), or null: the
-    // thickness everywhere.
-    const PlaneF* backZ = nullptr;
-};
-
-// Marches every pixel's ray of `rays`; writes every pixel of `result` (ensureSize'd here).
-// `hiz` must be built from g.viewZ when marcher == HiZ (may be null otherwise). Throws
-// std::invalid_argument on bad settings or mismatched sizes.
+// Marches every pixel's ray of `rays` against `g` (viewZ, normal) and `backZ`, the
+// back-face depth layer (raster/back_depth.h: 0 where unknown; read with
+// MarchSettings::backFaces), or null: the thickness everywhere. Writes every pixel of
+// `result` (ensureSize'd here). `hiz` must be built from g.viewZ when marcher == HiZ (may be
+// null otherwise). Throws std::invalid_argument on bad settings or mismatched sizes.
 // `seed` is the batch's frame and sample, for the DDA jitter.
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
-                     const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
-                     const RayBatch& rays, MarchResult& result, int threads);
+                     const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
+                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads);
 
 // One march, checked and set up once (the camera's, the settings' and the pyramid's
 // arguments), then run tile by tile: over the frame by marchRays, or one tile at a time by the
 // trace pass's tile chain (trace/tile_chain.h). The same results either way: a ray's path
-// depends on its own ray alone. It points into `hiz` and `g`: they outlive it.
+// depends on its own ray alone. It points into `hiz`, `g` and `backZ`: they outlive it.
 class RayMarcher {
 public:
     // marchRays' arguments less the batches; `threads` only packs a pyramid without its copy.
     RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
-               const TraceCamera& camera, const MarchGBuffer& g, const HiZPyramid* hiz,
-               int threads);
+               const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
+               const HiZPyramid* hiz, int threads);
     RayMarcher(const RayMarcher&) = delete;  // (the arguments point into packed_)
     RayMarcher& operator=(const RayMarcher&) = delete;
     const TileGrid& grid() const { return grid_; }

@@ -63,12 +63,12 @@ SSRT_INLINE Lane pixelOf(Lane p, int size) {
 
 // Index of integer pixels (ix, iy) in the frame's depth planes (viewZ, backZ).
 SSRT_INLINE ILane depthIndex(const MarchKernelArgs& a, Lane ix, Lane iy) {
-    return ln::toIntTrunc(iy) * ILane(int32_t(a.zStride)) + ln::toIntTrunc(ix);
+    return ln::toIntTrunc(iy) * ILane(int32_t(a.g.stride)) + ln::toIntTrunc(ix);
 }
 
 // G-buffer depth at a depthIndex; background as +infinity.
 SSRT_INLINE Lane sceneDepthAt(const MarchKernelArgs& a, ILane idx) {
-    const Lane z = ln::gather(a.viewZ, idx);
+    const Lane z = ln::gather(a.g.viewZ, idx);
     return ln::select(z > Lane(0.0f), z, Lane(__builtin_inff()));
 }
 
@@ -155,15 +155,16 @@ inline void finishRays(MarchKernelArgs& a, int base, const LaneEnds& e) {
         // Hit positions are on screen; misses (0, 0) read pixel 0, harmlessly.
         const ILane ix = ln::toIntTrunc(ln::clamp(e.hitX, zero, Lane(float(a.width - 1))));
         const ILane iy = ln::toIntTrunc(ln::clamp(e.hitY, zero, Lane(float(a.height - 1))));
-        const ILane n = iy * ILane(int32_t(a.nStride)) + ix;
+        const ILane n = iy * ILane(int32_t(a.g.stride)) + ix;
         const Lane dx = ln::load<Lane>(a.dx + base), dy = ln::load<Lane>(a.dy + base),
                    dz = ln::load<Lane>(a.dz + base);
         const float* R = a.viewToWorld;
         const Lane wx = (Lane(R[0]) * dx + Lane(R[3]) * dy) + Lane(R[6]) * dz;
         const Lane wy = (Lane(R[1]) * dx + Lane(R[4]) * dy) + Lane(R[7]) * dz;
         const Lane wz = (Lane(R[2]) * dx + Lane(R[5]) * dy) + Lane(R[8]) * dz;
-        const Lane facing = (ln::gather(a.normal[0], n) * wx + ln::gather(a.normal[1], n) * wy) +
-                            ln::gather(a.normal[2], n) * wz;
+        const Lane facing =
+            (ln::gather(a.g.normal[0], n) * wx + ln::gather(a.g.normal[1], n) * wy) +
+            ln::gather(a.g.normal[2], n) * wz;
         c = ln::select(hit & (facing > zero), endCode(MarchEnd::BackFace), c);
     }
     const Mask gaveUp = (c == endCode(MarchEnd::LeftScreen)) | (c == endCode(MarchEnd::StepCap));

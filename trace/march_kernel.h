@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -22,14 +23,10 @@ struct MarchKernelArgs {
     float sx, sy, cx, cy;
     float nearZ;
     float viewToWorld[9];  // column-major rotation
-    // G-buffer.
-    const float* viewZ;
-    std::size_t zStride;
-    // The back-face depth layer, of viewZ's stride (0 where unknown), or null: the thickness
-    // is the fallback at every pixel.
+    GBufferView g;         // viewZ, normal
+    // The back-face depth layer, of g's stride (0 where unknown), or null: the thickness is
+    // the fallback at every pixel.
     const float* backZ;
-    const float* normal[3];
-    std::size_t nStride;
     // Hi-Z min pyramid (levels of minZ, background +inf).
     int hizLevels;
     const float* hizMin[kMaxHiZLevels];

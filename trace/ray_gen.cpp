@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "core/plane_check.h"
 #include "core/tiles.h"
 
 namespace ssrt {
@@ -39,31 +38,20 @@ void RayGenStats::add(const RayGenStats& o) {
 }
 
 RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
-                           const TraceCamera& camera, const RayGenGBuffer& g, float maxRoughness,
+                           const TraceCamera& camera, const GBufferView& g, float maxRoughness,
                            bool onlyDiffuse, RayGenCheckerboard checkerboard)
     : grid_(camera.width, camera.height) {
     if (std::isnan(maxRoughness))
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
         throw std::invalid_argument("ray generation: the camera has no pixels");
-    PlaneCheck need("ray generation", camera.width, camera.height);
-    need(g.viewZ, "viewZ");
-    need(g.normal[0], "normal.X");
-    need(g.normal[1], "normal.Y");
-    need(g.normal[2], "normal.Z");
-    if (lobe != RayGenLobe::Diffuse) need(g.roughness, "roughness");
-    if (onlyDiffuse) {
-        need(g.albedo[0], "albedo.R");
-        need(g.albedo[1], "albedo.G");
-        need(g.albedo[2], "albedo.B");
-        need(g.metallic, "metallic");
-    }
+    const GBufferPlanes need = kGViewZ | kGNormal |
+                               (lobe != RayGenLobe::Diffuse ? kGRoughness : 0) |
+                               (onlyDiffuse ? kGAlbedo | kGMetallic : 0);
+    requireGBuffer("ray generation", g, need, camera.width, camera.height);
     RayGenArgs& a = args_;
     a.lobe = lobe;
-    a.g[0] = g.viewZ->row(0);
-    for (int i = 0; i < 3; ++i) a.g[1 + i] = g.normal[i]->row(0);
-    a.g[4] = lobe != RayGenLobe::Diffuse ? g.roughness->row(0) : nullptr;
-    a.gStride = need.stride();
+    a.g = g;
     a.width = camera.width;
     a.height = camera.height;
     a.tilesX = grid_.tilesX;
@@ -79,15 +67,12 @@ RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sa
     a.checkerboard = checkerboard.on;
     a.checkerPhase = checkerboard.phase & 1u;
     a.cutPdf = kPdfLayoutCut;
-    if (onlyDiffuse) {
-        for (int c = 0; c < 3; ++c) a.diffuse[c] = g.albedo[c]->row(0);
-        a.diffuse[3] = g.metallic->row(0);
-    }
+    a.noDiffuseColour = onlyDiffuse;
     kernel_ = SSRT_DISPATCH(isa, generateRaysTile);
 }
 
 RayGenerator RayGenerator::specular(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                    const TraceCamera& camera, const RayGenGBuffer& g,
+                                    const TraceCamera& camera, const GBufferView& g,
                                     float maxRoughness, RayGenCheckerboard checkerboard) {
     return {isa,
             RayGenLobe(int(method)),
@@ -102,8 +87,8 @@ RayGenerator RayGenerator::specular(Isa isa, SsrMethod method, uint32_t frame, u
 }
 
 RayGenerator RayGenerator::diffuse(Isa isa, uint32_t frame, uint32_t sample,
-                                   const TraceCamera& camera, const RayGenGBuffer& g,
-                                   DiffuseCut cut, RayGenCheckerboard checkerboard) {
+                                   const TraceCamera& camera, const GBufferView& g, DiffuseCut cut,
+                                   RayGenCheckerboard checkerboard) {
     return {isa,
             RayGenLobe::Diffuse,
             frame,
@@ -147,14 +132,14 @@ RayGenStats RayGenerator::frame(RayBatch& rays, int threads) const {
 }
 
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
+                                 const TraceCamera& camera, const GBufferView& g, RayBatch& rays,
                                  int threads, float maxRoughness, RayGenCheckerboard checkerboard) {
     return RayGenerator::specular(isa, method, frame, sample, camera, g, maxRoughness, checkerboard)
         .frame(rays, threads);
 }
 
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
-                                const RayGenGBuffer& g, RayBatch& rays, int threads, DiffuseCut cut,
+                                const GBufferView& g, RayBatch& rays, int threads, DiffuseCut cut,
                                 RayGenCheckerboard checkerboard) {
     return RayGenerator::diffuse(isa, frame, sample, camera, g, cut, checkerboard)
         .frame(rays, threads);

@@ -42,6 +42,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -64,15 +65,6 @@ std::optional<SsrMethod> parseSsrMethod(std::string_view);
 // The random-number dimensions (see the conventions above).
 inline constexpr uint32_t kRayGenSpecularDim = 16;  // and 17
 inline constexpr uint32_t kRayGenDiffuseDim = 18;   // and 19
-
-struct RayGenGBuffer {
-    const PlaneF* viewZ;
-    const PlaneF* normal[3];  // world space
-    const PlaneF* roughness;  // perceptual
-    // Read only by generateDiffuseRays with DiffuseCut::NoDiffuseColour.
-    const PlaneF* albedo[3] = {};
-    const PlaneF* metallic = nullptr;
-};
 
 struct RayGenStats {
     uint64_t pixels = 0;  // surface pixels considered (viewZ > 0)
@@ -103,7 +95,8 @@ struct RayGenCheckerboard {
 // pixel's view-space surface point, direction = reflection of the view direction about a
 // sampled microfacet normal (Mirror: about the shading normal). The PDF is the solid-angle
 // PDF of the reflected direction (Mirror: 1, a delta). Writes every pixel. `rays` is sized to
-// the camera; the G-buffer planes must have the camera's size (else std::invalid_argument).
+// the camera; `g` (viewZ, normal, roughness) must have the camera's size (else
+// std::invalid_argument).
 // threads: 0 = every core. A surface pixel whose perceptual roughness is not below
 // `maxRoughness` (NaN included) gets no ray, as one rejected below the surface but counted
 // as `hidden`: the renderer passes the resolve's roughnessFadeEnd, where SSR's opacity is 0
@@ -111,7 +104,7 @@ struct RayGenCheckerboard {
 // nothing; NaN is std::invalid_argument. The random numbers of the other pixels do not
 // depend on it, so neither do their rays.
 RayGenStats generateSpecularRays(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                 const TraceCamera& camera, const RayGenGBuffer& g, RayBatch& rays,
+                                 const TraceCamera& camera, const GBufferView& g, RayBatch& rays,
                                  int threads,
                                  float maxRoughness = std::numeric_limits<float>::infinity(),
                                  RayGenCheckerboard checkerboard = {});
@@ -130,7 +123,7 @@ enum class DiffuseCut {
 // is the same; g.albedo and g.metallic are then required. The other pixels' rays do not
 // change a bit.
 RayGenStats generateDiffuseRays(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
-                                const RayGenGBuffer& g, RayBatch& rays, int threads,
+                                const GBufferView& g, RayBatch& rays, int threads,
                                 DiffuseCut cut = DiffuseCut::None,
                                 RayGenCheckerboard checkerboard = {});
 
@@ -141,10 +134,10 @@ class RayGenerator {
 public:
     // The arguments of generateSpecularRays and generateDiffuseRays, less the batch and threads.
     static RayGenerator specular(Isa isa, SsrMethod method, uint32_t frame, uint32_t sample,
-                                 const TraceCamera& camera, const RayGenGBuffer& g,
+                                 const TraceCamera& camera, const GBufferView& g,
                                  float maxRoughness, RayGenCheckerboard checkerboard);
     static RayGenerator diffuse(Isa isa, uint32_t frame, uint32_t sample, const TraceCamera& camera,
-                                const RayGenGBuffer& g, DiffuseCut cut,
+                                const GBufferView& g, DiffuseCut cut,
                                 RayGenCheckerboard checkerboard);
     const TileGrid& grid() const { return grid_; }
     // Tile `tile`'s rays into `rays`: the frame's batch (planes of the camera's size, corner
@@ -155,7 +148,7 @@ public:
 
 private:
     RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
-                 const TraceCamera& camera, const RayGenGBuffer& g, float maxRoughness,
+                 const TraceCamera& camera, const GBufferView& g, float maxRoughness,
                  bool onlyDiffuse, RayGenCheckerboard checkerboard);
     RayGenArgs args_{};
     TileGrid grid_;

@@ -74,7 +74,7 @@ SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane 
     } else {
         // The view in the local frame; alpha kept >= 1e-3 (brdf::roughnessToAlpha)
         const V3 wi{ln::dot(v, t), ln::dot(v, b), NoV};
-        const Lane alpha = brdf::roughnessToAlpha(ln::load<Lane>(a.g[4] + go));
+        const Lane alpha = brdf::roughnessToAlpha(ln::load<Lane>(a.g.roughness + go));
         V3 wm;
         if constexpr (K == RayGenLobe::GgxNdf) wm = sm::sampleGgxNdf(alpha, alpha, u1, u2);
         else if constexpr (K == RayGenLobe::VndfEllipsoid)
@@ -104,10 +104,10 @@ SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane 
 template <RayGenLobe K>
 SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, float* const* out,
                           int o, RayGenCounts& c) {
-    const std::size_t go = std::size_t(y) * a.gStride + std::size_t(x);
+    const std::size_t go = std::size_t(y) * a.g.stride + std::size_t(x);
     const int oo = o;
     const Lane zero(0.0f);
-    const Lane viewZ = ln::load<Lane>(a.g[0] + go);
+    const Lane viewZ = ln::load<Lane>(a.g.viewZ + go);
     const Mask surface = viewZ > zero;  // (false for NaN)
     const unsigned surfaceCount = popcount(surface, valid);
     const unsigned validCount = unsigned(__builtin_popcountll(valid));
@@ -127,8 +127,8 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     // The view direction (towards the camera) and the normal rotated into view space
     // (the transpose of viewToWorld: its columns dotted with the world normal)
     const V3 v = ln::normalize(neg(ray));
-    const V3 nw{ln::load<Lane>(a.g[1] + go), ln::load<Lane>(a.g[2] + go),
-                ln::load<Lane>(a.g[3] + go)};
+    const V3 nw{ln::load<Lane>(a.g.normal[0] + go), ln::load<Lane>(a.g.normal[1] + go),
+                ln::load<Lane>(a.g.normal[2] + go)};
     const float* r = a.viewToWorld;
     const V3 n = ln::normalize(V3{(Lane(r[0]) * nw.x + Lane(r[1]) * nw.y) + Lane(r[2]) * nw.z,
                                   (Lane(r[3]) * nw.x + Lane(r[4]) * nw.y) + Lane(r[5]) * nw.z,
@@ -139,14 +139,14 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     Mask wanted = surface;
     if constexpr (K != RayGenLobe::Diffuse) {
         if (a.maxRoughness < std::numeric_limits<float>::infinity())
-            wanted = surface & (ln::load<Lane>(a.g[4] + go) < Lane(a.maxRoughness));
-    } else if (a.diffuse[0]) {
+            wanted = surface & (ln::load<Lane>(a.g.roughness + go) < Lane(a.maxRoughness));
+    } else if (a.noDiffuseColour) {
         // (!(x == 0), not x != 0: a NaN colour is kept on every ISA, where vector != is
         // ordered and scalar != is not.)
-        const Lane keep = Lane(1.0f) - ln::load<Lane>(a.diffuse[3] + go);
-        wanted = surface & !((ln::load<Lane>(a.diffuse[0] + go) * keep == zero) &
-                             (ln::load<Lane>(a.diffuse[1] + go) * keep == zero) &
-                             (ln::load<Lane>(a.diffuse[2] + go) * keep == zero));
+        const Lane keep = Lane(1.0f) - ln::load<Lane>(a.g.metallic + go);
+        wanted = surface & !((ln::load<Lane>(a.g.albedo[0] + go) * keep == zero) &
+                             (ln::load<Lane>(a.g.albedo[1] + go) * keep == zero) &
+                             (ln::load<Lane>(a.g.albedo[2] + go) * keep == zero));
     }
     c.hidden += surfaceCount - popcount(wanted, valid);
     // The checkerboard's other phase: no ray, marked for the reconstruction. Pixel x is

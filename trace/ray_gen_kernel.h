@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -22,9 +23,8 @@ enum class RayGenLobe : int {
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
 struct RayGenArgs {
     RayGenLobe lobe;
-    const float* g[5];  // viewZ, world normal X, Y, Z, perceptual roughness (may be null
-                        // for Diffuse); all with gStride
-    std::size_t gStride;
+    // Reads viewZ, normal; roughness (specular lobes); albedo, metallic (noDiffuseColour).
+    GBufferView g;
     float* out[7];  // RayBatch's planes in its table's order (ox, oy, oz, dx, dy, dz, pdf);
                     // all with outStride
     std::size_t outStride;
@@ -41,9 +41,9 @@ struct RayGenArgs {
     // Specular lobes: pixels whose perceptual roughness is not below this (NaN included)
     // get no ray ("hidden"); +infinity traces every pixel.
     float maxRoughness;
-    // Diffuse lobe: albedo R, G, B and metallic (gStride), or all null. Where given, pixels
-    // whose albedo (1 - metallic) is 0 in every channel get no ray ("hidden").
-    const float* diffuse[4];
+    // Diffuse lobe: pixels whose albedo (1 - metallic) is 0 in every channel get no ray
+    // ("hidden": DiffuseCut::NoDiffuseColour).
+    bool noDiffuseColour;
     // The checkerboard cut (RayGenCheckerboard): pixels with ((x ^ y ^ frame) & 1) !=
     // checkerPhase get no ray (pdf kPdfLayoutCut where they would have had one).
     bool checkerboard;

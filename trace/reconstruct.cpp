@@ -25,15 +25,15 @@ void planes(const ReconstructPlanesOf<P>& s, PlaneCheck& need, const char* what,
 }
 
 // The arguments both share: guides and camera.
-// `need` checks the planes of the camera's size.
-ReconstructArgs guideArgs(const ReconstructGuides& g, PlaneCheck& need) {
+ReconstructArgs guideArgs(const ReconstructGuides& g) {
     const int w = g.camera.width, h = g.camera.height;
+    if (w <= 0 || h <= 0) throw std::invalid_argument("reconstruction: empty camera");
     ReconstructArgs a{};
     a.width = w;
     a.height = h;
     a.tilesX = TileGrid(w, h).tilesX;
-    a.viewZ = need(g.viewZ, "viewZ");
-    for (int c = 0; c < 3; ++c) a.normal[c] = need(g.normal[c], "normal");
+    requireGBuffer("reconstruction", g.g, kGViewZ | kGNormal, w, h);
+    a.g = g.g;
     a.scaleX = 2.0f * g.camera.tanHalfX / float(w);
     a.scaleY = 2.0f * g.camera.tanHalfY / float(h);
     a.tanHalfX = g.camera.tanHalfX;
@@ -41,14 +41,8 @@ ReconstructArgs guideArgs(const ReconstructGuides& g, PlaneCheck& need) {
     for (int i = 0; i < 9; ++i) a.viewToWorld[i] = g.camera.viewToWorld[i];
     a.invTolerance = 1.0f / kReconstructPlaneTolerance;
     a.cutMark = kPdfLayoutCut;
-    a.stride = need.stride();
+    a.stride = g.g.stride;
     return a;
-}
-
-PlaneCheck frameCheck(const ReconstructGuides& g) {
-    if (g.camera.width <= 0 || g.camera.height <= 0)
-        throw std::invalid_argument("reconstruction: empty camera");
-    return PlaneCheck("reconstruction", g.camera.width, g.camera.height);
 }
 
 // The checkerboard's tiles in parallel. The fill writes in place and reads each cut pixel's edge
@@ -77,8 +71,8 @@ uint64_t runCheckerboard(Isa isa, const ReconstructArgs& a, int threads) {
 
 uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf,
                           const ReconstructPlanes& out, int threads) {
-    PlaneCheck need = frameCheck(g);
-    ReconstructArgs a = guideArgs(g, need);
+    ReconstructArgs a = guideArgs(g);
+    PlaneCheck need("reconstruction", a.width, a.height);
     a.half = false;
     a.pdf = need(pdf, "ray pdf");
     if (out.steps) throw std::invalid_argument("fillCheckerboard: steps are not filled");
@@ -102,9 +96,8 @@ uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf
 
 HalfUpsampler::HalfUpsampler(Isa isa, const ReconstructGuides& g, PixelOffset offset,
                              const PlaneF& halfPdf, const ReconstructSource& in) {
-    PlaneCheck need = frameCheck(g);
     ReconstructArgs& a = args_;
-    a = guideArgs(g, need);
+    a = guideArgs(g);
     grid_ = TileGrid(a.width, a.height);
     a.half = true;
     a.offsetX = offset.x & 1;

@@ -39,6 +39,7 @@
 
 #include <cstdint>
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -54,8 +55,7 @@ inline constexpr float kReconstructPlaneTolerance = 0.02f;
 // The full-resolution G-buffer the weights read.
 struct ReconstructGuides {
     TraceCamera camera;  // width, height, tanHalf*, viewToWorld
-    const PlaneF* viewZ = nullptr;
-    const PlaneF* normal[3] = {};  // world space
+    GBufferView g;       // viewZ, normal
 };
 
 // One signal's planes (full resolution as outputs; a half frame's as upsampleHalf's inputs).

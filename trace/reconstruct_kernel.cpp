@@ -68,12 +68,12 @@ SSRT_INLINE void readOwn(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) 
 SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const Candidate& c,
                                 Lane& dist) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane z = readAt(a.viewZ, c, c.guide);
+    const Lane z = readAt(a.g.viewZ, c, c.guide);
     // The view ray through the sample's pixel centre times its depth (trace/trace_types.h)
     const V3 s{(c.px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
                (Lane(a.tanHalfY) - c.py * Lane(a.scaleY)) * z, zero - z};
-    const V3 n{readAt(a.normal[0], c, c.guide), readAt(a.normal[1], c, c.guide),
-               readAt(a.normal[2], c, c.guide)};
+    const V3 n{readAt(a.g.normal[0], c, c.guide), readAt(a.g.normal[1], c, c.guide),
+               readAt(a.g.normal[2], c, c.guide)};
     dist = ln::abs(ln::dot(t.nView, s - t.p)) * t.invTolerance;
     const Lane wPlane = ln::max(one - dist, zero);  // (NaN -> 0: max keeps the second)
     Lane cosN = ln::max(ln::dot(t.n, n), zero);
@@ -139,8 +139,8 @@ SSRT_INLINE Target target(const ReconstructArgs& a, std::size_t o, Lane px, Lane
     Target t;
     t.p = {(px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
            (Lane(a.tanHalfY) - py * Lane(a.scaleY)) * z, Lane(0.0f) - z};
-    t.n = {ln::load<Lane>(a.normal[0] + o), ln::load<Lane>(a.normal[1] + o),
-           ln::load<Lane>(a.normal[2] + o)};
+    t.n = {ln::load<Lane>(a.g.normal[0] + o), ln::load<Lane>(a.g.normal[1] + o),
+           ln::load<Lane>(a.g.normal[2] + o)};
     // World normal to view space: the transpose of viewToWorld
     t.nView = {(Lane(r[0]) * t.n.x + Lane(r[1]) * t.n.y) + Lane(r[2]) * t.n.z,
                (Lane(r[3]) * t.n.x + Lane(r[4]) * t.n.y) + Lane(r[5]) * t.n.z,
@@ -158,7 +158,7 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
     const Mask cut = (ln::load<Lane>(a.pdf + o) == Lane(a.cutMark)) & (xi < Lane(float(x1)));
     if (!ln::any(cut)) return;
     const Lane px = xi + Lane(0.5f), py(float(y) + 0.5f);
-    const Lane z = ln::load<Lane>(a.viewZ + o);
+    const Lane z = ln::load<Lane>(a.g.viewZ + o);
     const Target t = target(a, o, px, py, z);
     Candidate cand[4];
     const float dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
@@ -206,7 +206,7 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
     const std::size_t o = std::size_t(y) * a.stride + std::size_t(x);
     const Lane zero(0.0f), one(1.0f), halfL(0.5f);
     const Lane xi = Lane(float(x)) + ln::laneIndex<Lane>();
-    const Lane z = ln::load<Lane>(a.viewZ + o);
+    const Lane z = ln::load<Lane>(a.g.viewZ + o);
     const Mask surface = (z > zero) & (xi < Lane(float(a.width)));
     Lane v[kValues] = {zero, zero, zero, zero, zero, zero};
     Lane steps = zero;

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -17,8 +18,7 @@ struct ReconstructArgs {
     bool half;  // upsampleHalf (else fillCheckerboard)
     int width, height, tilesX;
     std::size_t stride;  // every full-resolution plane: guides, outputs, the checkerboard's pdf
-    const float* viewZ;
-    const float* normal[3];  // world space
+    GBufferView g;       // the guides: viewZ, normal
     float scaleX, scaleY, tanHalfX,
         tanHalfY;          // pixel centre to view ray: (x + 0.5) scale - tanHalf
     float viewToWorld[9];  // column-major

@@ -19,16 +19,13 @@ void feedback(Isa isa, const SsgiFeedbackInputs& in, Plane<T> hitLight[3], int t
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
+    requireGBuffer("addSsgiFeedback", in.g, kGViewZ | kGAlbedo | kGMetallic | kGMotion, w, h);
+    a.g = in.g;
     PlaneCheck need("addSsgiFeedback", w, h);
-    a.viewZ = need(in.viewZ, "viewZ");
     for (int c = 0; c < 3; ++c) {
-        a.albedo[c] = need(in.albedo[c], "albedo");
         a.prevDiffuse[c] = need(in.prevDiffuse[c], "previous diffuse radiance");
         a.hitLight[c] = need.output(hitLight[c], "hitLight");
     }
-    a.metallic = need(in.metallic, "metallic");
-    a.motion[0] = need(in.motion[0], "motion");
-    a.motion[1] = need(in.motion[1], "motion");
     if (in.occlusion) a.occlusion = need(in.occlusion, "occlusion");
     a.stride = need.stride();
     const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
@@ -58,15 +55,13 @@ SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sam
     a.height = h;
     a.tilesX = grid_.tilesX;
     PlaneCheck need("resolveSsgi", w, h);
-    a.viewZ = need(in.viewZ, "viewZ");
-    if (in.hitLight[0] || in.hitLight[1] || in.hitLight[2]) {
+    const bool hitLight = in.hitLight[0] || in.hitLight[1] || in.hitLight[2];
+    requireGBuffer("resolveSsgi", in.g, kGViewZ | (hitLight ? 0 : kGNormal | kGAlbedo | kGMetallic),
+                   w, h);
+    a.g = in.g;
+    if (hitLight) {
         for (int c = 0; c < 3; ++c) a.hitLight[c] = need(in.hitLight[c], "hitLight");
     } else {
-        for (int c = 0; c < 3; ++c) {
-            a.normal[c] = need(in.normal[c], "normal");
-            a.albedo[c] = need(in.albedo[c], "albedo");
-        }
-        a.metallic = need(in.metallic, "metallic");
         a.shadow = need(in.shadow, "shadow");
         if (in.emission[0] || in.emission[1] || in.emission[2])
             for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], "emission");

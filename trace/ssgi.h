@@ -33,6 +33,7 @@
 // surface's light for a frame.
 #pragma once
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -42,19 +43,16 @@
 
 namespace ssrt {
 
-// What SSGI reads, all planes of the frame's size, G-buffer names as the Renderer's Frame.
+// What SSGI reads, all planes of the frame's size.
 struct SsgiInputs {
-    TraceCamera camera;                // width, height, viewToWorld (rays go to world for the sky)
-    const PlaneF* viewZ = nullptr;     // "viewZ"
-    const PlaneF* normal[3] = {};      // "normal.X/Y/Z", world space
-    const PlaneF* albedo[3] = {};      // "albedo.R/G/B"
-    const PlaneF* metallic = nullptr;  // "metallic"
-    const PlaneF* shadow = nullptr;    // the direct pass's "shadow"
-    FloatPlane emission[3] = {};       // optional: DirectArgs::emission planes (null: none)
+    TraceCamera camera;              // width, height, viewToWorld (rays go to world for the sky)
+    GBufferView g;                   // viewZ; normal, albedo, metallic without hitLight
+    const PlaneF* shadow = nullptr;  // the direct pass's "shadow"
+    FloatPlane emission[3] = {};     // optional: DirectArgs::emission planes (null: none)
     // Optional: DirectArgs::hitLight planes (f16 as the renderer's, or f32), L(x1 -> x0) of
-    // every pixel as above, computed by the direct pass; when given, normal, albedo, metallic,
-    // shadow and emission are not read (the same light, fewer gathers; f16 planes hold it
-    // rounded to nearest even).
+    // every pixel as above, computed by the direct pass; when given, g's normal, albedo,
+    // metallic, shadow and emission are not read (the same light, fewer gathers; f16 planes
+    // hold it rounded to nearest even).
     FloatPlane hitLight[3] = {};
     // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
     // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
@@ -64,11 +62,10 @@ struct SsgiInputs {
 
 // What the feedback reads, all planes of one size (hitLight's).
 struct SsgiFeedbackInputs {
-    const PlaneF* viewZ = nullptr;      // "viewZ": background pixels (0) are left as they are
-    const PlaneF* albedo[3] = {};       // "albedo.R/G/B"
-    const PlaneF* metallic = nullptr;   // "metallic"
+    // viewZ (background pixels, 0, are left as they are), albedo, metallic, motion (previous
+    // position = current + motion)
+    GBufferView g;
     const PlaneF* occlusion = nullptr;  // optional: MaterialPlanes::occlusion (null: 1)
-    const PlaneF* motion[2] = {};       // "motion.X/Y" (previous position = current + motion)
     const PlaneF* prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
 };
 

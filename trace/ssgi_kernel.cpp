@@ -32,8 +32,9 @@ SSRT_INLINE V3 gather3(const SignalIn* planes, ILane i) {
 // (The direct pass's hitLight planes hold the same light, f16 rounded: 3 gathers instead of 8
 // to 11.)
 SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
-    const V3 lit = shade::lambertSunLight(a.lighting, gather3(a.normal, i), gather3(a.albedo, i),
-                                          ln::gather(a.metallic, i), ln::gather(a.shadow, i));
+    const V3 lit =
+        shade::lambertSunLight(a.lighting, gather3(a.g.normal, i), gather3(a.g.albedo, i),
+                               ln::gather(a.g.metallic, i), ln::gather(a.shadow, i));
     return a.emission[0] ? lit + gather3(a.emission, i) : lit;
 }
 
@@ -50,7 +51,7 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
         // The hit pixel's G-buffer (nearest; clamped, so unused lanes read inside the frame).
         const ILane i = screen::nearestIndex(ln::load<Lane>(a.hitX + r), ln::load<Lane>(a.hitY + r),
                                              a.width, a.height, a.stride);
-        const auto surface = hit & (ln::gather(a.viewZ, i) > zero);
+        const auto surface = hit & (ln::gather(a.g.viewZ, i) > zero);
         if (ln::any(surface))
             radiance = ln::select(surface, a.hitLight[0] ? gather3(a.hitLight, i) : lambertAt(a, i),
                                   radiance);
@@ -82,18 +83,18 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
 void feedbackChunk(const SsgiFeedbackArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const Lane zero(0.0f);
-    const auto surface = ln::load<Lane>(a.viewZ + o) > zero;
+    const auto surface = ln::load<Lane>(a.g.viewZ + o) > zero;
     if (!ln::any(surface)) return;
     const Lane cx = (Lane(float(x)) + ln::laneIndex<Lane>()) + Lane(0.5f);
-    const Lane px = cx + ln::load<Lane>(a.motion[0] + o);
-    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.motion[1] + o);
+    const Lane px = cx + ln::load<Lane>(a.g.motion[0] + o);
+    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.g.motion[1] + o);
     const auto use = surface & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
                      (py < Lane(float(a.height)));
     const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
-    Lane keep = Lane(1.0f) - ln::load<Lane>(a.metallic + o);
+    Lane keep = Lane(1.0f) - ln::load<Lane>(a.g.metallic + o);
     if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion + o);
-    const V3 albedo{ln::load<Lane>(a.albedo[0] + o), ln::load<Lane>(a.albedo[1] + o),
-                    ln::load<Lane>(a.albedo[2] + o)};
+    const V3 albedo{ln::load<Lane>(a.g.albedo[0] + o), ln::load<Lane>(a.g.albedo[1] + o),
+                    ln::load<Lane>(a.g.albedo[2] + o)};
     const V3 reflected = albedo * keep * gather3(a.prevDiffuse, j);
     const Lane add[3] = {reflected.x, reflected.y, reflected.z};
     for (int c = 0; c < 3; ++c) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
@@ -14,10 +15,7 @@ namespace ssrt {
 struct SsgiArgs {
     int width, height, tilesX;
     std::size_t stride;
-    const float* viewZ;
-    const float* normal[3];
-    const float* albedo[3];
-    const float* metallic;
+    GBufferView g;  // viewZ; normal, albedo, metallic without hitLight
     const float* shadow;
     SignalIn emission[3];  // all null: no emission (f32 or f16: core/float_planes.h)
     SignalIn hitLight[3];  // all null: computed from the planes above (SsgiInputs)
@@ -42,11 +40,8 @@ SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
 struct SsgiFeedbackArgs {
     int width, height, tilesX;
     std::size_t stride;
-    const float* viewZ;
-    const float* albedo[3];
-    const float* metallic;
+    GBufferView g;           // viewZ, albedo, metallic, motion
     const float* occlusion;  // null: 1
-    const float* motion[2];
     const float* prevDiffuse[3];
     SignalOut hitLight[3];  // read and written in place (f32 or f16)
 };

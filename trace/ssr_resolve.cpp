@@ -49,16 +49,14 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     a.tanHalfX = in.camera.tanHalfX;
     a.tanHalfY = in.camera.tanHalfY;
     std::copy_n(in.camera.viewToWorld, 9, a.viewToWorld);
-    PlaneCheck need("resolveSsr", w, h);
-    a.viewZ = need(in.viewZ, "viewZ");
-    a.roughness = need(in.roughness, "roughness");
     a.reuse = reuse;
     a.mip = settings.mode == SsrResolveMode::Mip;
-    if (a.reuse)
-        for (int c = 0; c < 3; ++c) a.normal[c] = need(in.normal[c], "normal");
     a.reproject = settings.radiance == HitRadiance::Reprojected;
-    if (a.reproject)
-        for (int c = 0; c < 2; ++c) a.motion[c] = need(in.motion[c], "motion");
+    requireGBuffer("resolveSsr", in.g,
+                   kGViewZ | kGRoughness | (a.reuse ? kGNormal : 0) | (a.reproject ? kGMotion : 0),
+                   w, h);
+    a.g = in.g;
+    PlaneCheck need("resolveSsr", w, h);
     a.bilinear = settings.bilinear;
     if (a.mip) {
         const ColorPyramid* pyr = in.pyramid;

@@ -34,6 +34,7 @@
 
 #include <string_view>
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
@@ -61,19 +62,16 @@ struct SsrResolveSettings {
 };
 
 // The planes the resolve reads, all of the frame's size (null where the settings do not need
-// them). G-buffer planes as the Renderer's Frame names them.
+// them).
 struct SsrResolveInputs {
-    TraceCamera camera;                     // the frame's camera (width, height, tanHalf*,
-                                            // viewToWorld)
-    const PlaneF* viewZ = nullptr;          // "viewZ" (0 = background)
-    const PlaneF* normal[3] = {};           // "normal.X/Y/Z", world space
-    const PlaneF* roughness = nullptr;      // "roughness", perceptual
+    TraceCamera camera;  // the frame's camera (width, height, tanHalf*, viewToWorld)
+    // viewZ (0 = background), roughness; normal (SsrResolveMode::Reuse); motion
+    // (HitRadiance::Reprojected: previous pixel position = current + motion)
+    GBufferView g;
     const PlaneF* color[3] = {};            // HitRadiance::Current: "color.R/G/B" of the
                                             // direct pass
     const PlaneF* prevColor[3] = {};        // HitRadiance::Reprojected: last frame's final
                                             // colour
-    const PlaneF* motion[2] = {};           // Reprojected: "motion.X/Y" (previous pixel
-                                            // position = current + motion)
     const ColorPyramid* pyramid = nullptr;  // SsrResolveMode::Mip: built from `color`
                                             // (Current) or `prevColor` (Reprojected)
     float radianceScale = 1.0f;             // multiplies every radiance read: 1 / exposure

@@ -85,13 +85,13 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
         Lane px = hx, py = hy;
         if (a.reproject) {
             const ILane i = screen::nearestIndex(hx, hy, a.width, a.height, a.stride);
-            px = hx + ln::gather(a.motion[0], i);
-            py = hy + ln::gather(a.motion[1], i);
+            px = hx + ln::gather(a.g.motion[0], i);
+            py = hy + ln::gather(a.g.motion[1], i);
             valid = valid & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
                     (py < Lane(float(a.height)));
         }
         if (a.mip) {
-            const Lane rough = ln::saturate(loadAt(a.roughness, o));
+            const Lane rough = ln::saturate(loadAt(a.g.roughness, o));
             radiance = pyramidSample(a, px, py, rough * Lane(float(a.levelCount - 1)), valid);
         } else if (a.bilinear) {
             const auto b = screen::bilinearAt(px, py, a.width, a.height, a.stride);
@@ -193,7 +193,7 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
     // This pixel: point, normal and view direction in view space.
     const V3 p = screen::viewPoint(px + Lane(0.5f), Lane(float(y) + 0.5f), viewZ, a.width, a.height,
                                    a.tanHalfX, a.tanHalfY);
-    const V3 nWorld{loadAt(a.normal[0], o), loadAt(a.normal[1], o), loadAt(a.normal[2], o)};
+    const V3 nWorld{loadAt(a.g.normal[0], o), loadAt(a.g.normal[1], o), loadAt(a.g.normal[2], o)};
     const V3 n = ln::normalize(screen::worldToView(a.viewToWorld, nWorld));
     const V3 view = ln::normalize(V3{zero - p.x, zero - p.y, zero - p.z});
     const Lane NoV = ln::max(ln::dot(n, view), Lane(1e-4f));
@@ -241,9 +241,9 @@ SSRT_INLINE void reuse(const SsrResolveArgs& a, int x, int y, Lane viewZ, Lane r
 void resolveChunk(const SsrResolveArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const Lane zero(0.0f);
-    const Lane viewZ = loadAt(a.viewZ, o);
+    const Lane viewZ = loadAt(a.g.viewZ, o);
     const auto background = viewZ <= zero;
-    const Lane rough = loadAt(a.roughness, o);
+    const Lane rough = loadAt(a.g.roughness, o);
     V3 color{zero, zero, zero};
     Lane opacity = zero;
     if (!ln::all(background)) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -18,10 +19,7 @@ struct SsrResolveArgs {
     std::size_t stride;
     float tanHalfX, tanHalfY;
     float viewToWorld[9];  // rotation, column-major (normals go to view space by its transpose)
-    // G-buffer
-    const float* viewZ;
-    const float* normal[3];  // world space
-    const float* roughness;
+    GBufferView g;         // viewZ, roughness; normal (reuse); motion (reproject)
     // Rays and march, read by ssrHitTile: a batch's planes, with their own stride, whose
     // element (0, 0) is the frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
     const float* rayDir[3];  // view space
@@ -37,9 +35,8 @@ struct SsrResolveArgs {
     float* copyPdf;  // null when the batch is the frame's
     float* copyHit;  // (reuse only)
     // Where hit radiance comes from: `source` at level 0 (Current: colour; Reprojected: the
-    // previous frame's colour), read at hit + motion when `reproject`.
+    // previous frame's colour), read at hit + g.motion when `reproject`.
     const float* source[3];
-    const float* motion[2];
     bool reproject, bilinear, mip, reuse;
     static constexpr int kMaxLevels = 16;
     int levelCount;  // Mip: pyramid levels (level 0 at the frame's size)

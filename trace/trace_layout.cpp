@@ -38,17 +38,17 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
                     HalfFrame& out, int threads) {
     if (full.width <= 0 || full.height <= 0)
         throw std::invalid_argument("buildHalfFrame: the camera has no pixels");
+    const GBufferView& g = src.g;
+    const bool withGuides = src.guides;
+    requireGBuffer("buildHalfFrame", g,
+                   kGViewZ | kGNormal | kGAlbedo | kGMetallic | (withGuides ? kGMotion : 0),
+                   full.width, full.height);
     PlaneCheck need("buildHalfFrame", full.width, full.height);
-    need(src.viewZ, "viewZ");
-    need(src.metallic, "metallic");
     // Without src.hitLight the half frame's holds its chosen pixels' already (the direct pass
     // wrote them: DirectArgs::hitLightHalf).
     const bool hitLight = src.hitLight[0] || src.hitLight[1] || src.hitLight[2];
-    for (int c = 0; c < 3; ++c) {
-        need(src.normal[c], "normal");
-        need(src.albedo[c], "albedo");
-        if (hitLight) need(src.hitLight[c], "hitLight");
-    }
+    if (hitLight)
+        for (int c = 0; c < 3; ++c) need(src.hitLight[c], "hitLight");
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
     const PixelPoint point = halfPixelPoint(out.offset);
@@ -62,31 +62,30 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     }
     // What each half pixel copies from its chosen pixel (`chosen`), and from its block's
     // first pixel for the denoiser's guides (`guides`; motion halved).
+    // (Every source is of the frame's size: one stride, g's.)
     struct Copy {
         PlaneF* to;
-        const PlaneF* from;
+        const float* from;
         float scale = 1.0f;
     };
-    std::vector<Copy> chosen = {{&out.viewZ, src.viewZ}, {&out.metallic, src.metallic}};
+    std::vector<Copy> chosen = {{&out.viewZ, g.viewZ}, {&out.metallic, g.metallic}};
     if (src.backZ) {
-        need(src.backZ, "backZ");
-        chosen.push_back({&out.backZ, src.backZ});
+        chosen.push_back({&out.backZ, need(src.backZ, "backZ")});
+        if (src.backZ->stride() != g.stride)
+            throw std::invalid_argument("buildHalfFrame: backZ and viewZ of different strides");
     } else {
         out.backZ = PlaneF();
     }
     for (int c = 0; c < 3; ++c) {
-        chosen.push_back({&out.normal[c], src.normal[c]});
-        chosen.push_back({&out.albedo[c], src.albedo[c]});
+        chosen.push_back({&out.normal[c], g.normal[c]});
+        chosen.push_back({&out.albedo[c], g.albedo[c]});
     }
     if (hitLight)
         for (PlaneU16& p : out.hitLight) p.ensureSize(hw, hh);
-    const bool withGuides = src.motion[0] != nullptr;
-    if (withGuides)
-        for (int c = 0; c < 2; ++c) need(src.motion[c], "motion");
-    std::vector<Copy> guides = {{&out.guideZ, src.viewZ}};
-    for (int c = 0; c < 3; ++c) guides.push_back({&out.guideNormal[c], src.normal[c]});
+    std::vector<Copy> guides = {{&out.guideZ, g.viewZ}};
+    for (int c = 0; c < 3; ++c) guides.push_back({&out.guideNormal[c], g.normal[c]});
     // (Motion in half pixels: halving is exact.)
-    for (int c = 0; c < 2; ++c) guides.push_back({&out.guideMotion[c], src.motion[c], 0.5f});
+    for (int c = 0; c < 2; ++c) guides.push_back({&out.guideMotion[c], g.motion[c], 0.5f});
     // (Sized one by one: the guides are not made and freed again on every frame without them.)
     for (const Copy& p : chosen) p.to->ensureSize(hw, hh);
     for (const Copy& p : guides) {
@@ -102,7 +101,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         // pixel cost more than the copy).
         const int sy = halfSource(0, hy, o, w, h).y, gy = halfSource(0, hy, {0, 0}, w, h).y;
         for (const Copy& p : chosen) {
-            const float* in = p.from->row(sy);
+            const float* in = p.from + std::size_t(sy) * g.stride;
             float* to = p.to->row(hy);
             for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
         }
@@ -114,21 +113,35 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
             }
         if (withGuides)
             for (const Copy& p : guides) {
-                const float* in = p.from->row(gy);
+                const float* in = p.from + std::size_t(gy) * g.stride;
                 float* to = p.to->row(hy);
                 for (int hx = 0; hx < hw; ++hx)
                     to[hx] = p.scale * in[halfSource(hx, hy, {0, 0}, w, h).x];
             }
         uint64_t cut = 0;
-        for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y)
+        for (int y = 2 * hy; y < std::min(2 * hy + 2, h); ++y) {
+            const float* z = g.viewZ + std::size_t(y) * g.stride;
             for (int x = 0; x < w; ++x) {
                 const PixelOffset s = halfSource(x / 2, hy, o, w, h);
-                if (src.viewZ->at(x, y) > 0.0f && !(x == s.x && y == s.y)) ++cut;
+                if (z[x] > 0.0f && !(x == s.x && y == s.y)) ++cut;
             }
+        }
         rowCut[std::size_t(hy)] = cut;
     });
     out.cutPixels = 0;
     for (uint64_t c : rowCut) out.cutPixels += c;
+}
+
+GBufferView HalfFrame::view() const {
+    return gbufferView("the half frame", camera.width, camera.height,
+                       {{kGViewZ, &viewZ},
+                        {kGNormalX, &normal[0]},
+                        {kGNormalY, &normal[1]},
+                        {kGNormalZ, &normal[2]},
+                        {kGAlbedoR, &albedo[0]},
+                        {kGAlbedoG, &albedo[1]},
+                        {kGAlbedoB, &albedo[2]},
+                        {kGMetallic, &metallic}});
 }
 
 }  // namespace ssrt

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "trace/trace_types.h"
 
@@ -87,7 +88,7 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     PlaneU16 hitLight[3];  // f16, as the direct pass's (renderer/frame.h, DirectParts)
     PlaneF backZ;  // the chosen pixels' back-face depth (HalfFrameSource::backZ given; empty
                    // otherwise)
-    // The guides of a signal denoised on the half frame (HalfFrameSource::motion given; empty
+    // The guides of a signal denoised on the half frame (HalfFrameSource::guides; empty
     // otherwise): the block's first pixel (offset (0, 0)) every frame, not the rotating chosen
     // one, so that the denoiser's history sees the same surface frame after frame; motion in
     // half pixels (previous minus current).
@@ -111,18 +112,16 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     }
     // Full-resolution surface pixels that are not chosen (RayGenStats::cut).
     uint64_t cutPixels = 0;
+    // Its G-buffer (viewZ, normal, albedo, metallic) as the passes read it.
+    GBufferView view() const;
 };
 
 struct HalfFrameSource {
-    const PlaneF* viewZ = nullptr;
-    const PlaneF* normal[3] = {};
-    const PlaneF* albedo[3] = {};
-    const PlaneF* metallic = nullptr;
+    GBufferView g;        // the frame's: viewZ, normal, albedo, metallic; motion with `guides`
+    bool guides = false;  // make the denoiser's guides (HalfFrame::guideZ, ...)
     // DirectArgs::hitLight (SSGI's radiance at a hit); all null: out.hitLight holds the
     // chosen pixels' already, at the half frame's size (DirectArgs::hitLightHalf).
     const PlaneU16* hitLight[3] = {};  // f16
-    // Optional: the G-buffer's motion (full pixels); given, the denoiser's guides are made.
-    const PlaneF* motion[2] = {};
     // Optional: the back-face depth layer (raster/back_depth.h), which the march reads.
     const PlaneF* backZ = nullptr;
 };

@@ -99,11 +99,9 @@ void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmiss
         ci.envSpecular[c] = &parts.envSpecular[c];
         ci.specWeight[c] = &parts.specWeight[c];
         ci.ssgi[c] = &ref.ssgi[c];
-        ci.albedo[c] = &frame.gbuffer.albedo[c];
         ci.ssrColor[c] = &ref.ssr[c];
     }
-    ci.viewZ = &frame.gbuffer.viewZ;
-    ci.metallic = &frame.gbuffer.metallic;
+    ci.g = frame.gbuffer.view();
     if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
     ci.ssrOpacity = &opacity;
     ci.exposure = exposure;

@@ -57,7 +57,6 @@ struct Setup {
     const Frame& frame;
     DirectLighting lighting;  // with the frame's G-buffer and camera filled in
     ShadingContext ctx;
-    RayGenGBuffer rayGen{};
     Isa isa = Isa::Scalar;
     int threads = 0;
     TileGrid grid{1, 1};
@@ -104,8 +103,6 @@ void fillSetup(Setup& s, const EmbreeScene& embree, const Renderer& renderer,
     requireSameOrigin(embree, f.camera, "the reference");
     std::copy_n(f.camera.position, 3, a.camPos);
     s.ctx = {&a, &embree, settings.visibility};
-    const GBuffer& g = f.gbuffer;
-    s.rayGen = {&g.viewZ, {&g.normal[0], &g.normal[1], &g.normal[2]}, &g.roughness};
     s.isa = resolveIsa(rs.isa);
     s.threads = rs.threads;
     s.grid = TileGrid(f.width, f.height);
@@ -274,8 +271,8 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
     RayBatch rays;
     const DirectArgs& a = s.lighting.args;
     for (int k = 0; k < spp; ++k) {
-        generateSpecularRays(s.isa, s.ssrMethod, s.frameIndex, uint32_t(k), f.camera, s.rayGen,
-                             rays, s.threads);
+        generateSpecularRays(s.isa, s.ssrMethod, s.frameIndex, uint32_t(k), f.camera,
+                             s.lighting.args.g, rays, s.threads);
         forBandTiles(s, [&](int tile) {
             const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
                 return reference::hitRadiance(s.ctx, o, t.dir, h, true);
@@ -355,7 +352,8 @@ void renderSsgi(const Setup& s, int spp, int bounces, ProgressSteps& progress, P
     Sums sums(f.width, f.height);
     RayBatch rays;
     for (int k = 0; k < spp; ++k) {
-        generateDiffuseRays(s.isa, s.frameIndex, uint32_t(k), f.camera, s.rayGen, rays, s.threads);
+        generateDiffuseRays(s.isa, s.frameIndex, uint32_t(k), f.camera, s.lighting.args.g, rays,
+                            s.threads);
         forBandTiles(s, [&](int tile) {
             const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
                 return diffusePath(s, t, o, h, uint32_t(k), bounces);

@@ -350,26 +350,27 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
     CompositeInputs in = f.inputs(1.0f);
     for (int c = 0; c < 3; ++c) {
         in.ssgi[c] = &ssgi[c];
-        in.albedo[c] = &f.frame.gbuffer.albedo[c];
         in.envDiffuse[c] = nullptr;  // not needed with SSGI on
     }
-    in.viewZ = &f.frame.gbuffer.viewZ;
-    in.metallic = &f.frame.gbuffer.metallic;
+    const GBuffer& g = f.frame.gbuffer;
+    in.g = g.view();
     PlaneF color[3], display[3];
     composite(Isa::Scalar, in, color, display, 2);
     int surfaces = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) {
-                const bool bg = in.viewZ->at(x, y) <= 0.0f;
+                const bool bg = g.viewZ.at(x, y) <= 0.0f;
                 const float diffuse =
-                    bg ? 0.0f
-                       : in.albedo[c]->at(x, y) * (1.0f - in.metallic->at(x, y)) * radiance[c];
+                    bg ? 0.0f : g.albedo[c].at(x, y) * (1.0f - g.metallic.at(x, y)) * radiance[c];
                 const float expect = ref[c].at(x, y) - f.envDiffuse[c].at(x, y) + diffuse;
                 CHECK(color[c].at(x, y) == doctest::Approx(expect).epsilon(1e-4));
                 surfaces += bg ? 0 : 1;
             }
     CHECK(surfaces > w * h);  // most pixels are surfaces (3 channels each)
+    // SSGI's diffuse colour needs the G-buffer's metallic.
+    in.g.metallic = nullptr;
+    CHECK_THROWS_AS(composite(Isa::Scalar, in, color, display, 2), std::invalid_argument);
 }
 
 TEST_CASE("composite: missing planes are refused") {

@@ -19,7 +19,15 @@ namespace ssrt::test {
 struct GBuf {
     TraceCamera camera;
     PlaneF viewZ, nx, ny, nz;
-    MarchGBuffer view() const { return {&viewZ, {&nx, &ny, &nz}}; }
+    // Its view, with `roughness` when given (for specular rays).
+    GBufferView view(const PlaneF* roughness = nullptr) const {
+        return gbufferView("test", camera.width, camera.height,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &nx},
+                            {kGNormalY, &ny},
+                            {kGNormalZ, &nz},
+                            {kGRoughness, roughness}});
+    }
 };
 
 inline TraceCamera makeCamera(int w, int h, float fovYDeg) {
@@ -168,8 +176,8 @@ inline MarchStats march(Marcher m, const MarchSettings& s, const GBuf& g, const 
                         RaySeed seed = {}) {
     HiZPyramid hiz;
     if (m == Marcher::HiZ) buildHiZ(g.viewZ, hiz, threads);
-    return marchRays(isa, m, s, seed, g.camera, g.view(), m == Marcher::HiZ ? &hiz : nullptr, rays,
-                     out, threads);
+    return marchRays(isa, m, s, seed, g.camera, g.view(), nullptr,
+                     m == Marcher::HiZ ? &hiz : nullptr, rays, out, threads);
 }
 
 }  // namespace ssrt::test

@@ -210,8 +210,8 @@ TEST_CASE("march: hi-z packs 1/minZ once, and marching from it equals packing pe
     const MarchSettings s;
     for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
-        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), &hiz, rays, a, 2);
-        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), &bare, rays, b, 2);
+        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), nullptr, &hiz, rays, a, 2);
+        marchRays(isa, Marcher::HiZ, s, {}, g.camera, g.view(), nullptr, &bare, rays, b, 2);
         // (Both paths give the same bits by design: this holds the stored copy to the one
         // marchRays would make, not that the stored one is used; the benchmarks show that.)
         CHECK(sameBits(a.hit, b.hit));
@@ -464,7 +464,7 @@ TEST_CASE("march: every ray's result is the same bits as when it is marched alon
     // mates. Reference: the same ray in a batch of its own (one ray, one lane).
     PlaneF roughness;
     const GBuf g = renderGBuffer("cornell", 200, 136, &roughness);
-    const RayGenGBuffer rg{&g.viewZ, {&g.nx, &g.ny, &g.nz}, &roughness};
+    const GBufferView rg = g.view(&roughness);
     RayBatch vndf, cosine;
     generateSpecularRays(Isa::Scalar, SsrMethod::VndfBounded, 2, 0, g.camera, rg, vndf, 1);
     generateDiffuseRays(Isa::Scalar, 2, 0, g.camera, rg, cosine, 1);

@@ -35,10 +35,15 @@ using V3f = ssrt::lanes::V3<float>;
 struct GBufferFrame {
     Frame frame;
     TraceCamera camera;
-    RayGenGBuffer g() const {
-        return {&frame.gbuffer.viewZ,
-                {&frame.gbuffer.normal[0], &frame.gbuffer.normal[1], &frame.gbuffer.normal[2]},
-                &frame.gbuffer.roughness};
+    // The planes every lobe reads: viewZ, normal and roughness (not the diffuse colour).
+    GBufferView g() const {
+        const GBuffer& b = frame.gbuffer;
+        return gbufferView("test", width(), height(),
+                           {{kGViewZ, &b.viewZ},
+                            {kGNormalX, &b.normal[0]},
+                            {kGNormalY, &b.normal[1]},
+                            {kGNormalZ, &b.normal[2]},
+                            {kGRoughness, &b.roughness}});
     }
     int width() const { return camera.width; }
     int height() const { return camera.height; }
@@ -385,8 +390,7 @@ TEST_CASE("ray generation: NoDiffuseColour leaves pixels without a diffuse colou
     r.at(xs[1], y) = g.at(xs[1], y) = 0.0f, b.at(xs[1], y) = 0.1f, metallic.at(xs[1], y) = 0.5f;
     metallic.at(xs[2], y) = std::nanf("");
     metallic.at(xs[3], y) = 1.0f;
-    RayGenGBuffer gb = f.g();
-    gb.albedo[0] = &r, gb.albedo[1] = &g, gb.albedo[2] = &b, gb.metallic = &metallic;
+    const GBufferView gb = f.frame.gbuffer.view();
     for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
         RayBatch all, some;
@@ -543,8 +547,8 @@ void checkLobe(const GBufferFrame& f, int px, int py) {
         PlaneF lone = f.frame.gbuffer.viewZ.clone();
         lone.fill(0.0f);
         lone.at(px, py) = f.frame.gbuffer.viewZ.at(px, py);
-        RayGenGBuffer g = f.g();
-        g.viewZ = &lone;
+        GBufferView g = f.g();
+        g.viewZ = lone.row(0);  // (a clone: the same size and stride)
         const Isa isa = supportedIsas().back();
         RayBatch rays;
         for (int k = 0; k < kSamples; ++k) {
@@ -709,11 +713,16 @@ TEST_CASE("ray generation: a G-buffer of the wrong size is refused") {
     RayBatch rays;
     CHECK_THROWS_AS(generateSpecularRays(Isa::Scalar, SsrMethod::Mirror, 0, 0, cam, f.g(), rays, 1),
                     std::invalid_argument);
-    RayGenGBuffer g = f.g();
+    GBufferView g = f.g();
     g.roughness = nullptr;
     CHECK_THROWS_AS(
         generateSpecularRays(Isa::Scalar, SsrMethod::GgxNdf, 0, 0, f.camera, g, rays, 1),
         std::invalid_argument);
     // (diffuse rays need no roughness)
     CHECK_NOTHROW(generateDiffuseRays(Isa::Scalar, 0, 0, f.camera, g, rays, 1));
+    // A plane of another size never makes a view.
+    const PlaneF wide(65, 48, 0.5f);
+    CHECK_THROWS_AS(
+        gbufferView("test", 64, 48, {{kGViewZ, &f.frame.gbuffer.viewZ}, {kGRoughness, &wide}}),
+        std::invalid_argument);
 }

@@ -36,7 +36,11 @@ struct Scene2 {
             }
     }
     ReconstructGuides guides() const {
-        return {camera, &viewZ, {&normal[0], &normal[1], &normal[2]}};
+        return {camera, gbufferView("test", w, h,
+                                    {{kGViewZ, &viewZ},
+                                     {kGNormalX, &normal[0]},
+                                     {kGNormalY, &normal[1]},
+                                     {kGNormalZ, &normal[2]}})};
     }
 };
 

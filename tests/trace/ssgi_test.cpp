@@ -39,6 +39,22 @@ DirectArgs lighting(bool gradient) {
     return a;
 }
 
+// The view of a G-buffer's planes that SSGI reads (null: absent), all of viewZ's size.
+GBufferView ssgiView(const PlaneF& viewZ, const PlaneF normal[3], const PlaneF albedo[3],
+                     const PlaneF& metallic, const PlaneF* motion = nullptr) {
+    return gbufferView("test", viewZ.width(), viewZ.height(),
+                       {{kGViewZ, &viewZ},
+                        {kGNormalX, normal ? &normal[0] : nullptr},
+                        {kGNormalY, normal ? &normal[1] : nullptr},
+                        {kGNormalZ, normal ? &normal[2] : nullptr},
+                        {kGAlbedoR, &albedo[0]},
+                        {kGAlbedoG, &albedo[1]},
+                        {kGAlbedoB, &albedo[2]},
+                        {kGMetallic, &metallic},
+                        {kGMotionX, motion ? &motion[0] : nullptr},
+                        {kGMotionY, motion ? &motion[1] : nullptr}});
+}
+
 // A uniform surface: normal +y (towards the light), one albedo and metallic, shadow 0.5,
 // emission; every ray a hit at a random pixel.
 struct Furnace {
@@ -70,13 +86,8 @@ struct Furnace {
             }
         in.camera.width = kW;
         in.camera.height = kH;
-        in.viewZ = &viewZ;
-        for (int c = 0; c < 3; ++c) {
-            in.normal[c] = &normal[c];
-            in.albedo[c] = &albedo[c];
-            in.emission[c] = &emission[c];
-        }
-        in.metallic = &metallic;
+        in.g = ssgiView(viewZ, normal, albedo, metallic);
+        for (int c = 0; c < 3; ++c) in.emission[c] = &emission[c];
         in.shadow = &shadow;
         in.lighting = &light;
     }
@@ -109,12 +120,7 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
 
 // SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
 void gbufferInputs(const Frame& frame, SsgiInputs& in) {
-    in.viewZ = &frame.gbuffer.viewZ;
-    for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &frame.gbuffer.normal[c];
-        in.albedo[c] = &frame.gbuffer.albedo[c];
-    }
-    in.metallic = &frame.gbuffer.metallic;
+    in.g = frame.gbuffer.view();
     in.shadow = &frame.image.shadow;
 }
 
@@ -181,6 +187,12 @@ TEST_CASE("ssgi: samples average -- pixels without a ray add 0") {
     f.in.shadow = nullptr;
     CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
                     std::invalid_argument);
+    // And the G-buffer planes it reads.
+    f.in.shadow = &f.shadow;
+    CHECK_NOTHROW(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2));
+    f.in.g.normal[1] = nullptr;
+    CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
+                    std::invalid_argument);
 }
 
 TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and thread count") {
@@ -201,7 +213,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     in.lighting = &light;
     RayBatch rays;
     MarchResult march;
-    randomRaysAndHits(*in.viewZ, rays, march);
+    randomRaysAndHits(frame.gbuffer.viewZ, rays, march);
     PlaneF ref[3];
     for (int k = 0; k < 3; ++k) resolveSsgi(Isa::Scalar, in, rays, march, ref, k, 3, 1);
     bool finite = true;
@@ -276,7 +288,7 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         in.lighting = &dl.args;
         RayBatch rays;
         MarchResult march;
-        randomRaysAndHits(*in.viewZ, rays, march);
+        randomRaysAndHits(frame.gbuffer.viewZ, rays, march);
         PlaneF ref[3];
         resolveSsgi(Isa::Scalar, in, rays, march, ref, 0, 1, 1);
         // Lit hits there are, so equal planes say something.
@@ -288,10 +300,11 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         SsgiInputs fast = in;
         for (int c = 0; c < 3; ++c) {
             fast.hitLight[c] = &frame.direct.hitLight[c];
-            fast.normal[c] = fast.albedo[c] = nullptr;
+            fast.g.normal[c] = fast.g.albedo[c] = nullptr;
             fast.emission[c] = nullptr;
         }
-        fast.metallic = fast.shadow = nullptr;
+        fast.g.metallic = nullptr;
+        fast.shadow = nullptr;
         PlaneF first[3];
         int rounded = 0, other = 0;
         for (Isa isa : supportedIsas()) {
@@ -332,14 +345,8 @@ struct Feedback {
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
                 for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
-        in.viewZ = &f.viewZ;
-        for (int c = 0; c < 3; ++c) {
-            in.albedo[c] = &f.albedo[c];
-            in.prevDiffuse[c] = &prev[c];
-        }
-        in.metallic = &f.metallic;
-        in.motion[0] = &motion[0];
-        in.motion[1] = &motion[1];
+        in.g = ssgiView(f.viewZ, nullptr, f.albedo, f.metallic, motion);
+        for (int c = 0; c < 3; ++c) in.prevDiffuse[c] = &prev[c];
     }
     static float prevAt(int x, int y, int c) { return 0.01f * float(x + 1) + 0.1f * float(c + y); }
     // hitLight after the feedback, fresh each time.
@@ -388,7 +395,7 @@ TEST_CASE("ssgi: feedback adds each pixel's diffuse colour times last frame's li
     fb.run(out);
     for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], fb.hitLight[c]));
     // A missing plane is refused.
-    fb.in.motion[1] = nullptr;
+    fb.in.g.motion[1] = nullptr;
     CHECK_THROWS_AS(fb.run(out), std::invalid_argument);
 }
 
@@ -403,12 +410,8 @@ TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA a
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
     const int w = frame.width, h = frame.height;
     SsgiFeedbackInputs in;
-    in.viewZ = &frame.gbuffer.viewZ;
-    for (int c = 0; c < 3; ++c) {
-        in.albedo[c] = &frame.gbuffer.albedo[c];
+    for (int c = 0; c < 3; ++c)
         in.prevDiffuse[c] = &frame.trace.ssgi.color[c];  // a frame's own light stands in
-    }
-    in.metallic = &frame.gbuffer.metallic;
     // Motion that moves some pixels off the frame.
     PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
     for (int y = 0; y < h; ++y)
@@ -417,8 +420,8 @@ TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA a
             motion[0].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 0) - 0.5f);
             motion[1].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 1) - 0.5f);
         }
-    in.motion[0] = &motion[0];
-    in.motion[1] = &motion[1];
+    const GBuffer& g = frame.gbuffer;
+    in.g = ssgiView(g.viewZ, nullptr, g.albedo, g.metallic, motion);
     // (The renderer's hit light, f16: stored rounded, clamped to 65504.)
     const auto fed = [&](Isa isa, int threads, PlaneU16 out[3]) {
         for (int c = 0; c < 3; ++c) out[c] = frame.direct.hitLight[c].clone();

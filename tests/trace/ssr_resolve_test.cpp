@@ -74,15 +74,18 @@ struct WallFixture {
         in.camera.height = kH;
         in.camera.tanHalfX = 0.5f * float(kW) / float(kH);
         in.camera.tanHalfY = 0.5f;
-        in.viewZ = &viewZ;
-        in.roughness = &roughness;
+        in.g = gbufferView("test", kW, kH,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGRoughness, &roughness},
+                            {kGMotionX, &motion[0]},
+                            {kGMotionY, &motion[1]}});
         for (int c = 0; c < 3; ++c) {
-            in.normal[c] = &normal[c];
             in.color[c] = &color[c];
             in.prevColor[c] = &prev[c];
         }
-        in.motion[0] = &motion[0];
-        in.motion[1] = &motion[1];
     }
 
     template <class F>
@@ -327,6 +330,15 @@ TEST_CASE("ssr resolve: samples average (opacity-weighted colour, mean opacity)"
     CHECK(out.opacity.at(30, 30) == doctest::Approx(2.0f / 3.0f).epsilon(1e-6));
     CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, f.in, f.rays, f.march, out, 3, 3, 2),
                     std::invalid_argument);
+    // The G-buffer it reads: of the camera's size, with the planes the settings need.
+    SsrResolveInputs small = f.in;
+    small.camera.width = kW - 1;
+    CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, small, f.rays, f.march, out, 0, 1, 2),
+                    std::invalid_argument);
+    SsrResolveInputs flat = f.in;
+    flat.g.roughness = nullptr;
+    CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, flat, f.rays, f.march, out, 0, 1, 2),
+                    std::invalid_argument);
 }
 
 TEST_CASE("ssr resolve: mip mode at roughness 0 equals level 0, and blurs with roughness") {
@@ -390,15 +402,11 @@ TEST_CASE(
     in.camera.height = h;
     in.camera.tanHalfY = 0.4f;
     in.camera.tanHalfX = 0.4f * float(w) / float(h);
-    in.viewZ = &frame.gbuffer.viewZ;
-    in.roughness = &frame.gbuffer.roughness;
+    in.g = frame.gbuffer.view();
     for (int c = 0; c < 3; ++c) {
-        in.normal[c] = &frame.gbuffer.normal[c];
         in.color[c] = &frame.image.color[c];
         in.prevColor[c] = &frame.image.color[c];
     }
-    in.motion[0] = &frame.gbuffer.motion[0];
-    in.motion[1] = &frame.gbuffer.motion[1];
     // Random rays: some without a ray, some with a tiny or huge pdf, hits anywhere including
     // exactly on the frame's edges and beyond.
     RayBatch rays;
@@ -411,7 +419,7 @@ TEST_CASE(
             const float u[6] = {randomFloat(i, 7, 0, 0), randomFloat(i, 7, 0, 1),
                                 randomFloat(i, 7, 0, 2), randomFloat(i, 7, 0, 3),
                                 randomFloat(i, 7, 0, 4), randomFloat(i, 7, 0, 5)};
-            const bool bg = in.viewZ->at(x, y) <= 0.0f;
+            const bool bg = frame.gbuffer.viewZ.at(x, y) <= 0.0f;
             const float pdfs[5] = {0.0f, 1e-30f, 1.0f, 1e30f, 0.3f};
             rays.pdf.at(x, y) = bg ? 0.0f : pdfs[int(u[0] * 5)];
             const float dz = -u[1], dx = u[2] - 0.5f, dy = u[3] - 0.5f;
@@ -446,7 +454,7 @@ TEST_CASE(
                         finite = finite && std::isfinite(ref.color[c].at(x, y));
                     const float o = ref.opacity.at(x, y);
                     inRange = inRange && o >= 0.0f && o <= 1.0f;
-                    if (in.viewZ->at(x, y) <= 0.0f) inRange = inRange && o == 0.0f;
+                    if (frame.gbuffer.viewZ.at(x, y) <= 0.0f) inRange = inRange && o == 0.0f;
                 }
             CHECK(finite);
             CHECK(inRange);

@@ -64,6 +64,22 @@ Scene quadScene() {
     return test::screenQuadScene(m);
 }
 
+// The view buildHalfFrame reads: viewZ, normal, albedo, metallic; motion when given.
+GBufferView sourceView(const PlaneF& z, const PlaneF n[3], const PlaneF alb[3], const PlaneF& met,
+                       const PlaneF* motion = nullptr) {
+    return gbufferView("test", z.width(), z.height(),
+                       {{kGViewZ, &z},
+                        {kGNormalX, &n[0]},
+                        {kGNormalY, &n[1]},
+                        {kGNormalZ, &n[2]},
+                        {kGAlbedoR, &alb[0]},
+                        {kGAlbedoG, &alb[1]},
+                        {kGAlbedoB, &alb[2]},
+                        {kGMetallic, &met},
+                        {kGMotionX, motion ? &motion[0] : nullptr},
+                        {kGMotionY, motion ? &motion[1] : nullptr}});
+}
+
 }  // namespace
 
 TEST_CASE("checkerboard: one phase traced with the full layout's rays, the other cut and counted") {
@@ -161,11 +177,7 @@ TEST_CASE("half resolution: the chosen pixel of each block rotates over the four
     for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneU16(w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) z.at(x, y) = 1.0f + float(y * w + x);
-    const HalfFrameSource src{&z,
-                              {&n[0], &n[1], &n[2]},
-                              {&alb[0], &alb[1], &alb[2]},
-                              &met,
-                              {&light[0], &light[1], &light[2]}};
+    const HalfFrameSource src{sourceView(z, n, alb, met), false, {&light[0], &light[1], &light[2]}};
     for (uint32_t f = 0; f < 4; ++f) {
         HalfFrame hf;
         buildHalfFrame(cam, src, f, hf, 2);
@@ -245,12 +257,8 @@ TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, 
             motion[0].at(x, y) = 3.0f * float(x);
             motion[1].at(x, y) = -float(y);
         }
-    HalfFrameSource src{&z,
-                        {&n[0], &n[1], &n[2]},
-                        {&alb[0], &alb[1], &alb[2]},
-                        &met,
-                        {&light[0], &light[1], &light[2]}};
-    src.motion[0] = &motion[0], src.motion[1] = &motion[1];
+    HalfFrameSource src{
+        sourceView(z, n, alb, met, motion), true, {&light[0], &light[1], &light[2]}};
     for (uint32_t f = 0; f < 4; ++f) {
         CAPTURE(f);
         HalfFrame hf;
@@ -266,12 +274,27 @@ TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, 
             }
         CHECK(first);
     }
-    src.motion[0] = src.motion[1] = nullptr;
+    src.guides = false;
     HalfFrame none;
     buildHalfFrame(cam, src, 1, none, 1);
     CHECK(none.guideZ.empty());
     CHECK(none.guideMotion[0].empty());
     CHECK(!none.viewZ.empty());
+    // Its view: the half frame's planes at its size.
+    const GBufferView hv = none.view();
+    CHECK(hv.width == 4);
+    CHECK(hv.height == 3);
+    CHECK(hv.viewZ == none.viewZ.row(0));
+    CHECK(hv.metallic == none.metallic.row(0));
+    CHECK(hv.roughness == nullptr);
+    // Guides need motion, and the source must be of the camera's size.
+    src.guides = true;
+    src.g.motion[1] = nullptr;
+    CHECK_THROWS_AS(buildHalfFrame(cam, src, 1, none, 1), std::invalid_argument);
+    src.guides = false;
+    TraceCamera wider = cam;
+    wider.width = w + 1;
+    CHECK_THROWS_AS(buildHalfFrame(wider, src, 1, none, 1), std::invalid_argument);
 }
 
 TEST_CASE("trace layouts: the same bits for every ISA and thread count, frame after frame") {
