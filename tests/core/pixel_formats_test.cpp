@@ -145,10 +145,13 @@ TEST_CASE("pixel formats: names, channels and bytes") {
         names.insert(pixelFormatName(f));
         CHECK(bytesPerTexel(f) % channelsPerTexel(f) == 0);
     }
-    CHECK(names == std::set<std::string_view>{"f32", "f16", "unorm8", "oct16", "u8", "u16", "u32"});
+    CHECK(names ==
+          std::set<std::string_view>{"f32", "f16", "f16x4", "unorm8", "oct16", "u8", "u16", "u32"});
     CHECK(pixelFormatName(PixelFormat::OctSnorm16) == "oct16");
     CHECK(channelsPerTexel(PixelFormat::OctSnorm16) * 2 == bytesPerTexel(PixelFormat::OctSnorm16));
     CHECK(bytesPerTexel(PixelFormat::F16) == sizeof(uint16_t));
+    CHECK(bytesPerTexel(PixelFormat::F16x4) == sizeof(uint64_t));
+    CHECK(channelsPerTexel(PixelFormat::F16x4) * 2 == bytesPerTexel(PixelFormat::F16x4));
     CHECK(bytesPerTexel(PixelFormat::Unorm8) == sizeof(uint8_t));
     CHECK(bytesPerTexel(PixelFormat::U32) == sizeof(uint32_t));
     CHECK(bytesPerTexel(PixelFormat::F32) == sizeof(float));
