@@ -627,3 +627,36 @@ TEST_CASE(
         REQUIRE(sameBits(expected, got));
     }
 }
+
+TEST_CASE(
+    "f16x4: loads, gathers and stores of four f16 channels a pixel, every ISA the bits of "
+    "each half on its own") {
+    // Every half in every channel (NaNs with their payloads included), at random indices and in
+    // runs of consecutive ones (a gather that is a load).
+    const std::size_t n = 65536;
+    std::vector<uint64_t> in(n);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k)
+            in[i] |= uint64_t((i * 40503u + std::size_t(k) * 12345u) & 0xffffu) << (16 * k);
+    std::vector<int32_t> index(n);
+    for (std::size_t i = 0; i < n; ++i)
+        index[i] = i < n / 2 ? int32_t(randomFloat(uint32_t(i), 2, 7, 0) * float(n)) % int32_t(n)
+                             : int32_t(i ^ 16);  // (runs of 16 moved by 16)
+    const auto half = [&](std::size_t i, int k) { return uint16_t(in[i] >> (16 * k)); };
+    std::vector<float> loaded(4 * n), gathered(4 * n), wantLoaded(4 * n), wantGathered(4 * n);
+    std::vector<uint64_t> stored(n), wantStored(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k) {
+            wantLoaded[k * n + i] = decodeF16(half(i, k));
+            wantGathered[k * n + i] = decodeF16(half(std::size_t(index[i]), k));
+            wantStored[i] |= uint64_t(encodeF16(decodeF16(half(i, k)))) << (16 * k);
+        }
+    for (Isa isa : supportedIsas()) {
+        const std::string isaStr(isaName(isa));
+        CAPTURE(isaStr);
+        f16x4Lanes(isa, in.data(), index.data(), n, loaded.data(), gathered.data(), stored.data());
+        REQUIRE(sameBits(wantLoaded, loaded));
+        REQUIRE(sameBits(wantGathered, gathered));
+        REQUIRE(stored == wantStored);
+    }
+}
