@@ -49,6 +49,9 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         storeAt(a.noisySpecular, o, noisy);
         ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileSpecular;
+        // (Once for the passes that read it: centreAt and curvature as each would compute them.)
+        if (a.curvature)
+            ln::store(a.curvature + o, curvature(v, centreAt(v, x, y, o, false), x, y));
     }
 }
 
