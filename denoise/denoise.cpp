@@ -92,7 +92,6 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
     v.roughness = in.roughness ? in.roughness->row(0) : nullptr;  // read for specular only
     v.signalZ[0] = sc.signalZ[0].row(0);
     v.signalZ[1] = sc.signalZ[1].row(0);
-    v.curvature = sc.curvature.row(0);  // (null without the specular signal)
     v.tiles = sc.tiles.data();
     const float diagonal = cam.sceneDiagonal > 0.0f ? cam.sceneDiagonal : 1.0f;
     v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
@@ -149,7 +148,6 @@ void frontEnd(Context& c) {
     a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
     a.signalZ[1] = c.sc.signalZ[1].row(0);
-    a.curvature = c.sc.curvature.row(0);
     a.tiles = c.sc.tiles.data();
     const auto fn = SSRT_DISPATCH(c.isa, reblurFrontEndTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
@@ -354,7 +352,6 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
     keepScratch(diffuse, sc.noisyDiffuse, w, h, pool);
     keepScratch(specular, sc.noisySpecular, w, h, pool);
     for (int i = 0; i < 2; ++i) keepScratch(i == 0 ? diffuse : specular, sc.signalZ[i], w, h, pool);
-    keepScratch(specular, sc.curvature, w, h, pool);
     sc.tiles.assign(std::size_t(grid.count()), 0);
     // The outputs of a signal not given are left as they are (the caller may fill them).
     for (int ch = 0; ch < 3; ++ch) {

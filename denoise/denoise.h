@@ -139,7 +139,6 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     PlaneU64 ping, pong;
     // Per signal (diffuse, specular), sized only for the signals given:
     PlaneF signalZ[2];           // viewZ where the signal exists, else 0
-    PlaneF curvature;            // the surface's, made once for the specular signal's passes
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneU16 fast[2];            // this frame's fast luma
     std::vector<uint8_t> tiles;  // per tile: bit 0 diffuse, bit 1 specular
@@ -151,7 +150,6 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
         fn("noisy.diffuse", g.noisyDiffuse), fn("noisy.specular", g.noisySpecular);
         fn("pingPong.ping", g.ping), fn("pingPong.pong", g.pong);
         fn("state.diffuse.signalZ", g.signalZ[0]), fn("state.specular.signalZ", g.signalZ[1]);
-        fn("state.specular.curvature", g.curvature);
         fn("state.diffuse.frames", g.frames[0]), fn("state.specular.frames", g.frames[1]);
         fn("fast.diffuse", g.fast[0]), fn("fast.specular", g.fast[1]);
     }

@@ -48,12 +48,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         noisy[3] = normalisedHit(v, loadAt(a.specularHit, o), z, r);
         storeAt(a.noisySpecular, o, noisy);
         ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
-        if (!ln::any(has)) return;
-        flags |= kTileSpecular;
-        // Once for the passes that read it, as each would compute it (centreAt, curvature), and
-        // only where they do: chunks with a specular pixel (the only ones they filter).
-        if (a.curvature)
-            ln::store(a.curvature + o, curvature(v, centreAt(v, x, y, o, false), x, y));
+        if (ln::any(has)) flags |= kTileSpecular;
     }
 }
 

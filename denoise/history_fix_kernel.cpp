@@ -31,8 +31,7 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
         ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc));
     if (spec) {
         const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
-        const Lane reach = specularLobePixels(
-            v, p, hitWorld, curvatureAt(v, p, x, y, std::size_t(y) * v.stride + std::size_t(x)));
+        const Lane reach = specularLobePixels(v, p, hitWorld, curvature(v, p, x, y));
         young = young & (reach >= Lane(2.0f));
         if (!ln::any(young)) return;
         stride = ln::min(stride, ln::floor(reach * Lane(0.5f)));

@@ -23,10 +23,6 @@ struct ReblurView {
     const float* roughness = nullptr;
     // The view depth where the diffuse / specular signal exists, else 0: one read says both.
     const float* signalZ[2] = {};
-    // The surface's curvature (reblur_lanes.h curvature), made once a frame by the front end in
-    // the chunks with a specular pixel (the passes that need it read it there); null: each
-    // computes it.
-    const float* curvature = nullptr;
     const uint8_t* tiles = nullptr;  // per tile: bit 0 diffuse, bit 1 specular signal
     reblur::HitDistanceScale hitScale{};
 };
@@ -55,7 +51,6 @@ struct ReblurFrontEndArgs {
     SignalOut4 noisyDiffuse;
     SignalOut4 noisySpecular;
     float* signalZ[2] = {};
-    float* curvature = nullptr;  // with the specular signal (null: not made)
     uint8_t* tiles = nullptr;
 };
 

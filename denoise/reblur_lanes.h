@@ -206,12 +206,6 @@ SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
     return sum * Lane(0.5f);
 }
 
-// The curvature at pixels (x .. x + kW, y) at offset o: the front end's (the same bits: the same
-// function of the same guides at the same chunk), or computed here where it made none.
-SSRT_INLINE Lane curvatureAt(const ReblurView& v, const Centre& p, int x, int y, std::size_t o) {
-    return v.curvature ? loadAt(v.curvature, o) : curvature(v, p, x, y);
-}
-
 // How many of this frame's pixels the reflection's lobe spans on a specular pixel: what a
 // spatial filter may reach over without blurring the reflection more than the BRDF does.
 //   - The lobe: the reflected directions holding 30 % of it lie within twice the microfacet

@@ -93,8 +93,7 @@ bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
     }
     // No wider than the reflection's lobe seen from the camera (NRD's lobe radius, with GGX's
     // lobe and the mirror's curvature: specularLobePixels).
-    if (spec)
-        radius = ln::min(radius, specularLobePixels(v, p, hitWorld, curvatureAt(v, p, x, y, q.o)));
+    if (spec) radius = ln::min(radius, specularLobePixels(v, p, hitWorld, curvature(v, p, x, y)));
     q.radius = ln::max(radius, Lane(a.minRadius) * smc);
     // Edge-stopping parameters.
     q.invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);

@@ -288,8 +288,7 @@ SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mas
     const Lane hitWorld = hit * rb::hitDistanceScale(v.hitScale, p.z, p.r);
     // A convex mirror images the hit closer behind it: h / (1 + 2 kappa h) (the mirror
     // equation with focal length 1 / (2 kappa)); concave ones are taken as flat.
-    const Lane kappa =
-        ln::max(curvatureAt(v, p, x, y, std::size_t(y) * v.stride + std::size_t(x)), zero);
+    const Lane kappa = ln::max(curvature(v, p, x, y), zero);
     const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
     const V3 dir = ln::normalize(xw);
     const V3 xv = xw + dir * (virtualDistance * dominant);

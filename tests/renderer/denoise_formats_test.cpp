@@ -58,7 +58,7 @@ TEST_CASE(
     "resource table with its element's size") {
     const DenoiseScratch scratch;
     const DenoiseHistory history;
-    CHECK(checkGroup(scratch, false, false) == 11);
+    CHECK(checkGroup(scratch, false, false) == 10);
     CHECK(checkGroup(history, false, true) == 11);
     CHECK(checkGroup(scratch, true, false) == 6);
     CHECK(checkGroup(history, true, true) == 8);
