@@ -95,11 +95,13 @@ static uint64_t fnv1a(const Plane<T>& plane, uint64_t h) {
 }
 
 uint64_t hashPlane(const PlaneF& plane, uint64_t seed) { return fnv1a(plane, seed); }
+uint64_t hashPlane(const PlaneU64& plane, uint64_t seed) { return fnv1a(plane, seed); }
 uint64_t hashPlane(const PlaneU32& plane, uint64_t seed) { return fnv1a(plane, seed); }
 uint64_t hashPlane(const PlaneU16& plane, uint64_t seed) { return fnv1a(plane, seed); }
 uint64_t hashPlane(const PlaneU8& plane, uint64_t seed) { return fnv1a(plane, seed); }
 
 template class Plane<float>;
+template class Plane<uint64_t>;
 template class Plane<uint32_t>;
 template class Plane<uint16_t>;
 template class Plane<uint8_t>;

@@ -65,6 +65,7 @@ private:
 };
 
 using PlaneF = Plane<float>;
+using PlaneU64 = Plane<uint64_t>;  // f16x4: four f16 channels a pixel (core/pixel_formats.h)
 using PlaneU32 = Plane<uint32_t>;
 using PlaneU16 = Plane<uint16_t>;  // f16 bits, u16, one channel of oct16 (core/pixel_formats.h)
 using PlaneU8 = Plane<uint8_t>;    // unorm8, u8
@@ -99,11 +100,13 @@ struct InterleavedImage {
 
 // FNV-1a over the visible pixels (padding excluded), for golden hashes.
 uint64_t hashPlane(const PlaneF& plane, uint64_t seed = 0xcbf29ce484222325ull);
+uint64_t hashPlane(const PlaneU64& plane, uint64_t seed = 0xcbf29ce484222325ull);
 uint64_t hashPlane(const PlaneU32& plane, uint64_t seed = 0xcbf29ce484222325ull);
 uint64_t hashPlane(const PlaneU16& plane, uint64_t seed = 0xcbf29ce484222325ull);
 uint64_t hashPlane(const PlaneU8& plane, uint64_t seed = 0xcbf29ce484222325ull);
 
 extern template class Plane<float>;
+extern template class Plane<uint64_t>;
 extern template class Plane<uint32_t>;
 extern template class Plane<uint16_t>;
 extern template class Plane<uint8_t>;

@@ -13,6 +13,7 @@ std::string_view pixelFormatName(PixelFormat format) {
     switch (format) {
         case PixelFormat::F32: return "f32";
         case PixelFormat::F16: return "f16";
+        case PixelFormat::F16x4: return "f16x4";
         case PixelFormat::Unorm8: return "unorm8";
         case PixelFormat::OctSnorm16: return "oct16";
         case PixelFormat::U8: return "u8";

@@ -10,6 +10,8 @@
 //   f16     IEEE 754-2008 binary16: round to nearest even, subnormals kept, overflow to
 //           infinity, NaN stays NaN (quieted, sign and top payload bits kept): the bits of x86
 //           F16C (vcvtps2ph with _MM_FROUND_TO_NEAREST_INT, vcvtph2ps) and of aarch64's FCVT
+//   f16x4   four f16 channels of one pixel interleaved in one 64-bit element (channel k in
+//           bits 16k .. 16k + 15): a pixel's four values in one load or gather
 //   unorm8  k = x * 255 rounded to nearest, x clamped to [0, 1]; value k / 255
 //   oct16   a unit vector, octahedral map in two snorm16 (Cigolle et al. 2014)
 //   u8, u16, u32   a float that holds a non-negative integer (ids, flags, causes)
@@ -21,15 +23,16 @@
 
 namespace ssrt {
 
-enum class PixelFormat : uint8_t { F32, F16, Unorm8, OctSnorm16, U8, U16, U32 };
+enum class PixelFormat : uint8_t { F32, F16, F16x4, Unorm8, OctSnorm16, U8, U16, U32 };
 
 inline constexpr PixelFormat kAllPixelFormats[] = {
-    PixelFormat::F32, PixelFormat::F16, PixelFormat::Unorm8, PixelFormat::OctSnorm16,
-    PixelFormat::U8,  PixelFormat::U16, PixelFormat::U32};
+    PixelFormat::F32,        PixelFormat::F16, PixelFormat::F16x4, PixelFormat::Unorm8,
+    PixelFormat::OctSnorm16, PixelFormat::U8,  PixelFormat::U16,   PixelFormat::U32};
 
-// Stored channels per texel: 2 for oct16 (the snorm16 pair that encodes a 3-vector), else 1.
+// Stored channels per texel: 2 for oct16 (the snorm16 pair that encodes a 3-vector), 4 for
+// f16x4, else 1.
 constexpr int channelsPerTexel(PixelFormat format) {
-    return format == PixelFormat::OctSnorm16 ? 2 : 1;
+    return format == PixelFormat::OctSnorm16 ? 2 : format == PixelFormat::F16x4 ? 4 : 1;
 }
 
 // Bytes one texel takes in memory (all its channels).
@@ -37,6 +40,7 @@ constexpr int bytesPerTexel(PixelFormat format) {
     switch (format) {
         case PixelFormat::F32: return 4;
         case PixelFormat::F16: return 2;
+        case PixelFormat::F16x4: return 8;
         case PixelFormat::Unorm8: return 1;
         case PixelFormat::OctSnorm16: return 4;
         case PixelFormat::U8: return 1;
@@ -46,7 +50,7 @@ constexpr int bytesPerTexel(PixelFormat format) {
     return 0;
 }
 
-// "f32", "f16", "unorm8", "oct16", "u8", "u16", "u32".
+// "f32", "f16", "f16x4", "unorm8", "oct16", "u8", "u16", "u32".
 std::string_view pixelFormatName(PixelFormat format);
 
 // ---- f16: IEEE 754-2008 binary16 (section 3.6: 1 sign, 5 exponent bits, 10 fraction) -----

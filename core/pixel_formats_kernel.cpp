@@ -130,4 +130,19 @@ void gatherNeighbours(const uint16_t* f16, const float* f32, const int32_t* inde
     }
 }
 
+void f16x4Lanes(const uint64_t* in, const int32_t* index, std::size_t n, float* loaded,
+                float* gathered, uint64_t* stored) {
+    for (std::size_t i = 0; i < n; i += kW) {
+        const Int idx = ln::loadInt<Lane>(index + i);
+        Lane l[4], g[4];
+        ln::loadF16x4<Lane>(in + i, l);
+        ln::gatherF16x4<Lane>(in, idx, ln::runOf(idx), g);
+        ln::storeF16x4<Lane>(stored + i, l);
+        for (int k = 0; k < 4; ++k) {
+            ln::store(loaded + std::size_t(k) * n + i, l[k]);
+            ln::store(gathered + std::size_t(k) * n + i, g[k]);
+        }
+    }
+}
+
 }  // namespace ssrt::SSRT_ISA_NS

@@ -31,6 +31,11 @@ SSRT_DECLARE_KERNEL(void, decodeU32, (const uint32_t* in, float* out, std::size_
 // (k = 4, 5) and lanes::gatherPair's (k = 6, 7). f16 and f32 must be readable at index + 3.
 SSRT_DECLARE_KERNEL(void, gatherNeighbours, (const uint16_t* f16, const float* f32,
                                              const int32_t* index, std::size_t n, float* out))
+// f16x4 pixels (n a multiple of 16): channel k of in[i] loaded to loaded[k n + i] (lanes::loadF16x4),
+// of in[index[i]] gathered to gathered[k n + i] (lanes::gatherF16x4), and the loaded values
+// stored back to stored[i] (lanes::storeF16x4).
+SSRT_DECLARE_KERNEL(void, f16x4Lanes, (const uint64_t* in, const int32_t* index, std::size_t n,
+                                       float* loaded, float* gathered, uint64_t* stored))
 // clang-format on
 
 inline void encodeF16(Isa isa, const float* in, uint16_t* out, std::size_t n) {
@@ -77,6 +82,10 @@ inline void decodeU32(Isa isa, const uint32_t* in, float* out, std::size_t n) {
 inline void gatherNeighbours(Isa isa, const uint16_t* f16, const float* f32, const int32_t* index,
                              std::size_t n, float* out) {
     SSRT_DISPATCH(isa, gatherNeighbours)(f16, f32, index, n, out);
+}
+inline void f16x4Lanes(Isa isa, const uint64_t* in, const int32_t* index, std::size_t n,
+                       float* loaded, float* gathered, uint64_t* stored) {
+    SSRT_DISPATCH(isa, f16x4Lanes)(in, index, n, loaded, gathered, stored);
 }
 
 }  // namespace ssrt

@@ -194,53 +194,188 @@ SSRT_INLINE void gatherF16Pair(const uint16_t* base, IntOf<L> index, L& lo, L& h
     hi = lanes::gatherF16<L>(base, index + IntOf<L>(1), Run{false, 0});
 }
 
-// Per-lane f16 values of base[index + k], k = 0..3 (a row of four neighbouring taps): where
-// the hardware gathers, one 64-bit element a lane reads all four (two 8-lane gathers on
-// AVX-512, two 4-lane ones on AVX2, then shuffled apart), a quarter of the elements of four
-// gatherF16; the same bits. base[index + 3] must be readable in every lane (the caller's).
+// ---- f16x4: four f16 channels of a pixel in one 64-bit element -----------------------------
+// (channel k in bits 16k .. 16k + 15, x86 and aarch64 being little-endian: halves 4 i + k of the
+// element array.) Loaded, gathered and stored with the bits of four f16 planes.
+
+#if defined(__AVX512F__)
+// The halves of 16 lanes' 64-bit elements (lanes 0-7 in a, 8-15 in b), half k of each lane
+// into out[k], converted.
 template <class L>
-SSRT_INLINE void gatherF16Row4(const uint16_t* base, IntOf<L> index, L out[4]) {
+SSRT_INLINE void f16x4Split(__m512i a, __m512i b, L out[4]) {
+    // Lane l's half k is half 4 l + k of a:b (32 on: b's).
+    alignas(64) static constexpr uint16_t kHalves01[32] = {
+        0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44, 48, 52, 56, 60,
+        1, 5, 9, 13, 17, 21, 25, 29, 33, 37, 41, 45, 49, 53, 57, 61};
+    const __m512i pick01 = _mm512_load_si512(kHalves01);
+    const __m512i t01 = _mm512_permutex2var_epi16(a, pick01, b);
+    const __m512i t23 =
+        _mm512_permutex2var_epi16(a, _mm512_add_epi16(pick01, _mm512_set1_epi16(2)), b);
+    out[0] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t01)));
+    out[1] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t01, 1)));
+    out[2] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t23)));
+    out[3] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t23, 1)));
+}
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+// The same for 8 lanes (lanes 0-3 in a, 4-7 in b).
+template <class L>
+SSRT_INLINE void f16x4Split(__m256i a, __m256i b, L out[4]) {
+    // Per 128 bits (two lanes' four halves), 32-bit element k = half k of the two lanes.
+    const __m256i byHalf = _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15, 0,
+                                            1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
+    const __m256i ta = _mm256_shuffle_epi8(a, byHalf), tb = _mm256_shuffle_epi8(b, byHalf);
+    // unpacklo: [half 0 of lanes 0-1, 4-5, half 1 of 0-1, 4-5 | the same of lanes 2-3, 6-7]
+    const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+    const __m256i t01 = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(ta, tb), order);
+    const __m256i t23 = _mm256_permutevar8x32_epi32(_mm256_unpackhi_epi32(ta, tb), order);
+    out[0] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t01)));
+    out[1] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t01, 1)));
+    out[2] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t23)));
+    out[3] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t23, 1)));
+}
+#endif
+
+// The integer code's split: lane i's element element(i), half k into out[k].
+template <class L, class Element>
+SSRT_INLINE void f16x4SplitEach(Element element, L out[4]) {
+    using I = IntOf<L>;
+    if constexpr (std::is_same_v<L, float>) {
+        const uint64_t e = element(0);
+        for (int k = 0; k < 4; ++k) out[k] = lanes::f16Value<L>(I((e >> (16 * k)) & 0xffff));
+    } else {
+        alignas(64) int32_t h[4][L::size];
+        for (std::size_t i = 0; i < L::size; ++i) {
+            const uint64_t e = element(i);
+            for (int k = 0; k < 4; ++k) h[k][i] = int32_t((e >> (16 * k)) & 0xffff);
+        }
+        for (int k = 0; k < 4; ++k) out[k] = lanes::f16Value<L>(I::load_aligned(h[k]));
+    }
+}
+
+// The four channels of consecutive pixels p[0 .. lanes).
+template <class L>
+SSRT_INLINE void loadF16x4(const uint64_t* p, L out[4]) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512)
+        return lanes::f16x4Split<L>(_mm512_loadu_si512(p), _mm512_loadu_si512(p + 8), out);
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256)
+        return lanes::f16x4Split<L>(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)),
+                                    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 4)),
+                                    out);
+#endif
+    lanes::f16x4SplitEach<L>([p](std::size_t i) { return p[i]; }, out);
+}
+
+// The four channels of pixels base[index] (one load where `run`, runOf(index), is consecutive).
+template <class L>
+SSRT_INLINE void gatherF16x4(const uint64_t* base, IntOf<L> index, Run run, L out[4]) {
+    if constexpr (!std::is_same_v<L, float>)
+        if (run.consecutive) return lanes::loadF16x4<L>(base + run.first, out);
 #if defined(__AVX512F__)
     if constexpr (hardwareHalfBits<L>() == 512) {
         const __m512i i = index;
-        // Lane l's tap k is half 4 l + k of a (lanes 0-7) or of b (lanes 8-15, 32 on).
-        const __m512i a = _mm512_i32gather_epi64(_mm512_castsi512_si256(i), base, 2);
-        const __m512i b = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(i, 1), base, 2);
-        alignas(64) static constexpr uint16_t kTaps01[32] = {
-            0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44, 48, 52, 56, 60,
-            1, 5, 9, 13, 17, 21, 25, 29, 33, 37, 41, 45, 49, 53, 57, 61};
-        const __m512i pick01 = _mm512_load_si512(kTaps01);
-        const __m512i t01 = _mm512_permutex2var_epi16(a, pick01, b);
-        const __m512i t23 =
-            _mm512_permutex2var_epi16(a, _mm512_add_epi16(pick01, _mm512_set1_epi16(2)), b);
-        out[0] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t01)));
-        out[1] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t01, 1)));
-        out[2] = L(_mm512_cvtph_ps(_mm512_castsi512_si256(t23)));
-        out[3] = L(_mm512_cvtph_ps(_mm512_extracti64x4_epi64(t23, 1)));
-        return;
+        return lanes::f16x4Split<L>(
+            _mm512_i32gather_epi64(_mm512_castsi512_si256(i), base, 8),
+            _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(i, 1), base, 8), out);
     }
 #endif
 #if defined(__AVX2__) && defined(__F16C__)
     if constexpr (hardwareHalfBits<L>() == 256) {
         const __m256i i = index;
         const auto* p = reinterpret_cast<const long long*>(base);
-        // a: lanes 0-3, b: lanes 4-7; per 128 bits two lanes' four halves each.
-        const __m256i a = _mm256_i32gather_epi64(p, _mm256_castsi256_si128(i), 2);
-        const __m256i b = _mm256_i32gather_epi64(p, _mm256_extracti128_si256(i, 1), 2);
-        // Per 128 bits, 32-bit element k = tap k of the two lanes.
-        const __m256i byTap =
-            _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15, 0, 1, 8, 9, 2, 3,
-                             10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
-        const __m256i ta = _mm256_shuffle_epi8(a, byTap), tb = _mm256_shuffle_epi8(b, byTap);
-        // unpacklo: [tap 0 of lanes 0-1, 4-5, tap 1 of 0-1, 4-5 | the same of lanes 2-3, 6-7]
-        const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
-        const __m256i t01 = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(ta, tb), order);
-        const __m256i t23 = _mm256_permutevar8x32_epi32(_mm256_unpackhi_epi32(ta, tb), order);
-        out[0] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t01)));
-        out[1] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t01, 1)));
-        out[2] = L(_mm256_cvtph_ps(_mm256_castsi256_si128(t23)));
-        out[3] = L(_mm256_cvtph_ps(_mm256_extracti128_si256(t23, 1)));
+        return lanes::f16x4Split<L>(_mm256_i32gather_epi64(p, _mm256_castsi256_si128(i), 8),
+                                    _mm256_i32gather_epi64(p, _mm256_extracti128_si256(i, 1), 8),
+                                    out);
+    }
+#endif
+    if constexpr (std::is_same_v<L, float>) {
+        lanes::f16x4SplitEach<L>([&](std::size_t) { return base[index]; }, out);
+    } else {
+        alignas(64) int32_t at[L::size];
+        index.store_aligned(at);
+        lanes::f16x4SplitEach<L>([&](std::size_t i) { return base[at[i]]; }, out);
+    }
+}
+
+// x[k] into channel k of consecutive pixels p[0 .. lanes), each rounded to nearest even (a
+// value above 65504 may become infinity: the caller clamps).
+template <class L>
+SSRT_INLINE void storeF16x4(uint64_t* p, const L x[4]) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) {
+        const __m512i t01 =
+            _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtps_ph(x[0], kHalfRounding)),
+                               _mm512_cvtps_ph(x[1], kHalfRounding), 1);
+        const __m512i t23 =
+            _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtps_ph(x[2], kHalfRounding)),
+                               _mm512_cvtps_ph(x[3], kHalfRounding), 1);
+        // Half 4 l + k of lanes 0-7 from channel k's lane l: t01's k 16 + l (k < 2), else
+        // t23's, 32 on; lanes 8-15 eight further.
+        alignas(64) static constexpr uint16_t kLanes0To7[32] = {
+            0, 16, 32, 48, 1, 17, 33, 49, 2, 18, 34, 50, 3, 19, 35, 51,
+            4, 20, 36, 52, 5, 21, 37, 53, 6, 22, 38, 54, 7, 23, 39, 55};
+        const __m512i pick = _mm512_load_si512(kLanes0To7);
+        _mm512_storeu_si512(p, _mm512_permutex2var_epi16(t01, pick, t23));
+        _mm512_storeu_si512(p + 8, _mm512_permutex2var_epi16(
+                                       t01, _mm512_add_epi16(pick, _mm512_set1_epi16(8)), t23));
         return;
+    }
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) {
+        __m128i h[4];
+        for (int k = 0; k < 4; ++k) h[k] = _mm256_cvtps_ph(x[k], kHalfRounding);
+        // Channels 0 and 1 (2 and 3) side by side per lane, lanes 0-3 and 4-7; then the pairs
+        // side by side, two lanes' elements a register.
+        const __m128i lo01 = _mm_unpacklo_epi16(h[0], h[1]), hi01 = _mm_unpackhi_epi16(h[0], h[1]);
+        const __m128i lo23 = _mm_unpacklo_epi16(h[2], h[3]), hi23 = _mm_unpackhi_epi16(h[2], h[3]);
+        auto* q = reinterpret_cast<__m128i*>(p);
+        _mm_storeu_si128(q, _mm_unpacklo_epi32(lo01, lo23));
+        _mm_storeu_si128(q + 1, _mm_unpackhi_epi32(lo01, lo23));
+        _mm_storeu_si128(q + 2, _mm_unpacklo_epi32(hi01, hi23));
+        _mm_storeu_si128(q + 3, _mm_unpackhi_epi32(hi01, hi23));
+        return;
+    }
+#endif
+    if constexpr (std::is_same_v<L, float>) {
+        uint64_t e = 0;
+        for (int k = 0; k < 4; ++k) e |= uint64_t(uint32_t(lanes::f16Bits(x[k]))) << (16 * k);
+        *p = e;
+    } else {
+        alignas(64) int32_t h[4][L::size];
+        for (int k = 0; k < 4; ++k) lanes::f16Bits(x[k]).store_aligned(h[k]);
+        for (std::size_t i = 0; i < L::size; ++i) {
+            uint64_t e = 0;
+            for (int k = 0; k < 4; ++k) e |= uint64_t(uint32_t(h[k][i])) << (16 * k);
+            p[i] = e;
+        }
+    }
+}
+
+// Per-lane f16 values of base[index + k], k = 0..3 (a row of four neighbouring taps of an f16
+// plane): where the hardware gathers, one 64-bit element a lane reads all four, split as an
+// f16x4 pixel's channels; a quarter of the elements of four gatherF16, the same bits.
+// base[index + 3] must be readable in every lane (the caller's).
+template <class L>
+SSRT_INLINE void gatherF16Row4(const uint16_t* base, IntOf<L> index, L out[4]) {
+#if defined(__AVX512F__)
+    if constexpr (hardwareHalfBits<L>() == 512) {
+        const __m512i i = index;
+        return lanes::f16x4Split<L>(
+            _mm512_i32gather_epi64(_mm512_castsi512_si256(i), base, 2),
+            _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(i, 1), base, 2), out);
+    }
+#endif
+#if defined(__AVX2__) && defined(__F16C__)
+    if constexpr (hardwareHalfBits<L>() == 256) {
+        const __m256i i = index;
+        const auto* p = reinterpret_cast<const long long*>(base);
+        return lanes::f16x4Split<L>(_mm256_i32gather_epi64(p, _mm256_castsi256_si128(i), 2),
+                                    _mm256_i32gather_epi64(p, _mm256_extracti128_si256(i, 1), 2),
+                                    out);
     }
 #endif
     for (int k = 0; k < 4; ++k)

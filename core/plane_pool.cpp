@@ -8,6 +8,7 @@ namespace {
 
 void fill(PlaneF& p, float value) { p.fill(value); }
 void fill(PlaneU16& p, float value) { p.fill(encodeF16(value)); }
+void fill(PlaneU64& p, float value) { p.fill(0x0001000100010001ull * encodeF16(value)); }
 
 template <class T>
 void takePlane(Plane<T>& p, int width, int height, std::optional<float> poison) {
@@ -20,7 +21,9 @@ void takePlane(Plane<T>& p, int width, int height, std::optional<float> poison) 
 
 void PlanePool::take(PlaneF& p, int width, int height) { takePlane(p, width, height, poison_); }
 void PlanePool::take(PlaneU16& p, int width, int height) { takePlane(p, width, height, poison_); }
+void PlanePool::take(PlaneU64& p, int width, int height) { takePlane(p, width, height, poison_); }
 void PlanePool::give(PlaneF& p) { p = PlaneF(); }
 void PlanePool::give(PlaneU16& p) { p = PlaneU16(); }
+void PlanePool::give(PlaneU64& p) { p = PlaneU64(); }
 
 }  // namespace ssrt

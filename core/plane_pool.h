@@ -22,6 +22,7 @@ public:
     // `p` at width x height: kept when it is, else newly allocated.
     void take(PlaneF& p, int width, int height);
     void take(PlaneU16& p, int width, int height);
+    void take(PlaneU64& p, int width, int height);
     template <class Group>
     void take(PlaneTable<Group>& group, int width, int height) {
         group.forEachPlane([&](std::string_view, auto& p) { take(p, width, height); });
@@ -29,6 +30,7 @@ public:
     // Frees `p`, leaving it empty.
     void give(PlaneF& p);
     void give(PlaneU16& p);
+    void give(PlaneU64& p);
     template <class Group>
     void give(PlaneTable<Group>& group) {
         group.forEachPlane([&](std::string_view, auto& p) { give(p); });

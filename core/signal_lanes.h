@@ -45,6 +45,29 @@ SSRT_INLINE void storeSignal(SignalOut p, std::size_t offset, L x) {
     lanes::store(p.f32 + offset, x);
 }
 
+// Four channels together (SignalIn4, SignalOut4): an f16x4 plane's in one load, gather or store
+// of a pixel's 64-bit element (core/pixel_formats_lanes.h), the same values as four planes.
+template <class L>
+SSRT_INLINE void loadSignal4(const SignalIn4& p, std::size_t offset, L out[4]) {
+    if (p.f16x4) return lanes::loadF16x4<L>(p.f16x4 + offset, out);
+    for (int c = 0; c < 4; ++c) out[c] = lanes::loadSignal<L>(p.ch[c], offset);
+}
+template <class L>
+SSRT_INLINE void gatherSignal4(const SignalIn4& p, IntOf<L> index, Run run, L out[4]) {
+    if (p.f16x4) return lanes::gatherF16x4<L>(p.f16x4, index, run, out);
+    for (int c = 0; c < 4; ++c) out[c] = lanes::gatherSignal<L>(p.ch[c], index, run);
+}
+template <class L>
+SSRT_INLINE void storeSignal4(const SignalOut4& p, std::size_t offset, const L x[4]) {
+    if (p.f16x4) {
+        const L clamped[4] = {lanes::clampedToF16(x[0]), lanes::clampedToF16(x[1]),
+                              lanes::clampedToF16(x[2]), lanes::clampedToF16(x[3])};
+        return lanes::storeF16x4<L>(p.f16x4 + offset, clamped);
+    }
+    for (int c = 0; c < 4; ++c)
+        if (p.ch[c]) lanes::storeSignal(p.ch[c], offset, x[c]);
+}
+
 // Fetches ahead pixels [x0, x1) of the row at `rowOffset` of the f16 planes among `planes` (f32
 // ones are left to the hardware). A kernel run tile by tile reads a few cache lines of a row of
 // each plane, then jumps a row: an f16 plane's run (2 lines for a 64-pixel tile) is too short

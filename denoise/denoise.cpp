@@ -51,18 +51,10 @@ private:
     std::vector<DenoisePassTime>* out_;
 };
 
-// Four f16 planes of a group as a pass's destinations.
-struct Four {
-    SignalOut p[4];
-    explicit Four(PlaneU16* group) {
-        for (int ch = 0; ch < 4; ++ch) p[ch] = group[ch].row(0);
-    }
-};
-
-// One signal's planes through the passes: 0-3 diffuse, 4-7 specular of the scratch arrays.
+// One signal's planes through the passes.
 struct SignalPlanes {
     bool specular;
-    PlaneU16* noisy;  // the front end's planes of this signal (DenoiseScratch)
+    PlaneU64* noisy;  // the front end's plane of this signal (DenoiseScratch)
     PlaneF* outputs[3];
     PlaneF* framesOut;
 };
@@ -152,10 +144,8 @@ void frontEnd(Context& c) {
         a.specularHit = in.specularHitDistance->row(0);
     }
     a.specularMaxRoughness = in.specularMaxRoughness;
-    for (int i = 0; i < 4; ++i) {
-        a.noisyDiffuse[i] = c.sc.noisyDiffuse[i].row(0);
-        a.noisySpecular[i] = c.sc.noisySpecular[i].row(0);
-    }
+    a.noisyDiffuse = c.sc.noisyDiffuse.row(0);
+    a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
     a.signalZ[1] = c.sc.signalZ[1].row(0);
     a.tiles = c.sc.tiles.data();
@@ -163,18 +153,16 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU16* in,
-             const SignalOut out[4], PlaneU16* copy, const PlaneF* frames) {
+void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* in,
+             const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
     ReblurSpatialArgs a;
     a.view = c.view;
     a.pass = pass;
     a.specular = sig.specular;
-    for (int ch = 0; ch < 4; ++ch) {
-        a.in[ch] = in[ch].row(0);
-        a.out[ch] = out[ch];
-        if (copy) a.copy[ch] = copy[ch].row(0);
-    }
+    a.in = in->row(0);
+    a.out = out;
+    if (copy) a.copy = copy->row(0);
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
     a.frameIndex = c.in.frameIndex;
@@ -196,17 +184,15 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU16* 
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void temporal(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) {
+void temporal(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
     ReblurTemporalArgs a;
     a.view = c.view;
     a.specular = sig.specular;
     for (int i = 0; i < 2; ++i) a.motion[i] = c.in.motion[i]->row(0);
-    for (int ch = 0; ch < 4; ++ch) {
-        a.in[ch] = in[ch].row(0);
-        a.out[ch] = out[ch].row(0);
-    }
+    a.in = in->row(0);
+    a.out = out->row(0);
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
     if (c.previous && c.previousHas[k] && s.maxAccumulatedFrames > 0) {
@@ -214,8 +200,7 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) 
         a.prevViewZ = h.viewZ.row(0);
         for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
         a.prevRoughness = h.roughness.row(0);
-        const PlaneU16* signal = sig.specular ? h.specular : h.diffuse;
-        for (int ch = 0; ch < 4; ++ch) a.prevSignal[ch] = signal[ch].row(0);
+        a.prevSignal = (sig.specular ? h.specular : h.diffuse).row(0);
         a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
         a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
         std::copy_n(h.camera.viewToWorld, 9, a.prevViewToWorld);
@@ -234,16 +219,14 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) 
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void historyFix(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out) {
+void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
     ReblurHistoryFixArgs a;
     a.view = c.view;
     a.specular = sig.specular;
-    for (int ch = 0; ch < 4; ++ch) {
-        a.in[ch] = in[ch].row(0);
-        a.out[ch] = out[ch].row(0);
-    }
+    a.in = in->row(0);
+    a.out = out->row(0);
     // (Without the temporal pass no pixel has a history, and the fast history is the input's
     // luma, as that pass would have left them.)
     a.frames = c.in.temporal ? c.sc.frames[k].row(0) : nullptr;
@@ -260,13 +243,13 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneU16* in, PlaneU16* out
 }
 
 // One signal through every pass; the post-blur writes the output and the history. Each pass
-// writes the ping-pong group its input is not in.
+// writes the ping-pong plane its input is not.
 void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneU16* current = sig.noisy;
+    PlaneU64* current = sig.noisy;
     const auto step = [&](const char* name, auto&& pass) {
-        PlaneU16* out = current == sc.ping ? sc.pong : sc.ping;
+        PlaneU64* out = current == &sc.ping ? &sc.pong : &sc.ping;
         times.run(name, [&] { pass(current, out); });
         current = out;
     };
@@ -274,21 +257,21 @@ void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
     const PlaneF* frames = c.in.temporal ? &sc.frames[sig.specular ? 1 : 0] : nullptr;
     const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
     if (preRadius > 0.0f)
-        step("pre-blur", [&](PlaneU16* in, PlaneU16* out) {
-            spatial(c, sig, ReblurSpatial::PreBlur, in, Four(out).p, nullptr, nullptr);
+        step("pre-blur", [&](PlaneU64* in, PlaneU64* out) {
+            spatial(c, sig, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
         });
     if (c.in.temporal)
-        step("temporal", [&](PlaneU16* in, PlaneU16* out) { temporal(c, sig, in, out); });
-    step("history fix", [&](PlaneU16* in, PlaneU16* out) { historyFix(c, sig, in, out); });
-    step("blur", [&](PlaneU16* in, PlaneU16* out) {
-        spatial(c, sig, ReblurSpatial::Blur, in, Four(out).p, nullptr, frames);
+        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, sig, in, out); });
+    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, sig, in, out); });
+    step("blur", [&](PlaneU64* in, PlaneU64* out) {
+        spatial(c, sig, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
     });
     // The post-blur's result, RGB to the output and all four channels to the history.
-    PlaneU16* history = nullptr;
-    if (c.next) history = sig.specular ? c.next->specular : c.next->diffuse;
+    PlaneU64* history = nullptr;
+    if (c.next) history = sig.specular ? &c.next->specular : &c.next->diffuse;
     // (The output has no hit distance: the post-blur writes that channel to the history only.)
-    const SignalOut out[4] = {sig.outputs[0]->row(0), sig.outputs[1]->row(0),
-                              sig.outputs[2]->row(0), nullptr};
+    SignalOut4 out;
+    for (int ch = 0; ch < 3; ++ch) out[ch] = sig.outputs[ch]->row(0);
     times.run("post-blur",
               [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
     // The history length the EXR shows: frames behind each pixel.
@@ -348,10 +331,8 @@ void keepScratch(bool on, Plane<T>& p, int w, int h, PlanePool* pool) {
 // signals).
 void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool specular, bool temporal,
                        PlanePool* pool) {
-    for (int i = 0; i < 4; ++i) {
-        keepScratch(diffuse || specular, sc.ping[i], w, h, pool);
-        keepScratch(diffuse || specular, sc.pong[i], w, h, pool);
-    }
+    keepScratch(diffuse || specular, sc.ping, w, h, pool);
+    keepScratch(diffuse || specular, sc.pong, w, h, pool);
     for (int i = 0; i < 2; ++i) {
         const bool on = (i == 0 ? diffuse : specular) && temporal;
         keepScratch(on, sc.frames[i], w, h, pool);
@@ -368,10 +349,8 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
         else p = std::decay_t<decltype(p)>();
     };
     // Only the signals present.
-    for (int i = 0; i < 4; ++i) {
-        keepScratch(diffuse, sc.noisyDiffuse[i], w, h, pool);
-        keepScratch(specular, sc.noisySpecular[i], w, h, pool);
-    }
+    keepScratch(diffuse, sc.noisyDiffuse, w, h, pool);
+    keepScratch(specular, sc.noisySpecular, w, h, pool);
     for (int i = 0; i < 2; ++i) keepScratch(i == 0 ? diffuse : specular, sc.signalZ[i], w, h, pool);
     sc.tiles.assign(std::size_t(grid.count()), 0);
     // The outputs of a signal not given are left as they are (the caller may fill them).
@@ -387,10 +366,8 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
     history->viewZ.ensureSize(w, h);
     for (int i = 0; i < 3; ++i) history->normal[i].ensureSize(w, h);
     keepIf(specular, history->roughness);
-    for (int i = 0; i < 4; ++i) {
-        keepIf(diffuse, history->diffuse[i]);
-        keepIf(specular, history->specular[i]);
-    }
+    keepIf(diffuse, history->diffuse);
+    keepIf(specular, history->specular);
     keepIf(diffuse, history->diffuseFrames), keepIf(diffuse, history->diffuseFast);
     keepIf(specular, history->specularFrames), keepIf(specular, history->specularFast);
 }
@@ -427,14 +404,14 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     if (diffuse)
         denoiseSignal(c,
                       {false,
-                       scratch.noisyDiffuse,
+                       &scratch.noisyDiffuse,
                        {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
                        &out.diffuseFrames},
                       pt);
     if (specular)
         denoiseSignal(c,
                       {true,
-                       scratch.noisySpecular,
+                       &scratch.noisySpecular,
                        {&out.specular[0], &out.specular[1], &out.specular[2]},
                        &out.specularFrames},
                       pt);

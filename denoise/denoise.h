@@ -93,7 +93,7 @@ struct DenoiseOutputs {
 // them starts afresh.
 struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     PlaneF viewZ, normal[3], roughness;  // guides of the edge stops: f32
-    PlaneU16 diffuse[4], specular[4];    // RGB and normalised hit distance, f16
+    PlaneU64 diffuse, specular;          // RGB and normalised hit distance, f16x4
     PlaneF diffuseFrames, specularFrames;
     PlaneU16 diffuseFast, specularFast;  // luma, f16
     TraceCamera camera;
@@ -109,18 +109,12 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
         fn("history.denoise.guide.normal.Y", g.normal[1]);
         fn("history.denoise.guide.normal.Z", g.normal[2]);
         fn("history.denoise.guide.roughness", g.roughness);
-        fn("history.denoise.diffuse.R", g.diffuse[0]),
-            fn("history.denoise.diffuse.G", g.diffuse[1]);
-        fn("history.denoise.diffuse.B", g.diffuse[2]);
-        fn("history.denoise.diffuse.hit", g.diffuse[3]);
-        fn("history.denoise.specular.R", g.specular[0]);
-        fn("history.denoise.specular.G", g.specular[1]);
-        fn("history.denoise.specular.B", g.specular[2]);
-        fn("history.denoise.specular.hit", g.specular[3]);
+        fn("history.denoise.diffuse", g.diffuse);
+        fn("history.denoise.specular", g.specular);
         fn("history.denoise.diffuseFrames", g.diffuseFrames);
         fn("history.denoise.specularFrames", g.specularFrames);
-        fn("history.denoise.diffuse.fast", g.diffuseFast);
-        fn("history.denoise.specular.fast", g.specularFast);
+        fn("history.denoise.diffuseFast", g.diffuseFast);
+        fn("history.denoise.specularFast", g.specularFast);
     }
 
     bool usableAt(int width, int height) const {
@@ -134,15 +128,15 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
 
 // Transient planes, kept between frames so that no pass allocates. The signals (radiance,
 // hit distance, fast luma) are f16 (core/pixel_formats.h), decoded on load and encoded on
-// store by the passes, which compute in f32; where the signal exists, its depth and the
-// accumulation speeds are f32. Each pass reads only the
-// one before it, and the two signals run one after the other, so a signal's passes alternate
-// between the two ping-pong groups, which both signals share: 16 planes, not one group per
-// pass and signal (40).
+// store by the passes, which compute in f32: radiance and hit distance as f16x4, a pixel's four
+// in one 64-bit element (a tap one gather, not four). Where the signal exists, its depth and
+// the accumulation speeds are f32. Each pass reads only the one before it, and the two signals
+// run one after the other, so a signal's passes alternate between the two ping-pong planes,
+// which both signals share: 4 planes, not one per pass and signal (10).
 struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     // The front end's, per signal: RGB and the normalised hit distance.
-    PlaneU16 noisyDiffuse[4], noisySpecular[4];
-    PlaneU16 ping[4], pong[4];
+    PlaneU64 noisyDiffuse, noisySpecular;
+    PlaneU64 ping, pong;
     // Per signal (diffuse, specular), sized only for the signals given:
     PlaneF signalZ[2];           // viewZ where the signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
@@ -153,18 +147,8 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     // renderer/resources.cpp; the half frame's add "half.".)
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        static constexpr const char* kDiffuse[4] = {"noisy.diffuse.R", "noisy.diffuse.G",
-                                                    "noisy.diffuse.B", "noisy.diffuse.hit"};
-        static constexpr const char* kSpecular[4] = {"noisy.specular.R", "noisy.specular.G",
-                                                     "noisy.specular.B", "noisy.specular.hit"};
-        static constexpr const char* kPing[4] = {"pingPong.ping.R", "pingPong.ping.G",
-                                                 "pingPong.ping.B", "pingPong.ping.hit"};
-        static constexpr const char* kPong[4] = {"pingPong.pong.R", "pingPong.pong.G",
-                                                 "pingPong.pong.B", "pingPong.pong.hit"};
-        for (int i = 0; i < 4; ++i) fn(std::string_view(kDiffuse[i]), g.noisyDiffuse[i]);
-        for (int i = 0; i < 4; ++i) fn(std::string_view(kSpecular[i]), g.noisySpecular[i]);
-        for (int i = 0; i < 4; ++i) fn(std::string_view(kPing[i]), g.ping[i]);
-        for (int i = 0; i < 4; ++i) fn(std::string_view(kPong[i]), g.pong[i]);
+        fn("noisy.diffuse", g.noisyDiffuse), fn("noisy.specular", g.noisySpecular);
+        fn("pingPong.ping", g.ping), fn("pingPong.pong", g.pong);
         fn("state.diffuse.signalZ", g.signalZ[0]), fn("state.specular.signalZ", g.signalZ[1]);
         fn("state.diffuse.frames", g.frames[0]), fn("state.specular.frames", g.frames[1]);
         fn("fast.diffuse", g.fast[0]), fn("fast.specular", g.fast[1]);

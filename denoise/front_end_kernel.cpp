@@ -28,9 +28,10 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
                                     loadAt(a.albedo[2], o)) *
                             (one - loadAt(a.metallic, o));
         const Mask has = surface & inFrame & (colour > zero);
-        for (int ch = 0; ch < 3; ++ch)
-            storeAt(a.noisyDiffuse[ch], o, sanitize(loadAt(a.diffuse[ch], o)));
-        storeAt(a.noisyDiffuse[3], o, normalisedHit(v, loadAt(a.diffuseHit, o), z, one));
+        Lane noisy[4];
+        for (int ch = 0; ch < 3; ++ch) noisy[ch] = sanitize(loadAt(a.diffuse[ch], o));
+        noisy[3] = normalisedHit(v, loadAt(a.diffuseHit, o), z, one);
+        storeAt(a.noisyDiffuse, o, noisy);
         ln::store(a.signalZ[0] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileDiffuse;
     }
@@ -38,12 +39,14 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
         const Lane r = loadAt(v.roughness, o);
         const Mask has = surface & inFrame & (r < Lane(a.specularMaxRoughness));
         const Lane opacity = ln::saturate(sanitize(loadAt(a.ssrOpacity, o)));
+        Lane noisy[4];
         for (int ch = 0; ch < 3; ++ch) {
             const Lane ssr = sanitize(loadAt(a.ssr[ch], o));
             const Lane env = sanitize(loadAt(a.envSpecular[ch], o));
-            storeAt(a.noisySpecular[ch], o, opacity * ssr + (one - opacity) * env);
+            noisy[ch] = opacity * ssr + (one - opacity) * env;
         }
-        storeAt(a.noisySpecular[3], o, normalisedHit(v, loadAt(a.specularHit, o), z, r));
+        noisy[3] = normalisedHit(v, loadAt(a.specularHit, o), z, r);
+        storeAt(a.noisySpecular, o, noisy);
         ln::store(a.signalZ[1] + o, ln::select(has, z, zero));
         if (ln::any(has)) flags |= kTileSpecular;
     }

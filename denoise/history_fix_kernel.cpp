@@ -62,16 +62,17 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
             }
             if (a.frames) w = w * (one + ln::gather(a.frames, t.index, t.run));  // (else * 1)
             w = ln::select(ok, w, zero);
-            for (int ch = 0; ch < 4; ++ch)
-                sum[ch] = sum[ch] + w * gatherAt(a.in[ch], t.index, t.run);
+            Lane s[4];
+            gatherAt(a.in, t.index, t.run, s);
+            for (int ch = 0; ch < 4; ++ch) sum[ch] = sum[ch] + w * s[ch];
             weightSum = weightSum + w;
         }
     for (int ch = 0; ch < 4; ++ch) result[ch] = ln::select(young, sum[ch] / weightSum, c[ch]);
 }
 
-// The fast history a frame without history has: the input's luma, as the temporal pass
-// would have stored it in its f16 plane.
-Lane inputLuma(Lane r, Lane g, Lane b) { return ln::roundedToF16<Lane>(rb::luma(r, g, b)); }
+// The fast history a frame without history has: the input's luma (of its signal s), as the
+// temporal pass would have stored it in its f16 plane.
+Lane inputLuma(const Lane s[4]) { return ln::roundedToF16<Lane>(rb::luma(s[0], s[1], s[2])); }
 
 // The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
 // "fast history" clamp), more firmly the older the pixel.
@@ -93,17 +94,24 @@ void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int
                 const std::size_t at =
                     std::size_t(std::ptrdiff_t(o) + j * std::ptrdiff_t(v.stride) + i);
                 ms = loadAt(mask, at);
-                f = a.fastIsInputLuma
-                        ? inputLuma(loadAt(a.in[0], at), loadAt(a.in[1], at), loadAt(a.in[2], at))
-                        : loadAt(a.fast, at);
+                if (a.fastIsInputLuma) {
+                    Lane s[4];
+                    loadAt(a.in, at, s);
+                    f = inputLuma(s);
+                } else {
+                    f = loadAt(a.fast, at);
+                }
                 inside = valid;
             } else {
                 const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
                 ms = ln::gather(mask, t.index, t.run);
-                f = a.fastIsInputLuma ? inputLuma(gatherAt(a.in[0], t.index, t.run),
-                                                  gatherAt(a.in[1], t.index, t.run),
-                                                  gatherAt(a.in[2], t.index, t.run))
-                                      : gatherAt(a.fast, t.index, t.run);
+                if (a.fastIsInputLuma) {
+                    Lane s[4];
+                    gatherAt(a.in, t.index, t.run, s);
+                    f = inputLuma(s);
+                } else {
+                    f = gatherAt(a.fast, t.index, t.run);
+                }
                 inside = valid & t.inside;
             }
             const Mask ok = inside & (ms > zero);
@@ -127,7 +135,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
     Lane c[4];
-    for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
+    loadAt(a.in, o, c);
     const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
     const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(0.0f);
@@ -136,7 +144,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     if (ln::any(young)) reconstructYoung(a, p, young, x, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
         clampToFast(a, p, valid, x, y, o, frames, result);
-    for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, result[ch]);
+    storeAt(a.out, o, result);
 }
 
 }  // namespace
@@ -144,8 +152,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
 void reblurHistoryFixTile(const ReblurHistoryFixArgs& a, int tile) {
     const ReblurView& v = a.view;
     if (!(v.tiles[tile] & (a.specular ? kTileSpecular : kTileDiffuse))) {
-        const SignalOut none[4] = {};
-        return copyTile(v, a.in, a.out, none, tile);
+        return copyTile(v, a.in, a.out, SignalOut4(), tile);
     }
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
     for (int y = y0; y < y1; ++y)

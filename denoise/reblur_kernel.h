@@ -30,9 +30,11 @@ struct ReblurView {
 inline constexpr uint8_t kTileDiffuse = 1, kTileSpecular = 2;
 
 // Signal planes (radiance, normalised hit distance, fast luma) as a pass reads and writes them
-// (SignalIn, SignalOut: core/float_planes.h): the denoiser keeps its own in f16 (decoded on
-// load, the arithmetic in f32); a caller may hand f32 planes (the tests' walls). Their stride
-// is the view's.
+// (SignalIn, SignalOut, and for radiance with hit distance SignalIn4, SignalOut4:
+// core/float_planes.h): the denoiser keeps its own in f16, radiance and hit distance as f16x4
+// (a pixel's four values in one 64-bit element: a tap is one gather), decoded on load, the
+// arithmetic in f32; a caller may hand a plane per channel, f32 or f16 (the tests' walls).
+// Their stride is the view's.
 
 struct ReblurFrontEndArgs {
     ReblurView view;
@@ -46,8 +48,8 @@ struct ReblurFrontEndArgs {
     const float* specularHit = nullptr;
     float specularMaxRoughness = 1.0f;
     // RGB and the normalised hit distance of each signal given.
-    SignalOut noisyDiffuse[4] = {};
-    SignalOut noisySpecular[4] = {};
+    SignalOut4 noisyDiffuse;
+    SignalOut4 noisySpecular;
     float* signalZ[2] = {};
     uint8_t* tiles = nullptr;
 };
@@ -58,9 +60,9 @@ struct ReblurSpatialArgs {
     ReblurView view;
     ReblurSpatial pass = ReblurSpatial::PreBlur;
     bool specular = false;
-    SignalIn in[4] = {};
-    SignalOut out[4] = {};          // null: not written (the post-blur's hit distance)
-    SignalOut copy[4] = {};         // a second destination (the history), or null
+    SignalIn4 in;
+    SignalOut4 out;                 // a channel null: not written (the post-blur's hit distance)
+    SignalOut4 copy;                // a second destination (the history), or none
     const float* frames = nullptr;  // accumulation speed (blur, post-blur); null: noFrames
     float noFrames = 10.0f;         // every pixel's speed without `frames`: the pre-blur's 10, or 0
     uint32_t frameIndex = 0, stream = 0;  // the per-pixel rotation's counters
@@ -78,12 +80,12 @@ struct ReblurTemporalArgs {
     ReblurView view;
     bool specular = false;
     const float* motion[2] = {};
-    SignalIn in[4] = {};
+    SignalIn4 in;
     // The previous frame's (all null: no history).
     const float* prevViewZ = nullptr;
     const float* prevNormal[3] = {};
     const float* prevRoughness = nullptr;
-    SignalIn prevSignal[4] = {};
+    SignalIn4 prevSignal;
     const float* prevFrames = nullptr;  // accumulation speed + 1 (REBLUR's internal data)
     SignalIn prevFast;
     float prevViewToWorld[9] = {};
@@ -93,7 +95,7 @@ struct ReblurTemporalArgs {
     float disocclusion = 0.01f;
     float fireflyScale = 2.0f;
     bool virtualMotion = true;
-    SignalOut out[4] = {};
+    SignalOut4 out;
     float* outFrames = nullptr;
     SignalOut outFast;
 };
@@ -101,13 +103,13 @@ struct ReblurTemporalArgs {
 struct ReblurHistoryFixArgs {
     ReblurView view;
     bool specular = false;
-    SignalIn in[4] = {};
+    SignalIn4 in;
     const float* frames = nullptr;  // null: no pixel has a history (0 frames)
     SignalIn fast;                  // null: no anti-lag clamp, unless fastIsInputLuma
     // The fast history is the input's own luma (a frame without history, where the temporal
     // pass, which would have written it so, does not run).
     bool fastIsInputLuma = false;
-    SignalOut out[4] = {};
+    SignalOut4 out;
     float fixFrames = 3.0f, stride = 14.0f;
     float lobeFraction2 = 0.0225f;
     float planeDistance = 0.02f;

@@ -79,6 +79,26 @@ SSRT_INLINE void gatherTwo(SignalIn plane, bool pair, ILane i0, ln::Run r0, ILan
 SSRT_INLINE void storeAt(SignalOut plane, std::size_t offset, Lane x) {
     ln::storeSignal(plane, offset, x);
 }
+// Radiance and hit distance (SignalIn4, SignalOut4: an f16x4 pixel in one load, gather or store).
+SSRT_INLINE void loadAt(const SignalIn4& signal, std::size_t offset, Lane out[4]) {
+    ln::loadSignal4<Lane>(signal, offset, out);
+}
+SSRT_INLINE void gatherAt(const SignalIn4& signal, ILane index, ln::Run run, Lane out[4]) {
+    ln::gatherSignal4<Lane>(signal, index, run, out);
+}
+SSRT_INLINE void storeAt(const SignalOut4& signal, std::size_t offset, const Lane x[4]) {
+    ln::storeSignal4<Lane>(signal, offset, x);
+}
+// Two taps as gatherTwo: an f16x4 pixel's four channels are one element, so no pair gather
+// reads fewer (two gathers); a plane a channel, pairs as gatherTwo.
+SSRT_INLINE void gatherTwo(const SignalIn4& signal, bool pair, ILane i0, ln::Run r0, ILane i1,
+                           ln::Run r1, Lane a[4], Lane b[4]) {
+    if (signal.f16x4) {
+        gatherAt(signal, i0, r0, a);
+        return gatherAt(signal, i1, r1, b);
+    }
+    for (int ch = 0; ch < 4; ++ch) gatherTwo(signal[ch], pair, i0, r0, i1, r1, a[ch], b[ch]);
+}
 
 // The centre pixel of a chunk: position, guides, and the view-space frame.
 struct Centre {
@@ -227,21 +247,21 @@ SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
     return ln::select(d > Lane(0.0f), ln::saturate(d / scale), Lane(1.0f));
 }
 
-// Copies a tile's rows of in[] to out[] (and copy[], where not null): the passes on tiles
+// Copies a tile's rows of `in` to `out` (and `copy`, where not none): the passes on tiles
 // without the signal. A lane group at a time through loadAt and storeAt, so a copy between
 // formats converts as the passes do (f16 to f16 keeps the bits). Stores may run past the
 // tile's last pixel into the row padding only (tiles are whole lane groups wide).
-inline void copyTile(const ReblurView& v, const SignalIn in[4], const SignalOut out[4],
-                     const SignalOut copy[4], int tile) {
+inline void copyTile(const ReblurView& v, const SignalIn4& in, const SignalOut4& out,
+                     const SignalOut4& copy, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
+    const bool copying = bool(copy);
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; x += kW) {
             const std::size_t o = std::size_t(y) * v.stride + x;
-            for (int ch = 0; ch < 4; ++ch) {
-                const Lane s = loadAt(in[ch], o);
-                if (out[ch]) storeAt(out[ch], o, s);
-                if (copy[ch]) storeAt(copy[ch], o, s);
-            }
+            Lane s[4];
+            loadAt(in, o, s);
+            storeAt(out, o, s);
+            if (copying) storeAt(copy, o, s);
         }
 }
 

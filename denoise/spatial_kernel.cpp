@@ -54,10 +54,8 @@ struct SpatialPixel {
 };
 
 void storeSpatial(const ReblurSpatialArgs& a, std::size_t o, const Lane s[4]) {
-    for (int ch = 0; ch < 4; ++ch) {
-        if (a.out[ch]) storeAt(a.out[ch], o, s[ch]);
-        if (a.copy[ch]) storeAt(a.copy[ch], o, s[ch]);
-    }
+    storeAt(a.out, o, s);
+    storeAt(a.copy, o, s);
 }
 
 // The terms of pixels (x .. x + kW, y); false (and the chunk copied) where none is filtered.
@@ -65,7 +63,7 @@ bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
     const ReblurView& v = a.view;
     q.o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
-    for (int ch = 0; ch < 4; ++ch) q.c[ch] = loadAt(a.in[ch], q.o);
+    loadAt(a.in, q.o, q.c);
     // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history); a frame without
     // history has none.
     const Lane frames = q.frames = a.frames ? loadAt(a.frames, q.o) : Lane(a.noFrames);
@@ -149,7 +147,7 @@ void addTaps(const ReblurSpatialArgs& a, const SpatialPixel& q, Mask lanes, cons
             w = w * rb::weightNonExp(q.roughScale * (rs - p.r));
         }
         Lane s[4];
-        for (int ch = 0; ch < 4; ++ch) s[ch] = gatherAt(a.in[ch], t.index, t.run);
+        gatherAt(a.in, t.index, t.run, s);
         w = w * rb::lerp(q.minHit, one, rb::weightExp(q.hitScale * (s[3] - q.c[3])));
         if (spec && pre) {
             const V3 d = xs - p.x;

@@ -56,9 +56,9 @@ struct Footprint {
     Mask allOk;
 };
 
-// Plane values at footprint taps (j, i) and (j, i + 1).
-template <class P>
-SSRT_INLINE void gatherTwoAt(P plane, const Footprint& f, int j, int i, Lane& a, Lane& b) {
+// Plane values at footprint taps (j, i) and (j, i + 1) (a signal's four: Lane[4] each).
+template <class P, class Out>
+SSRT_INLINE void gatherTwoAt(const P& plane, const Footprint& f, int j, int i, Out& a, Out& b) {
     gatherTwo(plane, f.pair[j][i], f.index[j][i], f.run[j][i], f.index[j][i + 1], f.run[j][i + 1],
               a, b);
 }
@@ -138,10 +138,15 @@ SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p
     return f;
 }
 
-// The signals of a row of the footprint (taps[i][ch]): four neighbouring taps of an f16 plane
-// in one row gather (ln::gatherF16Row4), else in two pairs (gatherTwo).
+// The signals of a row of the footprint (taps[i][ch]): an f16x4 history's a gather a tap; of a
+// plane a channel, four neighbouring taps of an f16 plane in one row gather (ln::gatherF16Row4),
+// else in two pairs (gatherTwo).
 SSRT_INLINE void gatherRow(const ReblurTemporalArgs& a, const Footprint& f, int j,
                            Lane taps[4][4]) {
+    if (a.prevSignal.f16x4) {
+        gatherTwoAt(a.prevSignal, f, j, 0, taps[0], taps[1]);
+        return gatherTwoAt(a.prevSignal, f, j, 2, taps[2], taps[3]);
+    }
     const bool row4 = f.pair[j][0] && f.pair[j][1] && f.pair[j][2];
     for (int ch = 0; ch < 4; ++ch) {
         if (row4 && a.prevSignal[ch].f16) {
@@ -180,9 +185,7 @@ SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint
     for (int j = 0; j < 2; ++j) {
         gatherTwoAt(a.prevFrames, f, j + 1, 1, tapFrames[j][0], tapFrames[j][1]);
         gatherTwoAt(a.prevFast, f, j + 1, 1, tapFast[j][0], tapFast[j][1]);
-        if (!haveSignals)
-            for (int ch = 0; ch < 4; ++ch)
-                gatherTwoAt(a.prevSignal[ch], f, j + 1, 1, taps[j + 1][1][ch], taps[j + 1][2][ch]);
+        if (!haveSignals) gatherTwoAt(a.prevSignal, f, j + 1, 1, taps[j + 1][1], taps[j + 1][2]);
     }
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
@@ -333,7 +336,8 @@ SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask v
     const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
     const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
     const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
-    for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, ln::select(valid, out[ch], c[ch]));
+    for (int ch = 0; ch < 4; ++ch) out[ch] = ln::select(valid, out[ch], c[ch]);
+    storeAt(a.out, o, out);
     ln::store(a.outFrames + o, ln::select(valid, frames, zero));
     storeAt(a.outFast, o, ln::select(valid, fast, lumaNow));
 }
@@ -344,12 +348,12 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     Lane c[4];
-    for (int ch = 0; ch < 4; ++ch) c[ch] = loadAt(a.in[ch], o);
+    loadAt(a.in, o, c);
     const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
     const Lane lumaNow = rb::luma(c[0], c[1], c[2]);
     if (!a.prevViewZ || !ln::any(valid)) {
-        for (int ch = 0; ch < 4; ++ch) storeAt(a.out[ch], o, c[ch]);
+        storeAt(a.out, o, c);
         ln::store(a.outFrames + o, zero);
         storeAt(a.outFast, o, lumaNow);
         return;

@@ -132,17 +132,18 @@ int poisonHistory(FrameHistory& history) {
     };
     for (PlaneF& p : history.color) poison(p);
     for (PlaneF& p : history.diffuse) poison(p);
-    // (The denoiser's f16 signals: a NaN's bits, as encodeF16 gives them.)
-    const auto poison16 = [&](PlaneU16& p) {
+    // (The denoiser's f16x4 signals: a NaN's bits, as encodeF16 gives them, in all four
+    // channels.)
+    const auto poison16x4 = [&](PlaneU64& p) {
         if (p.width() < 16 || p.height() < 16) return;
         for (int y = p.height() / 2 - 8; y < p.height() / 2 + 8; ++y)
             for (int x = p.width() / 2 - 8; x < p.width() / 2 + 8; ++x)
-                p.at(x, y) = encodeF16(std::nanf(""));
+                p.at(x, y) = 0x0001000100010001ull * encodeF16(std::nanf(""));
         ++planes;
     };
     for (DenoiseHistory* d : {&history.denoise, &history.denoiseHalf}) {
-        for (PlaneU16& p : d->diffuse) poison16(p);
-        for (PlaneU16& p : d->specular) poison16(p);
+        poison16x4(d->diffuse);
+        poison16x4(d->specular);
     }
     return planes;
 }

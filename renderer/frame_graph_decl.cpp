@@ -134,6 +134,7 @@ struct DenoiseSite {
     GraphCondition historyRead[3], historyKept[3];
     // Each signal's history accumulation speeds (f32; Res::Count: in history[0], the guides')
     Res historyFrames[2];
+    Res historyFast[2];  // each signal's fast history (f16 luma; Res::Count: none)
     // The temporal pass, and what the history fix reads: the temporal pass's result, or
     // without it the pre-blur's (pingPong) or the front end's (noisy) signal.
     GraphCondition temporal, fixReadsPingPong, fixReadsNoisy[2];
@@ -196,8 +197,8 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         if (s.history[i] != Res::Count)
             temporal.reads.push_back({s.history[i], P::Anywhere, s.historyRead[i]});
     for (int i = 0; i < 2; ++i)
-        if (s.historyFrames[i] != Res::Count)
-            temporal.reads.push_back({s.historyFrames[i], P::Anywhere, s.historyRead[i + 1]});
+        for (Res r : {s.historyFrames[i], s.historyFast[i]})
+            if (r != Res::Count) temporal.reads.push_back({r, P::Anywhere, s.historyRead[i + 1]});
     passes.push_back(temporal);
     PassDecl fix = spatial("denoise history fix", {{s.pingPong, P::Around, s.fixReadsPingPong}});
     for (int i = 0; i < 2; ++i)
@@ -214,7 +215,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         if (s.frames[i] != Res::Count)
             post.writes.push_back({s.frames[i], P::Pixel, s.framesMade[i]});
     }
-    // (The signals' history planes: radiance, hit distance and fast luma.)
+    // (The signals' history planes: radiance and hit distance.)
     for (int i = 1; i < 3; ++i)
         if (s.history[i] != Res::Count)
             post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
@@ -224,8 +225,8 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     append(commit.reads, state);
     commit.writes.push_back({s.history[0], P::Pixel, s.historyKept[0]});
     for (int i = 0; i < 2; ++i)
-        if (s.historyFrames[i] != Res::Count)
-            commit.writes.push_back({s.historyFrames[i], P::Pixel, s.historyKept[i + 1]});
+        for (Res r : {s.historyFrames[i], s.historyFast[i]})
+            if (r != Res::Count) commit.writes.push_back({r, P::Pixel, s.historyKept[i + 1]});
     passes.push_back(commit);
 }
 
@@ -421,6 +422,7 @@ std::vector<PassDecl> declarePasses() {
                            {readHalf, readHalf, nullptr},
                            {keepHalf, keepHalf, nullptr},
                            {Res::Count, Res::Count},
+                           {Res::HalfDenoiseHistoryFast, Res::Count},
                            temporalHalf,
                            denoiseHalf,  // (it always pre-blurs)
                            {never, nullptr}};
@@ -459,6 +461,7 @@ std::vector<PassDecl> declarePasses() {
         {readFull, readFullDiffuse, readSpecular},
         {keepFull, keepFullDiffuse, keepSpecular},
         {Res::DenoiseHistoryDiffuseFrames, Res::DenoiseHistorySpecularFrames},
+        {Res::DenoiseHistoryDiffuseFast, Res::DenoiseHistorySpecularFast},
         temporalFull,
         fixReadsPingPongFull,
         {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};

@@ -90,22 +90,17 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
     {Res::HalfSsgiSteps, "half.ssgiSteps", "", F::F32, R::Half, L::Transient},
     // The denoiser's signals are f16 (radiance, normalised hit distance, fast luma: decoded to
-    // f32 by each pass), its guides and accumulation speeds f32 (denoise/denoise.h).
-    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "R,G,B,hit", F::F16, R::Full, L::Transient},
-    {Res::DenoiseNoisySpecular, "noisy.specular", "R,G,B,hit", F::F16, R::Full, L::Transient},
-    {Res::DenoisePingPong, "pingPong",
-     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,pong.B,"
-     "pong.hit",
-     F::F16, R::Full, L::Transient},
+    // f32 by each pass), radiance with hit distance as f16x4 (R, G, B, hit in a pixel's 64 bits),
+    // its guides and accumulation speeds f32 (denoise/denoise.h).
+    {Res::DenoiseNoisyDiffuse, "noisy.diffuse", "", F::F16x4, R::Full, L::Transient},
+    {Res::DenoiseNoisySpecular, "noisy.specular", "", F::F16x4, R::Full, L::Transient},
+    {Res::DenoisePingPong, "pingPong", "ping,pong", F::F16x4, R::Full, L::Transient},
     {Res::DenoiseDiffuseState, "state.diffuse", "signalZ,frames", F::F32, R::Full, L::Transient},
     {Res::DenoiseSpecularState, "state.specular", "signalZ,frames", F::F32, R::Full, L::Transient},
     {Res::DenoiseDiffuseFast, "fast.diffuse", "", F::F16, R::Full, L::Transient},
     {Res::DenoiseSpecularFast, "fast.specular", "", F::F16, R::Full, L::Transient},
-    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "R,G,B,hit", F::F16, R::Half, L::Transient},
-    {Res::HalfDenoisePingPong, "half.pingPong",
-     "ping.R,ping.G,ping.B,ping.hit,pong.R,pong.G,"
-     "pong.B,pong.hit",
-     F::F16, R::Half, L::Transient},
+    {Res::HalfDenoiseNoisy, "half.noisy.diffuse", "", F::F16x4, R::Half, L::Transient},
+    {Res::HalfDenoisePingPong, "half.pingPong", "ping,pong", F::F16x4, R::Half, L::Transient},
     {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames", F::F32, R::Half, L::Transient},
     {Res::HalfDenoiseFast, "half.fast.diffuse", "", F::F16, R::Half, L::Transient},
     {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
@@ -115,20 +110,24 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
      "viewZ,normal.X,normal.Y,normal.Z,"
      "roughness",
      F::F32, R::Full, L::History},
-    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "R,G,B,hit,fast", F::F16, R::Full,
-     L::History},
-    {Res::DenoiseHistorySpecular, "history.denoise.specular", "R,G,B,hit,fast", F::F16, R::Full,
-     L::History},
+    {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "", F::F16x4, R::Full, L::History},
+    {Res::DenoiseHistorySpecular, "history.denoise.specular", "", F::F16x4, R::Full, L::History},
     {Res::DenoiseHistoryDiffuseFrames, "history.denoise.diffuseFrames", "", F::F32, R::Full,
      L::History},
     {Res::DenoiseHistorySpecularFrames, "history.denoise.specularFrames", "", F::F32, R::Full,
+     L::History},
+    {Res::DenoiseHistoryDiffuseFast, "history.denoise.diffuseFast", "", F::F16, R::Full,
+     L::History},
+    {Res::DenoiseHistorySpecularFast, "history.denoise.specularFast", "", F::F16, R::Full,
      L::History},
     {Res::HalfDenoiseHistory, "history.half.denoise",
      "viewZ,normal.X,normal.Y,normal.Z,"
      "roughness,frames",
      F::F32, R::Half, L::History},
-    {Res::HalfDenoiseHistorySignal, "history.half.denoise.diffuse", "R,G,B,hit,fast", F::F16,
-     R::Half, L::History},
+    {Res::HalfDenoiseHistorySignal, "history.half.denoise.diffuse", "", F::F16x4, R::Half,
+     L::History},
+    {Res::HalfDenoiseHistoryFast, "history.half.denoise.diffuseFast", "", F::F16, R::Half,
+     L::History},
 }};
 
 // Every resource's channel names, made once.

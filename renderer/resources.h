@@ -154,8 +154,11 @@ enum class Res : uint8_t {
     DenoiseHistorySpecular,
     DenoiseHistoryDiffuseFrames,
     DenoiseHistorySpecularFrames,
+    DenoiseHistoryDiffuseFast,
+    DenoiseHistorySpecularFast,
     HalfDenoiseHistory,
     HalfDenoiseHistorySignal,
+    HalfDenoiseHistoryFast,
     Count
 };
 inline constexpr int kResourceCount = int(Res::Count);

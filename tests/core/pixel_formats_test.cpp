@@ -145,10 +145,13 @@ TEST_CASE("pixel formats: names, channels and bytes") {
         names.insert(pixelFormatName(f));
         CHECK(bytesPerTexel(f) % channelsPerTexel(f) == 0);
     }
-    CHECK(names == std::set<std::string_view>{"f32", "f16", "unorm8", "oct16", "u8", "u16", "u32"});
+    CHECK(names ==
+          std::set<std::string_view>{"f32", "f16", "f16x4", "unorm8", "oct16", "u8", "u16", "u32"});
     CHECK(pixelFormatName(PixelFormat::OctSnorm16) == "oct16");
     CHECK(channelsPerTexel(PixelFormat::OctSnorm16) * 2 == bytesPerTexel(PixelFormat::OctSnorm16));
     CHECK(bytesPerTexel(PixelFormat::F16) == sizeof(uint16_t));
+    CHECK(bytesPerTexel(PixelFormat::F16x4) == sizeof(uint64_t));
+    CHECK(channelsPerTexel(PixelFormat::F16x4) * 2 == bytesPerTexel(PixelFormat::F16x4));
     CHECK(bytesPerTexel(PixelFormat::Unorm8) == sizeof(uint8_t));
     CHECK(bytesPerTexel(PixelFormat::U32) == sizeof(uint32_t));
     CHECK(bytesPerTexel(PixelFormat::F32) == sizeof(float));
@@ -622,5 +625,38 @@ TEST_CASE(
         std::fill(got.begin(), got.end(), 0.0f);
         gatherNeighbours(isa, f16.data(), f32.data(), index.data(), n, got.data());
         REQUIRE(sameBits(expected, got));
+    }
+}
+
+TEST_CASE(
+    "f16x4: loads, gathers and stores of four f16 channels a pixel, every ISA the bits of "
+    "each half on its own") {
+    // Every half in every channel (NaNs with their payloads included), at random indices and in
+    // runs of consecutive ones (a gather that is a load).
+    const std::size_t n = 65536;
+    std::vector<uint64_t> in(n);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k)
+            in[i] |= uint64_t((i * 40503u + std::size_t(k) * 12345u) & 0xffffu) << (16 * k);
+    std::vector<int32_t> index(n);
+    for (std::size_t i = 0; i < n; ++i)
+        index[i] = i < n / 2 ? int32_t(randomFloat(uint32_t(i), 2, 7, 0) * float(n)) % int32_t(n)
+                             : int32_t(i ^ 16);  // (runs of 16 moved by 16)
+    const auto half = [&](std::size_t i, int k) { return uint16_t(in[i] >> (16 * k)); };
+    std::vector<float> loaded(4 * n), gathered(4 * n), wantLoaded(4 * n), wantGathered(4 * n);
+    std::vector<uint64_t> stored(n), wantStored(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k) {
+            wantLoaded[k * n + i] = decodeF16(half(i, k));
+            wantGathered[k * n + i] = decodeF16(half(std::size_t(index[i]), k));
+            wantStored[i] |= uint64_t(encodeF16(decodeF16(half(i, k)))) << (16 * k);
+        }
+    for (Isa isa : supportedIsas()) {
+        const std::string isaStr(isaName(isa));
+        CAPTURE(isaStr);
+        f16x4Lanes(isa, in.data(), index.data(), n, loaded.data(), gathered.data(), stored.data());
+        REQUIRE(sameBits(wantLoaded, loaded));
+        REQUIRE(sameBits(wantGathered, gathered));
+        REQUIRE(stored == wantStored);
     }
 }

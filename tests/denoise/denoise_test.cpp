@@ -101,6 +101,12 @@ bool allFinite(const PlaneU16& p) {
     return true;
 }
 
+bool allFinite(const PlaneU64& p) {
+    for (int c = 0; c < 4; ++c)
+        if (!allFinite(f16x4Channel(p, c))) return false;
+    return true;
+}
+
 bool allFinite(const PlaneF& p) {
     for (int y = 0; y < p.height(); ++y)
         for (int x = 0; x < p.width(); ++x)
@@ -113,8 +119,8 @@ uint64_t outputHash(const Denoiser& d) {
     for (int c = 0; c < 3; ++c) {
         h = hashPlane(d.out.diffuse[c], h);
         h = hashPlane(d.out.specular[c], h);
-        h = hashPlane(d.history.diffuse[c], h);
-        h = hashPlane(d.history.specular[c], h);
+        h = hashPlane(f16x4Channel(d.history.diffuse, c), h);
+        h = hashPlane(f16x4Channel(d.history.specular, c), h);
     }
     h = hashPlane(d.out.diffuseFrames, h);
     return hashPlane(d.out.specularFrames, h);
@@ -174,7 +180,7 @@ TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks s
     denoise(d.isa, d.settings, diffuseOnly, &d.history, false, d.scratch, d.out, d.threads);
     CHECK(d.history.hasSignal(false));
     CHECK_FALSE(d.history.hasSignal(true));
-    CHECK(d.history.specular[0].empty());
+    CHECK(d.history.specular.empty());
     CHECK(d.history.roughness.empty());  // it guides the specular alone
     CHECK(d.scratch.frames[1].empty());
     CHECK(d.out.diffuseFrames.at(20, 10) == 3.0f);
@@ -344,8 +350,9 @@ TEST_CASE("denoise: NaN and infinity never enter the history, and the pixel reco
         for (const PlaneF* p : {&d.out.diffuse[0], &d.out.diffuse[1], &d.out.diffuse[2],
                                 &d.out.specular[0], &d.out.specular[1], &d.out.specular[2]})
             CHECK(allFinite(*p));
-        for (const PlaneU16* p : {&d.history.diffuse[3], &d.history.specular[3],
-                                  &d.history.diffuseFast, &d.history.specularFast})
+        CHECK(allFinite(d.history.diffuse));
+        CHECK(allFinite(d.history.specular));
+        for (const PlaneU16* p : {&d.history.diffuseFast, &d.history.specularFast})
             CHECK(allFinite(*p));
     }
     // Ten clean frames later the poisoned pixels are within the poisoned frame's share of the
@@ -366,17 +373,23 @@ TEST_CASE("denoise: a history handed in with NaN restarts those pixels, and noth
     for (uint32_t f = 0; f < 6; ++f) {
         for (int y = 0; y < s.h; ++y)
             for (int x = 0; x < s.w; ++x) s.diffuse[0].at(x, y) = noise(x, y, f, 0);
-        if (f == 4)
-            for (PlaneU16* p :
-                 {&d.history.diffuse[0], &d.history.diffuse[1], &d.history.specular[2]})
-                for (int y = 20; y < 28; ++y)
-                    for (int x = 28; x < 36; ++x) p->at(x, y) = encodeF16(std::nanf(""));
+        if (f == 4) {
+            // (NaN in diffuse R and G, specular B: f16x4 channels 0, 1 and 2.)
+            const uint64_t nan = encodeF16(std::nanf(""));
+            for (int y = 20; y < 28; ++y)
+                for (int x = 28; x < 36; ++x) {
+                    uint64_t& dif = d.history.diffuse.at(x, y);
+                    uint64_t& spec = d.history.specular.at(x, y);
+                    dif = (dif & ~0xffffffffull) | nan | nan << 16;
+                    spec = (spec & ~(0xffffull << 32)) | nan << 32;
+                }
+        }
         d.run(s, f);
         CAPTURE(f);
         for (const PlaneF* p : {&d.out.diffuse[0], &d.out.diffuse[1], &d.out.specular[2]})
             CHECK(allFinite(*p));
-        CHECK(allFinite(d.history.diffuse[0]));
-        CHECK(allFinite(d.history.specular[2]));
+        CHECK(allFinite(d.history.diffuse));
+        CHECK(allFinite(d.history.specular));
     }
 }
 
@@ -470,8 +483,8 @@ TEST_CASE("denoise: sky, screen edges, roughness 0 and 1 and random motion stay 
             CHECK(allFinite(d.out.diffuse[c]));
             CHECK(allFinite(d.out.specular[c]));
         }
-        CHECK(allFinite(d.history.diffuse[3]));
-        CHECK(allFinite(d.history.specular[3]));
+        CHECK(allFinite(d.history.diffuse));
+        CHECK(allFinite(d.history.specular));
     }
 }
 

@@ -18,13 +18,14 @@ using namespace ssrt;
 
 namespace {
 
-// The half frame's history resources: the guides and speeds in one, the signal in another.
+// The half frame's history resources: the guides and speeds in one, the signal and the fast
+// history each in its own.
 std::string halfHistoryName(std::string_view full) {
-    const std::string_view guide = "history.denoise.guide.", diffuse = "history.denoise.diffuse.";
+    const std::string_view guide = "history.denoise.guide.";
     if (full.starts_with(guide))
         return "history.half.denoise." + std::string(full.substr(guide.size()));
-    if (full.starts_with(diffuse))
-        return "history.half.denoise.diffuse." + std::string(full.substr(diffuse.size()));
+    if (full == "history.denoise.diffuse") return "history.half.denoise.diffuse";
+    if (full == "history.denoise.diffuseFast") return "history.half.denoise.diffuseFast";
     if (full == "history.denoise.diffuseFrames") return "history.half.denoise.frames";
     return "";
 }
@@ -57,12 +58,15 @@ TEST_CASE(
     "resource table with its element's size") {
     const DenoiseScratch scratch;
     const DenoiseHistory history;
-    CHECK(checkGroup(scratch, false, false) == 22);
-    CHECK(checkGroup(history, false, true) == 17);
-    CHECK(checkGroup(scratch, true, false) == 15);
-    CHECK(checkGroup(history, true, true) == 11);
-    // The signals are f16 and the guides f32 (the issue's "radiance with hit distance, f16").
-    CHECK(resourceDecl(resourceOfChannel("pingPong.ping.R")).format == PixelFormat::F16);
+    CHECK(checkGroup(scratch, false, false) == 10);
+    CHECK(checkGroup(history, false, true) == 11);
+    CHECK(checkGroup(scratch, true, false) == 6);
+    CHECK(checkGroup(history, true, true) == 8);
+    // The signals are f16, radiance with hit distance packed as 4 x f16 a pixel (issue 44), the
+    // fast luma f16 alone, and the guides f32.
+    CHECK(resourceDecl(resourceOfChannel("pingPong.ping")).format == PixelFormat::F16x4);
+    CHECK(resourceDecl(resourceOfChannel("history.denoise.diffuse")).format == PixelFormat::F16x4);
+    CHECK(resourceDecl(resourceOfChannel("fast.diffuse")).format == PixelFormat::F16);
     CHECK(resourceDecl(resourceOfChannel("history.denoise.guide.viewZ")).format ==
           PixelFormat::F32);
 }

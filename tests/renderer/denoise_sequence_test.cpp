@@ -262,23 +262,23 @@ TEST_CASE("denoise sequence: a frame that does not replace the history renders t
     // (The default preset traces SSGI at half resolution: its diffuse history is the half one.)
     FrameHistory kept;
     kept.denoise.viewZ = history.denoise.viewZ.clone();
-    kept.denoise.specular[0] = history.denoise.specular[0].clone();
+    kept.denoise.specular = history.denoise.specular.clone();
     kept.denoise.specularFrames = history.denoise.specularFrames.clone();
-    kept.denoiseHalf.diffuse[0] = history.denoiseHalf.diffuse[0].clone();
+    kept.denoiseHalf.diffuse = history.denoiseHalf.diffuse.clone();
     Frame last;
     input.replaceHistory = false;
     renderer.render(scene, input, history, last);
     CHECK(history.denoise.valid);
     CHECK(history.denoiseHalf.valid);
     CHECK(hashPlane(history.denoise.viewZ) == hashPlane(kept.denoise.viewZ));
-    CHECK(hashPlane(history.denoise.specular[0]) == hashPlane(kept.denoise.specular[0]));
+    CHECK(hashPlane(history.denoise.specular) == hashPlane(kept.denoise.specular));
     CHECK(hashPlane(history.denoise.specularFrames) == hashPlane(kept.denoise.specularFrames));
-    CHECK(hashPlane(history.denoiseHalf.diffuse[0]) == hashPlane(kept.denoiseHalf.diffuse[0]));
+    CHECK(hashPlane(history.denoiseHalf.diffuse) == hashPlane(kept.denoiseHalf.diffuse));
     input.replaceHistory = true;
     renderer.render(scene, input, history, frame);
     CHECK(frameHash(last) == frameHash(frame));
-    CHECK(hashPlane(history.denoise.specular[0]) != hashPlane(kept.denoise.specular[0]));
-    CHECK(hashPlane(history.denoiseHalf.diffuse[0]) != hashPlane(kept.denoiseHalf.diffuse[0]));
+    CHECK(hashPlane(history.denoise.specular) != hashPlane(kept.denoise.specular));
+    CHECK(hashPlane(history.denoiseHalf.diffuse) != hashPlane(kept.denoiseHalf.diffuse));
 
     FrameHistory none;
     input.replaceHistory = false;
