@@ -311,13 +311,16 @@ void printTraceStats(std::ostream& out, const FrameStats& stats) {
 // One table of memory rows and their sum, under `title`.
 void printMemory(std::ostream& out, const char* title, const std::vector<MemoryUse>& memory,
                  double pixels) {
+    // (resource names are longer than pass names: the column widens to the longest)
+    int width = kLabelWidth;
+    for (const MemoryUse& m : memory) width = std::max(width, int(m.name.size()) + 1);
     out << "\n"
-        << std::left << std::setw(kLabelWidth + 2) << title << std::right << std::setw(kValueWidth)
+        << std::left << std::setw(width + 2) << title << std::right << std::setw(kValueWidth)
         << "B/pixel" << std::setw(kValueWidth) << "MB"
         << "\n";
     std::size_t sum = 0;
     const auto row = [&](const std::string& label, std::size_t bytes) {
-        out << "  " << std::left << std::setw(kLabelWidth) << label << std::right << std::fixed
+        out << "  " << std::left << std::setw(width) << label << std::right << std::fixed
             << std::setprecision(1) << std::setw(kValueWidth) << double(bytes) / pixels
             << std::setw(kValueWidth) << double(bytes) / 1.0e6 << "\n";
     };

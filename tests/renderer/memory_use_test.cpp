@@ -99,10 +99,12 @@ TEST_CASE("memory use: each resource's planes, named from the resource table") {
     if (planeMemoryUse().fromRange) CHECK(m.at("free plane memory") > 0);
     for (const char* pooled : kPassScratch) CHECK_MESSAGE(m.count(pooled) == 0, pooled);
     // The denoiser's history (the specular's: the diffuse is denoised on the half frame): the
-    // guides (viewZ, normal 3, roughness) and frames in f32, the signal 4 and fast in f16.
+    // guides (viewZ, normal 3, roughness) and frames in f32, the signal's four channels packed
+    // in f16 (f16x4) and its fast luma in f16.
     CHECK(m.at("history.denoise.guide") == 5 * plane);
     CHECK(m.at("history.denoise.specularFrames") == plane);
-    CHECK(m.at("history.denoise.specular") == 5 * plane16);
+    CHECK(m.at("history.denoise.specular") == PlaneU64(40, 24).bytes());
+    CHECK(m.at("history.denoise.specularFast") == plane16);
     CHECK(m.count("history.denoise.diffuse") == 0);
     CHECK(m.count("half denoise history") == 1);
     CHECK(m.at("shadowMap") == 64 * 64 * sizeof(float));
