@@ -107,9 +107,13 @@ RayGenStats RayGenerator::tile(int tile, RayBatch& rays) const {
     if (!holdsTile(c, rays.ox.width(), rays.ox.height(), r))
         throw std::invalid_argument("ray generation: the batch does not hold the tile");
     RayGenArgs a = args_;
-    // (The kernel's outputs in the batch's table order, RayGenArgs::out.)
-    int k = 0;
-    rays.forEachPlane([&](std::string_view, PlaneF& p) { a.out[k++] = p.row(0); });
+    PlaneF* origin[3] = {&rays.ox, &rays.oy, &rays.oz};
+    PlaneF* dir[3] = {&rays.dx, &rays.dy, &rays.dz};
+    for (int i = 0; i < 3; ++i) {
+        a.origin[i] = origin[i]->row(0);
+        a.dir[i] = dir[i]->row(0);
+    }
+    a.pdf = rays.pdf.row(0);
     a.outStride = rays.ox.stride();
     a.outX0 = c.x0;
     a.outY0 = c.y0;

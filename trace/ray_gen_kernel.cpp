@@ -20,6 +20,9 @@ using Mask = ln::MaskOf<Lane>;
 namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
+// The planes a tile writes through its row buffers: origin XYZ, direction XYZ, PDF.
+constexpr int kOutputs = 7;
+enum Out { kOriginX = 0, kDirX = 3, kPdf = 6 };
 
 SSRT_INLINE V3 neg(V3 v) { return {Lane(0.0f) - v.x, Lane(0.0f) - v.y, Lane(0.0f) - v.z}; }
 
@@ -114,7 +117,7 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     c.pixels += surfaceCount;
     c.background += validCount - surfaceCount;
     if (!ln::any(surface)) {
-        for (int p = 0; p < 7; ++p) ln::store(out[p] + oo, zero);
+        for (int p = 0; p < kOutputs; ++p) ln::store(out[p] + oo, zero);
         return;
     }
     // Origin: the view ray through the pixel's point (its centre, or a half frame's chosen
@@ -171,13 +174,13 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     const unsigned rays = popcount(ok, valid);
     c.rays += rays;
     c.belowSurface += popcount(wanted, valid) - rays;
-    ln::store(out[0] + oo, ln::select(surface, origin.x, zero));
-    ln::store(out[1] + oo, ln::select(surface, origin.y, zero));
-    ln::store(out[2] + oo, ln::select(surface, origin.z, zero));
-    ln::store(out[3] + oo, ln::select(ok, dir.x, zero));
-    ln::store(out[4] + oo, ln::select(ok, dir.y, zero));
-    ln::store(out[5] + oo, ln::select(ok, dir.z, zero));
-    ln::store(out[6] + oo, ln::select(ok, pdf, ln::select(cut, Lane(a.cutPdf), zero)));
+    ln::store(out[kOriginX] + oo, ln::select(surface, origin.x, zero));
+    ln::store(out[kOriginX + 1] + oo, ln::select(surface, origin.y, zero));
+    ln::store(out[kOriginX + 2] + oo, ln::select(surface, origin.z, zero));
+    ln::store(out[kDirX] + oo, ln::select(ok, dir.x, zero));
+    ln::store(out[kDirX + 1] + oo, ln::select(ok, dir.y, zero));
+    ln::store(out[kDirX + 2] + oo, ln::select(ok, dir.z, zero));
+    ln::store(out[kPdf] + oo, ln::select(ok, pdf, ln::select(cut, Lane(a.cutPdf), zero)));
 }
 
 template <RayGenLobe K>
@@ -187,9 +190,11 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
     // left out of the counts. Rows go through a buffer and are written in whole cache lines,
     // streamed past the cache into a frame's batch (written once per pass; see
     // raster/resolve_kernel.cpp), stored into a tile's (its march reads them next).
-    alignas(64) float rowBuf[7][kTileSize];
-    float* bufPtr[7];
-    for (int p = 0; p < 7; ++p) bufPtr[p] = rowBuf[p];
+    float* const planes[kOutputs] = {a.origin[0], a.origin[1], a.origin[2], a.dir[0],
+                                     a.dir[1],    a.dir[2],    a.pdf};
+    alignas(64) float rowBuf[kOutputs][kTileSize];
+    float* bufPtr[kOutputs];
+    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = rowBuf[p];
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) {
@@ -197,9 +202,9 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
             const uint64_t valid = n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1u;
             rayChunk<K>(a, x, y, valid, bufPtr, x - x0, c);
         }
-        for (int p = 0; p < 7; ++p) {
+        for (int p = 0; p < kOutputs; ++p) {
             float* dst =
-                a.out[p] + std::size_t(y - a.outY0) * a.outStride + std::size_t(x0 - a.outX0);
+                planes[p] + std::size_t(y - a.outY0) * a.outStride + std::size_t(x0 - a.outX0);
             if (a.stream)
                 for (int i = 0; i < span; i += kW)
                     ln::storeStream(dst + i, ln::load<Lane>(rowBuf[p] + i));

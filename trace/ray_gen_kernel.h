@@ -25,8 +25,10 @@ struct RayGenArgs {
     RayGenLobe lobe;
     // Reads viewZ, normal; roughness (specular lobes); albedo, metallic (noDiffuseColour).
     GBufferView g;
-    float* out[7];  // RayBatch's planes in its table's order (ox, oy, oz, dx, dy, dz, pdf);
-                    // all with outStride
+    // RayBatch's planes (trace/trace_types.h says what each holds), all with outStride
+    float* origin[3];
+    float* dir[3];
+    float* pdf;
     std::size_t outStride;
     int outX0, outY0;  // the frame pixel of the planes' element (0, 0) (RayBatch::corner)
     bool stream;       // store past the cache (a frame's batch; not a tile's, read next)
