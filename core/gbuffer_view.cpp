@@ -1,5 +1,6 @@
 #include "core/gbuffer_view.h"
 
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -49,13 +50,19 @@ std::string_view gbufferPlaneName(GBufferPlane which) {
     return "?";
 }
 
-GBufferView gbufferView(std::string_view pass, int width, int height,
-                        std::initializer_list<GBufferSlot> planes, GBufferPlanes need) {
+unsigned gbufferPlaneNamed(std::string_view name) {
+    for (int i = 0; i < kGBufferPlaneCount; ++i)
+        if (gbufferPlaneName(GBufferPlane(1u << i)) == name) return 1u << i;
+    return 0;
+}
+
+GBufferView gbufferView(std::string_view pass, int width, int height, const GBufferSlot* planes,
+                        std::size_t count, GBufferPlanes need) {
     GBufferView g;
     g.width = width;
     g.height = height;
     PlaneCheck check(pass, width, height);
-    for (const GBufferSlot& s : planes)
+    for (const GBufferSlot& s : std::span(planes, count))
         if (s.plane && !s.plane->empty())
             member(g, s.which) = check(s.plane, gbufferPlaneName(s.which));
     g.stride = check.stride();

@@ -57,15 +57,23 @@ struct GBufferSlot {
 
 // The view of `planes`, each of width x height (an empty or null plane is left out), every
 // plane in `need` present; else std::invalid_argument naming `pass` and the plane.
-GBufferView gbufferView(std::string_view pass, int width, int height,
-                        std::initializer_list<GBufferSlot> planes, GBufferPlanes need = 0);
+GBufferView gbufferView(std::string_view pass, int width, int height, const GBufferSlot* planes,
+                        std::size_t count, GBufferPlanes need = 0);
+inline GBufferView gbufferView(std::string_view pass, int width, int height,
+                               std::initializer_list<GBufferSlot> planes, GBufferPlanes need = 0) {
+    return gbufferView(pass, width, height, planes.begin(), planes.size(), need);
+}
 
 // A pass's check of the view it was handed: of width x height, with every plane in `need`;
 // else std::invalid_argument naming `pass` and the plane.
 void requireGBuffer(std::string_view pass, const GBufferView& g, GBufferPlanes need, int width,
                     int height);
 
-// The plane's name in messages ("viewZ", "normal.X", ...).
+// The plane's name in messages ("viewZ", "normal.X", ...): its channel's name in the frame's
+// resource table (renderer/resources.cpp).
 std::string_view gbufferPlaneName(GBufferPlane which);
+// The plane of that name, or 0 for a name that is none of them: an owner that names its planes
+// so (renderer/frame.h's GBuffer) makes its view from its own table.
+unsigned gbufferPlaneNamed(std::string_view name);
 
 }  // namespace ssrt

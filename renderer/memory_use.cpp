@@ -81,10 +81,11 @@ std::vector<MemoryUse> memoryUse(const Frame& f, const FrameHistory* history) {
             if (m.name == group) return void(m.bytes += bytes);
         undeclared.push_back({std::string(group), bytes});
     };
-    f.forEachPlane([&](std::string_view name, const auto& p) { count("", name, p); });
+    f.forEachPlane([&](std::string_view name, const auto& p) { count("frame", name, p); });
     f.scratch.forEachBuffer(count);
     if (history) {
-        history->forEachPlane([&](std::string_view name, const auto& p) { count("", name, p); });
+        history->forEachPlane(
+            [&](std::string_view name, const auto& p) { count("history", name, p); });
         history->denoise.forEachPlane(
             [&](std::string_view name, const auto& p) { count("denoise history", name, p); });
         // (named as the full frame's: counted apart)

@@ -259,25 +259,20 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
 }  // namespace
 
 GBufferView GBuffer::view() const {
-    // (Of the planes' size: any still held, as the frame's memory frees each after its last
-    // reader.)
+    // Its planes as its table names them (the view's names are the table's); of the planes'
+    // size: any still held, as the frame's memory frees each after its last reader.
+    GBufferSlot slots[kGBufferPlaneCount];
+    std::size_t n = 0;
     int w = 0, h = 0;
-    forEachPlane([&](std::string_view, const PlaneF& p) {
+    forEachPlane([&](std::string_view name, const PlaneF& p) {
+        const unsigned which = gbufferPlaneNamed(name);
+        if (which == 0 || n == kGBufferPlaneCount)
+            throw std::logic_error("the G-buffer's plane '" + std::string(name) +
+                                   "' is none of its view's");
+        slots[n++] = {GBufferPlane(which), &p};
         if (w == 0 && !p.empty()) w = p.width(), h = p.height();
     });
-    return gbufferView("the G-buffer", w, h,
-                       {{kGViewZ, &viewZ},
-                        {kGNormalX, &normal[0]},
-                        {kGNormalY, &normal[1]},
-                        {kGNormalZ, &normal[2]},
-                        {kGAlbedoR, &albedo[0]},
-                        {kGAlbedoG, &albedo[1]},
-                        {kGAlbedoB, &albedo[2]},
-                        {kGMetallic, &metallic},
-                        {kGRoughness, &roughness},
-                        {kGMaterialId, &materialId},
-                        {kGMotionX, &motion[0]},
-                        {kGMotionY, &motion[1]}});
+    return gbufferView("the G-buffer", w, h, slots, n);
 }
 
 std::vector<PlaneRef> Frame::layers() const {
