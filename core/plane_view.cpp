@@ -1,0 +1,24 @@
+#include "core/plane_view.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace ssrt {
+
+std::size_t requireViews(std::string_view pass, int width, int height,
+                         std::initializer_list<ViewShape> views) {
+    std::size_t stride = 0;
+    for (const ViewShape& v : views) {
+        const std::string what = std::string(pass) + ": " + std::string(v.name);
+        if (!v.data || v.width == 0 || v.height == 0)
+            throw std::invalid_argument(what + " is missing");
+        if (v.width != width || v.height != height)
+            throw std::invalid_argument(what + " is " + std::to_string(v.width) + "x" +
+                                        std::to_string(v.height) + ", not " +
+                                        std::to_string(width) + "x" + std::to_string(height));
+        stride = v.stride;  // one size, one stride (core/image.h)
+    }
+    return stride;
+}
+
+}  // namespace ssrt

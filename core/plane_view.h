@@ -1,0 +1,64 @@
+// A plane as a pass hands it to a kernel: its first row, its row stride, its size and its
+// name for messages. Plain data only (it crosses into code compiled per ISA), made from a
+// plane by viewOf and checked where a pass takes its views, in one call: requireViews.
+//
+// Planes of one size share one stride in elements whatever their format (core/image.h), so
+// views checked to one size are addressed with one offset per pixel, whichever view it is.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <string_view>
+
+#include "core/image.h"
+
+namespace ssrt {
+
+template <class T>
+struct PlaneView {
+    T* data = nullptr;  // row 0; null: absent
+    std::size_t stride = 0;
+    int width = 0, height = 0;
+    std::string_view name;  // the plane's name in messages ("viewZ", "resolve.R", ...)
+
+    explicit operator bool() const { return data != nullptr; }
+    T* row(int y) const { return data + std::size_t(y) * stride; }
+    T& at(int x, int y) const { return row(y)[x]; }
+};
+
+using ViewF = PlaneView<const float>;
+using OutF = PlaneView<float>;
+using ViewU16 = PlaneView<const uint16_t>;
+using OutU16 = PlaneView<uint16_t>;
+
+// The view of `p` (an empty plane gives an absent view that keeps its name).
+template <class T>
+PlaneView<const T> viewOf(const Plane<T>& p, std::string_view name) {
+    if (p.empty()) return {nullptr, 0, 0, 0, name};
+    return {p.row(0), p.stride(), p.width(), p.height(), name};
+}
+template <class T>
+PlaneView<T> outputOf(Plane<T>& p, std::string_view name) {
+    if (p.empty()) return {nullptr, 0, 0, 0, name};
+    return {p.row(0), p.stride(), p.width(), p.height(), name};
+}
+
+// One view as requireViews sees it, whatever its element type.
+struct ViewShape {
+    const void* data;
+    std::size_t stride;
+    int width, height;
+    std::string_view name;
+    template <class T>
+    ViewShape(const PlaneView<T>& v)
+        : data(v.data), stride(v.stride), width(v.width), height(v.height), name(v.name) {}
+};
+
+// The one check of the views a pass is handed: each present and of width x height; else
+// std::invalid_argument naming `pass` and the view ("resolveSsr: normal.X is missing",
+// "...: viewZ is 320x180, not 640x360"). Returns their one stride (0 for no views).
+std::size_t requireViews(std::string_view pass, int width, int height,
+                         std::initializer_list<ViewShape> views);
+
+}  // namespace ssrt
