@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <string_view>
 
+#include "core/float_planes.h"
 #include "core/image.h"
 
 namespace ssrt {
@@ -44,6 +45,21 @@ PlaneView<T> outputOf(Plane<T>& p, std::string_view name) {
     return {p.row(0), p.stride(), p.width(), p.height(), name};
 }
 
+// A view of float values stored as f32 or as f16 (core/float_planes.h), or none: the direct
+// pass's parts and SSGI's hit light are f16 in a frame, f32 where a test or the truth makes
+// them.
+struct FloatView {
+    ViewF f32{};
+    ViewU16 f16{};
+    FloatView() = default;
+    FloatView(ViewF v) : f32(v) {}
+    FloatView(ViewU16 v) : f16(v) {}
+    explicit operator bool() const { return f32 || f16; }
+    // Row 0 as a kernel reads it.
+    SignalIn in() const { return f16 ? SignalIn(f16.data) : SignalIn(f32.data); }
+    std::string_view name() const { return f16 ? f16.name : f32.name; }
+};
+
 // One view as requireViews sees it, whatever its element type.
 struct ViewShape {
     const void* data;
@@ -53,6 +69,7 @@ struct ViewShape {
     template <class T>
     ViewShape(const PlaneView<T>& v)
         : data(v.data), stride(v.stride), width(v.width), height(v.height), name(v.name) {}
+    ViewShape(const FloatView& v) : ViewShape(v.f16 ? ViewShape(v.f16) : ViewShape(v.f32)) {}
 };
 
 // The one check of the views a pass is handed: each present and of width x height; else

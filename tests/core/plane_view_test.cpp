@@ -52,3 +52,16 @@ TEST_CASE("plane views: requireViews names a missing or mis-sized view, else giv
     CHECK(requireViews("p", 40, 24, {viewOf(good, "a"), viewOf(half, "b")}) == good.stride());
     CHECK(requireViews("p", 40, 24, {}) == 0);
 }
+
+TEST_CASE("plane views: a float view reads either format and is checked as its plane") {
+    const PlaneF f32(40, 24, 1.5f);
+    const PlaneU16 f16(40, 24), small(20, 12);
+    const FloatView a = viewOf(f32, "direct.R"), b = viewOf(f16, "direct.G"), none;
+    CHECK(a.in().f32 == f32.row(0));
+    CHECK(b.in().f16 == f16.row(0));
+    CHECK(b.name() == "direct.G");
+    CHECK_FALSE(none);
+    CHECK(messageOf({a, b}).empty());
+    CHECK(messageOf({FloatView(viewOf(small, "hitLight.B"))}) ==
+          "resolveSsr: hitLight.B is 20x12, not 40x24");
+}
