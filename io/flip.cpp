@@ -149,7 +149,7 @@ struct Seen {
     PlaneF edges, points;
 };
 
-Seen see(const RgbPlanes& rgb, double ppd, int threads) {
+Seen see(const RgbImage& rgb, double ppd, int threads) {
     const int w = rgb.width(), h = rgb.height();
     // Linear RGB (clamped to [0, 1]) to YCxCz, and Y/Yw for the feature detectors.
     PlaneF opp[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
@@ -219,8 +219,8 @@ Seen see(const RgbPlanes& rgb, double ppd, int threads) {
     return seen;
 }
 
-void checkSameSize(const RgbPlanes& a, const RgbPlanes& b) {
-    for (const RgbPlanes* p : {&a, &b})
+void checkSameSize(const RgbImage& a, const RgbImage& b) {
+    for (const RgbImage* p : {&a, &b})
         if (p->g.width() != p->width() || p->b.width() != p->width() ||
             p->g.height() != p->height() || p->b.height() != p->height())
             throw std::invalid_argument("FLIP: an image's R, G and B planes differ in size");
@@ -229,7 +229,7 @@ void checkSameSize(const RgbPlanes& a, const RgbPlanes& b) {
 }
 
 // LDR-FLIP's error map of two images.
-PlaneF ldrError(const RgbPlanes& test, const RgbPlanes& reference, double ppd, int threads) {
+PlaneF ldrError(const RgbImage& test, const RgbImage& reference, double ppd, int threads) {
     using K = flip_detail::FlipConstants;
     static_assert(K::qf == 0.5f, "the feature exponent is taken as a square root");
     const Seen t = see(test, ppd, threads);
@@ -435,7 +435,7 @@ FlipStats flipStats(const PlaneF& error) {
     return s;
 }
 
-FlipResult ldrFlip(const RgbPlanes& test, const RgbPlanes& reference, double ppd, int threads) {
+FlipResult ldrFlip(const RgbImage& test, const RgbImage& reference, double ppd, int threads) {
     checkSameSize(test, reference);
     FlipResult result;
     result.error = ldrError(test, reference, ppd, threads);
@@ -443,7 +443,7 @@ FlipResult ldrFlip(const RgbPlanes& test, const RgbPlanes& reference, double ppd
     return result;
 }
 
-FlipResult hdrFlip(const RgbPlanes& test, const RgbPlanes& reference, double ppd, int threads) {
+FlipResult hdrFlip(const RgbImage& test, const RgbImage& reference, double ppd, int threads) {
     checkSameSize(test, reference);
     const int w = reference.width(), h = reference.height();
     FlipResult result;
@@ -481,8 +481,8 @@ FlipResult hdrFlip(const RgbPlanes& test, const RgbPlanes& reference, double ppd
     result.stopExposure = stop;
 
     result.error = PlaneF(w, h, 0.0f);
-    RgbPlanes t{PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
-    RgbPlanes r{PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
+    RgbImage t{PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
+    RgbImage r{PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
     for (int i = 0; i < n; ++i) {
         const float scale = ln::exp2(start + float(i) * step);
         parallelFor(h, threads, [&](int y) {

@@ -32,8 +32,8 @@ namespace ssrt {
 inline constexpr double kFlipPixelsPerDegree =
     0.7 * (3840.0 / 0.7) * 3.14159265358979323846 / 180.0;
 
-// Linear RGB planes of one image (the same size).
-struct RgbPlanes {
+// A linear RGB image: a plane per channel, all of one size.
+struct RgbImage {
     PlaneF r, g, b;
     int width() const { return r.width(); }
     int height() const { return r.height(); }
@@ -59,12 +59,12 @@ struct FlipResult {
 
 // LDR-FLIP of `test` against `reference`, both linear RGB (clamped to [0, 1] first), seen at
 // `ppd` pixels per degree, on `threads` worker threads (0: every core).
-FlipResult ldrFlip(const RgbPlanes& test, const RgbPlanes& reference,
+FlipResult ldrFlip(const RgbImage& test, const RgbImage& reference,
                    double ppd = kFlipPixelsPerDegree, int threads = 0);
 
 // HDR-FLIP of `test` against `reference`, both linear RGB of any range (NaN and negative values
 // count as 0, +inf as the largest float); exposures from the reference (the header above).
-FlipResult hdrFlip(const RgbPlanes& test, const RgbPlanes& reference,
+FlipResult hdrFlip(const RgbImage& test, const RgbImage& reference,
                    double ppd = kFlipPixelsPerDegree, int threads = 0);
 
 // The mean, weighted median and largest of an error map (summed in double, in pixel order).

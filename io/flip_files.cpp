@@ -149,7 +149,7 @@ constexpr float kMagma[256][3] = {
 
 // One file's colour as linear RGB planes, and whether the file held linear values.
 struct FileColour {
-    RgbPlanes rgb;
+    RgbImage rgb;
     bool linear = false;
 };
 

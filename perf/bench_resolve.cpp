@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/isa.h"
+#include "core/plane_view.h"
 #include "core/rng.h"
 #include "shading/composite.h"
 #include "trace/color_pyramid.h"
@@ -134,16 +135,22 @@ void benchComposite(benchmark::State& state, Isa isa) {
         return;
     }
     Scene& s = scene();
-    CompositeInputs in;
+    PlaneF color[3], display[3];
+    CompositeArgs in;
     for (int c = 0; c < 3; ++c) {
-        in.direct[c] = in.envDiffuse[c] = in.envSpecular[c] = in.specWeight[c] = &s.color[c];
-        in.ssgi[c] = in.ssrColor[c] = &s.albedo[c];
+        in.direct[c] = in.envDiffuse[c] = in.envSpecular[c] = in.specWeight[c] =
+            viewOf(s.color[c], "color");
+        in.ssgi[c] = viewOf(s.albedo[c], "ssgi");
+        in.ssrColor[c] = viewOf(s.albedo[c], "ssrColor");
+        color[c] = PlaneF(kW, kH);
+        display[c] = PlaneF(kW, kH);
+        in.color[c] = outputOf(color[c], "color");
+        in.display[c] = outputOf(display[c], "display");
     }
     in.g = s.g();
-    in.ssrOpacity = &s.shadow;
-    PlaneF color[3], display[3];
+    in.ssrOpacity = viewOf(s.shadow, "ssrOpacity");
     for (auto _ : state) {
-        composite(isa, in, color, display, 1);
+        composite(isa, in, 1);
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * kW * kH);

@@ -43,17 +43,17 @@ void benchSampler(benchmark::State& state, Isa isa, Sampler s, bool withPdf) {
         return;
     }
     static Inputs in;
-    SampleArgs a{in.wiX.data(),
-                 in.wiY.data(),
-                 in.wiZ.data(),
-                 in.ax.data(),
-                 in.ay.data(),
-                 in.u1.data(),
-                 in.u2.data(),
-                 in.ox.data(),
-                 in.oy.data(),
-                 in.oz.data(),
-                 withPdf ? in.pdf.data() : nullptr};
+    const SampleBatch a{.wiX = in.wiX.data(),
+                        .wiY = in.wiY.data(),
+                        .wiZ = in.wiZ.data(),
+                        .alphaX = in.ax.data(),
+                        .alphaY = in.ay.data(),
+                        .u1 = in.u1.data(),
+                        .u2 = in.u2.data(),
+                        .outX = in.ox.data(),
+                        .outY = in.oy.data(),
+                        .outZ = in.oz.data(),
+                        .outPdf = withPdf ? in.pdf.data() : nullptr};
     for (auto _ : state) {
         sampleDirections(isa, s, a, kN);
         benchmark::DoNotOptimize(in.ox.data());

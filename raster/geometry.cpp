@@ -15,17 +15,17 @@ bool finite4(const glm::vec4& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
-// Clip planes as dot(plane, clip) >= 0: the near plane w >= nearW (perspective only) and
-// the guard band |x| <= gx w, |y| <= gy w.
-struct ClipPlanes {
+// The clip volume as its planes, dot(plane, clip) >= 0: the near plane w >= nearW (perspective
+// only) and the guard band |x| <= gx w, |y| <= gy w.
+struct ClipVolume {
     glm::vec4 p[5];
     int count = 0;
 };
 
-ClipPlanes clipPlanes(const RasterView& view) {
+ClipVolume clipVolume(const RasterView& view) {
     const float gx = 1.0f + 2.0f * float(kGuardBandPx) / float(view.width);
     const float gy = 1.0f + 2.0f * float(kGuardBandPx) / float(view.height);
-    ClipPlanes planes;
+    ClipVolume planes;
     if (view.perspective) planes.p[planes.count++] = {0.0f, 0.0f, 0.0f, 1.0f};  // w >= near
     planes.p[planes.count++] = {-1.0f, 0.0f, 0.0f, gx};
     planes.p[planes.count++] = {1.0f, 0.0f, 0.0f, gx};
@@ -40,7 +40,7 @@ float planeDistance(const glm::vec4& plane, const glm::vec4& v, bool isNear, flo
 
 // Sutherland-Hodgman against every plane; returns the vertex count (0 when culled).
 int clipPolygon(const RasterView& view, glm::vec4* poly, int n) {
-    const ClipPlanes planes = clipPlanes(view);
+    const ClipVolume planes = clipVolume(view);
     glm::vec4 tmp[16];
     for (int k = 0; k < planes.count && n > 0; ++k) {
         const bool isNear = view.perspective && k == 0;
@@ -63,7 +63,7 @@ int clipPolygon(const RasterView& view, glm::vec4* poly, int n) {
 }
 
 bool needsClipping(const RasterView& view, const glm::vec4 clip[3], bool& allOutside) {
-    const ClipPlanes planes = clipPlanes(view);
+    const ClipVolume planes = clipVolume(view);
     bool any = false;
     allOutside = false;
     for (int k = 0; k < planes.count; ++k) {
@@ -164,7 +164,7 @@ bool setupScreenTriangle(ScreenVertex v0, ScreenVertex v1, ScreenVertex v2, uint
 // computed once and shared by every triangle that uses it.
 static bool insideClipVolume(const glm::vec4& c, const RasterView& view) {
     if (!finite4(c)) return false;
-    const ClipPlanes planes = clipPlanes(view);
+    const ClipVolume planes = clipVolume(view);
     for (int k = 0; k < planes.count; ++k)
         if (planeDistance(planes.p[k], c, view.perspective && k == 0, view.nearW) < 0.0f)
             return false;

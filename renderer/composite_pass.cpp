@@ -1,6 +1,8 @@
 #include <chrono>
 #include <vector>
 
+#include "core/plane_view.h"
+#include "renderer/resources.h"
 #include "renderer/trace_stages.h"
 #include "shading/composite.h"
 #include "trace/reconstruct.h"
@@ -14,13 +16,13 @@ namespace {
 // The composite tile by tile, each tile's SSGI light first brought from the denoised half
 // frame into a tile's planes (diffuseUpsampledInComposite): the two stages' times are the
 // loop's, shared by the threads' time in each.
-void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeInputs& ci) {
+void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeArgs& ca) {
     using Clock = std::chrono::steady_clock;
     const DenoiseOutputs& half = frame.scratch.half.denoised.out;
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
     const HalfUpsampler up(c.args.isa, c.guides(frame), PixelOffset{0, 0},
                            frame.scratch.half.rays.pdf, from);
-    const Compositor comp(c.args.isa, ci, frame.image.color, frame.image.display, true);
+    const Compositor comp(c.args.isa, ca, true);
     const TileGrid& grid = comp.grid();
     std::vector<double> busy(std::size_t(2 * grid.count()), 0.0);
     const Clock::time_point t0 = Clock::now();
@@ -32,7 +34,9 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeIn
         const Clock::time_point a = Clock::now();
         up.tile(tile, ReconstructPlanes{{&light[0], &light[1], &light[2]}}, r.x0, r.y0);
         const Clock::time_point b = Clock::now();
-        const PlaneF* const ssgi[3] = {&light[0], &light[1], &light[2]};
+        const ViewF ssgi[3] = {viewOf(light[0], channelName(Res::DenoisedDiffuse, 0)),
+                               viewOf(light[1], channelName(Res::DenoisedDiffuse, 1)),
+                               viewOf(light[2], channelName(Res::DenoisedDiffuse, 2))};
         comp.tile(tile, ssgi, r.x0, r.y0);
         busy[std::size_t(2 * tile)] = std::chrono::duration<double, std::milli>(b - a).count();
         busy[std::size_t(2 * tile + 1)] =
@@ -52,34 +56,41 @@ void compositePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool inComposite = diffuseUpsampledInComposite(c.args.settings);
     const DirectParts& parts = frame.direct;
-    CompositeInputs ci;
+    CompositeArgs ca;
     for (int ch = 0; ch < 3; ++ch) {
-        ci.direct[ch] = &parts.direct[ch];
-        ci.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
-        if (!ts.ssgi) ci.envDiffuse[ch] = &parts.envDiffuse[ch];
-        ci.envSpecular[ch] = &parts.envSpecular[ch];
-        ci.specWeight[ch] = &parts.specWeight[ch];
+        ca.direct[ch] = viewOf(parts.direct[ch], channelName(Res::Direct, ch));
+        if (c.args.direct.anyEmissive)
+            ca.emission[ch] = viewOf(parts.emission[ch], channelName(Res::Emission, ch));
+        if (!ts.ssgi)
+            ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
+        ca.envSpecular[ch] = viewOf(parts.envSpecular[ch], channelName(Res::EnvSpecular, ch));
+        ca.specWeight[ch] = viewOf(parts.specWeight[ch], channelName(Res::SpecWeight, ch));
         const DenoiseOutputs& d = frame.trace.denoise.out;
-        if (ts.ssgi) {
-            if (!inComposite)
-                ci.ssgi[ch] = ts.denoise.enabled ? &d.diffuse[ch] : &frame.trace.ssgi.color[ch];
-        }
+        if (ts.ssgi && !inComposite)
+            ca.ssgi[ch] = ts.denoise.enabled
+                              ? viewOf(d.diffuse[ch], channelName(Res::DenoisedDiffuse, ch))
+                              : viewOf(frame.trace.ssgi.color[ch], channelName(Res::Ssgi, ch));
         if (ts.ssr) {  // the denoiser's output, or SSR's own
-            if (ts.denoise.enabled) ci.specular[ch] = &d.specular[ch];
-            else ci.ssrColor[ch] = &frame.trace.ssr.color[ch];
+            if (ts.denoise.enabled)
+                ca.specular[ch] = viewOf(d.specular[ch], channelName(Res::DenoisedSpecular, ch));
+            else ca.ssrColor[ch] = viewOf(frame.trace.ssr.color[ch], channelName(Res::Ssr, ch));
         }
+        ca.color[ch] = outputOf(frame.image.color[ch], channelName(Res::Color, ch));
+        ca.display[ch] = outputOf(frame.image.display[ch], channelName(Res::Display, ch));
     }
     if (ts.ssgi) {
-        ci.g = frame.gbuffer.view();
-        if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
+        ca.g = frame.gbuffer.view();
+        if (!frame.material.occlusion.empty())
+            ca.occlusion = viewOf(frame.material.occlusion, channelName(Res::Occlusion));
     }
-    if (ts.ssr && !ts.denoise.enabled) ci.ssrOpacity = &frame.trace.ssr.opacity;
-    ci.exposure = c.args.settings.exposure;
+    if (ts.ssr && !ts.denoise.enabled)
+        ca.ssrOpacity = viewOf(frame.trace.ssr.opacity, channelName(Res::SsrOpacity));
+    ca.exposure = c.args.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.
-    if (inComposite) return upsampleAndComposite(c, frame, ci);
+    if (inComposite) return upsampleAndComposite(c, frame, ca);
     const ScopedPass timer(frame.stats, "composite");
-    composite(c.args.isa, ci, frame.image.color, frame.image.display, c.threads());
+    composite(c.args.isa, ca, c.threads());
 }
 
 }  // namespace ssrt::trace_stages

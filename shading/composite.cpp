@@ -1,8 +1,10 @@
 #include "shading/composite.h"
 
+#include <algorithm>
 #include <stdexcept>
+#include <vector>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "shading/composite_kernel.h"
 
@@ -10,78 +12,78 @@ namespace ssrt {
 
 namespace {
 
-bool anyOf(const PlaneF* const p[3]) { return p[0] || p[1] || p[2]; }
-bool anyOf(const FloatPlane p[3]) { return p[0] || p[1] || p[2]; }
+bool anyOf(const ViewF v[3]) { return v[0] || v[1] || v[2]; }
+bool anyOf(const PartView v[3]) { return v[0] || v[1] || v[2]; }
+
+// A view as requireViews sees it (a part: the view of its format), named by its field where
+// its caller left it unnamed (a view never set).
+template <class T>
+ViewShape shapeOf(const PlaneView<T>& v, std::string_view field) {
+    ViewShape s(v);
+    if (s.name.empty()) s.name = field;
+    return s;
+}
+ViewShape shapeOf(const PartView& p, std::string_view field) {
+    return p.f16 ? shapeOf(p.f16, field) : shapeOf(p.f32, field);
+}
+template <class View>
+void addRgb(std::vector<ViewShape>& to, const View rgb[3], std::string_view field) {
+    for (int c = 0; c < 3; ++c) to.push_back(shapeOf(rgb[c], field));
+}
 
 }  // namespace
 
-Compositor::Compositor(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF display[3],
-                       bool tileSsgi)
-    : tileSsgi_(tileSsgi) {
-    if (!in.direct[0]) throw std::invalid_argument("composite: direct missing");
-    const int w = in.direct[0].width(), h = in.direct[0].height();
-    if (w <= 0 || h <= 0) throw std::invalid_argument("composite: empty planes");
-    for (int c = 0; c < 3; ++c) {
-        color[c].ensureSize(w, h);
-        display[c].ensureSize(w, h);
-    }
-    grid_ = TileGrid(w, h);
+Compositor::Compositor(Isa isa, const CompositeArgs& args, bool tileSsgi)
+    : args_(args), tileSsgi_(tileSsgi) {
     CompositeArgs& a = args_;
+    const bool ssgi = tileSsgi || anyOf(a.ssgi), ssr = anyOf(a.ssrColor) || a.ssrOpacity;
+    // The views this run reads and writes, direct's first (the size of all of them).
+    std::vector<ViewShape> views;
+    addRgb(views, a.direct, "direct");
+    addRgb(views, a.envSpecular, "envSpecular");
+    addRgb(views, a.specWeight, "specWeight");
+    if (anyOf(a.emission)) addRgb(views, a.emission, "emission");
+    if (!ssgi) addRgb(views, a.envDiffuse, "envDiffuse");
+    if (tileSsgi) std::fill_n(a.ssgi, 3, ViewF{});  // each tile's come with it
+    else if (ssgi) addRgb(views, a.ssgi, "ssgi");
+    if (ssgi && a.occlusion) views.push_back(shapeOf(a.occlusion, "occlusion"));
+    if (ssr) {
+        addRgb(views, a.ssrColor, "ssrColor");
+        views.push_back(shapeOf(a.ssrOpacity, "ssrOpacity"));
+    }
+    if (anyOf(a.specular)) addRgb(views, a.specular, "specular");
+    addRgb(views, a.color, "color");
+    addRgb(views, a.display, "display");
+    const int w = views.front().width, h = views.front().height;
+    for (const ViewShape& v : views) a.stride = requireViews("composite", w, h, {v});
+    if (ssgi) requireGBuffer("composite", a.g, kGViewZ | kGAlbedo | kGMetallic, w, h);
+    grid_ = TileGrid(w, h);
     a.width = w;
     a.height = h;
     a.tilesX = grid_.tilesX;
-    PlaneCheck need("composite", w, h);
-    const bool ssgi = tileSsgi || anyOf(in.ssgi), ssr = anyOf(in.ssrColor) || in.ssrOpacity;
-    for (int c = 0; c < 3; ++c) {
-        a.direct[c] = need(in.direct[c], "direct");
-        a.envSpecular[c] = need(in.envSpecular[c], "envSpecular");
-        a.specWeight[c] = need(in.specWeight[c], "specWeight");
-        if (anyOf(in.emission)) a.emission[c] = need(in.emission[c], "emission");
-        if (ssgi) {
-            if (!tileSsgi) a.ssgi[c] = need(in.ssgi[c], "ssgi");
-        } else {
-            a.envDiffuse[c] = need(in.envDiffuse[c], "envDiffuse");
-        }
-        if (ssr) a.ssrColor[c] = need(in.ssrColor[c], "ssrColor");
-        if (anyOf(in.specular)) a.specular[c] = need(in.specular[c], "specular");
-        a.color[c] = need.output(color[c], "colour");
-        a.display[c] = need.output(display[c], "display");
-    }
-    if (ssgi) {
-        requireGBuffer("composite", in.g, kGViewZ | kGAlbedo | kGMetallic, w, h);
-        a.g = in.g;
-        if (in.occlusion) a.occlusion = need(in.occlusion, "occlusion");
-    }
-    if (ssr) a.ssrOpacity = need(in.ssrOpacity, "ssrOpacity");
-    a.stride = need.stride();
-    a.ssgiStride = a.stride;
-    a.exposure = in.exposure;
+    a.ssgiX0 = a.ssgiY0 = 0;
     kernel_ = SSRT_DISPATCH(isa, compositeTile);
 }
 
-void Compositor::tile(int tile, const PlaneF* const ssgi[3], int x0, int y0) const {
+void Compositor::tile(int tile, const ViewF* ssgi, int x0, int y0) const {
     if (!tileSsgi_) {
         if (ssgi) throw std::invalid_argument("composite: SSGI planes given twice");
         return kernel_(args_, tile);
     }
-    const TileRect r = grid_.rect(tile);
-    if (!ssgi || !ssgi[0] || !ssgi[1] || !ssgi[2])
-        throw std::invalid_argument("composite: the tile's SSGI planes are missing");
-    const int w = ssgi[0]->width(), h = ssgi[0]->height();
-    PlaneCheck need("composite", w, h);
-    CompositeArgs a = args_;
-    for (int c = 0; c < 3; ++c) a.ssgi[c] = need(ssgi[c], "ssgi");
-    if (!holdsTile({x0, y0}, w, h, r))
+    if (!ssgi) throw std::invalid_argument("composite: the tile's SSGI planes are missing");
+    const int w = ssgi[0].width, h = ssgi[0].height;
+    requireViews("composite", w, h, {ssgi[0], ssgi[1], ssgi[2]});
+    if (!holdsTile({x0, y0}, w, h, grid_.rect(tile)))
         throw std::invalid_argument("composite: the SSGI planes do not hold the tile");
-    a.ssgiStride = need.stride();
+    CompositeArgs a = args_;
+    std::copy_n(ssgi, 3, a.ssgi);
     a.ssgiX0 = x0;
     a.ssgiY0 = y0;
     kernel_(a, tile);
 }
 
-void composite(Isa isa, const CompositeInputs& in, PlaneF color[3], PlaneF display[3],
-               int threads) {
-    const Compositor c(isa, in, color, display);
+void composite(Isa isa, const CompositeArgs& args, int threads) {
+    const Compositor c(isa, args);
     parallelForTiles(c.grid().count(), threads, [&](int tile) { c.tile(tile); });
 }
 

@@ -14,56 +14,29 @@
 // renderer's f16 parts, to their rounding.
 #pragma once
 
-#include "core/float_planes.h"
-#include "core/gbuffer_view.h"
-#include "core/image.h"
 #include "core/isa.h"
 #include "core/tiles.h"
 #include "shading/composite_kernel.h"
 
 namespace ssrt {
 
-// All planes of one size; scene-linear (before exposure) like the direct pass's parts, which
-// may be f32 or f16 (FloatPlane).
-struct CompositeInputs {
-    FloatPlane direct[3] = {};       // DirectArgs::direct
-    FloatPlane emission[3] = {};     // DirectArgs::emission (null: no emission)
-    FloatPlane envDiffuse[3] = {};   // DirectArgs::envDiffuse (may be null with SSGI on)
-    FloatPlane envSpecular[3] = {};  // DirectArgs::envSpecular
-    FloatPlane specWeight[3] = {};   // DirectArgs::specWeight
-    // SSGI (trace/ssgi.h): null = off. With it on, the G-buffer's viewZ, albedo and metallic.
-    const PlaneF* ssgi[3] = {};
-    GBufferView g;
-    // MaterialPlanes::occlusion (null: none), read with SSGI on; envDiffuse and specWeight
-    // hold it already (DirectArgs::occlusion).
-    const PlaneF* occlusion = nullptr;
-    // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): null = off.
-    const PlaneF* ssrColor[3] = {};
-    const PlaneF* ssrOpacity = nullptr;
-    // The incoming specular radiance as a whole (the denoiser's, denoise/denoise.h), in place
-    // of ssr opacity + envSpecular (1 - opacity); null: that blend.
-    const PlaneF* specular[3] = {};
-    float exposure = 1.0f;  // the renderer's exposure (RenderSettings::exposure)
-};
-
-// Writes color[3] (linear, exposed) and display[3] (tone mapped, sRGB), ensured to the
-// inputs' size. Throws std::invalid_argument on a missing or mis-sized plane.
-void composite(Isa isa, const CompositeInputs& inputs, PlaneF color[3], PlaneF display[3],
-               int threads);
+// Composites args' views (CompositeArgs, shading/composite_kernel.h) into its color and
+// display views. Throws std::invalid_argument naming the plane when one it reads or writes is
+// missing or of another size than direct's.
+void composite(Isa isa, const CompositeArgs& args, int threads);
 
 // The same, checked and set up once, then run tile by tile: over the frame by composite(), or
 // one tile at a time after what makes its SSGI planes for that tile alone (the renderer's
 // upsample of the half-resolution diffuse, trace/reconstruct.h).
 class Compositor {
 public:
-    // composite()'s arguments less threads; `tileSsgi`: inputs.ssgi is not given (its planes
+    // composite()'s arguments less threads; `tileSsgi`: args.ssgi is not given (its planes
     // come with each tile).
-    Compositor(Isa isa, const CompositeInputs& inputs, PlaneF color[3], PlaneF display[3],
-               bool tileSsgi = false);
+    Compositor(Isa isa, const CompositeArgs& args, bool tileSsgi = false);
     const TileGrid& grid() const { return grid_; }
-    // Tile `tile`, with the frame's SSGI planes (or, given, `ssgi` holding at least the tile
-    // from its corner).
-    void tile(int tile, const PlaneF* const ssgi[3] = nullptr, int x0 = 0, int y0 = 0) const;
+    // Tile `tile`, with the frame's SSGI planes (or, given, `ssgi`'s three views holding at
+    // least the tile from its corner (x0, y0)).
+    void tile(int tile, const ViewF* ssgi = nullptr, int x0 = 0, int y0 = 0) const;
 
 private:
     CompositeArgs args_{};

@@ -1,39 +1,58 @@
-// The composite kernel, one copy per ISA (shading/composite_kernel.cpp); the formula is in
-// shading/composite.h.
+// The composite's planes and the kernel, one copy per ISA (shading/composite_kernel.cpp); the
+// formula is in shading/composite.h.
 #pragma once
 
 #include <cstddef>
 
 #include "core/dispatch.h"
-#include "core/float_planes.h"
 #include "core/gbuffer_view.h"
+#include "core/plane_view.h"
 
 namespace ssrt {
 
-// Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has one size and one stride, ssgi's aside.
+// A direct pass's part as the composite reads it: f32 or f16 (the renderer's are f16,
+// renderer/frame.h's DirectParts), the view of its format set and the other absent.
+struct PartView {
+    ViewF f32;
+    ViewU16 f16;
+    PartView() = default;
+    PartView(ViewF v) : f32(v) {}
+    PartView(ViewU16 v) : f16(v) {}
+    explicit operator bool() const { return f32 || f16; }
+};
+
+// The composite's planes, views of one size (ssgi's aside). The caller sets the views and the
+// exposure; the Compositor checks them and sets the rest. Plain data only: this crosses into
+// code compiled with other ISA flags.
 struct CompositeArgs {
-    int width, height, tilesX;
-    std::size_t stride;
-    // The direct pass's parts, f32 or f16 (core/float_planes.h)
-    SignalIn direct[3];
-    SignalIn emission[3];  // null: none
-    SignalIn envDiffuse[3];
-    SignalIn envSpecular[3];
-    SignalIn specWeight[3];
-    const float* ssgi[3];  // null: SSGI off
-    // ssgi's planes may be a tile's (the renderer's upsample run tile by tile into them): their
-    // own stride, and their element (0, 0) the frame's pixel (ssgiX0, ssgiY0).
-    std::size_t ssgiStride;
-    int ssgiX0, ssgiY0;
-    GBufferView g;             // viewZ, albedo, metallic (SSGI on only)
-    const float* occlusion;    // null: none (SSGI on only)
-    const float* ssrColor[3];  // null: SSR off
-    const float* specular[3];  // null: from ssrColor, ssrOpacity and envSpecular
-    const float* ssrOpacity;
-    float exposure;
-    float* color[3];
-    float* display[3];
+    // The direct pass's parts, scene-linear (before exposure): DirectArgs::direct etc.
+    // (shading/direct_kernel.h)
+    PartView direct[3];
+    PartView emission[3];    // absent: no emission
+    PartView envDiffuse[3];  // read with SSGI off only
+    PartView envSpecular[3];
+    PartView specWeight[3];
+    // SSGI (trace/ssgi.h): absent = off. With it on, the G-buffer's viewZ, albedo and metallic,
+    // and the occlusion (MaterialPlanes::occlusion; absent: none), which envDiffuse and
+    // specWeight hold already (DirectArgs::occlusion).
+    ViewF ssgi[3];
+    GBufferView g;
+    ViewF occlusion;
+    // SSR (trace/ssr_resolve.h, SsrOutput::color and ::opacity): absent = off.
+    ViewF ssrColor[3];
+    ViewF ssrOpacity;
+    // The incoming specular radiance as a whole (the denoiser's, denoise/denoise.h), in place
+    // of ssr opacity + envSpecular (1 - opacity); absent: that blend.
+    ViewF specular[3];
+    float exposure = 1.0f;  // the renderer's exposure (RenderSettings::exposure)
+    OutF color[3];          // linear, exposed
+    OutF display[3];        // tone mapped, sRGB
+
+    // Set by the Compositor: the size, the one stride of every view but ssgi's, and where
+    // ssgi's element (0, 0) lies in the frame (its views may hold one tile: Compositor::tile).
+    int width = 0, height = 0, tilesX = 0;
+    std::size_t stride = 0;
+    int ssgiX0 = 0, ssgiY0 = 0;
 };
 
 SSRT_DECLARE_KERNEL(void, compositeTile, (const CompositeArgs& args, int tile))

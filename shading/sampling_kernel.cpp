@@ -76,7 +76,7 @@ SSRT_INLINE V draw(V wi, Lane ax, Lane ay, Lane u1, Lane u2) {
 }
 
 template <Sampler S>
-void sampleWith(const SampleArgs& a, std::size_t n) {
+void sampleWith(const SampleBatch& a, std::size_t n) {
     const float* const in[7] = {a.wiX, a.wiY, a.wiZ, a.alphaX, a.alphaY, a.u1, a.u2};
     constexpr float pad[7] = {0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.5f, 0.5f};
     const bool withPdf = a.outPdf != nullptr;
@@ -93,7 +93,7 @@ void sampleWith(const SampleArgs& a, std::size_t n) {
 
 }  // namespace
 
-void sampleDirections(Sampler s, const SampleArgs& a, std::size_t n) {
+void sampleDirections(Sampler s, const SampleBatch& a, std::size_t n) {
     switch (s) {
         case Sampler::CosineHemisphere: return sampleWith<Sampler::CosineHemisphere>(a, n);
         case Sampler::UniformHemisphere: return sampleWith<Sampler::UniformHemisphere>(a, n);
@@ -111,8 +111,8 @@ void sampleDirections(Sampler s, const SampleArgs& a, std::size_t n) {
     }
 }
 
-void evalSamplerPdf(Sampler s, const PdfArgs& a, std::size_t n) {
-    const float* const in[8] = {a.wiX, a.wiY, a.wiZ, a.alphaX, a.alphaY, a.dirX, a.dirY, a.dirZ};
+void evalSamplerPdf(Sampler s, const SampleBatch& a, std::size_t n) {
+    const float* const in[8] = {a.wiX, a.wiY, a.wiZ, a.alphaX, a.alphaY, a.woX, a.woY, a.woZ};
     constexpr float pad[8] = {0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.0f, 0.0f, 1.0f};
     float* const out[1] = {a.outPdf};
     runLanes(in, pad, out, n, [s](const Lane(&x)[8], Lane(&y)[1]) {
@@ -120,7 +120,7 @@ void evalSamplerPdf(Sampler s, const PdfArgs& a, std::size_t n) {
     });
 }
 
-void evalBrdfTerm(BrdfTerm t, const BrdfArgs& a, std::size_t n) {
+void evalBrdfTerm(BrdfTerm t, const SampleBatch& a, std::size_t n) {
     const float* const in[10] = {a.wiX, a.wiY,    a.wiZ,    a.woX, a.woY,
                                  a.woZ, a.alphaX, a.alphaY, a.f0,  a.f90};
     constexpr float pad[10] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.04f, 1.0f};

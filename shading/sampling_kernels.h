@@ -60,28 +60,35 @@ inline bool samplerDrawsHalfVector(Sampler s) {
            s == Sampler::VndfBounded;
 }
 
-struct SampleArgs {
-    const float *wiX, *wiY, *wiZ;  // view direction (unused by the hemisphere samplers)
-    const float *alphaX, *alphaY;  // GGX alphas
-    const float *u1, *u2;          // uniform numbers in [0, 1)
-    float *outX, *outY, *outZ;     // sampled direction
-    float *outPdf;                 // its PDF (may be null: not computed)
+// A batch of n configurations in the local frame (normal on +z), structure of arrays: what
+// the three entry points below read and write, each its own fields (the others ignored). A
+// null input reads a fixed default (shading/sampling_kernel.cpp); a null output is not written.
+struct SampleBatch {
+    // The view direction (unused by the hemisphere samplers) and the GGX alphas
+    const float *wiX = nullptr, *wiY = nullptr, *wiZ = nullptr;
+    const float *alphaX = nullptr, *alphaY = nullptr;
+    // sampleDirections: uniform numbers in [0, 1)
+    const float *u1 = nullptr, *u2 = nullptr;
+    // evalSamplerPdf: the direction whose PDF is asked, as the sampler draws it (a half vector
+    // or a reflected direction); evalBrdfTerm: the light direction
+    const float *woX = nullptr, *woY = nullptr, *woZ = nullptr;
+    // evalBrdfTerm: F_Schlick's reflectances
+    const float *f0 = nullptr, *f90 = nullptr;
+    // sampleDirections: the drawn direction, and its PDF (null: not computed); evalSamplerPdf:
+    // the PDF
+    float *outX = nullptr, *outY = nullptr, *outZ = nullptr;
+    float *outPdf = nullptr;
+    // evalBrdfTerm: the term
+    float *out = nullptr;
 };
 
-struct PdfArgs {
-    const float *wiX, *wiY, *wiZ;
-    const float *alphaX, *alphaY;
-    const float *dirX, *dirY, *dirZ;  // half vector or reflected direction, as the sampler draws
-    float *outPdf;
-};
+SSRT_DECLARE_KERNEL(void, sampleDirections, (Sampler s, const SampleBatch &a, std::size_t n))
+SSRT_DECLARE_KERNEL(void, evalSamplerPdf, (Sampler s, const SampleBatch &a, std::size_t n))
 
-SSRT_DECLARE_KERNEL(void, sampleDirections, (Sampler s, const SampleArgs &a, std::size_t n))
-SSRT_DECLARE_KERNEL(void, evalSamplerPdf, (Sampler s, const PdfArgs &a, std::size_t n))
-
-inline void sampleDirections(Isa isa, Sampler s, const SampleArgs &a, std::size_t n) {
+inline void sampleDirections(Isa isa, Sampler s, const SampleBatch &a, std::size_t n) {
     SSRT_DISPATCH(isa, sampleDirections)(s, a, n);
 }
-inline void evalSamplerPdf(Isa isa, Sampler s, const PdfArgs &a, std::size_t n) {
+inline void evalSamplerPdf(Isa isa, Sampler s, const SampleBatch &a, std::size_t n) {
     SSRT_DISPATCH(isa, evalSamplerPdf)(s, a, n);
 }
 
@@ -99,17 +106,9 @@ enum class BrdfTerm {
     SpecularCos,           // specularCos(wi, wo)
 };
 
-struct BrdfArgs {
-    const float *wiX, *wiY, *wiZ;
-    const float *woX, *woY, *woZ;
-    const float *alphaX, *alphaY;
-    const float *f0, *f90;
-    float *out;
-};
+SSRT_DECLARE_KERNEL(void, evalBrdfTerm, (BrdfTerm t, const SampleBatch &a, std::size_t n))
 
-SSRT_DECLARE_KERNEL(void, evalBrdfTerm, (BrdfTerm t, const BrdfArgs &a, std::size_t n))
-
-inline void evalBrdfTerm(Isa isa, BrdfTerm t, const BrdfArgs &a, std::size_t n) {
+inline void evalBrdfTerm(Isa isa, BrdfTerm t, const SampleBatch &a, std::size_t n) {
     SSRT_DISPATCH(isa, evalBrdfTerm)(t, a, n);
 }
 

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plane_view.h"
 #include "shading/composite.h"
 
 namespace ssrt {
@@ -91,22 +92,28 @@ void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmiss
                       ReferenceImage& ref) {
     const DirectParts& parts = frame.direct;
     const PlaneF opacity = surfaceOpacity(frame);
-    CompositeInputs ci;
-    for (int c = 0; c < 3; ++c) {
-        ci.direct[c] = &ref.direct[c];
-        ci.emission[c] = anyEmissive ? &parts.emission[c] : nullptr;
-        ci.envDiffuse[c] = &parts.envDiffuse[c];
-        ci.envSpecular[c] = &parts.envSpecular[c];
-        ci.specWeight[c] = &parts.specWeight[c];
-        ci.ssgi[c] = &ref.ssgi[c];
-        ci.ssrColor[c] = &ref.ssr[c];
-    }
-    ci.g = frame.gbuffer.view();
-    if (!frame.material.occlusion.empty()) ci.occlusion = &frame.material.occlusion;
-    ci.ssrOpacity = &opacity;
-    ci.exposure = exposure;
+    const int w = ref.direct[0].width(), h = ref.direct[0].height();
+    CompositeArgs ca;
     PlaneF display[3];
-    composite(isa, ci, ref.color, display, threads);
+    for (int c = 0; c < 3; ++c) {
+        ca.direct[c] = viewOf(ref.direct[c], "direct");
+        if (anyEmissive) ca.emission[c] = viewOf(parts.emission[c], "emission");
+        ca.envDiffuse[c] = viewOf(parts.envDiffuse[c], "envDiffuse");
+        ca.envSpecular[c] = viewOf(parts.envSpecular[c], "envSpecular");
+        ca.specWeight[c] = viewOf(parts.specWeight[c], "specWeight");
+        ca.ssgi[c] = viewOf(ref.ssgi[c], "ssgi");
+        ca.ssrColor[c] = viewOf(ref.ssr[c], "ssr");
+        ref.color[c].ensureSize(w, h);
+        display[c] = PlaneF(w, h);
+        ca.color[c] = outputOf(ref.color[c], "color");
+        ca.display[c] = outputOf(display[c], "display");
+    }
+    ca.g = frame.gbuffer.view();
+    if (!frame.material.occlusion.empty())
+        ca.occlusion = viewOf(frame.material.occlusion, "occlusion");
+    ca.ssrOpacity = viewOf(opacity, "ssrOpacity");
+    ca.exposure = exposure;
+    composite(isa, ca, threads);
     const FloatPlane ssr[3] = {&ref.ssr[0], &ref.ssr[1], &ref.ssr[2]};
     const FloatPlane ssgi[3] = {&ref.ssgi[0], &ref.ssgi[1], &ref.ssgi[2]};
     specularDiffuse(frame, ssr, opacity, ssgi, ref.specular, ref.diffuse);

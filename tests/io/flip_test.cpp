@@ -47,8 +47,8 @@ const Render& rendered(const std::string& exposure) {
     return cache.emplace(exposure, r).first->second;
 }
 
-RgbPlanes readColour(const std::string& exr) {
-    RgbPlanes rgb;
+RgbImage readColour(const std::string& exr) {
+    RgbImage rgb;
     PlaneF* planes[3] = {&rgb.r, &rgb.g, &rgb.b};
     const char* names[3] = {"color.R", "color.G", "color.B"};
     for (int c = 0; c < 3; ++c) {
@@ -105,8 +105,8 @@ TEST_CASE("flip: a small change gives more than 0, a larger change more") {
 }
 
 TEST_CASE("flip: the same bits on 1, 2 and 8 threads") {
-    const RgbPlanes reference = readColour(rendered("1").exr);
-    const RgbPlanes test = readColour(rendered("1.6").exr);
+    const RgbImage reference = readColour(rendered("1").exr);
+    const RgbImage test = readColour(rendered("1.6").exr);
     // LDR-FLIP on the linear colour (clamped to [0, 1]) and HDR-FLIP.
     const FlipResult ldr1 = ldrFlip(test, reference, kFlipPixelsPerDegree, 1);
     const FlipResult hdr1 = hdrFlip(test, reference, kFlipPixelsPerDegree, 1);

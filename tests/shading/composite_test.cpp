@@ -127,32 +127,45 @@ struct DirectFixture {
         const auto fn = SSRT_DISPATCH(isa, shadeTile);
         parallelForTiles(TileGrid(w, h).count(), threads, [&](int t) { fn(args, t); });
     }
-    CompositeInputs inputsF16(float exposure) const {
-        CompositeInputs in;
+    CompositeArgs inputsF16(float exposure) const {
+        CompositeArgs in;
         for (int c = 0; c < 3; ++c) {
-            in.direct[c] = &direct16[c];
-            in.emission[c] = &emission16[c];
-            in.envDiffuse[c] = &envDiffuse16[c];
-            in.envSpecular[c] = &envSpecular16[c];
-            in.specWeight[c] = &specWeight16[c];
+            in.direct[c] = viewOf(direct16[c], "direct");
+            in.emission[c] = viewOf(emission16[c], "emission");
+            in.envDiffuse[c] = viewOf(envDiffuse16[c], "envDiffuse");
+            in.envSpecular[c] = viewOf(envSpecular16[c], "envSpecular");
+            in.specWeight[c] = viewOf(specWeight16[c], "specWeight");
         }
         in.exposure = exposure;
         return in;
     }
 
-    CompositeInputs inputs(float exposure) const {
-        CompositeInputs in;
+    CompositeArgs inputs(float exposure) const {
+        CompositeArgs in;
         for (int c = 0; c < 3; ++c) {
-            in.direct[c] = &direct[c];
-            in.emission[c] = &emission[c];
-            in.envDiffuse[c] = &envDiffuse[c];
-            in.envSpecular[c] = &envSpecular[c];
-            in.specWeight[c] = &specWeight[c];
+            in.direct[c] = viewOf(direct[c], "direct");
+            in.emission[c] = viewOf(emission[c], "emission");
+            in.envDiffuse[c] = viewOf(envDiffuse[c], "envDiffuse");
+            in.envSpecular[c] = viewOf(envSpecular[c], "envSpecular");
+            in.specWeight[c] = viewOf(specWeight[c], "specWeight");
         }
         in.exposure = exposure;
         return in;
     }
 };
+
+// composite() of `in` into color and display, made here at the size of in's direct parts.
+void compositeInto(Isa isa, CompositeArgs in, PlaneF color[3], PlaneF display[3], int threads) {
+    const PartView& d = in.direct[0];
+    const int w = d.f16 ? d.f16.width : d.f32.width, h = d.f16 ? d.f16.height : d.f32.height;
+    for (int c = 0; c < 3; ++c) {
+        color[c].ensureSize(w, h);
+        display[c].ensureSize(w, h);
+        in.color[c] = outputOf(color[c], "color");
+        in.display[c] = outputOf(display[c], "display");
+    }
+    composite(isa, in, threads);
+}
 
 }  // namespace
 
@@ -184,7 +197,7 @@ TEST_CASE(
                 f.shade(isa, true);
                 for (int threads : {1, 2, 8}) {
                     PlaneF color[3], display[3];
-                    composite(isa, f.inputs(exposure), color, display, threads);
+                    compositeInto(isa, f.inputs(exposure), color, display, threads);
                     for (int c = 0; c < 3; ++c) {
                         CHECK(sameBits(color[c], f.out[c]));
                         CHECK(sameBits(display[c], f.out[3 + c]));
@@ -224,7 +237,7 @@ TEST_CASE("composite: f16 parts are the f32 ones rounded, the same bits on every
             CHECK(wrong == 0);
             for (int threads : {1, 2, 8}) {
                 PlaneF color[3], display[3];
-                composite(isa, f.inputsF16(1.3f), color, display, threads);
+                compositeInto(isa, f.inputsF16(1.3f), color, display, threads);
                 if (first) {
                     for (int c = 0; c < 3; ++c) {
                         color0[c] = color[c].clone();
@@ -301,25 +314,25 @@ TEST_CASE("composite: SSR at opacity 0 is the sky -- at opacity 1 it replaces en
     f.shade(Isa::Scalar, true);
     const int w = f.frame.width, h = f.frame.height;
     PlaneF ref[3], refDisplay[3];
-    composite(Isa::Scalar, f.inputs(1.0f), ref, refDisplay, 1);
+    compositeInto(Isa::Scalar, f.inputs(1.0f), ref, refDisplay, 1);
     // Opacity 0 with any finite SSR colour: the same bits as SSR off.
     PlaneF ssr[3] = {PlaneF(w, h, 5.0f), PlaneF(w, h, 6.0f), PlaneF(w, h, 7.0f)};
     PlaneF opacity(w, h, 0.0f);
-    CompositeInputs in = f.inputs(1.0f);
-    for (int c = 0; c < 3; ++c) in.ssrColor[c] = &ssr[c];
-    in.ssrOpacity = &opacity;
+    CompositeArgs in = f.inputs(1.0f);
+    for (int c = 0; c < 3; ++c) in.ssrColor[c] = viewOf(ssr[c], "ssrColor");
+    in.ssrOpacity = viewOf(opacity, "ssrOpacity");
     for (Isa isa : supportedIsas()) {
         PlaneF color[3], display[3];
-        composite(isa, in, color, display, 2);
+        compositeInto(isa, in, color, display, 2);
         for (int c = 0; c < 3; ++c) CHECK(sameBits(color[c], ref[c]));
     }
     // Opacity 1 with SSR = envSpecular: the same bits again; with SSR = envSpecular + 1 the
     // colour grows by specWeight.
     opacity.fill(1.0f);
-    for (int c = 0; c < 3; ++c) in.ssrColor[c] = &f.envSpecular[c];
+    for (int c = 0; c < 3; ++c) in.ssrColor[c] = viewOf(f.envSpecular[c], "ssrColor");
     {
         PlaneF color[3], display[3];
-        composite(Isa::Scalar, in, color, display, 2);
+        compositeInto(Isa::Scalar, in, color, display, 2);
         for (int c = 0; c < 3; ++c) CHECK(sameBits(color[c], ref[c]));
     }
     PlaneF brighter[3];
@@ -327,10 +340,10 @@ TEST_CASE("composite: SSR at opacity 0 is the sky -- at opacity 1 it replaces en
         brighter[c] = f.envSpecular[c].clone();
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) brighter[c].at(x, y) += 1.0f;
-        in.ssrColor[c] = &brighter[c];
+        in.ssrColor[c] = viewOf(brighter[c], "ssrColor");
     }
     PlaneF color[3], display[3];
-    composite(Isa::Scalar, in, color, display, 2);
+    compositeInto(Isa::Scalar, in, color, display, 2);
     for (int y = 0; y < h; y += 7)
         for (int x = 0; x < w; x += 5)
             for (int c = 0; c < 3; ++c)
@@ -343,19 +356,19 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
     f.shade(Isa::Scalar, true);
     const int w = f.frame.width, h = f.frame.height;
     PlaneF ref[3], refDisplay[3];
-    composite(Isa::Scalar, f.inputs(1.0f), ref, refDisplay, 1);
+    compositeInto(Isa::Scalar, f.inputs(1.0f), ref, refDisplay, 1);
     const float radiance[3] = {0.5f, 1.0f, 2.0f};
     PlaneF ssgi[3] = {PlaneF(w, h, radiance[0]), PlaneF(w, h, radiance[1]),
                       PlaneF(w, h, radiance[2])};
-    CompositeInputs in = f.inputs(1.0f);
+    CompositeArgs in = f.inputs(1.0f);
     for (int c = 0; c < 3; ++c) {
-        in.ssgi[c] = &ssgi[c];
-        in.envDiffuse[c] = nullptr;  // not needed with SSGI on
+        in.ssgi[c] = viewOf(ssgi[c], "ssgi");
+        in.envDiffuse[c] = {};  // not needed with SSGI on
     }
     const GBuffer& g = f.frame.gbuffer;
     in.g = g.view();
     PlaneF color[3], display[3];
-    composite(Isa::Scalar, in, color, display, 2);
+    compositeInto(Isa::Scalar, in, color, display, 2);
     int surfaces = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
@@ -370,17 +383,33 @@ TEST_CASE("composite: SSGI replaces envDiffuse by albedo (1 - metallic) times it
     CHECK(surfaces > w * h);  // most pixels are surfaces (3 channels each)
     // SSGI's diffuse colour needs the G-buffer's metallic.
     in.g.metallic = nullptr;
-    CHECK_THROWS_AS(composite(Isa::Scalar, in, color, display, 2), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(compositeInto(Isa::Scalar, in, color, display, 2),
+                         "composite: metallic is missing", std::invalid_argument);
 }
 
-TEST_CASE("composite: missing planes are refused") {
-    CompositeInputs in;
+TEST_CASE("composite: missing planes are refused, by name") {
+    CompositeArgs in;
     PlaneF color[3], display[3];
-    CHECK_THROWS_AS(composite(Isa::Scalar, in, color, display, 1), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(compositeInto(Isa::Scalar, in, color, display, 1),
+                         "composite: direct is missing", std::invalid_argument);
     DirectFixture f("cornell");
     f.shade(Isa::Scalar, true);
     in = f.inputs(1.0f);
     PlaneF small(3, 3);
-    in.ssgi[0] = &small;
-    CHECK_THROWS_AS(composite(Isa::Scalar, in, color, display, 1), std::invalid_argument);
+    in.ssgi[0] = viewOf(small, "ssgi.R");
+    CHECK_THROWS_WITH_AS(compositeInto(Isa::Scalar, in, color, display, 1),
+                         "composite: ssgi.R is 3x3, not 150x70", std::invalid_argument);
+    // The outputs are the caller's, checked as the inputs are.
+    in = f.inputs(1.0f);
+    CHECK_THROWS_WITH_AS(composite(Isa::Scalar, in, 1), "composite: color is missing",
+                         std::invalid_argument);
+    for (int c = 0; c < 3; ++c) {
+        color[c] = PlaneF(150, 70);
+        display[c] = PlaneF(150, 70);
+        in.color[c] = outputOf(color[c], "color");
+        in.display[c] = outputOf(display[c], "display");
+    }
+    in.display[1] = outputOf(small, "display.G");
+    CHECK_THROWS_WITH_AS(composite(Isa::Scalar, in, 1), "composite: display.G is 3x3, not 150x70",
+                         std::invalid_argument);
 }

@@ -104,8 +104,16 @@ Outcome runConfig(const Config& cfg) {
             u1[i] = randomFloat(uint32_t(base + i), cfg.seed, 0, 0);
             u2[i] = randomFloat(uint32_t(base + i), cfg.seed, 0, 1);
         }
-        SampleArgs a{wx.data(), wy.data(), wz.data(), ax.data(), ay.data(), u1.data(),
-                     u2.data(), ox.data(), oy.data(), oz.data(), nullptr};
+        const SampleBatch a{.wiX = wx.data(),
+                            .wiY = wy.data(),
+                            .wiZ = wz.data(),
+                            .alphaX = ax.data(),
+                            .alphaY = ay.data(),
+                            .u1 = u1.data(),
+                            .u2 = u2.data(),
+                            .outX = ox.data(),
+                            .outY = oy.data(),
+                            .outZ = oz.data()};
         sampleDirections(isa, cfg.s.sampler, a, n);
         for (std::size_t i = 0; i < n; ++i) {
             const int cell = h.cellOf(ox[i], oy[i], oz[i]);

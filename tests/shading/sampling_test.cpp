@@ -76,19 +76,25 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
     for (Sampler s : kAllSamplers) {
         const std::string name(samplerName(s));
         CAPTURE(name);
-        SampleArgs ref{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(),
-                       in.ay.data(), in.u1.data(), in.u2.data(), rx.data(),
-                       ry.data(),    rz.data(),    rp.data()};
+        const SampleBatch views{.wiX = in.wx.data(),
+                                .wiY = in.wy.data(),
+                                .wiZ = in.wz.data(),
+                                .alphaX = in.ax.data(),
+                                .alphaY = in.ay.data()};
+        SampleBatch ref = views;
+        ref.u1 = in.u1.data(), ref.u2 = in.u2.data();
+        ref.outX = rx.data(), ref.outY = ry.data(), ref.outZ = rz.data(), ref.outPdf = rp.data();
         sampleDirections(Isa::Scalar, s, ref, n);
         // PDFs of other directions than the samples: the random view vectors reused.
         std::vector<float> pdfRef(n), pdfGot(n);
-        PdfArgs pa{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(), in.ay.data(),
-                   in.wy.data(), in.wz.data(), in.wx.data(), pdfRef.data()};
+        SampleBatch pa = views;
+        pa.woX = in.wy.data(), pa.woY = in.wz.data(), pa.woZ = in.wx.data();
+        pa.outPdf = pdfRef.data();
         evalSamplerPdf(Isa::Scalar, s, pa, n);
         for (Isa isa : supportedIsas()) {
             const std::string isaStr(isaName(isa));
             CAPTURE(isaStr);
-            SampleArgs got = ref;
+            SampleBatch got = ref;
             got.outX = gx.data(), got.outY = gy.data(), got.outZ = gz.data(),
             got.outPdf = gp.data();
             sampleDirections(isa, s, got, n);
@@ -96,7 +102,7 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
             CHECK(std::memcmp(ry.data(), gy.data(), n * 4) == 0);
             CHECK(std::memcmp(rz.data(), gz.data(), n * 4) == 0);
             CHECK(std::memcmp(rp.data(), gp.data(), n * 4) == 0);
-            PdfArgs pg = pa;
+            SampleBatch pg = pa;
             pg.outPdf = pdfGot.data();
             evalSamplerPdf(isa, s, pg, n);
             CHECK(std::memcmp(pdfRef.data(), pdfGot.data(), n * 4) == 0);
@@ -115,8 +121,17 @@ TEST_CASE("shading: samplers, PDFs and BRDF terms return the scalar bits on ever
     }
     for (BrdfTerm t : terms) {
         CAPTURE(int(t));
-        BrdfArgs a{in.wx.data(), in.wy.data(), in.wz.data(), ox.data(),  oy.data(), oz.data(),
-                   in.ax.data(), in.ay.data(), f0.data(),    f90.data(), ref.data()};
+        SampleBatch a{.wiX = in.wx.data(),
+                      .wiY = in.wy.data(),
+                      .wiZ = in.wz.data(),
+                      .alphaX = in.ax.data(),
+                      .alphaY = in.ay.data(),
+                      .woX = ox.data(),
+                      .woY = oy.data(),
+                      .woZ = oz.data(),
+                      .f0 = f0.data(),
+                      .f90 = f90.data(),
+                      .out = ref.data()};
         evalBrdfTerm(Isa::Scalar, t, a, n);
         for (Isa isa : supportedIsas()) {
             a.out = got.data();
@@ -133,9 +148,17 @@ TEST_CASE("shading: samplers stay finite where methods fail") {
     for (Sampler s : kAllSamplers) {
         const std::string name(samplerName(s));
         CAPTURE(name);
-        SampleArgs a{in.wx.data(), in.wy.data(), in.wz.data(), in.ax.data(),
-                     in.ay.data(), in.u1.data(), in.u2.data(), x.data(),
-                     y.data(),     z.data(),     p.data()};
+        const SampleBatch a{.wiX = in.wx.data(),
+                            .wiY = in.wy.data(),
+                            .wiZ = in.wz.data(),
+                            .alphaX = in.ax.data(),
+                            .alphaY = in.ay.data(),
+                            .u1 = in.u1.data(),
+                            .u2 = in.u2.data(),
+                            .outX = x.data(),
+                            .outY = y.data(),
+                            .outZ = z.data(),
+                            .outPdf = p.data()};
         sampleDirections(Isa::Scalar, s, a, n);
         int positiveMisses = 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -319,8 +342,16 @@ TEST_CASE("shading: bounded VNDF sends no more reflections below the horizon tha
             int k = 0;
             for (Sampler s :
                  {Sampler::VndfSphericalCapsReflection, Sampler::VndfBoundedReflection}) {
-                SampleArgs args{wx.data(), wy.data(), wz.data(), ax.data(), ay.data(), u1.data(),
-                                u2.data(), x.data(),  y.data(),  z.data(),  nullptr};
+                const SampleBatch args{.wiX = wx.data(),
+                                       .wiY = wy.data(),
+                                       .wiZ = wz.data(),
+                                       .alphaX = ax.data(),
+                                       .alphaY = ay.data(),
+                                       .u1 = u1.data(),
+                                       .u2 = u2.data(),
+                                       .outX = x.data(),
+                                       .outY = y.data(),
+                                       .outZ = z.data()};
                 sampleDirections(defaultIsa(), s, args, kN);
                 uint32_t below = 0;
                 for (uint32_t i = 0; i < kN; ++i) below += z[i] < 0.0f;

@@ -82,7 +82,7 @@ MirrorMask mirrorMask(const Frame& f, const PlaneF (&traced)[3], const PlaneF (&
 // over the mask's pixels.
 double maskedFlip(const PlaneF (&image)[3], const PlaneF (&reference)[3], const MirrorMask& m) {
     const int w = m.x1 - m.x0, h = m.y1 - m.y0;
-    RgbPlanes test, ref;
+    RgbImage test, ref;
     PlaneF* const t[3] = {&test.r, &test.g, &test.b};
     PlaneF* const r[3] = {&ref.r, &ref.g, &ref.b};
     for (int c = 0; c < 3; ++c) {
