@@ -1,14 +1,15 @@
 #include "core/plane_view.h"
 
+#include <span>
 #include <stdexcept>
 #include <string>
 
 namespace ssrt {
 
-std::size_t requireViews(std::string_view pass, int width, int height,
-                         std::initializer_list<ViewShape> views) {
+std::size_t requireViews(std::string_view pass, int width, int height, const ViewShape* views,
+                         std::size_t count) {
     std::size_t stride = 0;
-    for (const ViewShape& v : views) {
+    for (const ViewShape& v : std::span(views, count)) {
         const std::string what = std::string(pass) + ": " + std::string(v.name);
         if (!v.data || v.width == 0 || v.height == 0)
             throw std::invalid_argument(what + " is missing");

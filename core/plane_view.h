@@ -75,7 +75,11 @@ struct ViewShape {
 // The one check of the views a pass is handed: each present and of width x height; else
 // std::invalid_argument naming `pass` and the view ("resolveSsr: normal.X is missing",
 // "...: viewZ is 320x180, not 640x360"). Returns their one stride (0 for no views).
-std::size_t requireViews(std::string_view pass, int width, int height,
-                         std::initializer_list<ViewShape> views);
+std::size_t requireViews(std::string_view pass, int width, int height, const ViewShape* views,
+                         std::size_t count);
+inline std::size_t requireViews(std::string_view pass, int width, int height,
+                                std::initializer_list<ViewShape> views) {
+    return requireViews(pass, width, height, views.begin(), views.size());
+}
 
 }  // namespace ssrt

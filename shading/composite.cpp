@@ -13,7 +13,7 @@ namespace ssrt {
 namespace {
 
 bool anyOf(const ViewF v[3]) { return v[0] || v[1] || v[2]; }
-bool anyOf(const PartView v[3]) { return v[0] || v[1] || v[2]; }
+bool anyOf(const FloatView v[3]) { return v[0] || v[1] || v[2]; }
 
 // A view as requireViews sees it (a part: the view of its format), named by its field where
 // its caller left it unnamed (a view never set).
@@ -23,7 +23,7 @@ ViewShape shapeOf(const PlaneView<T>& v, std::string_view field) {
     if (s.name.empty()) s.name = field;
     return s;
 }
-ViewShape shapeOf(const PartView& p, std::string_view field) {
+ViewShape shapeOf(const FloatView& p, std::string_view field) {
     return p.f16 ? shapeOf(p.f16, field) : shapeOf(p.f32, field);
 }
 template <class View>
@@ -55,7 +55,7 @@ Compositor::Compositor(Isa isa, const CompositeArgs& args, bool tileSsgi)
     addRgb(views, a.color, "color");
     addRgb(views, a.display, "display");
     const int w = views.front().width, h = views.front().height;
-    for (const ViewShape& v : views) a.stride = requireViews("composite", w, h, {v});
+    a.stride = requireViews("composite", w, h, views.data(), views.size());
     if (ssgi) requireGBuffer("composite", a.g, kGViewZ | kGAlbedo | kGMetallic, w, h);
     grid_ = TileGrid(w, h);
     a.width = w;

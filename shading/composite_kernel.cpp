@@ -17,14 +17,6 @@ namespace {
 
 constexpr int kW = int(ln::kWidth<Lane>);
 
-// A part's first row as the signal loads read it (core/signal_lanes.h).
-SSRT_INLINE SignalIn signalOf(const PartView& p) {
-    SignalIn s;
-    s.f32 = p.f32.data;
-    s.f16 = p.f16.data;
-    return s;
-}
-
 SSRT_INLINE V3 load3(const float* const* p, std::size_t o) {
     return {ln::load<Lane>(p[0] + o), ln::load<Lane>(p[1] + o), ln::load<Lane>(p[2] + o)};
 }
@@ -32,9 +24,9 @@ SSRT_INLINE V3 load3(const ViewF* p, std::size_t o) {
     return {ln::load<Lane>(p[0].data + o), ln::load<Lane>(p[1].data + o),
             ln::load<Lane>(p[2].data + o)};
 }
-SSRT_INLINE V3 load3(const PartView* p, std::size_t o) {
-    return {ln::loadSignal<Lane>(signalOf(p[0]), o), ln::loadSignal<Lane>(signalOf(p[1]), o),
-            ln::loadSignal<Lane>(signalOf(p[2]), o)};
+SSRT_INLINE V3 load3(const FloatView* p, std::size_t o) {
+    return {ln::loadSignal<Lane>(p[0].in(), o), ln::loadSignal<Lane>(p[1].in(), o),
+            ln::loadSignal<Lane>(p[2].in(), o)};
 }
 
 void compositeChunk(const CompositeArgs& a, int x, int y) {
@@ -81,9 +73,9 @@ void compositeTile(const CompositeArgs& args, int tile) {
         // The direct pass's f16 parts: the row two below fetched ahead (prefetchRowF16).
         if (y + 2 < y1) {
             const std::size_t ahead = std::size_t(y + 2) * args.stride;
-            for (const PartView* part :
+            for (const FloatView* part :
                  {args.direct, args.emission, args.envDiffuse, args.envSpecular, args.specWeight}) {
-                const SignalIn rows[3] = {signalOf(part[0]), signalOf(part[1]), signalOf(part[2])};
+                const SignalIn rows[3] = {part[0].in(), part[1].in(), part[2].in()};
                 ln::prefetchRowF16(rows, 3, ahead, x0, x1);
             }
         }

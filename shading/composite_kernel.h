@@ -10,28 +10,17 @@
 
 namespace ssrt {
 
-// A direct pass's part as the composite reads it: f32 or f16 (the renderer's are f16,
-// renderer/frame.h's DirectParts), the view of its format set and the other absent.
-struct PartView {
-    ViewF f32;
-    ViewU16 f16;
-    PartView() = default;
-    PartView(ViewF v) : f32(v) {}
-    PartView(ViewU16 v) : f16(v) {}
-    explicit operator bool() const { return f32 || f16; }
-};
-
 // The composite's planes, views of one size (ssgi's aside). The caller sets the views and the
 // exposure; the Compositor checks them and sets the rest. Plain data only: this crosses into
 // code compiled with other ISA flags.
 struct CompositeArgs {
     // The direct pass's parts, scene-linear (before exposure): DirectArgs::direct etc.
     // (shading/direct_kernel.h)
-    PartView direct[3];
-    PartView emission[3];    // absent: no emission
-    PartView envDiffuse[3];  // read with SSGI off only
-    PartView envSpecular[3];
-    PartView specWeight[3];
+    FloatView direct[3];
+    FloatView emission[3];    // absent: no emission
+    FloatView envDiffuse[3];  // read with SSGI off only
+    FloatView envSpecular[3];
+    FloatView specWeight[3];
     // SSGI (trace/ssgi.h): absent = off. With it on, the G-buffer's viewZ, albedo and metallic,
     // and the occlusion (MaterialPlanes::occlusion; absent: none), which envDiffuse and
     // specWeight hold already (DirectArgs::occlusion).

@@ -156,7 +156,7 @@ struct DirectFixture {
 
 // composite() of `in` into color and display, made here at the size of in's direct parts.
 void compositeInto(Isa isa, CompositeArgs in, PlaneF color[3], PlaneF display[3], int threads) {
-    const PartView& d = in.direct[0];
+    const FloatView& d = in.direct[0];
     const int w = d.f16 ? d.f16.width : d.f32.width, h = d.f16 ? d.f16.height : d.f32.height;
     for (int c = 0; c < 3; ++c) {
         color[c].ensureSize(w, h);
