@@ -71,13 +71,14 @@ struct Context {
     Isa isa;
     int threads;
     TileGrid grid;
-    ReblurView view;
+    ReblurFrame frame;
 };
 
-ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
-                    const TileGrid& grid) {
+// The frame every pass reads: guides, cameras, the front end's classification and the tuning.
+ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
+                      const DenoiseHistory* previous, const TileGrid& grid) {
     const TraceCamera& cam = in.camera;
-    ReblurView v;
+    ReblurFrame v;
     v.width = grid.width;
     v.height = grid.height;
     v.tilesX = grid.tilesX;
@@ -90,11 +91,41 @@ ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseSc
     v.viewZ = in.viewZ->row(0);
     for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
     v.roughness = in.roughness ? in.roughness->row(0) : nullptr;  // read for specular only
+    if (in.diffuse[0]) {
+        for (int i = 0; i < 3; ++i) v.albedo[i] = in.albedo[i]->row(0);
+        v.metallic = in.metallic->row(0);
+    }
+    for (int i = 0; i < 2; ++i) v.motion[i] = in.motion[i]->row(0);
+    v.frameIndex = in.frameIndex;
     v.signalZ[0] = sc.signalZ[0].row(0);
     v.signalZ[1] = sc.signalZ[1].row(0);
     v.tiles = sc.tiles.data();
     const float diagonal = cam.sceneDiagonal > 0.0f ? cam.sceneDiagonal : 1.0f;
     v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
+    if (previous && s.maxAccumulatedFrames > 0) {
+        const DenoiseHistory& h = *previous;
+        v.prevViewZ = h.viewZ.row(0);
+        for (int i = 0; i < 3; ++i) v.prevNormal[i] = h.normal[i].row(0);
+        v.prevRoughness = h.roughness.empty() ? nullptr : h.roughness.row(0);
+        std::copy_n(h.camera.viewToWorld, 9, v.prevViewToWorld);
+        v.prevTanHalfX = h.camera.tanHalfX;
+        v.prevTanHalfY = h.camera.tanHalfY;
+        // Both cameras' positions are measured from the same scene origin.
+        for (int i = 0; i < 3; ++i) v.cameraDelta[i] = cam.position[i] - h.camera.position[i];
+    }
+    v.specularMaxRoughness = in.specularMaxRoughness;
+    v.minBlurRadius = s.minBlurRadius;
+    v.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+    v.roughnessFraction = s.roughnessFraction;
+    v.planeDistance = s.planeDistanceSensitivity;
+    v.minHitWeight = s.minHitDistanceWeight;
+    v.maxAccumulatedFrames = float(s.maxAccumulatedFrames);
+    v.maxFastAccumulatedFrames = float(s.maxFastAccumulatedFrames);
+    v.disocclusion = s.disocclusionThreshold;
+    v.fireflyScale = s.fireflyMinRelativeScale;
+    v.virtualMotion = s.virtualMotion;
+    v.historyFixFrames = float(s.historyFixFrames);
+    v.historyFixStride = float(s.historyFixStride);
     return v;
 }
 
@@ -124,14 +155,10 @@ void checkInputs(const DenoiseInputs& in, int w, int h) {
 
 void frontEnd(Context& c) {
     const DenoiseInputs& in = c.in;
-    ReblurFrontEndArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) {
-            a.diffuse[i] = in.diffuse[i]->row(0);
-            a.albedo[i] = in.albedo[i]->row(0);
-        }
-        a.metallic = in.metallic->row(0);
+        for (int i = 0; i < 3; ++i) a.diffuse[i] = in.diffuse[i]->row(0);
         a.diffuseHit = in.diffuseHitDistance->row(0);
     }
     if (in.ssr[0]) {
@@ -143,7 +170,6 @@ void frontEnd(Context& c) {
         a.ssrOpacity = in.ssrOpacity->row(0);
         a.specularHit = in.specularHitDistance->row(0);
     }
-    a.specularMaxRoughness = in.specularMaxRoughness;
     a.noisyDiffuse = c.sc.noisyDiffuse.row(0);
     a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
@@ -156,8 +182,8 @@ void frontEnd(Context& c) {
 void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* in,
              const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
-    ReblurSpatialArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     a.pass = pass;
     a.specular = sig.specular;
     a.in = in->row(0);
@@ -165,18 +191,12 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* 
     if (copy) a.copy = copy->row(0);
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
-    a.frameIndex = c.in.frameIndex;
     a.stream = kRotationStream + uint32_t(pass) * 2u + (sig.specular ? 1u : 0u);
     const float blur = pass == ReblurSpatial::PostBlur ? 2.0f * s.maxBlurRadius : s.maxBlurRadius;
     a.radius = pass == ReblurSpatial::PreBlur
                    ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
-    a.minRadius = s.minBlurRadius;
     if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
-    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
-    a.roughnessFraction = s.roughnessFraction;
-    a.planeDistance = s.planeDistanceSensitivity;
-    a.minHitWeight = s.minHitDistanceWeight;
     a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
                       : pass == ReblurSpatial::Blur  ? 1.0f
                                                      : 0.5f;
@@ -185,36 +205,20 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* 
 }
 
 void temporal(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
-    const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
-    ReblurTemporalArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     a.specular = sig.specular;
-    for (int i = 0; i < 2; ++i) a.motion[i] = c.in.motion[i]->row(0);
     a.in = in->row(0);
     a.out = out->row(0);
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.previous && c.previousHas[k] && s.maxAccumulatedFrames > 0) {
+    if (c.frame.prevViewZ && c.previousHas[k]) {
         const DenoiseHistory& h = *c.previous;
-        a.prevViewZ = h.viewZ.row(0);
-        for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
-        a.prevRoughness = h.roughness.row(0);
         a.prevSignal = (sig.specular ? h.specular : h.diffuse).row(0);
         a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
         a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
-        std::copy_n(h.camera.viewToWorld, 9, a.prevViewToWorld);
-        a.prevTanHalfX = h.camera.tanHalfX;
-        a.prevTanHalfY = h.camera.tanHalfY;
-        // Both cameras' positions are measured from the same scene origin.
-        for (int i = 0; i < 3; ++i)
-            a.cameraDelta[i] = c.in.camera.position[i] - h.camera.position[i];
     }
-    a.maxFrames = float(s.maxAccumulatedFrames);
-    a.maxFastFrames = float(s.maxFastAccumulatedFrames);
-    a.disocclusion = s.disocclusionThreshold;
-    a.fireflyScale = s.fireflyMinRelativeScale;
-    a.virtualMotion = s.virtualMotion;
     const auto fn = SSRT_DISPATCH(c.isa, reblurTemporalTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
@@ -222,8 +226,8 @@ void temporal(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) 
 void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = sig.specular ? 1 : 0;
-    ReblurHistoryFixArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     a.specular = sig.specular;
     a.in = in->row(0);
     a.out = out->row(0);
@@ -234,10 +238,6 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out
     const bool clamp = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames;
     a.fast = clamp && c.in.temporal ? c.sc.fast[k].row(0) : nullptr;
     a.fastIsInputLuma = clamp && !c.in.temporal;
-    a.fixFrames = float(s.historyFixFrames);
-    a.stride = float(s.historyFixStride);
-    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
-    a.planeDistance = s.planeDistanceSensitivity;
     const auto fn = SSRT_DISPATCH(c.isa, reblurHistoryFixTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
@@ -396,7 +396,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
               scratch,  previous,
               next,     {previousHas[0], previousHas[1]},
               isa,      threads,
-              grid,     makeView(in, settings, scratch, grid)};
+              grid,     makeFrame(in, settings, scratch, previous, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();
