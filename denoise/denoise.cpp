@@ -51,18 +51,11 @@ private:
     std::vector<DenoisePassTime>* out_;
 };
 
-// One signal's planes through the passes.
-struct SignalPlanes {
-    bool specular;
-    PlaneU64* noisy;  // the front end's plane of this signal (DenoiseScratch)
-    PlaneF* outputs[3];
-    PlaneF* framesOut;
-};
-
 struct Context {
     const DenoiseSettings& s;
     const DenoiseInputs& in;
     DenoiseScratch& sc;
+    DenoiseOutputs& out;
     const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
     DenoiseHistory* next;            // null: no history to write (may be `previous`)
     // Which signals `previous` holds, decided before `next` (the same history, maybe) is
@@ -79,23 +72,13 @@ ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, Denoise
                       const DenoiseHistory* previous, const TileGrid& grid) {
     const TraceCamera& cam = in.camera;
     ReblurFrame v;
-    v.width = grid.width;
-    v.height = grid.height;
+    static_cast<GBufferView&>(v) = in.g;
     v.tilesX = grid.tilesX;
-    v.stride = in.viewZ->stride();
     v.tanHalfX = cam.tanHalfX;
     v.tanHalfY = cam.tanHalfY;
     std::copy_n(cam.viewToWorld, 9, v.viewToWorld);
     // NRD's GetFrustumSize: the frustum's short side at depth 1.
     v.frustum = 2.0f * (grid.width < grid.height ? cam.tanHalfX : cam.tanHalfY);
-    v.viewZ = in.viewZ->row(0);
-    for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
-    v.roughness = in.roughness ? in.roughness->row(0) : nullptr;  // read for specular only
-    if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) v.albedo[i] = in.albedo[i]->row(0);
-        v.metallic = in.metallic->row(0);
-    }
-    for (int i = 0; i < 2; ++i) v.motion[i] = in.motion[i]->row(0);
     v.frameIndex = in.frameIndex;
     v.signalZ[0] = sc.signalZ[0].row(0);
     v.signalZ[1] = sc.signalZ[1].row(0);
@@ -130,20 +113,16 @@ ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, Denoise
 }
 
 void checkInputs(const DenoiseInputs& in, int w, int h) {
+    requireGBuffer("denoise", in.g,
+                   kGViewZ | kGNormal | kGMotion | (in.diffuse[0] ? kGAlbedo | kGMetallic : 0u) |
+                       (in.ssr[0] ? GBufferPlanes(kGRoughness) : 0u),
+                   w, h);
     PlaneCheck need("denoise", w, h);
-    need(in.viewZ, "viewZ");
-    for (int i = 0; i < 3; ++i) need(in.normal[i], "normal");
-    for (int i = 0; i < 2; ++i) need(in.motion[i], "motion");
     if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) {
-            need(in.diffuse[i], "diffuse");
-            need(in.albedo[i], "albedo");
-        }
-        need(in.metallic, "metallic");
+        for (int i = 0; i < 3; ++i) need(in.diffuse[i], "diffuse");
         need(in.diffuseHitDistance, "diffuse hit distance");
     }
     if (in.ssr[0]) {
-        need(in.roughness, "roughness");
         for (int i = 0; i < 3; ++i) {
             need(in.ssr[i], "ssr");
             need(in.envSpecular[i], "envSpecular");
@@ -179,22 +158,22 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* in,
-             const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
+void spatial(Context& c, bool specular, ReblurSpatial pass, PlaneU64* in, const SignalOut4& out,
+             PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
     ReblurPassArgs a;
     a.frame = c.frame;
     a.pass = pass;
-    a.specular = sig.specular;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out;
     if (copy) a.copy = copy->row(0);
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
-    a.stream = kRotationStream + uint32_t(pass) * 2u + (sig.specular ? 1u : 0u);
+    a.stream = kRotationStream + uint32_t(pass) * 2u + (specular ? 1u : 0u);
     const float blur = pass == ReblurSpatial::PostBlur ? 2.0f * s.maxBlurRadius : s.maxBlurRadius;
     a.radius = pass == ReblurSpatial::PreBlur
-                   ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
+                   ? (specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
     if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
     a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
@@ -204,31 +183,31 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* 
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void temporal(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
-    const int k = sig.specular ? 1 : 0;
+void temporal(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
+    const int k = specular ? 1 : 0;
     ReblurPassArgs a;
     a.frame = c.frame;
-    a.specular = sig.specular;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out->row(0);
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
     if (c.frame.prevViewZ && c.previousHas[k]) {
         const DenoiseHistory& h = *c.previous;
-        a.prevSignal = (sig.specular ? h.specular : h.diffuse).row(0);
-        a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
-        a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
+        a.prevSignal = (specular ? h.specular : h.diffuse).row(0);
+        a.prevFrames = (specular ? h.specularFrames : h.diffuseFrames).row(0);
+        a.prevFast = (specular ? h.specularFast : h.diffuseFast).row(0);
     }
     const auto fn = SSRT_DISPATCH(c.isa, reblurTemporalTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
+void historyFix(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
-    const int k = sig.specular ? 1 : 0;
+    const int k = specular ? 1 : 0;
     ReblurPassArgs a;
     a.frame = c.frame;
-    a.specular = sig.specular;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out->row(0);
     // (Without the temporal pass no pixel has a history, and the fast history is the input's
@@ -244,41 +223,44 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out
 
 // One signal through every pass; the post-blur writes the output and the history. Each pass
 // writes the ping-pong plane its input is not.
-void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
+void denoiseSignal(Context& c, bool specular, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneU64* current = sig.noisy;
+    PlaneU64* current = specular ? &sc.noisySpecular : &sc.noisyDiffuse;
     const auto step = [&](const char* name, auto&& pass) {
         PlaneU64* out = current == &sc.ping ? &sc.pong : &sc.ping;
         times.run(name, [&] { pass(current, out); });
         current = out;
     };
     // (null without the temporal pass: the blurs take 0 frames)
-    const PlaneF* frames = c.in.temporal ? &sc.frames[sig.specular ? 1 : 0] : nullptr;
-    const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
+    const PlaneF* frames = c.in.temporal ? &sc.frames[specular ? 1 : 0] : nullptr;
+    const float preRadius = specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
     if (preRadius > 0.0f)
         step("pre-blur", [&](PlaneU64* in, PlaneU64* out) {
-            spatial(c, sig, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
+            spatial(c, specular, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
         });
     if (c.in.temporal)
-        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, sig, in, out); });
-    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, sig, in, out); });
+        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, specular, in, out); });
+    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, specular, in, out); });
     step("blur", [&](PlaneU64* in, PlaneU64* out) {
-        spatial(c, sig, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
+        spatial(c, specular, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
     });
     // The post-blur's result, RGB to the output and all four channels to the history.
     PlaneU64* history = nullptr;
-    if (c.next) history = sig.specular ? &c.next->specular : &c.next->diffuse;
+    if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
     // (The output has no hit distance: the post-blur writes that channel to the history only.)
     SignalOut4 out;
-    for (int ch = 0; ch < 3; ++ch) out[ch] = sig.outputs[ch]->row(0);
-    times.run("post-blur",
-              [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
+    PlaneF* const outputs = specular ? c.out.specular : c.out.diffuse;
+    for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].row(0);
+    times.run("post-blur", [&] {
+        spatial(c, specular, ReblurSpatial::PostBlur, current, out, history, frames);
+    });
     // The history length the EXR shows: frames behind each pixel.
     if (!c.in.historyLengths) return;
-    if (!frames) return sig.framesOut->fill(0.0f);
+    PlaneF& framesOut = specular ? c.out.specularFrames : c.out.diffuseFrames;
+    if (!frames) return framesOut.fill(0.0f);
     for (int y = 0; y < c.grid.height; ++y)
-        std::copy_n(frames->row(y), c.grid.width, sig.framesOut->row(y));
+        std::copy_n(frames->row(y), c.grid.width, framesOut.row(y));
 }
 
 // The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
@@ -292,12 +274,13 @@ void commitHistory(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         const TileRect r = c.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y) {
-            const auto copyRow = [&](const PlaneF& src, PlaneF& dst) {
-                std::copy(src.row(y) + r.x0, src.row(y) + r.x1, dst.row(y) + r.x0);
+            const std::size_t o = std::size_t(y) * in.g.stride;
+            const auto copyRow = [&](const float* src, PlaneF& dst) {
+                std::copy(src + o + r.x0, src + o + r.x1, dst.row(y) + r.x0);
             };
-            copyRow(*in.viewZ, h.viewZ);
-            for (int i = 0; i < 3; ++i) copyRow(*in.normal[i], h.normal[i]);
-            if (signals[1]) copyRow(*in.roughness, h.roughness);
+            copyRow(in.g.viewZ, h.viewZ);
+            for (int i = 0; i < 3; ++i) copyRow(in.g.normal[i], h.normal[i]);
+            if (signals[1]) copyRow(in.g.roughness, h.roughness);
             for (int k = 0; k < 2; ++k) {
                 if (!signals[k]) continue;
                 const float* a = c.sc.frames[k].row(y);
@@ -392,29 +375,23 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
     ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
-    Context c{settings, in,
-              scratch,  previous,
-              next,     {previousHas[0], previousHas[1]},
-              isa,      threads,
-              grid,     makeFrame(in, settings, scratch, previous, grid)};
+    Context c{settings,
+              in,
+              scratch,
+              out,
+              previous,
+              next,
+              {previousHas[0], previousHas[1]},
+              isa,
+              threads,
+              grid,
+              makeFrame(in, settings, scratch, previous, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();
     ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
-    if (diffuse)
-        denoiseSignal(c,
-                      {false,
-                       &scratch.noisyDiffuse,
-                       {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
-                       &out.diffuseFrames},
-                      pt);
-    if (specular)
-        denoiseSignal(c,
-                      {true,
-                       &scratch.noisySpecular,
-                       {&out.specular[0], &out.specular[1], &out.specular[2]},
-                       &out.specularFrames},
-                      pt);
+    if (diffuse) denoiseSignal(c, false, pt);
+    if (specular) denoiseSignal(c, true, pt);
     if (next) pt.run("history", [&] { commitHistory(c); });
     if (in.pool) in.pool->give(scratch);
 }

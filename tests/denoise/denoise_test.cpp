@@ -54,18 +54,23 @@ struct Synthetic {
         DenoiseInputs in;
         in.camera = camera;
         in.frameIndex = frame;
-        in.viewZ = &viewZ;
-        in.roughness = &roughness;
-        in.metallic = &metallic;
+        in.g = gbufferView("the test's guides", w, h,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGAlbedoR, &albedo[0]},
+                            {kGAlbedoG, &albedo[1]},
+                            {kGAlbedoB, &albedo[2]},
+                            {kGMetallic, &metallic},
+                            {kGRoughness, &roughness},
+                            {kGMotionX, &motion[0]},
+                            {kGMotionY, &motion[1]}});
         for (int i = 0; i < 3; ++i) {
-            in.normal[i] = &normal[i];
-            in.albedo[i] = &albedo[i];
             in.diffuse[i] = &diffuse[i];
             in.ssr[i] = &ssr[i];
             in.envSpecular[i] = &env[i];
         }
-        in.motion[0] = &motion[0];
-        in.motion[1] = &motion[1];
         in.diffuseHitDistance = &diffuseHit;
         in.ssrOpacity = &opacity;
         in.specularHitDistance = &specHit;
