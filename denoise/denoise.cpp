@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "denoise/denoise_fields.h"
 #include "denoise/reblur_kernel.h"
@@ -112,24 +112,36 @@ ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, Denoise
     return v;
 }
 
+// A signal plane of DenoiseInputs as requireViews sees it (null: missing).
+ViewShape signalView(const PlaneF* p, std::string_view name) {
+    return p ? viewOf(*p, name) : ViewF{nullptr, 0, 0, 0, name};
+}
+ViewShape signalView(FloatPlane p, std::string_view name) {
+    if (p.f16) return viewOf(*p.f16, name);
+    return signalView(p.f32, name);
+}
+
+// The guides each signal needs, and its planes.
 void checkInputs(const DenoiseInputs& in, int w, int h) {
+    const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
     requireGBuffer("denoise", in.g,
-                   kGViewZ | kGNormal | kGMotion | (in.diffuse[0] ? kGAlbedo | kGMetallic : 0u) |
-                       (in.ssr[0] ? GBufferPlanes(kGRoughness) : 0u),
+                   kGViewZ | kGNormal | kGMotion | (diffuse ? kGAlbedo | kGMetallic : 0u) |
+                       (specular ? GBufferPlanes(kGRoughness) : 0u),
                    w, h);
-    PlaneCheck need("denoise", w, h);
-    if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) need(in.diffuse[i], "diffuse");
-        need(in.diffuseHitDistance, "diffuse hit distance");
-    }
-    if (in.ssr[0]) {
-        for (int i = 0; i < 3; ++i) {
-            need(in.ssr[i], "ssr");
-            need(in.envSpecular[i], "envSpecular");
-        }
-        need(in.ssrOpacity, "ssr opacity");
-        need(in.specularHitDistance, "specular hit distance");
-    }
+    if (diffuse)
+        requireViews(
+            "denoise", w, h,
+            {signalView(in.diffuse[0], "diffuse.R"), signalView(in.diffuse[1], "diffuse.G"),
+             signalView(in.diffuse[2], "diffuse.B"),
+             signalView(in.diffuseHitDistance, "diffuseHitDistance")});
+    if (specular)
+        requireViews("denoise", w, h,
+                     {signalView(in.ssr[0], "ssr.R"), signalView(in.ssr[1], "ssr.G"),
+                      signalView(in.ssr[2], "ssr.B"), signalView(in.ssrOpacity, "ssrOpacity"),
+                      signalView(in.envSpecular[0], "envSpecular.R"),
+                      signalView(in.envSpecular[1], "envSpecular.G"),
+                      signalView(in.envSpecular[2], "envSpecular.B"),
+                      signalView(in.specularHitDistance, "specularHitDistance")});
 }
 
 void frontEnd(Context& c) {

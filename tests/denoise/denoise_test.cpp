@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/pixel_formats.h"
@@ -307,6 +308,33 @@ TEST_CASE("denoise: a frame without history skips the temporal pass, to the same
     DenoiseOutputs out;
     CHECK_THROWS_AS(denoise(defaultIsa(), DenoiseSettings(), in, &history, false, scratch, out, 2),
                     std::logic_error);
+}
+
+TEST_CASE("denoise: a missing or mis-sized plane is an error naming it") {
+    Synthetic s(64, 48);
+    Denoiser d;
+    const auto message = [&](const DenoiseInputs& in) {
+        try {
+            denoise(d.isa, d.settings, in, &d.history, false, d.scratch, d.out, d.threads);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    DenoiseInputs in = s.inputs(0);
+    in.specularHitDistance = nullptr;
+    CHECK(message(in) == "denoise: specularHitDistance is missing");
+    const PlaneF small(32, 48, 1.0f);
+    in = s.inputs(0);
+    in.diffuse[1] = &small;
+    CHECK(message(in) == "denoise: diffuse.G is 32x48, not 64x48");
+    // A guide only the missing signal reads is not needed.
+    in = s.inputs(0);
+    for (auto& p : in.ssr) p = nullptr;
+    in.g.roughness = nullptr;
+    CHECK(message(in) == "no error");
+    in.g.motion[1] = nullptr;
+    CHECK(message(in) == "denoise: motion.Y is missing");
 }
 
 TEST_CASE("denoise: a camera cut gives the frame a fresh history, bit for bit") {
