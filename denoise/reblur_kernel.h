@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "core/dispatch.h"
 #include "core/float_planes.h"
@@ -104,6 +105,10 @@ struct ReblurPassArgs {
     // pass, which would have written it so, does not run).
     bool fastIsInputLuma = false;
 };
+
+// (They cross into code compiled once per ISA: plain data, copied as bytes.)
+static_assert(std::is_trivially_copyable_v<ReblurFrame> &&
+              std::is_trivially_copyable_v<ReblurPassArgs>);
 
 SSRT_DECLARE_KERNEL(void, reblurFrontEndTile, (const ReblurPassArgs& args, int tile))
 SSRT_DECLARE_KERNEL(void, reblurSpatialTile, (const ReblurPassArgs& args, int tile))
