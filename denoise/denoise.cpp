@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "denoise/denoise_fields.h"
 #include "denoise/reblur_kernel.h"
@@ -51,18 +51,11 @@ private:
     std::vector<DenoisePassTime>* out_;
 };
 
-// One signal's planes through the passes.
-struct SignalPlanes {
-    bool specular;
-    PlaneU64* noisy;  // the front end's plane of this signal (DenoiseScratch)
-    PlaneF* outputs[3];
-    PlaneF* framesOut;
-};
-
 struct Context {
     const DenoiseSettings& s;
     const DenoiseInputs& in;
     DenoiseScratch& sc;
+    DenoiseOutputs& out;
     const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
     DenoiseHistory* next;            // null: no history to write (may be `previous`)
     // Which signals `previous` holds, decided before `next` (the same history, maybe) is
@@ -71,67 +64,92 @@ struct Context {
     Isa isa;
     int threads;
     TileGrid grid;
-    ReblurView view;
+    ReblurFrame frame;
 };
 
-ReblurView makeView(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
-                    const TileGrid& grid) {
+// The frame every pass reads: guides, cameras, the front end's classification and the tuning.
+ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
+                      const DenoiseHistory* previous, const TileGrid& grid) {
     const TraceCamera& cam = in.camera;
-    ReblurView v;
-    v.width = grid.width;
-    v.height = grid.height;
+    ReblurFrame v;
+    static_cast<GBufferView&>(v) = in.g;
     v.tilesX = grid.tilesX;
-    v.stride = in.viewZ->stride();
     v.tanHalfX = cam.tanHalfX;
     v.tanHalfY = cam.tanHalfY;
     std::copy_n(cam.viewToWorld, 9, v.viewToWorld);
     // NRD's GetFrustumSize: the frustum's short side at depth 1.
     v.frustum = 2.0f * (grid.width < grid.height ? cam.tanHalfX : cam.tanHalfY);
-    v.viewZ = in.viewZ->row(0);
-    for (int i = 0; i < 3; ++i) v.normal[i] = in.normal[i]->row(0);
-    v.roughness = in.roughness ? in.roughness->row(0) : nullptr;  // read for specular only
+    v.frameIndex = in.frameIndex;
     v.signalZ[0] = sc.signalZ[0].row(0);
     v.signalZ[1] = sc.signalZ[1].row(0);
     v.tiles = sc.tiles.data();
     const float diagonal = cam.sceneDiagonal > 0.0f ? cam.sceneDiagonal : 1.0f;
     v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
+    if (previous && s.maxAccumulatedFrames > 0) {
+        const DenoiseHistory& h = *previous;
+        v.prevViewZ = h.viewZ.row(0);
+        for (int i = 0; i < 3; ++i) v.prevNormal[i] = h.normal[i].row(0);
+        v.prevRoughness = h.roughness.empty() ? nullptr : h.roughness.row(0);
+        std::copy_n(h.camera.viewToWorld, 9, v.prevViewToWorld);
+        v.prevTanHalfX = h.camera.tanHalfX;
+        v.prevTanHalfY = h.camera.tanHalfY;
+        // Both cameras' positions are measured from the same scene origin.
+        for (int i = 0; i < 3; ++i) v.cameraDelta[i] = cam.position[i] - h.camera.position[i];
+    }
+    v.specularMaxRoughness = in.specularMaxRoughness;
+    v.minBlurRadius = s.minBlurRadius;
+    v.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+    v.roughnessFraction = s.roughnessFraction;
+    v.planeDistance = s.planeDistanceSensitivity;
+    v.minHitWeight = s.minHitDistanceWeight;
+    v.maxAccumulatedFrames = float(s.maxAccumulatedFrames);
+    v.maxFastAccumulatedFrames = float(s.maxFastAccumulatedFrames);
+    v.disocclusion = s.disocclusionThreshold;
+    v.fireflyScale = s.fireflyMinRelativeScale;
+    v.virtualMotion = s.virtualMotion;
+    v.historyFixFrames = float(s.historyFixFrames);
+    v.historyFixStride = float(s.historyFixStride);
     return v;
 }
 
+// A signal plane of DenoiseInputs as requireViews sees it (null: missing).
+ViewShape signalView(const PlaneF* p, std::string_view name) {
+    return p ? viewOf(*p, name) : ViewF{nullptr, 0, 0, 0, name};
+}
+ViewShape signalView(FloatPlane p, std::string_view name) {
+    if (p.f16) return viewOf(*p.f16, name);
+    return signalView(p.f32, name);
+}
+
+// The guides each signal needs, and its planes.
 void checkInputs(const DenoiseInputs& in, int w, int h) {
-    PlaneCheck need("denoise", w, h);
-    need(in.viewZ, "viewZ");
-    for (int i = 0; i < 3; ++i) need(in.normal[i], "normal");
-    for (int i = 0; i < 2; ++i) need(in.motion[i], "motion");
-    if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) {
-            need(in.diffuse[i], "diffuse");
-            need(in.albedo[i], "albedo");
-        }
-        need(in.metallic, "metallic");
-        need(in.diffuseHitDistance, "diffuse hit distance");
-    }
-    if (in.ssr[0]) {
-        need(in.roughness, "roughness");
-        for (int i = 0; i < 3; ++i) {
-            need(in.ssr[i], "ssr");
-            need(in.envSpecular[i], "envSpecular");
-        }
-        need(in.ssrOpacity, "ssr opacity");
-        need(in.specularHitDistance, "specular hit distance");
-    }
+    const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
+    requireGBuffer("denoise", in.g,
+                   kGViewZ | kGNormal | kGMotion | (diffuse ? kGAlbedo | kGMetallic : 0u) |
+                       (specular ? GBufferPlanes(kGRoughness) : 0u),
+                   w, h);
+    if (diffuse)
+        requireViews(
+            "denoise", w, h,
+            {signalView(in.diffuse[0], "diffuse.R"), signalView(in.diffuse[1], "diffuse.G"),
+             signalView(in.diffuse[2], "diffuse.B"),
+             signalView(in.diffuseHitDistance, "diffuseHitDistance")});
+    if (specular)
+        requireViews("denoise", w, h,
+                     {signalView(in.ssr[0], "ssr.R"), signalView(in.ssr[1], "ssr.G"),
+                      signalView(in.ssr[2], "ssr.B"), signalView(in.ssrOpacity, "ssrOpacity"),
+                      signalView(in.envSpecular[0], "envSpecular.R"),
+                      signalView(in.envSpecular[1], "envSpecular.G"),
+                      signalView(in.envSpecular[2], "envSpecular.B"),
+                      signalView(in.specularHitDistance, "specularHitDistance")});
 }
 
 void frontEnd(Context& c) {
     const DenoiseInputs& in = c.in;
-    ReblurFrontEndArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) {
-            a.diffuse[i] = in.diffuse[i]->row(0);
-            a.albedo[i] = in.albedo[i]->row(0);
-        }
-        a.metallic = in.metallic->row(0);
+        for (int i = 0; i < 3; ++i) a.diffuse[i] = in.diffuse[i]->row(0);
         a.diffuseHit = in.diffuseHitDistance->row(0);
     }
     if (in.ssr[0]) {
@@ -143,7 +161,6 @@ void frontEnd(Context& c) {
         a.ssrOpacity = in.ssrOpacity->row(0);
         a.specularHit = in.specularHitDistance->row(0);
     }
-    a.specularMaxRoughness = in.specularMaxRoughness;
     a.noisyDiffuse = c.sc.noisyDiffuse.row(0);
     a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
@@ -153,30 +170,24 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* in,
-             const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
+void spatial(Context& c, bool specular, ReblurSpatial pass, PlaneU64* in, const SignalOut4& out,
+             PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
-    ReblurSpatialArgs a;
-    a.view = c.view;
+    ReblurPassArgs a;
+    a.frame = c.frame;
     a.pass = pass;
-    a.specular = sig.specular;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out;
     if (copy) a.copy = copy->row(0);
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
-    a.frameIndex = c.in.frameIndex;
-    a.stream = kRotationStream + uint32_t(pass) * 2u + (sig.specular ? 1u : 0u);
+    a.stream = kRotationStream + uint32_t(pass) * 2u + (specular ? 1u : 0u);
     const float blur = pass == ReblurSpatial::PostBlur ? 2.0f * s.maxBlurRadius : s.maxBlurRadius;
     a.radius = pass == ReblurSpatial::PreBlur
-                   ? (sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
+                   ? (specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
-    a.minRadius = s.minBlurRadius;
     if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
-    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
-    a.roughnessFraction = s.roughnessFraction;
-    a.planeDistance = s.planeDistanceSensitivity;
-    a.minHitWeight = s.minHitDistanceWeight;
     a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
                       : pass == ReblurSpatial::Blur  ? 1.0f
                                                      : 0.5f;
@@ -184,47 +195,31 @@ void spatial(Context& c, const SignalPlanes& sig, ReblurSpatial pass, PlaneU64* 
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void temporal(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
-    const DenoiseSettings& s = c.s;
-    const int k = sig.specular ? 1 : 0;
-    ReblurTemporalArgs a;
-    a.view = c.view;
-    a.specular = sig.specular;
-    for (int i = 0; i < 2; ++i) a.motion[i] = c.in.motion[i]->row(0);
+void temporal(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
+    const int k = specular ? 1 : 0;
+    ReblurPassArgs a;
+    a.frame = c.frame;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out->row(0);
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.previous && c.previousHas[k] && s.maxAccumulatedFrames > 0) {
+    if (c.frame.prevViewZ && c.previousHas[k]) {
         const DenoiseHistory& h = *c.previous;
-        a.prevViewZ = h.viewZ.row(0);
-        for (int i = 0; i < 3; ++i) a.prevNormal[i] = h.normal[i].row(0);
-        a.prevRoughness = h.roughness.row(0);
-        a.prevSignal = (sig.specular ? h.specular : h.diffuse).row(0);
-        a.prevFrames = (sig.specular ? h.specularFrames : h.diffuseFrames).row(0);
-        a.prevFast = (sig.specular ? h.specularFast : h.diffuseFast).row(0);
-        std::copy_n(h.camera.viewToWorld, 9, a.prevViewToWorld);
-        a.prevTanHalfX = h.camera.tanHalfX;
-        a.prevTanHalfY = h.camera.tanHalfY;
-        // Both cameras' positions are measured from the same scene origin.
-        for (int i = 0; i < 3; ++i)
-            a.cameraDelta[i] = c.in.camera.position[i] - h.camera.position[i];
+        a.prevSignal = (specular ? h.specular : h.diffuse).row(0);
+        a.prevFrames = (specular ? h.specularFrames : h.diffuseFrames).row(0);
+        a.prevFast = (specular ? h.specularFast : h.diffuseFast).row(0);
     }
-    a.maxFrames = float(s.maxAccumulatedFrames);
-    a.maxFastFrames = float(s.maxFastAccumulatedFrames);
-    a.disocclusion = s.disocclusionThreshold;
-    a.fireflyScale = s.fireflyMinRelativeScale;
-    a.virtualMotion = s.virtualMotion;
     const auto fn = SSRT_DISPATCH(c.isa, reblurTemporalTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out) {
+void historyFix(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
-    const int k = sig.specular ? 1 : 0;
-    ReblurHistoryFixArgs a;
-    a.view = c.view;
-    a.specular = sig.specular;
+    const int k = specular ? 1 : 0;
+    ReblurPassArgs a;
+    a.frame = c.frame;
+    a.specular = specular;
     a.in = in->row(0);
     a.out = out->row(0);
     // (Without the temporal pass no pixel has a history, and the fast history is the input's
@@ -234,51 +229,50 @@ void historyFix(Context& c, const SignalPlanes& sig, PlaneU64* in, PlaneU64* out
     const bool clamp = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames;
     a.fast = clamp && c.in.temporal ? c.sc.fast[k].row(0) : nullptr;
     a.fastIsInputLuma = clamp && !c.in.temporal;
-    a.fixFrames = float(s.historyFixFrames);
-    a.stride = float(s.historyFixStride);
-    a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
-    a.planeDistance = s.planeDistanceSensitivity;
     const auto fn = SSRT_DISPATCH(c.isa, reblurHistoryFixTile);
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
 // One signal through every pass; the post-blur writes the output and the history. Each pass
 // writes the ping-pong plane its input is not.
-void denoiseSignal(Context& c, const SignalPlanes& sig, PassTimes& times) {
+void denoiseSignal(Context& c, bool specular, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneU64* current = sig.noisy;
+    PlaneU64* current = specular ? &sc.noisySpecular : &sc.noisyDiffuse;
     const auto step = [&](const char* name, auto&& pass) {
         PlaneU64* out = current == &sc.ping ? &sc.pong : &sc.ping;
         times.run(name, [&] { pass(current, out); });
         current = out;
     };
     // (null without the temporal pass: the blurs take 0 frames)
-    const PlaneF* frames = c.in.temporal ? &sc.frames[sig.specular ? 1 : 0] : nullptr;
-    const float preRadius = sig.specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
+    const PlaneF* frames = c.in.temporal ? &sc.frames[specular ? 1 : 0] : nullptr;
+    const float preRadius = specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
     if (preRadius > 0.0f)
         step("pre-blur", [&](PlaneU64* in, PlaneU64* out) {
-            spatial(c, sig, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
+            spatial(c, specular, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
         });
     if (c.in.temporal)
-        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, sig, in, out); });
-    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, sig, in, out); });
+        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, specular, in, out); });
+    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, specular, in, out); });
     step("blur", [&](PlaneU64* in, PlaneU64* out) {
-        spatial(c, sig, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
+        spatial(c, specular, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
     });
     // The post-blur's result, RGB to the output and all four channels to the history.
     PlaneU64* history = nullptr;
-    if (c.next) history = sig.specular ? &c.next->specular : &c.next->diffuse;
+    if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
     // (The output has no hit distance: the post-blur writes that channel to the history only.)
     SignalOut4 out;
-    for (int ch = 0; ch < 3; ++ch) out[ch] = sig.outputs[ch]->row(0);
-    times.run("post-blur",
-              [&] { spatial(c, sig, ReblurSpatial::PostBlur, current, out, history, frames); });
+    PlaneF* const outputs = specular ? c.out.specular : c.out.diffuse;
+    for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].row(0);
+    times.run("post-blur", [&] {
+        spatial(c, specular, ReblurSpatial::PostBlur, current, out, history, frames);
+    });
     // The history length the EXR shows: frames behind each pixel.
     if (!c.in.historyLengths) return;
-    if (!frames) return sig.framesOut->fill(0.0f);
+    PlaneF& framesOut = specular ? c.out.specularFrames : c.out.diffuseFrames;
+    if (!frames) return framesOut.fill(0.0f);
     for (int y = 0; y < c.grid.height; ++y)
-        std::copy_n(frames->row(y), c.grid.width, sig.framesOut->row(y));
+        std::copy_n(frames->row(y), c.grid.width, framesOut.row(y));
 }
 
 // The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
@@ -292,12 +286,13 @@ void commitHistory(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         const TileRect r = c.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y) {
-            const auto copyRow = [&](const PlaneF& src, PlaneF& dst) {
-                std::copy(src.row(y) + r.x0, src.row(y) + r.x1, dst.row(y) + r.x0);
+            const std::size_t o = std::size_t(y) * in.g.stride;
+            const auto copyRow = [&](const float* src, PlaneF& dst) {
+                std::copy(src + o + r.x0, src + o + r.x1, dst.row(y) + r.x0);
             };
-            copyRow(*in.viewZ, h.viewZ);
-            for (int i = 0; i < 3; ++i) copyRow(*in.normal[i], h.normal[i]);
-            if (signals[1]) copyRow(*in.roughness, h.roughness);
+            copyRow(in.g.viewZ, h.viewZ);
+            for (int i = 0; i < 3; ++i) copyRow(in.g.normal[i], h.normal[i]);
+            if (signals[1]) copyRow(in.g.roughness, h.roughness);
             for (int k = 0; k < 2; ++k) {
                 if (!signals[k]) continue;
                 const float* a = c.sc.frames[k].row(y);
@@ -392,29 +387,23 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
     ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
-    Context c{settings, in,
-              scratch,  previous,
-              next,     {previousHas[0], previousHas[1]},
-              isa,      threads,
-              grid,     makeView(in, settings, scratch, grid)};
+    Context c{settings,
+              in,
+              scratch,
+              out,
+              previous,
+              next,
+              {previousHas[0], previousHas[1]},
+              isa,
+              threads,
+              grid,
+              makeFrame(in, settings, scratch, previous, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();
     ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
-    if (diffuse)
-        denoiseSignal(c,
-                      {false,
-                       &scratch.noisyDiffuse,
-                       {&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
-                       &out.diffuseFrames},
-                      pt);
-    if (specular)
-        denoiseSignal(c,
-                      {true,
-                       &scratch.noisySpecular,
-                       {&out.specular[0], &out.specular[1], &out.specular[2]},
-                       &out.specularFrames},
-                      pt);
+    if (diffuse) denoiseSignal(c, false, pt);
+    if (specular) denoiseSignal(c, true, pt);
     if (next) pt.run("history", [&] { commitHistory(c); });
     if (in.pool) in.pool->give(scratch);
 }

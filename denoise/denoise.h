@@ -30,6 +30,7 @@
 
 #include "core/camera.h"
 #include "core/float_planes.h"
+#include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
 #include "core/plane_pool.h"
@@ -42,13 +43,9 @@ namespace ssrt {
 struct DenoiseInputs {
     TraceCamera camera;
     uint32_t frameIndex = 0;  // rotates the spatial kernels (counter RNG, core/rng.h)
-    // Guides (the G-buffer, renderer/frame.h): viewZ 0 is background.
-    const PlaneF* viewZ = nullptr;
-    const PlaneF* normal[3] = {};       // world space, unit
-    const PlaneF* roughness = nullptr;  // perceptual; read (and needed) for specular only
-    const PlaneF* albedo[3] = {};       // with metallic: where the diffuse signal exists
-    const PlaneF* metallic = nullptr;
-    const PlaneF* motion[2] = {};  // previous minus current position, pixels
+    // The guides: viewZ (0: background), normal and motion; roughness for the specular signal
+    // alone; albedo with metallic (where the diffuse signal exists) for the diffuse alone.
+    GBufferView g;
     // Diffuse (null: no SSGI): incoming radiance and the mean hit distance (0: no hit).
     const PlaneF* diffuse[3] = {};
     const PlaneF* diffuseHitDistance = nullptr;

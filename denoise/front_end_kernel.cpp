@@ -15,8 +15,8 @@ using namespace reblur_lanes;
 // Front end (NRD's REBLUR_FrontEnd_PackRadianceAndNormHitDist with sanitize, and
 // REBLUR_ClassifyTiles).
 
-void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
-    const ReblurView& v = a.view;
+void frontEndChunk(const ReblurPassArgs& a, int x, int y, uint8_t& flags) {
+    const ReblurFrame& v = a.frame;
     const std::size_t o = std::size_t(y) * v.stride + x;
     const Lane zero(0.0f), one(1.0f);
     const Lane z = loadAt(v.viewZ, o);
@@ -24,9 +24,10 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
     // Lanes past the frame's right edge are not pixels.
     const Mask inFrame = (Lane(float(x)) + ln::laneIndex<Lane>()) < Lane(float(v.width));
     if (a.diffuse[0]) {
-        const Lane colour = ln::max(ln::max(loadAt(a.albedo[0], o), loadAt(a.albedo[1], o)),
-                                    loadAt(a.albedo[2], o)) *
-                            (one - loadAt(a.metallic, o));
+        const Lane colour =
+            ln::max(ln::max(loadAt(a.frame.albedo[0], o), loadAt(a.frame.albedo[1], o)),
+                    loadAt(a.frame.albedo[2], o)) *
+            (one - loadAt(a.frame.metallic, o));
         const Mask has = surface & inFrame & (colour > zero);
         Lane noisy[4];
         for (int ch = 0; ch < 3; ++ch) noisy[ch] = sanitize(loadAt(a.diffuse[ch], o));
@@ -37,7 +38,7 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
     }
     if (a.ssr[0]) {
         const Lane r = loadAt(v.roughness, o);
-        const Mask has = surface & inFrame & (r < Lane(a.specularMaxRoughness));
+        const Mask has = surface & inFrame & (r < Lane(a.frame.specularMaxRoughness));
         const Lane opacity = ln::saturate(sanitize(loadAt(a.ssrOpacity, o)));
         Lane noisy[4];
         for (int ch = 0; ch < 3; ++ch) {
@@ -54,8 +55,8 @@ void frontEndChunk(const ReblurFrontEndArgs& a, int x, int y, uint8_t& flags) {
 
 }  // namespace
 
-void reblurFrontEndTile(const ReblurFrontEndArgs& a, int tile) {
-    const ReblurView& v = a.view;
+void reblurFrontEndTile(const ReblurPassArgs& a, int tile) {
+    const ReblurFrame& v = a.frame;
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
     uint8_t flags = 0;
     for (int y = y0; y < y1; ++y) {

@@ -21,14 +21,14 @@ using namespace reblur_lanes;
 // (specularLobePixels), and one whose lobe spans less than 2 pixels keeps its own signal: its
 // neighbours show other parts of the reflection (a mirror's: issue 44), and a lobe that narrow
 // gives the signal little noise to remove.
-void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young, int x, int y,
+void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int x, int y,
                       const Lane frames, const Lane c[4], Lane result[4]) {
-    const ReblurView& v = a.view;
+    const ReblurFrame& v = a.frame;
     const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
-    Lane stride =
-        ln::floor(Lane(a.stride) / (Lane(2.0f) + frames) * rb::lerp(Lane(0.5f), one, smc));
+    Lane stride = ln::floor(Lane(a.frame.historyFixStride) / (Lane(2.0f) + frames) *
+                            rb::lerp(Lane(0.5f), one, smc));
     if (spec) {
         const Lane hitWorld = c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
         const Lane reach = specularLobePixels(v, p, hitWorld, curvature(v, p, x, y));
@@ -38,8 +38,8 @@ void reconstructYoung(const ReblurHistoryFixArgs& a, const Centre& p, Mask young
     }
     stride = ln::max(one, stride);
     const Lane alpha = one / (one + frames);
-    const Lane invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
-    const Lane normalScale = normalWeightScale(p.r, alpha, a.lobeFraction2, 1.0f);
+    const Lane invPlane = one / (Lane(a.frame.planeDistance * v.frustum) * p.z);
+    const Lane normalScale = normalWeightScale(p.r, alpha, a.frame.lobeFraction2, 1.0f);
     Lane sum[4], weightSum = one + frames;
     for (int ch = 0; ch < 4; ++ch) sum[ch] = c[ch] * weightSum;
     for (int j = -2; j <= 2; ++j)
@@ -76,9 +76,9 @@ Lane inputLuma(const Lane s[4]) { return ln::roundedToF16<Lane>(rb::luma(s[0], s
 
 // The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
 // "fast history" clamp), more firmly the older the pixel.
-void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int x, int y,
-                 std::size_t o, const Lane frames, Lane result[4]) {
-    const ReblurView& v = a.view;
+void clampToFast(const ReblurPassArgs& a, const Centre& p, Mask valid, int x, int y, std::size_t o,
+                 const Lane frames, Lane result[4]) {
+    const ReblurFrame& v = a.frame;
     const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     // (signalZ is 0 off surfaces, so it alone says which taps count. Where the whole
@@ -130,8 +130,8 @@ void clampToFast(const ReblurHistoryFixArgs& a, const Centre& p, Mask valid, int
     for (int ch = 0; ch < 3; ++ch) result[ch] = ln::select(valid, result[ch] * scale, result[ch]);
 }
 
-void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
-    const ReblurView& v = a.view;
+void historyFixChunk(const ReblurPassArgs& a, int x, int y) {
+    const ReblurFrame& v = a.frame;
     const std::size_t o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
     Lane c[4];
@@ -140,7 +140,7 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
     const Mask valid = validAt(v, o, spec);
     const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(0.0f);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
-    const Mask young = valid & (frames < Lane(a.fixFrames));
+    const Mask young = valid & (frames < Lane(a.frame.historyFixFrames));
     if (ln::any(young)) reconstructYoung(a, p, young, x, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
         clampToFast(a, p, valid, x, y, o, frames, result);
@@ -149,8 +149,8 @@ void historyFixChunk(const ReblurHistoryFixArgs& a, int x, int y) {
 
 }  // namespace
 
-void reblurHistoryFixTile(const ReblurHistoryFixArgs& a, int tile) {
-    const ReblurView& v = a.view;
+void reblurHistoryFixTile(const ReblurPassArgs& a, int tile) {
+    const ReblurFrame& v = a.frame;
     if (!(v.tiles[tile] & (a.specular ? kTileSpecular : kTileDiffuse))) {
         return copyTile(v, a.in, a.out, SignalOut4(), tile);
     }

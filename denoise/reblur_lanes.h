@@ -110,7 +110,7 @@ struct Centre {
     Lane r;  // roughness (1 for the diffuse signal)
 };
 
-SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bool specular) {
+SSRT_INLINE Centre centreAt(const ReblurFrame& v, int x, int y, std::size_t o, bool specular) {
     Centre c;
     c.px = Lane(float(x) + 0.5f) + ln::laneIndex<Lane>();
     c.py = Lane(float(y) + 0.5f);
@@ -125,7 +125,7 @@ SSRT_INLINE Centre centreAt(const ReblurView& v, int x, int y, std::size_t o, bo
 }
 
 // Signal present at the centre: a surface pixel with this signal.
-SSRT_INLINE Mask validAt(const ReblurView& v, std::size_t o, bool specular) {
+SSRT_INLINE Mask validAt(const ReblurFrame& v, std::size_t o, bool specular) {
     return loadAt(v.signalZ[specular ? 1 : 0], o) > Lane(0.0f);
 }
 
@@ -137,7 +137,7 @@ struct Tap {
     ln::Run run;  // its lanes' pixels are consecutive: loads, not gathers
 };
 
-SSRT_INLINE Tap tapAt(const ReblurView& v, Lane fx, Lane fy) {
+SSRT_INLINE Tap tapAt(const ReblurFrame& v, Lane fx, Lane fy) {
     Tap t;
     const Lane ix = ln::floor(fx), iy = ln::floor(fy);
     t.inside = (ix >= Lane(0.0f)) & (ix < Lane(float(v.width))) & (iy >= Lane(0.0f)) &
@@ -166,7 +166,7 @@ SSRT_INLINE Lane normalWeightScale(Lane r, Lane alpha, float lobeFraction2, floa
 // averaged over the two; 0 across a depth edge. A neighbour every lane has (not across the
 // frame's edge) is read at its offset, a load, without tapAt's floor, clamp and run test: the
 // same pixel and the same pixel centre (px + 1 and y +- 1 + 0.5 are exact), so the same bits.
-SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
+SSRT_INLINE Lane curvature(const ReblurFrame& v, const Centre& p, int x, int y) {
     const Lane zero(0.0f);
     Lane sum = zero;
     const std::size_t o = std::size_t(y) * v.stride + std::size_t(x);
@@ -221,7 +221,7 @@ SSRT_INLINE Lane curvature(const ReblurView& v, const Centre& p, int x, int y) {
 // NRD bounds its radius by the lobe of perceptual roughness (lobeTanHalfAngle, r in place of
 // alpha), 1 / r times wider than GGX's below r = 0.5 and taken flat: on cornell's mirror sphere
 // (r 0.02, alpha 1e-3) 5 pixels at 1280x720 where the reflection is sharper than one (issue 44).
-SSRT_INLINE Lane specularLobePixels(const ReblurView& v, const Centre& p, Lane hitWorld,
+SSRT_INLINE Lane specularLobePixels(const ReblurFrame& v, const Centre& p, Lane hitWorld,
                                     Lane kappa) {
     const Lane one(1.0f);
     const Lane alpha = ln::max(p.r * p.r, Lane(1.0e-3f));
@@ -240,7 +240,7 @@ SSRT_INLINE Lane sanitize(Lane v) {
 // Normalised hit distance: 1 without a hit (a miss is as far as it gets). The distance is in
 // scene units, so only non-finite and negative values go: sanitize's fp16 clamp would cut a
 // scene in kilometres (a model scaled by 1000) short of its hits.
-SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
+SSRT_INLINE Lane normalisedHit(const ReblurFrame& v, Lane h, Lane z, Lane r) {
     const Mask finite = (h - h) == Lane(0.0f);
     const Lane d = ln::select(finite, ln::max(h, Lane(0.0f)), Lane(0.0f));
     const Lane scale = rb::hitDistanceScale(v.hitScale, z, r);
@@ -251,7 +251,7 @@ SSRT_INLINE Lane normalisedHit(const ReblurView& v, Lane h, Lane z, Lane r) {
 // without the signal. A lane group at a time through loadAt and storeAt, so a copy between
 // formats converts as the passes do (f16 to f16 keeps the bits). Stores may run past the
 // tile's last pixel into the row padding only (tiles are whole lane groups wide).
-inline void copyTile(const ReblurView& v, const SignalIn4& in, const SignalOut4& out,
+inline void copyTile(const ReblurFrame& v, const SignalIn4& in, const SignalOut4& out,
                      const SignalOut4& copy, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
     const bool copying = bool(copy);

@@ -53,14 +53,14 @@ struct SpatialPixel {
     Lane frames;  // the accumulation speed (the pre-blur's: 10)
 };
 
-void storeSpatial(const ReblurSpatialArgs& a, std::size_t o, const Lane s[4]) {
+void storeSpatial(const ReblurPassArgs& a, std::size_t o, const Lane s[4]) {
     storeAt(a.out, o, s);
     storeAt(a.copy, o, s);
 }
 
 // The terms of pixels (x .. x + kW, y); false (and the chunk copied) where none is filtered.
-bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
-    const ReblurView& v = a.view;
+bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
+    const ReblurFrame& v = a.frame;
     q.o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
     loadAt(a.in, q.o, q.c);
@@ -94,17 +94,16 @@ bool spatialPixel(const ReblurSpatialArgs& a, int x, int y, SpatialPixel& q) {
     // No wider than the reflection's lobe seen from the camera (NRD's lobe radius, with GGX's
     // lobe and the mirror's curvature: specularLobePixels).
     if (spec) radius = ln::min(radius, specularLobePixels(v, p, hitWorld, curvature(v, p, x, y)));
-    q.radius = ln::max(radius, Lane(a.minRadius) * smc);
+    q.radius = ln::max(radius, Lane(a.frame.minBlurRadius) * smc);
     // Edge-stopping parameters.
-    q.invPlane = one / (Lane(a.planeDistance * v.frustum) * p.z);
-    q.normalScale =
-        normalWeightScale(p.r, pre ? Lane(1.0f / 11.0f) : alpha, a.lobeFraction2, a.fractionScale);
-    q.roughScale =
-        one /
-        rb::lerp(Lane(0.01f), one,
-                 ln::saturate(p.r * Lane(std::min(1.0f, a.roughnessFraction * a.fractionScale))));
+    q.invPlane = one / (Lane(a.frame.planeDistance * v.frustum) * p.z);
+    q.normalScale = normalWeightScale(p.r, pre ? Lane(1.0f / 11.0f) : alpha, a.frame.lobeFraction2,
+                                      a.fractionScale);
+    q.roughScale = one / rb::lerp(Lane(0.01f), one,
+                                  ln::saturate(p.r * Lane(std::min(1.0f, a.frame.roughnessFraction *
+                                                                             a.fractionScale))));
     q.hitScale = one / rb::lerp(Lane(0.0005f), one, ln::min(alpha, smc));
-    q.minHit = Lane(a.minHitWeight * a.fractionScale) * smc;
+    q.minHit = Lane(a.frame.minHitWeight * a.fractionScale) * smc;
     // Reflections stay sharp near their contacts (pre-blur, specular).
     q.contactFree = rb::linstep(0.5f, 1.0f, p.r);
     return true;
@@ -124,9 +123,9 @@ constexpr float kLonelyFrames = 4.0f;
 
 // The 8 taps at offsets (ox[k], oy[k] in pixels) around the lanes `lanes` of pixels q, added to
 // sum and weightSum.
-void addTaps(const ReblurSpatialArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
+void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
              const float* oy, Lane sum[4], Lane& weightSum) {
-    const ReblurView& v = a.view;
+    const ReblurFrame& v = a.frame;
     const bool spec = a.specular, pre = a.pass == ReblurSpatial::PreBlur;
     const Centre& p = q.p;
     const Lane zero(0.0f), one(1.0f);
@@ -164,8 +163,8 @@ void addTaps(const ReblurSpatialArgs& a, const SpatialPixel& q, Mask lanes, cons
 
 // The 8 taps at the group's offsets (ox[k], oy[k] in pixels, of radius r) around pixels q,
 // and the lonely pixels' second ring.
-void spatialFilter(const ReblurSpatialArgs& a, const SpatialPixel& q, const float* ox,
-                   const float* oy, float r) {
+void spatialFilter(const ReblurPassArgs& a, const SpatialPixel& q, const float* ox, const float* oy,
+                   float r) {
     const Lane one(1.0f);
     Lane sum[4] = {q.c[0], q.c[1], q.c[2], q.c[3]};
     Lane weightSum = one;
@@ -189,7 +188,7 @@ void spatialFilter(const ReblurSpatialArgs& a, const SpatialPixel& q, const floa
 // Pixels (x .. x + kSpatialGroup, y): their terms, the group's radius (the mean over the
 // pixels filtered, summed in pixel order) and rotation (a uniform angle in [0, pi/2) per
 // group and frame: the set's 4-fold symmetry covers the rest), then the filter.
-void spatialGroup(const ReblurSpatialArgs& a, int x, int y) {
+void spatialGroup(const ReblurPassArgs& a, int x, int y) {
     SpatialPixel q[kGroupChunks];
     bool any[kGroupChunks];
     alignas(64) float radius[kSpatialGroup];
@@ -197,7 +196,7 @@ void spatialGroup(const ReblurSpatialArgs& a, int x, int y) {
     bool anyFiltered = false;
     for (int k = 0; k < kGroupChunks; ++k) {
         // (Chunks wholly past the frame's right edge are padding: left alone.)
-        any[k] = x + k * kW < a.view.width && spatialPixel(a, x + k * kW, y, q[k]);
+        any[k] = x + k * kW < a.frame.width && spatialPixel(a, x + k * kW, y, q[k]);
         if (!any[k]) continue;
         anyFiltered = true;
         ln::store(radius + k * kW, q[k].radius);
@@ -210,9 +209,9 @@ void spatialGroup(const ReblurSpatialArgs& a, int x, int y) {
     for (int i = 0; i < kSpatialGroup; ++i)
         if (filtered[i]) sum += radius[i], ++count;
     const float r = sum / float(count);
-    const uint32_t group = uint32_t(y) * uint32_t(a.view.width) + uint32_t(x);
+    const uint32_t group = uint32_t(y) * uint32_t(a.frame.width) + uint32_t(x);
     float cs, sn;
-    ln::sincos(randomFloat(group, a.frameIndex, a.stream, 0) * ln::kHalfPi, sn, cs);
+    ln::sincos(randomFloat(group, a.frame.frameIndex, a.stream, 0) * ln::kHalfPi, sn, cs);
     float ox[8], oy[8];
     for (int k = 0; k < 8; ++k) {
         ox[k] = (kSpecial8[k].x * cs - kSpecial8[k].y * sn) * r;
@@ -224,8 +223,8 @@ void spatialGroup(const ReblurSpatialArgs& a, int x, int y) {
 
 }  // namespace
 
-void reblurSpatialTile(const ReblurSpatialArgs& a, int tile) {
-    const ReblurView& v = a.view;
+void reblurSpatialTile(const ReblurPassArgs& a, int tile) {
+    const ReblurFrame& v = a.frame;
     if (!(v.tiles[tile] & (a.specular ? kTileSpecular : kTileDiffuse)))
         return copyTile(v, a.in, a.out, a.copy, tile);
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);

@@ -36,12 +36,13 @@ struct History {
 
 // The previous frame's view-space point of its pixel (tx, ty) at depth zp, in this camera's
 // world frame (camera at the origin).
-SSRT_INLINE V3 prevPointInThisFrame(const ReblurTemporalArgs& a, Lane tx, Lane ty, Lane zp) {
-    const ReblurView& v = a.view;
-    const V3 pv = screen::viewPoint(tx, ty, zp, v.width, v.height, a.prevTanHalfX, a.prevTanHalfY);
-    const V3 w = screen::viewToWorld(a.prevViewToWorld, pv);
-    return {w.x - Lane(a.cameraDelta[0]), w.y - Lane(a.cameraDelta[1]),
-            w.z - Lane(a.cameraDelta[2])};
+SSRT_INLINE V3 prevPointInThisFrame(const ReblurPassArgs& a, Lane tx, Lane ty, Lane zp) {
+    const ReblurFrame& v = a.frame;
+    const V3 pv = screen::viewPoint(tx, ty, zp, v.width, v.height, a.frame.prevTanHalfX,
+                                    a.frame.prevTanHalfY);
+    const V3 w = screen::viewToWorld(a.frame.prevViewToWorld, pv);
+    return {w.x - Lane(a.frame.cameraDelta[0]), w.y - Lane(a.frame.cameraDelta[1]),
+            w.z - Lane(a.frame.cameraDelta[2])};
 }
 
 // The 4x4 footprint of a history read at previous-frame position (qx, qy): each tap's pixel
@@ -66,10 +67,9 @@ SSRT_INLINE void gatherTwoAt(const P& plane, const Footprint& f, int j, int i, O
 // `surface`: the footprint is the surface's own (occlusion by the expected depth zExpected);
 // otherwise a virtual-motion read (occlusion by the plane of the centre, whose point in this
 // camera's world frame is xw). Neighbouring taps of a row are read in pairs (gatherTwo).
-SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p, Mask valid,
-                                    Lane qx, Lane qy, bool surface, Lane zExpected, V3 xw,
-                                    Lane threshold) {
-    const ReblurView& v = a.view;
+SSRT_INLINE Footprint testFootprint(const ReblurPassArgs& a, const Centre& p, Mask valid, Lane qx,
+                                    Lane qy, bool surface, Lane zExpected, V3 xw, Lane threshold) {
+    const ReblurFrame& v = a.frame;
     const Lane zero(0.0f);
     const Lane sx = qx - Lane(0.5f), sy = qy - Lane(0.5f);
     const Lane x0 = ln::floor(sx), y0 = ln::floor(sy);
@@ -102,17 +102,17 @@ SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p
             f.pair[j][i] = pairable(f.index[j][i], f.run[j][i], f.index[j][i + 1]);
         Lane zp[4];
         if (surface) {
-            gatherTwoAt(a.prevViewZ, f, j, 0, zp[0], zp[1]);
-            gatherTwoAt(a.prevViewZ, f, j, 2, zp[2], zp[3]);
+            gatherTwoAt(a.frame.prevViewZ, f, j, 0, zp[0], zp[1]);
+            gatherTwoAt(a.frame.prevViewZ, f, j, 2, zp[2], zp[3]);
         } else {
-            gatherTwoAt(a.prevViewZ, f, j, 1, zp[1], zp[2]);
+            gatherTwoAt(a.frame.prevViewZ, f, j, 1, zp[1], zp[2]);
         }
         Lane nx[4], ny[4], nz[4], rp[4];
         if (innerRow) {
-            gatherTwoAt(a.prevNormal[0], f, j, 1, nx[1], nx[2]);
-            gatherTwoAt(a.prevNormal[1], f, j, 1, ny[1], ny[2]);
-            gatherTwoAt(a.prevNormal[2], f, j, 1, nz[1], nz[2]);
-            if (a.specular) gatherTwoAt(a.prevRoughness, f, j, 1, rp[1], rp[2]);
+            gatherTwoAt(a.frame.prevNormal[0], f, j, 1, nx[1], nx[2]);
+            gatherTwoAt(a.frame.prevNormal[1], f, j, 1, ny[1], ny[2]);
+            gatherTwoAt(a.frame.prevNormal[2], f, j, 1, nz[1], nz[2]);
+            if (a.specular) gatherTwoAt(a.frame.prevRoughness, f, j, 1, rp[1], rp[2]);
         }
         for (int i = i0; i < i1; ++i) {
             const bool inner = innerRow && (i == 1 || i == 2);
@@ -141,8 +141,7 @@ SSRT_INLINE Footprint testFootprint(const ReblurTemporalArgs& a, const Centre& p
 // The signals of a row of the footprint (taps[i][ch]): an f16x4 history's a gather a tap; of a
 // plane a channel, four neighbouring taps of an f16 plane in one row gather (ln::gatherF16Row4),
 // else in two pairs (gatherTwo).
-SSRT_INLINE void gatherRow(const ReblurTemporalArgs& a, const Footprint& f, int j,
-                           Lane taps[4][4]) {
+SSRT_INLINE void gatherRow(const ReblurPassArgs& a, const Footprint& f, int j, Lane taps[4][4]) {
     if (a.prevSignal.f16x4) {
         gatherTwoAt(a.prevSignal, f, j, 0, taps[0], taps[1]);
         return gatherTwoAt(a.prevSignal, f, j, 2, taps[2], taps[3]);
@@ -163,7 +162,7 @@ SSRT_INLINE void gatherRow(const ReblurTemporalArgs& a, const Footprint& f, int 
 // The history bilinear over the inner 2x2 with the surviving weights (and, for a virtual
 // read, the taps' mean normal). taps[j][i][ch]: the footprint's signals, the inner 2x2 read
 // here unless `haveSignals` (the whole 4x4 read for the Catmull-Rom).
-SSRT_INLINE History bilinearHistory(const ReblurTemporalArgs& a, const Footprint& f, bool surface,
+SSRT_INLINE History bilinearHistory(const ReblurPassArgs& a, const Footprint& f, bool surface,
                                     bool haveSignals, Lane taps[4][4][4]) {
     const Lane zero(0.0f), one(1.0f);
     const Lane fx = f.fx, fy = f.fy;
@@ -241,7 +240,7 @@ SSRT_INLINE History finiteHistory(History h) {
 
 // Reads the history at previous-frame pixel position (qx, qy): testFootprint's occlusion
 // test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass.
-History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
+History readHistory(const ReblurPassArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
                     bool surface, Lane zExpected, V3 xw, Lane threshold) {
     const Lane one(1.0f);
     const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
@@ -262,27 +261,26 @@ History readHistory(const ReblurTemporalArgs& a, const Centre& p, Mask valid, La
 // from a direction the parallax angle away, which a lobe narrower than that angle cannot hide
 // (REBLUR's surface-motion confidence: a mirror on a moving camera keeps few frames). Returns
 // the lobe's angle.
-SSRT_INLINE Lane parallaxConfidence(const ReblurTemporalArgs& a, const Centre& p, V3 xw,
-                                    History& h) {
+SSRT_INLINE Lane parallaxConfidence(const ReblurPassArgs& a, const Centre& p, V3 xw, History& h) {
     const Lane one(1.0f);
     const Lane lobe = ln::max(ln::atan(rb::lobeTanHalfAngle(p.r, Lane(0.75f))), Lane(kNormalUlp));
     const V3 from = ln::normalize(xw);
     const V3 fromBefore =
-        ln::normalize(V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
-                         xw.z + Lane(a.cameraDelta[2])});
+        ln::normalize(V3{xw.x + Lane(a.frame.cameraDelta[0]), xw.y + Lane(a.frame.cameraDelta[1]),
+                         xw.z + Lane(a.frame.cameraDelta[2])});
     const Lane parallax = rb::acosApprox(ln::dot(from, fromBefore));
     Lane conf = ln::saturate(one - parallax / lobe);
     conf = conf * conf;
-    h.frames = ln::min(h.frames, Lane(a.maxFrames) * conf * conf);
+    h.frames = ln::min(h.frames, Lane(a.frame.maxAccumulatedFrames) * conf * conf);
     return lobe;
 }
 
 // Virtual motion: the reflection seen in a mirror sits the hit distance behind it, along the
 // view ray; reproject that point (NRD's virtual motion, flat-mirror form, leaning to the
 // surface as the lobe widens: the dominant factor) and blend its history into `h`.
-SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mask valid, int x,
-                               int y, Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
-    const ReblurView& v = a.view;
+SSRT_INLINE void virtualMotion(const ReblurPassArgs& a, const Centre& p, Mask valid, int x, int y,
+                               Lane hit, V3 xw, Lane threshold, Lane lobe, History& h) {
+    const ReblurFrame& v = a.frame;
     const Lane zero(0.0f), one(1.0f);
     const Lane dominant = rb::dominantFactor(p.noV, p.r);
     const Lane hitWorld = hit * rb::hitDistanceScale(v.hitScale, p.z, p.r);
@@ -292,21 +290,24 @@ SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mas
     const Lane virtualDistance = hitWorld / (one + Lane(2.0f) * kappa * hitWorld);
     const V3 dir = ln::normalize(xw);
     const V3 xv = xw + dir * (virtualDistance * dominant);
-    const V3 pv = screen::worldToView(
-        a.prevViewToWorld, V3{xv.x + Lane(a.cameraDelta[0]), xv.y + Lane(a.cameraDelta[1]),
-                              xv.z + Lane(a.cameraDelta[2])});
+    const V3 pv =
+        screen::worldToView(a.frame.prevViewToWorld, V3{xv.x + Lane(a.frame.cameraDelta[0]),
+                                                        xv.y + Lane(a.frame.cameraDelta[1]),
+                                                        xv.z + Lane(a.frame.cameraDelta[2])});
     const Lane depth = zero - pv.z;
     const Mask front = depth > Lane(1.0e-6f);
     const Lane safe = ln::select(front, depth, one);
-    const Lane vx = ((pv.x / safe) / Lane(a.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
-    const Lane vy = (one - (pv.y / safe) / Lane(a.prevTanHalfY)) * Lane(0.5f * float(v.height));
+    const Lane vx =
+        ((pv.x / safe) / Lane(a.frame.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
+    const Lane vy =
+        (one - (pv.y / safe) / Lane(a.frame.prevTanHalfY)) * Lane(0.5f * float(v.height));
     History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
     // The virtual point is exact for a flat mirror only: where the history's normal turned,
     // the reflection turned twice as far (REBLUR's normal confidence).
     const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
     Lane conf = ln::saturate(one - Lane(2.0f) * turn / lobe);
     conf = conf * conf;
-    hv.frames = ln::min(hv.frames, Lane(a.maxFrames) * conf * conf);
+    hv.frames = ln::min(hv.frames, Lane(a.frame.maxAccumulatedFrames) * conf * conf);
     const Lane amount =
         ln::select(hv.found, rb::smoothstep(0.05f, 0.95f, dominant) * hv.quality, zero);
     for (int ch = 0; ch < 4; ++ch) h.signal[ch] = rb::lerp(h.signal[ch], hv.signal[ch], amount);
@@ -317,14 +318,15 @@ SSRT_INLINE void virtualMotion(const ReblurTemporalArgs& a, const Centre& p, Mas
 
 // The new sample into the history read: the accumulation, the firefly suppressor and the
 // fast history; stored.
-SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask valid, std::size_t o,
+SSRT_INLINE void accumulate(const ReblurPassArgs& a, const Centre& p, Mask valid, std::size_t o,
                             const Lane c[4], Lane lumaNow, const History& h) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane frames = ln::select(h.found, ln::min(h.frames, Lane(a.maxFrames)), zero);
+    const Lane frames =
+        ln::select(h.found, ln::min(h.frames, Lane(a.frame.maxAccumulatedFrames)), zero);
     const Lane alpha = one / (one + frames);
     // Firefly suppressor: a new sample may exceed the history's luma by a shrinking factor.
     const Lane lumaHistory = rb::luma(h.signal[0], h.signal[1], h.signal[2]);
-    const Lane maxRelative = Lane(a.fireflyScale) + Lane(38.0f) / (frames + one);
+    const Lane maxRelative = Lane(a.frame.fireflyScale) + Lane(38.0f) / (frames + one);
     const Lane k = Lane(3.0f) * frames / (one + Lane(3.0f) * frames);
     const Lane lumaKept = rb::lerp(lumaNow, ln::min(lumaNow, lumaHistory * maxRelative), k);
     const Lane scale = (lumaKept + Lane(rb::kEps)) / (lumaNow + Lane(rb::kEps));
@@ -333,7 +335,7 @@ SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask v
     Lane out[4];
     for (int ch = 0; ch < 3; ++ch) out[ch] = rb::lerp(h.signal[ch], c[ch] * scale, alpha);
     out[3] = rb::lerp(h.signal[3], c[3], hitAlpha);
-    const Lane fastFrames = ln::min(frames, Lane(a.maxFastFrames));
+    const Lane fastFrames = ln::min(frames, Lane(a.frame.maxFastAccumulatedFrames));
     const Lane fastPrev = ln::select(h.found, h.fast, lumaKept);
     const Lane fast = rb::lerp(fastPrev, lumaKept, one / (one + fastFrames));
     for (int ch = 0; ch < 4; ++ch) out[ch] = ln::select(valid, out[ch], c[ch]);
@@ -342,8 +344,8 @@ SSRT_INLINE void accumulate(const ReblurTemporalArgs& a, const Centre& p, Mask v
     storeAt(a.outFast, o, ln::select(valid, fast, lumaNow));
 }
 
-void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
-    const ReblurView& v = a.view;
+void temporalChunk(const ReblurPassArgs& a, int x, int y) {
+    const ReblurFrame& v = a.frame;
     const std::size_t o = std::size_t(y) * v.stride + x;
     const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
@@ -352,7 +354,7 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
     const Lane lumaNow = rb::luma(c[0], c[1], c[2]);
-    if (!a.prevViewZ || !ln::any(valid)) {
+    if (!a.prevFrames || !ln::any(valid)) {
         storeAt(a.out, o, c);
         ln::store(a.outFrames + o, zero);
         storeAt(a.outFast, o, lumaNow);
@@ -361,26 +363,28 @@ void temporalChunk(const ReblurTemporalArgs& a, int x, int y) {
     // Surface motion: where the pixel was, and the depth the previous camera saw it at (the
     // world assumed still, as NRD with 2D motion vectors; a moving object's history then
     // fails the test and restarts, which never ghosts).
-    const Lane qx = p.px + loadAt(a.motion[0], o), qy = p.py + loadAt(a.motion[1], o);
+    const Lane qx = p.px + loadAt(a.frame.motion[0], o), qy = p.py + loadAt(a.frame.motion[1], o);
     const V3 xw = screen::viewToWorld(v.viewToWorld, p.x);
-    const V3 xprev = screen::worldToView(
-        a.prevViewToWorld, V3{xw.x + Lane(a.cameraDelta[0]), xw.y + Lane(a.cameraDelta[1]),
-                              xw.z + Lane(a.cameraDelta[2])});
+    const V3 xprev =
+        screen::worldToView(a.frame.prevViewToWorld, V3{xw.x + Lane(a.frame.cameraDelta[0]),
+                                                        xw.y + Lane(a.frame.cameraDelta[1]),
+                                                        xw.z + Lane(a.frame.cameraDelta[2])});
     const Lane zExpected = zero - xprev.z;
     // Disocclusion threshold: a fraction of the frustum at that depth, wider at grazing angles.
-    const Lane threshold =
-        Lane(v.frustum) * p.z *
-        ln::saturate(Lane(a.disocclusion + 1.0f / float(v.height)) / ln::max(Lane(0.01f), p.noV));
+    const Lane threshold = Lane(v.frustum) * p.z *
+                           ln::saturate(Lane(a.frame.disocclusion + 1.0f / float(v.height)) /
+                                        ln::max(Lane(0.01f), p.noV));
     History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
     const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
-    if (spec && a.virtualMotion) virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
+    if (spec && a.frame.virtualMotion)
+        virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
     accumulate(a, p, valid, o, c, lumaNow, h);
 }
 
 }  // namespace
 
-void reblurTemporalTile(const ReblurTemporalArgs& a, int tile) {
-    const ReblurView& v = a.view;
+void reblurTemporalTile(const ReblurPassArgs& a, int tile) {
+    const ReblurFrame& v = a.frame;
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; x += kW) temporalChunk(a, x, y);

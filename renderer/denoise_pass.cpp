@@ -33,15 +33,18 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     const HalfFrame& hf = ht.frame;
     DenoiseInputs in = denoiseCall(c, frame, hf.camera, true);
-    in.viewZ = &hf.guideZ;
-    in.metallic = &hf.metallic;
-    for (int i = 0; i < 3; ++i) {
-        in.normal[i] = &hf.guideNormal[i];
-        in.albedo[i] = &hf.albedo[i];
-        in.diffuse[i] = &ht.resolved.color[i];
-    }
-    in.motion[0] = &hf.guideMotion[0];
-    in.motion[1] = &hf.guideMotion[1];
+    in.g = gbufferView("the half frame's guides", hf.camera.width, hf.camera.height,
+                       {{kGViewZ, &hf.guideZ},
+                        {kGNormalX, &hf.guideNormal[0]},
+                        {kGNormalY, &hf.guideNormal[1]},
+                        {kGNormalZ, &hf.guideNormal[2]},
+                        {kGAlbedoR, &hf.albedo[0]},
+                        {kGAlbedoG, &hf.albedo[1]},
+                        {kGAlbedoB, &hf.albedo[2]},
+                        {kGMetallic, &hf.metallic},
+                        {kGMotionX, &hf.guideMotion[0]},
+                        {kGMotionY, &hf.guideMotion[1]}});
+    for (int i = 0; i < 3; ++i) in.diffuse[i] = &ht.resolved.color[i];
     in.diffuseHitDistance = &ht.resolved.hitDistance;
     if (tracedSignalsPooled(c.args.settings))
         in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
@@ -72,17 +75,8 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
-    const GBuffer& g = frame.gbuffer;
     DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
-    in.viewZ = &g.viewZ;
-    in.roughness = &g.roughness;
-    in.metallic = &g.metallic;
-    for (int i = 0; i < 3; ++i) {
-        in.normal[i] = &g.normal[i];
-        in.albedo[i] = &g.albedo[i];
-    }
-    in.motion[0] = &g.motion[0];
-    in.motion[1] = &g.motion[1];
+    in.g = frame.gbuffer.view();
     if (ts.ssgi && !halfDiffuse) {
         for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
         in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;

@@ -110,18 +110,18 @@ TEST_CASE("denoise f16 storage: the temporal pass over f16 planes is its f32 res
                 }
             PlaneF prevFrames(kWidth, kHeight, 4.0f), outFrames[2];
             for (PlaneF& p : outFrames) p = PlaneF(kWidth, kHeight, -1.0f);
-            ReblurTemporalArgs a;
-            a.view = g.view();
+            ReblurPassArgs a;
+            a.frame = g.view();
             a.specular = specular;
-            a.motion[0] = motion[0].row(0), a.motion[1] = motion[1].row(0);
-            a.prevViewZ = g.viewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.prevNormal[i] = g.normal[i].row(0);
-            a.prevRoughness = g.roughness.row(0);
+            a.frame.motion[0] = motion[0].row(0), a.frame.motion[1] = motion[1].row(0);
+            a.frame.prevViewZ = g.viewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
+            a.frame.prevRoughness = g.roughness.row(0);
             a.prevFrames = prevFrames.row(0);
-            for (int i = 0; i < 9; i += 4) a.prevViewToWorld[i] = 1.0f;
-            a.prevTanHalfX = a.view.tanHalfX;
-            a.prevTanHalfY = a.view.tanHalfY;
-            a.cameraDelta[0] = 0.01f;
+            for (int i = 0; i < 9; i += 4) a.frame.prevViewToWorld[i] = 1.0f;
+            a.frame.prevTanHalfX = a.frame.tanHalfX;
+            a.frame.prevTanHalfY = a.frame.tanHalfY;
+            a.frame.cameraDelta[0] = 0.01f;
             const auto fn = SSRT_DISPATCH(isa, reblurTemporalTile);
             // f32 planes
             for (int c = 0; c < 4; ++c) {
@@ -170,12 +170,12 @@ TEST_CASE(
                  {ReblurSpatial::PreBlur, ReblurSpatial::Blur, ReblurSpatial::PostBlur}) {
                 CAPTURE(int(pass));
                 Signal out, copy;
-                ReblurSpatialArgs a;
-                a.view = g.view();
+                ReblurPassArgs a;
+                a.frame = g.view();
                 a.pass = pass;
                 a.specular = specular;
                 a.frames = pass == ReblurSpatial::PreBlur ? nullptr : frames.row(0);
-                a.frameIndex = 7;
+                a.frame.frameIndex = 7;
                 a.radius = 12.0f;
                 const auto fn = SSRT_DISPATCH(isa, reblurSpatialTile);
                 for (int c = 0; c < 4; ++c)
@@ -205,11 +205,11 @@ TEST_CASE(
                 }
             }
             Signal out;
-            ReblurHistoryFixArgs a;
-            a.view = g.view();
+            ReblurPassArgs a;
+            a.frame = g.view();
             a.specular = specular;
             a.frames = frames.row(0);
-            a.stride = 6.0f;
+            a.frame.historyFixStride = 6.0f;
             const auto fn = SSRT_DISPATCH(isa, reblurHistoryFixTile);
             for (int c = 0; c < 4; ++c) a.in[c] = in.f[c].row(0), a.out[c] = out.f[c].row(0);
             a.fast = fast.f[0].row(0);

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/pixel_formats.h"
@@ -54,18 +55,23 @@ struct Synthetic {
         DenoiseInputs in;
         in.camera = camera;
         in.frameIndex = frame;
-        in.viewZ = &viewZ;
-        in.roughness = &roughness;
-        in.metallic = &metallic;
+        in.g = gbufferView("the test's guides", w, h,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGAlbedoR, &albedo[0]},
+                            {kGAlbedoG, &albedo[1]},
+                            {kGAlbedoB, &albedo[2]},
+                            {kGMetallic, &metallic},
+                            {kGRoughness, &roughness},
+                            {kGMotionX, &motion[0]},
+                            {kGMotionY, &motion[1]}});
         for (int i = 0; i < 3; ++i) {
-            in.normal[i] = &normal[i];
-            in.albedo[i] = &albedo[i];
             in.diffuse[i] = &diffuse[i];
             in.ssr[i] = &ssr[i];
             in.envSpecular[i] = &env[i];
         }
-        in.motion[0] = &motion[0];
-        in.motion[1] = &motion[1];
         in.diffuseHitDistance = &diffuseHit;
         in.ssrOpacity = &opacity;
         in.specularHitDistance = &specHit;
@@ -302,6 +308,33 @@ TEST_CASE("denoise: a frame without history skips the temporal pass, to the same
     DenoiseOutputs out;
     CHECK_THROWS_AS(denoise(defaultIsa(), DenoiseSettings(), in, &history, false, scratch, out, 2),
                     std::logic_error);
+}
+
+TEST_CASE("denoise: a missing or mis-sized plane is an error naming it") {
+    Synthetic s(64, 48);
+    Denoiser d;
+    const auto message = [&](const DenoiseInputs& in) {
+        try {
+            denoise(d.isa, d.settings, in, &d.history, false, d.scratch, d.out, d.threads);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    DenoiseInputs in = s.inputs(0);
+    in.specularHitDistance = nullptr;
+    CHECK(message(in) == "denoise: specularHitDistance is missing");
+    const PlaneF small(32, 48, 1.0f);
+    in = s.inputs(0);
+    in.diffuse[1] = &small;
+    CHECK(message(in) == "denoise: diffuse.G is 32x48, not 64x48");
+    // A guide only the missing signal reads is not needed.
+    in = s.inputs(0);
+    for (auto& p : in.ssr) p = nullptr;
+    in.g.roughness = nullptr;
+    CHECK(message(in) == "no error");
+    in.g.motion[1] = nullptr;
+    CHECK(message(in) == "denoise: motion.Y is missing");
 }
 
 TEST_CASE("denoise: a camera cut gives the frame a fresh history, bit for bit") {

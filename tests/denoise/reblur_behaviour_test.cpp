@@ -173,17 +173,17 @@ Signal runSpatialEdge(Isa isa, Edge e, bool edge, ReblurSpatial pass, uint32_t f
         }
     // Without the edge, side B's hit distance is side A's.
     if (!edge && e == Edge::HitDistance) in.p[3].fill(0.05f);
-    ReblurSpatialArgs a;
-    a.view = g.view();
+    ReblurPassArgs a;
+    a.frame = g.view();
     a.pass = pass;
     a.specular = specular;
     for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
     a.frames = frames.row(0);
-    a.frameIndex = frameIndex;
+    a.frame.frameIndex = frameIndex;
     a.stream = 7;
     // The radius and its floor alike: every pixel's radius is kRadius (for the 0.9-rough
     // specular pixel, between the floor x its magic curve, 0.97, and kRadius).
-    a.radius = a.minRadius = kRadius;
+    a.radius = a.frame.minBlurRadius = kRadius;
     a.fractionScale = pass == ReblurSpatial::PostBlur ? 0.5f : 1.0f;
     const auto fn = SSRT_DISPATCH(isa, reblurSpatialTile);
     forEachTile([&](int t) { fn(a, t); });
@@ -251,29 +251,29 @@ struct Temporal {
 
     // One frame over every tile; `history` false: none (the first frame).
     void run(Isa isa, bool history = true) {
-        ReblurTemporalArgs a;
-        a.view = g.view();
+        ReblurPassArgs a;
+        a.frame = g.view();
         a.specular = false;
-        a.motion[0] = motion[0].row(0), a.motion[1] = motion[1].row(0);
+        a.frame.motion[0] = motion[0].row(0), a.frame.motion[1] = motion[1].row(0);
         for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
         a.outFrames = outFrames.row(0);
         a.outFast = outFast.row(0);
         if (history) {
-            a.prevViewZ = prevViewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.prevNormal[i] = g.normal[i].row(0);
-            a.prevRoughness = g.roughness.row(0);
+            a.frame.prevViewZ = prevViewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
+            a.frame.prevRoughness = g.roughness.row(0);
             for (int c = 0; c < 4; ++c) a.prevSignal[c] = previous.in(c);
             a.prevFrames = prevFrames.row(0);
             a.prevFast = prevFast.row(0);
-            for (int i = 0; i < 9; i += 4) a.prevViewToWorld[i] = 1.0f;
-            a.prevTanHalfX = a.view.tanHalfX;
-            a.prevTanHalfY = a.view.tanHalfY;
+            for (int i = 0; i < 9; i += 4) a.frame.prevViewToWorld[i] = 1.0f;
+            a.frame.prevTanHalfX = a.frame.tanHalfX;
+            a.frame.prevTanHalfY = a.frame.tanHalfY;
         }
         // As denoise.cpp fills them from the settings.
-        a.maxFrames = float(s.maxAccumulatedFrames);
-        a.maxFastFrames = float(s.maxFastAccumulatedFrames);
-        a.disocclusion = s.disocclusionThreshold;
-        a.fireflyScale = s.fireflyMinRelativeScale;
+        a.frame.maxAccumulatedFrames = float(s.maxAccumulatedFrames);
+        a.frame.maxFastAccumulatedFrames = float(s.maxFastAccumulatedFrames);
+        a.frame.disocclusion = s.disocclusionThreshold;
+        a.frame.fireflyScale = s.fireflyMinRelativeScale;
         const auto fn = SSRT_DISPATCH(isa, reblurTemporalTile);
         forEachTile([&](int t) { fn(a, t); });
     }
@@ -452,16 +452,16 @@ struct HistoryFix {
 
     void run(Isa isa, bool clamp) {
         const DenoiseSettings s;
-        ReblurHistoryFixArgs a;
-        a.view = g.view();
+        ReblurPassArgs a;
+        a.frame = g.view();
         a.specular = false;
         for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
         a.frames = frames.row(0);
         a.fast = clamp ? fast.row(0) : nullptr;  // null: denoise.cpp's "clamp off"
-        a.fixFrames = float(s.historyFixFrames);
-        a.stride = float(s.historyFixStride);
-        a.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
-        a.planeDistance = s.planeDistanceSensitivity;
+        a.frame.historyFixFrames = float(s.historyFixFrames);
+        a.frame.historyFixStride = float(s.historyFixStride);
+        a.frame.lobeFraction2 = s.lobeAngleFraction * s.lobeAngleFraction;
+        a.frame.planeDistance = s.planeDistanceSensitivity;
         const auto fn = SSRT_DISPATCH(isa, reblurHistoryFixTile);
         forEachTile([&](int t) { fn(a, t); });
     }

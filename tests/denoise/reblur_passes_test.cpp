@@ -85,19 +85,19 @@ TEST_CASE("reblur front end: sanitised signals, the specular blend and the tiles
         metallic.at(10, 3) = 1.0f;     // a metal: no diffuse signal
         g.roughness.at(11, 3) = 0.9f;  // past the specular cut
         Signal noisyD, noisyS;
-        ReblurFrontEndArgs a;
-        a.view = g.view();
+        ReblurPassArgs a;
+        a.frame = g.view();
         for (int c = 0; c < 3; ++c) {
             a.diffuse[c] = diffuse[c].row(0);
-            a.albedo[c] = albedo[c].row(0);
+            a.frame.albedo[c] = albedo[c].row(0);
             a.ssr[c] = ssr[c].row(0);
             a.envSpecular[c] = env[c].row(0);
         }
-        a.metallic = metallic.row(0);
+        a.frame.metallic = metallic.row(0);
         a.diffuseHit = diffuseHit.row(0);
         a.ssrOpacity = opacity.row(0);
         a.specularHit = specularHit.row(0);
-        a.specularMaxRoughness = 0.7f;
+        a.frame.specularMaxRoughness = 0.7f;
         for (int c = 0; c < 4; ++c) {
             a.noisyDiffuse[c] = noisyD.out(c);
             a.noisySpecular[c] = noisyS.out(c);
@@ -139,8 +139,8 @@ TEST_CASE("reblur spatial passes: a constant stays constant, a tile without the 
                     for (int x = kTileSize; x < Planes::kWidth; ++x)
                         for (int c = 0; c < 4; ++c) in.p[c].at(x, y) = float(x + 100 * y + c);
                 PlaneF frames(Planes::kWidth, Planes::kHeight, 0.0f);
-                ReblurSpatialArgs a;
-                a.view = g.view();
+                ReblurPassArgs a;
+                a.frame = g.view();
                 a.pass = pass;
                 a.specular = specular;
                 for (int c = 0; c < 4; ++c) {
@@ -149,7 +149,7 @@ TEST_CASE("reblur spatial passes: a constant stays constant, a tile without the 
                     a.copy[c] = history.out(c);
                 }
                 if (pass != ReblurSpatial::PreBlur) a.frames = frames.row(0);
-                a.frameIndex = 3;
+                a.frame.frameIndex = 3;
                 const auto fn = SSRT_DISPATCH(isa, reblurSpatialTile);
                 forEachTile([&](int t) { fn(a, t); });
                 for (int c = 0; c < 4; ++c) {
@@ -198,8 +198,8 @@ TEST_CASE("reblur blur: a face a few pixels wide keeps no one-ray noise (issue 4
         for (int y = 0; y < Planes::kHeight; ++y)
             for (int x = 0; x < Planes::kWidth; ++x) in.p[3].at(x, y) = 1.0f;
         PlaneF frames(Planes::kWidth, Planes::kHeight, 0.0f);
-        ReblurSpatialArgs a;
-        a.view = g.view();
+        ReblurPassArgs a;
+        a.frame = g.view();
         a.pass = ReblurSpatial::Blur;
         a.specular = false;
         for (int c = 0; c < 4; ++c) {
@@ -207,7 +207,7 @@ TEST_CASE("reblur blur: a face a few pixels wide keeps no one-ray noise (issue 4
             a.out[c] = out.out(c);
         }
         a.frames = frames.row(0);
-        a.frameIndex = 5;
+        a.frame.frameIndex = 5;
         const auto fn = SSRT_DISPATCH(isa, reblurSpatialTile);
         forEachTile([&](int t) { fn(a, t); });
         double outVar = 0.0;
@@ -246,10 +246,10 @@ TEST_CASE("reblur temporal pass: no history, a still one, and a surface that is 
             // The history saw another surface behind the left third: disoccluded there.
             for (int y = 0; y < Planes::kHeight; ++y)
                 for (int x = 0; x < 20; ++x) prevViewZ.at(x, y) = 10.0f;
-            ReblurTemporalArgs a;
-            a.view = g.view();
+            ReblurPassArgs a;
+            a.frame = g.view();
             a.specular = specular;
-            a.motion[0] = motion[0].row(0), a.motion[1] = motion[1].row(0);
+            a.frame.motion[0] = motion[0].row(0), a.frame.motion[1] = motion[1].row(0);
             for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
             a.outFrames = outFrames.row(0);
             a.outFast = outFast.row(0);
@@ -261,15 +261,15 @@ TEST_CASE("reblur temporal pass: no history, a still one, and a surface that is 
             CHECK(outFrames.at(30, 10) == 0.0f);
             // A still camera over the same surface: the same signal keeps it, and the frames
             // behind it carry on.
-            a.prevViewZ = prevViewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.prevNormal[i] = g.normal[i].row(0);
-            a.prevRoughness = g.roughness.row(0);
+            a.frame.prevViewZ = prevViewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
+            a.frame.prevRoughness = g.roughness.row(0);
             for (int c = 0; c < 4; ++c) a.prevSignal[c] = previous.in(c);
             a.prevFrames = prevFrames.row(0);
             a.prevFast = prevFast.row(0);
-            for (int i = 0; i < 9; i += 4) a.prevViewToWorld[i] = 1.0f;
-            a.prevTanHalfX = a.view.tanHalfX;
-            a.prevTanHalfY = a.view.tanHalfY;
+            for (int i = 0; i < 9; i += 4) a.frame.prevViewToWorld[i] = 1.0f;
+            a.frame.prevTanHalfX = a.frame.tanHalfX;
+            a.frame.prevTanHalfY = a.frame.tanHalfY;
             forEachTile([&](int t) { fn(a, t); });
             CHECK(out.p[1].at(40, 12) == 0.5f);
             CHECK(outFrames.at(40, 12) == 5.0f);
@@ -296,12 +296,12 @@ TEST_CASE("reblur history fix: young pixels keep a constant, old ones and empty 
                     if (x >= kTileSize || (x == 40 && y == 9))
                         for (int c = 0; c < 4; ++c) in.p[c].at(x, y) = float(x + y + c);
                 }
-            ReblurHistoryFixArgs a;
-            a.view = g.view();
+            ReblurPassArgs a;
+            a.frame = g.view();
             a.specular = specular;
             for (int c = 0; c < 4; ++c) a.in[c] = in.in(c), a.out[c] = out.out(c);
             a.frames = frames.row(0);
-            a.fixFrames = 3.0f;
+            a.frame.historyFixFrames = 3.0f;
             const auto fn = SSRT_DISPATCH(isa, reblurHistoryFixTile);
             forEachTile([&](int t) { fn(a, t); });
             for (int c = 0; c < 4; ++c) {

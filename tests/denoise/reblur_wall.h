@@ -1,5 +1,5 @@
 // The denoiser tests' guides: a wall facing the camera at depth 2 (view = world), both
-// signals everywhere, and the ReblurView the kernels read them through.
+// signals everywhere, and the ReblurFrame the kernels read them through.
 #pragma once
 
 #include <cstdint>
@@ -23,8 +23,8 @@ struct WallGuides {
         for (PlaneF& z : signalZ) z = PlaneF(w, h, 2.0f);
         tiles.assign(std::size_t(TileGrid(w, h).count()), kTileDiffuse | kTileSpecular);
     }
-    ReblurView view() const {
-        ReblurView v;
+    ReblurFrame view() const {
+        ReblurFrame v;
         v.width = width;
         v.height = height;
         v.tilesX = TileGrid(width, height).tilesX;
