@@ -76,12 +76,23 @@ struct DenoiseInputs {
     std::function<void()> signalsRead;
 };
 
-// The denoiser's output, of the frame's size.
-struct DenoiseOutputs {
+// The denoiser's output, of the frame's size. The frame hands it out as file layers.
+struct DenoiseOutputs : PlaneTable<DenoiseOutputs> {
     PlaneF diffuse[3];   // incoming diffuse radiance (what the composite multiplies by albedo)
     PlaneF specular[3];  // incoming specular radiance (what it multiplies by specWeight)
     // Frames of history behind each pixel (0: none); with DenoiseInputs::historyLengths only.
     PlaneF diffuseFrames, specularFrames;
+
+    // (Named as the renderer's resource table names their channels, renderer/resources.cpp:
+    // tests/renderer/denoise_formats_test.cpp holds each name to it.)
+    template <class G, class Fn>
+    static void table(G& g, Fn& fn) {
+        fn("denoisedDiffuse.R", g.diffuse[0]), fn("denoisedDiffuse.G", g.diffuse[1]);
+        fn("denoisedDiffuse.B", g.diffuse[2]);
+        fn("denoisedSpecular.R", g.specular[0]), fn("denoisedSpecular.G", g.specular[1]);
+        fn("denoisedSpecular.B", g.specular[2]);
+        fn("diffuseFrames", g.diffuseFrames), fn("specularFrames", g.specularFrames);
+    }
 };
 
 // What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the

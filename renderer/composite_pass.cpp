@@ -18,7 +18,7 @@ namespace {
 // loop's, shared by the threads' time in each.
 void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeArgs& ca) {
     using Clock = std::chrono::steady_clock;
-    const DenoiseOutputs& half = frame.scratch.half.denoised.out;
+    const DenoiseOutputs& half = frame.scratch.half.denoised;
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
     const HalfUpsampler up(c.args.isa, c.guides(frame), PixelOffset{0, 0},
                            frame.scratch.half.rays.pdf, from);
@@ -65,7 +65,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
             ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
         ca.envSpecular[ch] = viewOf(parts.envSpecular[ch], channelName(Res::EnvSpecular, ch));
         ca.specWeight[ch] = viewOf(parts.specWeight[ch], channelName(Res::SpecWeight, ch));
-        const DenoiseOutputs& d = frame.trace.denoise.out;
+        const DenoiseOutputs& d = frame.trace.denoised;
         if (ts.ssgi && !inComposite)
             ca.ssgi[ch] = ts.denoise.enabled
                               ? viewOf(d.diffuse[ch], channelName(Res::DenoisedDiffuse, ch))

@@ -49,12 +49,12 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     if (tracedSignalsPooled(c.args.settings))
         in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
     DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
-    DenoiseOutputs& half = ht.denoised.out;
+    DenoiseOutputs& half = ht.denoised;
     denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
             ht.denoise, half, c.threads(), &times);
     if (diffuseUpsampledInComposite(c.args.settings)) return;  // (compositePass)
     const auto t0 = std::chrono::steady_clock::now();
-    DenoiseOutputs& out = frame.trace.denoise.out;
+    DenoiseOutputs& out = frame.trace.denoised;
     // (The history length, a plane to look at, is blended as the hit share is.)
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]},
                                  nullptr,
@@ -70,7 +70,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
 
 }  // namespace
 
-// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoise, which the
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoised, which the
 // composite then reads; the traced planes stay as they were (the undenoised layers).
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts;
@@ -104,7 +104,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     }
     if (in.diffuse[0] || in.ssr[0])
         denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
-                frame.trace.denoise.out, c.threads(), &times);
+                frame.trace.denoised, c.threads(), &times);
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),

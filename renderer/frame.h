@@ -167,25 +167,12 @@ struct SsgiPlanes : PlaneTable<SsgiPlanes> {
     }
 };
 
-// What the denoiser hands out (TraceSettings::denoise): the composite reads these in place of
-// the traced signals (which stay layers, undenoised).
-struct DenoisePlanes : PlaneTable<DenoisePlanes> {
-    DenoiseOutputs out;
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
-        auto& o = g.out;
-        forEachChannel(Res::DenoisedDiffuse, o.diffuse, fn);
-        forEachChannel(Res::DenoisedSpecular, o.specular, fn);
-        fn(channelName(Res::DiffuseFrames), o.diffuseFrames);
-        fn(channelName(Res::SpecularFrames), o.specularFrames);
-    }
-};
-
 struct TraceOutputs {
     SsrPlanes ssr;
     SsgiPlanes ssgi;
-    DenoisePlanes denoise;
+    // What the denoiser hands out (TraceSettings::denoise): the composite reads these in place
+    // of the traced signals (which stay layers, undenoised).
+    DenoiseOutputs denoised;
 };
 
 // What a frame leaves the next one of a sequence. The caller owns it and hands it to every
@@ -313,7 +300,7 @@ struct Frame {
             // The diffuse signal denoised on the half frame (with the denoiser), before the
             // upsample.
             DenoiseScratch denoise;
-            DenoisePlanes denoised;
+            DenoiseOutputs denoised;
         } half;
 
         // Every buffer above but the pool, once: fn(group, name, buffer), where `name` is the
@@ -355,7 +342,7 @@ private:
         f.direct.forEachPlane(fn);
         f.trace.ssr.forEachPlane(fn);
         f.trace.ssgi.forEachPlane(fn);
-        f.trace.denoise.forEachPlane(fn);
+        f.trace.denoised.forEachPlane(fn);
     }
 };
 

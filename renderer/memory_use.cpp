@@ -57,7 +57,7 @@ FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
     const FrameHistory h;
     const PlaneCount count = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.material) +
                              planesOf(f.ids) + planesOf(f.direct) + planesOf(f.trace.ssr) +
-                             planesOf(f.trace.ssgi) + planesOf(f.trace.denoise) + planesOf(h) +
+                             planesOf(f.trace.ssgi) + planesOf(f.trace.denoised) + planesOf(h) +
                              planesOf(h.denoise) + planesOf(h.denoiseHalf);
     FrameMemoryNeed need;
     need.planes = count.planes;

@@ -68,7 +68,7 @@ namespace {
 // planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
 // bounce of one-ray noise fed back would come back as noise), else SSGI's.
 const PlaneF* committedDiffuse(const Frame& frame) {
-    const DenoiseOutputs& d = frame.trace.denoise.out;
+    const DenoiseOutputs& d = frame.trace.denoised;
     return d.diffuse[0].empty() ? frame.trace.ssgi.color : d.diffuse;
 }
 

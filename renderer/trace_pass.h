@@ -36,7 +36,7 @@ void runTracePasses(const TracePassArgs& args, Frame& frame);
 
 // Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
 // inside the composite, which alone reads it, instead of into the frame's planes
-// (frame.trace.denoise.out.diffuse, then not made): unless a file shows them (debugPlanes)
+// (frame.trace.denoised.diffuse, then not made): unless a file shows them (debugPlanes)
 // or the next frame's SSGI feedback reads them.
 bool diffuseUpsampledInComposite(const RenderSettings& settings);
 

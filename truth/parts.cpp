@@ -60,7 +60,7 @@ FrameParts frameParts(const Frame& frame) {
     // Where the denoiser ran, the composite read its planes: the specular one as the whole
     // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's (whose own
     // planes may then not be made: RenderSettings::debugPlanes).
-    const DenoiseOutputs& denoised = frame.trace.denoise.out;
+    const DenoiseOutputs& denoised = frame.trace.denoised;
     const bool specDenoised = !denoised.specular[0].empty();
     const bool diffDenoised = !denoised.diffuse[0].empty();
     const SsrPlanes& ssrPlanes = frame.trace.ssr;

@@ -74,7 +74,7 @@ TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce -- the firs
         REQUIRE(history.valid);
         for (int c = 0; c < 3; ++c) {
             CHECK(sameBits(history.color[c], f.image.color[c]));
-            CHECK(sameBits(history.diffuse[c], f.trace.denoise.out.diffuse[c]));
+            CHECK(sameBits(history.diffuse[c], f.trace.denoised.diffuse[c]));
         }
         mean.push_back(meanOf(f.trace.ssgi.color));
         MESSAGE("frame " << k << ": mean incoming diffuse " << mean.back());
@@ -171,7 +171,7 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
     fed.render(scene, input, history, f);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    DenoiseOutputs& d = f.trace.denoise.out;
+    DenoiseOutputs& d = f.trace.denoised;
     PlaneF* diffuse = d.diffuse[0].empty() ? f.trace.ssgi.color : d.diffuse;
     for (int c = 0; c < 3; ++c) {
         f.image.color[c].at(40, 30) = nan;

@@ -321,8 +321,8 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
             CHECK(test::sameBits(a.image.color[ch], b.image.color[ch]));
             CHECK(test::sameBits(a.image.display[ch], b.image.display[ch]));
         }
-        CHECK(a.trace.denoise.out.diffuse[0].empty());
-        CHECK_FALSE(b.trace.denoise.out.diffuse[0].empty());
+        CHECK(a.trace.denoised.diffuse[0].empty());
+        CHECK_FALSE(b.trace.denoised.diffuse[0].empty());
         // SSR's planes went back to the pool once the denoiser read them, and its passes
         // reused them: the frame holds less in all for not showing them.
         CHECK(a.trace.ssr.color[0].empty());

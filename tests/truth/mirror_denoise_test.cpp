@@ -116,7 +116,7 @@ TEST_CASE("mirror: the denoised reflection on cornell's mirror sphere is as shar
     tracedSpecular(f, traced);
     const MirrorMask mask = mirrorMask(f, traced, ref.ssr);
     REQUIRE(mask.count > 150);
-    const double denoised = maskedFlip(f.trace.denoise.out.specular, ref.ssr, mask);
+    const double denoised = maskedFlip(f.trace.denoised.specular, ref.ssr, mask);
     const double tracedFlip = maskedFlip(traced, ref.ssr, mask);
     MESSAGE("mirror pixels " << mask.count << ", mean FLIP against Embree: denoised " << denoised
                              << ", traced " << tracedFlip);
