@@ -80,8 +80,8 @@ void compositePass(const TraceContext& c, Frame& frame) {
     }
     if (ts.ssgi) {
         ca.g = frame.gbuffer.view();
-        if (!frame.material.occlusion.empty())
-            ca.occlusion = viewOf(frame.material.occlusion, channelName(Res::Occlusion));
+        if (!frame.gbuffer.occlusion.empty())
+            ca.occlusion = viewOf(frame.gbuffer.occlusion, channelName(Res::Occlusion));
     }
     if (ts.ssr && !ts.denoise.enabled)
         ca.ssrOpacity = viewOf(frame.trace.ssr.opacity, channelName(Res::SsrOpacity));

@@ -55,7 +55,15 @@ struct ImagePlanes : PlaneTable<ImagePlanes> {
 };
 
 // The G-buffer: attributes of the visible surface per pixel. Background pixels: viewZ 0,
-// materialId -1, motion 0.
+// materialId -1, motion 0, instance and triangle -1.
+//
+// Its material terms are per-pixel planes the texture pass writes when some material needs
+// them, each empty (and no layer) otherwise: emission with emissive textures (every surface
+// pixel's, the material's factor alone where it has no texture; 0 on background), which the
+// direct pass reads instead of its per-material table; occlusion with occlusion textures (1
+// where a material has none, and on background), which scales indirect light only
+// (shading/direct_kernel.h, DirectArgs::occlusion). The instance and triangle ids, as floats,
+// with RenderSettings::idPlanes.
 struct GBuffer : PlaneTable<GBuffer> {
     PlaneF viewZ;      // positive view-space depth
     PlaneF normal[3];  // world space, unit
@@ -63,7 +71,11 @@ struct GBuffer : PlaneTable<GBuffer> {
     PlaneF metallic;
     PlaneF roughness;  // perceptual
     PlaneF materialId;
-    PlaneF motion[2];  // previous minus current position, pixels
+    PlaneF motion[2];    // previous minus current position, pixels
+    PlaneF emission[3];  // scene-linear radiance
+    PlaneF occlusion;
+    PlaneF instanceId;
+    PlaneF triangleId;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -73,39 +85,15 @@ struct GBuffer : PlaneTable<GBuffer> {
         fn(channelName(Res::Metallic), g.metallic), fn(channelName(Res::Roughness), g.roughness);
         fn(channelName(Res::MaterialId), g.materialId);
         forEachChannel(Res::Motion, g.motion, fn);
-    }
-    // Its planes as passes and kernels read them (every plane of one size, so one stride;
-    // the view checks it); a freed plane is missing from it.
-    GBufferView view() const;
-};
-
-// Per-pixel material terms the texture pass writes when some material needs them, each
-// empty (and no layer) otherwise: emission with emissive textures (every surface pixel's,
-// the material's factor alone where it has no texture; 0 on background), which the direct
-// pass reads instead of its per-material table; occlusion with occlusion textures (1 where a
-// material has none, and on background), which scales indirect light only (shading/
-// direct_kernel.h, DirectArgs::occlusion).
-struct MaterialPlanes : PlaneTable<MaterialPlanes> {
-    PlaneF emission[3];  // scene-linear radiance
-    PlaneF occlusion;
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
         forEachChannel(Res::Emissive, g.emission, fn);
         fn(channelName(Res::Occlusion), g.occlusion);
-    }
-};
-
-// Instance and triangle of each pixel as floats (RenderSettings::idPlanes); -1 on background.
-struct IdPlanes : PlaneTable<IdPlanes> {
-    PlaneF instanceId;
-    PlaneF triangleId;
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
         fn(channelName(Res::InstanceId), g.instanceId);
         fn(channelName(Res::TriangleId), g.triangleId);
     }
+    // Its planes as passes and kernels read them (every plane of one size, so one stride;
+    // the view checks it); a freed plane is missing from it. (The material terms and ids are
+    // not in it: their passes take them as planes of their own.)
+    GBufferView view() const;
 };
 
 // The direct pass's parts for the composite and the truth (shading/direct_kernel.h, DirectArgs
@@ -247,8 +235,6 @@ struct Frame {
     uint32_t index = 0;  // the FrameInput::frameIndex it was rendered with
     ImagePlanes image;
     GBuffer gbuffer;
-    MaterialPlanes material;  // only what the scene's materials need
-    IdPlanes ids;
     DirectParts direct;  // only when a trace pass runs
     TraceOutputs trace;
     // Layers a caller adds after rendering (`ssrt compare`: the truth's), written after ours.
@@ -325,7 +311,7 @@ struct Frame {
         forEachPlaneOf(*this, fn);
     }
 
-    // Every non-empty plane of image, gbuffer, material, ids and trace, in that order, then
+    // Every non-empty plane of image, gbuffer and trace, in that order, then
     // extraLayers: the file's layers, each with its LayerGroup.
     std::vector<PlaneRef> layers() const;
     // The layer called `name`; throws std::out_of_range if there is none.
@@ -337,8 +323,6 @@ private:
     static void forEachPlaneOf(F& f, Fn& fn) {
         f.image.forEachPlane(fn);
         f.gbuffer.forEachPlane(fn);
-        f.material.forEachPlane(fn);
-        f.ids.forEachPlane(fn);
         f.direct.forEachPlane(fn);
         f.trace.ssr.forEachPlane(fn);
         f.trace.ssgi.forEachPlane(fn);

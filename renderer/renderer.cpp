@@ -185,7 +185,7 @@ ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool
 void idTile(const TileGrid& grid, const std::vector<ResolveTriangle>& tris, Frame& frame,
             int tile) {
     const PlaneU32& ids = frame.scratch.visibility.ids;
-    IdPlanes& out = frame.ids;
+    GBuffer& out = frame.gbuffer;
     const TileRect r = grid.rect(tile);
     for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) {
@@ -214,7 +214,7 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
-    setDirectMaterialPlanes(frame.material, da);
+    setDirectMaterialPlanes(frame.gbuffer, da);
     da.width = c.grid.width;
     da.height = c.grid.height;
     da.tilesX = c.grid.tilesX;
@@ -265,6 +265,10 @@ GBufferView GBuffer::view() const {
     std::size_t n = 0;
     int w = 0, h = 0;
     forEachPlane([&](std::string_view name, const PlaneF& p) {
+        const Res res = resourceOfChannel(name);
+        if (res == Res::Emissive || res == Res::Occlusion || res == Res::InstanceId ||
+            res == Res::TriangleId)
+            return;  // (not the view's: see view())
         const unsigned which = gbufferPlaneNamed(name);
         if (which == 0 || n == kGBufferPlaneCount)
             throw std::logic_error("the G-buffer's plane '" + std::string(name) +

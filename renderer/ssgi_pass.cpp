@@ -124,7 +124,7 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
     SsgiFeedbackInputs in;
     in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
-    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    if (!frame.gbuffer.occlusion.empty()) in.occlusion = &frame.gbuffer.occlusion;
     const ScopedPass timer(frame.stats, "ssgi feedback");
     addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
 }

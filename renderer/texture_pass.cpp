@@ -36,7 +36,7 @@ void normalMap(const Scene& scene, const Material& m, Frame& f, int x, int y) {
 // (Each written where the frame holds it: the graph gives the frame a material plane only
 // where some material has that texture.)
 void materialPlanes(const Scene& scene, const Material* m, Frame& f, int x, int y) {
-    MaterialPlanes& out = f.material;
+    GBuffer& out = f.gbuffer;
     if (!out.emission[0].empty()) {
         glm::vec3 e = m ? m->emissive : glm::vec3(0.0f);
         if (m && m->emissiveTexture >= 0)

@@ -1,7 +1,7 @@
 // The texture pass: after the resolve, multiplies the G-buffer's material factors by the
 // textures of each pixel's material (base colour into albedo, metallic-roughness into
 // metallic and roughness), bends its normal by the normal map, and writes the per-pixel
-// emission and occlusion planes (frame.h, MaterialPlanes), each texture sampled trilinearly
+// emission and occlusion planes (frame.h, GBuffer), each texture sampled trilinearly
 // at the pixel's UV with its screen derivatives (scenes/texture.h has the conventions).
 //
 // Scalar code compiled once (not per ISA): the G-buffer it leaves is the same bits for

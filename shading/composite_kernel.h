@@ -22,7 +22,7 @@ struct CompositeArgs {
     FloatView envSpecular[3];
     FloatView specWeight[3];
     // SSGI (trace/ssgi.h): absent = off. With it on, the G-buffer's viewZ, albedo and metallic,
-    // and the occlusion (MaterialPlanes::occlusion; absent: none), which envDiffuse and
+    // and the occlusion (GBuffer::occlusion; absent: none), which envDiffuse and
     // specWeight hold already (DirectArgs::occlusion).
     ViewF ssgi[3];
     GBufferView g;

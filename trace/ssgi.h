@@ -65,7 +65,7 @@ struct SsgiFeedbackInputs {
     // viewZ (background pixels, 0, are left as they are), albedo, metallic, motion (previous
     // position = current + motion)
     GBufferView g;
-    const PlaneF* occlusion = nullptr;  // optional: MaterialPlanes::occlusion (null: 1)
+    const PlaneF* occlusion = nullptr;  // optional: GBuffer::occlusion (null: 1)
     const PlaneF* prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
 };
 

@@ -28,7 +28,7 @@ void specularDiffuse(const Frame& frame, const FloatPlane ssr[3], const PlaneF& 
     const PlaneF& metallic = frame.gbuffer.metallic;
     // The occlusion texture's share of the SSGI term (envDiffuse has it already).
     const PlaneF* occlusion =
-        frame.material.occlusion.empty() ? nullptr : &frame.material.occlusion;
+        frame.gbuffer.occlusion.empty() ? nullptr : &frame.gbuffer.occlusion;
     for (int c = 0; c < 3; ++c) {
         specular[c].ensureSize(frame.width, frame.height);
         diffuse[c].ensureSize(frame.width, frame.height);
@@ -109,8 +109,8 @@ void composeReference(Isa isa, const Frame& frame, float exposure, bool anyEmiss
         ca.display[c] = outputOf(display[c], "display");
     }
     ca.g = frame.gbuffer.view();
-    if (!frame.material.occlusion.empty())
-        ca.occlusion = viewOf(frame.material.occlusion, "occlusion");
+    if (!frame.gbuffer.occlusion.empty())
+        ca.occlusion = viewOf(frame.gbuffer.occlusion, "occlusion");
     ca.ssrOpacity = viewOf(opacity, "ssrOpacity");
     ca.exposure = exposure;
     composite(isa, ca, threads);

@@ -70,7 +70,7 @@ TEST_CASE("a plane at known depth gives exact view Z") {
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) REQUIRE(z.at(x, y) == 4.0f);
         CHECK(f.gbuffer.normal[2].at(7, 9) == 1.0f);
-        CHECK(f.ids.instanceId.at(7, 9) == 0.0f);
+        CHECK(f.gbuffer.instanceId.at(7, 9) == 0.0f);
     }
 }
 
@@ -164,7 +164,7 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
     int inside = 0, outside = 0;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
-            if (f.ids.instanceId.at(x, y) != 0.0f) continue;
+            if (f.gbuffer.instanceId.at(x, y) != 0.0f) continue;
             const glm::dvec3 p =
                 glm::dvec3(s.camera.position) +
                 pixelRay(s.camera, f.width, f.height, x, y) * double(f.gbuffer.viewZ.at(x, y));
@@ -186,7 +186,7 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
     int lit = 0, top = 0;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x)
-            if (f.ids.instanceId.at(x, y) == 1.0f) {
+            if (f.gbuffer.instanceId.at(x, y) == 1.0f) {
                 ++top;
                 lit += f.image.shadow.at(x, y) == 1.0f;
             }

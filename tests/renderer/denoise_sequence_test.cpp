@@ -201,7 +201,7 @@ TEST_CASE("denoise sequence: a camera pan reveals background that restarts its h
     PlaneF previousIds, previousZ;
     renderOrbit(scene, rs, 8, 3.0f, [&](int i, const Frame& f) {
         if (i >= 3) {
-            const PlaneF& ids = f.ids.instanceId;
+            const PlaneF& ids = f.gbuffer.instanceId;
             for (int y = 2; y < f.height - 2; ++y)
                 for (int x = 2; x < f.width - 2; ++x) {
                     if (!(f.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
@@ -234,7 +234,7 @@ TEST_CASE("denoise sequence: a camera pan reveals background that restarts its h
                     }
                 }
         }
-        previousIds = f.ids.instanceId.clone();
+        previousIds = f.gbuffer.instanceId.clone();
         previousZ = f.gbuffer.viewZ.clone();
     });
     MESSAGE("revealed " << revealed << " (restarted " << restarted << "), kept " << kept

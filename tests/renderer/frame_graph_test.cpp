@@ -153,8 +153,6 @@ TEST_CASE("frame graph: the frame's plane groups are named from the resource tab
     };
     f.image.forEachPlane(known);
     f.gbuffer.forEachPlane(known);
-    f.material.forEachPlane(known);
-    f.ids.forEachPlane(known);
     f.direct.forEachPlane(known);
     f.trace.ssr.forEachPlane(known);
     f.trace.ssgi.forEachPlane(known);

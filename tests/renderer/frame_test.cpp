@@ -87,7 +87,7 @@ TEST_CASE("frame: the layers are the groups' tables in file order, each found by
     CHECK(&f.plane("display.B") == &f.image.display[2]);
     CHECK(&f.plane("ssrHitDistance") == &f.trace.ssr.hitDistance);
     CHECK(&f.plane("ssgiSteps") == &f.trace.ssgi.steps);
-    CHECK(&f.plane("triangleId") == &f.ids.triangleId);
+    CHECK(&f.plane("triangleId") == &f.gbuffer.triangleId);
     for (const PlaneRef& p : f.layers()) {
         CAPTURE(std::string(p.name));
         CHECK(p.plane->width() == f.width);
@@ -125,7 +125,6 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     };
     f.image.forEachPlane(add);
     f.gbuffer.forEachPlane(add);
-    f.ids.forEachPlane(add);
     f.direct.forEachPlane(add);
     f.trace.ssr.forEachPlane(add);
     f.trace.ssgi.forEachPlane(add);

@@ -138,8 +138,8 @@ TEST_CASE("normal map: every ISA gives the same bits, and no normal map no tange
         }
     }
     CHECK(!ref.scratch.tangent[0].empty());
-    CHECK(ref.material.emission[0].empty());  // no emissive texture: no emission plane
-    CHECK(ref.material.occlusion.empty());
+    CHECK(ref.gbuffer.emission[0].empty());  // no emissive texture: no emission plane
+    CHECK(ref.gbuffer.occlusion.empty());
     CHECK(render(quadScene(), true).scratch.tangent[0].empty());
 }
 
@@ -162,8 +162,8 @@ TEST_CASE("occlusion texture: the sky-lit part darkens by the texel, the sun-lit
         Scene skyPlain = plain, skyOcc = occluded;
         skyPlain.light.intensity = skyOcc.light.intensity = 0.0f;
         const Frame a = render(skyPlain, trace), b = render(skyOcc, trace);
-        CHECK(b.material.occlusion.at(left, y) == doctest::Approx(darkAo));
-        CHECK(b.material.occlusion.at(right, y) == 1.0f);
+        CHECK(b.gbuffer.occlusion.at(left, y) == doctest::Approx(darkAo));
+        CHECK(b.gbuffer.occlusion.at(right, y) == 1.0f);
         for (int ch = 0; ch < 3; ++ch) {
             CHECK(a.image.color[ch].at(left, y) > 0.01f);
             CHECK(b.image.color[ch].at(left, y) ==
@@ -235,14 +235,14 @@ TEST_CASE("emissive texture: its light reaches a neighbouring floor through SSGI
     for (int y = 0; y < rs.height; ++y)
         for (int x = 0; x < rs.width; ++x) {
             const float id = f.gbuffer.materialId.at(x, y);
-            const float e = f.material.emission[0].at(x, y);
+            const float e = f.gbuffer.emission[0].at(x, y);
             // (Texel centres at u = 0.125, 0.375, ...: u below 0.375 reads the bright pair
             // alone, above 0.625 the black pair; the wall's u is the world x / 4 + 0.5.)
             const float u = wallU(f, x, y);
             if (id == 1.0f && u < 0.35f) {
                 ++wallLeft;
                 CHECK(e == doctest::Approx(4.0f).epsilon(1e-6));
-                CHECK(f.material.emission[1].at(x, y) == doctest::Approx(2.0f).epsilon(1e-6));
+                CHECK(f.gbuffer.emission[1].at(x, y) == doctest::Approx(2.0f).epsilon(1e-6));
             } else if (id == 1.0f && u > 0.65f) {
                 ++wallRight;
                 CHECK(e == 0.0f);

@@ -202,8 +202,8 @@ TEST_CASE("bunny scene renders finite: many small triangles seen, a shadow on th
     }
     const float ground = float(instanceNamed(scene, "bunny_ground"));
     const float bunny = float(instanceNamed(scene, "bunny"));
-    const PlaneF& ids = frame.ids.instanceId;
-    const PlaneF& triangles = frame.ids.triangleId;
+    const PlaneF& ids = frame.gbuffer.instanceId;
+    const PlaneF& triangles = frame.gbuffer.triangleId;
     const PlaneF& shadow = frame.image.shadow;
     int bunnyPixels = 0, shadowedGround = 0, litGround = 0;
     std::set<float> bunnyTriangles;

@@ -119,7 +119,7 @@ float instanceAt(const Frame& frame, glm::ivec2 px) {
     REQUIRE(px.x < kWidth);
     REQUIRE(px.y >= 0);
     REQUIRE(px.y < kHeight);
-    return frame.ids.instanceId.at(px.x, px.y);
+    return frame.gbuffer.instanceId.at(px.x, px.y);
 }
 
 }  // namespace
@@ -286,7 +286,7 @@ TEST_CASE("occluded scene: the mirror shows a sphere that the camera cannot see"
     CHECK(instanceAt(frame, pixelOf(scene.camera, image)) == float(mirror));
     // No pixel anywhere holds the sphere: a screen-space reflection has nothing to hit.
     int sphereSeen = 0;
-    const PlaneF& ids = frame.ids.instanceId;
+    const PlaneF& ids = frame.gbuffer.instanceId;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) sphereSeen += ids.at(x, y) == float(hidden);
     CHECK(sphereSeen == 0);

@@ -127,7 +127,7 @@ TEST_CASE("alpha truth: camera rays over a slanted cut-out plane agree with the 
             const EmbreeHit h = e.intersect(s.camera.position - e.origin(),
                                             cameraRay(s.camera, x, y, kSize), 0.0f, 1e4f);
             const float truth = h.hit ? float(h.instance) : -1.0f;
-            const float raster = f.ids.instanceId.at(x, y);
+            const float raster = f.gbuffer.instanceId.at(x, y);
             wrong += !(truth == raster);
             if (raster >= 0.0f) ++counts[int(raster)];
         }
@@ -158,7 +158,7 @@ TEST_CASE("alpha truth: sun rays through a cut-out roof agree with the shadow ma
     int exact = 0, lit = 0, wrong = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
-            if (f.ids.instanceId.at(x, y) != 0.0f) continue;  // the floor's pixels only
+            if (f.gbuffer.instanceId.at(x, y) != 0.0f) continue;  // the floor's pixels only
             const float shadow = f.image.shadow.at(x, y);
             if (shadow != 0.0f && shadow != 1.0f) continue;  // the filter's penumbra
             ++exact;

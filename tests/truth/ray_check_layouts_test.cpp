@@ -71,7 +71,7 @@ LayoutCheck checkSsgi(const Scene& scene, const EmbreeScene& embree, TraceLayout
 std::array<double, kRayClassCount> backWallShares(const LayoutCheck& c, uint64_t& rays) {
     std::array<uint64_t, kRayClassCount> n{};
     rays = 0;
-    const PlaneF& ids = c.frame.ids.instanceId;
+    const PlaneF& ids = c.frame.gbuffer.instanceId;
     REQUIRE(c.planes.rayClass.width() == ids.width());
     for (int y = 0; y < ids.height(); ++y)
         for (int x = 0; x < ids.width(); ++x) {

@@ -80,7 +80,7 @@ void addRecords(const Frame& frame, const Sample& s, const RayCheckPlanes& plane
     // World points: the origin plus the camera from it (TraceCamera's convention).
     const glm::vec3 pos(c.origin[0] + c.position[0], c.origin[1] + c.position[1],
                         c.origin[2] + c.position[2]);
-    const PlaneF& ids = frame.ids.instanceId;
+    const PlaneF& ids = frame.gbuffer.instanceId;
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {
             if (!(s.rays.pdf.at(x, y) > 0.0f)) continue;

@@ -177,8 +177,8 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
             }
             full.push_back(ef);
             bounce.push_back(eb);
-            occluded += frame.material.occlusion.at(x, y) < 0.9f;
-            emitting += frame.material.emission[0].at(x, y) > 0.0f;
+            occluded += frame.gbuffer.occlusion.at(x, y) < 0.9f;
+            emitting += frame.gbuffer.emission[0].at(x, y) > 0.0f;
         }
     for (std::vector<float>* e : {&full, &bounce}) {
         std::sort(e->begin(), e->end());

@@ -58,7 +58,7 @@ PlaneF embreeVisibility(const ReferenceRig& rig) {
 
 int instanceAt(const Frame& f, int x, int y) {
     if (x < 0 || y < 0 || x >= f.width || y >= f.height) return -1;
-    return int(f.ids.instanceId.at(x, y));
+    return int(f.gbuffer.instanceId.at(x, y));
 }
 
 // A pixel of `receiver` with a pixel of `occluder` beside it (left, right, above or below).
