@@ -13,7 +13,7 @@ struct SsgiSample {
     const TraceContext& c;
     MarchFrame on;
     const SsgiInputs& in;
-    const HitStatsPlanes& hp;
+    const HitStatsArgs& hp;
     DiffuseCut cut;
     RayGenCheckerboard checker;
     PlaneF* out;  // the resolve's colour planes
@@ -79,8 +79,9 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
     if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
         takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
-    const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
-                            &ht.resolved.hitDistance};
+    const HitStatsArgs hp{stageOutput(ht.resolved, &ht.resolved.hit, hf.camera),
+                          stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
+                          stageOutput(ht.resolved, &ht.resolved.hitDistance, hf.camera)};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
     const SsgiSample q{
         c, {hf.camera, hg, backZ(hf.backZ), hiz, &hf}, in, hp, cut, {}, ht.resolved.color};
@@ -147,7 +148,6 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     in.shadow = &frame.image.shadow;
     in.lighting = &c.args.direct;
-    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;
@@ -161,6 +161,9 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
+    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
+                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
+                          stageOutput(planes, &planes.hitDistance, c.camera)};
     takeBatches(c, frame);
     const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
                        planes.color};

@@ -43,7 +43,7 @@ struct SsrSample {
     const TraceContext& c;
     const SsrResolveSettings& rs;
     const SsrResolveInputs& in;
-    const HitStatsPlanes& hp;
+    const HitStatsArgs& hp;
     float maxRoughness;
     RayGenCheckerboard checker;
 
@@ -101,7 +101,9 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     SsrResolveSettings rs = ts.resolve;
     const SsrResolveInputs in = ssrInputs(c, frame, rs, times.resolve);
     // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
-    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
+    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
+                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
+                          stageOutput(planes, &planes.hitDistance, c.camera)};
     TraceStats& st = frame.stats.ssr;
     st.ran = true;
     st.spp = ts.ssrSpp;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/plane_view.h"
 #include "renderer/pass_timer.h"
 #include "renderer/trace_pass.h"
 #include "trace/hit_stats.h"
@@ -16,6 +17,20 @@ namespace ssrt::trace_stages {
 
 // The back-face depth layer when the frame has one (renderer.cpp, backDepthPass), else null.
 inline const PlaneF* backZ(const PlaneF& p) { return p.empty() ? nullptr : &p; }
+
+// The view of `p`, one of `group`'s planes named as its table names it, sized to the camera:
+// the output of a stage that writes every pixel. Absent for a null plane (debugPlane's "not
+// asked for").
+template <class Group>
+OutF stageOutput(Group& group, PlaneF* p, const TraceCamera& camera) {
+    if (!p) return {};
+    p->ensureSize(camera.width, camera.height);
+    std::string_view name;
+    group.forEachPlane([&](std::string_view n, const auto& q) {
+        if (static_cast<const void*>(&q) == p) name = n;
+    });
+    return outputOf(*p, name);
+}
 
 // What the passes below share: the frame's G-buffer as each stage reads it, the pyramid.
 struct TraceContext {
