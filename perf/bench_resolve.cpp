@@ -114,11 +114,11 @@ void benchSsgi(benchmark::State& state, Isa isa) {
         return;
     }
     Scene& s = scene();
-    SsgiInputs in;
+    SsgiArgs in;
     in.camera.width = kW;
     in.camera.height = kH;
     in.g = s.g();
-    in.shadow = &s.shadow;
+    in.shadow = viewOf(s.shadow, "shadow");
     in.lighting = &s.light;
     PlaneF out[3];
     for (auto _ : state) {

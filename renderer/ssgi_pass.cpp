@@ -12,7 +12,7 @@ namespace {
 struct SsgiSample {
     const TraceContext& c;
     MarchFrame on;
-    const SsgiInputs& in;
+    const SsgiArgs& in;
     const HitStatsArgs& hp;
     DiffuseCut cut;
     RayGenCheckerboard checker;
@@ -53,7 +53,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
 // half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
 // run on it, and the upsample brings them to the frame's planes. The observer sees the half
 // frame's batches with the half frame (TraceObserver).
-void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, DiffuseCut cut,
+void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, DiffuseCut cut,
               TraceStats& st, StageTimes& times) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
@@ -73,10 +73,10 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
     const GBufferView hg = hf.view();
-    SsgiInputs in = full;
+    SsgiArgs in = full;
     in.camera = hf.camera;
     in.g = hg;
-    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
+    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = viewIn(hf, hf.hitLight[ch]);
     if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
         takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
     const HitStatsArgs hp{stageOutput(ht.resolved, &ht.resolved.hit, hf.camera),
@@ -122,10 +122,11 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
     if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
         h->diffuse[0].height() != frame.height)
         return;
-    SsgiFeedbackInputs in;
+    SsgiFeedbackArgs in;
     in.g = frame.gbuffer.view();
-    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
-    if (!frame.material.occlusion.empty()) in.occlusion = &frame.material.occlusion;
+    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = viewIn(*h, h->diffuse[ch]);
+    // (absent without occlusion textures: 1)
+    in.occlusion = viewIn(frame.material, frame.material.occlusion);
     const ScopedPass timer(frame.stats, "ssgi feedback");
     addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
 }
@@ -138,15 +139,15 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
     SsgiPlanes& planes = frame.trace.ssgi;
-    SsgiInputs in;
+    SsgiArgs in;
     in.camera = c.camera;
     in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
-        in.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
+        if (c.args.direct.anyEmissive) in.emission[ch] = viewIn(parts, parts.emission[ch]);
         // The direct pass's hit light (then the G-buffer planes above are not read).
-        in.hitLight[ch] = &parts.hitLight[ch];
+        in.hitLight[ch] = viewIn(parts, parts.hitLight[ch]);
     }
-    in.shadow = &frame.image.shadow;
+    in.shadow = viewIn(frame.image, frame.image.shadow);
     in.lighting = &c.args.direct;
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
