@@ -92,11 +92,11 @@ void benchSsr(benchmark::State& state, Isa isa, SsrResolveMode mode) {
         return;
     }
     Scene& s = scene();
-    SsrResolveInputs in;
+    SsrResolveArgs in;
     in.camera.width = kW;
     in.camera.height = kH;
     in.g = s.g();
-    for (int c = 0; c < 3; ++c) in.color[c] = &s.color[c];
+    for (int c = 0; c < 3; ++c) in.color[c] = viewOf(s.color[c], "color");
     in.pyramid = &s.pyramid;
     SsrResolveSettings settings;
     settings.mode = mode;
