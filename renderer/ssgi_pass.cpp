@@ -61,14 +61,12 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     HalfFrame& hf = ht.frame;
     addTime(times.rays, [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
-        HalfFrameSource src{
-            full.g,
-            ts.denoise.enabled,
-            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
-            c.backZ};
+        HalfFrameSource src{full.g, ts.denoise.enabled};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
-        if (hitLightAtHalf(c.args.settings))
-            for (const PlaneU16*& p : src.hitLight) p = nullptr;
+        if (!hitLightAtHalf(c.args.settings))
+            for (int ch = 0; ch < 3; ++ch)
+                src.hitLight[ch] = viewIn(frame.direct, frame.direct.hitLight[ch]);
+        if (c.backZ) src.backZ = viewOf(*c.backZ, "backZ");
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
