@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 
 namespace ssrt {
 
@@ -61,11 +61,12 @@ GBufferView gbufferView(std::string_view pass, int width, int height, const GBuf
     GBufferView g;
     g.width = width;
     g.height = height;
-    PlaneCheck check(pass, width, height);
-    for (const GBufferSlot& s : std::span(planes, count))
-        if (s.plane && !s.plane->empty())
-            member(g, s.which) = check(s.plane, gbufferPlaneName(s.which));
-    g.stride = check.stride();
+    for (const GBufferSlot& s : std::span(planes, count)) {
+        if (!s.plane || s.plane->empty()) continue;
+        const ViewF v = viewOf(*s.plane, gbufferPlaneName(s.which));
+        g.stride = requireViews(pass, width, height, {v});
+        member(g, s.which) = v.data;
+    }
     requireGBuffer(pass, g, need, width, height);
     return g;
 }

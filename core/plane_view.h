@@ -57,7 +57,7 @@ struct FloatView {
     explicit operator bool() const { return f32 || f16; }
     // Row 0 as a kernel reads it.
     SignalIn in() const { return f16 ? SignalIn(f16.data) : SignalIn(f32.data); }
-    std::string_view name() const { return f16 ? f16.name : f32.name; }
+    std::string_view name() const { return f16 || !f16.name.empty() ? f16.name : f32.name; }
 };
 
 // One view as requireViews sees it, whatever its element type.
@@ -69,7 +69,9 @@ struct ViewShape {
     template <class T>
     ViewShape(const PlaneView<T>& v)
         : data(v.data), stride(v.stride), width(v.width), height(v.height), name(v.name) {}
-    ViewShape(const FloatView& v) : ViewShape(v.f16 ? ViewShape(v.f16) : ViewShape(v.f32)) {}
+    // (an absent float view by the name it was made with)
+    ViewShape(const FloatView& v)
+        : ViewShape(v.f16 || !v.f16.name.empty() ? ViewShape(v.f16) : ViewShape(v.f32)) {}
 };
 
 // The one check of the views a pass is handed: each present and of width x height; else

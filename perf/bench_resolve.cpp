@@ -93,11 +93,11 @@ void benchSsr(benchmark::State& state, Isa isa, SsrResolveMode mode) {
         return;
     }
     Scene& s = scene();
-    SsrResolveInputs in;
+    SsrResolveArgs in;
     in.camera.width = kW;
     in.camera.height = kH;
     in.g = s.g();
-    for (int c = 0; c < 3; ++c) in.color[c] = &s.color[c];
+    for (int c = 0; c < 3; ++c) in.color[c] = viewOf(s.color[c], "color");
     in.pyramid = &s.pyramid;
     SsrResolveSettings settings;
     settings.mode = mode;
@@ -115,11 +115,11 @@ void benchSsgi(benchmark::State& state, Isa isa) {
         return;
     }
     Scene& s = scene();
-    SsgiInputs in;
+    SsgiArgs in;
     in.camera.width = kW;
     in.camera.height = kH;
     in.g = s.g();
-    in.shadow = &s.shadow;
+    in.shadow = viewOf(s.shadow, "shadow");
     in.lighting = &s.light;
     PlaneF out[3];
     for (auto _ : state) {

@@ -12,8 +12,8 @@ namespace {
 struct SsgiSample {
     const TraceContext& c;
     MarchFrame on;
-    const SsgiInputs& in;
-    const HitStatsPlanes& hp;
+    const SsgiArgs& in;
+    const HitStatsArgs& hp;
     DiffuseCut cut;
     RayGenCheckerboard checker;
     PlaneF* out;  // the resolve's colour planes
@@ -53,7 +53,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
 // half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
 // run on it, and the upsample brings them to the frame's planes. The observer sees the half
 // frame's batches with the half frame (TraceObserver).
-void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, DiffuseCut cut,
+void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, DiffuseCut cut,
               TraceStats& st, StageTimes& times) {
     const TraceSettings& ts = c.ts;
     const Isa isa = c.args.isa;
@@ -61,26 +61,25 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiInputs& full, Diffu
     HalfFrame& hf = ht.frame;
     addTime(times.rays, [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
-        HalfFrameSource src{
-            full.g,
-            ts.denoise.enabled,
-            {&frame.direct.hitLight[0], &frame.direct.hitLight[1], &frame.direct.hitLight[2]},
-            c.backZ};
+        HalfFrameSource src{full.g, ts.denoise.enabled};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
-        if (hitLightAtHalf(c.args.settings))
-            for (const PlaneU16*& p : src.hitLight) p = nullptr;
+        if (!hitLightAtHalf(c.args.settings))
+            for (int ch = 0; ch < 3; ++ch)
+                src.hitLight[ch] = viewIn(frame.direct, frame.direct.hitLight[ch]);
+        if (c.backZ) src.backZ = viewOf(*c.backZ, "backZ");
         buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
     const GBufferView hg = hf.view();
-    SsgiInputs in = full;
+    SsgiArgs in = full;
     in.camera = hf.camera;
     in.g = hg;
-    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = &hf.hitLight[ch];
+    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = viewIn(hf, hf.hitLight[ch]);
     if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
         takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
-    const HitStatsPlanes hp{&ht.resolved.hit, c.debugPlane(ht.resolved.steps),
-                            &ht.resolved.hitDistance};
+    const HitStatsArgs hp{stageOutput(ht.resolved, &ht.resolved.hit, hf.camera),
+                          stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
+                          stageOutput(ht.resolved, &ht.resolved.hitDistance, hf.camera)};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
     const SsgiSample q{
         c, {hf.camera, hg, backZ(hf.backZ), hiz, &hf}, in, hp, cut, {}, ht.resolved.color};
@@ -121,10 +120,11 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
     if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
         h->diffuse[0].height() != frame.height)
         return;
-    SsgiFeedbackInputs in;
+    SsgiFeedbackArgs in;
     in.g = frame.gbuffer.view();
-    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = &h->diffuse[ch];
-    if (!frame.gbuffer.occlusion.empty()) in.occlusion = &frame.gbuffer.occlusion;
+    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = viewIn(*h, h->diffuse[ch]);
+    // (absent without occlusion textures: 1)
+    in.occlusion = viewIn(frame.gbuffer, frame.gbuffer.occlusion);
     const ScopedPass timer(frame.stats, "ssgi feedback");
     addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
 }
@@ -137,17 +137,16 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
     SsgiPlanes& planes = frame.trace.ssgi;
-    SsgiInputs in;
+    SsgiArgs in;
     in.camera = c.camera;
     in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
-        in.emission[ch] = c.args.direct.anyEmissive ? &parts.emission[ch] : nullptr;
+        if (c.args.direct.anyEmissive) in.emission[ch] = viewIn(parts, parts.emission[ch]);
         // The direct pass's hit light (then the G-buffer planes above are not read).
-        in.hitLight[ch] = &parts.hitLight[ch];
+        in.hitLight[ch] = viewIn(parts, parts.hitLight[ch]);
     }
-    in.shadow = &frame.image.shadow;
+    in.shadow = viewIn(frame.image, frame.image.shadow);
     in.lighting = &c.args.direct;
-    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;
@@ -161,6 +160,9 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
+    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
+                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
+                          stageOutput(planes, &planes.hitDistance, c.camera)};
     takeBatches(c, frame);
     const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
                        planes.color};

@@ -10,23 +10,23 @@ namespace {
 
 // The SSR resolve's inputs: this frame's direct light, or the last frame's composite (when the
 // history has one) through the motion vectors; the colour pyramid for the mip mode.
-SsrResolveInputs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
-                           double& pyramidMs) {
+SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
+                         double& pyramidMs) {
     const bool reproject = rs.radiance == HitRadiance::Reprojected && c.args.history;
     if (!reproject) rs.radiance = HitRadiance::Current;
-    SsrResolveInputs in;
+    SsrResolveArgs in;
     in.camera = c.camera;
     in.g = frame.gbuffer.view();
+    const PlaneF* source[3];
     for (int ch = 0; ch < 3; ++ch) {
-        in.color[ch] = &frame.image.color[ch];
-        in.prevColor[ch] = reproject ? &c.args.history->color[ch] : nullptr;
+        in.color[ch] = viewIn(frame.image, frame.image.color[ch]);
+        if (reproject) in.prevColor[ch] = viewIn(*c.args.history, c.args.history->color[ch]);
+        source[ch] = reproject ? &c.args.history->color[ch] : &frame.image.color[ch];
     }
     in.radianceScale = 1.0f / c.args.settings.exposure;
     if (rs.mode == SsrResolveMode::Mip) {
-        addTime(pyramidMs, [&] {
-            buildColorPyramid(reproject ? in.prevColor : in.color, frame.scratch.colorPyramid,
-                              c.threads());
-        });
+        addTime(pyramidMs,
+                [&] { buildColorPyramid(source, frame.scratch.colorPyramid, c.threads()); });
         in.pyramid = &frame.scratch.colorPyramid;
     }
     return in;
@@ -42,8 +42,8 @@ void swapSsrOutput(SsrPlanes& planes, SsrOutput& out) {
 struct SsrSample {
     const TraceContext& c;
     const SsrResolveSettings& rs;
-    const SsrResolveInputs& in;
-    const HitStatsPlanes& hp;
+    const SsrResolveArgs& in;
+    const HitStatsArgs& hp;
     float maxRoughness;
     RayGenCheckerboard checker;
 
@@ -99,9 +99,11 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     SsrPlanes& planes = frame.trace.ssr;
     StageTimes times;
     SsrResolveSettings rs = ts.resolve;
-    const SsrResolveInputs in = ssrInputs(c, frame, rs, times.resolve);
+    const SsrResolveArgs in = ssrInputs(c, frame, rs, times.resolve);
     // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
-    const HitStatsPlanes hp{&planes.hit, c.debugPlane(planes.steps), &planes.hitDistance};
+    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
+                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
+                          stageOutput(planes, &planes.hitDistance, c.camera)};
     TraceStats& st = frame.stats.ssr;
     st.ran = true;
     st.spp = ts.ssrSpp;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/plane_view.h"
 #include "renderer/pass_timer.h"
 #include "renderer/trace_pass.h"
 #include "trace/hit_stats.h"
@@ -16,6 +17,31 @@ namespace ssrt::trace_stages {
 
 // The back-face depth layer when the frame has one (renderer.cpp, backDepthPass), else null.
 inline const PlaneF* backZ(const PlaneF& p) { return p.empty() ? nullptr : &p; }
+
+// The name `group`'s table gives its plane `p` (empty for a plane not its).
+template <class Group, class T>
+std::string_view planeName(const Group& group, const Plane<T>& p) {
+    std::string_view name;
+    group.forEachPlane([&](std::string_view n, const auto& q) {
+        if (static_cast<const void*>(&q) == &p) name = n;
+    });
+    return name;
+}
+
+// The view of `p`, one of `group`'s planes, by its table's name.
+template <class Group, class T>
+PlaneView<const T> viewIn(const Group& group, const Plane<T>& p) {
+    return viewOf(p, planeName(group, p));
+}
+
+// The same of a plane a stage writes every pixel of: sized to the camera first. Absent for a
+// null plane (debugPlane's "not asked for").
+template <class Group>
+OutF stageOutput(Group& group, PlaneF* p, const TraceCamera& camera) {
+    if (!p) return {};
+    p->ensureSize(camera.width, camera.height);
+    return outputOf(*p, planeName(group, *p));
+}
 
 // What the passes below share: the frame's G-buffer as each stage reads it, the pyramid.
 struct TraceContext {

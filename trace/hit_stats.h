@@ -14,28 +14,22 @@
 
 namespace ssrt {
 
-struct HitStatsPlanes {
-    PlaneF* hit = nullptr;
-    PlaneF* steps = nullptr;     // optional (a plane to look at; null: not kept)
-    PlaneF* distance = nullptr;  // optional (null: not kept)
-};
-
-// Adds one sample's march to `out` (planes of the camera's size, ensured): sample 0
+// Adds one sample's march to the outputs `out` names (views of the camera's size): sample 0
 // overwrites, later samples add, and the call with sample == sampleCount - 1 turns the sums
 // into means. Per pixel, the distance to a hit is |P - O| with P the hit's view-space point,
 //   P = ((2 hitX / W - 1) tanHalfX z, (1 - 2 hitY / H) tanHalfY z, -z), z = hitZ,
 // and O the ray's origin. Throws std::invalid_argument on a missing or mis-sized plane or a
 // sample outside [0, sampleCount).
 void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays,
-                        const MarchResult& march, const HitStatsPlanes& out, int sample,
+                        const MarchResult& march, const HitStatsArgs& out, int sample,
                         int sampleCount, int threads);
 
 // The same, checked and set up once, then run tile by tile: over the frame by
 // accumulateHitStats, or one tile at a time by a trace pass's tile chain (trace/tile_chain.h).
 class HitStatsAccumulator {
 public:
-    // accumulateHitStats' arguments less the batches and threads (`out` ensured here).
-    HitStatsAccumulator(Isa isa, const TraceCamera& camera, const HitStatsPlanes& out, int sample,
+    // accumulateHitStats' arguments less the batches and threads.
+    HitStatsAccumulator(Isa isa, const TraceCamera& camera, const HitStatsArgs& out, int sample,
                         int sampleCount);
     const TileGrid& grid() const { return grid_; }
     // Tile `tile` of the batches: each the frame's (corner (0, 0)) or a tile's; one corner.

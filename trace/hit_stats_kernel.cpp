@@ -22,10 +22,10 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const std::size_t i = std::size_t(y - a.inY0) * a.inStride + std::size_t(x - a.inX0);
     const Lane zero(0.0f);
-    const Lane hit = loadAt(a.hit, i);
+    const Lane hit = loadAt(a.marchHit, i);
     Lane hitSum = hit;
-    if (!a.first) hitSum = loadAt(a.outHit, o) + hit;
-    if (a.outDistance) {
+    if (!a.first) hitSum = loadAt(a.hit.data, o) + hit;
+    if (a.distance.data) {
         Lane d = zero;
         const auto hits = hit > zero;
         if (ln::any(hits)) {
@@ -43,20 +43,20 @@ void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
             d = ln::select(hits, ln::sqrt(dx * dx + dy * dy + dz * dz), zero);
         }
         Lane distSum = d;
-        if (!a.first) distSum = loadAt(a.outDistance, o) + d;
+        if (!a.first) distSum = loadAt(a.distance.data, o) + d;
         if (a.last) {
             const auto any = hitSum > zero;
             distSum = ln::select(any, distSum / ln::select(any, hitSum, Lane(1.0f)), zero);
         }
-        ln::store(a.outDistance + o, distSum);
+        ln::store(a.distance.data + o, distSum);
     }
     if (a.last) hitSum = hitSum * Lane(a.invCount);
-    ln::store(a.outHit + o, hitSum);
-    if (a.outSteps) {
-        Lane stepSum = loadAt(a.steps, i);
-        if (!a.first) stepSum = loadAt(a.outSteps, o) + stepSum;
+    ln::store(a.hit.data + o, hitSum);
+    if (a.steps.data) {
+        Lane stepSum = loadAt(a.marchSteps, i);
+        if (!a.first) stepSum = loadAt(a.steps.data, o) + stepSum;
         if (a.last) stepSum = stepSum * Lane(a.invCount);
-        ln::store(a.outSteps + o, stepSum);
+        ln::store(a.steps.data + o, stepSum);
     }
 }
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/rng.h"
 #include "core/tiles.h"
 #include "trace/march_fields.h"
@@ -166,7 +166,9 @@ RayMarcher::RayMarcher(Isa isa, Marcher marcher, const MarchSettings& settings, 
     proto.g = g;
     proto.backZ = nullptr;
     if (settings.backFaces && backZ) {
-        proto.backZ = PlaneCheck("marchRays", w, h)(backZ, "backZ");
+        const ViewF back = viewOf(*backZ, "backZ");
+        requireViews("marchRays", w, h, {back});
+        proto.backZ = back.data;
         if (backZ->stride() != g.stride)
             throw std::invalid_argument("marchRays: backZ and viewZ of different strides");
     }
@@ -241,20 +243,19 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
     int8_t* key = scratch.key.data();
     int counts[kSortBuckets + 1] = {};
     const int tw = rect.x1 - rect.x0;
+    MarchKernelArgs ka = proto_;
+    ka.count = tw;
     for (int y = rect.y0; y < rect.y1; ++y) {
         const int x = rect.x0 - in.x0, yy = y - in.y0;
         int8_t* k = key + (y - rect.y0) * tw;
-        const SortKeyArgs ka{rays.pdf.row(yy) + x,
-                             rays.ox.row(yy) + x,
-                             rays.oy.row(yy) + x,
-                             rays.oz.row(yy) + x,
-                             rays.dx.row(yy) + x,
-                             rays.dy.row(yy) + x,
-                             rays.dz.row(yy) + x,
-                             tw,
-                             proto_.sx,
-                             proto_.sy,
-                             k};
+        ka.pdf = rays.pdf.row(yy) + x;
+        ka.ox = rays.ox.row(yy) + x;
+        ka.oy = rays.oy.row(yy) + x;
+        ka.oz = rays.oz.row(yy) + x;
+        ka.dx = rays.dx.row(yy) + x;
+        ka.dy = rays.dy.row(yy) + x;
+        ka.dz = rays.dz.row(yy) + x;
+        ka.key = k;
         sortKeys_(ka);
         for (int i = 0; i < tw; ++i)
             if (k[i] >= 0) ++counts[k[i] + 1];

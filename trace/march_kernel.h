@@ -47,31 +47,27 @@ struct MarchKernelArgs {
     float stepScale, stepBias;            // linear step = origin depth * scale + bias
     float thicknessScale, thicknessBias;  // thickness at depth z = z * scale + bias
     int refineSteps, mostDetailedLevel, startLevel;
-    // Packed rays: count, then arrays of at least count rounded up to kMarchPad.
+    // Packed rays: count, then arrays of at least count rounded up to kMarchPad. (For
+    // marchSortKeys: a row's rays, unpacked, with their pdf.)
     int count;
     const float *ox, *oy, *oz, *dx, *dy, *dz;
+    const float* pdf;              // marchSortKeys only
     const float *pixelX, *pixelY;  // the ray's own pixel (integers as floats)
     const float* jitter;           // DDA first-step offset in strides, [0, 1)
     // Outputs per packed ray (same padding).
     float *hit, *hitX, *hitY, *hitZ, *steps, *cause;
     // Outputs: lane slots issued and lanes active, summed over the steps.
     uint64_t laneSlots, laneActive;
+    int8_t* key;  // marchSortKeys' output per ray
 };
 
-// The packing key of each of `count` rays in a row (trace/march.cpp: the ray's bucket by its
-// screen-space direction, 2 sector + (dir.z > 0)), or -1 where the pixel has no ray (pdf <= 0,
-// a non-finite or zero direction or origin, an origin not in front of the camera). The
-// inputs are read in whole lane groups: each must be readable up to count rounded up to a
-// multiple of kMarchPad floats.
+// The packing key of each of `count` rays in a row (pdf, ox .. dz; into key) by the camera's
+// sx, sy (trace/march.cpp: the ray's bucket by its screen-space direction, 2 sector +
+// (dir.z > 0)), or -1 where the pixel has no ray (pdf <= 0, a non-finite or zero direction or
+// origin, an origin not in front of the camera). The inputs are read in whole lane groups:
+// each must be readable up to count rounded up to a multiple of kMarchPad floats.
 inline constexpr int kSortSectors = 64;
-struct SortKeyArgs {
-    const float *pdf, *ox, *oy, *oz, *dx, *dy, *dz;
-    int count;
-    float sx, sy;  // MarchKernelArgs::sx, sy
-    int8_t* key;
-};
-
-SSRT_DECLARE_KERNEL(void, marchSortKeys, (const SortKeyArgs& args))
+SSRT_DECLARE_KERNEL(void, marchSortKeys, (const MarchKernelArgs& args))
 SSRT_DECLARE_KERNEL(void, marchLinearKernel, (MarchKernelArgs & args))
 SSRT_DECLARE_KERNEL(void, marchDdaKernel, (MarchKernelArgs & args))
 SSRT_DECLARE_KERNEL(void, marchHiZKernel, (MarchKernelArgs & args))

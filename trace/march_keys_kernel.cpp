@@ -11,7 +11,7 @@ namespace {
 SSRT_INLINE Mask finite(Lane x) { return ln::abs(x) < Lane(__builtin_inff()); }
 
 // Keys (as floats, -1 = no ray) of the rays at i .. i + kW - 1.
-SSRT_INLINE Lane keys(const SortKeyArgs& a, int i) {
+SSRT_INLINE Lane keys(const MarchKernelArgs& a, int i) {
     const Lane zero(0.0f), one(1.0f);
     const Lane pdf = ln::load<Lane>(a.pdf + i);
     const Lane ox = ln::load<Lane>(a.ox + i), oy = ln::load<Lane>(a.oy + i),
@@ -37,7 +37,7 @@ SSRT_INLINE Lane keys(const SortKeyArgs& a, int i) {
 
 }  // namespace
 
-void marchSortKeys(const SortKeyArgs& a) {
+void marchSortKeys(const MarchKernelArgs& a) {
     alignas(64) float k[kW];
     for (int i = 0; i < a.count; i += kW) {
         ln::store(k, keys(a, i));

@@ -2,9 +2,10 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "trace/reconstruct_kernel.h"
 
@@ -12,16 +13,32 @@ namespace ssrt {
 
 namespace {
 
+constexpr std::string_view kPass = "reconstruction";
+
+// The names of a signal's planes in messages, in ReconstructPlane's order.
+using PlaneNames = std::string_view[kRecN];
+constexpr PlaneNames kOutputNames = {"output.R",       "output.G",   "output.B",
+                                     "output.opacity", "output.hit", "output.hitDistance",
+                                     "output.steps"},
+                     kHalfNames = {"half.R",   "half.G",           "half.B",    "half.opacity",
+                                   "half.hit", "half.hitDistance", "half.steps"};
+
+// The first rows of `s`'s planes (null where absent; colour needs all three channels), each
+// checked to w x h; their stride (`stride` where none is given).
 template <class P>
-void planes(const ReconstructPlanesOf<P>& s, PlaneCheck& need, const char* what,
-            const float* (&to)[kRecN]) {
+std::size_t takePlanes(const ReconstructPlanesOf<P>& s, int w, int h, const PlaneNames& names,
+                       const float* (&to)[kRecN], std::size_t stride) {
     P* const all[kRecN] = {s.color[0], s.color[1],    s.color[2], s.opacity,
                            s.hit,      s.hitDistance, s.steps};
     const bool color = s.color[0] || s.color[1] || s.color[2];
     for (int k = 0; k < kRecN; ++k) {
         to[k] = nullptr;
-        if (all[k] || (k < 3 && color)) to[k] = need(all[k], what);
+        if (!all[k] && !(k < 3 && color)) continue;
+        const ViewF v = all[k] ? viewOf(*all[k], names[k]) : ViewF{nullptr, 0, 0, 0, names[k]};
+        stride = requireViews(kPass, w, h, {v});
+        to[k] = v.data;
     }
+    return stride;
 }
 
 // The arguments both share: guides and camera.
@@ -32,7 +49,7 @@ ReconstructArgs guideArgs(const ReconstructGuides& g) {
     a.width = w;
     a.height = h;
     a.tilesX = TileGrid(w, h).tilesX;
-    requireGBuffer("reconstruction", g.g, kGViewZ | kGNormal, w, h);
+    requireGBuffer(kPass, g.g, kGViewZ | kGNormal, w, h);
     a.g = g.g;
     a.scaleX = 2.0f * g.camera.tanHalfX / float(w);
     a.scaleY = 2.0f * g.camera.tanHalfY / float(h);
@@ -72,25 +89,26 @@ uint64_t runCheckerboard(Isa isa, const ReconstructArgs& a, int threads) {
 uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf,
                           const ReconstructPlanes& out, int threads) {
     ReconstructArgs a = guideArgs(g);
-    PlaneCheck need("reconstruction", a.width, a.height);
     a.half = false;
-    a.pdf = need(pdf, "ray pdf");
+    const ViewF pdfView = viewOf(pdf, "ray.pdf");
+    std::size_t stride = requireViews(kPass, a.width, a.height, {pdfView});
+    a.pdf = pdfView.data;
     if (out.steps) throw std::invalid_argument("fillCheckerboard: steps are not filled");
     const float* in[kRecN];
-    planes(ReconstructSource{{out.color[0], out.color[1], out.color[2]},
-                             out.opacity,
-                             out.hit,
-                             out.hitDistance,
-                             nullptr},
-           need, "output", in);
+    stride = takePlanes(ReconstructSource{{out.color[0], out.color[1], out.color[2]},
+                                          out.opacity,
+                                          out.hit,
+                                          out.hitDistance,
+                                          nullptr},
+                        a.width, a.height, kOutputNames, in, stride);
     for (int k = 0; k < kRecN; ++k) {
         a.in[k] = in[k];
         a.out[k] = const_cast<float*>(in[k]);  // the same planes: filled in place
     }
     a.srcWidth = a.width;
     a.srcHeight = a.height;
-    a.srcStride = need.stride();
-    a.outStride = need.stride();
+    a.srcStride = stride;
+    a.outStride = stride;
     return runCheckerboard(isa, a, threads);
 }
 
@@ -104,10 +122,10 @@ HalfUpsampler::HalfUpsampler(Isa isa, const ReconstructGuides& g, PixelOffset of
     a.offsetY = offset.y & 1;
     a.srcWidth = (a.width + 1) / 2;
     a.srcHeight = (a.height + 1) / 2;
-    PlaneCheck needHalf("reconstruction", a.srcWidth, a.srcHeight);
-    a.pdf = needHalf(halfPdf, "half-resolution ray pdf");
-    planes(in, needHalf, "half-resolution input", a.in);
-    a.srcStride = needHalf.stride();
+    const ViewF pdf = viewOf(halfPdf, "half.ray.pdf");
+    const std::size_t stride = requireViews(kPass, a.srcWidth, a.srcHeight, {pdf});
+    a.pdf = pdf.data;
+    a.srcStride = takePlanes(in, a.srcWidth, a.srcHeight, kHalfNames, a.in, stride);
     kernel_ = SSRT_DISPATCH(isa, reconstructTile);
 }
 
@@ -122,12 +140,10 @@ uint64_t HalfUpsampler::tile(int tile, const ReconstructPlanes& out, int x0, int
     const int w = any->width(), h = any->height();
     if (!holdsTile({x0, y0}, w, h, r))
         throw std::invalid_argument("reconstruction: the outputs do not hold the tile");
-    PlaneCheck need("reconstruction", w, h);
     ReconstructArgs a = args_;
     const float* o[kRecN];
-    planes(out, need, "output", o);
+    a.outStride = takePlanes(out, w, h, kOutputNames, o, 0);
     for (int k = 0; k < kRecN; ++k) a.out[k] = const_cast<float*>(o[k]);
-    a.outStride = need.stride();
     a.outX0 = x0;
     a.outY0 = y0;
     // (An input without an output is not read; an output without an input is written 0,

@@ -1,8 +1,9 @@
 #include "trace/ssgi.h"
 
 #include <stdexcept>
+#include <string_view>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "trace/ssgi_kernel.h"
 
@@ -10,40 +11,42 @@ namespace ssrt {
 
 namespace {
 
+constexpr std::string_view kFeedback = "addSsgiFeedback", kResolve = "resolveSsgi";
+
 template <class T>
-void feedback(Isa isa, const SsgiFeedbackInputs& in, Plane<T> hitLight[3], int threads) {
+void feedback(Isa isa, const SsgiFeedbackArgs& in, Plane<T> hitLight[3], int threads) {
     const int w = hitLight[0].width(), h = hitLight[0].height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("addSsgiFeedback: empty hitLight");
     const TileGrid grid(w, h);
-    SsgiFeedbackArgs a{};
+    SsgiFeedbackArgs a = in;
     a.width = w;
     a.height = h;
     a.tilesX = grid.tilesX;
-    requireGBuffer("addSsgiFeedback", in.g, kGViewZ | kGAlbedo | kGMetallic | kGMotion, w, h);
-    a.g = in.g;
-    PlaneCheck need("addSsgiFeedback", w, h);
-    for (int c = 0; c < 3; ++c) {
-        a.prevDiffuse[c] = need(in.prevDiffuse[c], "previous diffuse radiance");
-        a.hitLight[c] = need.output(hitLight[c], "hitLight");
-    }
-    if (in.occlusion) a.occlusion = need(in.occlusion, "occlusion");
-    a.stride = need.stride();
+    requireGBuffer(kFeedback, a.g, kGViewZ | kGAlbedo | kGMetallic | kGMotion, w, h);
+    const PlaneView<T> lit[3] = {outputOf(hitLight[0], "hitLight.R"),
+                                 outputOf(hitLight[1], "hitLight.G"),
+                                 outputOf(hitLight[2], "hitLight.B")};
+    a.stride = requireViews(
+        kFeedback, w, h,
+        {a.prevDiffuse[0], a.prevDiffuse[1], a.prevDiffuse[2], lit[0], lit[1], lit[2]});
+    if (a.occlusion) requireViews(kFeedback, w, h, {a.occlusion});
+    for (int c = 0; c < 3; ++c) a.hitLight[c] = lit[c].data;
     const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
     parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
 }
 
 }  // namespace
 
-void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneU16 hitLight[3], int threads) {
+void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& in, PlaneU16 hitLight[3], int threads) {
     feedback(isa, in, hitLight, threads);
 }
-void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& in, PlaneF hitLight[3], int threads) {
+void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& in, PlaneF hitLight[3], int threads) {
     feedback(isa, in, hitLight, threads);
 }
 
-SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sample,
-                           int sampleCount, PlaneF* pdfCopy)
-    : grid_(in.camera.width, in.camera.height) {
+SsgiResolver::SsgiResolver(Isa isa, const SsgiArgs& in, PlaneF out[3], int sample, int sampleCount,
+                           PlaneF* pdfCopy)
+    : args_(in), grid_(in.camera.width, in.camera.height) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsgi: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
@@ -54,27 +57,26 @@ SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sam
     a.width = w;
     a.height = h;
     a.tilesX = grid_.tilesX;
-    PlaneCheck need("resolveSsgi", w, h);
-    const bool hitLight = in.hitLight[0] || in.hitLight[1] || in.hitLight[2];
-    requireGBuffer("resolveSsgi", in.g, kGViewZ | (hitLight ? 0 : kGNormal | kGAlbedo | kGMetallic),
-                   w, h);
-    a.g = in.g;
-    if (hitLight) {
-        for (int c = 0; c < 3; ++c) a.hitLight[c] = need(in.hitLight[c], "hitLight");
-    } else {
-        a.shadow = need(in.shadow, "shadow");
-        if (in.emission[0] || in.emission[1] || in.emission[2])
-            for (int c = 0; c < 3; ++c) a.emission[c] = need(in.emission[c], "emission");
-    }
-    a.lighting = *in.lighting;
+    const bool hitLight = a.hitLight[0] || a.hitLight[1] || a.hitLight[2];
+    requireGBuffer(kResolve, a.g, kGViewZ | (hitLight ? 0 : kGNormal | kGAlbedo | kGMetallic), w,
+                   h);
+    const OutF o[3] = {outputOf(out[0], "output.R"), outputOf(out[1], "output.G"),
+                       outputOf(out[2], "output.B")};
+    a.stride = requireViews(kResolve, w, h, {o[0], o[1], o[2]});
+    if (hitLight) requireViews(kResolve, w, h, {a.hitLight[0], a.hitLight[1], a.hitLight[2]});
+    else if (a.emission[0] || a.emission[1] || a.emission[2])
+        requireViews(kResolve, w, h, {a.shadow, a.emission[0], a.emission[1], a.emission[2]});
+    else requireViews(kResolve, w, h, {a.shadow});
+    a.light = *in.lighting;
     // The camera's rotation is the one rays are turned to world with.
-    for (int i = 0; i < 9; ++i) a.lighting.viewToWorld[i] = in.camera.viewToWorld[i];
-    for (int c = 0; c < 3; ++c) a.out[c] = need.output(out[c], "output");
+    for (int i = 0; i < 9; ++i) a.light.viewToWorld[i] = in.camera.viewToWorld[i];
+    for (int c = 0; c < 3; ++c) a.out[c] = o[c].data;
     if (pdfCopy) {
         pdfCopy->ensureSize(w, h);
-        a.copyPdf = need.output(*pdfCopy, "pdf copy");
+        const OutF copy = outputOf(*pdfCopy, "ray.pdf");
+        requireViews(kResolve, w, h, {copy});
+        a.copyPdf = copy.data;
     }
-    a.stride = need.stride();
     a.sample = sample;
     a.sampleCount = sampleCount;
     kernel_ = SSRT_DISPATCH(isa, ssgiTile);
@@ -83,29 +85,31 @@ SsgiResolver::SsgiResolver(Isa isa, const SsgiInputs& in, PlaneF out[3], int sam
 void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march) const {
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
-    const int bw = rays.pdf.width(), bh = rays.pdf.height();
     if (!sameCornerHolds(rays, march, r))
         throw std::invalid_argument("resolveSsgi: the batches do not hold the tile");
     SsgiArgs a = args_;
-    PlaneCheck need("resolveSsgi", bw, bh);
-    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int k = 0; k < 3; ++k) a.rayDir[k] = need(dirs[k], "ray direction");
-    a.pdf = need(&rays.pdf, "ray pdf");
-    a.hit = need(&march.hit, "march hit");
-    a.hitX = need(&march.hitX, "march hitX");
-    a.hitY = need(&march.hitY, "march hitY");
-    a.rayStride = need.stride();
+    const ViewF dx = viewOf(rays.dx, "ray.dx"), dy = viewOf(rays.dy, "ray.dy"),
+                dz = viewOf(rays.dz, "ray.dz"), pdf = viewOf(rays.pdf, "ray.pdf"),
+                hit = viewOf(march.hit, "march.hit"), hitX = viewOf(march.hitX, "march.hitX"),
+                hitY = viewOf(march.hitY, "march.hitY");
+    a.rayStride = requireViews(kResolve, rays.pdf.width(), rays.pdf.height(),
+                               {dx, dy, dz, pdf, hit, hitX, hitY});
+    a.rayDir[0] = dx.data, a.rayDir[1] = dy.data, a.rayDir[2] = dz.data;
+    a.pdf = pdf.data;
+    a.hit = hit.data;
+    a.hitX = hitX.data;
+    a.hitY = hitY.data;
     a.rayX0 = c.x0;
     a.rayY0 = c.y0;
     kernel_(a, tile);
 }
 
-void resolveSsgi(Isa isa, const SsgiInputs& in, const RayBatch& rays, const MarchResult& march,
+void resolveSsgi(Isa isa, const SsgiArgs& in, const RayBatch& rays, const MarchResult& march,
                  PlaneF out[3], int sample, int sampleCount, int threads) {
     const SsgiResolver resolver(isa, in, out, sample, sampleCount);
-    PlaneCheck need("resolveSsgi", in.camera.width, in.camera.height);  // the frame's batches
-    need(&rays.pdf, "ray pdf");
-    need(&march.hit, "march hit");
+    // The frame's batches, of the frame's size.
+    requireViews(kResolve, in.camera.width, in.camera.height,
+                 {viewOf(rays.pdf, "ray.pdf"), viewOf(march.hit, "march.hit")});
     parallelForTiles(resolver.grid().count(), threads,
                      [&](int t) { resolver.tile(t, rays, march); });
 }

@@ -43,44 +43,20 @@
 
 namespace ssrt {
 
-// What SSGI reads, all planes of the frame's size.
-struct SsgiInputs {
-    TraceCamera camera;              // width, height, viewToWorld (rays go to world for the sky)
-    GBufferView g;                   // viewZ; normal, albedo, metallic without hitLight
-    const PlaneF* shadow = nullptr;  // the direct pass's "shadow"
-    FloatPlane emission[3] = {};     // optional: DirectArgs::emission planes (null: none)
-    // Optional: DirectArgs::hitLight planes (f16 as the renderer's, or f32), L(x1 -> x0) of
-    // every pixel as above, computed by the direct pass; when given, g's normal, albedo,
-    // metallic, shadow and emission are not read (the same light, fewer gathers; f16 planes
-    // hold it rounded to nearest even).
-    FloatPlane hitLight[3] = {};
-    // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
-    // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
-    // renderer fills them; their plane pointers are not used.
-    const DirectArgs* lighting = nullptr;
-};
-
-// What the feedback reads, all planes of one size (hitLight's).
-struct SsgiFeedbackInputs {
-    // viewZ (background pixels, 0, are left as they are), albedo, metallic, motion (previous
-    // position = current + motion)
-    GBufferView g;
-    const PlaneF* occlusion = nullptr;  // optional: GBuffer::occlusion (null: 1)
-    const PlaneF* prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
-};
-
 // Adds the feedback above to every surface pixel of hitLight[3] (the direct pass's
-// DirectArgs::hitLight, in place), so that resolveSsgi's hits read it. Throws
-// std::invalid_argument when a plane is missing or not of hitLight's size.
-void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneU16 hitLight[3], int threads);
+// DirectArgs::hitLight, in place), so that resolveSsgi's hits read it; `args` (SsgiFeedbackArgs:
+// the caller's part) names what it reads. Throws std::invalid_argument when a plane is missing
+// or not of hitLight's size.
+void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& args, PlaneU16 hitLight[3], int threads);
 // The same on f32 planes.
-void addSsgiFeedback(Isa isa, const SsgiFeedbackInputs& inputs, PlaneF hitLight[3], int threads);
+void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& args, PlaneF hitLight[3], int threads);
 
-// One sample's diffuse rays into out[3] (ensured to the frame's size): sample 0 overwrites,
+// One sample's diffuse rays into out[3] (ensured to the frame's size); `args` (SsgiArgs: the
+// caller's part) names the camera, the planes and the lighting: sample 0 overwrites,
 // later samples accumulate, and after sample == sampleCount - 1 `out` is the average.
 // Throws std::invalid_argument when a plane is missing or of another size, or sample is not
 // in [0, sampleCount).
-void resolveSsgi(Isa isa, const SsgiInputs& inputs, const RayBatch& rays, const MarchResult& march,
+void resolveSsgi(Isa isa, const SsgiArgs& args, const RayBatch& rays, const MarchResult& march,
                  PlaneF out[3], int sample, int sampleCount, int threads);
 
 // The same, checked and set up once, then run tile by tile: over the frame by resolveSsgi, or
@@ -89,7 +65,7 @@ void resolveSsgi(Isa isa, const SsgiInputs& inputs, const RayBatch& rays, const 
 // reconstruction reads after the chain.
 class SsgiResolver {
 public:
-    SsgiResolver(Isa isa, const SsgiInputs& inputs, PlaneF out[3], int sample, int sampleCount,
+    SsgiResolver(Isa isa, const SsgiArgs& args, PlaneF out[3], int sample, int sampleCount,
                  PlaneF* pdfCopy = nullptr);
     const TileGrid& grid() const { return grid_; }
     // Tile `tile` of the batches: the frame's (corner (0, 0)) or a tile's; one corner.

@@ -22,6 +22,10 @@ constexpr int kW = int(ln::kWidth<Lane>);
 SSRT_INLINE V3 gather3(const float* const* planes, ILane i) {
     return {ln::gather(planes[0], i), ln::gather(planes[1], i), ln::gather(planes[2], i)};
 }
+SSRT_INLINE V3 gather3(const ViewF* planes, ILane i) {
+    return {ln::gather(planes[0].data, i), ln::gather(planes[1].data, i),
+            ln::gather(planes[2].data, i)};
+}
 SSRT_INLINE V3 gather3(const SignalIn* planes, ILane i) {
     const ln::Run run = ln::runOf(i);
     return {ln::gatherSignal<Lane>(planes[0], i, run), ln::gatherSignal<Lane>(planes[1], i, run),
@@ -31,10 +35,15 @@ SSRT_INLINE V3 gather3(const SignalIn* planes, ILane i) {
 // The Lambert direct light leaving the pixels i (plus their emission) from the G-buffer.
 // (The direct pass's hitLight planes hold the same light, f16 rounded: 3 gathers instead of 8
 // to 11.)
+SSRT_INLINE V3 gather3(const FloatView* planes, ILane i) {
+    const SignalIn in[3] = {planes[0].in(), planes[1].in(), planes[2].in()};
+    return gather3(in, i);
+}
+
 SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
     const V3 lit =
-        shade::lambertSunLight(a.lighting, gather3(a.g.normal, i), gather3(a.g.albedo, i),
-                               ln::gather(a.g.metallic, i), ln::gather(a.shadow, i));
+        shade::lambertSunLight(a.light, gather3(a.g.normal, i), gather3(a.g.albedo, i),
+                               ln::gather(a.g.metallic, i), ln::gather(a.shadow.data, i));
     return a.emission[0] ? lit + gather3(a.emission, i) : lit;
 }
 
@@ -60,8 +69,8 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
         if (ln::any(miss)) {
             const V3 d{ln::load<Lane>(a.rayDir[0] + r), ln::load<Lane>(a.rayDir[1] + r),
                        ln::load<Lane>(a.rayDir[2] + r)};
-            const V3 dw = ln::normalize(screen::viewToWorld(a.lighting.viewToWorld, d));
-            radiance = ln::select(miss, shade::skyRadiance(a.lighting, dw), radiance);
+            const V3 dw = ln::normalize(screen::viewToWorld(a.light.viewToWorld, d));
+            radiance = ln::select(miss, shade::skyRadiance(a.light, dw), radiance);
         }
     }
     // Accumulate: the sum over samples, divided by the count after the last.
@@ -92,7 +101,7 @@ void feedbackChunk(const SsgiFeedbackArgs& a, int x, int y) {
                      (py < Lane(float(a.height)));
     const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
     Lane keep = Lane(1.0f) - ln::load<Lane>(a.g.metallic + o);
-    if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion + o);
+    if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion.data + o);
     const V3 albedo{ln::load<Lane>(a.g.albedo[0] + o), ln::load<Lane>(a.g.albedo[1] + o),
                     ln::load<Lane>(a.g.albedo[2] + o)};
     const V3 reflected = albedo * keep * gather3(a.prevDiffuse, j);

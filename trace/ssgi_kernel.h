@@ -4,46 +4,67 @@
 
 #include <cstddef>
 
+#include "core/camera.h"
 #include "core/dispatch.h"
+#include "core/float_planes.h"
 #include "core/gbuffer_view.h"
+#include "core/plane_view.h"
 #include "shading/direct_kernel.h"
 
 namespace ssrt {
 
-// Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has the frame's size and one stride, the batch's aside.
+// One SSGI sample's resolve: the caller sets the camera, the planes (views of the camera's
+// size) and the lighting; SsgiResolver checks them and sets the rest. Plain data only: this
+// crosses into code compiled with other ISA flags.
 struct SsgiArgs {
-    int width, height, tilesX;
-    std::size_t stride;
-    GBufferView g;  // viewZ; normal, albedo, metallic without hitLight
-    const float* shadow;
-    SignalIn emission[3];  // all null: no emission (f32 or f16: core/float_planes.h)
-    SignalIn hitLight[3];  // all null: computed from the planes above (SsgiInputs)
-    // Rays and march: a batch's planes, with their own stride, whose element (0, 0) is the
-    // frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
-    const float* rayDir[3];  // view space
-    const float* pdf;
-    const float* hit;
-    const float* hitX;
-    const float* hitY;
-    std::size_t rayStride;
-    int rayX0, rayY0;
-    float* copyPdf;       // optional: the frame's plane the batch's pdf is copied to
-    DirectArgs lighting;  // sun, sky and viewToWorld
-    float* out[3];
-    int sample, sampleCount;
+    // The caller's.
+    TraceCamera camera;          // width, height, viewToWorld (rays go to world for the sky)
+    GBufferView g;               // viewZ; normal, albedo, metallic without hitLight
+    ViewF shadow{};              // the direct pass's "shadow" (without hitLight)
+    FloatView emission[3] = {};  // optional: DirectArgs::emission planes (absent: none)
+    // Optional: DirectArgs::hitLight planes (f16 as the renderer's, or f32), L(x1 -> x0) of
+    // every pixel (trace/ssgi.h), computed by the direct pass; when given, g's normal, albedo,
+    // metallic, shadow and emission are not read (the same light, fewer gathers; f16 planes
+    // hold it rounded to nearest even).
+    FloatView hitLight[3] = {};
+    // The sun (toLight, lightRadiance) and the sky (skyGradient, skyZenith/Horizon/Ground,
+    // envLevel/envLevelCount/envIntensity) are read from the direct pass's arguments as the
+    // renderer fills them; their plane pointers are not used.
+    const DirectArgs* lighting = nullptr;
+    // Set by the resolver: the camera's size, the planes' one stride, *lighting with the
+    // camera's rotation (the one rays are turned to world with), the output.
+    int width = 0, height = 0, tilesX = 0;
+    std::size_t stride = 0;
+    DirectArgs light{};
+    float* copyPdf = nullptr;  // optional: the frame's plane the batch's pdf is copied to
+    float* out[3] = {};
+    int sample = 0, sampleCount = 0;
+    // Set per tile: rays and march, a batch's planes, with their own stride, whose element
+    // (0, 0) is the frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
+    const float* rayDir[3] = {};  // view space
+    const float* pdf = nullptr;
+    const float* hit = nullptr;
+    const float* hitX = nullptr;
+    const float* hitY = nullptr;
+    std::size_t rayStride = 0;
+    int rayX0 = 0, rayY0 = 0;
 };
 
 SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
 
-// addSsgiFeedback's (trace/ssgi.h), likewise plain: one size and stride for every plane.
+// addSsgiFeedback's (trace/ssgi.h), likewise plain: the caller sets the planes (views of the
+// hit light's size), addSsgiFeedback the rest.
 struct SsgiFeedbackArgs {
-    int width, height, tilesX;
-    std::size_t stride;
-    GBufferView g;           // viewZ, albedo, metallic, motion
-    const float* occlusion;  // null: 1
-    const float* prevDiffuse[3];
-    SignalOut hitLight[3];  // read and written in place (f32 or f16)
+    // The caller's.
+    // viewZ (background pixels, 0, are left as they are), albedo, metallic, motion (previous
+    // position = current + motion)
+    GBufferView g;
+    ViewF occlusion{};          // optional: GBuffer::occlusion (absent: 1)
+    ViewF prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
+    // Set by addSsgiFeedback: the hit light's size, the one stride, the hit light.
+    int width = 0, height = 0, tilesX = 0;
+    std::size_t stride = 0;
+    SignalOut hitLight[3] = {};  // read and written in place (f32 or f16)
 };
 
 SSRT_DECLARE_KERNEL(void, ssgiFeedbackTile, (const SsgiFeedbackArgs& args, int tile))

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "trace/ssr_resolve_kernel.h"
 
@@ -27,10 +28,28 @@ void SsrOutput::ensureSize(int width, int height, int scratchRows, bool reuse) {
         for (PlaneF& p : hitTarget) p.ensureSize(width, scratchRows);
 }
 
-SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
+namespace {
+
+constexpr std::string_view kPass = "resolveSsr";
+
+// The view of one of the output's planes, by its table's name.
+OutF outputIn(SsrOutput& out, PlaneF& p) {
+    std::string_view name;
+    out.forEachPlane([&](std::string_view n, const PlaneF& q) {
+        if (&q == &p) name = n;
+    });
+    return outputOf(p, name);
+}
+
+}  // namespace
+
+SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveArgs& in,
                          SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
                          MarchResult& frameMarch, int scratchRows)
-    : grid_(in.camera.width, in.camera.height), frameRays_(&frameRays), frameMarch_(&frameMarch) {
+    : args_(in),
+      grid_(in.camera.width, in.camera.height),
+      frameRays_(&frameRays),
+      frameMarch_(&frameMarch) {
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("resolveSsr: empty camera");
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
@@ -52,11 +71,9 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     a.reuse = reuse;
     a.mip = settings.mode == SsrResolveMode::Mip;
     a.reproject = settings.radiance == HitRadiance::Reprojected;
-    requireGBuffer("resolveSsr", in.g,
+    requireGBuffer(kPass, a.g,
                    kGViewZ | kGRoughness | (a.reuse ? kGNormal : 0) | (a.reproject ? kGMotion : 0),
                    w, h);
-    a.g = in.g;
-    PlaneCheck need("resolveSsr", w, h);
     a.bilinear = settings.bilinear;
     if (a.mip) {
         const ColorPyramid* pyr = in.pyramid;
@@ -78,33 +95,43 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
         if (a.levelWidth[0] != w || a.levelHeight[0] != h)
             throw std::invalid_argument("resolveSsr: colour pyramid not of the frame's size");
     } else {
-        const PlaneF* const* src = a.reproject ? in.prevColor : in.color;
-        for (int c = 0; c < 3; ++c) a.source[c] = need(src[c], a.reproject ? "prevColor" : "color");
+        const ViewF* src = a.reproject ? a.prevColor : a.color;
+        requireViews(kPass, w, h, {src[0], src[1], src[2]});
+        for (int c = 0; c < 3; ++c) a.source[c] = src[c].data;
     }
     a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 1.0e30f;
     a.roughnessFadeEnd = settings.roughnessFadeEnd;
     const float span = settings.roughnessFadeEnd - settings.roughnessFadeStart;
     a.roughnessFadeScale = span > 0.0f ? 1.0f / span : 1.0e30f;
-    a.radianceScale = in.radianceScale;
-    PlaneCheck scratch("resolveSsr", w, rows);
-    for (int c = 0; c < 3; ++c) {
-        a.hitRadiance[c] = scratch.output(out.hitRadiance[c], "hit radiance");
-        a.outColor[c] = need.output(out.color[c], "colour");
-    }
-    a.hitFade = scratch.output(out.hitFade, "hit fade");
-    if (a.reuse)
-        for (int c = 0; c < 3; ++c) a.hitTarget[c] = scratch.output(out.hitTarget[c], "hit target");
-    a.outOpacity = need.output(out.opacity, "opacity");
-    // What pass 2 reads around each pixel (the hits only for the reuse).
+    // The outputs, and what pass 2 reads around each pixel (the hits only for the reuse).
     frameRays.corner = {};
     frameRays.pdf.ensureSize(w, h);
-    a.framePdf = pdfTarget_ = need.output(frameRays.pdf, "ray pdf");
+    const OutF color[3] = {outputIn(out, out.color[0]), outputIn(out, out.color[1]),
+                           outputIn(out, out.color[2])};
+    const OutF opacity = outputIn(out, out.opacity), pdf = outputOf(frameRays.pdf, "ray.pdf");
+    // (The scratch planes have the frame's width, so its stride.)
+    a.stride = requireViews(kPass, w, h, {color[0], color[1], color[2], opacity, pdf});
+    const OutF radiance[3] = {outputIn(out, out.hitRadiance[0]), outputIn(out, out.hitRadiance[1]),
+                              outputIn(out, out.hitRadiance[2])};
+    const OutF fade = outputIn(out, out.hitFade);
+    requireViews(kPass, w, rows, {radiance[0], radiance[1], radiance[2], fade});
+    for (int c = 0; c < 3; ++c) {
+        a.hitRadiance[c] = radiance[c].data;
+        a.outColor[c] = color[c].data;
+    }
+    a.hitFade = fade.data;
+    a.outOpacity = opacity.data;
+    a.framePdf = pdfTarget_ = pdf.data;
     if (a.reuse) {
         frameMarch.corner = {};
         frameMarch.hit.ensureSize(w, rows);
-        a.frameHit = hitTarget_ = scratch.output(frameMarch.hit, "march hit");
+        const OutF target[3] = {outputIn(out, out.hitTarget[0]), outputIn(out, out.hitTarget[1]),
+                                outputIn(out, out.hitTarget[2])};
+        const OutF hit = outputOf(frameMarch.hit, "march.hit");
+        requireViews(kPass, w, rows, {target[0], target[1], target[2], hit});
+        for (int c = 0; c < 3; ++c) a.hitTarget[c] = target[c].data;
+        a.frameHit = hitTarget_ = hit.data;
     }
-    a.stride = need.stride();  // (scratch.stride() too: planes of one width)
     a.sample = sample;
     a.sampleCount = sampleCount;
     hitKernel_ = SSRT_DISPATCH(isa, ssrHitTile);
@@ -114,19 +141,19 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
 void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& march) const {
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
-    const int bw = rays.pdf.width(), bh = rays.pdf.height();
     if (!sameCornerHolds(rays, march, r))
         throw std::invalid_argument("resolveSsr: the batches do not hold the tile");
     SsrResolveArgs a = args_;
-    PlaneCheck need("resolveSsr", bw, bh);
-    const PlaneF* const dirs[3] = {&rays.dx, &rays.dy, &rays.dz};
-    for (int k = 0; k < 3; ++k) a.rayDir[k] = need(dirs[k], "ray direction");
-    a.pdf = need(rays.pdf, "ray pdf");
-    a.hit = need(march.hit, "march hit");
-    a.hitPos[0] = need(march.hitX, "march hitX");
-    a.hitPos[1] = need(march.hitY, "march hitY");
-    a.hitPos[2] = need(march.hitZ, "march hitZ");
-    a.rayStride = need.stride();
+    const ViewF dx = viewOf(rays.dx, "ray.dx"), dy = viewOf(rays.dy, "ray.dy"),
+                dz = viewOf(rays.dz, "ray.dz"), pdf = viewOf(rays.pdf, "ray.pdf"),
+                hit = viewOf(march.hit, "march.hit"), hitX = viewOf(march.hitX, "march.hitX"),
+                hitY = viewOf(march.hitY, "march.hitY"), hitZ = viewOf(march.hitZ, "march.hitZ");
+    a.rayStride = requireViews(kPass, rays.pdf.width(), rays.pdf.height(),
+                               {dx, dy, dz, pdf, hit, hitX, hitY, hitZ});
+    a.rayDir[0] = dx.data, a.rayDir[1] = dy.data, a.rayDir[2] = dz.data;
+    a.pdf = pdf.data;
+    a.hit = hit.data;
+    a.hitPos[0] = hitX.data, a.hitPos[1] = hitY.data, a.hitPos[2] = hitZ.data;
     a.rayX0 = c.x0;
     a.rayY0 = c.y0;
     // A tile's batch: its pdf and hits go to the frame's, for pass 2.
@@ -143,14 +170,13 @@ void SsrResolver::resolveFrame(int threads) const {
     parallelForTiles(grid_.count(), threads, [&](int t) { resolveKernel_(args_, t); });
 }
 
-void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& in,
+void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveArgs& in,
                 const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
                 int sampleCount, int threads) {
     // The frame's batches, of the frame's size: only read (pass 1 copies nothing into its own
     // input, and the resolver's sizing of the two planes pass 2 reads keeps them).
-    PlaneCheck need("resolveSsr", in.camera.width, in.camera.height);
-    need(rays.pdf, "ray pdf");
-    need(march.hit, "march hit");
+    requireViews(kPass, in.camera.width, in.camera.height,
+                 {viewOf(rays.pdf, "ray.pdf"), viewOf(march.hit, "march.hit")});
     RayBatch& frameRays = const_cast<RayBatch&>(rays);
     MarchResult& frameMarch = const_cast<MarchResult&>(march);
     const SsrResolver resolver(isa, settings, in, out, sample, sampleCount, frameRays, frameMarch);

@@ -61,24 +61,6 @@ struct SsrResolveSettings {
     float roughnessFadeEnd = 0.7f;    // ... and where it is gone (<= start: a step at end)
 };
 
-// The planes the resolve reads, all of the frame's size (null where the settings do not need
-// them).
-struct SsrResolveInputs {
-    TraceCamera camera;  // the frame's camera (width, height, tanHalf*, viewToWorld)
-    // viewZ (0 = background), roughness; normal (SsrResolveMode::Reuse); motion
-    // (HitRadiance::Reprojected: previous pixel position = current + motion)
-    GBufferView g;
-    const PlaneF* color[3] = {};            // HitRadiance::Current: "color.R/G/B" of the
-                                            // direct pass
-    const PlaneF* prevColor[3] = {};        // HitRadiance::Reprojected: last frame's final
-                                            // colour
-    const ColorPyramid* pyramid = nullptr;  // SsrResolveMode::Mip: built from `color`
-                                            // (Current) or `prevColor` (Reprojected)
-    float radianceScale = 1.0f;             // multiplies every radiance read: 1 / exposure
-                                            // turns exposed colour planes back into the
-                                            // scene-linear units of the composite's inputs
-};
-
 struct SsrOutput : PlaneTable<SsrOutput> {
     PlaneF color[3];  // reflected radiance where SSR found something (not premultiplied)
     PlaneF opacity;   // how much of it to use, [0, 1]
@@ -102,12 +84,13 @@ struct SsrOutput : PlaneTable<SsrOutput> {
     void ensureSize(int width, int height, int scratchRows, bool reuse);
 };
 
-// Resolves one sample's rays into `out`. sample 0 overwrites, later samples accumulate, and
+// Resolves one sample's rays into `out`; `args` (SsrResolveArgs: the caller's part) names the
+// camera and the planes read. sample 0 overwrites, later samples accumulate, and
 // after the call with sample == sampleCount - 1 `out` holds the average: opacity the mean
 // opacity, color the opacity-weighted mean colour (so that color x opacity is the mean of
 // the samples' color x opacity). Throws std::invalid_argument when a plane the settings need
 // is missing or of another size, or sample is not in [0, sampleCount).
-void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& inputs,
+void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveArgs& args,
                 const RayBatch& rays, const MarchResult& march, SsrOutput& out, int sample,
                 int sampleCount, int threads);
 
@@ -125,7 +108,7 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveInp
 class SsrResolver {
 public:
     // resolveSsr's arguments less threads.
-    SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveInputs& inputs,
+    SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrResolveArgs& args,
                 SsrOutput& out, int sample, int sampleCount, RayBatch& frameRays,
                 MarchResult& frameMarch, int scratchRows = 0);
     const TileGrid& grid() const { return grid_; }

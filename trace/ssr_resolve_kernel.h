@@ -6,59 +6,78 @@
 
 #include <cstddef>
 
+#include "core/camera.h"
 #include "core/dispatch.h"
 #include "core/gbuffer_view.h"
+#include "core/plane_view.h"
 
 namespace ssrt {
 
-// Plain values and pointers only: this crosses into code compiled with other ISA flags.
-// Every plane has the frame's size and one stride (`stride`), the pyramid levels and the
-// batch's planes aside.
+struct ColorPyramid;
+
+// The resolve of one sample: the caller sets the camera, the planes it reads (views of the
+// camera's size, null where the settings do not need them) and the radiance scale; SsrResolver
+// checks them and sets the rest. Plain data only: this crosses into code compiled with other
+// ISA flags. Every plane has the frame's size and one stride (`stride`), the pyramid levels
+// and the batch's planes aside.
 struct SsrResolveArgs {
-    int width, height, tilesX;
-    std::size_t stride;
-    float tanHalfX, tanHalfY;
-    float viewToWorld[9];  // rotation, column-major (normals go to view space by its transpose)
-    GBufferView g;         // viewZ, roughness; normal (reuse); motion (reproject)
-    // Rays and march, read by ssrHitTile: a batch's planes, with their own stride, whose
-    // element (0, 0) is the frame's pixel (rayX0, rayY0) (trace/trace_types.h, BatchCorner).
-    const float* rayDir[3];  // view space
-    const float* pdf;
-    const float* hit;
-    const float* hitPos[3];  // hitX, hitY (pixels), hitZ (view depth)
-    std::size_t rayStride;
-    int rayX0, rayY0;
+    // The caller's.
+    TraceCamera camera;  // the frame's camera (width, height, tanHalf*, viewToWorld)
+    // viewZ (0 = background), roughness; normal (SsrResolveMode::Reuse); motion
+    // (HitRadiance::Reprojected: previous pixel position = current + motion)
+    GBufferView g;
+    ViewF color[3] = {};      // HitRadiance::Current: "color.R/G/B" of the direct pass
+    ViewF prevColor[3] = {};  // HitRadiance::Reprojected: last frame's final colour
+    const ColorPyramid* pyramid = nullptr;  // SsrResolveMode::Mip: built from `color`
+                                            // (Current) or `prevColor` (Reprojected)
+    float radianceScale = 1.0f;             // multiplies every radiance read: 1 / exposure
+                                            // turns exposed colour planes back into the
+                                            // scene-linear units of the composite's inputs
+    // Set by the resolver: the camera's size and lens, the planes' one stride.
+    int width = 0, height = 0, tilesX = 0;
+    std::size_t stride = 0;
+    float tanHalfX = 0.0f, tanHalfY = 0.0f;
+    float viewToWorld[9] = {};  // rotation, column-major (normals go to view space by its
+                                // transpose)
+    // Rays and march, read by ssrHitTile (set per tile): a batch's planes, with their own
+    // stride, whose element (0, 0) is the frame's pixel (rayX0, rayY0) (trace/trace_types.h,
+    // BatchCorner).
+    const float* rayDir[3] = {};  // view space
+    const float* pdf = nullptr;
+    const float* hit = nullptr;
+    const float* hitPos[3] = {};  // hitX, hitY (pixels), hitZ (view depth)
+    std::size_t rayStride = 0;
+    int rayX0 = 0, rayY0 = 0;
     // The pdf and hit planes of the frame that ssrResolveTile reads around each pixel: the
     // batch's own when it is the frame's; else ssrHitTile copies the tile's there.
-    const float* framePdf;
-    const float* frameHit;
-    float* copyPdf;  // null when the batch is the frame's
-    float* copyHit;  // (reuse only)
+    const float* framePdf = nullptr;
+    const float* frameHit = nullptr;
+    float* copyPdf = nullptr;  // null when the batch is the frame's
+    float* copyHit = nullptr;  // (reuse only)
     // Where hit radiance comes from: `source` at level 0 (Current: colour; Reprojected: the
     // previous frame's colour), read at hit + g.motion when `reproject`.
-    const float* source[3];
-    bool reproject, bilinear, mip, reuse;
+    const float* source[3] = {};
+    bool reproject = false, bilinear = false, mip = false, reuse = false;
     static constexpr int kMaxLevels = 16;
-    int levelCount;  // Mip: pyramid levels (level 0 at the frame's size)
-    const float* level[kMaxLevels][3];
-    std::size_t levelStride[kMaxLevels];
-    int levelWidth[kMaxLevels], levelHeight[kMaxLevels];
-    float edgeFadeScale;                         // 1 / edgeFadeLength
-    float roughnessFadeEnd, roughnessFadeScale;  // fade = saturate((end - r) * scale)
-    float radianceScale;
+    int levelCount = 0;  // Mip: pyramid levels (level 0 at the frame's size)
+    const float* level[kMaxLevels][3] = {};
+    std::size_t levelStride[kMaxLevels] = {};
+    int levelWidth[kMaxLevels] = {}, levelHeight[kMaxLevels] = {};
+    float edgeFadeScale = 0.0f;                                // 1 / edgeFadeLength
+    float roughnessFadeEnd = 0.0f, roughnessFadeScale = 0.0f;  // fade = saturate((end - r) * scale)
     // Scratch written by ssrHitTile, read by ssrResolveTile. hitTarget (reuse only): the hit
     // point in view space, or the ray's direction for a miss. The scratch planes (these and
     // frameHit) have `scratchRows` rows: the frame's height, or a ring of tile rows that frame
     // row y maps to at y % scratchRows (the tile chain's, trace/tile_chain.h, which resolves
     // a tile row while the rows around it are still in the ring).
-    int scratchRows;
-    float* hitRadiance[3];
-    float* hitFade;
-    float* hitTarget[3];
+    int scratchRows = 0;
+    float* hitRadiance[3] = {};
+    float* hitFade = nullptr;
+    float* hitTarget[3] = {};
     // Output, accumulated over samples.
-    float* outColor[3];
-    float* outOpacity;
-    int sample, sampleCount;
+    float* outColor[3] = {};
+    float* outOpacity = nullptr;
+    int sample = 0, sampleCount = 0;
 };
 
 SSRT_DECLARE_KERNEL(void, ssrHitTile, (const SsrResolveArgs& args, int tile))

@@ -3,12 +3,19 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 
 namespace ssrt {
+
+namespace {
+
+constexpr std::string_view kPass = "buildHalfFrame";
+
+}  // namespace
 
 std::string_view traceLayoutName(TraceLayout layout) {
     switch (layout) {
@@ -40,15 +47,15 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         throw std::invalid_argument("buildHalfFrame: the camera has no pixels");
     const GBufferView& g = src.g;
     const bool withGuides = src.guides;
-    requireGBuffer("buildHalfFrame", g,
+    requireGBuffer(kPass, g,
                    kGViewZ | kGNormal | kGAlbedo | kGMetallic | (withGuides ? kGMotion : 0),
                    full.width, full.height);
-    PlaneCheck need("buildHalfFrame", full.width, full.height);
     // Without src.hitLight the half frame's holds its chosen pixels' already (the direct pass
     // wrote them: DirectArgs::hitLightHalf).
     const bool hitLight = src.hitLight[0] || src.hitLight[1] || src.hitLight[2];
     if (hitLight)
-        for (int c = 0; c < 3; ++c) need(src.hitLight[c], "hitLight");
+        requireViews(kPass, full.width, full.height,
+                     {src.hitLight[0], src.hitLight[1], src.hitLight[2]});
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
     const PixelPoint point = halfPixelPoint(out.offset);
@@ -56,10 +63,12 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     out.camera.pointY = point.y;
     const int hw = out.camera.width, hh = out.camera.height;
     const int w = full.width, h = full.height;
-    if (!hitLight) {
-        PlaneCheck given("buildHalfFrame", hw, hh);
-        for (PlaneU16& p : out.hitLight) given(&p, "the half frame's hitLight");
-    }
+    if (!hitLight)
+        out.forEachPlane([&](std::string_view name, const auto& p) {
+            for (const PlaneU16& given : out.hitLight)
+                if (static_cast<const void*>(&p) == &given)
+                    requireViews(kPass, hw, hh, {viewOf(given, name)});
+        });
     // What each half pixel copies from its chosen pixel (`chosen`), and from its block's
     // first pixel for the denoiser's guides (`guides`; motion halved).
     // (Every source is of the frame's size: one stride, g's.)
@@ -70,8 +79,9 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     };
     std::vector<Copy> chosen = {{&out.viewZ, g.viewZ}, {&out.metallic, g.metallic}};
     if (src.backZ) {
-        chosen.push_back({&out.backZ, need(src.backZ, "backZ")});
-        if (src.backZ->stride() != g.stride)
+        requireViews(kPass, w, h, {src.backZ});
+        chosen.push_back({&out.backZ, src.backZ.data});
+        if (src.backZ.stride != g.stride)
             throw std::invalid_argument("buildHalfFrame: backZ and viewZ of different strides");
     } else {
         out.backZ = PlaneF();
@@ -107,7 +117,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         }
         if (hitLight)
             for (int c = 0; c < 3; ++c) {  // (f16 bits)
-                const uint16_t* in = src.hitLight[c]->row(sy);
+                const uint16_t* in = src.hitLight[c].row(sy);
                 uint16_t* to = out.hitLight[c].row(hy);
                 for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
             }

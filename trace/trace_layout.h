@@ -21,6 +21,7 @@
 
 #include "core/gbuffer_view.h"
 #include "core/image.h"
+#include "core/plane_view.h"
 #include "trace/trace_types.h"
 
 namespace ssrt {
@@ -119,11 +120,11 @@ struct HalfFrame : PlaneTable<HalfFrame> {
 struct HalfFrameSource {
     GBufferView g;        // the frame's: viewZ, normal, albedo, metallic; motion with `guides`
     bool guides = false;  // make the denoiser's guides (HalfFrame::guideZ, ...)
-    // DirectArgs::hitLight (SSGI's radiance at a hit); all null: out.hitLight holds the
+    // DirectArgs::hitLight (SSGI's radiance at a hit); all absent: out.hitLight holds the
     // chosen pixels' already, at the half frame's size (DirectArgs::hitLightHalf).
-    const PlaneU16* hitLight[3] = {};  // f16
+    ViewU16 hitLight[3] = {};  // f16
     // Optional: the back-face depth layer (raster/back_depth.h), which the march reads.
-    const PlaneF* backZ = nullptr;
+    ViewF backZ{};
 };
 
 // Fills `out` (planes reused when the size matches) for frame `frame`. Throws

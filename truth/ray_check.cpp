@@ -6,8 +6,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
-#include "core/plane_check.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 
 namespace ssrt {
@@ -96,12 +97,13 @@ void requireSizes(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
                   const MarchResult& m) {
     if (g.frame.width <= 0 || g.frame.height <= 0 || g.batch.width <= 0 || g.batch.height <= 0)
         throw std::invalid_argument("checkRays: the camera has no pixels");
-    PlaneCheck("checkRays", g.frame.width, g.frame.height)(viewZ, "viewZ");
-    PlaneCheck need("checkRays", g.batch.width, g.batch.height);
-    for (const PlaneF* p : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.pdf})
-        need(p, "a RayBatch plane");
-    for (const PlaneF* p : {&m.hit, &m.hitX, &m.hitY, &m.hitZ, &m.steps, &m.cause})
-        need(p, "a MarchResult plane");
+    requireViews("checkRays", g.frame.width, g.frame.height, {viewOf(viewZ, "viewZ")});
+    // Every plane of the batches, by its table's name.
+    const auto batchPlane = [&](std::string_view name, const PlaneF& p) {
+        requireViews("checkRays", g.batch.width, g.batch.height, {viewOf(p, name)});
+    };
+    rays.forEachPlane(batchPlane);
+    m.forEachPlane(batchPlane);
 }
 
 glm::vec3 viewOrigin(const RayBatch& r, int x, int y) {

@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/rng.h"
 #include "plane_compare.h"
@@ -100,9 +102,11 @@ TEST_CASE("hit statistics: the scalar loops' bits on every ISA and thread count"
                 for (int threads : {1, 2, 8}) {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
-                    PlaneF hit, steps, dist;
-                    const HitStatsPlanes out{&hit, withSteps ? &steps : nullptr,
-                                             withDistance ? &dist : nullptr};
+                    PlaneF hit(cam.width, cam.height), steps, dist;
+                    if (withSteps) steps.ensureSize(cam.width, cam.height);
+                    if (withDistance) dist.ensureSize(cam.width, cam.height);
+                    const HitStatsArgs out{outputOf(hit, "hit"), outputOf(steps, "steps"),
+                                           outputOf(dist, "distance")};
                     for (int s = 0; s < spp; ++s) {
                         randomSample(cam, uint32_t(s), rays, m);
                         accumulateHitStats(isa, cam, rays, m, out, s, spp, threads);
@@ -113,4 +117,29 @@ TEST_CASE("hit statistics: the scalar loops' bits on every ISA and thread count"
                     if (withDistance) CHECK(sameBits(dist, refDist));
                 }
         }
+}
+
+TEST_CASE("hit statistics: a missing or mis-sized plane is named") {
+    TraceCamera cam;
+    cam.width = 40;
+    cam.height = 24;
+    RayBatch rays;
+    MarchResult m;
+    randomSample(cam, 0, rays, m);
+    PlaneF hit(40, 24), steps(40, 24), narrow(39, 24), none;
+    const auto message = [&](const HitStatsArgs& out) -> std::string {
+        try {
+            accumulateHitStats(Isa::Scalar, cam, rays, m, out, 0, 1, 1);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "";
+    };
+    CHECK(message({outputOf(none, "ssrHit")}) == "accumulateHitStats: ssrHit is missing");
+    CHECK(message({outputOf(hit, "ssrHit"), outputOf(narrow, "ssrSteps")}) ==
+          "accumulateHitStats: ssrSteps is 39x24, not 40x24");
+    m.steps = PlaneF();
+    CHECK(message({outputOf(hit, "ssrHit"), outputOf(steps, "ssrSteps")}) ==
+          "accumulateHitStats: march.steps is missing");
+    CHECK(message({outputOf(hit, "ssrHit")}).empty());
 }

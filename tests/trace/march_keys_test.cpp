@@ -58,9 +58,13 @@ TEST_CASE("march keys: rays without a march are -1, the others by screen directi
     for (Isa isa : supportedIsas()) {
         CAPTURE(isaName(isa));
         std::vector<int8_t> key(std::size_t(n + 16), int8_t(99));
-        const SortKeyArgs a{p[0].data(), p[1].data(), p[2].data(), p[3].data(),
-                            p[4].data(), p[5].data(), p[6].data(), n,
-                            100.0f,      100.0f,      key.data()};
+        MarchKernelArgs a{};
+        a.pdf = p[0].data();
+        a.ox = p[1].data(), a.oy = p[2].data(), a.oz = p[3].data();
+        a.dx = p[4].data(), a.dy = p[5].data(), a.dz = p[6].data();
+        a.count = n;
+        a.sx = a.sy = 100.0f;
+        a.key = key.data();
         SSRT_DISPATCH(isa, marchSortKeys)(a);
         for (int i = 0; i < n; ++i) {
             CAPTURE(i);

@@ -67,7 +67,7 @@ struct Furnace {
     RayBatch rays;
     MarchResult march;
     DirectArgs light = lighting(false);
-    SsgiInputs in;
+    SsgiArgs in;
 
     Furnace() {
         rays.ensureSize(kW, kH);
@@ -87,8 +87,8 @@ struct Furnace {
         in.camera.width = kW;
         in.camera.height = kH;
         in.g = ssgiView(viewZ, normal, albedo, metallic);
-        for (int c = 0; c < 3; ++c) in.emission[c] = &emission[c];
-        in.shadow = &shadow;
+        for (int c = 0; c < 3; ++c) in.emission[c] = viewOf(emission[c], "emission");
+        in.shadow = viewOf(shadow, "shadow");
         in.lighting = &light;
     }
 };
@@ -119,9 +119,9 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
 }
 
 // SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
-void gbufferInputs(const Frame& frame, SsgiInputs& in) {
+void gbufferInputs(const Frame& frame, SsgiArgs& in) {
     in.g = frame.gbuffer.view();
-    in.shadow = &frame.image.shadow;
+    in.shadow = viewOf(frame.image.shadow, "shadow");
 }
 
 }  // namespace
@@ -139,13 +139,13 @@ TEST_CASE("ssgi: every hit on a surface of known direct light gives that radianc
                 CHECK(out[c].at(x, y) == doctest::Approx(expect).epsilon(1e-6));
             }
     // Without emission planes: the sun's part alone; facing away from the light: emission only.
-    f.in.emission[0] = f.in.emission[1] = f.in.emission[2] = nullptr;
+    f.in.emission[0] = f.in.emission[1] = f.in.emission[2] = {};
     resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
     CHECK(out[1].at(7, 7) == doctest::Approx(0.6 * 0.8 / M_PI * 3.0 * 0.5).epsilon(1e-6));
     f.normal[1].fill(-1.0f);
-    f.in.emission[0] = &f.emission[0];
-    f.in.emission[1] = &f.emission[1];
-    f.in.emission[2] = &f.emission[2];
+    f.in.emission[0] = viewOf(f.emission[0], "emission");
+    f.in.emission[1] = viewOf(f.emission[1], "emission");
+    f.in.emission[2] = viewOf(f.emission[2], "emission");
     resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2);
     CHECK(out[2].at(7, 7) == doctest::Approx(0.3f).epsilon(1e-6));
 }
@@ -184,11 +184,11 @@ TEST_CASE("ssgi: samples average -- pixels without a ray add 0") {
     CHECK(out[0].at(3, 4) == doctest::Approx(lit / 2).epsilon(1e-6));
     CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 2, 2, 2),
                     std::invalid_argument);
-    f.in.shadow = nullptr;
-    CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
-                    std::invalid_argument);
+    f.in.shadow = viewOf(PlaneF(), "shadow");
+    CHECK_THROWS_WITH_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
+                         "resolveSsgi: shadow is missing", std::invalid_argument);
     // And the G-buffer planes it reads.
-    f.in.shadow = &f.shadow;
+    f.in.shadow = viewOf(f.shadow, "shadow");
     CHECK_NOTHROW(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2));
     f.in.g.normal[1] = nullptr;
     CHECK_THROWS_AS(resolveSsgi(Isa::Scalar, f.in, f.rays, f.march, out, 0, 1, 2),
@@ -203,7 +203,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
     rs.threads = 2;
     const Frame frame = Renderer(rs).renderWithoutHistory(makeBuiltinScene("cornell"));
     const int w = frame.width, h = frame.height;
-    SsgiInputs in;
+    SsgiArgs in;
     in.camera.width = w;
     in.camera.height = h;
     const float rot[9] = {0.8f, 0.0f, -0.6f, 0.0f, 1.0f, 0.0f, 0.6f, 0.0f, 0.8f};
@@ -281,10 +281,11 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         DirectLighting dl;
         setDirectLighting(scene, rs, frame.scratch.shadow, nullptr, dl);
         REQUIRE(dl.args.anyEmissive == emits);
-        SsgiInputs in;
+        SsgiArgs in;
         in.camera = frame.camera;
         gbufferInputs(frame, in);
-        for (int c = 0; c < 3; ++c) in.emission[c] = emits ? &frame.direct.emission[c] : nullptr;
+        for (int c = 0; c < 3; ++c)
+            if (emits) in.emission[c] = viewOf(frame.direct.emission[c], "emission");
         in.lighting = &dl.args;
         RayBatch rays;
         MarchResult march;
@@ -297,14 +298,14 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
             for (int x = 0; x < frame.width; ++x)
                 lit += march.hit.at(x, y) > 0.0f && ref[0].at(x, y) > 0.0f;
         CHECK(lit > 100);
-        SsgiInputs fast = in;
+        SsgiArgs fast = in;
         for (int c = 0; c < 3; ++c) {
-            fast.hitLight[c] = &frame.direct.hitLight[c];
+            fast.hitLight[c] = viewOf(frame.direct.hitLight[c], "hitLight");
             fast.g.normal[c] = fast.g.albedo[c] = nullptr;
-            fast.emission[c] = nullptr;
+            fast.emission[c] = {};
         }
         fast.g.metallic = nullptr;
-        fast.shadow = nullptr;
+        fast.shadow = {};
         PlaneF first[3];
         int rounded = 0, other = 0;
         for (Isa isa : supportedIsas()) {
@@ -340,13 +341,13 @@ struct Feedback {
     PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
     PlaneF occlusion{kW, kH, 0.5f};
     PlaneF hitLight[3] = {PlaneF(kW, kH, 0.25f), PlaneF(kW, kH, 0.5f), PlaneF(kW, kH, 1.0f)};
-    SsgiFeedbackInputs in;
+    SsgiFeedbackArgs in;
     Feedback() {
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
                 for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
         in.g = ssgiView(f.viewZ, nullptr, f.albedo, f.metallic, motion);
-        for (int c = 0; c < 3; ++c) in.prevDiffuse[c] = &prev[c];
+        for (int c = 0; c < 3; ++c) in.prevDiffuse[c] = viewOf(prev[c], "prevDiffuse");
     }
     static float prevAt(int x, int y, int c) { return 0.01f * float(x + 1) + 0.1f * float(c + y); }
     // hitLight after the feedback, fresh each time.
@@ -379,7 +380,7 @@ TEST_CASE("ssgi: feedback adds each pixel's diffuse colour times last frame's li
     // to the right, nothing past the frame's edge; the occlusion scales the bounce; background
     // pixels are left alone.
     fb.motion[0].fill(1.0f);
-    fb.in.occlusion = &fb.occlusion;
+    fb.in.occlusion = viewOf(fb.occlusion, "occlusion");
     fb.f.viewZ.at(3, 4) = 0.0f;
     fb.run(out);
     for (int y = 0; y < kH; ++y)
@@ -409,9 +410,10 @@ TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA a
     Frame frame;
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
     const int w = frame.width, h = frame.height;
-    SsgiFeedbackInputs in;
+    SsgiFeedbackArgs in;
     for (int c = 0; c < 3; ++c)
-        in.prevDiffuse[c] = &frame.trace.ssgi.color[c];  // a frame's own light stands in
+        in.prevDiffuse[c] =
+            viewOf(frame.trace.ssgi.color[c], "ssgi");  // a frame's own light stands in
     // Motion that moves some pixels off the frame.
     PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
     for (int y = 0; y < h; ++y)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "core/rng.h"
 #include "plane_compare.h"
@@ -40,7 +41,7 @@ struct WallFixture {
     PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
     RayBatch rays;
     MarchResult march;
-    SsrResolveInputs in;
+    SsrResolveArgs in;
     ColorPyramid pyramid;
 
     explicit WallFixture(float rough = 0.0f) : roughness(kW, kH, rough) {
@@ -83,8 +84,8 @@ struct WallFixture {
                             {kGMotionX, &motion[0]},
                             {kGMotionY, &motion[1]}});
         for (int c = 0; c < 3; ++c) {
-            in.color[c] = &color[c];
-            in.prevColor[c] = &prev[c];
+            in.color[c] = viewOf(color[c], "color");
+            in.prevColor[c] = viewOf(prev[c], "prevColor");
         }
     }
 
@@ -261,7 +262,11 @@ TEST_CASE("ssr resolve: reuse normalises on a uniform hit field, and uses only v
                 CHECK(out.color[c].at(x, y) == doctest::Approx(0.25f * float(c + 1)).epsilon(1e-5));
     // Only the pixel itself has a ray (neighbours pdf 0): its own hit's colour, whatever the
     // neighbours' hits say.
-    for (int c = 0; c < 3; ++c) f.color[c] = WallFixture().color[c].clone();
+    // (New planes: new views of them.)
+    for (int c = 0; c < 3; ++c) {
+        f.color[c] = WallFixture().color[c].clone();
+        f.in.color[c] = viewOf(f.color[c], "color");
+    }
     f.rays.pdf.fill(0.0f);
     f.rays.pdf.at(50, 40) = 2.0f;
     f.march.hitX.at(50, 40) = 20.5f;
@@ -331,11 +336,21 @@ TEST_CASE("ssr resolve: samples average (opacity-weighted colour, mean opacity)"
     CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, f.in, f.rays, f.march, out, 3, 3, 2),
                     std::invalid_argument);
     // The G-buffer it reads: of the camera's size, with the planes the settings need.
-    SsrResolveInputs small = f.in;
+    SsrResolveArgs small = f.in;
     small.camera.width = kW - 1;
     CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, small, f.rays, f.march, out, 0, 1, 2),
                     std::invalid_argument);
-    SsrResolveInputs flat = f.in;
+    // And the colour: named.
+    SsrResolveArgs narrow = f.in;
+    const PlaneF narrowColor(kW - 1, kH);
+    narrow.color[1] = viewOf(narrowColor, "color.G");
+    CHECK_THROWS_WITH_AS(
+        resolveSsr(Isa::Scalar, s, narrow, f.rays, f.march, out, 0, 1, 2),
+        ("resolveSsr: color.G is " + std::to_string(kW - 1) + "x" + std::to_string(kH) + ", not " +
+         std::to_string(kW) + "x" + std::to_string(kH))
+            .c_str(),
+        std::invalid_argument);
+    SsrResolveArgs flat = f.in;
     flat.g.roughness = nullptr;
     CHECK_THROWS_AS(resolveSsr(Isa::Scalar, s, flat, f.rays, f.march, out, 0, 1, 2),
                     std::invalid_argument);
@@ -397,15 +412,15 @@ TEST_CASE(
     const Frame frame =
         Renderer(rs).renderWithoutHistory(makeBuiltinScene("spheres"));  // roughness 0..1
     const int w = frame.width, h = frame.height;
-    SsrResolveInputs in;
+    SsrResolveArgs in;
     in.camera.width = w;
     in.camera.height = h;
     in.camera.tanHalfY = 0.4f;
     in.camera.tanHalfX = 0.4f * float(w) / float(h);
     in.g = frame.gbuffer.view();
     for (int c = 0; c < 3; ++c) {
-        in.color[c] = &frame.image.color[c];
-        in.prevColor[c] = &frame.image.color[c];
+        in.color[c] = viewOf(frame.image.color[c], "color");
+        in.prevColor[c] = viewOf(frame.image.color[c], "prevColor");
     }
     // Random rays: some without a ray, some with a tiny or huge pdf, hits anywhere including
     // exactly on the frame's edges and beyond.
@@ -434,7 +449,7 @@ TEST_CASE(
             march.hitZ.at(x, y) = march.hit.at(x, y) > 0 ? 1.0f + 10.0f * u[3] : 0.0f;
         }
     ColorPyramid pyr;
-    const PlaneF* src[3] = {in.color[0], in.color[1], in.color[2]};
+    const PlaneF* src[3] = {&frame.image.color[0], &frame.image.color[1], &frame.image.color[2]};
     buildColorPyramid(src, pyr, 2);
     in.pyramid = &pyr;
     for (SsrResolveMode mode : {SsrResolveMode::Mip, SsrResolveMode::Reuse})

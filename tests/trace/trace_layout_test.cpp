@@ -177,7 +177,10 @@ TEST_CASE("half resolution: the chosen pixel of each block rotates over the four
     for (int c = 0; c < 3; ++c) alb[c] = PlaneF(w, h), light[c] = PlaneU16(w, h);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) z.at(x, y) = 1.0f + float(y * w + x);
-    const HalfFrameSource src{sourceView(z, n, alb, met), false, {&light[0], &light[1], &light[2]}};
+    const HalfFrameSource src{sourceView(z, n, alb, met),
+                              false,
+                              {viewOf(light[0], "hitLight.R"), viewOf(light[1], "hitLight.G"),
+                               viewOf(light[2], "hitLight.B")}};
     for (uint32_t f = 0; f < 4; ++f) {
         HalfFrame hf;
         buildHalfFrame(cam, src, f, hf, 2);
@@ -257,8 +260,10 @@ TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, 
             motion[0].at(x, y) = 3.0f * float(x);
             motion[1].at(x, y) = -float(y);
         }
-    HalfFrameSource src{
-        sourceView(z, n, alb, met, motion), true, {&light[0], &light[1], &light[2]}};
+    HalfFrameSource src{sourceView(z, n, alb, met, motion),
+                        true,
+                        {viewOf(light[0], "hitLight.R"), viewOf(light[1], "hitLight.G"),
+                         viewOf(light[2], "hitLight.B")}};
     for (uint32_t f = 0; f < 4; ++f) {
         CAPTURE(f);
         HalfFrame hf;

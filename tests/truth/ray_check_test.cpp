@@ -271,12 +271,12 @@ TEST_CASE("ray check: planes of the wrong size are refused") {
     const EmbreeScene embree(scene);
     Frame1 f = emptyFrame(16, 8);
     const PlaneF wrongZ(8, 8, 1.0f);
-    CHECK_THROWS_AS(checkRays(embree, f.camera, wrongZ, f.rays, f.march, {}, nullptr, 1),
-                    std::invalid_argument);
+    CHECK_THROWS_WITH_AS(checkRays(embree, f.camera, wrongZ, f.rays, f.march, {}, nullptr, 1),
+                         "checkRays: viewZ is 8x8, not 16x8", std::invalid_argument);
     MarchResult small;
     small.ensureSize(16, 4);
-    CHECK_THROWS_AS(checkRays(embree, f.camera, f.viewZ, f.rays, small, {}, nullptr, 1),
-                    std::invalid_argument);
+    CHECK_THROWS_WITH_AS(checkRays(embree, f.camera, f.viewZ, f.rays, small, {}, nullptr, 1),
+                         "checkRays: march.hit is 16x4, not 16x8", std::invalid_argument);
 }
 
 TEST_CASE("ray check: the same table and planes for 1, 2 and 8 threads") {
