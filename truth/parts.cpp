@@ -27,8 +27,7 @@ void specularDiffuse(const Frame& frame, const FloatPlane ssr[3], const PlaneF& 
     const PlaneF& viewZ = frame.gbuffer.viewZ;
     const PlaneF& metallic = frame.gbuffer.metallic;
     // The occlusion texture's share of the SSGI term (envDiffuse has it already).
-    const PlaneF* occlusion =
-        frame.gbuffer.occlusion.empty() ? nullptr : &frame.gbuffer.occlusion;
+    const PlaneF* occlusion = frame.gbuffer.occlusion.empty() ? nullptr : &frame.gbuffer.occlusion;
     for (int c = 0; c < 3; ++c) {
         specular[c].ensureSize(frame.width, frame.height);
         diffuse[c].ensureSize(frame.width, frame.height);
