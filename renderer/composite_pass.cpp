@@ -20,9 +20,9 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeAr
     using Clock = std::chrono::steady_clock;
     const DenoiseOutputs& half = frame.scratch.half.denoised;
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
-    const HalfUpsampler up(c.args.isa, c.guides(frame), PixelOffset{0, 0},
-                           frame.scratch.half.rays.pdf, from);
-    const Compositor comp(c.args.isa, ca, true);
+    const HalfUpsampler up(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
+                           from);
+    const Compositor comp(c.isa, ca, true);
     const TileGrid& grid = comp.grid();
     std::vector<double> busy(std::size_t(2 * grid.count()), 0.0);
     const Clock::time_point t0 = Clock::now();
@@ -53,13 +53,13 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeAr
 }  // namespace
 
 void compositePass(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts;
-    const bool inComposite = diffuseUpsampledInComposite(c.args.settings);
+    const TraceSettings& ts = c.ts();
+    const bool inComposite = diffuseUpsampledInComposite(c.settings);
     const DirectParts& parts = frame.direct;
     CompositeArgs ca;
     for (int ch = 0; ch < 3; ++ch) {
         ca.direct[ch] = viewOf(parts.direct[ch], channelName(Res::Direct, ch));
-        if (c.args.direct.anyEmissive)
+        if (c.direct.anyEmissive)
             ca.emission[ch] = viewOf(parts.emission[ch], channelName(Res::Emission, ch));
         if (!ts.ssgi)
             ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
@@ -85,12 +85,12 @@ void compositePass(const TraceContext& c, Frame& frame) {
     }
     if (ts.ssr && !ts.denoise.enabled)
         ca.ssrOpacity = viewOf(frame.trace.ssr.opacity, channelName(Res::SsrOpacity));
-    ca.exposure = c.args.settings.exposure;
+    ca.exposure = c.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.
     if (inComposite) return upsampleAndComposite(c, frame, ca);
     const ScopedPass timer(frame.stats, "composite");
-    composite(c.args.isa, ca, c.threads());
+    composite(c.isa, ca, c.threads());
 }
 
 }  // namespace ssrt::trace_stages

@@ -16,11 +16,11 @@ DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera
                           bool half) {
     DenoiseInputs in;
     in.camera = camera;
-    in.frameIndex = c.args.frameIndex;
-    in.replaceHistory = c.args.replaceHistory;
-    in.historyLengths = c.args.settings.debugPlanes;
+    in.frameIndex = c.frameIndex;
+    in.replaceHistory = c.replaceHistory;
+    in.historyLengths = c.settings.debugPlanes;
     // (Where the graph culls the temporal pass: no history to read or keep.)
-    in.temporal = c.args.graph.runs(half ? pass::kDenoiseTemporalHalf : pass::kDenoiseTemporal);
+    in.temporal = c.graph.runs(half ? pass::kDenoiseTemporalHalf : pass::kDenoiseTemporal);
     in.pool = &frame.scratch.pool;
     return in;
 }
@@ -46,13 +46,13 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
                         {kGMotionY, &hf.guideMotion[1]}});
     for (int i = 0; i < 3; ++i) in.diffuse[i] = &ht.resolved.color[i];
     in.diffuseHitDistance = &ht.resolved.hitDistance;
-    if (tracedSignalsPooled(c.args.settings))
+    if (tracedSignalsPooled(c.settings))
         in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
-    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoiseHalf : nullptr;
+    DenoiseHistory* history = c.sequence ? &c.sequence->denoiseHalf : nullptr;
     DenoiseOutputs& half = ht.denoised;
-    denoise(c.args.isa, halfResolutionDiffuse(c.ts.denoise), in, history, c.args.resetHistory,
-            ht.denoise, half, c.threads(), &times);
-    if (diffuseUpsampledInComposite(c.args.settings)) return;  // (compositePass)
+    denoise(c.isa, halfResolutionDiffuse(c.ts().denoise), in, history, c.resetHistory, ht.denoise,
+            half, c.threads(), &times);
+    if (diffuseUpsampledInComposite(c.settings)) return;  // (compositePass)
     const auto t0 = std::chrono::steady_clock::now();
     DenoiseOutputs& out = frame.trace.denoised;
     // (The history length, a plane to look at, is blended as the hit share is.)
@@ -62,8 +62,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     const ReconstructPlanes to{{&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
                                nullptr,
                                c.debugPlane(out.diffuseFrames)};
-    upsampleHalf(c.args.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to,
-                 c.threads());
+    upsampleHalf(c.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to, c.threads());
     const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
     times.push_back({"denoise upsample", ms.count()});
 }
@@ -73,7 +72,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
 // REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoised, which the
 // composite then reads; the traced planes stay as they were (the undenoised layers).
 void denoisePass(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts;
+    const TraceSettings& ts = c.ts();
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
     DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
     in.g = frame.gbuffer.view();
@@ -93,17 +92,17 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     }
     // The traced signals no later pass reads go back to the pool before the denoiser's
     // scratch is taken from it.
-    in.signalsRead = [&c] { c.args.memory.giveThrough(pass::kDenoiseFrontEnd); };
-    DenoiseHistory* history = c.args.sequence ? &c.args.sequence->denoise : nullptr;
+    in.signalsRead = [&c] { c.memory.giveThrough(pass::kDenoiseFrontEnd); };
+    DenoiseHistory* history = c.sequence ? &c.sequence->denoise : nullptr;
     std::vector<DenoisePassTime> times;
     // The half frame's diffuse first (the graph's order): its planes go back before the
     // full-resolution denoiser takes its scratch.
     if (halfDiffuse) {
         denoiseHalfDiffuse(c, frame, times);
-        c.args.memory.giveThrough(pass::kDenoiseUpsample);
+        c.memory.giveThrough(pass::kDenoiseUpsample);
     }
     if (in.diffuse[0] || in.ssr[0])
-        denoise(c.args.isa, ts.denoise, in, history, c.args.resetHistory, frame.scratch.denoise,
+        denoise(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise,
                 frame.trace.denoised, c.threads(), &times);
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {

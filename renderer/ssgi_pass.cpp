@@ -22,12 +22,12 @@ struct SsgiSample {
 RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
                        TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
-    const Isa isa = c.args.isa;
-    const int spp = c.ts.ssgiSpp;
+    const Isa isa = c.isa;
+    const int spp = c.ts().ssgiSpp;
     const TraceCamera& camera = q.on.camera;
-    const RayGenerator gen = RayGenerator::diffuse(isa, c.args.frameIndex, uint32_t(s), camera,
-                                                   q.on.g, q.cut, q.checker);
-    const RaySeed seed{c.args.frameIndex, uint32_t(s)};
+    const RayGenerator gen =
+        RayGenerator::diffuse(isa, c.frameIndex, uint32_t(s), camera, q.on.g, q.cut, q.checker);
+    const RaySeed seed{c.frameIndex, uint32_t(s)};
     if (!tiled(c)) {
         RayGenStats rs;
         addTime(times.rays, [&] { rs = gen.frame(rays, c.threads()); });
@@ -38,7 +38,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         });
         return rs;
     }
-    const RayMarcher march(isa, c.ts.marcher, c.ts.march, seed, camera, q.on.g, q.on.backZ,
+    const RayMarcher march(isa, c.ts().marcher, c.ts().march, seed, camera, q.on.g, q.on.backZ,
                            q.on.hiz, c.threads());
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
@@ -55,19 +55,19 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
 // frame's batches with the half frame (TraceObserver).
 void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, DiffuseCut cut,
               TraceStats& st, StageTimes& times) {
-    const TraceSettings& ts = c.ts;
-    const Isa isa = c.args.isa;
+    const TraceSettings& ts = c.ts();
+    const Isa isa = c.isa;
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     HalfFrame& hf = ht.frame;
     addTime(times.rays, [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         HalfFrameSource src{full.g, ts.denoise.enabled};
         // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
-        if (!hitLightAtHalf(c.args.settings))
+        if (!hitLightAtHalf(c.settings))
             for (int ch = 0; ch < 3; ++ch)
                 src.hitLight[ch] = viewIn(frame.direct, frame.direct.hitLight[ch]);
         if (c.backZ) src.backZ = viewOf(*c.backZ, "backZ");
-        buildHalfFrame(c.camera, src, c.args.frameIndex, hf, c.threads());
+        buildHalfFrame(c.camera, src, c.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
     const GBufferView hg = hf.view();
@@ -75,7 +75,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     in.camera = hf.camera;
     in.g = hg;
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = viewIn(hf, hf.hitLight[ch]);
-    if (tracedSignalsPooled(c.args.settings))  // (back to the pool in denoiseHalfDiffuse)
+    if (tracedSignalsPooled(c.settings))  // (back to the pool in denoiseHalfDiffuse)
         takeSignal(frame.scratch.pool, ht.resolved, hf.camera.width, hf.camera.height);
     const HitStatsArgs hp{stageOutput(ht.resolved, &ht.resolved.hit, hf.camera),
                           stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
@@ -116,8 +116,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
 // radiance, where the history has it at this size, reflected into the hit light SSGI reads
 // (trace/ssgi.h); none (one bounce) otherwise.
 void feedbackPass(const TraceContext& c, Frame& frame) {
-    const FrameHistory* h = c.args.history;
-    if (!c.ts.ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
+    const FrameHistory* h = c.history;
+    if (!c.ts().ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
         h->diffuse[0].height() != frame.height)
         return;
     SsgiFeedbackArgs in;
@@ -126,14 +126,14 @@ void feedbackPass(const TraceContext& c, Frame& frame) {
     // (absent without occlusion textures: 1)
     in.occlusion = viewIn(frame.gbuffer, frame.gbuffer.occlusion);
     const ScopedPass timer(frame.stats, "ssgi feedback");
-    addSsgiFeedback(c.args.isa, in, frame.direct.hitLight, c.threads());
+    addSsgiFeedback(c.isa, in, frame.direct.hitLight, c.threads());
 }
 
 }  // namespace
 
 void ssgiPass(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts;
-    const Isa isa = c.args.isa;
+    const TraceSettings& ts = c.ts();
+    const Isa isa = c.isa;
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
     SsgiPlanes& planes = frame.trace.ssgi;
@@ -141,12 +141,12 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     in.camera = c.camera;
     in.g = frame.gbuffer.view();
     for (int ch = 0; ch < 3; ++ch) {
-        if (c.args.direct.anyEmissive) in.emission[ch] = viewIn(parts, parts.emission[ch]);
+        if (c.direct.anyEmissive) in.emission[ch] = viewIn(parts, parts.emission[ch]);
         // The direct pass's hit light (then the G-buffer planes above are not read).
         in.hitLight[ch] = viewIn(parts, parts.hitLight[ch]);
     }
     in.shadow = viewIn(frame.image, frame.image.shadow);
-    in.lighting = &c.args.direct;
+    in.lighting = &c.direct;
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;

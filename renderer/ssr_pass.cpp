@@ -12,7 +12,7 @@ namespace {
 // history has one) through the motion vectors; the colour pyramid for the mip mode.
 SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
                          double& pyramidMs) {
-    const bool reproject = rs.radiance == HitRadiance::Reprojected && c.args.history;
+    const bool reproject = rs.radiance == HitRadiance::Reprojected && c.history;
     if (!reproject) rs.radiance = HitRadiance::Current;
     SsrResolveArgs in;
     in.camera = c.camera;
@@ -20,10 +20,10 @@ SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings
     const PlaneF* source[3];
     for (int ch = 0; ch < 3; ++ch) {
         in.color[ch] = viewIn(frame.image, frame.image.color[ch]);
-        if (reproject) in.prevColor[ch] = viewIn(*c.args.history, c.args.history->color[ch]);
-        source[ch] = reproject ? &c.args.history->color[ch] : &frame.image.color[ch];
+        if (reproject) in.prevColor[ch] = viewIn(*c.history, c.history->color[ch]);
+        source[ch] = reproject ? &c.history->color[ch] : &frame.image.color[ch];
     }
-    in.radianceScale = 1.0f / c.args.settings.exposure;
+    in.radianceScale = 1.0f / c.settings.exposure;
     if (rs.mode == SsrResolveMode::Mip) {
         addTime(pyramidMs,
                 [&] { buildColorPyramid(source, frame.scratch.colorPyramid, c.threads()); });
@@ -48,8 +48,8 @@ struct SsrSample {
     RayGenCheckerboard checker;
 
     RayGenerator rays(int s) const {
-        return RayGenerator::specular(c.args.isa, c.ts.ssrMethod, c.args.frameIndex, uint32_t(s),
-                                      c.camera, in.g, maxRoughness, checker);
+        return RayGenerator::specular(c.isa, c.ts().ssrMethod, c.frameIndex, uint32_t(s), c.camera,
+                                      in.g, maxRoughness, checker);
     }
 };
 
@@ -57,14 +57,13 @@ struct SsrSample {
 void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
     Frame::Scratch& sc = frame.scratch;
-    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+    for (int s = 0; s < c.ts().ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
         marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
                     sc.march, st, times);
         addTime(times.resolve, [&] {
-            resolveSsr(c.args.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts.ssrSpp,
-                       c.threads());
-            accumulateHitStats(c.args.isa, c.camera, sc.rays, sc.march, q.hp, s, c.ts.ssrSpp,
+            resolveSsr(c.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts().ssrSpp, c.threads());
+            accumulateHitStats(c.isa, c.camera, sc.rays, sc.march, q.hp, s, c.ts().ssrSpp,
                                c.threads());
         });
     }
@@ -73,16 +72,16 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
 // Tile by tile: the resolve's first pass and the hit statistics take each tile's batches.
 void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
-    const Isa isa = c.args.isa;
+    const Isa isa = c.isa;
     Frame::Scratch& sc = frame.scratch;
-    for (int s = 0; s < c.ts.ssrSpp; ++s) {
+    for (int s = 0; s < c.ts().ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
-        const RayMarcher march(isa, c.ts.marcher, c.ts.march, {c.args.frameIndex, uint32_t(s)},
+        const RayMarcher march(isa, c.ts().marcher, c.ts().march, {c.frameIndex, uint32_t(s)},
                                c.camera, q.in.g, c.backZ, c.hiz, c.threads());
         // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
-        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts.ssrSpp, sc.rays, sc.march,
+        const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts().ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);
-        const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts.ssrSpp);
+        const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts().ssrSpp);
         const auto hitTile = [&](int t, const RayBatch& b, const MarchResult& m) {
             resolve.hitTile(t, b, m);
         };
@@ -94,7 +93,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
 }  // namespace
 
 void ssrPass(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts;
+    const TraceSettings& ts = c.ts();
     Frame::Scratch& sc = frame.scratch;
     SsrPlanes& planes = frame.trace.ssr;
     StageTimes times;
@@ -130,7 +129,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
                                        &planes.opacity,
                                        &planes.hit,
                                        &planes.hitDistance};
-            fillCheckerboard(c.args.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(c.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }
     sc.pool.give(sc.rays);

@@ -36,10 +36,11 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
            !t.ssgiFeedback;
 }
 
-void runTracePasses(const TracePassArgs& args, Frame& frame) {
-    TraceContext c(args, frame);
-    const CompiledGraph& g = args.graph;
-    FrameMemory& m = args.memory;
+void runTracePasses(TraceContext c, Frame& frame) {
+    c.camera = frame.camera;
+    c.backZ = backZ(frame.scratch.backZ);
+    const CompiledGraph& g = c.graph;
+    FrameMemory& m = c.memory;
     m.step(pass::kHiZ, [&] {
         if (g.runs(pass::kHiZ)) hiZPass(c, frame);
     });

@@ -9,10 +9,15 @@
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 #include "shading/direct_kernel.h"
+#include "trace/reconstruct.h"
 
 namespace ssrt {
 
-struct TracePassArgs {
+// What the screen-space passes of one frame share: what the renderer hands them, and the
+// camera, back-face layer and depth pyramid they read as they go. (Each pass takes the
+// G-buffer's view, GBuffer::view, as it starts: the frame's memory frees a plane after its last
+// reader, and a freed plane is then missing from the view, never a stale row.)
+struct TraceContext {
     const RenderSettings& settings;
     const CompiledGraph& graph;  // which passes run (renderer/frame_graph.h)
     FrameMemory& memory;         // takes and gives back the frame's planes around each pass
@@ -28,11 +33,22 @@ struct TracePassArgs {
     bool resetHistory;              // a cut: the denoiser's history is not read
     bool replaceHistory;            // false: the denoiser reads its history, leaves it as it was
     const TraceObserver* observer;  // optional: sees each sample's rays and march result
+    // Set by runTracePasses from the frame:
+    TraceCamera camera{};           // the frame's, as the kernels take it
+    const PlaneF* backZ = nullptr;  // the march's back-face layer (trace/march.h); null: none
+    const HiZPyramid* hiz = nullptr;
+
+    const TraceSettings& ts() const { return settings.trace; }
+    int threads() const { return settings.threads; }
+    // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
+    PlaneF* debugPlane(PlaneF& p) const { return settings.debugPlanes ? &p : nullptr; }
+    // What the reconstruction of a layout's untraced pixels is guided by.
+    ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
 // Fills frame.trace and replaces frame.image's colour and display with the composite;
 // appends pass times and stats to frame.stats.
-void runTracePasses(const TracePassArgs& args, Frame& frame);
+void runTracePasses(TraceContext c, Frame& frame);
 
 // Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
 // inside the composite, which alone reads it, instead of into the frame's planes

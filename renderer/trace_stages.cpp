@@ -6,12 +6,11 @@ namespace ssrt::trace_stages {
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times) {
     addTime(times.march, [&] {
-        stats.march.add(marchRays(c.args.isa, c.ts.marcher, c.ts.march,
-                                  {c.args.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
+        stats.march.add(marchRays(c.isa, c.ts().marcher, c.ts().march,
+                                  {c.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
                                   on.hiz, rays, result, c.threads()));
     });
-    if (c.args.observer && *c.args.observer)
-        (*c.args.observer)(pass, sample, rays, result, on.half);
+    if (c.observer && *c.observer) (*c.observer)(pass, sample, rays, result, on.half);
 }
 
 void takeBatches(const TraceContext& c, Frame& frame) {

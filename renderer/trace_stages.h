@@ -43,29 +43,6 @@ OutF stageOutput(Group& group, PlaneF* p, const TraceCamera& camera) {
     return outputOf(*p, planeName(group, *p));
 }
 
-// What the passes below share: the frame's G-buffer as each stage reads it, the pyramid.
-struct TraceContext {
-    const TracePassArgs& args;
-    const TraceSettings& ts;
-    TraceCamera camera;
-    const PlaneF* backZ = nullptr;  // the march's (trace/march.h)
-    const HiZPyramid* hiz = nullptr;
-    // (Each pass takes the G-buffer's view, GBuffer::view, as it starts: the frame's memory
-    // frees a plane after its last reader, and a freed plane is then missing from the view,
-    // never a stale row.)
-
-    TraceContext(const TracePassArgs& a, const Frame& f)
-        : args(a),
-          ts(a.settings.trace),
-          camera(f.camera),
-          backZ(trace_stages::backZ(f.scratch.backZ)) {}
-    int threads() const { return args.settings.threads; }
-    // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
-    PlaneF* debugPlane(PlaneF& p) const { return args.settings.debugPlanes ? &p : nullptr; }
-    // What the reconstruction of a layout's untraced pixels is guided by.
-    ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
-};
-
 // Times of one trace pass's stages, summed over its samples.
 struct StageTimes {
     double rays = 0.0, march = 0.0, resolve = 0.0;
@@ -105,7 +82,7 @@ void takeSignal(PlanePool& pool, Group& g, int w, int h) {
 
 // Whether the trace runs tile by tile (trace/tile_chain.h): unless the observer (the truth's
 // ray check) asks for the frame's rays and march results.
-inline bool tiled(const TraceContext& c) { return !(c.args.observer && *c.args.observer); }
+inline bool tiled(const TraceContext& c) { return !(c.observer && *c.observer); }
 
 // The frame's batches where the passes read them: every plane for the observer's stage-by-stage
 // path; for the tile chain only the pdf, which what runs after the chain reads around each
