@@ -170,8 +170,9 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
-void spatial(Context& c, bool specular, ReblurSpatial pass, PlaneU64* in, const SignalOut4& out,
-             PlaneU64* copy, const PlaneF* frames) {
+// Each pass's arguments for one signal; runPass runs them.
+ReblurPassArgs spatial(Context& c, bool specular, ReblurSpatial pass, const PlaneU64* in,
+                       const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
     ReblurPassArgs a;
     a.frame = c.frame;
@@ -191,11 +192,10 @@ void spatial(Context& c, bool specular, ReblurSpatial pass, PlaneU64* in, const 
     a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
                       : pass == ReblurSpatial::Blur  ? 1.0f
                                                      : 0.5f;
-    const auto fn = SSRT_DISPATCH(c.isa, reblurSpatialTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+    return a;
 }
 
-void temporal(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
+ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const int k = specular ? 1 : 0;
     ReblurPassArgs a;
     a.frame = c.frame;
@@ -210,11 +210,10 @@ void temporal(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
         a.prevFrames = (specular ? h.specularFrames : h.diffuseFrames).row(0);
         a.prevFast = (specular ? h.specularFast : h.diffuseFast).row(0);
     }
-    const auto fn = SSRT_DISPATCH(c.isa, reblurTemporalTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+    return a;
 }
 
-void historyFix(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
+ReblurPassArgs historyFix(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = specular ? 1 : 0;
     ReblurPassArgs a;
@@ -229,50 +228,103 @@ void historyFix(Context& c, bool specular, PlaneU64* in, PlaneU64* out) {
     const bool clamp = s.maxFastAccumulatedFrames < s.maxAccumulatedFrames;
     a.fast = clamp && c.in.temporal ? c.sc.fast[k].row(0) : nullptr;
     a.fastIsInputLuma = clamp && !c.in.temporal;
-    const auto fn = SSRT_DISPATCH(c.isa, reblurHistoryFixTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+    return a;
 }
 
-// One signal through every pass; the post-blur writes the output and the history. Each pass
-// writes the ping-pong plane its input is not.
-void denoiseSignal(Context& c, bool specular, PassTimes& times) {
+using PassKernel = void (*)(const ReblurPassArgs&, int);
+
+// One pass over the signals in `args` (null: that signal skips it) in one loop over the
+// tiles: a tile goes through the diffuse's kernel, then the specular's. Each kernel writes only
+// its own signal's planes, so the bits are those of one signal's pass after the other's.
+void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2]) {
+    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
+        for (const ReblurPassArgs* a : args)
+            if (a) fn(*a, tile);
+    });
+}
+
+// The signals through every pass after the front end, each pass once over both (runPass); the
+// post-blur writes the outputs and the history. A pass's result is a resource named for it
+// (DenoiseScratch), taken from the pool as the pass starts; the pass's input goes back to the
+// pool once it has run, where the next pass's result takes its memory.
+void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
-    PlaneU64* current = specular ? &sc.noisySpecular : &sc.noisyDiffuse;
-    const auto step = [&](const char* name, auto&& pass) {
-        PlaneU64* out = current == &sc.ping ? &sc.pong : &sc.ping;
-        times.run(name, [&] { pass(current, out); });
-        current = out;
-    };
+    const int w = c.grid.width, h = c.grid.height;
+    const bool on[2] = {c.in.diffuse[0] != nullptr, c.in.ssr[0] != nullptr};
+    PlaneU64* current[2] = {&sc.noisyDiffuse, &sc.noisySpecular};
     // (null without the temporal pass: the blurs take 0 frames)
-    const PlaneF* frames = c.in.temporal ? &sc.frames[specular ? 1 : 0] : nullptr;
-    const float preRadius = specular ? s.specularPrepassRadius : s.diffusePrepassRadius;
-    if (preRadius > 0.0f)
-        step("pre-blur", [&](PlaneU64* in, PlaneU64* out) {
-            spatial(c, specular, ReblurSpatial::PreBlur, in, out->row(0), nullptr, nullptr);
-        });
+    const PlaneF* frames[2] = {c.in.temporal ? &sc.frames[0] : nullptr,
+                               c.in.temporal ? &sc.frames[1] : nullptr};
+    // A pass over the signals `runs` says, each into its plane of `results`.
+    const auto step = [&](const char* name, PassKernel fn, PlaneU64(&results)[2],
+                          const bool(&runs)[2], auto&& build) {
+        ReblurPassArgs args[2];
+        const ReblurPassArgs* run[2] = {};
+        for (int k = 0; k < 2; ++k) {
+            if (!on[k] || !runs[k]) continue;
+            pool.take(results[k], w, h);
+            args[k] = build(k == 1, current[k], &results[k]);
+            run[k] = &args[k];
+        }
+        times.run(name, [&] { runPass(c, fn, run); });
+        for (int k = 0; k < 2; ++k) {
+            if (!run[k]) continue;
+            pool.give(*current[k]);
+            current[k] = &results[k];
+        }
+    };
+    const bool preBlur[2] = {s.diffusePrepassRadius > 0.0f, s.specularPrepassRadius > 0.0f};
+    const bool all[2] = {true, true};
+    if (preBlur[0] || preBlur[1])
+        step("pre-blur", SSRT_DISPATCH(c.isa, reblurSpatialTile), sc.preBlurred, preBlur,
+             [&](bool specular, const PlaneU64* in, PlaneU64* out) {
+                 return spatial(c, specular, ReblurSpatial::PreBlur, in, out->row(0), nullptr,
+                                nullptr);
+             });
     if (c.in.temporal)
-        step("temporal", [&](PlaneU64* in, PlaneU64* out) { temporal(c, specular, in, out); });
-    step("history fix", [&](PlaneU64* in, PlaneU64* out) { historyFix(c, specular, in, out); });
-    step("blur", [&](PlaneU64* in, PlaneU64* out) {
-        spatial(c, specular, ReblurSpatial::Blur, in, out->row(0), nullptr, frames);
-    });
-    // The post-blur's result, RGB to the output and all four channels to the history.
-    PlaneU64* history = nullptr;
-    if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
-    // (The output has no hit distance: the post-blur writes that channel to the history only.)
-    SignalOut4 out;
-    PlaneF* const outputs = specular ? c.out.specular : c.out.diffuse;
-    for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].row(0);
-    times.run("post-blur", [&] {
-        spatial(c, specular, ReblurSpatial::PostBlur, current, out, history, frames);
-    });
-    // The history length the EXR shows: frames behind each pixel.
-    if (!c.in.historyLengths) return;
-    PlaneF& framesOut = specular ? c.out.specularFrames : c.out.diffuseFrames;
-    if (!frames) return framesOut.fill(0.0f);
-    for (int y = 0; y < c.grid.height; ++y)
-        std::copy_n(frames->row(y), c.grid.width, framesOut.row(y));
+        step("temporal", SSRT_DISPATCH(c.isa, reblurTemporalTile), sc.temporal, all,
+             [&](bool specular, const PlaneU64* in, PlaneU64* out) {
+                 return temporal(c, specular, in, out);
+             });
+    step("history fix", SSRT_DISPATCH(c.isa, reblurHistoryFixTile), sc.fixed, all,
+         [&](bool specular, const PlaneU64* in, PlaneU64* out) {
+             return historyFix(c, specular, in, out);
+         });
+    step("blur", SSRT_DISPATCH(c.isa, reblurSpatialTile), sc.blurred, all,
+         [&](bool specular, const PlaneU64* in, PlaneU64* out) {
+             return spatial(c, specular, ReblurSpatial::Blur, in, out->row(0), nullptr,
+                            frames[specular ? 1 : 0]);
+         });
+    // The post-blur's result, RGB to the output and all four channels to the history. (The
+    // output has no hit distance: the post-blur writes that channel to the history only.)
+    ReblurPassArgs args[2];
+    const ReblurPassArgs* run[2] = {};
+    for (int k = 0; k < 2; ++k) {
+        if (!on[k]) continue;
+        const bool specular = k == 1;
+        PlaneU64* history = nullptr;
+        if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
+        SignalOut4 out;
+        PlaneF* const outputs = specular ? c.out.specular : c.out.diffuse;
+        for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].row(0);
+        args[k] =
+            spatial(c, specular, ReblurSpatial::PostBlur, current[k], out, history, frames[k]);
+        run[k] = &args[k];
+    }
+    times.run("post-blur", [&] { runPass(c, SSRT_DISPATCH(c.isa, reblurSpatialTile), run); });
+    for (int k = 0; k < 2; ++k) {
+        if (!on[k]) continue;
+        pool.give(*current[k]);
+        // The history length the EXR shows: frames behind each pixel.
+        if (!c.in.historyLengths) continue;
+        PlaneF& framesOut = k == 1 ? c.out.specularFrames : c.out.diffuseFrames;
+        if (!frames[k]) {
+            framesOut.fill(0.0f);
+            continue;
+        }
+        for (int y = 0; y < h; ++y) std::copy_n(frames[k]->row(y), w, framesOut.row(y));
+    }
 }
 
 // The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
@@ -321,13 +373,10 @@ void keepScratch(bool on, Plane<T>& p, int w, int h, PlanePool* pool) {
     }
 }
 
-// The scratch the passes after the front end write: the ping-pong pair, the accumulation
-// speeds and the fast histories (the temporal pass's; taken once the front end has read the
-// signals).
+// The scratch the temporal pass writes: the accumulation speeds and the fast histories (taken
+// once the front end has read the signals; each pass's result is taken as it starts).
 void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool specular, bool temporal,
                        PlanePool* pool) {
-    keepScratch(diffuse || specular, sc.ping, w, h, pool);
-    keepScratch(diffuse || specular, sc.pong, w, h, pool);
     for (int i = 0; i < 2; ++i) {
         const bool on = (i == 0 ? diffuse : specular) && temporal;
         keepScratch(on, sc.frames[i], w, h, pool);
@@ -402,8 +451,8 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();
     ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
-    if (diffuse) denoiseSignal(c, false, pt);
-    if (specular) denoiseSignal(c, true, pt);
+    PlanePool local;  // (without the caller's: each pass's result freed once read)
+    denoiseSignals(c, in.pool ? *in.pool : local, pt);
     if (next) pt.run("history", [&] { commitHistory(c); });
     if (in.pool) in.pool->give(scratch);
 }

@@ -134,18 +134,18 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     }
 };
 
-// Transient planes, kept between frames so that no pass allocates. The signals (radiance,
-// hit distance, fast luma) are f16 (core/pixel_formats.h), decoded on load and encoded on
-// store by the passes, which compute in f32: radiance and hit distance as f16x4, a pixel's four
-// in one 64-bit element (a tap one gather, not four). Where the signal exists, its depth and
-// the accumulation speeds are f32. Each pass reads only the one before it, and the two signals
-// run one after the other, so a signal's passes alternate between the two ping-pong planes,
-// which both signals share: 4 planes, not one per pass and signal (10).
+// Transient planes. The signals (radiance, hit distance, fast luma) are f16
+// (core/pixel_formats.h), decoded on load and encoded on store by the passes, which compute in
+// f32: radiance and hit distance as f16x4, a pixel's four in one 64-bit element (a tap one
+// gather, not four). Where the signal exists, its depth and the accumulation speeds are f32.
+// Each pass's result is a plane named for the pass (NRD names its resources so), per signal;
+// a pass reads only the one before it, so a result is taken from the pool as its pass starts
+// and its input goes back as it ends: a signal holds two of them at a time.
 struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     // The front end's, per signal: RGB and the normalised hit distance.
     PlaneU64 noisyDiffuse, noisySpecular;
-    PlaneU64 ping, pong;
     // Per signal (diffuse, specular), sized only for the signals given:
+    PlaneU64 preBlurred[2], temporal[2], fixed[2], blurred[2];  // each pass's result
     PlaneF signalZ[2];           // viewZ where the signal exists, else 0
     PlaneF frames[2];            // this frame's accumulation speeds
     PlaneU16 fast[2];            // this frame's fast luma
@@ -156,7 +156,10 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         fn("noisy.diffuse", g.noisyDiffuse), fn("noisy.specular", g.noisySpecular);
-        fn("pingPong.ping", g.ping), fn("pingPong.pong", g.pong);
+        fn("preBlurred.diffuse", g.preBlurred[0]), fn("preBlurred.specular", g.preBlurred[1]);
+        fn("temporal.diffuse", g.temporal[0]), fn("temporal.specular", g.temporal[1]);
+        fn("fixed.diffuse", g.fixed[0]), fn("fixed.specular", g.fixed[1]);
+        fn("blurred.diffuse", g.blurred[0]), fn("blurred.specular", g.blurred[1]);
         fn("state.diffuse.signalZ", g.signalZ[0]), fn("state.specular.signalZ", g.signalZ[1]);
         fn("state.diffuse.frames", g.frames[0]), fn("state.specular.frames", g.frames[1]);
         fn("fast.diffuse", g.fast[0]), fn("fast.specular", g.fast[1]);

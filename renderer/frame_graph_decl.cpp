@@ -96,7 +96,17 @@ bool temporalFull(const GraphKey& k) { return denoiseFull(k) && (k.history || k.
 bool temporalHalf(const GraphKey& k) { return denoiseHalf(k) && (k.history || k.keepHistory); }
 // What the history fix reads where the temporal pass does not run: the pre-blur's result, or
 // the front end's.
-bool fixReadsPingPongFull(const GraphKey& k) { return temporalFull(k) || preBlurFull(k); }
+bool fixReadsTemporalFullDiffuse(const GraphKey& k) {
+    return temporalFull(k) && denoiseFullDiffuse(k);
+}
+bool fixReadsTemporalSpecular(const GraphKey& k) { return temporalFull(k) && denoiseSpecular(k); }
+bool fixReadsPreBlurredFullDiffuse(const GraphKey& k) {
+    return preBlurFullDiffuse(k) && !temporalFull(k);
+}
+bool fixReadsPreBlurredSpecular(const GraphKey& k) {
+    return preBlurSpecular(k) && !temporalFull(k);
+}
+bool fixReadsPreBlurredHalf(const GraphKey& k) { return denoiseHalf(k) && !temporalHalf(k); }
 bool fixReadsNoisyFullDiffuse(const GraphKey& k) {
     return unblurredFullDiffuse(k) && !temporalFull(k);
 }
@@ -128,16 +138,19 @@ struct DenoiseSite {
     // The pre-blur: whether it runs, and per signal whether it filters it (else the temporal
     // pass reads the front end's output directly).
     GraphCondition preBlur, preBlurred[2], unblurred[2];
-    Res pingPong, state[2], fast[2], outputs[2], frames[2];
+    // Each pass's result per signal: the pre-blur's, the temporal pass's, the history fix's, the
+    // blur's (Res::Count: none at this site).
+    Res preBlurOut[2], temporalOut[2], fixOut[2], blurOut[2];
+    Res state[2], fast[2], outputs[2], frames[2];
     GraphCondition framesMade[2];  // the history lengths, a plane only looked at: when made
     Res history[3];                // guides, diffuse, specular (Res::Count: none)
     GraphCondition historyRead[3], historyKept[3];
     // Each signal's history accumulation speeds (f32; Res::Count: in history[0], the guides')
     Res historyFrames[2];
     Res historyFast[2];  // each signal's fast history (f16 luma; Res::Count: none)
-    // The temporal pass, and what the history fix reads: the temporal pass's result, or
-    // without it the pre-blur's (pingPong) or the front end's (noisy) signal.
-    GraphCondition temporal, fixReadsPingPong, fixReadsNoisy[2];
+    // The temporal pass, and what the history fix reads per signal: the temporal pass's
+    // result, or without it the pre-blur's or the front end's (noisy).
+    GraphCondition temporal, fixReadsTemporal[2], fixReadsPreBlurred[2], fixReadsNoisy[2];
 };
 
 // Names made once, with the list of passes (which keeps views of them).
@@ -165,11 +178,15 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
             state.push_back({s.state[i], P::Pixel, s.signal[i]});
             state.push_back({s.fast[i], P::Pixel, s.signal[i]});
         }
-    // A spatial pass: the guides and the last result around, the state at the pixel.
-    const auto spatial = [&](const char* pass, std::vector<Access> reads) {
-        PassDecl d{name(pass), s.on, around(s.guides), {{s.pingPong}}};
+    // A spatial pass: the guides and the last result around, the state at the pixel; writes
+    // its result per signal.
+    const auto spatial = [&](const char* pass, std::vector<Access> reads, const Res(&out)[2],
+                             const GraphCondition(&when)[2]) {
+        PassDecl d{name(pass), s.on, around(s.guides), {}};
         append(d.reads, reads);
         append(d.reads, state);
+        for (int i = 0; i < 2; ++i)
+            if (out[i] != Res::Count) d.writes.push_back({out[i], P::Pixel, when[i]});
         return d;
     };
     // Front end: the signals sanitised, hit distances normalised, where each signal exists.
@@ -179,18 +196,21 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         if (s.noisy[i] != Res::Count) front.writes.push_back({s.noisy[i], P::Pixel, s.signal[i]});
     append(front.writes, state);
     passes.push_back(front);
-    PassDecl pre = spatial("denoise pre-blur", {});
-    pre.enabled = s.preBlur;
+    std::vector<Access> noisy;
     for (int i = 0; i < 2; ++i)
-        if (s.noisy[i] != Res::Count) pre.reads.push_back({s.noisy[i], P::Around, s.preBlurred[i]});
+        if (s.noisy[i] != Res::Count) noisy.push_back({s.noisy[i], P::Around, s.preBlurred[i]});
+    PassDecl pre = spatial("denoise pre-blur", noisy, s.preBlurOut, s.preBlurred);
+    pre.enabled = s.preBlur;
     passes.push_back(pre);
     // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma;
     // this frame's signal pre-blurred, or as the front end left it.
-    PassDecl temporal{name("denoise temporal"), s.temporal, s.guides, {{s.pingPong}}};
-    temporal.reads.push_back({s.pingPong, P::Pixel, s.preBlur});
-    for (int i = 0; i < 2; ++i)
-        if (s.noisy[i] != Res::Count)
-            temporal.reads.push_back({s.noisy[i], P::Pixel, s.unblurred[i]});
+    PassDecl temporal{name("denoise temporal"), s.temporal, s.guides, {}};
+    for (int i = 0; i < 2; ++i) {
+        if (s.noisy[i] == Res::Count) continue;
+        temporal.reads.push_back({s.preBlurOut[i], P::Pixel, s.preBlurred[i]});
+        temporal.reads.push_back({s.noisy[i], P::Pixel, s.unblurred[i]});
+        temporal.writes.push_back({s.temporalOut[i], P::Pixel, s.signal[i]});
+    }
     append(temporal.reads, state);
     append(temporal.writes, state);
     for (int i = 0; i < 3; ++i)
@@ -200,15 +220,20 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         for (Res r : {s.historyFrames[i], s.historyFast[i]})
             if (r != Res::Count) temporal.reads.push_back({r, P::Anywhere, s.historyRead[i + 1]});
     passes.push_back(temporal);
-    PassDecl fix = spatial("denoise history fix", {{s.pingPong, P::Around, s.fixReadsPingPong}});
-    for (int i = 0; i < 2; ++i)
-        if (s.noisy[i] != Res::Count)
-            fix.reads.push_back({s.noisy[i], P::Around, s.fixReadsNoisy[i]});
-    passes.push_back(fix);
-    passes.push_back(spatial("denoise blur", {{s.pingPong, P::Around}}));
+    std::vector<Access> fixReads, blurReads, postReads;
+    for (int i = 0; i < 2; ++i) {
+        if (s.noisy[i] == Res::Count) continue;
+        fixReads.push_back({s.temporalOut[i], P::Around, s.fixReadsTemporal[i]});
+        fixReads.push_back({s.preBlurOut[i], P::Around, s.fixReadsPreBlurred[i]});
+        fixReads.push_back({s.noisy[i], P::Around, s.fixReadsNoisy[i]});
+        blurReads.push_back({s.fixOut[i], P::Around, s.signal[i]});
+        postReads.push_back({s.blurOut[i], P::Around, s.signal[i]});
+    }
+    passes.push_back(spatial("denoise history fix", fixReads, s.fixOut, s.signal));
+    passes.push_back(spatial("denoise blur", blurReads, s.blurOut, s.signal));
     // Post-blur: the outputs, and the history the next frame reads.
-    PassDecl post = spatial("denoise post-blur", {{s.pingPong, P::Around}});
-    post.writes.clear();
+    const Res none[2] = {Res::Count, Res::Count};
+    PassDecl post = spatial("denoise post-blur", postReads, none, s.signal);
     for (int i = 0; i < 2; ++i) {
         if (s.noisy[i] == Res::Count) continue;
         post.writes.push_back({s.outputs[i], P::Pixel, s.signal[i]});
@@ -412,7 +437,10 @@ std::vector<PassDecl> declarePasses() {
                            denoiseHalf,
                            {denoiseHalf, nullptr},
                            {never, nullptr},
-                           Res::HalfDenoisePingPong,
+                           {Res::HalfDenoisePreBlurred, Res::Count},
+                           {Res::HalfDenoiseTemporal, Res::Count},
+                           {Res::HalfDenoiseFixed, Res::Count},
+                           {Res::HalfDenoiseBlurred, Res::Count},
                            {Res::HalfDenoiseState, Res::Count},
                            {Res::HalfDenoiseFast, Res::Count},
                            {Res::HalfDenoised, Res::Count},
@@ -424,7 +452,8 @@ std::vector<PassDecl> declarePasses() {
                            {Res::Count, Res::Count},
                            {Res::HalfDenoiseHistoryFast, Res::Count},
                            temporalHalf,
-                           denoiseHalf,  // (it always pre-blurs)
+                           {temporalHalf, nullptr},
+                           {fixReadsPreBlurredHalf, nullptr},  // (it always pre-blurs)
                            {never, nullptr}};
     addDenoiser(p, half);
     p.push_back({pass::kDenoiseUpsample,
@@ -451,7 +480,10 @@ std::vector<PassDecl> declarePasses() {
         preBlurFull,
         {preBlurFullDiffuse, preBlurSpecular},
         {unblurredFullDiffuse, unblurredSpecular},
-        Res::DenoisePingPong,
+        {Res::DenoisePreBlurredDiffuse, Res::DenoisePreBlurredSpecular},
+        {Res::DenoiseTemporalDiffuse, Res::DenoiseTemporalSpecular},
+        {Res::DenoiseFixedDiffuse, Res::DenoiseFixedSpecular},
+        {Res::DenoiseBlurredDiffuse, Res::DenoiseBlurredSpecular},
         {Res::DenoiseDiffuseState, Res::DenoiseSpecularState},
         {Res::DenoiseDiffuseFast, Res::DenoiseSpecularFast},
         {Res::DenoisedDiffuse, Res::DenoisedSpecular},
@@ -463,7 +495,8 @@ std::vector<PassDecl> declarePasses() {
         {Res::DenoiseHistoryDiffuseFrames, Res::DenoiseHistorySpecularFrames},
         {Res::DenoiseHistoryDiffuseFast, Res::DenoiseHistorySpecularFast},
         temporalFull,
-        fixReadsPingPongFull,
+        {fixReadsTemporalFullDiffuse, fixReadsTemporalSpecular},
+        {fixReadsPreBlurredFullDiffuse, fixReadsPreBlurredSpecular},
         {fixReadsNoisyFullDiffuse, fixReadsNoisySpecular}};
     gbufferReads(full.guides);
     full.guides.push_back({Res::Motion});

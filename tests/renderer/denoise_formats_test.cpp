@@ -58,13 +58,13 @@ TEST_CASE(
     "resource table with its element's size") {
     const DenoiseScratch scratch;
     const DenoiseHistory history;
-    CHECK(checkGroup(scratch, false, false) == 10);
+    CHECK(checkGroup(scratch, false, false) == 16);
     CHECK(checkGroup(history, false, true) == 11);
-    CHECK(checkGroup(scratch, true, false) == 6);
+    CHECK(checkGroup(scratch, true, false) == 8);
     CHECK(checkGroup(history, true, true) == 8);
     // The signals are f16, radiance with hit distance packed as 4 x f16 a pixel (issue 44), the
     // fast luma f16 alone, and the guides f32.
-    CHECK(resourceDecl(resourceOfChannel("pingPong.ping")).format == PixelFormat::F16x4);
+    CHECK(resourceDecl(resourceOfChannel("blurred.specular")).format == PixelFormat::F16x4);
     CHECK(resourceDecl(resourceOfChannel("history.denoise.diffuse")).format == PixelFormat::F16x4);
     CHECK(resourceDecl(resourceOfChannel("fast.diffuse")).format == PixelFormat::F16);
     CHECK(resourceDecl(resourceOfChannel("history.denoise.guide.viewZ")).format ==

@@ -47,13 +47,23 @@ const std::initializer_list<const char*> kPassScratch = {"ray.pdf",
                                                          "ssr resolve",
                                                          "noisy.diffuse",
                                                          "noisy.specular",
-                                                         "pingPong",
+                                                         "preBlurred.diffuse",
+                                                         "preBlurred.specular",
+                                                         "temporal.diffuse",
+                                                         "temporal.specular",
+                                                         "fixed.diffuse",
+                                                         "fixed.specular",
+                                                         "blurred.diffuse",
+                                                         "blurred.specular",
                                                          "state.diffuse",
                                                          "state.specular",
                                                          "fast.diffuse",
                                                          "fast.specular",
                                                          "half.noisy.diffuse",
-                                                         "half.pingPong",
+                                                         "half.preBlurred.diffuse",
+                                                         "half.temporal.diffuse",
+                                                         "half.fixed.diffuse",
+                                                         "half.blurred.diffuse",
                                                          "half.state.diffuse",
                                                          "half.fast.diffuse"};
 
@@ -120,7 +130,7 @@ TEST_CASE("memory use: each resource's planes, named from the resource table") {
         Renderer(d).render(scene, FrameInput::still(scene), h, diffuseOnly);
         const auto dm = byName(diffuseOnly.stats.memory);
         CHECK(dm.count("noisy.specular") == 0);
-        CHECK(dm.count("pingPong") == 0);
+        CHECK(dm.count("blurred.specular") == 0);
         // diffuse RGB and its history length
         CHECK(dm.at("denoisedDiffuse") + dm.at("diffuseFrames") == 4 * plane);
         CHECK(diffuseOnly.trace.denoised.specular[0].empty());
@@ -131,7 +141,7 @@ TEST_CASE("memory use: each resource's planes, named from the resource table") {
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), still);
     const auto n = byName(still.stats.memory);
     CHECK(n.count("history.denoise.guide") == 0);
-    CHECK(n.count("pingPong") == 0);
+    CHECK(n.count("blurred.diffuse") == 0);
     CHECK(n.count("ssr") == 0);
     CHECK(sum(n, kGBuffer) == 12 * plane);
 }
