@@ -65,15 +65,15 @@ void compositePass(const TraceContext& c, Frame& frame) {
             ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
         ca.envSpecular[ch] = viewOf(parts.envSpecular[ch], channelName(Res::EnvSpecular, ch));
         ca.specWeight[ch] = viewOf(parts.specWeight[ch], channelName(Res::SpecWeight, ch));
-        const DenoiseOutputs& d = frame.trace.denoised;
+        const DenoiseOutputs& d = frame.denoised;
         if (ts.ssgi && !inComposite)
             ca.ssgi[ch] = ts.denoise.enabled
                               ? viewOf(d.diffuse[ch], channelName(Res::DenoisedDiffuse, ch))
-                              : viewOf(frame.trace.ssgi.color[ch], channelName(Res::Ssgi, ch));
+                              : viewOf(frame.ssgi.color[ch], channelName(Res::Ssgi, ch));
         if (ts.ssr) {  // the denoiser's output, or SSR's own
             if (ts.denoise.enabled)
                 ca.specular[ch] = viewOf(d.specular[ch], channelName(Res::DenoisedSpecular, ch));
-            else ca.ssrColor[ch] = viewOf(frame.trace.ssr.color[ch], channelName(Res::Ssr, ch));
+            else ca.ssrColor[ch] = viewOf(frame.ssr.color[ch], channelName(Res::Ssr, ch));
         }
         ca.color[ch] = outputOf(frame.image.color[ch], channelName(Res::Color, ch));
         ca.display[ch] = outputOf(frame.image.display[ch], channelName(Res::Display, ch));
@@ -84,7 +84,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
             ca.occlusion = viewOf(frame.gbuffer.occlusion, channelName(Res::Occlusion));
     }
     if (ts.ssr && !ts.denoise.enabled)
-        ca.ssrOpacity = viewOf(frame.trace.ssr.opacity, channelName(Res::SsrOpacity));
+        ca.ssrOpacity = viewOf(frame.ssr.opacity, channelName(Res::SsrOpacity));
     ca.exposure = c.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.

@@ -54,7 +54,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
             half, c.threads(), &times);
     if (diffuseUpsampledInComposite(c.settings)) return;  // (compositePass)
     const auto t0 = std::chrono::steady_clock::now();
-    DenoiseOutputs& out = frame.trace.denoised;
+    DenoiseOutputs& out = frame.denoised;
     // (The history length, a plane to look at, is blended as the hit share is.)
     const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]},
                                  nullptr,
@@ -69,7 +69,7 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
 
 }  // namespace
 
-// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.trace.denoised, which the
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.denoised, which the
 // composite then reads; the traced planes stay as they were (the undenoised layers).
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts();
@@ -77,16 +77,16 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
     in.g = frame.gbuffer.view();
     if (ts.ssgi && !halfDiffuse) {
-        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.trace.ssgi.color[ch];
-        in.diffuseHitDistance = &frame.trace.ssgi.hitDistance;
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.ssgi.color[ch];
+        in.diffuseHitDistance = &frame.ssgi.hitDistance;
     }
     if (ts.ssr) {
         for (int ch = 0; ch < 3; ++ch) {
-            in.ssr[ch] = &frame.trace.ssr.color[ch];
+            in.ssr[ch] = &frame.ssr.color[ch];
             in.envSpecular[ch] = &frame.direct.envSpecular[ch];
         }
-        in.ssrOpacity = &frame.trace.ssr.opacity;
-        in.specularHitDistance = &frame.trace.ssr.hitDistance;
+        in.ssrOpacity = &frame.ssr.opacity;
+        in.specularHitDistance = &frame.ssr.hitDistance;
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
@@ -103,7 +103,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     }
     if (in.diffuse[0] || in.ssr[0])
         denoise(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise,
-                frame.trace.denoised, c.threads(), &times);
+                frame.denoised, c.threads(), &times);
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),

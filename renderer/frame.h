@@ -155,14 +155,6 @@ struct SsgiPlanes : PlaneTable<SsgiPlanes> {
     }
 };
 
-struct TraceOutputs {
-    SsrPlanes ssr;
-    SsgiPlanes ssgi;
-    // What the denoiser hands out (TraceSettings::denoise): the composite reads these in place
-    // of the traced signals (which stay layers, undenoised).
-    DenoiseOutputs denoised;
-};
-
 // What a frame leaves the next one of a sequence. The caller owns it and hands it to every
 // frame (Renderer::render); the renderer reads it, then commits the new frame's into it after
 // the composite.
@@ -236,7 +228,11 @@ struct Frame {
     ImagePlanes image;
     GBuffer gbuffer;
     DirectParts direct;  // only when a trace pass runs
-    TraceOutputs trace;
+    SsrPlanes ssr;       // what SSR hands out (TraceSettings::ssr)
+    SsgiPlanes ssgi;     // what SSGI hands out (TraceSettings::ssgi)
+    // What the denoiser hands out (TraceSettings::denoise): the composite reads these in place
+    // of the traced signals (which stay layers, undenoised).
+    DenoiseOutputs denoised;
     // Layers a caller adds after rendering (`ssrt compare`: the truth's), written after ours.
     std::vector<NamedPlane> extraLayers;
     FrameStats stats;
@@ -324,9 +320,9 @@ private:
         f.image.forEachPlane(fn);
         f.gbuffer.forEachPlane(fn);
         f.direct.forEachPlane(fn);
-        f.trace.ssr.forEachPlane(fn);
-        f.trace.ssgi.forEachPlane(fn);
-        f.trace.denoised.forEachPlane(fn);
+        f.ssr.forEachPlane(fn);
+        f.ssgi.forEachPlane(fn);
+        f.denoised.forEachPlane(fn);
     }
 };
 

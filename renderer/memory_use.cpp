@@ -56,9 +56,8 @@ FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
     const Frame f;
     const FrameHistory h;
     const PlaneCount count = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.direct) +
-                             planesOf(f.trace.ssr) + planesOf(f.trace.ssgi) +
-                             planesOf(f.trace.denoised) + planesOf(h) + planesOf(h.denoise) +
-                             planesOf(h.denoiseHalf);
+                             planesOf(f.ssr) + planesOf(f.ssgi) + planesOf(f.denoised) +
+                             planesOf(h) + planesOf(h.denoise) + planesOf(h.denoiseHalf);
     FrameMemoryNeed need;
     need.planes = count.planes;
     need.pixelBytes = count.pixelBytes;

@@ -93,7 +93,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     }
     // The full-resolution planes: what the composite reads without the denoiser, and only to
     // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
-    SsgiPlanes& planes = frame.trace.ssgi;
+    SsgiPlanes& planes = frame.ssgi;
     if (planes.color[0].empty()) return;
     times.reconstruct = 0.0;
     addTime(times.reconstruct, [&] {
@@ -136,7 +136,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const Isa isa = c.isa;
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
-    SsgiPlanes& planes = frame.trace.ssgi;
+    SsgiPlanes& planes = frame.ssgi;
     SsgiArgs in;
     in.camera = c.camera;
     in.g = frame.gbuffer.view();

@@ -95,7 +95,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
 void ssrPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts();
     Frame::Scratch& sc = frame.scratch;
-    SsrPlanes& planes = frame.trace.ssr;
+    SsrPlanes& planes = frame.ssr;
     StageTimes times;
     SsrResolveSettings rs = ts.resolve;
     const SsrResolveArgs in = ssrInputs(c, frame, rs, times.resolve);

@@ -69,8 +69,8 @@ namespace {
 // planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
 // bounce of one-ray noise fed back would come back as noise), else SSGI's.
 const PlaneF* committedDiffuse(const Frame& frame) {
-    const DenoiseOutputs& d = frame.trace.denoised;
-    return d.diffuse[0].empty() ? frame.trace.ssgi.color : d.diffuse;
+    const DenoiseOutputs& d = frame.denoised;
+    return d.diffuse[0].empty() ? frame.ssgi.color : d.diffuse;
 }
 
 // A non-finite value (a NaN from a bad input, an overflow) is committed as 0, no light: the

@@ -46,13 +46,13 @@ struct TraceContext {
     ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
-// Fills frame.trace and replaces frame.image's colour and display with the composite;
-// appends pass times and stats to frame.stats.
+// Fills frame.ssr, frame.ssgi and frame.denoised and replaces frame.image's colour and display with
+// the composite; appends pass times and stats to frame.stats.
 void runTracePasses(TraceContext c, Frame& frame);
 
 // Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
 // inside the composite, which alone reads it, instead of into the frame's planes
-// (frame.trace.denoised.diffuse, then not made): unless a file shows them (debugPlanes)
+// (frame.denoised.diffuse, then not made): unless a file shows them (debugPlanes)
 // or the next frame's SSGI feedback reads them.
 bool diffuseUpsampledInComposite(const RenderSettings& settings);
 
@@ -62,7 +62,7 @@ bool diffuseUpsampledInComposite(const RenderSettings& settings);
 // feedback that adds to the full-resolution plane, and without a file to show it.
 bool hitLightAtHalf(const RenderSettings& settings);
 
-// Whether the traced signals the denoiser reads (frame.trace.ssr and .ssgi, the half frame's
+// Whether the traced signals the denoiser reads (frame.ssr and .ssgi, the half frame's
 // SSGI) come from the pool and go back to it once the denoiser's front end has read them, for
 // its later passes to reuse: with the denoiser on (the composite then reads its output
 // instead) and no file to show them.

@@ -59,12 +59,12 @@ FrameParts frameParts(const Frame& frame) {
     // Where the denoiser ran, the composite read its planes: the specular one as the whole
     // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's (whose own
     // planes may then not be made: RenderSettings::debugPlanes).
-    const DenoiseOutputs& denoised = frame.trace.denoised;
+    const DenoiseOutputs& denoised = frame.denoised;
     const bool specDenoised = !denoised.specular[0].empty();
     const bool diffDenoised = !denoised.diffuse[0].empty();
-    const SsrPlanes& ssrPlanes = frame.trace.ssr;
+    const SsrPlanes& ssrPlanes = frame.ssr;
     const bool ssrOn = !ssrPlanes.opacity.empty();
-    const bool ssgiOn = !frame.trace.ssgi.hit.empty() || diffDenoised;
+    const bool ssgiOn = !frame.ssgi.hit.empty() || diffDenoised;
     const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
                            : specDenoised ? PlaneF(frame.width, frame.height, 1.0f)
                                           : PlaneF();
@@ -76,7 +76,7 @@ FrameParts frameParts(const Frame& frame) {
                                 : FloatPlane(&ssrPlanes.color[c]);
         ssgi[c] = !ssgiOn        ? FloatPlane(&parts.envDiffuse[c])
                   : diffDenoised ? FloatPlane(&denoised.diffuse[c])
-                                 : FloatPlane(&frame.trace.ssgi.color[c]);
+                                 : FloatPlane(&frame.ssgi.color[c]);
     }
     specularDiffuse(frame, ssr, ssrOn && !specDenoised ? ssrPlanes.opacity : opacity, ssgi,
                     fp.specular, fp.diffuse);

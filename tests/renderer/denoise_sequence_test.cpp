@@ -84,10 +84,10 @@ double specularError(const Frame& f, const Frame& ref) {
             if (!(f.gbuffer.viewZ.at(x, y) > 0.0f) || !(f.gbuffer.roughness.at(x, y) < 0.3f))
                 continue;
             for (int c = 0; c < 3; ++c) {
-                const double r = ref.trace.ssr.color[c].at(x, y) * ref.trace.ssr.opacity.at(x, y) +
+                const double r = ref.ssr.color[c].at(x, y) * ref.ssr.opacity.at(x, y) +
                                  decodeF16(ref.direct.envSpecular[c].at(x, y)) *
-                                     (1.0 - ref.trace.ssr.opacity.at(x, y));
-                const double d = f.trace.denoised.specular[c].at(x, y) - r;
+                                     (1.0 - ref.ssr.opacity.at(x, y));
+                const double d = f.denoised.specular[c].at(x, y) - r;
                 sum += d * d / (r * r + 0.01);
             }
             ++n;
@@ -183,7 +183,7 @@ TEST_CASE("denoise sequence: a camera cut renders as a fresh history would") {
     input.resetHistory = false;
     renderer.render(scene, input, fresh, b);
     CHECK(frameHash(a) == frameHash(b));
-    CHECK(a.trace.denoised.diffuseFrames.at(80, 45) == 0.0f);
+    CHECK(a.denoised.diffuseFrames.at(80, 45) == 0.0f);
 }
 
 TEST_CASE("denoise sequence: a camera pan reveals background that restarts its history") {
@@ -216,7 +216,7 @@ TEST_CASE("denoise sequence: a camera pan reveals background that restarts its h
                     for (int dy = -2; dy <= 2; ++dy)
                         for (int dx = -2; dx <= 2; ++dx)
                             same &= previousIds.at(px + dx, py + dy) == id;
-                    const float frames = f.trace.denoised.diffuseFrames.at(x, y);
+                    const float frames = f.denoised.diffuseFrames.at(x, y);
                     // Revealed: the whole footprint showed something nearer.
                     const float z = f.gbuffer.viewZ.at(x, y);
                     bool occluded = true;

@@ -154,9 +154,9 @@ TEST_CASE("frame graph: the frame's plane groups are named from the resource tab
     f.image.forEachPlane(known);
     f.gbuffer.forEachPlane(known);
     f.direct.forEachPlane(known);
-    f.trace.ssr.forEachPlane(known);
-    f.trace.ssgi.forEachPlane(known);
-    f.trace.denoised.forEachPlane(known);
+    f.ssr.forEachPlane(known);
+    f.ssgi.forEachPlane(known);
+    f.denoised.forEachPlane(known);
     h.forEachPlane(known);
     CHECK(planes == 7 + 12 + 4 + 2 + 18 + 7 + 6 + 8 + 6);
     CHECK(channelName(Res::Normal, 2) == "normal.Z");

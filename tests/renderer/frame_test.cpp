@@ -85,8 +85,8 @@ TEST_CASE("frame: the layers are the groups' tables in file order, each found by
     CHECK(&f.plane("viewZ") == &f.gbuffer.viewZ);
     CHECK(&f.plane("normal.Z") == &f.gbuffer.normal[2]);
     CHECK(&f.plane("display.B") == &f.image.display[2]);
-    CHECK(&f.plane("ssrHitDistance") == &f.trace.ssr.hitDistance);
-    CHECK(&f.plane("ssgiSteps") == &f.trace.ssgi.steps);
+    CHECK(&f.plane("ssrHitDistance") == &f.ssr.hitDistance);
+    CHECK(&f.plane("ssgiSteps") == &f.ssgi.steps);
     CHECK(&f.plane("triangleId") == &f.gbuffer.triangleId);
     for (const PlaneRef& p : f.layers()) {
         CAPTURE(std::string(p.name));
@@ -110,7 +110,7 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     CHECK_FALSE(f.has("ssr.R"));
     CHECK_FALSE(f.has("instanceId"));
     CHECK(f.has("ssgi.R"));
-    CHECK(f.trace.ssr.color[0].empty());
+    CHECK(f.ssr.color[0].empty());
     CHECK(f.direct.hitLight[0].width() == f.width);  // SSGI still reads it
     less.trace.ssgi = false;
     Renderer(less).renderWithoutHistory(scene, FrameInput::still(scene), f);
@@ -126,8 +126,8 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     f.image.forEachPlane(add);
     f.gbuffer.forEachPlane(add);
     f.direct.forEachPlane(add);
-    f.trace.ssr.forEachPlane(add);
-    f.trace.ssgi.forEachPlane(add);
+    f.ssr.forEachPlane(add);
+    f.ssgi.forEachPlane(add);
     FrameHistory().forEachPlane(add);
     CHECK(int(names.size()) == count);
 }

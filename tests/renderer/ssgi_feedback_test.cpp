@@ -47,7 +47,7 @@ bool allFinite(const Frame& f) {
 bool sameImage(const Frame& a, const Frame& b) {
     for (int c = 0; c < 3; ++c)
         if (!sameBits(a.image.color[c], b.image.color[c]) ||
-            !sameBits(a.trace.ssgi.color[c], b.trace.ssgi.color[c]))
+            !sameBits(a.ssgi.color[c], b.ssgi.color[c]))
             return false;
     return true;
 }
@@ -74,9 +74,9 @@ TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce -- the firs
         REQUIRE(history.valid);
         for (int c = 0; c < 3; ++c) {
             CHECK(sameBits(history.color[c], f.image.color[c]));
-            CHECK(sameBits(history.diffuse[c], f.trace.denoised.diffuse[c]));
+            CHECK(sameBits(history.diffuse[c], f.denoised.diffuse[c]));
         }
-        mean.push_back(meanOf(f.trace.ssgi.color));
+        mean.push_back(meanOf(f.ssgi.color));
         MESSAGE("frame " << k << ": mean incoming diffuse " << mean.back());
     }
     // The second frame adds the second bounce (cornell's walls reflect about half): far more
@@ -171,8 +171,8 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
     fed.render(scene, input, history, f);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    DenoiseOutputs& d = f.trace.denoised;
-    PlaneF* diffuse = d.diffuse[0].empty() ? f.trace.ssgi.color : d.diffuse;
+    DenoiseOutputs& d = f.denoised;
+    PlaneF* diffuse = d.diffuse[0].empty() ? f.ssgi.color : d.diffuse;
     for (int c = 0; c < 3; ++c) {
         f.image.color[c].at(40, 30) = nan;
         f.image.color[c].at(41, 30) = inf;

@@ -412,8 +412,7 @@ TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA a
     const int w = frame.width, h = frame.height;
     SsgiFeedbackArgs in;
     for (int c = 0; c < 3; ++c)
-        in.prevDiffuse[c] =
-            viewOf(frame.trace.ssgi.color[c], "ssgi");  // a frame's own light stands in
+        in.prevDiffuse[c] = viewOf(frame.ssgi.color[c], "ssgi");  // a frame's own light stands in
     // Motion that moves some pixels off the frame.
     PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
     for (int y = 0; y < h; ++y)

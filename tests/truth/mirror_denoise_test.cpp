@@ -32,8 +32,8 @@ void tracedSpecular(const Frame& f, PlaneF (&out)[3]) {
         out[c] = PlaneF(f.width, f.height);
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float o = f.trace.ssr.opacity.at(x, y);
-                out[c].at(x, y) = o * f.trace.ssr.color[c].at(x, y) +
+                const float o = f.ssr.opacity.at(x, y);
+                out[c].at(x, y) = o * f.ssr.color[c].at(x, y) +
                                   (1.0f - o) * decodeF16(f.direct.envSpecular[c].at(x, y));
             }
     }
@@ -116,7 +116,7 @@ TEST_CASE("mirror: the denoised reflection on cornell's mirror sphere is as shar
     tracedSpecular(f, traced);
     const MirrorMask mask = mirrorMask(f, traced, ref.ssr);
     REQUIRE(mask.count > 150);
-    const double denoised = maskedFlip(f.trace.denoised.specular, ref.ssr, mask);
+    const double denoised = maskedFlip(f.denoised.specular, ref.ssr, mask);
     const double tracedFlip = maskedFlip(traced, ref.ssr, mask);
     MESSAGE("mirror pixels " << mask.count << ", mean FLIP against Embree: denoised " << denoised
                              << ", traced " << tracedFlip);
