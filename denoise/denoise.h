@@ -68,7 +68,8 @@ struct DenoiseInputs {
     // Throws std::logic_error if a history is read or replaced.
     bool temporal = true;
     // Where the scratch's planes come from, and go back to after the call (null: the scratch
-    // keeps its own between calls).
+    // keeps its state planes between calls; the signals and each pass's result are freed once
+    // read either way, their memory kept resident by the planes' range, core/plane_memory.h).
     PlanePool* pool = nullptr;
     // Called once the front end has read the signals above, before the scratch planes the
     // later passes write are taken from the pool: a caller whose signal planes are pooled
