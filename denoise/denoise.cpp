@@ -112,18 +112,16 @@ ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, Denoise
     return v;
 }
 
-// A signal plane of DenoiseInputs as requireViews sees it (null: missing).
-ViewShape signalView(const PlaneF* p, std::string_view name) {
-    return p ? viewOf(*p, name) : ViewF{nullptr, 0, 0, 0, name};
-}
-ViewShape signalView(FloatPlane p, std::string_view name) {
-    if (p.f16) return viewOf(*p.f16, name);
-    return signalView(p.f32, name);
+// A signal's view as requireViews sees it, by its field's name where the caller left it
+// unnamed (a view never set).
+ViewShape named(ViewShape v, std::string_view field) {
+    if (v.name.empty()) v.name = field;
+    return v;
 }
 
-// The guides each signal needs, and its planes.
+// The guides each signal needs, and its views.
 void checkInputs(const DenoiseInputs& in, int w, int h) {
-    const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
+    const bool diffuse = in.hasDiffuse(), specular = in.hasSpecular();
     requireGBuffer("denoise", in.g,
                    kGViewZ | kGNormal | kGMotion | (diffuse ? kGAlbedo | kGMetallic : 0u) |
                        (specular ? GBufferPlanes(kGRoughness) : 0u),
@@ -131,36 +129,22 @@ void checkInputs(const DenoiseInputs& in, int w, int h) {
     if (diffuse)
         requireViews(
             "denoise", w, h,
-            {signalView(in.diffuse[0], "diffuse.R"), signalView(in.diffuse[1], "diffuse.G"),
-             signalView(in.diffuse[2], "diffuse.B"),
-             signalView(in.diffuseHitDistance, "diffuseHitDistance")});
+            {named(in.diffuse[0], "diffuse"), named(in.diffuse[1], "diffuse"),
+             named(in.diffuse[2], "diffuse"), named(in.diffuseHitDistance, "diffuseHitDistance")});
     if (specular)
-        requireViews("denoise", w, h,
-                     {signalView(in.ssr[0], "ssr.R"), signalView(in.ssr[1], "ssr.G"),
-                      signalView(in.ssr[2], "ssr.B"), signalView(in.ssrOpacity, "ssrOpacity"),
-                      signalView(in.envSpecular[0], "envSpecular.R"),
-                      signalView(in.envSpecular[1], "envSpecular.G"),
-                      signalView(in.envSpecular[2], "envSpecular.B"),
-                      signalView(in.specularHitDistance, "specularHitDistance")});
+        requireViews(
+            "denoise", w, h,
+            {named(in.ssr[0], "ssr"), named(in.ssr[1], "ssr"), named(in.ssr[2], "ssr"),
+             named(in.ssrOpacity, "ssrOpacity"), named(in.envSpecular[0], "envSpecular"),
+             named(in.envSpecular[1], "envSpecular"), named(in.envSpecular[2], "envSpecular"),
+             named(in.specularHitDistance, "specularHitDistance")});
 }
 
 void frontEnd(Context& c) {
     const DenoiseInputs& in = c.in;
     ReblurPassArgs a;
     a.frame = c.frame;
-    if (in.diffuse[0]) {
-        for (int i = 0; i < 3; ++i) a.diffuse[i] = in.diffuse[i]->row(0);
-        a.diffuseHit = in.diffuseHitDistance->row(0);
-    }
-    if (in.ssr[0]) {
-        for (int i = 0; i < 3; ++i) {
-            a.ssr[i] = in.ssr[i]->row(0);
-            a.envSpecular[i] = in.envSpecular[i].f16 ? SignalIn(in.envSpecular[i].f16->row(0))
-                                                     : SignalIn(in.envSpecular[i].f32->row(0));
-        }
-        a.ssrOpacity = in.ssrOpacity->row(0);
-        a.specularHit = in.specularHitDistance->row(0);
-    }
+    a.signals = in;  // (the traced signals: DenoiseSignals)
     a.noisyDiffuse = c.sc.noisyDiffuse.row(0);
     a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
@@ -170,16 +154,23 @@ void frontEnd(Context& c) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
 }
 
+// What every pass after the front end starts from: the frame, the signal, its input and output.
+ReblurPassArgs passArgs(const Context& c, bool specular, const PlaneU64* in,
+                        const SignalOut4& out) {
+    ReblurPassArgs a;
+    a.frame = c.frame;
+    a.specular = specular;
+    a.in = in->row(0);
+    a.out = out;
+    return a;
+}
+
 // Each pass's arguments for one signal; runPass runs them.
 ReblurPassArgs spatial(Context& c, bool specular, ReblurSpatial pass, const PlaneU64* in,
                        const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
-    ReblurPassArgs a;
-    a.frame = c.frame;
+    ReblurPassArgs a = passArgs(c, specular, in, out);
     a.pass = pass;
-    a.specular = specular;
-    a.in = in->row(0);
-    a.out = out;
     if (copy) a.copy = copy->row(0);
     a.frames = frames ? frames->row(0) : nullptr;
     if (pass != ReblurSpatial::PreBlur) a.noFrames = 0.0f;  // (no temporal pass: no history)
@@ -197,11 +188,7 @@ ReblurPassArgs spatial(Context& c, bool specular, ReblurSpatial pass, const Plan
 
 ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const int k = specular ? 1 : 0;
-    ReblurPassArgs a;
-    a.frame = c.frame;
-    a.specular = specular;
-    a.in = in->row(0);
-    a.out = out->row(0);
+    ReblurPassArgs a = passArgs(c, specular, in, out->row(0));
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
     if (c.frame.prevViewZ && c.previousHas[k]) {
@@ -216,11 +203,7 @@ ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64*
 ReblurPassArgs historyFix(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = specular ? 1 : 0;
-    ReblurPassArgs a;
-    a.frame = c.frame;
-    a.specular = specular;
-    a.in = in->row(0);
-    a.out = out->row(0);
+    ReblurPassArgs a = passArgs(c, specular, in, out->row(0));
     // (Without the temporal pass no pixel has a history, and the fast history is the input's
     // luma, as that pass would have left them.)
     a.frames = c.in.temporal ? c.sc.frames[k].row(0) : nullptr;
@@ -251,7 +234,7 @@ void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
     const int w = c.grid.width, h = c.grid.height;
-    const bool on[2] = {c.in.diffuse[0] != nullptr, c.in.ssr[0] != nullptr};
+    const bool on[2] = {c.in.hasDiffuse(), c.in.hasSpecular()};
     PlaneU64* current[2] = {&sc.noisyDiffuse, &sc.noisySpecular};
     // (null without the temporal pass: the blurs take 0 frames)
     const PlaneF* frames[2] = {c.in.temporal ? &sc.frames[0] : nullptr,
@@ -334,7 +317,7 @@ void commitHistory(Context& c) {
     const DenoiseInputs& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
     const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no pixel
-    const bool signals[2] = {in.diffuse[0] != nullptr, in.ssr[0] != nullptr};
+    const bool signals[2] = {in.hasDiffuse(), in.hasSpecular()};
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         const TileRect r = c.grid.rect(tile);
         for (int y = r.y0; y < r.y1; ++y) {
@@ -425,7 +408,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("denoise: empty camera");
     checkInputs(in, w, h);
-    const bool diffuse = in.diffuse[0] != nullptr, specular = in.ssr[0] != nullptr;
+    const bool diffuse = in.hasDiffuse(), specular = in.hasSpecular();
     const TileGrid grid(w, h);
     const bool readHistory = history && !reset && history->usableAt(w, h);
     const DenoiseHistory* previous = readHistory ? history : nullptr;

@@ -36,25 +36,18 @@
 #include "core/plane_pool.h"
 #include "core/plane_table.h"
 #include "denoise/denoise_settings.h"
+#include "denoise/reblur_kernel.h"
 
 namespace ssrt {
 
-// What one frame hands the denoiser; every plane of the frame's size.
-struct DenoiseInputs {
+// What one frame hands the denoiser: the traced signals (DenoiseSignals, views of the frame's
+// size) and the rest.
+struct DenoiseInputs : DenoiseSignals {
     TraceCamera camera;
     uint32_t frameIndex = 0;  // rotates the spatial kernels (counter RNG, core/rng.h)
     // The guides: viewZ (0: background), normal and motion; roughness for the specular signal
     // alone; albedo with metallic (where the diffuse signal exists) for the diffuse alone.
     GBufferView g;
-    // Diffuse (null: no SSGI): incoming radiance and the mean hit distance (0: no hit).
-    const PlaneF* diffuse[3] = {};
-    const PlaneF* diffuseHitDistance = nullptr;
-    // Specular (null: no SSR): the composite's incoming specular radiance is
-    // opacity ssr + (1 - opacity) environment; the mean hit distance (0: no hit).
-    const PlaneF* ssr[3] = {};
-    const PlaneF* ssrOpacity = nullptr;
-    FloatPlane envSpecular[3] = {};  // f32 or f16 (the direct pass's)
-    const PlaneF* specularHitDistance = nullptr;
     // Pixels this rough or rougher have no specular signal (SSR's roughness fade end).
     float specularMaxRoughness = 1.0f;
     // false: the history is read but left as it was (no later frame reads this one's): the

@@ -9,6 +9,7 @@
 #include "core/dispatch.h"
 #include "core/float_planes.h"
 #include "core/gbuffer_view.h"
+#include "core/plane_view.h"
 #include "denoise/reblur_math.h"
 
 namespace ssrt {
@@ -61,6 +62,21 @@ enum class ReblurSpatial { PreBlur, Blur, PostBlur };
 // arithmetic in f32; a caller may hand a plane per channel, f32 or f16 (the tests' walls).
 // Their stride is the frame's.
 
+// The traced signals the denoiser reads, views of the frame's size: what a caller hands it
+// (DenoiseInputs), and as they are what the front end's kernel reads. A signal whose first view
+// is absent is not traced.
+struct DenoiseSignals {
+    // Diffuse (absent: no SSGI): incoming radiance and the mean hit distance (0: no hit).
+    ViewF diffuse[3], diffuseHitDistance;
+    // Specular (absent: no SSR): the composite's incoming specular radiance is
+    // opacity ssr + (1 - opacity) environment; the mean hit distance (0: no hit).
+    ViewF ssr[3], ssrOpacity;
+    FloatView envSpecular[3];  // f32 or f16 (the direct pass's)
+    ViewF specularHitDistance;
+    bool hasDiffuse() const { return bool(diffuse[0]); }
+    bool hasSpecular() const { return bool(ssr[0]); }
+};
+
 // One pass over one signal: the frame, and the planes that pass reads and writes (each pass
 // sets its own fields below; the rest stay empty).
 struct ReblurPassArgs {
@@ -69,14 +85,8 @@ struct ReblurPassArgs {
     SignalIn4 in;           // the previous pass's result
     SignalOut4 out;         // a channel null: not written (the post-blur's hit distance)
 
-    // Front end: the traced signals (null: not traced), the composite's incoming specular
-    // radiance opacity ssr + (1 - opacity) envSpecular, and what it writes.
-    const float* diffuse[3] = {};
-    const float* diffuseHit = nullptr;
-    const float* ssr[3] = {};
-    const float* ssrOpacity = nullptr;
-    SignalIn envSpecular[3] = {};  // f32 or f16 (the direct pass's)
-    const float* specularHit = nullptr;
+    // Front end: the traced signals (DenoiseSignals, as the caller gave them) and what it writes.
+    DenoiseSignals signals;
     SignalOut4 noisyDiffuse, noisySpecular;  // RGB and the normalised hit distance
     float* signalZ[2] = {};
     uint8_t* tiles = nullptr;

@@ -44,8 +44,8 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
                         {kGMetallic, &hf.metallic},
                         {kGMotionX, &hf.guideMotion[0]},
                         {kGMotionY, &hf.guideMotion[1]}});
-    for (int i = 0; i < 3; ++i) in.diffuse[i] = &ht.resolved.color[i];
-    in.diffuseHitDistance = &ht.resolved.hitDistance;
+    for (int i = 0; i < 3; ++i) in.diffuse[i] = viewIn(ht.resolved, ht.resolved.color[i]);
+    in.diffuseHitDistance = viewIn(ht.resolved, ht.resolved.hitDistance);
     if (tracedSignalsPooled(c.settings))
         in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
     DenoiseHistory* history = c.sequence ? &c.sequence->denoiseHalf : nullptr;
@@ -77,16 +77,16 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
     in.g = frame.gbuffer.view();
     if (ts.ssgi && !halfDiffuse) {
-        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = &frame.ssgi.color[ch];
-        in.diffuseHitDistance = &frame.ssgi.hitDistance;
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = viewIn(frame.ssgi, frame.ssgi.color[ch]);
+        in.diffuseHitDistance = viewIn(frame.ssgi, frame.ssgi.hitDistance);
     }
     if (ts.ssr) {
         for (int ch = 0; ch < 3; ++ch) {
-            in.ssr[ch] = &frame.ssr.color[ch];
-            in.envSpecular[ch] = &frame.direct.envSpecular[ch];
+            in.ssr[ch] = viewIn(frame.ssr, frame.ssr.color[ch]);
+            in.envSpecular[ch] = viewIn(frame.direct, frame.direct.envSpecular[ch]);
         }
-        in.ssrOpacity = &frame.ssr.opacity;
-        in.specularHitDistance = &frame.ssr.hitDistance;
+        in.ssrOpacity = viewIn(frame.ssr, frame.ssr.opacity);
+        in.specularHitDistance = viewIn(frame.ssr, frame.ssr.hitDistance);
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }
@@ -101,7 +101,7 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         denoiseHalfDiffuse(c, frame, times);
         c.memory.giveThrough(pass::kDenoiseUpsample);
     }
-    if (in.diffuse[0] || in.ssr[0])
+    if (in.hasDiffuse() || in.hasSpecular())
         denoise(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise,
                 frame.denoised, c.threads(), &times);
     // One line per pass, summed over the two calls.

@@ -67,14 +67,18 @@ struct Synthetic {
                             {kGRoughness, &roughness},
                             {kGMotionX, &motion[0]},
                             {kGMotionY, &motion[1]}});
+        // (a view keeps its name as a string_view: literals)
+        const char* const diffuseNames[3] = {"diffuse.R", "diffuse.G", "diffuse.B"};
+        const char* const ssrNames[3] = {"ssr.R", "ssr.G", "ssr.B"};
+        const char* const envNames[3] = {"envSpecular.R", "envSpecular.G", "envSpecular.B"};
         for (int i = 0; i < 3; ++i) {
-            in.diffuse[i] = &diffuse[i];
-            in.ssr[i] = &ssr[i];
-            in.envSpecular[i] = &env[i];
+            in.diffuse[i] = viewOf(diffuse[i], diffuseNames[i]);
+            in.ssr[i] = viewOf(ssr[i], ssrNames[i]);
+            in.envSpecular[i] = viewOf(env[i], envNames[i]);
         }
-        in.diffuseHitDistance = &diffuseHit;
-        in.ssrOpacity = &opacity;
-        in.specularHitDistance = &specHit;
+        in.diffuseHitDistance = viewOf(diffuseHit, "diffuseHitDistance");
+        in.ssrOpacity = viewOf(opacity, "ssrOpacity");
+        in.specularHitDistance = viewOf(specHit, "specularHitDistance");
         in.specularMaxRoughness = 0.7f;
         return in;
     }
@@ -182,7 +186,7 @@ TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks s
     for (uint32_t f = 0; f < 3; ++f) d.run(s, f);
     REQUIRE(d.out.specularFrames.at(20, 10) > 1.0f);
     DenoiseInputs diffuseOnly = s.inputs(3);
-    for (auto& p : diffuseOnly.ssr) p = nullptr;
+    for (auto& p : diffuseOnly.ssr) p = {};
     denoise(d.isa, d.settings, diffuseOnly, &d.history, false, d.scratch, d.out, d.threads);
     CHECK(d.history.hasSignal(false));
     CHECK_FALSE(d.history.hasSignal(true));
@@ -322,15 +326,15 @@ TEST_CASE("denoise: a missing or mis-sized plane is an error naming it") {
         return std::string("no error");
     };
     DenoiseInputs in = s.inputs(0);
-    in.specularHitDistance = nullptr;
+    in.specularHitDistance = {};
     CHECK(message(in) == "denoise: specularHitDistance is missing");
     const PlaneF small(32, 48, 1.0f);
     in = s.inputs(0);
-    in.diffuse[1] = &small;
+    in.diffuse[1] = viewOf(small, "diffuse.G");
     CHECK(message(in) == "denoise: diffuse.G is 32x48, not 64x48");
     // A guide only the missing signal reads is not needed.
     in = s.inputs(0);
-    for (auto& p : in.ssr) p = nullptr;
+    for (auto& p : in.ssr) p = {};
     in.g.roughness = nullptr;
     CHECK(message(in) == "no error");
     in.g.motion[1] = nullptr;

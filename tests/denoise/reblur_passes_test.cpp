@@ -88,15 +88,15 @@ TEST_CASE("reblur front end: sanitised signals, the specular blend and the tiles
         ReblurPassArgs a;
         a.frame = g.view();
         for (int c = 0; c < 3; ++c) {
-            a.diffuse[c] = diffuse[c].row(0);
+            a.signals.diffuse[c] = viewOf(diffuse[c], "diffuse");
             a.frame.albedo[c] = albedo[c].row(0);
-            a.ssr[c] = ssr[c].row(0);
-            a.envSpecular[c] = env[c].row(0);
+            a.signals.ssr[c] = viewOf(ssr[c], "ssr");
+            a.signals.envSpecular[c] = viewOf(env[c], "envSpecular");
         }
         a.frame.metallic = metallic.row(0);
-        a.diffuseHit = diffuseHit.row(0);
-        a.ssrOpacity = opacity.row(0);
-        a.specularHit = specularHit.row(0);
+        a.signals.diffuseHitDistance = viewOf(diffuseHit, "diffuseHitDistance");
+        a.signals.ssrOpacity = viewOf(opacity, "ssrOpacity");
+        a.signals.specularHitDistance = viewOf(specularHit, "specularHitDistance");
         a.frame.specularMaxRoughness = 0.7f;
         for (int c = 0; c < 4; ++c) {
             a.noisyDiffuse[c] = noisyD.out(c);
