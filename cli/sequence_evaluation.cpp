@@ -4,6 +4,7 @@
 #include <deque>
 #include <iomanip>
 #include <ostream>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -24,12 +25,13 @@ void requireSurface(const Frame& frame) {
 
 namespace {
 
-void clonePlanes(const PlaneF (&from)[3], PlaneF (&to)[3]) {
+void clonePlanes(std::span<const PlaneF, 3> from, PlaneF (&to)[3]) {
     for (int c = 0; c < 3; ++c) to[c] = from[c].clone();
 }
 
 double colorRelMse(const Frame& frame, const ReferenceImage& ref) {
-    const PlaneF* image[3] = {&frame.image.color[0], &frame.image.color[1], &frame.image.color[2]};
+    const auto imageRgb = frame.rgb(Res::Color);
+    const PlaneF* image[3] = {&imageRgb[0], &imageRgb[1], &imageRgb[2]};
     const PlaneF* reference[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
     return imageError(image, reference).relMse;
 }
@@ -62,7 +64,7 @@ void updateReference(const TruthContext& t, const FrameInput& input,
 
 }  // namespace
 
-std::optional<double> frameFlicker(const PlaneF (&current)[3], const PlaneF (&previous)[3],
+std::optional<double> frameFlicker(std::span<const PlaneF, 3> current, const PlaneF (&previous)[3],
                                    const PlaneF (&reference)[3]) {
     double change = 0.0, level = 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -119,7 +121,7 @@ SequenceEvaluation evaluateSequence(const TruthContext& t, const FrameSequence& 
             FrameError row{
                 i, input.frameIndex, input.resetHistory, colorRelMse(frame, reference.image), {}};
             if (sequence.stillSincePrevious(step))
-                row.flicker = frameFlicker(frame.image.color, previous, reference.image.color);
+                row.flicker = frameFlicker(frame.rgb(Res::Color), previous, reference.image.color);
             out.frames.push_back(row);
         }
         if (t.progress) {
@@ -133,7 +135,7 @@ SequenceEvaluation evaluateSequence(const TruthContext& t, const FrameSequence& 
                 *t.progress << (row.cut ? " (camera cut)" : "") << "\n";
             }
         }
-        if (!last) clonePlanes(frame.image.color, previous);
+        if (!last) clonePlanes(frame.rgb(Res::Color), previous);
     }
     out.reference = std::move(reference.image);
     return out;

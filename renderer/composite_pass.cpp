@@ -69,14 +69,14 @@ void compositePass(const TraceContext& c, Frame& frame) {
         if (ts.ssgi && !inComposite)
             ca.ssgi[ch] = ts.denoise.enabled
                               ? viewOf(d.diffuse[ch], channelName(Res::DenoisedDiffuse, ch))
-                              : viewOf(frame.ssgi.color[ch], channelName(Res::Ssgi, ch));
+                              : viewOf(frame.rgb(Res::Ssgi)[ch], channelName(Res::Ssgi, ch));
         if (ts.ssr) {  // the denoiser's output, or SSR's own
             if (ts.denoise.enabled)
                 ca.specular[ch] = viewOf(d.specular[ch], channelName(Res::DenoisedSpecular, ch));
-            else ca.ssrColor[ch] = viewOf(frame.ssr.color[ch], channelName(Res::Ssr, ch));
+            else ca.ssrColor[ch] = viewOf(frame.rgb(Res::Ssr)[ch], channelName(Res::Ssr, ch));
         }
-        ca.color[ch] = outputOf(frame.image.color[ch], channelName(Res::Color, ch));
-        ca.display[ch] = outputOf(frame.image.display[ch], channelName(Res::Display, ch));
+        ca.color[ch] = outputOf(frame.rgb(Res::Color)[ch], channelName(Res::Color, ch));
+        ca.display[ch] = outputOf(frame.rgb(Res::Display)[ch], channelName(Res::Display, ch));
     }
     if (ts.ssgi) {
         ca.g = frame.gbuffer.view();
@@ -84,7 +84,7 @@ void compositePass(const TraceContext& c, Frame& frame) {
             ca.occlusion = viewOf(frame.gbuffer.occlusion, channelName(Res::Occlusion));
     }
     if (ts.ssr && !ts.denoise.enabled)
-        ca.ssrOpacity = viewOf(frame.ssr.opacity, channelName(Res::SsrOpacity));
+        ca.ssrOpacity = viewOf(frame.plane(Res::SsrOpacity), channelName(Res::SsrOpacity));
     ca.exposure = c.settings.exposure;
     // The composite reads the direct pass's colour through the parts only, so it may write
     // over the image's planes.

@@ -77,16 +77,16 @@ void denoisePass(const TraceContext& c, Frame& frame) {
     DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
     in.g = frame.gbuffer.view();
     if (ts.ssgi && !halfDiffuse) {
-        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = viewIn(frame.ssgi, frame.ssgi.color[ch]);
-        in.diffuseHitDistance = viewIn(frame.ssgi, frame.ssgi.hitDistance);
+        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = frame.view(Res::Ssgi, ch);
+        in.diffuseHitDistance = frame.view(Res::SsgiHitDistance);
     }
     if (ts.ssr) {
         for (int ch = 0; ch < 3; ++ch) {
-            in.ssr[ch] = viewIn(frame.ssr, frame.ssr.color[ch]);
+            in.ssr[ch] = frame.view(Res::Ssr, ch);
             in.envSpecular[ch] = viewIn(frame.direct, frame.direct.envSpecular[ch]);
         }
-        in.ssrOpacity = viewIn(frame.ssr, frame.ssr.opacity);
-        in.specularHitDistance = viewIn(frame.ssr, frame.ssr.hitDistance);
+        in.ssrOpacity = frame.view(Res::SsrOpacity);
+        in.specularHitDistance = frame.view(Res::SsrHitDistance);
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
         in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
     }

@@ -1,11 +1,11 @@
-// What a frame is made of: typed groups of planes, each with one name table, and the
-// history a sequence carries from one frame to the next.
+// What a frame is made of, and the history a sequence carries from one frame to the next.
 //
-// Each group lists its planes once, in `table` (core/plane_table.h), named from the frame's
-// resource table (renderer/resources.h), the only place a plane's name is spelled: it gives
-// the EXR channel names (io/image_io.h) and Frame::plane(name). Passes take the members themselves.
-// A group the settings leave out (SSR off, no id planes) holds empty planes, and empty planes are
-// not layers.
+// Its outputs are held by resource (OutputStore: Frame::rgb, Frame::plane), but for the
+// G-buffer and the direct pass's parts, typed groups of planes that list their planes once, in
+// `table` (core/plane_table.h), because passes read them as one view. Every plane is named
+// from the frame's resource table (renderer/resources.h), the only place a plane's name is
+// spelled: it gives the EXR channel names (io/image_io.h) and Frame::plane(name). A resource the
+// settings leave out (SSR off, no id planes) holds empty planes, and empty planes are not layers.
 #pragma once
 
 #include <string>
@@ -23,6 +23,7 @@
 #include "raster/raster_stats.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
+#include "renderer/output_store.h"
 #include "renderer/resources.h"
 #include "trace/color_pyramid.h"
 #include "trace/march.h"
@@ -38,20 +39,6 @@ struct PlaneRef {
     std::string_view name;
     const PlaneF* plane;
     LayerGroup group = LayerGroup::Color;
-};
-
-// The direct pass's image, which the composite replaces when a trace pass runs.
-struct ImagePlanes : PlaneTable<ImagePlanes> {
-    PlaneF color[3];    // linear radiance times the exposure
-    PlaneF display[3];  // tone mapped, sRGB encoded, in [0, 1]
-    PlaneF shadow;      // light visibility, 0..1
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
-        forEachChannel(Res::Color, g.color, fn);
-        forEachChannel(Res::Display, g.display, fn);
-        fn(channelName(Res::Shadow), g.shadow);
-    }
 };
 
 // The G-buffer: attributes of the visible surface per pixel. Background pixels: viewZ 0,
@@ -118,40 +105,6 @@ struct DirectParts : PlaneTable<DirectParts> {
         forEachChannel(Res::EnvSpecular, g.envSpecular, fn);
         forEachChannel(Res::SpecWeight, g.specWeight, fn);
         forEachChannel(Res::HitLight, g.hitLight, fn);
-    }
-};
-
-// What SSR hands out (TraceSettings::ssr).
-struct SsrPlanes : PlaneTable<SsrPlanes> {
-    PlaneF color[3];     // reflected radiance, before the BRDF factor
-    PlaneF opacity;      // 0..1: the share of SSR over the environment
-    PlaneF hit;          // share of the pixel's rays that hit
-    PlaneF hitDistance;  // view-space distance to the hit, mean over hits (0 without one)
-    PlaneF steps;        // mean march steps (the heat map)
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
-        forEachChannel(Res::Ssr, g.color, fn);
-        fn(channelName(Res::SsrOpacity), g.opacity), fn(channelName(Res::SsrHit), g.hit);
-        fn(channelName(Res::SsrHitDistance), g.hitDistance);
-        fn(channelName(Res::SsrSteps), g.steps);
-    }
-};
-
-// What SSGI hands out (TraceSettings::ssgi).
-struct SsgiPlanes : PlaneTable<SsgiPlanes> {
-    PlaneF color[3];     // incoming diffuse radiance
-    PlaneF hit;          // share of the pixel's rays that hit
-    PlaneF hitDistance;  // view-space distance to the hit, mean over hits (0 without one): the
-                         // denoiser's guide (REBLUR weighs and blurs by it, issue 17)
-    PlaneF steps;
-
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
-        forEachChannel(Res::Ssgi, g.color, fn);
-        fn(channelName(Res::SsgiHit), g.hit);
-        fn(channelName(Res::SsgiHitDistance), g.hitDistance);
-        fn(channelName(Res::SsgiSteps), g.steps);
     }
 };
 
@@ -225,11 +178,12 @@ struct Frame {
     int width = 0, height = 0;
     TraceCamera camera;  // the camera it was rendered from, as the trace passes see it
     uint32_t index = 0;  // the FrameInput::frameIndex it was rendered with
-    ImagePlanes image;
+    // The image (Res::Color: linear radiance times the exposure; Res::Display: tone mapped,
+    // sRGB encoded, in [0, 1]; Res::Shadow: the light's visibility, 0..1) and what SSR and SSGI
+    // hand out (Res::Ssr ... Res::SsgiSteps; renderer/resources.cpp says what each holds).
+    OutputStore outputs;
     GBuffer gbuffer;
     DirectParts direct;  // only when a trace pass runs
-    SsrPlanes ssr;       // what SSR hands out (TraceSettings::ssr)
-    SsgiPlanes ssgi;     // what SSGI hands out (TraceSettings::ssgi)
     // What the denoiser hands out (TraceSettings::denoise): the composite reads these in place
     // of the traced signals (which stay layers, undenoised).
     DenoiseOutputs denoised;
@@ -307,6 +261,16 @@ struct Frame {
         forEachPlaneOf(*this, fn);
     }
 
+    // An output's planes, one per channel, an RGB one's three, and one of its planes
+    // (OutputStore).
+    PlaneF* planes(Res id) { return outputs.planes(id); }
+    const PlaneF* planes(Res id) const { return outputs.planes(id); }
+    std::span<PlaneF, 3> rgb(Res id) { return outputs.rgb(id); }
+    std::span<const PlaneF, 3> rgb(Res id) const { return outputs.rgb(id); }
+    PlaneF& plane(Res id, int channel = 0) { return outputs.plane(id, channel); }
+    const PlaneF& plane(Res id, int channel = 0) const { return outputs.plane(id, channel); }
+    ViewF view(Res id, int channel = 0) const { return outputs.view(id, channel); }
+
     // Every non-empty plane of image, gbuffer and trace, in that order, then
     // extraLayers: the file's layers, each with its LayerGroup.
     std::vector<PlaneRef> layers() const;
@@ -317,11 +281,10 @@ struct Frame {
 private:
     template <class F, class Fn>
     static void forEachPlaneOf(F& f, Fn& fn) {
-        f.image.forEachPlane(fn);
+        f.outputs.forEachPlane(LayerGroup::Color, fn);
         f.gbuffer.forEachPlane(fn);
         f.direct.forEachPlane(fn);
-        f.ssr.forEachPlane(fn);
-        f.ssgi.forEachPlane(fn);
+        f.outputs.forEachPlane(LayerGroup::Trace, fn);
         f.denoised.forEachPlane(fn);
     }
 };

@@ -40,8 +40,8 @@ struct PlaneCount {
         return {planes + o.planes, pixelBytes + o.pixelBytes};
     }
 };
-template <class Group>
-PlaneCount planesOf(const PlaneTable<Group>& g) {
+template <class Planes>  // (anything with forEachPlane: a group, the Frame)
+PlaneCount planesOf(const Planes& g) {
     PlaneCount n;
     g.forEachPlane([&](std::string_view, const auto& p) {
         ++n.planes;
@@ -55,9 +55,8 @@ PlaneCount planesOf(const PlaneTable<Group>& g) {
 FrameMemoryNeed frameMemoryNeed(int width, int height, int shadowMapSize) {
     const Frame f;
     const FrameHistory h;
-    const PlaneCount count = planesOf(f.image) + planesOf(f.gbuffer) + planesOf(f.direct) +
-                             planesOf(f.ssr) + planesOf(f.ssgi) + planesOf(f.denoised) +
-                             planesOf(h) + planesOf(h.denoise) + planesOf(h.denoiseHalf);
+    const PlaneCount count =
+        planesOf(f) + planesOf(h) + planesOf(h.denoise) + planesOf(h.denoiseHalf);
     FrameMemoryNeed need;
     need.planes = count.planes;
     need.pixelBytes = count.pixelBytes;

@@ -205,9 +205,9 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
     return cachedSkyLighting(scene.sky.image, c.threads);
 }
 
-// The direct pass's arguments: direct light, sky and tone map into frame.image; with a trace
-// pass on, the parts the composite rebuilds the colour from (frame.direct;
-// shading/direct_kernel.h) instead of the tone map, which the composite does.
+// The direct pass's arguments: direct light, sky and tone map into the frame's image (Res::Color,
+// Display, Shadow); with a trace pass on, the parts the composite rebuilds the colour from
+// (frame.direct; shading/direct_kernel.h) instead of the tone map, which the composite does.
 void setDirectArgs(const FrameContext& c, const Scene& scene,
                    std::shared_ptr<const SkyLighting> sky, uint32_t frameIndex, Frame& frame,
                    DirectLighting& lighting) {
@@ -222,13 +222,12 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
     da.tanHalfY = c.trace.tanHalfY;
     std::copy_n(c.trace.viewToWorld, 9, da.viewToWorld);
     std::copy_n(c.trace.position, 3, da.camPos);
-    ImagePlanes& im = frame.image;
     for (int ch = 0; ch < 3; ++ch) {
-        da.color[ch] = im.color[ch].row(0);
-        da.display[ch] = im.display[ch].row(0);
+        da.color[ch] = frame.plane(Res::Color, ch).row(0);
+        da.display[ch] = frame.plane(Res::Display, ch).row(0);
     }
-    da.shadow = im.shadow.row(0);
-    da.outStride = im.color[0].stride();
+    da.shadow = frame.plane(Res::Shadow).row(0);
+    da.outStride = frame.plane(Res::Color).stride();
     if (c.settings.trace.any()) {
         // The composite overwrites the display (and the colour, which SSR reads before it).
         for (float*& p : da.display) p = nullptr;

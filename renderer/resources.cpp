@@ -27,6 +27,8 @@ bool notPooled(const GraphKey& k) { return trace(k) && !tracedSignalsPooled(k.se
 // (Every resource is f32 today but the ids, which are u32, and the denoiser's signals, which
 // are f16: the formats the data needs come with the typed views.)
 const std::array<ResourceDecl, kResourceCount> kResources = {{
+    // The image: linear radiance times the exposure; tone mapped, sRGB encoded, in [0, 1]; the
+    // light's visibility, 0..1.
     {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
@@ -41,11 +43,16 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
     {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
     {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    // What SSR hands out: reflected radiance (before the BRDF factor); opacity, 0..1, the share
+    // of SSR over the environment; the share of the pixel's rays that hit; the view-space
+    // distance to the hit, mean over hits (0 without one: the denoiser's guide); mean march
+    // steps (the heat map).
     {Res::Ssr, "ssr", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrOpacity, "ssrOpacity", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrHit, "ssrHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrHitDistance, "ssrHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    // What SSGI hands out: incoming diffuse radiance, then as SSR's.
     {Res::Ssgi, "ssgi", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},

@@ -93,8 +93,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     }
     // The full-resolution planes: what the composite reads without the denoiser, and only to
     // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
-    SsgiPlanes& planes = frame.ssgi;
-    if (planes.color[0].empty()) return;
+    const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
+    if (color[0].empty()) return;
     times.reconstruct = 0.0;
     addTime(times.reconstruct, [&] {
         const ReconstructSource from{
@@ -103,11 +103,11 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
             &ht.resolved.hit,
             &ht.resolved.hitDistance,
             c.debugPlane(ht.resolved.steps)};
-        const ReconstructPlanes to{{&planes.color[0], &planes.color[1], &planes.color[2]},
+        const ReconstructPlanes to{{&color[0], &color[1], &color[2]},
                                    nullptr,
-                                   &planes.hit,
-                                   &planes.hitDistance,
-                                   c.debugPlane(planes.steps)};
+                                   &frame.plane(Res::SsgiHit),
+                                   &frame.plane(Res::SsgiHitDistance),
+                                   c.debugPlane(frame.plane(Res::SsgiSteps))};
         upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
     });
 }
@@ -136,7 +136,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     const Isa isa = c.isa;
     const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
-    SsgiPlanes& planes = frame.ssgi;
+    const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
     SsgiArgs in;
     in.camera = c.camera;
     in.g = frame.gbuffer.view();
@@ -145,7 +145,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
         // The direct pass's hit light (then the G-buffer planes above are not read).
         in.hitLight[ch] = viewIn(parts, parts.hitLight[ch]);
     }
-    in.shadow = viewIn(frame.image, frame.image.shadow);
+    in.shadow = frame.view(Res::Shadow);
     in.lighting = &c.direct;
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
@@ -160,21 +160,21 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     }
     const RayGenCheckerboard checker{ts.ssgiLayout == TraceLayout::Checkerboard,
                                      kSsgiCheckerboardPhase};
-    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
-                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
-                          stageOutput(planes, &planes.hitDistance, c.camera)};
+    const HitStatsArgs hp{stageOutput(frame, Res::SsgiHit, c.camera),
+                          stageOutput(frame, Res::SsgiSteps, c.camera, c.settings.debugPlanes),
+                          stageOutput(frame, Res::SsgiHitDistance, c.camera)};
     takeBatches(c, frame);
     const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
-                       planes.color};
+                       color.data()};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
     if (checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, [&] {
-            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
+            const ReconstructPlanes rp{{&color[0], &color[1], &color[2]},
                                        nullptr,
-                                       &planes.hit,
-                                       &planes.hitDistance};
+                                       &frame.plane(Res::SsgiHit),
+                                       &frame.plane(Res::SsgiHitDistance)};
             fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }

@@ -19,9 +19,9 @@ SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings
     in.g = frame.gbuffer.view();
     const PlaneF* source[3];
     for (int ch = 0; ch < 3; ++ch) {
-        in.color[ch] = viewIn(frame.image, frame.image.color[ch]);
+        in.color[ch] = frame.view(Res::Color, ch);
         if (reproject) in.prevColor[ch] = viewIn(*c.history, c.history->color[ch]);
-        source[ch] = reproject ? &c.history->color[ch] : &frame.image.color[ch];
+        source[ch] = reproject ? &c.history->color[ch] : &frame.rgb(Res::Color)[ch];
     }
     in.radianceScale = 1.0f / c.settings.exposure;
     if (rs.mode == SsrResolveMode::Mip) {
@@ -33,9 +33,9 @@ SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings
 }
 
 // The frame's SSR colour and opacity planes, lent to the resolve's output while it runs.
-void swapSsrOutput(SsrPlanes& planes, SsrOutput& out) {
-    for (int ch = 0; ch < 3; ++ch) std::swap(out.color[ch], planes.color[ch]);
-    std::swap(out.opacity, planes.opacity);
+void swapSsrOutput(Frame& frame, SsrOutput& out) {
+    for (int ch = 0; ch < 3; ++ch) std::swap(out.color[ch], frame.plane(Res::Ssr, ch));
+    std::swap(out.opacity, frame.plane(Res::SsrOpacity));
 }
 
 // What one sample of SSR needs besides its rays and march results.
@@ -95,14 +95,13 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
 void ssrPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts();
     Frame::Scratch& sc = frame.scratch;
-    SsrPlanes& planes = frame.ssr;
     StageTimes times;
     SsrResolveSettings rs = ts.resolve;
     const SsrResolveArgs in = ssrInputs(c, frame, rs, times.resolve);
     // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
-    const HitStatsArgs hp{stageOutput(planes, &planes.hit, c.camera),
-                          stageOutput(planes, c.debugPlane(planes.steps), c.camera),
-                          stageOutput(planes, &planes.hitDistance, c.camera)};
+    const HitStatsArgs hp{stageOutput(frame, Res::SsrHit, c.camera),
+                          stageOutput(frame, Res::SsrSteps, c.camera, c.settings.debugPlanes),
+                          stageOutput(frame, Res::SsrHitDistance, c.camera)};
     TraceStats& st = frame.stats.ssr;
     st.ran = true;
     st.spp = ts.ssrSpp;
@@ -116,19 +115,20 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     // denoiser takes their memory next). The signal's planes are the frame memory's
     // (renderer/frame_memory.h).
     takeBatches(c, frame);
-    swapSsrOutput(planes, sc.ssr);
+    swapSsrOutput(frame, sc.ssr);
     if (tiled(c)) ssrTileSamples(q, frame, st, times);
     else ssrFrameSamples(q, frame, st, times);
-    swapSsrOutput(planes, sc.ssr);
+    swapSsrOutput(frame, sc.ssr);
     sc.pool.give(sc.ssr);
     // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
     if (q.checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, [&] {
-            const ReconstructPlanes rp{{&planes.color[0], &planes.color[1], &planes.color[2]},
-                                       &planes.opacity,
-                                       &planes.hit,
-                                       &planes.hitDistance};
+            const std::span<PlaneF, 3> color = frame.rgb(Res::Ssr);
+            const ReconstructPlanes rp{{&color[0], &color[1], &color[2]},
+                                       &frame.plane(Res::SsrOpacity),
+                                       &frame.plane(Res::SsrHit),
+                                       &frame.plane(Res::SsrHitDistance)};
             fillCheckerboard(c.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
         });
     }

@@ -68,16 +68,16 @@ namespace {
 // The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
 // planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
 // bounce of one-ray noise fed back would come back as noise), else SSGI's.
-const PlaneF* committedDiffuse(const Frame& frame) {
+std::span<const PlaneF, 3> committedDiffuse(const Frame& frame) {
     const DenoiseOutputs& d = frame.denoised;
-    return d.diffuse[0].empty() ? frame.ssgi.color : d.diffuse;
+    return d.diffuse[0].empty() ? frame.rgb(Res::Ssgi) : std::span<const PlaneF, 3>(d.diffuse);
 }
 
 // A non-finite value (a NaN from a bad input, an overflow) is committed as 0, no light: the
 // next frames read the history through the reprojection (SSR's reprojected radiance, SSGI
 // feedback), and a NaN kept there would spread to every pixel that reflects it, frame after
 // frame, long after the input that made it is gone.
-void commitPlanes(const PlaneF* src, PlaneF* dst, int w, int h) {
+void commitPlanes(std::span<const PlaneF, 3> src, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
         dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
         for (int y = 0; y < h; ++y) {
@@ -94,7 +94,7 @@ void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& his
     const int w = frame.width, h = frame.height;
     // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
     // feedback only.
-    commitPlanes(frame.image.color, history.color, w, h);
+    commitPlanes(frame.rgb(Res::Color), history.color, w, h);
     if (s.ssgi && s.ssgiFeedback) commitPlanes(committedDiffuse(frame), history.diffuse, w, h);
     history.valid = true;
 }

@@ -43,6 +43,11 @@ OutF stageOutput(Group& group, PlaneF* p, const TraceCamera& camera) {
     return outputOf(*p, planeName(group, *p));
 }
 
+// The same of one of the frame's outputs (OutputStore); absent unless `made`.
+inline OutF stageOutput(Frame& frame, Res id, const TraceCamera& camera, bool made = true) {
+    return made ? frame.outputs.output(id, 0, camera.width, camera.height) : OutF{};
+}
+
 // Times of one trace pass's stages, summed over its samples.
 struct StageTimes {
     double rays = 0.0, march = 0.0, resolve = 0.0;

@@ -49,10 +49,10 @@ struct DirectArgs {
     float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
     int pcfRadius;
     float exposure;
-    // Outputs (outStride; renderer/frame.h's ImagePlanes says what each holds): colour
-    // (linear), display (tone mapped, sRGB) and the sun's shadow. The display may be null
-    // (not written, its tone map skipped): with a trace pass the composite writes the
-    // display from its own colour.
+    // Outputs (outStride; renderer/resources.cpp's Res::Color, Display and Shadow say what each
+    // holds): colour (linear), display (tone mapped, sRGB) and the sun's shadow. The display may be
+    // null (not written, its tone map skipped): with a trace pass the composite writes the display
+    // from its own colour.
     float* color[3];
     float* display[3];
     float* shadow;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -44,7 +45,7 @@ double passMs(const std::vector<PassTime>& passes, const std::string& name) {
     return 0.0;
 }
 
-ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
+ImageError planesError(std::span<const PlaneF, 3> a, std::span<const PlaneF, 3> b) {
     const PlaneF* pa[3] = {&a[0], &a[1], &a[2]};
     const PlaneF* pb[3] = {&b[0], &b[1], &b[2]};
     return imageError(pa, pb);
@@ -54,7 +55,7 @@ ImageError planesError(const PlaneF (&a)[3], const PlaneF (&b)[3]) {
 
 ErrorTable imageErrors(const Frame& frame, const ReferenceImage& ref) {
     ErrorTable t;
-    t.color = planesError(frame.image.color, ref.color);
+    t.color = planesError(frame.rgb(Res::Color), ref.color);
     // With both passes off the direct pass hands out no parts: the colour error alone.
     if (frame.direct.direct[0].empty()) return t;
     t.parts = true;

@@ -62,9 +62,8 @@ FrameParts frameParts(const Frame& frame) {
     const DenoiseOutputs& denoised = frame.denoised;
     const bool specDenoised = !denoised.specular[0].empty();
     const bool diffDenoised = !denoised.diffuse[0].empty();
-    const SsrPlanes& ssrPlanes = frame.ssr;
-    const bool ssrOn = !ssrPlanes.opacity.empty();
-    const bool ssgiOn = !frame.ssgi.hit.empty() || diffDenoised;
+    const bool ssrOn = !frame.plane(Res::SsrOpacity).empty();
+    const bool ssgiOn = !frame.plane(Res::SsgiHit).empty() || diffDenoised;
     const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
                            : specDenoised ? PlaneF(frame.width, frame.height, 1.0f)
                                           : PlaneF();
@@ -73,13 +72,13 @@ FrameParts frameParts(const Frame& frame) {
     for (int c = 0; c < 3; ++c) {
         ssr[c] = !ssrOn         ? FloatPlane(&parts.envSpecular[c])
                  : specDenoised ? FloatPlane(&denoised.specular[c])
-                                : FloatPlane(&ssrPlanes.color[c]);
+                                : FloatPlane(&frame.rgb(Res::Ssr)[c]);
         ssgi[c] = !ssgiOn        ? FloatPlane(&parts.envDiffuse[c])
                   : diffDenoised ? FloatPlane(&denoised.diffuse[c])
-                                 : FloatPlane(&frame.ssgi.color[c]);
+                                 : FloatPlane(&frame.rgb(Res::Ssgi)[c]);
     }
-    specularDiffuse(frame, ssr, ssrOn && !specDenoised ? ssrPlanes.opacity : opacity, ssgi,
-                    fp.specular, fp.diffuse);
+    specularDiffuse(frame, ssr, ssrOn && !specDenoised ? frame.plane(Res::SsrOpacity) : opacity,
+                    ssgi, fp.specular, fp.diffuse);
     for (int c = 0; c < 3; ++c) {
         fp.direct[c] = decodedF16(parts.direct[c]);
         if (!ssgiOn) fp.diffuse[c] = decodedF16(parts.envDiffuse[c]);

@@ -20,7 +20,7 @@ int main() {
         ssrt::FrameInput input = ssrt::FrameInput::still(scene, i);
         renderer.render(scene, input, history, frame);
     }
-    const ssrt::PlaneF& red = frame.image.display[0];
+    const ssrt::PlaneF& red = frame.rgb(ssrt::Res::Display)[0];
     double sum = 0.0;
     for (int y = 0; y < red.height(); ++y)
         for (int x = 0; x < red.width(); ++x) sum += red.at(x, y);

@@ -44,14 +44,14 @@ int run(const char* scenePath, const char* output) {
 
     ssrt::writeImage(output, ssrt::frameLayers(frame));
     const bool written = sameAsFile(output, "viewZ", frame.gbuffer.viewZ) &&
-                         sameAsFile(output, "color.R", frame.image.color[0]);
+                         sameAsFile(output, "color.R", frame.rgb(ssrt::Res::Color)[0]);
 
     const ssrt::EmbreeScene embree(scene);
     ssrt::ReferenceSettings truth;
     truth.spp = 8;
     const ssrt::ReferenceImage reference = ssrt::renderReference(embree, renderer, frame, truth);
-    const ssrt::PlaneF* image[3] = {&frame.image.color[0], &frame.image.color[1],
-                                    &frame.image.color[2]};
+    const auto imageRgb = frame.rgb(ssrt::Res::Color);
+    const ssrt::PlaneF* image[3] = {&imageRgb[0], &imageRgb[1], &imageRgb[2]};
     const ssrt::PlaneF* ref[3] = {&reference.color[0], &reference.color[1], &reference.color[2]};
     const ssrt::ImageError error = ssrt::imageError(image, ref);
     std::printf("%s: %zu layers written to %s (%s), relMSE against Embree %.4g\n", scenePath,

@@ -169,7 +169,7 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
                 glm::dvec3(s.camera.position) +
                 pixelRay(s.camera, f.width, f.height, x, y) * double(f.gbuffer.viewZ.at(x, y));
             const double edge = std::max(std::fabs(p.x), std::fabs(p.z));
-            const float v = f.image.shadow.at(x, y);
+            const float v = f.plane(Res::Shadow).at(x, y);
             CAPTURE(x);
             CAPTURE(y);
             if (edge < 1.0 - border) {
@@ -188,7 +188,7 @@ TEST_CASE("a known occluder shadows exactly its footprint, up to the PCF border"
         for (int x = 0; x < f.width; ++x)
             if (f.gbuffer.instanceId.at(x, y) == 1.0f) {
                 ++top;
-                lit += f.image.shadow.at(x, y) == 1.0f;
+                lit += f.plane(Res::Shadow).at(x, y) == 1.0f;
             }
     CHECK(top > 100);
     CHECK(lit == top);

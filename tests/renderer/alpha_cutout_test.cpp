@@ -224,14 +224,14 @@ TEST_CASE("alpha cut-out: the sun through the cut-out lights the floor under the
                 CAPTURE(j);
                 const glm::ivec2 p =
                     floorPixel((i + 0.5f) / 4.0f - 1.0f, (j + 0.5f) / 4.0f - 1.0f, kImage);
-                CHECK(f.image.shadow.at(p.x, p.y) == (solid(i, j) ? 0.0f : 1.0f));
+                CHECK(f.plane(Res::Shadow).at(p.x, p.y) == (solid(i, j) ? 0.0f : 1.0f));
             }
     }
     // An opaque roof shadows all of it.
     scene.materials[1].alphaMode = Material::AlphaMode::Opaque;
     const Frame opaque = render(scene, kImage);
     for (int y = 0; y < kImage; ++y)
-        for (int x = 0; x < kImage; ++x) REQUIRE(opaque.image.shadow.at(x, y) == 0.0f);
+        for (int x = 0; x < kImage; ++x) REQUIRE(opaque.plane(Res::Shadow).at(x, y) == 0.0f);
 }
 
 TEST_CASE("alpha cut-out: a non-finite alpha or cutoff is refused, not drawn as nothing") {

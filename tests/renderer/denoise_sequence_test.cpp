@@ -84,9 +84,10 @@ double specularError(const Frame& f, const Frame& ref) {
             if (!(f.gbuffer.viewZ.at(x, y) > 0.0f) || !(f.gbuffer.roughness.at(x, y) < 0.3f))
                 continue;
             for (int c = 0; c < 3; ++c) {
-                const double r = ref.ssr.color[c].at(x, y) * ref.ssr.opacity.at(x, y) +
-                                 decodeF16(ref.direct.envSpecular[c].at(x, y)) *
-                                     (1.0 - ref.ssr.opacity.at(x, y));
+                const double r =
+                    ref.rgb(Res::Ssr)[c].at(x, y) * ref.plane(Res::SsrOpacity).at(x, y) +
+                    decodeF16(ref.direct.envSpecular[c].at(x, y)) *
+                        (1.0 - ref.plane(Res::SsrOpacity).at(x, y));
                 const double d = f.denoised.specular[c].at(x, y) - r;
                 sum += d * d / (r * r + 0.01);
             }

@@ -258,7 +258,7 @@ TEST_CASE("no NaN or infinity in any plane of the built-in scenes, under either 
             CHECK(finite);
         }
         // The display planes are tone mapped into [0, 1].
-        for (const PlaneF& display : f.image.display)
+        for (const PlaneF& display : f.rgb(Res::Display))
             for (int y = 0; y < f.height; ++y)
                 for (int x = 0; x < f.width; ++x) {
                     const float v = display.at(x, y);

@@ -42,10 +42,10 @@ TEST_CASE("emission adds to the lit colour exactly") {
     const glm::vec3 light = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
     const Frame a = Renderer(tiny()).renderWithoutHistory(wallScene(plain, light));
     const Frame b = Renderer(tiny()).renderWithoutHistory(wallScene(glowing, light));
-    CHECK(b.image.color[0].at(30, 20) - a.image.color[0].at(30, 20) ==
+    CHECK(b.rgb(Res::Color)[0].at(30, 20) - a.rgb(Res::Color)[0].at(30, 20) ==
           doctest::Approx(2.0f).epsilon(1e-5));
-    CHECK(b.image.color[1].at(30, 20) == a.image.color[1].at(30, 20));
-    CHECK(b.image.color[2].at(30, 20) - a.image.color[2].at(30, 20) ==
+    CHECK(b.rgb(Res::Color)[1].at(30, 20) == a.rgb(Res::Color)[1].at(30, 20));
+    CHECK(b.rgb(Res::Color)[2].at(30, 20) - a.rgb(Res::Color)[2].at(30, 20) ==
           doctest::Approx(0.5f).epsilon(1e-5));
 }
 
@@ -53,8 +53,8 @@ TEST_CASE("a surface facing away from the light gets only sky light") {
     Material m;
     const Frame lit = Renderer(tiny()).renderWithoutHistory(wallScene(m, {0.0f, 0.0f, -1.0f}));
     const Frame unlit = Renderer(tiny()).renderWithoutHistory(wallScene(m, {0.0f, 0.0f, 1.0f}));
-    CHECK(lit.image.shadow.at(30, 20) == 1.0f);
-    CHECK(unlit.image.shadow.at(30, 20) == 0.0f);
-    CHECK(unlit.image.color[0].at(30, 20) < lit.image.color[0].at(30, 20));
-    CHECK(unlit.image.color[0].at(30, 20) > 0.0f);  // the sky term
+    CHECK(lit.plane(Res::Shadow).at(30, 20) == 1.0f);
+    CHECK(unlit.plane(Res::Shadow).at(30, 20) == 0.0f);
+    CHECK(unlit.rgb(Res::Color)[0].at(30, 20) < lit.rgb(Res::Color)[0].at(30, 20));
+    CHECK(unlit.rgb(Res::Color)[0].at(30, 20) > 0.0f);  // the sky term
 }

@@ -151,12 +151,7 @@ TEST_CASE("frame graph: the frame's plane groups are named from the resource tab
         ++planes;
         CHECK(resourceOfChannel(name) != Res::Count);
     };
-    f.image.forEachPlane(known);
-    f.gbuffer.forEachPlane(known);
-    f.direct.forEachPlane(known);
-    f.ssr.forEachPlane(known);
-    f.ssgi.forEachPlane(known);
-    f.denoised.forEachPlane(known);
+    f.forEachPlane(known);
     h.forEachPlane(known);
     CHECK(planes == 7 + 12 + 4 + 2 + 18 + 7 + 6 + 8 + 6);
     CHECK(channelName(Res::Normal, 2) == "normal.Z");

@@ -84,9 +84,9 @@ TEST_CASE("frame: the layers are the groups' tables in file order, each found by
     // plane(name) is the member the table names.
     CHECK(&f.plane("viewZ") == &f.gbuffer.viewZ);
     CHECK(&f.plane("normal.Z") == &f.gbuffer.normal[2]);
-    CHECK(&f.plane("display.B") == &f.image.display[2]);
-    CHECK(&f.plane("ssrHitDistance") == &f.ssr.hitDistance);
-    CHECK(&f.plane("ssgiSteps") == &f.ssgi.steps);
+    CHECK(&f.plane("display.B") == &f.rgb(Res::Display)[2]);
+    CHECK(&f.plane("ssrHitDistance") == &f.plane(Res::SsrHitDistance));
+    CHECK(&f.plane("ssgiSteps") == &f.plane(Res::SsgiSteps));
     CHECK(&f.plane("triangleId") == &f.gbuffer.triangleId);
     for (const PlaneRef& p : f.layers()) {
         CAPTURE(std::string(p.name));
@@ -110,7 +110,7 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
     CHECK_FALSE(f.has("ssr.R"));
     CHECK_FALSE(f.has("instanceId"));
     CHECK(f.has("ssgi.R"));
-    CHECK(f.ssr.color[0].empty());
+    CHECK(f.rgb(Res::Ssr)[0].empty());
     CHECK(f.direct.hitLight[0].width() == f.width);  // SSGI still reads it
     less.trace.ssgi = false;
     Renderer(less).renderWithoutHistory(scene, FrameInput::still(scene), f);
@@ -123,11 +123,7 @@ TEST_CASE("frame: groups the settings leave out are empty, also in a reused fram
         names.emplace(n);
         ++count;
     };
-    f.image.forEachPlane(add);
-    f.gbuffer.forEachPlane(add);
-    f.direct.forEachPlane(add);
-    f.ssr.forEachPlane(add);
-    f.ssgi.forEachPlane(add);
+    f.forEachPlane(add);
     FrameHistory().forEachPlane(add);
     CHECK(int(names.size()) == count);
 }

@@ -91,7 +91,7 @@ TEST_CASE("normal map: tilting the normals toward the sun brightens the quad as 
         for (int x = 4; x < kSize; x += 8) {
             CAPTURE(x);
             CAPTURE(y);
-            CHECK(f1.image.color[0].at(x, y) > f0.image.color[0].at(x, y) * 1.1f);
+            CHECK(f1.rgb(Res::Color)[0].at(x, y) > f0.rgb(Res::Color)[0].at(x, y) * 1.1f);
         }
 
     SUBCASE("+Y of the map leans up the image (glTF: along -v), scale multiplies X and Y") {
@@ -134,7 +134,7 @@ TEST_CASE("normal map: every ISA gives the same bits, and no normal map no tange
         const Frame f = render(s, true, kSize, isa);
         for (int ch = 0; ch < 3; ++ch) {
             CHECK(sameBits(f.gbuffer.normal[ch], ref.gbuffer.normal[ch]));
-            CHECK(sameBits(f.image.color[ch], ref.image.color[ch]));
+            CHECK(sameBits(f.rgb(Res::Color)[ch], ref.rgb(Res::Color)[ch]));
         }
     }
     CHECK(!ref.scratch.tangent[0].empty());
@@ -165,19 +165,19 @@ TEST_CASE("occlusion texture: the sky-lit part darkens by the texel, the sun-lit
         CHECK(b.gbuffer.occlusion.at(left, y) == doctest::Approx(darkAo));
         CHECK(b.gbuffer.occlusion.at(right, y) == 1.0f);
         for (int ch = 0; ch < 3; ++ch) {
-            CHECK(a.image.color[ch].at(left, y) > 0.01f);
-            CHECK(b.image.color[ch].at(left, y) ==
-                  doctest::Approx(darkAo * a.image.color[ch].at(left, y)).epsilon(1e-5));
-            CHECK(b.image.color[ch].at(right, y) ==
-                  doctest::Approx(a.image.color[ch].at(right, y)).epsilon(1e-6));
+            CHECK(a.rgb(Res::Color)[ch].at(left, y) > 0.01f);
+            CHECK(b.rgb(Res::Color)[ch].at(left, y) ==
+                  doctest::Approx(darkAo * a.rgb(Res::Color)[ch].at(left, y)).epsilon(1e-5));
+            CHECK(b.rgb(Res::Color)[ch].at(right, y) ==
+                  doctest::Approx(a.rgb(Res::Color)[ch].at(right, y)).epsilon(1e-6));
         }
         // Sun only (a black sky): occlusion changes nothing.
         Scene sunPlain = plain, sunOcc = occluded;
         sunPlain.sky.intensity = sunOcc.sky.intensity = 0.0f;
         const Frame c = render(sunPlain, trace), d = render(sunOcc, trace);
         for (int ch = 0; ch < 3; ++ch) {
-            CHECK(c.image.color[ch].at(left, y) > 0.01f);
-            CHECK(d.image.color[ch].at(left, y) == c.image.color[ch].at(left, y));
+            CHECK(c.rgb(Res::Color)[ch].at(left, y) > 0.01f);
+            CHECK(d.rgb(Res::Color)[ch].at(left, y) == c.rgb(Res::Color)[ch].at(left, y));
         }
     }
 }
@@ -249,7 +249,7 @@ TEST_CASE("emissive texture: its light reaches a neighbouring floor through SSGI
             } else if (id == 0.0f) {
                 ++floorPixels;
                 CHECK(e == 0.0f);
-                const double c = f.image.color[0].at(x, y);
+                const double c = f.rgb(Res::Color)[0].at(x, y);
                 (x < rs.width / 2 ? floorLeft : floorRight) += c;
             }
         }
@@ -266,5 +266,5 @@ TEST_CASE("emissive texture: its light reaches a neighbouring floor through SSGI
     for (int y = 0; y < rs.height; ++y)
         for (int x = 0; x < rs.width; ++x)
             if (dark.gbuffer.materialId.at(x, y) == 0.0f)
-                REQUIRE(dark.image.color[0].at(x, y) == 0.0f);
+                REQUIRE(dark.rgb(Res::Color)[0].at(x, y) == 0.0f);
 }

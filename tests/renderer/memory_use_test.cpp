@@ -205,8 +205,8 @@ TEST_CASE("memory use: a sequence that shows no planes keeps the image of one th
         Renderer(freed).render(scene, FrameInput::still(scene, i), hb, b);
         CAPTURE(i);
         for (int ch = 0; ch < 3; ++ch) {
-            CHECK(test::sameBits(a.image.color[ch], b.image.color[ch]));
-            CHECK(test::sameBits(a.image.display[ch], b.image.display[ch]));
+            CHECK(test::sameBits(a.rgb(Res::Color)[ch], b.rgb(Res::Color)[ch]));
+            CHECK(test::sameBits(a.rgb(Res::Display)[ch], b.rgb(Res::Display)[ch]));
         }
     }
 }

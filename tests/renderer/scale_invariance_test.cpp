@@ -27,8 +27,10 @@ RenderSettings small(Marcher m) {
 }
 
 double colourError(const Frame& f, const Frame& ref) {
-    const PlaneF* img[3] = {&f.image.color[0], &f.image.color[1], &f.image.color[2]};
-    const PlaneF* r[3] = {&ref.image.color[0], &ref.image.color[1], &ref.image.color[2]};
+    const auto imgRgb = f.rgb(Res::Color);
+    const PlaneF* img[3] = {&imgRgb[0], &imgRgb[1], &imgRgb[2]};
+    const auto rRgb = ref.rgb(Res::Color);
+    const PlaneF* r[3] = {&rRgb[0], &rRgb[1], &rRgb[2]};
     return imageError(img, r).relMse;
 }
 

@@ -79,7 +79,7 @@ TEST_CASE("sky image: a background pixel looking along a texel's direction shows
         for (int c = 0; c < 3; ++c) {
             const float expected = texel[c] * 1.5f * 2.0f;
             // Bilinear tolerance: the ray misses the texel centre by rounding only
-            CHECK(f.image.color[c].at(16, 16) == doctest::Approx(expected).epsilon(2e-3));
+            CHECK(f.rgb(Res::Color)[c].at(16, 16) == doctest::Approx(expected).epsilon(2e-3));
         }
         // The scene model's own (nearest-texel) lookup agrees
         const glm::vec3 ref = scene.sky.radiance(scene.camera.target);
@@ -112,7 +112,8 @@ TEST_CASE("sky image: a white image lights like the constant white sky") {
         for (int c = 0; c < 3; ++c)
             for (int y = 0; y < a.height; ++y)
                 for (int x = 0; x < a.width; ++x) {
-                    const double va = a.image.color[c].at(x, y), vb = b.image.color[c].at(x, y);
+                    const double va = a.rgb(Res::Color)[c].at(x, y),
+                                 vb = b.rgb(Res::Color)[c].at(x, y);
                     worst = std::max(worst, std::fabs(va - vb) / std::max(va, 1e-3));
                     sum += va;
                 }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "plane_compare.h"
@@ -28,7 +29,7 @@ RenderSettings smallFeedback(bool feedback) {
     return rs;
 }
 
-double meanOf(const PlaneF (&p)[3]) {
+double meanOf(std::span<const PlaneF, 3> p) {
     double s = 0.0;
     for (int c = 0; c < 3; ++c)
         for (int y = 0; y < p[c].height(); ++y)
@@ -46,8 +47,8 @@ bool allFinite(const Frame& f) {
 
 bool sameImage(const Frame& a, const Frame& b) {
     for (int c = 0; c < 3; ++c)
-        if (!sameBits(a.image.color[c], b.image.color[c]) ||
-            !sameBits(a.ssgi.color[c], b.ssgi.color[c]))
+        if (!sameBits(a.rgb(Res::Color)[c], b.rgb(Res::Color)[c]) ||
+            !sameBits(a.rgb(Res::Ssgi)[c], b.rgb(Res::Ssgi)[c]))
             return false;
     return true;
 }
@@ -73,10 +74,10 @@ TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce -- the firs
         // (the denoiser's).
         REQUIRE(history.valid);
         for (int c = 0; c < 3; ++c) {
-            CHECK(sameBits(history.color[c], f.image.color[c]));
+            CHECK(sameBits(history.color[c], f.rgb(Res::Color)[c]));
             CHECK(sameBits(history.diffuse[c], f.denoised.diffuse[c]));
         }
-        mean.push_back(meanOf(f.ssgi.color));
+        mean.push_back(meanOf(f.rgb(Res::Ssgi)));
         MESSAGE("frame " << k << ": mean incoming diffuse " << mean.back());
     }
     // The second frame adds the second bounce (cornell's walls reflect about half): far more
@@ -172,10 +173,11 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     DenoiseOutputs& d = f.denoised;
-    PlaneF* diffuse = d.diffuse[0].empty() ? f.ssgi.color : d.diffuse;
+    const std::span<PlaneF, 3> diffuse =
+        d.diffuse[0].empty() ? f.rgb(Res::Ssgi) : std::span<PlaneF, 3>(d.diffuse);
     for (int c = 0; c < 3; ++c) {
-        f.image.color[c].at(40, 30) = nan;
-        f.image.color[c].at(41, 30) = inf;
+        f.rgb(Res::Color)[c].at(40, 30) = nan;
+        f.rgb(Res::Color)[c].at(41, 30) = inf;
         diffuse[c].at(40, 30) = nan;
         diffuse[c].at(41, 30) = -inf;
     }
@@ -185,7 +187,7 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
         CHECK(history.color[c].at(41, 30) == 0.0f);
         CHECK(history.diffuse[c].at(40, 30) == 0.0f);
         CHECK(history.diffuse[c].at(41, 30) == 0.0f);
-        CHECK(history.color[c].at(42, 30) == f.image.color[c].at(42, 30));  // the rest as is
+        CHECK(history.color[c].at(42, 30) == f.rgb(Res::Color)[c].at(42, 30));  // the rest as is
     }
     for (int k = 1; k < 4; ++k) {
         FrameInput next = input;

@@ -40,15 +40,17 @@ TEST_CASE("renderer: trace planes agree with the trace counters") {
         bool bounded = true, distanceOnlyOnHits = true;
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float hit = f.ssr.hit.at(x, y);
-                const float opacity = f.ssr.opacity.at(x, y);
+                const float hit = f.plane(Res::SsrHit).at(x, y);
+                const float opacity = f.plane(Res::SsrOpacity).at(x, y);
                 bounded &= hit >= 0.0f && hit <= 1.0f && opacity >= 0.0f && opacity <= 1.0f;
-                distanceOnlyOnHits &= (hit > 0.0f) == (f.ssr.hitDistance.at(x, y) > 0.0f);
-                const float ssgiHit = f.ssgi.hit.at(x, y);
-                distanceOnlyOnHits &= (ssgiHit > 0.0f) == (f.ssgi.hitDistance.at(x, y) > 0.0f);
+                distanceOnlyOnHits &=
+                    (hit > 0.0f) == (f.plane(Res::SsrHitDistance).at(x, y) > 0.0f);
+                const float ssgiHit = f.plane(Res::SsgiHit).at(x, y);
+                distanceOnlyOnHits &=
+                    (ssgiHit > 0.0f) == (f.plane(Res::SsgiHitDistance).at(x, y) > 0.0f);
                 ssrHits += double(hit) * rs.trace.ssrSpp;
-                ssgiHits += double(f.ssgi.hit.at(x, y)) * rs.trace.ssgiSpp;
-                ssrSteps += double(f.ssr.steps.at(x, y)) * rs.trace.ssrSpp;
+                ssgiHits += double(f.plane(Res::SsgiHit).at(x, y)) * rs.trace.ssgiSpp;
+                ssrSteps += double(f.plane(Res::SsrSteps).at(x, y)) * rs.trace.ssrSpp;
             }
         CHECK(bounded);
         CHECK(distanceOnlyOnHits);
@@ -107,15 +109,15 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
             return std::memcmp(&member(a).at(x, y), &member(b).at(x, y), 4) == 0;
         };
         const auto color = [](int c) {
-            return [c](const Frame& f) -> auto& { return f.image.color[c]; };
+            return [c](const Frame& f) -> auto& { return f.rgb(Res::Color)[c]; };
         };
-        const auto ssrOpacity = [](const Frame& f) -> auto& { return f.ssr.opacity; };
-        const auto ssrR = [](const Frame& f) -> auto& { return f.ssr.color[0]; };
-        const auto ssrHit = [](const Frame& f) -> auto& { return f.ssr.hit; };
-        const auto ssrSteps = [](const Frame& f) -> auto& { return f.ssr.steps; };
-        const auto ssgiR = [](const Frame& f) -> auto& { return f.ssgi.color[0]; };
-        const auto ssgiHit = [](const Frame& f) -> auto& { return f.ssgi.hit; };
-        const auto ssgiSteps = [](const Frame& f) -> auto& { return f.ssgi.steps; };
+        const auto ssrOpacity = [](const Frame& f) -> auto& { return f.plane(Res::SsrOpacity); };
+        const auto ssrR = [](const Frame& f) -> auto& { return f.rgb(Res::Ssr)[0]; };
+        const auto ssrHit = [](const Frame& f) -> auto& { return f.plane(Res::SsrHit); };
+        const auto ssrSteps = [](const Frame& f) -> auto& { return f.plane(Res::SsrSteps); };
+        const auto ssgiR = [](const Frame& f) -> auto& { return f.rgb(Res::Ssgi)[0]; };
+        const auto ssgiHit = [](const Frame& f) -> auto& { return f.plane(Res::SsgiHit); };
+        const auto ssgiSteps = [](const Frame& f) -> auto& { return f.plane(Res::SsgiSteps); };
         uint64_t rough = 0, metal = 0;
         int imageKept = 0, imagePixels = 0, ssrKept = 0, ssrPixels = 0, ssgiKept = 0;
         int hiddenEmpty = 0;
@@ -144,10 +146,10 @@ TEST_CASE("renderer: no ray where the composite hides what it finds, and the ima
                 // SSGI borrows nothing from neighbours: every pixel with a diffuse colour.
                 if (!isMetal(x, y))
                     ssgiKept += same(ssgiR, x, y) && same(ssgiHit, x, y) && same(ssgiSteps, x, y);
-                hiddenEmpty +=
-                    isRough(x, y) && a.ssr.opacity.at(x, y) == 0.0f && a.ssr.hit.at(x, y) == 0.0f;
-                hiddenEmpty += isMetal(x, y) && a.ssgi.color[0].at(x, y) == 0.0f &&
-                               a.ssgi.hit.at(x, y) == 0.0f;
+                hiddenEmpty += isRough(x, y) && a.plane(Res::SsrOpacity).at(x, y) == 0.0f &&
+                               a.plane(Res::SsrHit).at(x, y) == 0.0f;
+                hiddenEmpty += isMetal(x, y) && a.rgb(Res::Ssgi)[0].at(x, y) == 0.0f &&
+                               a.plane(Res::SsgiHit).at(x, y) == 0.0f;
             }
         CHECK(rough > 1000);
         CHECK(metal > 100);
@@ -181,37 +183,38 @@ TEST_CASE("renderer: reprojected SSR hits read the previous frame of a sequence"
     // The first frame has no previous one: reprojected falls back to the current frame.
     rc.render(scene, input, ha, a);
     rr.render(scene, input, hb, b);
-    CHECK(test::sameBits(a.ssr.color[0], b.ssr.color[0]));
+    CHECK(test::sameBits(a.rgb(Res::Ssr)[0], b.rgb(Res::Ssr)[0]));
     // Only what the next frame reads is committed.
     CHECK_FALSE(ha.valid);
     REQUIRE(hb.valid);
-    CHECK(test::sameBits(hb.color[0], b.image.color[0]));
+    CHECK(test::sameBits(hb.color[0], b.rgb(Res::Color)[0]));
     // The second reads last frame's composite (SSR and SSGI included) instead of this
     // frame's direct light, so the reflections change while the G-buffer does not.
     rc.render(scene, input, ha, a);
     rr.render(scene, input, hb, b);
     CHECK(test::sameBits(a.gbuffer.viewZ, b.gbuffer.viewZ));
-    CHECK_FALSE(test::sameBits(a.ssr.color[0], b.ssr.color[0]));
-    const PlaneF second = b.ssr.color[0].clone();
+    CHECK_FALSE(test::sameBits(a.rgb(Res::Ssr)[0], b.rgb(Res::Ssr)[0]));
+    const PlaneF second = b.rgb(Res::Ssr)[0].clone();
     // The same history given again gives the same frame (nothing else is kept); a reset, and
     // a frame without history, give the first frame's bits.
     FrameHistory replay;
     rr.render(scene, input, replay, b);  // commits the first frame again
     rr.render(scene, input, replay, b);
-    CHECK(test::sameBits(b.ssr.color[0], second));
+    CHECK(test::sameBits(b.rgb(Res::Ssr)[0], second));
     FrameInput cut = input;
     cut.resetHistory = true;
     rr.render(scene, cut, replay, b);
-    CHECK(test::sameBits(a.ssr.color[0], rc.renderWithoutHistory(scene, input).ssr.color[0]));
+    CHECK(
+        test::sameBits(a.rgb(Res::Ssr)[0], rc.renderWithoutHistory(scene, input).rgb(Res::Ssr)[0]));
     const Frame still = rr.renderWithoutHistory(scene, input);
-    CHECK(test::sameBits(b.ssr.color[0], still.ssr.color[0]));
+    CHECK(test::sameBits(b.rgb(Res::Ssr)[0], still.rgb(Res::Ssr)[0]));
     // A history of another size is not read.
     RenderSettings wider = reprojected;
     wider.width += 8;
     FrameHistory other;
     Renderer(wider).render(scene, input, other, b);
     rr.render(scene, input, other, b);
-    CHECK(test::sameBits(b.ssr.color[0], still.ssr.color[0]));
+    CHECK(test::sameBits(b.rgb(Res::Ssr)[0], still.rgb(Res::Ssr)[0]));
 }
 
 // The trace passes run tile by tile (trace/tile_chain.h) unless an observer asks for the frame's
@@ -257,17 +260,11 @@ TEST_CASE("renderer: the trace passes tile by tile give the stage-by-stage bits"
         r.renderWithoutHistory(scene, FrameInput::still(scene), staged, &seeRays);
         CHECK(observed[0] == k.spp);
         CHECK(observed[1] == k.spp);
-        const SsrPlanes &a = tiled.ssr, &b = staged.ssr;
-        for (int ch = 0; ch < 3; ++ch) CHECK(test::sameBits(a.color[ch], b.color[ch]));
-        CHECK(test::sameBits(a.opacity, b.opacity));
-        CHECK(test::sameBits(a.hit, b.hit));
-        CHECK(test::sameBits(a.hitDistance, b.hitDistance));
-        CHECK(test::sameBits(a.steps, b.steps));
-        CHECK(test::sameBits(tiled.image.color[0], staged.image.color[0]));
-        const SsgiPlanes &ga = tiled.ssgi, &gb = staged.ssgi;
-        for (int ch = 0; ch < 3; ++ch) CHECK(test::sameBits(ga.color[ch], gb.color[ch]));
-        CHECK(test::sameBits(ga.hit, gb.hit));
-        CHECK(test::sameBits(ga.hitDistance, gb.hitDistance));
+        for (const Res id :
+             {Res::Ssr, Res::SsrOpacity, Res::SsrHit, Res::SsrHitDistance, Res::SsrSteps,
+              Res::Color, Res::Ssgi, Res::SsgiHit, Res::SsgiHitDistance})
+            for (int ch = 0; ch < resourceDecl(id).channelCount(); ++ch)
+                CHECK(test::sameBits(tiled.plane(id, ch), staged.plane(id, ch)));
         for (const auto pass : {&FrameStats::ssr, &FrameStats::ssgi}) {
             const TraceStats &sa = tiled.stats.*pass, &sb = staged.stats.*pass;
             CHECK(sa.rays.rays == sb.rays.rays);
@@ -316,15 +313,15 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
         CHECK(a.direct.hitLight[0].empty());
         CHECK_FALSE(b.direct.hitLight[0].empty());
         for (int ch = 0; ch < 3; ++ch) {
-            CHECK(test::sameBits(a.image.color[ch], b.image.color[ch]));
-            CHECK(test::sameBits(a.image.display[ch], b.image.display[ch]));
+            CHECK(test::sameBits(a.rgb(Res::Color)[ch], b.rgb(Res::Color)[ch]));
+            CHECK(test::sameBits(a.rgb(Res::Display)[ch], b.rgb(Res::Display)[ch]));
         }
         CHECK(a.denoised.diffuse[0].empty());
         CHECK_FALSE(b.denoised.diffuse[0].empty());
         // SSR's planes went back to the pool once the denoiser read them, and its passes
         // reused them: the frame holds less in all for not showing them.
-        CHECK(a.ssr.color[0].empty());
-        CHECK_FALSE(b.ssr.color[0].empty());
+        CHECK(a.rgb(Res::Ssr)[0].empty());
+        CHECK_FALSE(b.rgb(Res::Ssr)[0].empty());
         const auto total = [](const Frame& f) {
             std::size_t n = 0;
             for (const MemoryUse& m : f.stats.memory)

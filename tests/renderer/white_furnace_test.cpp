@@ -48,8 +48,8 @@ Range sphereRange(const Frame& f) {
             if (f.gbuffer.viewZ.at(x, y) <= 0.0f) continue;
             ++r.pixels;
             for (int c = 0; c < 3; ++c) {
-                r.lo = std::min(r.lo, f.image.color[c].at(x, y));
-                r.hi = std::max(r.hi, f.image.color[c].at(x, y));
+                r.lo = std::min(r.lo, f.rgb(Res::Color)[c].at(x, y));
+                r.hi = std::max(r.hi, f.rgb(Res::Color)[c].at(x, y));
             }
         }
     return r;

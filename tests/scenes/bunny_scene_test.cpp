@@ -204,7 +204,7 @@ TEST_CASE("bunny scene renders finite: many small triangles seen, a shadow on th
     const float bunny = float(instanceNamed(scene, "bunny"));
     const PlaneF& ids = frame.gbuffer.instanceId;
     const PlaneF& triangles = frame.gbuffer.triangleId;
-    const PlaneF& shadow = frame.image.shadow;
+    const PlaneF& shadow = frame.plane(Res::Shadow);
     int bunnyPixels = 0, shadowedGround = 0, litGround = 0;
     std::set<float> bunnyTriangles;
     for (int y = 0; y < kHeight; ++y)

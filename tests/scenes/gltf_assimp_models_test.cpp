@@ -63,7 +63,7 @@ std::vector<std::string> modelFiles() {
 }
 
 bool finiteColour(const ssrt::Frame& f) {
-    for (const ssrt::PlaneF& plane : f.image.color)
+    for (const ssrt::PlaneF& plane : f.rgb(ssrt::Res::Color))
         for (int y = 0; y < plane.height(); ++y)
             for (int x = 0; x < plane.width(); ++x)
                 if (!std::isfinite(plane.at(x, y))) return false;

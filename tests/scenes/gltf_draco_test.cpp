@@ -162,8 +162,10 @@ TEST_CASE("gltf draco: 2CylinderEngine renders like its uncompressed copy (assim
     rs.height = 90;
     const ssrt::Renderer renderer(rs);
     const ssrt::Frame fa = renderer.renderWithoutHistory(a), fb = renderer.renderWithoutHistory(b);
-    const ssrt::PlaneF* ia[3] = {&fa.image.color[0], &fa.image.color[1], &fa.image.color[2]};
-    const ssrt::PlaneF* ib[3] = {&fb.image.color[0], &fb.image.color[1], &fb.image.color[2]};
+    const auto iaRgb = fa.rgb(ssrt::Res::Color);
+    const ssrt::PlaneF* ia[3] = {&iaRgb[0], &iaRgb[1], &iaRgb[2]};
+    const auto ibRgb = fb.rgb(ssrt::Res::Color);
+    const ssrt::PlaneF* ib[3] = {&ibRgb[0], &ibRgb[1], &ibRgb[2]};
     const ssrt::ImageError e = ssrt::imageError(ia, ib);
     MESSAGE("2CylinderEngine Draco against plain, 160x90: relMSE " << e.relMse);
     CHECK(e.nonFinite == 0);

@@ -121,7 +121,7 @@ void randomRaysAndHits(const PlaneF& viewZ, RayBatch& rays, MarchResult& march) 
 // SSGI's G-buffer inputs (viewZ, normal, albedo, metallic, shadow) from a rendered frame.
 void gbufferInputs(const Frame& frame, SsgiArgs& in) {
     in.g = frame.gbuffer.view();
-    in.shadow = viewOf(frame.image.shadow, "shadow");
+    in.shadow = viewOf(frame.plane(Res::Shadow), "shadow");
 }
 
 }  // namespace
@@ -412,7 +412,8 @@ TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA a
     const int w = frame.width, h = frame.height;
     SsgiFeedbackArgs in;
     for (int c = 0; c < 3; ++c)
-        in.prevDiffuse[c] = viewOf(frame.ssgi.color[c], "ssgi");  // a frame's own light stands in
+        in.prevDiffuse[c] =
+            viewOf(frame.rgb(Res::Ssgi)[c], "ssgi");  // a frame's own light stands in
     // Motion that moves some pixels off the frame.
     PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
     for (int y = 0; y < h; ++y)

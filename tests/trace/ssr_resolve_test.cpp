@@ -419,8 +419,8 @@ TEST_CASE(
     in.camera.tanHalfX = 0.4f * float(w) / float(h);
     in.g = frame.gbuffer.view();
     for (int c = 0; c < 3; ++c) {
-        in.color[c] = viewOf(frame.image.color[c], "color");
-        in.prevColor[c] = viewOf(frame.image.color[c], "prevColor");
+        in.color[c] = viewOf(frame.rgb(Res::Color)[c], "color");
+        in.prevColor[c] = viewOf(frame.rgb(Res::Color)[c], "prevColor");
     }
     // Random rays: some without a ray, some with a tiny or huge pdf, hits anywhere including
     // exactly on the frame's edges and beyond.
@@ -449,7 +449,8 @@ TEST_CASE(
             march.hitZ.at(x, y) = march.hit.at(x, y) > 0 ? 1.0f + 10.0f * u[3] : 0.0f;
         }
     ColorPyramid pyr;
-    const PlaneF* src[3] = {&frame.image.color[0], &frame.image.color[1], &frame.image.color[2]};
+    const auto srcRgb = frame.rgb(Res::Color);
+    const PlaneF* src[3] = {&srcRgb[0], &srcRgb[1], &srcRgb[2]};
     buildColorPyramid(src, pyr, 2);
     in.pyramid = &pyr;
     for (SsrResolveMode mode : {SsrResolveMode::Mip, SsrResolveMode::Reuse})

@@ -371,11 +371,11 @@ TEST_CASE("trace layouts: every plane finite on the failure scenes, odd sizes in
                     bool inRange = true;
                     for (int y = 0; y < f.height; ++y)
                         for (int x = 0; x < f.width; ++x) {
-                            const float o = f.ssr.opacity.at(x, y);
-                            const float hs = f.ssgi.hit.at(x, y);
+                            const float o = f.plane(Res::SsrOpacity).at(x, y);
+                            const float hs = f.plane(Res::SsgiHit).at(x, y);
                             inRange &= o >= 0.0f && o <= 1.0f && hs >= 0.0f && hs <= 1.0f &&
-                                       f.ssgi.hitDistance.at(x, y) >= 0.0f &&
-                                       f.ssgi.color[0].at(x, y) >= 0.0f;
+                                       f.plane(Res::SsgiHitDistance).at(x, y) >= 0.0f &&
+                                       f.rgb(Res::Ssgi)[0].at(x, y) >= 0.0f;
                         }
                     CHECK(inRange);
                 }

@@ -159,7 +159,7 @@ TEST_CASE("alpha truth: sun rays through a cut-out roof agree with the shadow ma
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
             if (f.gbuffer.instanceId.at(x, y) != 0.0f) continue;  // the floor's pixels only
-            const float shadow = f.image.shadow.at(x, y);
+            const float shadow = f.plane(Res::Shadow).at(x, y);
             if (shadow != 0.0f && shadow != 1.0f) continue;  // the filter's penumbra
             ++exact;
             lit += shadow == 1.0f;

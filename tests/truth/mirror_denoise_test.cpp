@@ -32,8 +32,8 @@ void tracedSpecular(const Frame& f, PlaneF (&out)[3]) {
         out[c] = PlaneF(f.width, f.height);
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float o = f.ssr.opacity.at(x, y);
-                out[c].at(x, y) = o * f.ssr.color[c].at(x, y) +
+                const float o = f.plane(Res::SsrOpacity).at(x, y);
+                out[c].at(x, y) = o * f.rgb(Res::Ssr)[c].at(x, y) +
                                   (1.0f - o) * decodeF16(f.direct.envSpecular[c].at(x, y));
             }
     }

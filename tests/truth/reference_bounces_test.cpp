@@ -224,7 +224,8 @@ ImageError errorOf(const PlaneF (&image)[3], const PlaneF (&ref)[3]) {
 }
 
 double colourRelMse(const Frame& f, const ReferenceImage& ref) {
-    const PlaneF* i[3] = {&f.image.color[0], &f.image.color[1], &f.image.color[2]};
+    const auto iRgb = f.rgb(Res::Color);
+    const PlaneF* i[3] = {&iRgb[0], &iRgb[1], &iRgb[2]};
     const PlaneF* r[3] = {&ref.color[0], &ref.color[1], &ref.color[2]};
     return imageError(i, r).relMse;
 }

@@ -61,7 +61,7 @@ float partsVersusColour(const Frame& frame, float exposure) {
                     (((p.direct[c].at(x, y) + p.diffuse[c].at(x, y)) + p.specular[c].at(x, y)) +
                      (emission[c].empty() ? 0.0f : decodeF16(emission[c].at(x, y)))) *
                     exposure;
-                const float want = frame.image.color[c].at(x, y);
+                const float want = frame.rgb(Res::Color)[c].at(x, y);
                 worst = std::max(worst, std::abs(sum - want) / std::max(want, 1e-3f));
             }
     return worst;
@@ -274,7 +274,7 @@ TEST_CASE("reference: measure (640x360, 64 spp, 2 threads)" * doctest::skip()) {
         const double rays = 2.0 * s.spp * double(surface);  // SSR + SSGI rays (an upper bound)
         const FrameParts p = frameParts(rig.frame);
         PlaneF color[3];
-        for (int c = 0; c < 3; ++c) color[c] = rig.frame.image.color[c].clone();
+        for (int c = 0; c < 3; ++c) color[c] = rig.frame.rgb(Res::Color)[c].clone();
         MESSAGE(std::string(name)
                 << ": reference " << sec << " s, " << rays / sec / 1e6
                 << " M camera-side rays/s (SSR + SSGI, shadow rays not counted); relMSE color "

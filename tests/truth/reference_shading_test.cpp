@@ -79,7 +79,7 @@ TEST_CASE("reference: a hit seen from the camera shades like the direct pass's p
             const glm::vec3 l = reference::hitRadiance(ctx, cam, dir, hit, true);
             float e = 0.0f;
             for (int c = 0; c < 3; ++c)
-                e = std::max(e, relDiff(l[c], rig.frame.image.color[c].at(x, y)));
+                e = std::max(e, relDiff(l[c], rig.frame.rgb(Res::Color)[c].at(x, y)));
             errors.push_back(e);
         }
     std::sort(errors.begin(), errors.end());
@@ -98,7 +98,7 @@ TEST_CASE("reference: Embree's visibility differs from the shadow map's only whe
     const ReferenceRig rig("cornell");
     const ReferenceImage sm = rig.reference(1, ReferenceSettings::Visibility::ShadowMap);
     const ReferenceImage em = rig.reference(1, ReferenceSettings::Visibility::Embree);
-    const PlaneF& v = rig.frame.image.shadow;
+    const PlaneF& v = rig.frame.plane(Res::Shadow);
     int hard = 0, hardDisagree = 0, bothLit = 0, bothDark = 0;
     for (int y = 0; y < rig.frame.height; ++y)
         for (int x = 0; x < rig.frame.width; ++x) {
@@ -169,7 +169,7 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
             const glm::vec3 lb = reference::hitRadiance(ctx, cam, dir, hit, false);
             float ef = 0.0f, eb = 0.0f;
             for (int c = 0; c < 3; ++c) {
-                const float sum = withoutTrace.image.color[c].at(x, y) / exposure;
+                const float sum = withoutTrace.rgb(Res::Color)[c].at(x, y) / exposure;
                 ef = std::max(ef, relDiff(lf[c], sum));
                 // (The hit light against the model's rounded as the direct pass stores it.)
                 eb = std::max(

@@ -91,7 +91,7 @@ Agreement agreement(const ReferenceRig& rig) {
     Agreement a;
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
-            const float t = truth.at(x, y), m = f.image.shadow.at(x, y);
+            const float t = truth.at(x, y), m = f.plane(Res::Shadow).at(x, y);
             if (t < 0.0f) continue;
             const bool corner =
                 besides(f, x, y, kBackWall, kGreenWall) || besides(f, x, y, kFloor, kGreenWall);
