@@ -101,7 +101,9 @@ for f in "${files[@]}"; do
 done
 
 # --- 1: runnable blocks ----------------------------------------------------------------------
-# Splits FILE's runnable blocks into DIR/NNN.sh or DIR/NNN.py, each first line "# FILE:LINE".
+# Splits FILE's runnable blocks into DIR/NNN.sh or DIR/NNN.py, padded with empty lines so that
+# a line of a block has its line number in FILE (a trace or a traceback names FILE's lines),
+# and DIR/NNN.where holding "FILE:LINE" of the opening fence.
 extract() { # file, dir
     awk -v dir="$2" -v name="$(rel "$1")" '
         function fail_at(msg) { printf "%s:%d: %s\n", name, NR, msg > "/dev/stderr"; bad = 1 }
@@ -116,7 +118,11 @@ extract() { # file, dir
             else { fail_at("<!-- runnable --> must be followed by a ```sh or ```python fence"); next }
             n++
             out = sprintf("%s/%03d.%s", dir, n, ext)
-            printf "# %s:%d\n", name, NR > out
+            printf "%s:%d\n", name, NR > sprintf("%s/%03d.where", dir, n)
+            # A sh block traces itself (bash ignores PS4 from the environment when run as root).
+            if (ext == "sh") printf "PS4=\047+ %s:$LINENO: \047; set -x\n", name > out
+            else printf "\n" > out
+            for (i = 1; i < NR; i++) printf "\n" > out
             inblock = 1; next
         }
         /^<!-- runnable -->[ \t]*$/ { armed = 1; next }
@@ -134,20 +140,23 @@ for f in "${files[@]}"; do
     blocks="$tmp/blocks/${name//\//_}"
     mkdir -p "$blocks"
     extract "$f" "$blocks" || { fail "$name: malformed runnable block"; continue; }
-    compgen -G "$blocks/*" >/dev/null || continue
+    compgen -G "$blocks/*.where" >/dev/null || continue
     work="$tmp/work/${name//\//_}"
     mkdir -p "$work" "$tmp/cache"
     for entry in "$root"/*; do
         [ "$(basename "$entry")" = build ] || ln -s "$entry" "$work/$(basename "$entry")"
     done
     ln -s "$build" "$work/build"
-    for block in "$blocks"/*; do
-        where="$(head -n1 "$block" | cut -c3-)"
+    for where_file in "$blocks"/*.where; do
+        block="${where_file%.where}.sh"
+        [ -f "$block" ] || block="${where_file%.where}.py"
+        where="$(cat "$where_file")"
         blocks_run=$((blocks_run + 1))
         t_block=$SECONDS
         status=0
         case "$block" in
         *.sh)
+            # Traced: a failure's last lines show the command that failed, with its line in FILE.
             (cd "$work" && PATH="$build:$PATH" SSRT_CACHE_DIR="$tmp/cache" \
                 timeout 120 bash -euo pipefail "$block") >"$block.log" 2>&1 || status=$?
             ;;
