@@ -11,7 +11,7 @@
 #    repository's root: every top-level entry of the checkout is linked into it (so
 #    `examples/shots/...` and `perf/plot.py` resolve), `build` is linked to BUILD_DIR, and
 #    whatever a block writes stays in the temporary folder. A sh block runs under
-#    `bash -euo pipefail`, a python block under `/usr/bin/python3` with
+#    `bash -euo pipefail`, traced, a python block under `/usr/bin/python3` with
 #    PYTHONPATH=build/python, as the docs say to run them; BUILD_DIR is first on PATH;
 #    SSRT_CACHE_DIR is a fresh folder (the user's reference cache is left alone). Any
 #    non-zero exit, or a block over 120 s, fails. Blocks are written at small sizes so the
@@ -38,7 +38,7 @@ fi
 # Other programs' flags that the docs quote (each with its program), not ssrt's.
 readonly kOtherFlags=(
     --array --cpus-per-task --wait --wrap                 # sbatch
-    --install --prefix --component --build --target --parallel --output-on-failure # cmake, ctest
+    --install --prefix --component                        # cmake
     --variant                                             # debootstrap
     --no-install-recommends                               # apt-get
     --add-architecture                                    # dpkg
@@ -54,8 +54,9 @@ fail() { echo "check-doc-blocks: FAIL: $*" >&2; failures=$((failures + 1)); }
 rel() { echo "${1#"$root"/}"; }
 
 # --- 2 and 3: flags and help sections -------------------------------------------------------
-commands=(render compare sweep diff check reference merge graph scenes)
 "$ssrt" --help >"$tmp/help.top"
+mapfile -t commands < <(sed -n '/^Subcommands:/,/^$/p' "$tmp/help.top" | awk 'NR > 1 && /^  [a-z]/ { print $1 }')
+[ ${#commands[@]} -gt 0 ] || { echo "check-doc-blocks: no commands in 'ssrt --help'" >&2; exit 2; }
 for c in "${commands[@]}"; do "$ssrt" "$c" --help >"$tmp/help.$c"; done
 grep -ohE -- '(^|[^A-Za-z0-9_-])--[a-z][a-z0-9-]*' "$tmp"/help.* | grep -oE -- '--[a-z0-9-]+' \
     | sort -u >"$tmp/known-flags"
@@ -166,7 +167,8 @@ for f in "${files[@]}"; do
                 status=1
             else
                 (cd "$work" && PATH="$build:$PATH" SSRT_CACHE_DIR="$tmp/cache" \
-                    PYTHONPATH=build/python timeout 120 /usr/bin/python3 "$block") \
+                    PYTHONPATH=build/python PYTHONDONTWRITEBYTECODE=1 \
+                    timeout 120 /usr/bin/python3 "$block") \
                     >"$block.log" 2>&1 || status=$?
             fi
             ;;
