@@ -6,8 +6,8 @@
 #   scripts/check-doc-blocks.sh BUILD_DIR FILE.md ...   # only these files
 #
 # 1. Runnable blocks. A fenced block is runnable when the line just before its opening fence
-#    is exactly `<!-- runnable -->` and the fence is ```sh or ```python. The blocks of one
-#    file run in order, in one temporary folder of their own that stands in for the
+#    is `<!-- runnable -->` (indented as the fence may be, in a list) and the fence is ```sh or
+#    ```python; a marker anywhere else is an error. The blocks of one file run in order, in one temporary folder of their own that stands in for the
 #    repository's root: every top-level entry of the checkout is linked into it (so
 #    `examples/shots/...` and `perf/plot.py` resolve), `build` is linked to BUILD_DIR, and
 #    whatever a block writes stays in the temporary folder. A sh block runs under
@@ -109,14 +109,17 @@ extract() { # file, dir
     awk -v dir="$2" -v name="$(rel "$1")" '
         function fail_at(msg) { printf "%s:%d: %s\n", name, NR, msg > "/dev/stderr"; bad = 1 }
         inblock {
-            if ($0 ~ /^```[ \t]*$/) { inblock = 0; close(out); next }
-            print > out; next
+            if ($0 ~ /^[ \t]*```[ \t]*$/) { inblock = 0; close(out); next }
+            line = $0
+            if (substr(line, 1, indent) ~ /^[ ]*$/) line = substr(line, indent + 1)
+            print line > out; next
         }
         armed {
             armed = 0
-            if ($0 ~ /^```sh[ \t]*$/) ext = "sh"
-            else if ($0 ~ /^```python[ \t]*$/) ext = "py"
+            if ($0 ~ /^[ ]*```sh[ \t]*$/) ext = "sh"
+            else if ($0 ~ /^[ ]*```python[ \t]*$/) ext = "py"
             else { fail_at("<!-- runnable --> must be followed by a ```sh or ```python fence"); next }
+            match($0, /^[ ]*/); indent = RLENGTH
             n++
             out = sprintf("%s/%03d.%s", dir, n, ext)
             printf "%s:%d\n", name, NR > sprintf("%s/%03d.where", dir, n)
@@ -126,7 +129,8 @@ extract() { # file, dir
             for (i = 1; i < NR; i++) printf "\n" > out
             inblock = 1; next
         }
-        /^<!-- runnable -->[ \t]*$/ { armed = 1; next }
+        /^[ ]*<!-- runnable -->[ \t]*$/ { armed = 1; next }
+        /<!-- runnable/ { fail_at("a runnable marker must be a line of its own: <!-- runnable -->") }
         END {
             if (inblock) fail_at("a runnable block is not closed")
             if (armed) fail_at("<!-- runnable --> at the end of the file")
