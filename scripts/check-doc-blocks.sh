@@ -7,7 +7,7 @@
 #
 # 1. Runnable blocks. A fenced block is runnable when the line just before its opening fence
 #    is `<!-- runnable -->` (indented as the fence may be, in a list) and the fence is ```sh or
-#    ```python; a marker anywhere else is an error. The blocks of one file run in order, in one temporary folder of their own that stands in for the
+#    ```python; a line that starts as a marker but is not one is an error. The blocks of one file run in order, in one temporary folder of their own that stands in for the
 #    repository's root: every top-level entry of the checkout is linked into it (so
 #    `examples/shots/...` and `perf/plot.py` resolve), `build` is linked to BUILD_DIR, and
 #    whatever a block writes stays in the temporary folder. A sh block runs under
@@ -130,7 +130,7 @@ extract() { # file, dir
             inblock = 1; next
         }
         /^[ ]*<!-- runnable -->[ \t]*$/ { armed = 1; next }
-        /<!-- runnable/ { fail_at("a runnable marker must be a line of its own: <!-- runnable -->") }
+        /^[ ]*<!-- *runnable/ { fail_at("a runnable marker must be a line of its own: <!-- runnable -->") }
         END {
             if (inblock) fail_at("a runnable block is not closed")
             if (armed) fail_at("<!-- runnable --> at the end of the file")
