@@ -5,3 +5,4 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh
 cd build
 ctest --output-on-failure --parallel "${SSRT_TEST_JOBS:-$(nproc)}" --timeout 900
+bash ../scripts/check-doc-blocks.sh .   # the docs' runnable blocks and the flags they name
