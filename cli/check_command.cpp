@@ -144,7 +144,7 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& o) {
         "and a JUnit file; exit 1 when a case fails, is stale or has no reference, 3 when one "
         "cannot be rendered");
     cmd->add_option("SUITE", o.suite,
-                    "The suite file (JSON; see the README, \"Suites: ssrt check\")")
+                    "The suite file (JSON; see docs/golden.md, \"Suites: ssrt check\")")
         ->required()
         ->type_name("FILE");
     cmd->add_option("-o,--out", o.out,

@@ -260,7 +260,7 @@ void addSceneOptions(CLI::App& cmd, RenderOptions& o, const RenderSettings& d) {
                   "0");
     cmd.add_flag("--strict", o.strict,
                  "Every warning about a glTF file (points and lines skipped, lights, cameras, "
-                 "extensions or textures ignored) is an error: exit 1, nothing written");
+                 "extensions or textures ignored) is an error: exit 3, nothing written");
 }
 
 void addImageOutputOptions(CLI::App& cmd, RenderOptions& o) {

@@ -1,4 +1,4 @@
-"""ssrt: a deterministic CPU renderer (see README.md, "Python").
+"""ssrt: a deterministic CPU renderer (see docs/embedding.md, "Python").
 
 Scenes (built-in names, glTF files, shot files) and settings as keyword arguments in; frames
 of named float32 planes out, as read-only numpy views of the renderer's memory, bit-identical

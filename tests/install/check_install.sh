@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the built ssrt into a fresh prefix, then builds against it, through
-# find_package(ssrt COMPONENTS ...): the README's core-only example, a tool on every component
+# find_package(ssrt COMPONENTS ...): the core-only example of docs/embedding.md, a tool on every component
 # (tool_example.cpp: a glTF file, a sequence with history, an EXR, the Embree truth) and every
 # installed header on its own. Runs both examples, and checks that the package refuses a
 # component it does not have and a version it is not.

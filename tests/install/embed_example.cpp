@@ -1,5 +1,5 @@
 // Renders a built-in scene through the library, a still and a short sequence with a history,
-// and prints the mean of the display image (README.md, "Embedding the library").
+// and prints the mean of the display image (docs/embedding.md, "Embedding the library").
 #include <ssrt/renderer/renderer.h>
 #include <ssrt/scenes/builtin_scenes.h>
 

@@ -1,4 +1,4 @@
-// A tool built on every component of the installed package (README.md, "Embedding the
+// A tool built on every component of the installed package (docs/embedding.md, "Embedding the
 // library"): loads a glTF file (ssrt::gltf), renders a short sequence with a history (core),
 // writes the last frame as an EXR and reads a layer back (ssrt::io), and measures it against
 // the Embree reference (ssrt::truth).
