@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <exception>
 #include <iterator>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "cli/build_info.h"
 #include "cli/command_line.h"
 #include "cli/scenes_command.h"
+#include "core/suggest.h"
 
 namespace ssrt::cli {
 
@@ -19,6 +21,25 @@ namespace {
 // The commands, as the errors for a missing or mistyped one list them.
 constexpr const char* kCommandList =
     "render, graph, compare, sweep, diff, check, reference, merge or scenes";
+
+// The first argument the parse left that looks like an option ("--widht"; its "=value" cut
+// off), or empty.
+std::string unknownOption(const CLI::App& app) {
+    for (const std::string& arg : app.remaining(true))
+        if (arg.size() > 1 && arg[0] == '-' && !std::isdigit(static_cast<unsigned char>(arg[1])))
+            return arg.substr(0, arg.find('='));
+    return {};
+}
+
+// Every spelling of `app`'s options ("--width", "-W", ...).
+std::vector<std::string> optionNames(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : app.get_options()) {
+        for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+        for (const std::string& n : o->get_snames()) names.push_back("-" + n);
+    }
+    return names;
+}
 
 }  // namespace
 
@@ -96,15 +117,27 @@ std::optional<int> CommandLine::parse(int argc, const char* const* argv, std::os
         if (e.get_exit_code() == 0) return app_->exit(e, out, err);
         // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
         const std::string first = argv[1];
-        const bool anyParsed =
-            std::any_of(std::begin(commands_), std::end(commands_),
-                        [](const CLI::App* command) { return command->parsed(); });
-        if (!anyParsed && first.rfind('-', 0) != 0) {
-            err << "ssrt: error: unknown command '" << first << "' (expected " << kCommandList
-                << "; see 'ssrt --help')\n";
+        const CLI::App* command = nullptr;
+        for (const CLI::App* c : commands_)
+            if (c->parsed()) command = c;
+        std::vector<std::string> names;
+        for (const CLI::App* c : commands_) names.push_back(c->get_name());
+        if (!command && first.rfind('-', 0) != 0) {
+            err << "ssrt: error: unknown command '" << first << "'" << didYouMean(first, names)
+                << " (expected " << kCommandList << "; see 'ssrt --help')\n";
             return kExitUsage;
         }
-        err << "ssrt: error: " << oneLine(e.what()) << " (see 'ssrt --help')\n";
+        const std::string help =
+            command ? "'ssrt " + command->get_name() + " --help'" : std::string("'ssrt --help'");
+        // An option the command does not have: named, with the nearest one it has.
+        if (const std::string unknown = unknownOption(*app_); !unknown.empty()) {
+            err << "ssrt: error: unknown option '" << unknown << "'"
+                << (command ? " for 'ssrt " + command->get_name() + "'" : std::string())
+                << didYouMean(unknown, optionNames(command ? *command : *app_)) << " (see " << help
+                << ")\n";
+            return kExitUsage;
+        }
+        err << "ssrt: error: " << oneLine(e.what()) << " (see " << help << ")\n";
         return kExitUsage;
     }
     // require_subcommand(1) holds: exactly one command was parsed.

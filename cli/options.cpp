@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "cli/memory_check.h"
+#include "core/suggest.h"
 #include "io/image_io.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
@@ -65,7 +66,8 @@ std::string defaultSceneName() {
 
 void checkSceneName(const std::string& name) {
     if (isSceneFile(name) || isBuiltinScene(name)) return;  // the loader names a bad file
-    throw std::invalid_argument("--scene: unknown scene '" + name + "' (known: " + knownScenes() +
+    throw std::invalid_argument("--scene: unknown scene '" + name + "'" +
+                                didYouMean(name, knownSceneNames()) + " (known: " + knownScenes() +
                                 ")");
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/suggest.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
 
@@ -45,11 +46,19 @@ bool valueOf(const FieldInfo& f, const ShotValue& v, double& out) {
 
 }  // namespace
 
+std::vector<std::string> shotRenderKeyList() {
+    std::vector<std::string> out;
+    for (const auto& f : kRenderFields)
+        if (f.has(kFieldShot)) out.emplace_back(f.key);
+    for (const char* key : {"quality", "frames", "frame", "warmupFrames"}) out.emplace_back(key);
+    return out;
+}
+
 std::string shotRenderKeys() {
     std::string out;
-    for (const auto& f : kRenderFields)
-        if (f.has(kFieldShot)) out.append(out.empty() ? "" : ", ").append(f.key);
-    return out + ", quality, frames, frame, warmupFrames";
+    for (const std::string& key : shotRenderKeyList())
+        out.append(out.empty() ? "" : ", ").append(key);
+    return out;
 }
 
 void applyShot(const Shot& shot, RenderSettings& s) {
@@ -60,7 +69,8 @@ void applyShot(const Shot& shot, RenderSettings& s) {
     // Unknown keys first, as the parser reports them at every other level.
     for (const auto& [key, value] : settings)
         if (key != "quality" && !shotField(key))
-            fail(key, "unknown key (expected one of: " + shotRenderKeys() + ")");
+            fail(key, "unknown key" + didYouMean(key, shotRenderKeyList()) +
+                          " (expected one of: " + shotRenderKeys() + ")");
     // A preset first, then the keys given beside it.
     for (const auto& [key, value] : settings) {
         if (key != "quality") continue;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "renderer/settings.h"
 #include "scenes/shot.h"
@@ -19,5 +20,6 @@ void applyShot(const Shot& shot, RenderSettings& settings);
 // The keys a shot's "render" object takes, in order: every shot field of the table, then
 // frames and frame.
 std::string shotRenderKeys();
+std::vector<std::string> shotRenderKeyList();  // the same, one key each
 
 }  // namespace ssrt

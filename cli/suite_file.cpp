@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/isa.h"
+#include "core/suggest.h"
 
 namespace ssrt::cli {
 
@@ -49,8 +50,8 @@ public:
         if (!j.is_object()) fail(path, "expected an object");
         for (const auto& item : j.items())
             if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
-                fail(path + "." + item.key(),
-                     "unknown key (expected one of: " + joined(allowed) + ")");
+                fail(path + "." + item.key(), "unknown key" + didYouMean(item.key(), allowed) +
+                                                  " (expected one of: " + joined(allowed) + ")");
     }
 
     std::string string(const json& j, const std::string& path) const {

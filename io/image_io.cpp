@@ -56,9 +56,10 @@ std::string checkedExtension(const std::string& path) {
     const std::string ext = lowerExtension(path);
     const auto& known = supportedImageExtensions();
     if (std::find(known.begin(), known.end(), ext) == known.end()) {
-        const std::string shown = ext.empty() ? "no extension" : "extension '" + ext + "'";
-        throw std::invalid_argument("unsupported image " + shown + " in '" + path +
-                                    "' (supported: " + joinedExtensions() + ")");
+        const std::string what =
+            ext.empty() ? "has no extension" : "has an unsupported extension '" + ext + "'";
+        throw std::invalid_argument("image file '" + path + "' " + what +
+                                    " (supported: " + joinedExtensions() + ")");
     }
     return ext;
 }
@@ -109,7 +110,9 @@ fs::path reserveTemporary(const std::string& path, const std::string& ext) {
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {
         const int err = errno;
-        failWrite(path, "directory '" + directoryOf(path).string() + "' is not writable (" +
+        // (The OS's reason as it is: "No such file or directory" for a folder that is not
+        // there, "Read-only file system", "Permission denied".)
+        failWrite(path, "cannot create a file in '" + directoryOf(path).string() + "' (" +
                             std::strerror(err) + ")");
     }
     ::close(fd);

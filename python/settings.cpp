@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "binding.h"
+#include "core/suggest.h"
 #include "renderer/quality.h"
 #include "renderer/settings_fields.h"
 
@@ -98,9 +99,15 @@ const RenderField* findField(const std::string& name) {
     return nullptr;
 }
 
+std::vector<std::string> keywords() {
+    std::vector<std::string> out = {"quality", "isa"};
+    for (const RenderField& f : kRenderFields) out.push_back(snakeCase(f.key));
+    return out;
+}
+
 std::string keywordList() {
-    std::string out = "quality, isa";
-    for (const RenderField& f : kRenderFields) out += ", " + snakeCase(f.key);
+    std::string out;
+    for (const std::string& k : keywords()) out += (out.empty() ? "" : ", ") + k;
     return out;
 }
 
@@ -135,8 +142,8 @@ RenderSettings settingsFrom(RenderSettings s, const py::kwargs& kwargs) {
         }
         const RenderField* f = findField(name);
         if (!f)
-            throw py::type_error("RenderSettings: unknown keyword '" + name +
-                                 "' (known: " + keywordList() + ")");
+            throw py::type_error("RenderSettings: unknown keyword '" + name + "'" +
+                                 didYouMean(name, keywords()) + " (known: " + keywordList() + ")");
         f->set(s, fieldValue(*f, name, value));
     }
     try {

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/suggest.h"
 #include "scenes/bunny_scene.h"
 #include "scenes/failure_scenes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
+#include "scenes/scene_names.h"
 
 namespace ssrt {
 
@@ -127,7 +129,9 @@ Scene makeBuiltinScene(const std::string& name) {
     std::string known;
     for (const BuiltinSceneInfo& info : builtinScenes())
         known += (known.empty() ? "" : ", ") + info.name;
-    throw std::invalid_argument("unknown scene '" + name + "' (built-in scenes: " + known + ")");
+    throw std::invalid_argument("unknown scene '" + name + "'" +
+                                didYouMean(name, knownSceneNames()) +
+                                " (built-in scenes: " + known + ")");
 }
 
 Scene makeKnotScene(int triangles) {

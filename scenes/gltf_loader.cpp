@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -173,8 +174,12 @@ std::string baseDir(const std::string& path) {
 tinygltf::Model readModel(const std::string& path, gltf::DataUriImages& dataUris) {
     std::string bytes;
     {
+        errno = 0;
         std::ifstream in(path, std::ios::binary);
-        if (!in) throw SceneLoadError(path + ": cannot open file");
+        // (errno holds the OS's reason where the open set one: "No such file or directory".)
+        if (!in)
+            throw SceneLoadError(path + ": cannot open file" +
+                                 (errno ? " (" + std::string(std::strerror(errno)) + ")" : ""));
         bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
     tinygltf::TinyGLTF loader;

@@ -29,4 +29,10 @@ std::string knownScenes() {
     return out;
 }
 
+std::vector<std::string> knownSceneNames() {
+    std::vector<std::string> out;
+    for (const auto& s : builtinScenes()) out.push_back(s.name);
+    return out;
+}
+
 }  // namespace ssrt

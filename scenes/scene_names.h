@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace ssrt {
 
@@ -12,5 +13,7 @@ bool isSceneFile(const std::string& name);
 bool isBuiltinScene(const std::string& name);
 // The built-in scenes' names, comma-separated ("cornell, spheres, ...").
 std::string knownScenes();
+// The same, one name each.
+std::vector<std::string> knownSceneNames();
 
 }  // namespace ssrt

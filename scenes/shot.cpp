@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/suggest.h"
 #include "scenes/scene_names.h"
 
 namespace ssrt {
@@ -64,7 +65,10 @@ public:
                                            [&](const char* a) { return item.key() == a; });
             if (!known)
                 fail(child(path, item.key()),
-                     "unknown key (expected one of: " + join(allowed) + ")");
+                     "unknown key" +
+                         didYouMean(item.key(),
+                                    std::vector<std::string>(allowed.begin(), allowed.end())) +
+                         " (expected one of: " + join(allowed) + ")");
         }
     }
 
@@ -250,8 +254,9 @@ Shot parseShot(const std::string& text, const std::string& file) {
             shot.scene = r.existingFile("scene", *scene);
         } else {
             if (!isBuiltinScene(*scene))
-                r.fail("scene", "unknown scene '" + *scene + "' (known: " + knownScenes() +
-                                    "; or a .gltf/.glb file)");
+                r.fail("scene", "unknown scene '" + *scene + "'" +
+                                    didYouMean(*scene, knownSceneNames()) +
+                                    " (known: " + knownScenes() + "; or a .gltf/.glb file)");
             shot.scene = *scene;
         }
     }

@@ -50,7 +50,7 @@ CASES = [
     ("unknown choice", lambda d, f, e: S(marcher="bogus"), ValueError,
      r"^marcher: invalid value 'bogus' \(expected one of linear, dda, hiz\)$"),
     ("choice as int", lambda d, f, e: S(marcher=2), TypeError, r"^marcher: invalid value 2"),
-    ("unknown keyword", lambda d, f, e: S(widht=64), TypeError, r"^RenderSettings: unknown keyword 'widht'"),
+    ("unknown keyword", lambda d, f, e: S(widht=64), TypeError, r"^RenderSettings: unknown keyword 'widht'; did you mean width\? \(known: "),
     ("unknown preset", lambda d, f, e: S(quality="insane"), ValueError, r"^quality: invalid value 'insane'"),
     ("unknown isa", lambda d, f, e: S(isa="mmx"), ValueError, r"^isa: "),
     ("fields that disagree", lambda d, f, e: S(hiz_most_detailed_level=3, hiz_start_level=1), ValueError,

@@ -94,11 +94,46 @@ TEST_CASE("cli: no command, an unknown command or option is a usage error") {
     }
 }
 
-TEST_CASE("cli: a mistyped command is named") {
+TEST_CASE("cli: a mistyped command is named, with the nearest one") {
     const Result r = run({"rendr", "--width", "64"});
     CHECK(r.code == cli::kExitUsage);
     CHECK(isOneErrorLine(r.err));
-    CHECK(contains(r.err, "'rendr'"));
+    CHECK(contains(r.err, "'rendr'; did you mean render?"));
+    CHECK(!contains(run({"paint"}).err, "did you mean"));  // nothing near
+}
+
+TEST_CASE(
+    "cli: a mistyped option, scene or shot key names the nearest one, and the command's help") {
+    TempDir dir;
+    const std::string out = dir.file("never.png");
+    struct Case {
+        std::vector<std::string> args;
+        std::string says;
+    };
+    const std::string shot = dir.file("typo.json");
+    std::FILE* f = std::fopen(shot.c_str(), "w");
+    REQUIRE(f);
+    std::fputs("{ \"scene\": \"cornell\", \"render\": { \"expsure\": 2 } }", f);
+    std::fclose(f);
+    for (const Case& c : std::vector<Case>{
+             {{"render", "--widht", "320", "-o", out},
+              "unknown option '--widht' for 'ssrt render'; did you mean --width? (see 'ssrt "
+              "render --help')"},
+             {{"render", "--quallity=high", "-o", out}, "did you mean --quality?"},
+             {{"compare", "--scnee", "cornell"},
+              "did you mean --scene? (see 'ssrt compare --help')"},
+             {{"render", "-s", "cornel", "-o", out},
+              "unknown scene 'cornel'; did you mean cornell?"},
+             {{"render", "--shot", shot, "-o", out}, "did you mean exposure?"}}) {
+        CAPTURE(c.args);
+        const Result r = run(c.args);
+        CHECK(r.code != 0);
+        CHECK(isOneErrorLine(r.err));
+        CHECK(contains(r.err, c.says));
+    }
+    // Nothing near: no suggestion.
+    CHECK(!contains(run({"render", "--frobnicate", "-o", out}).err, "did you mean"));
+    CHECK(dir.empty() == false);  // (the shot file alone)
 }
 
 TEST_CASE("cli: every bad number is one error line naming the option and value, no file") {

@@ -290,6 +290,9 @@ TEST_CASE("extensions are checked, case-insensitively, before anything is writte
         CHECK(message.find(".png") != std::string::npos);
         CHECK(message.find(".exr") != std::string::npos);
     }
+    CHECK_THROWS_WITH_AS(writeImage(dir.file("out"), frame),
+                         doctest::Contains("out' has no extension (supported: .png, .exr)"),
+                         std::invalid_argument);
     writeImage(dir.file("upper.PNG"), frame);
     writeImage(dir.file("upper.EXR"), frame);
     CHECK(dir.listing() == std::vector<std::string>{"upper.EXR", "upper.PNG"});
@@ -350,7 +353,8 @@ TEST_CASE("unwritable places fail with runtime_error and leave nothing behind") 
 
     // /proc refuses new files even to root.
     CHECK_THROWS_WITH_AS(writeImage("/proc/ssrt-io-test.png", frame),
-                         doctest::Contains("not writable"), std::runtime_error);
+                         doctest::Contains("cannot create a file in '/proc' ("),
+                         std::runtime_error);
     CHECK_THROWS_AS(checkWritable("/proc/ssrt-io-test.png"), std::runtime_error);
     CHECK_FALSE(fs::exists("/proc/ssrt-io-test.png"));
 

@@ -262,7 +262,8 @@ TEST_CASE("unknown scene names throw, naming the scene and the known ones") {
         FAIL("no exception for an unknown scene");
     } catch (const std::invalid_argument& e) {
         CHECK(std::string(e.what()) ==
-              "unknown scene 'cornel' (built-in scenes: cornell, spheres, thin, corridor, "
+              "unknown scene 'cornel'; did you mean cornell? (built-in scenes: cornell, spheres, "
+              "thin, corridor, "
               "offscreen, occluded, bunny, fence)");
     }
 }
