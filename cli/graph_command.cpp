@@ -7,6 +7,7 @@
 
 #include "cli/cli.h"
 #include "cli/options.h"
+#include "cli/render_command.h"
 #include "cli/sequence.h"
 #include "renderer/frame_graph.h"
 #include "renderer/quality.h"
@@ -25,8 +26,12 @@ CLI::App* addGraphCommand(CLI::App& app, GraphOptions& o) {
                        "the frames a render would make: above 1, the graph of a sequence's frame, "
                        "which reads and keeps a history (default 1: a single image, without)");
     cmd->add_option_function<std::string>(
-           "-o,--output", [&o](const std::string& v) { o.render.output = v; },
-           "The file the render would write (default ssrt.png): a PNG, or an EXR whose --layers "
+           "-o,--output",
+           [&o](const std::string& v) {
+               o.render.output = v;
+               o.render.outputGiven = true;
+           },
+           "The file the render would write (default a PNG): a PNG, or an EXR whose --layers "
            "leave out a group, makes no plane only that group shows")
         ->type_name("FILE");
     addImageOutputOptions(*cmd, o.render);
@@ -100,8 +105,8 @@ int runGraph(const GraphOptions& o, std::ostream& out, std::ostream& err) {
     SceneRequest request = loadSceneRequest(o.render);
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     const FrameWriteOptions writeOptions =
-        writeOptionsFrom(o.render, request.settings, o.render.output, err);
-    planesForFile(o.render.output, writeOptions.layers, request.settings);
+        writeOptionsFrom(o.render, request.settings, renderOutput(o.render), err);
+    planesForFile(renderOutput(o.render), writeOptions.layers, request.settings);
     loadScene(request, err);
     // (The graph of a sequence's middle frame: the last one's history read and its own kept.)
     const bool sequence = plan.frames + plan.warmup > 1;

@@ -69,19 +69,21 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         "Render a frame, or a sequence along a shot's camera path, of a built-in scene or a glTF "
         "file to PNG or EXR files");
     addSceneOptions(*cmd, o, RenderSettings{});
-    const auto add = [&](const std::string& flags, std::string& value, const std::string& type,
-                         const std::string& help) {
-        cmd->add_option(flags, value, help)->type_name(type)->capture_default_str();
-    };
     addSequenceOptions(*cmd, o,
                        "evenly along the shot's camera path from its first key to its last "
                        "(Catmull-Rom or linear, as the shot says; history restarts at a key "
                        "marked cut), or N frames of the still camera without a path");
-    add("-o,--output", o.output, "FILE",
-        "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); with "
-        "more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
-        "out_0001.png, ...); with --compare and no -o, ssrt.exr for an .exr reference");
-    cmd->get_option("--output")->each([&o](const std::string&) { o.outputGiven = true; });
+    cmd->add_option_function<std::string>(
+           "-o,--output",
+           [&o](const std::string& v) {
+               o.output = v;
+               o.outputGiven = true;
+           },
+           "Output image: .png (tone-mapped preview) or .exr (every plane as a float layer); "
+           "with more than one frame, frame i goes to NAME_iiii.EXT (out.png: out_0000.png, "
+           "out_0001.png, ...). Default: named after the shot file or the scene (cornell.png, "
+           "spheres_orbit_0000.png, ...), .exr with an .exr --compare reference")
+        ->type_name("FILE");
     addImageOutputOptions(*cmd, o);
     addShardOption(*cmd, o.shard,
                    "frames: block K of N of --frames, each frame's file named as unsharded; the "
@@ -146,8 +148,14 @@ void planesForFile(const std::string& output, const LayerGroups& layers, RenderS
 }
 
 std::string renderOutput(const RenderOptions& o) {
-    if (o.outputGiven || !o.compare) return o.output;
-    return isExrPath(*o.compare) ? "ssrt.exr" : o.output;
+    if (o.outputGiven) return o.output;
+    // Named after what is rendered, as pbrt and Mitsuba name theirs, so a second render of
+    // another scene does not overwrite the first: the shot file's name, else the scene's (a
+    // glTF file's without its folder and extension), in the working folder.
+    const std::string name = o.shot    ? fs::path(*o.shot).stem().string()
+                             : o.scene ? fs::path(*o.scene).stem().string()
+                                       : defaultSceneName();
+    return name + (o.compare && isExrPath(*o.compare) ? ".exr" : ".png");
 }
 
 // ---------------------------------------------------------------------------------------

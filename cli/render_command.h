@@ -30,7 +30,7 @@ struct RenderOptions {
     // bool's flag stores "true" or "false". A key not here is not on the command line.
     std::map<std::string, std::string, std::less<>> settings;
     std::string isa;
-    std::string output = "ssrt.png";
+    std::string output;        // -o as given; renderOutput() says what a render writes
     bool outputGiven = false;  // -o on the command line (else --compare picks the format)
     // --compare FILE: the written frame against this reference, with these thresholds.
     std::optional<std::string> compare;
@@ -58,9 +58,9 @@ RenderSettings settingsFrom(const RenderOptions& options, const RenderSettings& 
 // needs them), and the extension: out.png -> out_0000.png, out_0001.png, ...
 std::string sequenceFileName(const std::string& output, int index, int count);
 
-// The file a render writes: --output as given; without -o and with --compare, "ssrt" with the
-// reference's extension when it is one writeImage writes (.exr, .png), so that the two
-// files hold the same kind of layers.
+// The file a render writes: --output as given; without -o, named after the shot file or the
+// scene ("cornell.png"; a glTF file's name without its folder), with the --compare
+// reference's extension where that is .exr, so that the two files hold the same kind of layers.
 std::string renderOutput(const RenderOptions& options);
 
 // The id planes and the debug planes exist to be looked at: a file that shows none of them (a

@@ -3,7 +3,7 @@
 # made by Debian's debootstrap (--variant=minbase: apt, dpkg, bash, coreutils, no compiler), a
 # clean checkout of the commit copied into it (git archive, no build/ and nothing untracked),
 # then, inside it as root:
-#   1. ./scripts/render-default.sh   must write ssrt.png, byte-identical to the PNG the host's
+#   1. ./scripts/render-default.sh   must write cornell.png, byte-identical to the PNG the host's
 #                                    build/ssrt renders (same compiler and packages: the
 #                                    determinism contract says so);
 #   2. ./scripts/test.sh             must pass (SSRT_FRESH_TESTS=none skips it).
@@ -140,10 +140,10 @@ t0=$SECONDS
 if in_root render "./scripts/render-default.sh"; then
     t1=$((SECONDS - t0))
     tail -n 3 "$run/logs/render.log" | sed 's/^/  | /' >&2
-    if [ -s "$root/root/ssrt/ssrt.png" ]; then
-        pass "command 1, ./scripts/render-default.sh, wrote ssrt.png in $t1 s ($(split_time "$run/logs/render.log" "$t1" render))"
+    if [ -s "$root/root/ssrt/cornell.png" ]; then
+        pass "command 1, ./scripts/render-default.sh, wrote cornell.png in $t1 s ($(split_time "$run/logs/render.log" "$t1" render))"
     else
-        fail "command 1, ./scripts/render-default.sh, exited 0 without writing ssrt.png"
+        fail "command 1, ./scripts/render-default.sh, exited 0 without writing cornell.png"
     fi
 else
     tail -n 20 "$run/logs/render.log" | sed 's/^/  | /' >&2
@@ -151,13 +151,13 @@ else
 fi
 
 # The same PNG from the host's build.
-if [ -s "$root/root/ssrt/ssrt.png" ]; then
+if [ -s "$root/root/ssrt/cornell.png" ]; then
     [ -x build/ssrt ] || bash scripts/build.sh --render >/dev/null
     ./build/ssrt render --quiet -o "$run/host.png"
-    if cmp -s "$run/host.png" "$root/root/ssrt/ssrt.png"; then
-        pass "the fresh root's ssrt.png is the host's, byte for byte ($(stat -c %s "$run/host.png") bytes)"
+    if cmp -s "$run/host.png" "$root/root/ssrt/cornell.png"; then
+        pass "the fresh root's cornell.png is the host's, byte for byte ($(stat -c %s "$run/host.png") bytes)"
     else
-        fail "the fresh root's ssrt.png differs from the host's ($run/host.png, $root/root/ssrt/ssrt.png)"
+        fail "the fresh root's cornell.png differs from the host's ($run/host.png, $root/root/ssrt/cornell.png)"
     fi
 fi
 

@@ -66,7 +66,7 @@ TEST_CASE("cli: help lists the commands and tells the truth about defaults") {
              "--shadow-map-size INT=" + std::to_string(d.shadowMapSize),
              "--exposure FLOAT=1",
              "--frame INT=0",
-             "--output FILE=ssrt.png",
+             "--output FILE",
              "--scene NAME=" + builtinScenes().front().name,
              "--stats",
              "--quiet",

@@ -290,13 +290,20 @@ TEST_CASE("cli render --compare: one frame, flags that need it, a reference that
     CHECK(isOneErrorLine(r.err));
     CHECK(dir.listing() == std::vector<std::string>{"golden.exr"});
 
-    // Without -o the output takes the reference's format.
+    // Without -o the output is named after the scene and takes the reference's format.
     cli::RenderOptions o;
-    CHECK(cli::renderOutput(o) == "ssrt.png");
+    CHECK(cli::renderOutput(o) == "cornell.png");
     o.compare = golden;
-    CHECK(cli::renderOutput(o) == "ssrt.exr");
+    CHECK(cli::renderOutput(o) == "cornell.exr");
     o.compare = dir.file("golden.png");
-    CHECK(cli::renderOutput(o) == "ssrt.png");
+    CHECK(cli::renderOutput(o) == "cornell.png");
+    o.scene = "spheres";
+    CHECK(cli::renderOutput(o) == "spheres.png");
+    o.scene = "/models/Box.glb";
+    CHECK(cli::renderOutput(o) == "Box.png");
+    o.shot = "examples/shots/spheres_orbit.json";  // the shot names it, over its scene
+    CHECK(cli::renderOutput(o) == "spheres_orbit.png");
+    CHECK(cli::sequenceFileName(cli::renderOutput(o), 0, 49) == "spheres_orbit_0000.png");
     o.compare = golden;
     o.output = "mine.png";
     o.outputGiven = true;
