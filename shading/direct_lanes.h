@@ -13,6 +13,7 @@
 #include "shading/environment.h"
 #include "shading/irradiance_sh.h"
 #include "shading/multiscatter.h"
+#include "shading/shadow_bounds.h"
 
 namespace ssrt::shade {
 
@@ -111,41 +112,62 @@ SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
 inline constexpr float kShadowCreaseTan = 10.0f;
 inline constexpr float kShadowMinCos = 1e-3f;  // tan about 1000
 
+// The squared lengths of the rows a_x, a_y, a_z of the light's clip matrix (column-major m).
+struct ShadowAxes {
+    float ax2, ay2, az2;
+};
+SSRT_INLINE ShadowAxes shadowAxes(const float* m) {
+    return {(m[0] * m[0] + m[4] * m[4]) + m[8] * m[8], (m[1] * m[1] + m[5] * m[5]) + m[9] * m[9],
+            (m[2] * m[2] + m[6] * m[6]) + m[10] * m[10]};
+}
+
+// Where p falls in the shadow map and its receiver's plane there (shadowVisibility).
 template <class L>
-SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L tol, L exactTol,
-                               L tanL) {
-    using IL = ln::IntOf<L>;
+struct ShadowPlane {
+    L u, v;      // p's texel (floored texel coordinates; in the map where inMap)
+    L key;       // p's own depth key
+    L gu, gv;    // the plane's key per texel in u and v
+    L du0, dv0;  // from p to the centre tap's texel centre, in texels
+    ln::MaskOf<L> inMap;
+};
+
+template <class L>
+SSRT_INLINE ShadowPlane<L> shadowPlane(const DirectArgs& a, V3<L> p, V3<L> n, L cosL) {
     const float* m = a.lightViewProj;
     const L cx = ((L(m[0]) * p.x + L(m[4]) * p.y) + L(m[8]) * p.z) + L(m[12]);
     const L cy = ((L(m[1]) * p.x + L(m[5]) * p.y) + L(m[9]) * p.z) + L(m[13]);
     const L cz = ((L(m[2]) * p.x + L(m[6]) * p.y) + L(m[10]) * p.z) + L(m[14]);
-    const float size = float(a.shadowSize);
-    const L s(size);
+    const L s(float(a.shadowSize));
     const L fu = (cx * L(0.5f) + L(0.5f)) * s;
     const L fv = (L(0.5f) - cy * L(0.5f)) * s;
-    const L u = ln::floor(fu);
-    const L v = ln::floor(fv);
-    const L key = L(0.5f) - L(0.5f) * cz;
-    const auto inMap = (u >= L(0.0f)) & (v >= L(0.0f)) & (u < s) & (v < s);
-    if (!ln::any(inMap)) return L(1.0f);
-    // The receiver plane's key per texel (the derivation above); scalars once per call.
-    const float ax2 = (m[0] * m[0] + m[4] * m[4]) + m[8] * m[8];
-    const float ay2 = (m[1] * m[1] + m[5] * m[5]) + m[9] * m[9];
-    const float az2 = (m[2] * m[2] + m[6] * m[6]) + m[10] * m[10];
+    ShadowPlane<L> q;
+    q.u = ln::floor(fu);
+    q.v = ln::floor(fv);
+    q.key = L(0.5f) - L(0.5f) * cz;
+    q.inMap = (q.u >= L(0.0f)) & (q.v >= L(0.0f)) & (q.u < s) & (q.v < s);
+    // The plane's key per texel (the derivation above).
+    const auto [ax2, ay2, az2] = shadowAxes(m);
     const float* l = a.toLight;
     const float azl = ((m[2] * l[0] + m[6] * l[1]) + m[10] * l[2]) / az2;
     const L ncx = (((L(m[0]) * n.x + L(m[4]) * n.y) + L(m[8]) * n.z)) / L(ax2);
     const L ncy = (((L(m[1]) * n.x + L(m[5]) * n.y) + L(m[9]) * n.z)) / L(ay2);
     const L sncz = s * (L(azl) * cosL);
-    const L gu = ncx / sncz;
-    const L gv = (L(0.0f) - ncy) / sncz;
+    q.gu = ncx / sncz;
+    q.gv = (L(0.0f) - ncy) / sncz;
+    q.du0 = (q.u + L(0.5f)) - fu;
+    q.dv0 = (q.v + L(0.5f)) - fv;
+    return q;
+}
+
+// The taps' answer (shadowVisibility), lanes outside the map aside.
+template <class L>
+SSRT_INLINE L shadowTaps(const DirectArgs& a, const ShadowPlane<L>& q, L tol, L exactTol, L tanL) {
+    using IL = ln::IntOf<L>;
     // One texel of depth in key units (the larger texel side), for the crease's reach.
-    const float texelKey = ln::sqrt(az2) / (size * ln::sqrt(ln::min(ax2, ay2)));
+    const auto [ax2, ay2, az2] = shadowAxes(a.lightViewProj);
+    const float texelKey = ln::sqrt(az2) / (float(a.shadowSize) * ln::sqrt(ln::min(ax2, ay2)));
     const int r = a.pcfRadius;
     const L creaseTol = tol + (tanL + L(kShadowCreaseTan)) * L(float(2 * r + 2) * texelKey);
-    // The plane at the centre tap's texel centre, relative to p.
-    const L du0 = (u + L(0.5f)) - fu;
-    const L dv0 = (v + L(0.5f)) - fv;
     const L last(float(a.shadowSize - 1));
     const L zero(0.0f), one(1.0f);
     // Counts of taps (whole numbers, exact in floats): occluders, the far ones among them (a far
@@ -154,12 +176,12 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
     L centreOccluder = zero, centreAbsent = zero;
     for (int dy = -r; dy <= r; ++dy) {
         const IL row =
-            ln::toIntTrunc(ln::clamp(v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
-        const L planeRow = gv * (dv0 + L(float(dy)));
+            ln::toIntTrunc(ln::clamp(q.v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
+        const L planeRow = q.gv * (q.dv0 + L(float(dy)));
         for (int dx = -r; dx <= r; ++dx) {
-            const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), zero, last));
+            const IL col = ln::toIntTrunc(ln::clamp(q.u + L(float(dx)), zero, last));
             const L depth = ln::gather(a.shadowMap, row + col);
-            const L gap = depth - (key + (gu * (du0 + L(float(dx))) + planeRow));
+            const L gap = depth - (q.key + (q.gu * (q.du0 + L(float(dx))) + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;
             occluder = occluder + ln::select(isOccluder, one, zero);
@@ -181,7 +203,68 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
     const auto shadowed = (centreOccluder > zero) | (lone & (occluder > zero));
     // (receivers, near occluders and absent taps: every tap but the far ones)
     const L lit = ln::select(shadowed, exact, taps - far);
-    return ln::select(inMap, lit / taps, one);
+    return lit / taps;
+}
+
+// What the map's depth bounds (DirectArgs::shadowBounds) prove of a lane's taps without
+// reading them: `lit`, no tap is an occluder, so shadowVisibility's answer is taps / taps =
+// 1 exactly; `dark`, every tap is an occluder off the plane by more than exactTol, so the
+// centre is one, p is shadowed and no tap is exact: 0 / taps = +0.
+//
+// Why the bounds hold for the taps' own float gaps, not only for exact ones: rounding to
+// nearest is monotone, so each float operation of a tap's plane key, key + (gu (du0 + dx) +
+// gv (dv0 + dy)), is monotone in its operands (a product in the direction of the other's
+// sign). du0 + dx grows with dx, so gu (du0 + dx) lies between its values at dx = -r and r,
+// as rounded by the same operations; likewise the row's term; so every tap's key lies in
+// [planeLo, planeHi], each side computed by the taps' own operations on the extreme terms.
+// The block's lo and hi bound the depth of every texel a tap reads (the block widened by r,
+// then clamped to the map as the taps are: shading/shadow_bounds.h), so every gap, depth -
+// key, lies in [lo - planeHi, hi - planeLo], once more by monotone rounding. NaN decides
+// nothing: a block with a NaN texel has NaN bounds, and comparisons with NaN are false; a
+// tap's key is NaN only where infinities of opposite signs meet (gu infinite and du0 + dx =
+// 0 can only be the centre tap, |du0| <= 1/2, and then r = 0 and the extremes are that tap),
+// which makes planeLo -inf or NaN and planeHi +inf or NaN, which neither test passes. A tap
+// whose gap is NaN (never with `dark`: depth and key would be equal infinities, and then so
+// would lo or planeHi) is neither an occluder nor far, so `lit` keeps its answer of 1.
+template <class L>
+struct ShadowBound {
+    ln::MaskOf<L> lit, dark;
+};
+
+template <class L>
+SSRT_INLINE ShadowBound<L> shadowBound(const DirectArgs& a, const ShadowPlane<L>& q, L tol,
+                                       L exactTol) {
+    const L zero(0.0f), last(float(a.shadowSize - 1)), perBlock(1.0f / float(kShadowBlock));
+    // p's block, clamped as its taps are (exact: whole numbers under 2^24).
+    const L bu = ln::floor(ln::clamp(q.u, zero, last) * perBlock);
+    const L bv = ln::floor(ln::clamp(q.v, zero, last) * perBlock);
+    L lo, hi;
+    ln::gatherPair(a.shadowBounds, ln::toIntTrunc((bv * L(float(a.shadowBlocks)) + bu) * L(2.0f)),
+                   lo, hi);
+    const float r = float(a.pcfRadius);
+    const L u0 = q.gu * (q.du0 + L(-r)), u1 = q.gu * (q.du0 + L(r));
+    const L v0 = q.gv * (q.dv0 + L(-r)), v1 = q.gv * (q.dv0 + L(r));
+    const L planeLo = q.key + (ln::min(u0, u1) + ln::min(v0, v1));
+    const L planeHi = q.key + (ln::max(u0, u1) + ln::max(v0, v1));
+    const L lowGap = lo - planeHi;
+    ShadowBound<L> b;
+    b.lit = hi - planeLo <= tol;
+    b.dark = (lowGap > tol) & (lowGap > exactTol);
+    return b;
+}
+
+template <class L>
+SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L tol, L exactTol,
+                               L tanL) {
+    const ShadowPlane<L> q = shadowPlane(a, p, n, cosL);
+    if (!ln::any(q.inMap)) return L(1.0f);
+    const L zero(0.0f), one(1.0f);
+    if (a.shadowBounds) {
+        // When the bounds decide every lane, the taps would give the same answers.
+        const ShadowBound<L> b = shadowBound(a, q, tol, exactTol);
+        if (ln::all((b.lit | b.dark) | !q.inMap)) return ln::select(q.inMap & b.dark, zero, one);
+    }
+    return ln::select(q.inMap, shadowTaps(a, q, tol, exactTol, tanL), one);
 }
 
 // Kulla and Conty 2017, "Revisiting Physically Based Shading at Imageworks": the tint of the
