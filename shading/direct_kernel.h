@@ -48,8 +48,9 @@ struct DirectArgs {
     float lightViewProj[16];     // column-major
     float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
     int pcfRadius;
-    // The map's depth bounds for pcfRadius (ShadowBounds::loHi, shading/shadow_bounds.h), with
-    // shadowBlocks blocks per side; null: every pixel reads its taps (the same answers).
+    // The map's depth bounds for pcfRadius (ShadowBounds::block as floats,
+    // shading/shadow_bounds.h), with shadowBlocks blocks per side; null: every pixel reads its taps
+    // (the same answers).
     const float* shadowBounds;
     int shadowBlocks;
     float exposure;

@@ -211,21 +211,23 @@ SSRT_INLINE L shadowTaps(const DirectArgs& a, const ShadowPlane<L>& q, L tol, L 
 // 1 exactly; `dark`, every tap is an occluder off the plane by more than exactTol, so the
 // centre is one, p is shadowed and no tap is exact: 0 / taps = +0.
 //
-// Why the bounds hold for the taps' own float gaps, not only for exact ones: rounding to
-// nearest is monotone, so each float operation of a tap's plane key, key + (gu (du0 + dx) +
-// gv (dv0 + dy)), is monotone in its operands (a product in the direction of the other's
-// sign). du0 + dx grows with dx, so gu (du0 + dx) lies between its values at dx = -r and r,
-// as rounded by the same operations; likewise the row's term; so every tap's key lies in
-// [planeLo, planeHi], each side computed by the taps' own operations on the extreme terms.
-// The block's lo and hi bound the depth of every texel a tap reads (the block widened by r,
-// then clamped to the map as the taps are: shading/shadow_bounds.h), so every gap, depth -
-// key, lies in [lo - planeHi, hi - planeLo], once more by monotone rounding. NaN decides
-// nothing: a block with a NaN texel has NaN bounds, and comparisons with NaN are false; a
-// tap's key is NaN only where infinities of opposite signs meet (gu infinite and du0 + dx =
-// 0 can only be the centre tap, |du0| <= 1/2, and then r = 0 and the extremes are that tap),
-// which makes planeLo -inf or NaN and planeHi +inf or NaN, which neither test passes. A tap
-// whose gap is NaN (never with `dark`: depth and key would be equal infinities, and then so
-// would lo or planeHi) is neither an occluder nor far, so `lit` keeps its answer of 1.
+// In exact arithmetic, with the tap (dx, dy) reading texel (u + dx, v + dy) and the block's
+// depth(X, Y) = off + du X + dv Y, off in [lo, hi] (shading/shadow_bounds.h; X, Y from the
+// block's reference texel, x, y p's texel's), the tap's gap is
+//   depth - (key + gu (du0 + dx) + gv (dv0 + dy)) = off + c + (du - gu) dx + (dv - gv) dy,
+//   c = (du x + dv y) - (gu du0 + gv dv0) - key,
+// so every gap lies within spread = r (|du - gu| + |dv - gv|) of [lo + c, hi + c]: a receiver
+// tilted as the map's surface (du = gu, dv = gv) is bounded as tightly as a flat one. Only
+// lanes whose taps all lie inside the map are decided: clamped taps read other texels.
+//
+// Rounding: the taps' float gap differs from the exact one by at most 6 u (|gu| (|du0| + r) +
+// |gv| (|dv0| + r) + |key| + |depth|) (u = 2^-24: 7 roundings, none of a value past that
+// sum), and |depth| <= |lo| + |hi| + (kShadowBlock / 2 + r) (|du| + |dv|); the bound's own
+// 14 roundings, and the test's, add under 16 u of `size` below, which holds both sums. So a
+// margin of 2^-18 size (64 u, nearly three times the 22 u needed) makes both tests true of
+// the taps' own gaps. NaN and infinities decide nothing: they make `size` NaN or infinite, which
+// fails size < 2^20 (the bound under which no float of the taps overflows; the map's keys are in
+// [0, 1]); 2^-100 in the margin covers the absolute rounding of subnormal results.
 template <class L>
 struct ShadowBound {
     ln::MaskOf<L> lit, dark;
@@ -234,22 +236,31 @@ struct ShadowBound {
 template <class L>
 SSRT_INLINE ShadowBound<L> shadowBound(const DirectArgs& a, const ShadowPlane<L>& q, L tol,
                                        L exactTol) {
-    const L zero(0.0f), last(float(a.shadowSize - 1)), perBlock(1.0f / float(kShadowBlock));
-    // p's block, clamped as its taps are (exact: whole numbers under 2^24).
+    const L zero(0.0f), last(float(a.shadowSize - 1)), r(float(a.pcfRadius));
+    // p's block, and p's texel from the block's reference texel (whole numbers: exact).
+    const L side = L(float(kShadowBlock)), perBlock = L(1.0f / float(kShadowBlock));
     const L bu = ln::floor(ln::clamp(q.u, zero, last) * perBlock);
     const L bv = ln::floor(ln::clamp(q.v, zero, last) * perBlock);
-    L lo, hi;
-    ln::gatherPair(a.shadowBounds, ln::toIntTrunc((bv * L(float(a.shadowBlocks)) + bu) * L(2.0f)),
-                   lo, hi);
-    const float r = float(a.pcfRadius);
-    const L u0 = q.gu * (q.du0 + L(-r)), u1 = q.gu * (q.du0 + L(r));
-    const L v0 = q.gv * (q.dv0 + L(-r)), v1 = q.gv * (q.dv0 + L(r));
-    const L planeLo = q.key + (ln::min(u0, u1) + ln::min(v0, v1));
-    const L planeHi = q.key + (ln::max(u0, u1) + ln::max(v0, v1));
-    const L lowGap = lo - planeHi;
+    const L x = q.u - (bu * side + L(float(kShadowBlock / 2)));
+    const L y = q.v - (bv * side + L(float(kShadowBlock / 2)));
+    const auto index = ln::toIntTrunc((bv * L(float(a.shadowBlocks)) + bu) * L(4.0f));
+    L lo, hi, du, dv;  // ShadowBlockBounds
+    ln::gatherPair(a.shadowBounds, index, lo, hi);
+    ln::gatherPair(a.shadowBounds + 2, index, du, dv);
+    const L c = ((du * x + dv * y) - (q.gu * q.du0 + q.gv * q.dv0)) - q.key;
+    const L spread = r * (ln::abs(du - q.gu) + ln::abs(dv - q.gv));
+    const L size = (((ln::abs(lo) + ln::abs(hi)) +
+                     (L(float(kShadowBlock / 2)) + r) * (ln::abs(du) + ln::abs(dv))) +
+                    (ln::abs(q.gu) * (ln::abs(q.du0) + r) + ln::abs(q.gv) * (ln::abs(q.dv0) + r))) +
+                   ln::abs(q.key);
+    const L margin = (size + L(0x1p-100f)) * L(0x1p-18f);
+    const auto sure =
+        (size < L(0x1p20f)) & (q.u >= r) & (q.v >= r) & (q.u <= last - r) & (q.v <= last - r);
+    const L highGap = ((hi + c) + spread) + margin;
+    const L lowGap = ((lo + c) - spread) - margin;
     ShadowBound<L> b;
-    b.lit = hi - planeLo <= tol;
-    b.dark = (lowGap > tol) & (lowGap > exactTol);
+    b.lit = sure & (highGap <= tol);
+    b.dark = sure & (lowGap > tol) & (lowGap > exactTol);
     return b;
 }
 
