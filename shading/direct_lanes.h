@@ -312,6 +312,7 @@ template <class L>
 SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
     const L zero(0.0f), one(1.0f);
     const L NoLraw = ln::dot(s.n, splat3<L>(a.toLight));
+    if (!ln::any(NoLraw > zero)) return zero;  // every lane faces away: no taps to read
     const L cosL = ln::max(NoLraw, L(kShadowMinCos));
     const L tanL = ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL;
     const L tol = L(a.biasConst) + L(a.biasSlope) * tanL;
