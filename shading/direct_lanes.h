@@ -111,6 +111,7 @@ SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
 // before. The counts are whole numbers of taps: every ISA adds them in the same bits.
 inline constexpr float kShadowCreaseTan = 10.0f;
 inline constexpr float kShadowMinCos = 1e-3f;  // tan about 1000
+inline constexpr int kShadowMaxTaps = 17;      // per side: pcfRadius <= 8 (the settings')
 
 // The squared lengths of the rows a_x, a_y, a_z of the light's clip matrix (column-major m).
 struct ShadowAxes {
@@ -174,14 +175,20 @@ SSRT_INLINE L shadowTaps(const DirectArgs& a, const ShadowPlane<L>& q, L tol, L 
     // tap is an occluder: creaseTol > tol), absent, and exact; the receivers are the rest.
     L occluder = zero, far = zero, absent = zero, exact = zero;
     L centreOccluder = zero, centreAbsent = zero;
+    // Per column of taps, the same in every row: its texel and its term of the plane key.
+    IL col[kShadowMaxTaps];
+    L planeCol[kShadowMaxTaps];
+    for (int dx = -r; dx <= r; ++dx) {
+        col[dx + r] = ln::toIntTrunc(ln::clamp(q.u + L(float(dx)), zero, last));
+        planeCol[dx + r] = q.gu * (q.du0 + L(float(dx)));
+    }
     for (int dy = -r; dy <= r; ++dy) {
         const IL row =
             ln::toIntTrunc(ln::clamp(q.v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
         const L planeRow = q.gv * (q.dv0 + L(float(dy)));
         for (int dx = -r; dx <= r; ++dx) {
-            const IL col = ln::toIntTrunc(ln::clamp(q.u + L(float(dx)), zero, last));
-            const L depth = ln::gather(a.shadowMap, row + col);
-            const L gap = depth - (q.key + (q.gu * (q.du0 + L(float(dx))) + planeRow));
+            const L depth = ln::gather(a.shadowMap, row + col[dx + r]);
+            const L gap = depth - (q.key + (planeCol[dx + r] + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;
             occluder = occluder + ln::select(isOccluder, one, zero);
