@@ -1,6 +1,6 @@
 #include "shading/shadow_bounds.h"
 
-#include <vector>
+#include <memory>
 
 #include "core/tiles.h"
 
@@ -13,8 +13,9 @@ void buildShadowBounds(const float* map, std::size_t stride, int size, int radiu
     out.block.resize(std::size_t(n) * std::size_t(n));
     const auto row = SSRT_DISPATCH(isa, boundShadowBlockRow);
     parallelFor(n, threads, [&](int by) {
-        std::vector<float> work(shadowBoundsWork(size));
-        row(map, stride, size, radius, by, work.data(), out.block.data() + std::size_t(by) * n);
+        // (uninitialised: the kernel writes each of its floats before it reads it)
+        const auto work = std::make_unique_for_overwrite<float[]>(shadowBoundsWork(size));
+        row(map, stride, size, radius, by, work.get(), out.block.data() + std::size_t(by) * n);
     });
 }
 
