@@ -32,7 +32,9 @@ struct ShadowBounds {
 // The bounds of the size x size map (row stride `stride`) for PCF radius `radius`, by the
 // given ISA's kernel (every ISA makes the same bits) on `threads` threads (0 = all cores).
 // Made once per frame: it reads the map once, and the 2 radius rows that neighbouring block
-// rows share once more each, and writes 16 bytes per block (1/16 of the map's bytes).
+// rows share once more each, and writes 16 bytes per block (1/16 of the map's bytes). For the
+// default 2048^2 map and radius 1: 33.5M instructions (callgrind, AVX2), 1.8 to 3.2 ms on 2
+// shared cores (AVX-512); the direct pass at 1920x1080, this included, took 3 to 6 ms less.
 void buildShadowBounds(const float* map, std::size_t stride, int size, int radius, Isa isa,
                        int threads, ShadowBounds& out);
 
