@@ -43,6 +43,10 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.biasConst = s.shadowBias * shadow.texelSize / shadow.depthRange;
     da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
     da.pcfRadius = s.pcfRadius;
+    buildShadowBounds(da.shadowMap, da.shadowStride, da.shadowSize, da.pcfRadius, resolveIsa(s.isa),
+                      s.threads, out.shadowBounds);
+    da.shadowBounds = &out.shadowBounds.block.data()->lo;
+    da.shadowBlocks = out.shadowBounds.blocks;
     da.exposure = s.exposure;
     // The GGX energy tables of the specular (multiple scattering, DFG).
     da.energy = &energyTables();

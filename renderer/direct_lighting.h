@@ -12,6 +12,7 @@
 #include "renderer/sky_lighting.h"
 #include "scenes/scene.h"
 #include "shading/direct_kernel.h"
+#include "shading/shadow_bounds.h"
 
 namespace ssrt {
 
@@ -20,6 +21,7 @@ struct DirectLighting {
     DirectArgs args{};                       // lighting and shadow fields set; the rest left zero
     std::vector<float> emissive;             // args.emissive: 3 per material
     std::shared_ptr<const SkyLighting> sky;  // args.envLevel's pixels (Sky::Kind::Image)
+    ShadowBounds shadowBounds;               // args.shadowBounds
 
     DirectLighting() = default;
     DirectLighting(const DirectLighting&) = delete;
@@ -28,8 +30,9 @@ struct DirectLighting {
 
 // Fills out.args' sun, sky (analytic, or the image's levels and irradiance from `sky`, which
 // must be cachedSkyLighting(scene.sky.image) for an image sky), emission and shadow-map fields
-// from the scene, the render settings and the frame's shadow map (which must outlive `out`),
-// and the stored energy tables (args.energy). Camera, G-buffer, outputs and parts are the
+// from the scene, the render settings and the frame's shadow map (which must outlive `out`;
+// its depth bounds are made here, on settings.threads), and the stored energy tables
+// (args.energy). Camera, G-buffer, outputs and parts are the
 // caller's.
 void setDirectLighting(const Scene& scene, const RenderSettings& settings, const ShadowMap& shadow,
                        std::shared_ptr<const SkyLighting> sky, DirectLighting& out);

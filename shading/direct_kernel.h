@@ -48,6 +48,11 @@ struct DirectArgs {
     float lightViewProj[16];     // column-major
     float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
     int pcfRadius;
+    // The map's depth bounds for pcfRadius (ShadowBounds::block as floats,
+    // shading/shadow_bounds.h), with shadowBlocks blocks per side; null: every pixel reads its taps
+    // (the same answers).
+    const float* shadowBounds;
+    int shadowBlocks;
     float exposure;
     // Outputs (outStride; renderer/resources.cpp's Res::Color, Display and Shadow say what each
     // holds): colour (linear), display (tone mapped, sRGB) and the sun's shadow. The display may be

@@ -13,6 +13,7 @@
 #include "shading/environment.h"
 #include "shading/irradiance_sh.h"
 #include "shading/multiscatter.h"
+#include "shading/shadow_bounds.h"
 
 namespace ssrt::shade {
 
@@ -110,56 +111,84 @@ SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
 // before. The counts are whole numbers of taps: every ISA adds them in the same bits.
 inline constexpr float kShadowCreaseTan = 10.0f;
 inline constexpr float kShadowMinCos = 1e-3f;  // tan about 1000
+inline constexpr int kShadowMaxTaps = 17;      // per side: pcfRadius <= 8 (the settings')
+
+// The squared lengths of the rows a_x, a_y, a_z of the light's clip matrix (column-major m).
+struct ShadowAxes {
+    float ax2, ay2, az2;
+};
+SSRT_INLINE ShadowAxes shadowAxes(const float* m) {
+    return {(m[0] * m[0] + m[4] * m[4]) + m[8] * m[8], (m[1] * m[1] + m[5] * m[5]) + m[9] * m[9],
+            (m[2] * m[2] + m[6] * m[6]) + m[10] * m[10]};
+}
+
+// Where p falls in the shadow map and its receiver's plane there (shadowVisibility).
+template <class L>
+struct ShadowPlane {
+    L u, v;      // p's texel (floored texel coordinates; in the map where inMap)
+    L key;       // p's own depth key
+    L gu, gv;    // the plane's key per texel in u and v
+    L du0, dv0;  // from p to the centre tap's texel centre, in texels
+    ln::MaskOf<L> inMap;
+};
 
 template <class L>
-SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L tol, L exactTol,
-                               L tanL) {
-    using IL = ln::IntOf<L>;
+SSRT_INLINE ShadowPlane<L> shadowPlane(const DirectArgs& a, V3<L> p, V3<L> n, L cosL) {
     const float* m = a.lightViewProj;
     const L cx = ((L(m[0]) * p.x + L(m[4]) * p.y) + L(m[8]) * p.z) + L(m[12]);
     const L cy = ((L(m[1]) * p.x + L(m[5]) * p.y) + L(m[9]) * p.z) + L(m[13]);
     const L cz = ((L(m[2]) * p.x + L(m[6]) * p.y) + L(m[10]) * p.z) + L(m[14]);
-    const float size = float(a.shadowSize);
-    const L s(size);
+    const L s(float(a.shadowSize));
     const L fu = (cx * L(0.5f) + L(0.5f)) * s;
     const L fv = (L(0.5f) - cy * L(0.5f)) * s;
-    const L u = ln::floor(fu);
-    const L v = ln::floor(fv);
-    const L key = L(0.5f) - L(0.5f) * cz;
-    const auto inMap = (u >= L(0.0f)) & (v >= L(0.0f)) & (u < s) & (v < s);
-    if (!ln::any(inMap)) return L(1.0f);
-    // The receiver plane's key per texel (the derivation above); scalars once per call.
-    const float ax2 = (m[0] * m[0] + m[4] * m[4]) + m[8] * m[8];
-    const float ay2 = (m[1] * m[1] + m[5] * m[5]) + m[9] * m[9];
-    const float az2 = (m[2] * m[2] + m[6] * m[6]) + m[10] * m[10];
+    ShadowPlane<L> q;
+    q.u = ln::floor(fu);
+    q.v = ln::floor(fv);
+    q.key = L(0.5f) - L(0.5f) * cz;
+    q.inMap = (q.u >= L(0.0f)) & (q.v >= L(0.0f)) & (q.u < s) & (q.v < s);
+    // The plane's key per texel (the derivation above).
+    const auto [ax2, ay2, az2] = shadowAxes(m);
     const float* l = a.toLight;
     const float azl = ((m[2] * l[0] + m[6] * l[1]) + m[10] * l[2]) / az2;
     const L ncx = (((L(m[0]) * n.x + L(m[4]) * n.y) + L(m[8]) * n.z)) / L(ax2);
     const L ncy = (((L(m[1]) * n.x + L(m[5]) * n.y) + L(m[9]) * n.z)) / L(ay2);
     const L sncz = s * (L(azl) * cosL);
-    const L gu = ncx / sncz;
-    const L gv = (L(0.0f) - ncy) / sncz;
+    q.gu = ncx / sncz;
+    q.gv = (L(0.0f) - ncy) / sncz;
+    q.du0 = (q.u + L(0.5f)) - fu;
+    q.dv0 = (q.v + L(0.5f)) - fv;
+    return q;
+}
+
+// The taps' answer (shadowVisibility), lanes outside the map aside.
+template <class L>
+SSRT_INLINE L shadowTaps(const DirectArgs& a, const ShadowPlane<L>& q, L tol, L exactTol, L tanL) {
+    using IL = ln::IntOf<L>;
     // One texel of depth in key units (the larger texel side), for the crease's reach.
-    const float texelKey = ln::sqrt(az2) / (size * ln::sqrt(ln::min(ax2, ay2)));
+    const auto [ax2, ay2, az2] = shadowAxes(a.lightViewProj);
+    const float texelKey = ln::sqrt(az2) / (float(a.shadowSize) * ln::sqrt(ln::min(ax2, ay2)));
     const int r = a.pcfRadius;
     const L creaseTol = tol + (tanL + L(kShadowCreaseTan)) * L(float(2 * r + 2) * texelKey);
-    // The plane at the centre tap's texel centre, relative to p.
-    const L du0 = (u + L(0.5f)) - fu;
-    const L dv0 = (v + L(0.5f)) - fv;
     const L last(float(a.shadowSize - 1));
     const L zero(0.0f), one(1.0f);
     // Counts of taps (whole numbers, exact in floats): occluders, the far ones among them (a far
     // tap is an occluder: creaseTol > tol), absent, and exact; the receivers are the rest.
     L occluder = zero, far = zero, absent = zero, exact = zero;
     L centreOccluder = zero, centreAbsent = zero;
+    // Per column of taps, the same in every row: its texel and its term of the plane key.
+    IL col[kShadowMaxTaps];
+    L planeCol[kShadowMaxTaps];
+    for (int dx = -r; dx <= r; ++dx) {
+        col[dx + r] = ln::toIntTrunc(ln::clamp(q.u + L(float(dx)), zero, last));
+        planeCol[dx + r] = q.gu * (q.du0 + L(float(dx)));
+    }
     for (int dy = -r; dy <= r; ++dy) {
         const IL row =
-            ln::toIntTrunc(ln::clamp(v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
-        const L planeRow = gv * (dv0 + L(float(dy)));
+            ln::toIntTrunc(ln::clamp(q.v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
+        const L planeRow = q.gv * (q.dv0 + L(float(dy)));
         for (int dx = -r; dx <= r; ++dx) {
-            const IL col = ln::toIntTrunc(ln::clamp(u + L(float(dx)), zero, last));
-            const L depth = ln::gather(a.shadowMap, row + col);
-            const L gap = depth - (key + (gu * (du0 + L(float(dx))) + planeRow));
+            const L depth = ln::gather(a.shadowMap, row + col[dx + r]);
+            const L gap = depth - (q.key + (planeCol[dx + r] + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;
             occluder = occluder + ln::select(isOccluder, one, zero);
@@ -181,7 +210,79 @@ SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L 
     const auto shadowed = (centreOccluder > zero) | (lone & (occluder > zero));
     // (receivers, near occluders and absent taps: every tap but the far ones)
     const L lit = ln::select(shadowed, exact, taps - far);
-    return ln::select(inMap, lit / taps, one);
+    return lit / taps;
+}
+
+// What the map's depth bounds (DirectArgs::shadowBounds) prove of a lane's taps without
+// reading them: `lit`, no tap is an occluder, so shadowVisibility's answer is taps / taps =
+// 1 exactly; `dark`, every tap is an occluder off the plane by more than exactTol, so the
+// centre is one, p is shadowed and no tap is exact: 0 / taps = +0.
+//
+// In exact arithmetic, with the tap (dx, dy) reading texel (u + dx, v + dy) and the block's
+// depth(X, Y) = off + du X + dv Y, off in [lo, hi] (shading/shadow_bounds.h; X, Y from the
+// block's reference texel, x, y p's texel's), the tap's gap is
+//   depth - (key + gu (du0 + dx) + gv (dv0 + dy)) = off + c + (du - gu) dx + (dv - gv) dy,
+//   c = (du x + dv y) - (gu du0 + gv dv0) - key,
+// so every gap lies within spread = r (|du - gu| + |dv - gv|) of [lo + c, hi + c]: a receiver
+// tilted as the map's surface (du = gu, dv = gv) is bounded as tightly as a flat one. Only
+// lanes whose taps all lie inside the map are decided: clamped taps read other texels.
+//
+// Rounding: the taps' float gap differs from the exact one by at most 6 u (|gu| (|du0| + r) +
+// |gv| (|dv0| + r) + |key| + |depth|) (u = 2^-24: 7 roundings, none of a value past that
+// sum), and |depth| <= |lo| + |hi| + (kShadowBlock / 2 + r) (|du| + |dv|); the bound's own
+// 14 roundings, and the test's, add under 16 u of `size` below, which holds both sums. So a
+// margin of 2^-18 size (64 u, nearly three times the 22 u needed) makes both tests true of
+// the taps' own gaps. NaN and infinities decide nothing: they make `size` NaN or infinite, which
+// fails size < 2^20 (the bound under which no float of the taps overflows; the map's keys are in
+// [0, 1]); 2^-100 in the margin covers the absolute rounding of subnormal results.
+template <class L>
+struct ShadowBound {
+    ln::MaskOf<L> lit, dark;
+};
+
+template <class L>
+SSRT_INLINE ShadowBound<L> shadowBound(const DirectArgs& a, const ShadowPlane<L>& q, L tol,
+                                       L exactTol) {
+    const L zero(0.0f), last(float(a.shadowSize - 1)), r(float(a.pcfRadius));
+    // p's block, and p's texel from the block's reference texel (whole numbers: exact).
+    const L side = L(float(kShadowBlock)), perBlock = L(1.0f / float(kShadowBlock));
+    const L bu = ln::floor(ln::clamp(q.u, zero, last) * perBlock);
+    const L bv = ln::floor(ln::clamp(q.v, zero, last) * perBlock);
+    const L x = q.u - (bu * side + L(float(kShadowBlock / 2)));
+    const L y = q.v - (bv * side + L(float(kShadowBlock / 2)));
+    const auto index = ln::toIntTrunc((bv * L(float(a.shadowBlocks)) + bu) * L(4.0f));
+    L lo, hi, du, dv;  // ShadowBlockBounds
+    ln::gatherPair(a.shadowBounds, index, lo, hi);
+    ln::gatherPair(a.shadowBounds + 2, index, du, dv);
+    const L c = ((du * x + dv * y) - (q.gu * q.du0 + q.gv * q.dv0)) - q.key;
+    const L spread = r * (ln::abs(du - q.gu) + ln::abs(dv - q.gv));
+    const L size = (((ln::abs(lo) + ln::abs(hi)) +
+                     (L(float(kShadowBlock / 2)) + r) * (ln::abs(du) + ln::abs(dv))) +
+                    (ln::abs(q.gu) * (ln::abs(q.du0) + r) + ln::abs(q.gv) * (ln::abs(q.dv0) + r))) +
+                   ln::abs(q.key);
+    const L margin = (size + L(0x1p-100f)) * L(0x1p-18f);
+    const auto sure =
+        (size < L(0x1p20f)) & (q.u >= r) & (q.v >= r) & (q.u <= last - r) & (q.v <= last - r);
+    const L highGap = ((hi + c) + spread) + margin;
+    const L lowGap = ((lo + c) - spread) - margin;
+    ShadowBound<L> b;
+    b.lit = sure & (highGap <= tol);
+    b.dark = sure & (lowGap > tol) & (lowGap > exactTol);
+    return b;
+}
+
+template <class L>
+SSRT_INLINE L shadowVisibility(const DirectArgs& a, V3<L> p, V3<L> n, L cosL, L tol, L exactTol,
+                               L tanL) {
+    const ShadowPlane<L> q = shadowPlane(a, p, n, cosL);
+    if (!ln::any(q.inMap)) return L(1.0f);
+    const L zero(0.0f), one(1.0f);
+    if (a.shadowBounds) {
+        // When the bounds decide every lane, the taps would give the same answers.
+        const ShadowBound<L> b = shadowBound(a, q, tol, exactTol);
+        if (ln::all((b.lit | b.dark) | !q.inMap)) return ln::select(q.inMap & b.dark, zero, one);
+    }
+    return ln::select(q.inMap, shadowTaps(a, q, tol, exactTol, tanL), one);
 }
 
 // Kulla and Conty 2017, "Revisiting Physically Based Shading at Imageworks": the tint of the
@@ -218,6 +319,7 @@ template <class L>
 SSRT_INLINE L shadowMapVisibility(const DirectArgs& a, const Surface<L>& s) {
     const L zero(0.0f), one(1.0f);
     const L NoLraw = ln::dot(s.n, splat3<L>(a.toLight));
+    if (!ln::any(NoLraw > zero)) return zero;  // every lane faces away: no taps to read
     const L cosL = ln::max(NoLraw, L(kShadowMinCos));
     const L tanL = ln::sqrt(ln::max(one - cosL * cosL, zero)) / cosL;
     const L tol = L(a.biasConst) + L(a.biasSlope) * tanL;
