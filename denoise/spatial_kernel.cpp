@@ -50,7 +50,8 @@ struct SpatialPixel {
     Centre p;
     Lane radius;  // the pixel's own, in pixels
     Lane hitWorld, invPlane, normalScale, roughScale, hitScale, minHit, contactFree;
-    Lane frames;  // the accumulation speed (the pre-blur's: 10)
+    Lane hitRoughness;  // the hit-distance scale's roughness factor (rb::hitDistanceRoughness)
+    Lane frames;        // the accumulation speed (the pre-blur's: 10)
 };
 
 void storeSpatial(const ReblurPassArgs& a, std::size_t o, const Lane s[4]) {
@@ -77,7 +78,9 @@ bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
     const Lane one(1.0f);
     const bool pre = a.pass == ReblurSpatial::PreBlur;
     const Lane alpha = one / (one + frames);
-    const Lane hitWorld = q.hitWorld = q.c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+    q.hitRoughness = rb::hitDistanceRoughness(v.hitScale, p.r);
+    const Lane hitWorld = q.hitWorld =
+        q.c[3] * rb::hitDistanceScaleWith(v.hitScale, p.z, q.hitRoughness);
     const Lane hitFactor = ln::saturate(hitWorld / (Lane(v.frustum) * p.z));
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
     Lane radius;
@@ -129,12 +132,13 @@ void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const f
     const bool spec = a.specular, pre = a.pass == ReblurSpatial::PreBlur;
     const Centre& p = q.p;
     const Lane zero(0.0f), one(1.0f);
+    const ViewRays rays(v);
     for (int k = 0; k < 8; ++k) {
         const Tap t = tapAt(v, p.px + Lane(ox[k]), p.py + Lane(oy[k]));
         const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
         const Mask ok = lanes & t.inside & (zs > zero);
         if (!ln::any(ok)) continue;
-        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 xs = rays.at(t.x, t.y, zs);
         const V3 ns{ln::gather(v.normal[0], t.index, t.run),
                     ln::gather(v.normal[1], t.index, t.run),
                     ln::gather(v.normal[2], t.index, t.run)};
@@ -151,7 +155,7 @@ void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const f
         if (spec && pre) {
             const V3 d = xs - p.x;
             const Lane dist = ln::sqrt(ln::dot(d, d));
-            const Lane hs = s[3] * rb::hitDistanceScale(v.hitScale, zs, p.r);
+            const Lane hs = s[3] * rb::hitDistanceScaleWith(v.hitScale, zs, q.hitRoughness);
             w = w * rb::lerp(ln::saturate(hs / (dist + q.hitWorld + Lane(rb::kEps))), one,
                              q.contactFree);
         }
