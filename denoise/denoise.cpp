@@ -344,25 +344,30 @@ void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
             spatial(c, specular, ReblurSpatial::PostBlur, current[k], out, history, frames[k]);
         run[k] = &args[k];
     }
-    // (Its time includes the history's commit of each tile, commitHistoryTile; the "history"
-    // line is what is left of the commit, finishHistory.)
+    // The history length the EXR shows: frames behind each pixel (copied tile by tile after
+    // the tile's post-blur, which reads the speeds and not the outputs' copy of them).
+    PlaneF* const framesOut[2] = {&c.out.diffuseFrames, &c.out.specularFrames};
+    bool lengths[2] = {};
+    for (int k = 0; k < 2; ++k) {
+        if (!on[k] || !c.in.historyLengths) continue;
+        if (frames[k]) lengths[k] = true;
+        else framesOut[k]->fill(0.0f);
+    }
+    // (Its time includes, per tile, the history lengths' copy and the history's commit,
+    // commitHistoryTile; the "history" line is what is left of the commit, finishHistory.)
     times.run("post-blur", [&] {
         runPass(c, SSRT_DISPATCH(c.isa, reblurSpatialTile), run, [&](int tile) {
+            const TileRect r = c.grid.rect(tile);
+            for (int k = 0; k < 2; ++k)
+                if (lengths[k])
+                    for (int y = r.y0; y < r.y1; ++y)
+                        std::copy(frames[k]->row(y) + r.x0, frames[k]->row(y) + r.x1,
+                                  framesOut[k]->row(y) + r.x0);
             if (c.next) commitHistoryTile(c, tile);
         });
     });
-    for (int k = 0; k < 2; ++k) {
-        if (!on[k]) continue;
-        pool.give(*current[k]);
-        // The history length the EXR shows: frames behind each pixel.
-        if (!c.in.historyLengths) continue;
-        PlaneF& framesOut = k == 1 ? c.out.specularFrames : c.out.diffuseFrames;
-        if (!frames[k]) {
-            framesOut.fill(0.0f);
-            continue;
-        }
-        for (int y = 0; y < h; ++y) std::copy_n(frames[k]->row(y), w, framesOut.row(y));
-    }
+    for (int k = 0; k < 2; ++k)
+        if (on[k]) pool.give(*current[k]);
 }
 
 // A scratch plane sized for the signals present (`on`), from the pool where there is one.
