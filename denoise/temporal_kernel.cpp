@@ -239,9 +239,12 @@ SSRT_INLINE History finiteHistory(History h) {
 }
 
 // Reads the history at previous-frame pixel position (qx, qy): testFootprint's occlusion
-// test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass.
+// test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass. (One copy per
+// kind of read: the surface's and the virtual one's branches and unused taps are left out of
+// each.)
+template <bool surface>
 History readHistory(const ReblurPassArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
-                    bool surface, Lane zExpected, V3 xw, Lane threshold) {
+                    Lane zExpected, V3 xw, Lane threshold) {
     const Lane one(1.0f);
     const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
     // The footprint's signals, read once for both filters: the whole 4x4 where a lane takes
@@ -301,7 +304,7 @@ SSRT_INLINE void virtualMotion(const ReblurPassArgs& a, const Centre& p, Mask va
         ((pv.x / safe) / Lane(a.frame.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
     const Lane vy =
         (one - (pv.y / safe) / Lane(a.frame.prevTanHalfY)) * Lane(0.5f * float(v.height));
-    History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+    History hv = readHistory<false>(a, p, valid & front, vx, vy, zero, xw, threshold);
     // The virtual point is exact for a flat mirror only: where the history's normal turned,
     // the reflection turned twice as far (REBLUR's normal confidence).
     const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
@@ -374,7 +377,7 @@ void temporalChunk(const ReblurPassArgs& a, int x, int y) {
     const Lane threshold = Lane(v.frustum) * p.z *
                            ln::saturate(Lane(a.frame.disocclusion + 1.0f / float(v.height)) /
                                         ln::max(Lane(0.01f), p.noV));
-    History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
+    History h = readHistory<true>(a, p, valid, qx, qy, zExpected, xw, threshold);
     const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
     if (spec && a.frame.virtualMotion)
         virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
