@@ -20,11 +20,12 @@ using namespace reblur_lanes;
 // specular pixel reaches (2 strides) no farther than its reflection's lobe spans
 // (specularLobePixels), and one whose lobe spans less than 2 pixels keeps its own signal: its
 // neighbours show other parts of the reflection (a mirror's: issue 44), and a lobe that narrow
-// gives the signal little noise to remove.
+// gives the signal little noise to remove. (One copy per signal, a.specular: each leaves out
+// the other's branches.)
+template <bool spec>
 void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int x, int y,
                       const Lane frames, const Lane c[4], Lane result[4]) {
     const ReblurFrame& v = a.frame;
-    const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
     Lane stride = ln::floor(Lane(a.frame.historyFixStride) / (Lane(2.0f) + frames) *
@@ -147,7 +148,8 @@ void historyFixChunk(const ReblurPassArgs& a, int x, int y) {
     // (The centre's guides only where a pixel is young: most chunks of a converged frame have
     // none, and the clamp needs only the pixels' positions.)
     if (ln::any(young))
-        reconstructYoung(a, centreAt(v, x, y, o, spec), young, x, y, frames, c, result);
+        (spec ? reconstructYoung<true> : reconstructYoung<false>)(a, centreAt(v, x, y, o, spec),
+                                                                  young, x, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
         clampToFast(a, valid, x, y, o, frames, result);
     storeAt(a.out, o, result);

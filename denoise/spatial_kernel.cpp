@@ -125,11 +125,12 @@ constexpr float kLonelyRadius = 2.0f;
 constexpr float kLonelyFrames = 4.0f;
 
 // The 8 taps at offsets (ox[k], oy[k] in pixels) around the lanes `lanes` of pixels q, added to
-// sum and weightSum.
-void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
-             const float* oy, Lane sum[4], Lane& weightSum) {
+// sum and weightSum. (One copy per signal and per pre-blur or not, a.specular and a.pass: each
+// leaves out the others' branches.)
+template <bool spec, bool pre>
+void addTapsOf(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
+               const float* oy, Lane sum[4], Lane& weightSum) {
     const ReblurFrame& v = a.frame;
-    const bool spec = a.specular, pre = a.pass == ReblurSpatial::PreBlur;
     const Centre& p = q.p;
     const Lane zero(0.0f), one(1.0f);
     const ViewRays rays(v);
@@ -165,10 +166,16 @@ void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const f
     }
 }
 
+using AddTaps = void (*)(const ReblurPassArgs&, const SpatialPixel&, Mask, const float*,
+                         const float*, Lane*, Lane&);
+
 // The 8 taps at the group's offsets (ox[k], oy[k] in pixels, of radius r) around pixels q,
 // and the lonely pixels' second ring.
 void spatialFilter(const ReblurPassArgs& a, const SpatialPixel& q, const float* ox, const float* oy,
                    float r) {
+    const bool pre = a.pass == ReblurSpatial::PreBlur;
+    const AddTaps addTaps = a.specular ? (pre ? addTapsOf<true, true> : addTapsOf<true, false>)
+                                       : (pre ? addTapsOf<false, true> : addTapsOf<false, false>);
     const Lane one(1.0f);
     Lane sum[4] = {q.c[0], q.c[1], q.c[2], q.c[3]};
     Lane weightSum = one;
