@@ -217,19 +217,68 @@ ReblurPassArgs historyFix(Context& c, bool specular, const PlaneU64* in, PlaneU6
 using PassKernel = void (*)(const ReblurPassArgs&, int);
 
 // One pass over the signals in `args` (null: that signal skips it) in one loop over the
-// tiles: a tile goes through the diffuse's kernel, then the specular's. Each kernel writes only
-// its own signal's planes, so the bits are those of one signal's pass after the other's.
-void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2]) {
+// tiles: a tile goes through the diffuse's kernel, then the specular's, then `afterTile`
+// (the post-blur's: the history's commit). Each kernel writes only its own signal's planes, so
+// the bits are those of one signal's pass after the other's.
+template <class AfterTile>
+void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2],
+             const AfterTile& afterTile) {
     parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
         for (const ReblurPassArgs* a : args)
             if (a) fn(*a, tile);
+        afterTile(tile);
     });
+}
+void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2]) {
+    runPass(c, fn, args, [](int) {});
+}
+
+// The history's guides and accumulation speeds (+ 1: the next frame's count includes this
+// one) of one tile, for the next frame: run on each tile right after its post-blur (the
+// tile's guides and speeds still in cache), not in a loop of its own. It reads the G-buffer,
+// the signals' masks and this frame's speeds, which no pass writes after the temporal one, and
+// writes the history's guides and speeds, which only the temporal pass reads (the post-blur
+// reads neither, and the history's signals it writes itself), so the bits are those of a
+// commit after the post-blur.
+void commitHistoryTile(const Context& c, int tile) {
+    DenoiseHistory& h = *c.next;
+    const DenoiseInputs& in = c.in;
+    PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
+    const bool signals[2] = {in.hasDiffuse(), in.hasSpecular()};
+    const TileRect r = c.grid.rect(tile);
+    for (int y = r.y0; y < r.y1; ++y) {
+        const std::size_t o = std::size_t(y) * in.g.stride;
+        const auto copyRow = [&](const float* src, PlaneF& dst) {
+            std::copy(src + o + r.x0, src + o + r.x1, dst.row(y) + r.x0);
+        };
+        copyRow(in.g.viewZ, h.viewZ);
+        for (int i = 0; i < 3; ++i) copyRow(in.g.normal[i], h.normal[i]);
+        if (signals[1]) copyRow(in.g.roughness, h.roughness);
+        for (int k = 0; k < 2; ++k) {
+            if (!signals[k]) continue;
+            const float* a = c.sc.frames[k].row(y);
+            const float* m = c.sc.signalZ[k].row(y);  // 0: no pixel
+            float* out = frames[k]->row(y);
+            for (int x = r.x0; x < r.x1; ++x) out[x] = m[x] > 0.0f ? a[x] + 1.0f : 0.0f;
+        }
+    }
+}
+
+// The rest of the history's commit, once the post-blur has committed every tile's: the fast
+// histories (this frame's planes, swapped in) and the camera.
+void finishHistory(Context& c) {
+    DenoiseHistory& h = *c.next;
+    if (c.in.hasDiffuse()) std::swap(h.diffuseFast, c.sc.fast[0]);
+    if (c.in.hasSpecular()) std::swap(h.specularFast, c.sc.fast[1]);
+    h.camera = c.in.camera;
+    h.valid = true;
 }
 
 // The signals through every pass after the front end, each pass once over both (runPass); the
-// post-blur writes the outputs and the history. A pass's result is a resource named for it
-// (DenoiseScratch), taken from the pool as the pass starts; the pass's input goes back to the
-// pool once it has run, where the next pass's result takes its memory.
+// post-blur writes the outputs and the history (its signals, and tile by tile its guides and
+// speeds: commitHistoryTile). A pass's result is a resource named for it (DenoiseScratch),
+// taken from the pool as the pass starts; the pass's input goes back to the pool once it has
+// run, where the next pass's result takes its memory.
 void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
     DenoiseScratch& sc = c.sc;
     const DenoiseSettings& s = c.s;
@@ -295,52 +344,30 @@ void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
             spatial(c, specular, ReblurSpatial::PostBlur, current[k], out, history, frames[k]);
         run[k] = &args[k];
     }
-    times.run("post-blur", [&] { runPass(c, SSRT_DISPATCH(c.isa, reblurSpatialTile), run); });
+    // The history length the EXR shows: frames behind each pixel (copied tile by tile after
+    // the tile's post-blur, which reads the speeds and not the outputs' copy of them).
+    PlaneF* const framesOut[2] = {&c.out.diffuseFrames, &c.out.specularFrames};
+    bool lengths[2] = {};
     for (int k = 0; k < 2; ++k) {
-        if (!on[k]) continue;
-        pool.give(*current[k]);
-        // The history length the EXR shows: frames behind each pixel.
-        if (!c.in.historyLengths) continue;
-        PlaneF& framesOut = k == 1 ? c.out.specularFrames : c.out.diffuseFrames;
-        if (!frames[k]) {
-            framesOut.fill(0.0f);
-            continue;
-        }
-        for (int y = 0; y < h; ++y) std::copy_n(frames[k]->row(y), w, framesOut.row(y));
+        if (!on[k] || !c.in.historyLengths) continue;
+        if (frames[k]) lengths[k] = true;
+        else framesOut[k]->fill(0.0f);
     }
-}
-
-// The guides, camera, accumulation speeds (+ 1: the next frame's count includes this one)
-// and fast histories, for the next frame.
-void commitHistory(Context& c) {
-    DenoiseHistory& h = *c.next;
-    const DenoiseInputs& in = c.in;
-    PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
-    const PlaneF* const masks[2] = {&c.sc.signalZ[0], &c.sc.signalZ[1]};  // 0: no pixel
-    const bool signals[2] = {in.hasDiffuse(), in.hasSpecular()};
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
-        const TileRect r = c.grid.rect(tile);
-        for (int y = r.y0; y < r.y1; ++y) {
-            const std::size_t o = std::size_t(y) * in.g.stride;
-            const auto copyRow = [&](const float* src, PlaneF& dst) {
-                std::copy(src + o + r.x0, src + o + r.x1, dst.row(y) + r.x0);
-            };
-            copyRow(in.g.viewZ, h.viewZ);
-            for (int i = 0; i < 3; ++i) copyRow(in.g.normal[i], h.normal[i]);
-            if (signals[1]) copyRow(in.g.roughness, h.roughness);
-            for (int k = 0; k < 2; ++k) {
-                if (!signals[k]) continue;
-                const float* a = c.sc.frames[k].row(y);
-                const float* m = masks[k]->row(y);
-                float* out = frames[k]->row(y);
-                for (int x = r.x0; x < r.x1; ++x) out[x] = m[x] > 0.0f ? a[x] + 1.0f : 0.0f;
-            }
-        }
+    // (Its time includes, per tile, the history lengths' copy and the history's commit,
+    // commitHistoryTile; the "history" line is what is left of the commit, finishHistory.)
+    times.run("post-blur", [&] {
+        runPass(c, SSRT_DISPATCH(c.isa, reblurSpatialTile), run, [&](int tile) {
+            const TileRect r = c.grid.rect(tile);
+            for (int k = 0; k < 2; ++k)
+                if (lengths[k])
+                    for (int y = r.y0; y < r.y1; ++y)
+                        std::copy(frames[k]->row(y) + r.x0, frames[k]->row(y) + r.x1,
+                                  framesOut[k]->row(y) + r.x0);
+            if (c.next) commitHistoryTile(c, tile);
+        });
     });
-    if (signals[0]) std::swap(h.diffuseFast, c.sc.fast[0]);
-    if (signals[1]) std::swap(h.specularFast, c.sc.fast[1]);
-    h.camera = in.camera;
-    h.valid = true;
+    for (int k = 0; k < 2; ++k)
+        if (on[k]) pool.give(*current[k]);
 }
 
 // A scratch plane sized for the signals present (`on`), from the pool where there is one.
@@ -436,7 +463,7 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
     ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
     PlanePool local;  // (without the caller's: each pass's result freed once read)
     denoiseSignals(c, in.pool ? *in.pool : local, pt);
-    if (next) pt.run("history", [&] { commitHistory(c); });
+    if (next) pt.run("history", [&] { finishHistory(c); });
     if (in.pool) in.pool->give(scratch);
 }
 

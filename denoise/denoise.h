@@ -19,6 +19,9 @@
 //                 fast history's clamp of the slow one (anti-lag)
 //   blur          8 taps, radius shrinking as the history grows
 //   post-blur     twice the radius, stricter weights; writes the history the next frame reads
+//                 (its signals, and tile by tile after them its guides and speeds: the
+//                 history's commit, timed with the post-blur; the "history" time is only
+//                 what is left of the commit, the fast histories swapped in and the camera)
 // (REBLUR's temporal stabilisation is not built: the accumulation's own window already keeps
 // a still camera's flicker far under the issue's bar; see the closing note of issue 17.)
 #pragma once

@@ -20,11 +20,12 @@ using namespace reblur_lanes;
 // specular pixel reaches (2 strides) no farther than its reflection's lobe spans
 // (specularLobePixels), and one whose lobe spans less than 2 pixels keeps its own signal: its
 // neighbours show other parts of the reflection (a mirror's: issue 44), and a lobe that narrow
-// gives the signal little noise to remove.
+// gives the signal little noise to remove. (One copy per signal, a.specular: each leaves out
+// the other's branches.)
+template <bool spec>
 void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int x, int y,
                       const Lane frames, const Lane c[4], Lane result[4]) {
     const ReblurFrame& v = a.frame;
-    const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
     Lane stride = ln::floor(Lane(a.frame.historyFixStride) / (Lane(2.0f) + frames) *
@@ -40,6 +41,9 @@ void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int 
     const Lane alpha = one / (one + frames);
     const Lane invPlane = one / (Lane(a.frame.planeDistance * v.frustum) * p.z);
     const Lane normalScale = normalWeightScale(p.r, alpha, a.frame.lobeFraction2, 1.0f);
+    // (Per tap below: the roughness weight's divisor, computed once.)
+    const Lane roughDivisor = Lane(0.05f) + Lane(0.15f) * p.r;
+    const ViewRays rays(v);
     Lane sum[4], weightSum = one + frames;
     for (int ch = 0; ch < 4; ++ch) sum[ch] = c[ch] * weightSum;
     for (int j = -2; j <= 2; ++j)
@@ -49,8 +53,7 @@ void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int 
             const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
             const Mask ok = young & t.inside & (zs > zero);
             if (!ln::any(ok)) continue;
-            const V3 xs =
-                screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+            const V3 xs = rays.at(t.x, t.y, zs);
             const V3 ns{ln::gather(v.normal[0], t.index, t.run),
                         ln::gather(v.normal[1], t.index, t.run),
                         ln::gather(v.normal[2], t.index, t.run)};
@@ -58,7 +61,7 @@ void reconstructYoung(const ReblurPassArgs& a, const Centre& p, Mask young, int 
                      rb::weightExp(normalScale * rb::acosApprox(ln::dot(p.n, ns)));
             if (spec) {
                 const Lane rs = ln::gather(v.roughness, t.index, t.run);
-                w = w * rb::weightExp((rs - p.r) / (Lane(0.05f) + Lane(0.15f) * p.r));
+                w = w * rb::weightExp((rs - p.r) / roughDivisor);
             }
             if (a.frames) w = w * (one + ln::gather(a.frames, t.index, t.run));  // (else * 1)
             w = ln::select(ok, w, zero);
@@ -76,7 +79,7 @@ Lane inputLuma(const Lane s[4]) { return ln::roundedToF16<Lane>(rb::luma(s[0], s
 
 // The anti-lag clamp: the fast history's 5x5 moments bound the slow history's luma (REBLUR's
 // "fast history" clamp), more firmly the older the pixel.
-void clampToFast(const ReblurPassArgs& a, const Centre& p, Mask valid, int x, int y, std::size_t o,
+void clampToFast(const ReblurPassArgs& a, Mask valid, int x, int y, std::size_t o,
                  const Lane frames, Lane result[4]) {
     const ReblurFrame& v = a.frame;
     const bool spec = a.specular;
@@ -85,6 +88,8 @@ void clampToFast(const ReblurPassArgs& a, const Centre& p, Mask valid, int x, in
     // window lies in the frame for every lane, its rows are plain loads.)
     const bool interior = x >= 2 && x + kW + 2 <= v.width && y >= 2 && y + 2 < v.height;
     const float* mask = v.signalZ[spec ? 1 : 0];
+    // (The pixels' centres, as centreAt's.)
+    const Lane px = Lane(float(x) + 0.5f) + ln::laneIndex<Lane>(), py(float(y) + 0.5f);
     Lane m1 = zero, m2 = zero, count = zero;
     for (int j = -2; j <= 2; ++j)
         for (int i = -2; i <= 2; ++i) {
@@ -103,7 +108,7 @@ void clampToFast(const ReblurPassArgs& a, const Centre& p, Mask valid, int x, in
                 }
                 inside = valid;
             } else {
-                const Tap t = tapAt(v, p.px + Lane(float(i)), p.py + Lane(float(j)));
+                const Tap t = tapAt(v, px + Lane(float(i)), py + Lane(float(j)));
                 ms = ln::gather(mask, t.index, t.run);
                 if (a.fastIsInputLuma) {
                     Lane s[4];
@@ -136,14 +141,17 @@ void historyFixChunk(const ReblurPassArgs& a, int x, int y) {
     const bool spec = a.specular;
     Lane c[4];
     loadAt(a.in, o, c);
-    const Centre p = centreAt(v, x, y, o, spec);
     const Mask valid = validAt(v, o, spec);
     const Lane frames = a.frames ? loadAt(a.frames, o) : Lane(0.0f);
     Lane result[4] = {c[0], c[1], c[2], c[3]};
     const Mask young = valid & (frames < Lane(a.frame.historyFixFrames));
-    if (ln::any(young)) reconstructYoung(a, p, young, x, y, frames, c, result);
+    // (The centre's guides only where a pixel is young: most chunks of a converged frame have
+    // none, and the clamp needs only the pixels' positions.)
+    if (ln::any(young))
+        (spec ? reconstructYoung<true> : reconstructYoung<false>)(a, centreAt(v, x, y, o, spec),
+                                                                  young, x, y, frames, c, result);
     if ((a.fast || a.fastIsInputLuma) && ln::any(valid))
-        clampToFast(a, p, valid, x, y, o, frames, result);
+        clampToFast(a, valid, x, y, o, frames, result);
     storeAt(a.out, o, result);
 }
 

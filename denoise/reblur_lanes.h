@@ -149,6 +149,23 @@ SSRT_INLINE Tap tapAt(const ReblurFrame& v, Lane fx, Lane fy) {
     return t;
 }
 
+// screen::viewPoint of this frame (x, y in pixels, z view depth), its factors computed once
+// for a loop over taps: the same operations, so the same bits. (A division in a tap loop is
+// not hoisted by the compiler where it follows a branch: it may trap, -ftrapping-math.)
+struct ViewRays {
+    float sx, sy, tanX, tanY;
+    explicit ViewRays(const ReblurFrame& v)
+        : sx(2.0f / float(v.width)),
+          sy(2.0f / float(v.height)),
+          tanX(v.tanHalfX),
+          tanY(v.tanHalfY) {}
+    SSRT_INLINE V3 at(Lane x, Lane y, Lane z) const {
+        const Lane ndcX = x * Lane(sx) - Lane(1.0f);
+        const Lane ndcY = Lane(1.0f) - y * Lane(sy);
+        return {ndcX * Lane(tanX) * z, ndcY * Lane(tanY) * z, Lane(0.0f) - z};
+    }
+};
+
 // Plane-distance weight of a point at view-space position xs (NRD's geometry weight).
 SSRT_INLINE Lane geometryWeight(const Centre& c, V3 xs, Lane invDistance) {
     return rb::weightNonExp(ln::dot(c.nv, xs - c.x) * invDistance);

@@ -88,10 +88,20 @@ SSRT_INLINE L dominantFactor(L noV, L r) {
 struct HitDistanceScale {
     float a, b, c, d;  // a already in scene units (DenoiseSettings::hitDistanceA x diagonal)
 };
+// Its roughness factor lerp(1, C, 2^(D r^2)), and f from it: a loop over taps of one centre's
+// roughness computes the factor once (the same operations, so the same bits).
+template <class L>
+SSRT_INLINE L hitDistanceRoughness(const HitDistanceScale& p, L r) {
+    const L smooth = ln::saturate(ln::exp2(L(p.d) * r * r));
+    return lerp(L(1.0f), L(p.c), smooth);
+}
+template <class L>
+SSRT_INLINE L hitDistanceScaleWith(const HitDistanceScale& p, L z, L roughness) {
+    return (L(p.a) + L(p.b) * z) * roughness;
+}
 template <class L>
 SSRT_INLINE L hitDistanceScale(const HitDistanceScale& p, L z, L r) {
-    const L smooth = ln::saturate(ln::exp2(L(p.d) * r * r));
-    return (L(p.a) + L(p.b) * z) * lerp(L(1.0f), L(p.c), smooth);
+    return hitDistanceScaleWith(p, z, hitDistanceRoughness(p, r));
 }
 
 }  // namespace ssrt::reblur

@@ -50,7 +50,8 @@ struct SpatialPixel {
     Centre p;
     Lane radius;  // the pixel's own, in pixels
     Lane hitWorld, invPlane, normalScale, roughScale, hitScale, minHit, contactFree;
-    Lane frames;  // the accumulation speed (the pre-blur's: 10)
+    Lane hitRoughness;  // the hit-distance scale's roughness factor (rb::hitDistanceRoughness)
+    Lane frames;        // the accumulation speed (the pre-blur's: 10)
 };
 
 void storeSpatial(const ReblurPassArgs& a, std::size_t o, const Lane s[4]) {
@@ -77,7 +78,9 @@ bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
     const Lane one(1.0f);
     const bool pre = a.pass == ReblurSpatial::PreBlur;
     const Lane alpha = one / (one + frames);
-    const Lane hitWorld = q.hitWorld = q.c[3] * rb::hitDistanceScale(v.hitScale, p.z, p.r);
+    q.hitRoughness = rb::hitDistanceRoughness(v.hitScale, p.r);
+    const Lane hitWorld = q.hitWorld =
+        q.c[3] * rb::hitDistanceScaleWith(v.hitScale, p.z, q.hitRoughness);
     const Lane hitFactor = ln::saturate(hitWorld / (Lane(v.frustum) * p.z));
     const Lane smc = spec ? rb::specMagicCurve(p.r) : one;
     Lane radius;
@@ -122,19 +125,21 @@ constexpr float kLonelyRadius = 2.0f;
 constexpr float kLonelyFrames = 4.0f;
 
 // The 8 taps at offsets (ox[k], oy[k] in pixels) around the lanes `lanes` of pixels q, added to
-// sum and weightSum.
-void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
-             const float* oy, Lane sum[4], Lane& weightSum) {
+// sum and weightSum. (One copy per signal and per pre-blur or not, a.specular and a.pass: each
+// leaves out the others' branches.)
+template <bool spec, bool pre>
+void addTapsOf(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const float* ox,
+               const float* oy, Lane sum[4], Lane& weightSum) {
     const ReblurFrame& v = a.frame;
-    const bool spec = a.specular, pre = a.pass == ReblurSpatial::PreBlur;
     const Centre& p = q.p;
     const Lane zero(0.0f), one(1.0f);
+    const ViewRays rays(v);
     for (int k = 0; k < 8; ++k) {
         const Tap t = tapAt(v, p.px + Lane(ox[k]), p.py + Lane(oy[k]));
         const Lane zs = ln::gather(v.signalZ[spec ? 1 : 0], t.index, t.run);  // 0: no signal
         const Mask ok = lanes & t.inside & (zs > zero);
         if (!ln::any(ok)) continue;
-        const V3 xs = screen::viewPoint(t.x, t.y, zs, v.width, v.height, v.tanHalfX, v.tanHalfY);
+        const V3 xs = rays.at(t.x, t.y, zs);
         const V3 ns{ln::gather(v.normal[0], t.index, t.run),
                     ln::gather(v.normal[1], t.index, t.run),
                     ln::gather(v.normal[2], t.index, t.run)};
@@ -151,7 +156,7 @@ void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const f
         if (spec && pre) {
             const V3 d = xs - p.x;
             const Lane dist = ln::sqrt(ln::dot(d, d));
-            const Lane hs = s[3] * rb::hitDistanceScale(v.hitScale, zs, p.r);
+            const Lane hs = s[3] * rb::hitDistanceScaleWith(v.hitScale, zs, q.hitRoughness);
             w = w * rb::lerp(ln::saturate(hs / (dist + q.hitWorld + Lane(rb::kEps))), one,
                              q.contactFree);
         }
@@ -161,10 +166,16 @@ void addTaps(const ReblurPassArgs& a, const SpatialPixel& q, Mask lanes, const f
     }
 }
 
+using AddTaps = void (*)(const ReblurPassArgs&, const SpatialPixel&, Mask, const float*,
+                         const float*, Lane*, Lane&);
+
 // The 8 taps at the group's offsets (ox[k], oy[k] in pixels, of radius r) around pixels q,
 // and the lonely pixels' second ring.
 void spatialFilter(const ReblurPassArgs& a, const SpatialPixel& q, const float* ox, const float* oy,
                    float r) {
+    const bool pre = a.pass == ReblurSpatial::PreBlur;
+    const AddTaps addTaps = a.specular ? (pre ? addTapsOf<true, true> : addTapsOf<true, false>)
+                                       : (pre ? addTapsOf<false, true> : addTapsOf<false, false>);
     const Lane one(1.0f);
     Lane sum[4] = {q.c[0], q.c[1], q.c[2], q.c[3]};
     Lane weightSum = one;

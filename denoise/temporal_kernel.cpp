@@ -66,9 +66,11 @@ SSRT_INLINE void gatherTwoAt(const P& plane, const Footprint& f, int j, int i, O
 
 // `surface`: the footprint is the surface's own (occlusion by the expected depth zExpected);
 // otherwise a virtual-motion read (occlusion by the plane of the centre, whose point in this
-// camera's world frame is xw). Neighbouring taps of a row are read in pairs (gatherTwo).
+// camera's world frame is xw). Neighbouring taps of a row are read in pairs (gatherTwo). `spec`:
+// a.specular.
 SSRT_INLINE Footprint testFootprint(const ReblurPassArgs& a, const Centre& p, Mask valid, Lane qx,
-                                    Lane qy, bool surface, Lane zExpected, V3 xw, Lane threshold) {
+                                    Lane qy, bool surface, bool spec, Lane zExpected, V3 xw,
+                                    Lane threshold) {
     const ReblurFrame& v = a.frame;
     const Lane zero(0.0f);
     const Lane sx = qx - Lane(0.5f), sy = qy - Lane(0.5f);
@@ -112,7 +114,7 @@ SSRT_INLINE Footprint testFootprint(const ReblurPassArgs& a, const Centre& p, Ma
             gatherTwoAt(a.frame.prevNormal[0], f, j, 1, nx[1], nx[2]);
             gatherTwoAt(a.frame.prevNormal[1], f, j, 1, ny[1], ny[2]);
             gatherTwoAt(a.frame.prevNormal[2], f, j, 1, nz[1], nz[2]);
-            if (a.specular) gatherTwoAt(a.frame.prevRoughness, f, j, 1, rp[1], rp[2]);
+            if (spec) gatherTwoAt(a.frame.prevRoughness, f, j, 1, rp[1], rp[2]);
         }
         for (int i = i0; i < i1; ++i) {
             const bool inner = innerRow && (i == 1 || i == 2);
@@ -128,8 +130,7 @@ SSRT_INLINE Footprint testFootprint(const ReblurPassArgs& a, const Centre& p, Ma
                 f.innerNormal[j - 1][i - 1] = np;
                 // NRD rejects past ~89 degrees on averaged normals; per tap, stricter.
                 pass = pass & (ln::dot(np, p.n) > Lane(surface ? 0.5f : 0.9f));
-                if (a.specular)
-                    pass = pass & (ln::abs(rp[i] - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
+                if (spec) pass = pass & (ln::abs(rp[i] - p.r) < Lane(0.1f) + Lane(0.1f) * p.r);
             }
             f.ok[j][i] = pass;
             f.allOk = f.allOk & pass;
@@ -239,11 +240,14 @@ SSRT_INLINE History finiteHistory(History h) {
 }
 
 // Reads the history at previous-frame pixel position (qx, qy): testFootprint's occlusion
-// test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass.
+// test, then bilinear, and Catmull-Rom where all 16 taps of a surface read pass. (One copy per
+// kind of read and signal, a.specular: the others' branches and unused taps are left out of
+// each.)
+template <bool surface, bool spec>
 History readHistory(const ReblurPassArgs& a, const Centre& p, Mask valid, Lane qx, Lane qy,
-                    bool surface, Lane zExpected, V3 xw, Lane threshold) {
+                    Lane zExpected, V3 xw, Lane threshold) {
     const Lane one(1.0f);
-    const Footprint f = testFootprint(a, p, valid, qx, qy, surface, zExpected, xw, threshold);
+    const Footprint f = testFootprint(a, p, valid, qx, qy, surface, spec, zExpected, xw, threshold);
     // The footprint's signals, read once for both filters: the whole 4x4 where a lane takes
     // the Catmull-Rom, else the bilinear's inner 2x2.
     const bool whole = surface && ln::any(f.allOk);
@@ -301,7 +305,7 @@ SSRT_INLINE void virtualMotion(const ReblurPassArgs& a, const Centre& p, Mask va
         ((pv.x / safe) / Lane(a.frame.prevTanHalfX) + one) * Lane(0.5f * float(v.width));
     const Lane vy =
         (one - (pv.y / safe) / Lane(a.frame.prevTanHalfY)) * Lane(0.5f * float(v.height));
-    History hv = readHistory(a, p, valid & front, vx, vy, false, zero, xw, threshold);
+    History hv = readHistory<false, true>(a, p, valid & front, vx, vy, zero, xw, threshold);
     // The virtual point is exact for a flat mirror only: where the history's normal turned,
     // the reflection turned twice as far (REBLUR's normal confidence).
     const Lane turn = rb::acosApprox(ln::dot(p.n, ln::normalize(hv.normal)));
@@ -344,10 +348,11 @@ SSRT_INLINE void accumulate(const ReblurPassArgs& a, const Centre& p, Mask valid
     storeAt(a.outFast, o, ln::select(valid, fast, lumaNow));
 }
 
+// (One copy per signal, a.specular.)
+template <bool spec>
 void temporalChunk(const ReblurPassArgs& a, int x, int y) {
     const ReblurFrame& v = a.frame;
     const std::size_t o = std::size_t(y) * v.stride + x;
-    const bool spec = a.specular;
     const Lane zero(0.0f), one(1.0f);
     Lane c[4];
     loadAt(a.in, o, c);
@@ -374,7 +379,7 @@ void temporalChunk(const ReblurPassArgs& a, int x, int y) {
     const Lane threshold = Lane(v.frustum) * p.z *
                            ln::saturate(Lane(a.frame.disocclusion + 1.0f / float(v.height)) /
                                         ln::max(Lane(0.01f), p.noV));
-    History h = readHistory(a, p, valid, qx, qy, true, zExpected, xw, threshold);
+    History h = readHistory<true, spec>(a, p, valid, qx, qy, zExpected, xw, threshold);
     const Lane lobe = spec ? parallaxConfidence(a, p, xw, h) : one;
     if (spec && a.frame.virtualMotion)
         virtualMotion(a, p, valid, x, y, c[3], xw, threshold, lobe, h);
@@ -386,8 +391,9 @@ void temporalChunk(const ReblurPassArgs& a, int x, int y) {
 void reblurTemporalTile(const ReblurPassArgs& a, int tile) {
     const ReblurFrame& v = a.frame;
     const auto [x0, y0, x1, y1] = tileRect(tile, v.tilesX, v.width, v.height);
+    const auto chunk = a.specular ? temporalChunk<true> : temporalChunk<false>;
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) temporalChunk(a, x, y);
+        for (int x = x0; x < x1; x += kW) chunk(a, x, y);
 }
 
 }  // namespace ssrt::SSRT_ISA_NS
