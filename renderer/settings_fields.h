@@ -8,6 +8,7 @@
 #include "core/fields.h"
 #include "denoise/denoise_fields.h"
 #include "renderer/settings.h"
+#include "shading/direct_kernel.h"
 #include "trace/march_fields.h"
 
 namespace ssrt {
@@ -118,7 +119,7 @@ inline constexpr std::array kRenderOwnFields = {
         .floats(0.0, false),
     field<&RenderSettings::pcfRadius>("pcfRadius", kCliShot | kFieldKey,
                                       "Shadow PCF kernel radius r: (2r+1)^2 texels")
-        .ints(0, 8),
+        .ints(0, kMaxPcfRadius),
     field<&RenderSettings::exposure>("exposure", kCliShot | kFieldKey,
                                      "Scale on linear radiance before the tone map")
         .floats(0.0, true),

@@ -11,6 +11,10 @@
 
 namespace ssrt {
 
+// The widest shadow PCF kernel, (2 kMaxPcfRadius + 1)^2 taps: the setting's range
+// (RenderSettings::pcfRadius) and the taps' per-column arrays (shade::shadowTaps).
+inline constexpr int kMaxPcfRadius = 8;
+
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
 struct DirectArgs {
     GBufferView g;  // viewZ, normal, albedo, metallic, roughness, materialId (not motion)
@@ -47,7 +51,7 @@ struct DirectArgs {
     int shadowSize;
     float lightViewProj[16];     // column-major
     float biasConst, biasSlope;  // depth-key units: shade::shadowMapVisibility's tolerances
-    int pcfRadius;
+    int pcfRadius;               // 0 .. kMaxPcfRadius
     // The map's depth bounds for pcfRadius (ShadowBounds::block as floats,
     // shading/shadow_bounds.h), with shadowBlocks blocks per side; null: every pixel reads its taps
     // (the same answers).

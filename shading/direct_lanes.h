@@ -110,8 +110,8 @@ SSRT_INLINE V3<L> envPrefiltered(const DirectArgs& a, V3<L> r, L roughness) {
 // every tap but the far occluders, so the edge of a shadow cast from afar is filtered as
 // before. The counts are whole numbers of taps: every ISA adds them in the same bits.
 inline constexpr float kShadowCreaseTan = 10.0f;
-inline constexpr float kShadowMinCos = 1e-3f;  // tan about 1000
-inline constexpr int kShadowMaxTaps = 17;      // per side: pcfRadius <= 8 (the settings')
+inline constexpr float kShadowMinCos = 1e-3f;                 // tan about 1000
+inline constexpr int kShadowMaxTaps = 2 * kMaxPcfRadius + 1;  // per side
 
 // The squared lengths of the rows a_x, a_y, a_z of the light's clip matrix (column-major m).
 struct ShadowAxes {

@@ -156,13 +156,14 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
     const std::vector<std::pair<std::string, std::string>> cases{
         // Unknown keys (typos), at every level
         {R"({"camra": {}})",
-         "camra: unknown key (expected one of: scene, camera, light, "
+         "camra: unknown key; did you mean camera? (expected one of: scene, camera, light, "
          "environment, render)"},
         {R"({"camera": {"fovy": 40}})",
-         "camera.fovy: unknown key (expected one of: position, "
+         "camera.fovy: unknown key; did you mean fovY? (expected one of: position, "
          "target, up, fovY, near, far, path)"},
         {R"({"camera": {"path": {"keys": [{"tme": 1}]}}})",
-         "camera.path.keys[0].tme: unknown key (expected one of: time, position, target, fovY, "
+         "camera.path.keys[0].tme: unknown key; did you mean time? (expected one of: time, "
+         "position, target, fovY, "
          "cut)"},
         {R"({"environment": {"color": [1, 1, 1]}})",
          "environment.color: unknown key (expected one of: type, intensity)"},
