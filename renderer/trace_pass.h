@@ -46,8 +46,9 @@ struct TraceContext {
     ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
-// Fills frame.ssr, frame.ssgi and frame.denoised and replaces frame.image's colour and display with
-// the composite; appends pass times and stats to frame.stats.
+// Fills SSR's and SSGI's outputs (Res::Ssr ... Res::SsgiSteps) and frame.denoised and replaces
+// the image's colour and display (Res::Color, Res::Display) with the composite; appends pass
+// times and stats to frame.stats.
 void runTracePasses(TraceContext c, Frame& frame);
 
 // Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
@@ -62,7 +63,7 @@ bool diffuseUpsampledInComposite(const RenderSettings& settings);
 // feedback that adds to the full-resolution plane, and without a file to show it.
 bool hitLightAtHalf(const RenderSettings& settings);
 
-// Whether the traced signals the denoiser reads (frame.ssr and .ssgi, the half frame's
+// Whether the traced signals the denoiser reads (SSR's and SSGI's outputs, the half frame's
 // SSGI) come from the pool and go back to it once the denoiser's front end has read them, for
 // its later passes to reuse: with the denoiser on (the composite then reads its output
 // instead) and no file to show them.
