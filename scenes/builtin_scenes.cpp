@@ -126,12 +126,9 @@ Scene makeBuiltinScene(const std::string& name) {
     if (name == "occluded") return makeOccludedScene();
     if (name == "bunny") return makeBunnyScene();
     if (name == "fence") return makeFenceScene();
-    std::string known;
-    for (const BuiltinSceneInfo& info : builtinScenes())
-        known += (known.empty() ? "" : ", ") + info.name;
     throw std::invalid_argument("unknown scene '" + name + "'" +
                                 didYouMean(name, knownSceneNames()) +
-                                " (built-in scenes: " + known + ")");
+                                " (built-in scenes: " + knownScenes() + ")");
 }
 
 Scene makeKnotScene(int triangles) {

@@ -25,7 +25,7 @@ bool isBuiltinScene(const std::string& name) {
 
 std::string knownScenes() {
     std::string out;
-    for (const auto& s : builtinScenes()) out += (out.empty() ? "" : ", ") + s.name;
+    for (const std::string& name : knownSceneNames()) out += (out.empty() ? "" : ", ") + name;
     return out;
 }
 
