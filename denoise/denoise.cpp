@@ -53,9 +53,8 @@ private:
 
 struct Context {
     const DenoiseSettings& s;
-    const DenoiseInputs& in;
+    const DenoiseCall& in;
     DenoiseScratch& sc;
-    DenoiseOutputs& out;
     const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
     DenoiseHistory* next;            // null: no history to write (may be `previous`)
     // Which signals `previous` holds, decided before `next` (the same history, maybe) is
@@ -68,7 +67,7 @@ struct Context {
 };
 
 // The frame every pass reads: guides, cameras, the front end's classification and the tuning.
-ReblurFrame makeFrame(const DenoiseInputs& in, const DenoiseSettings& s, DenoiseScratch& sc,
+ReblurFrame makeFrame(const DenoiseCall& in, const DenoiseSettings& s, DenoiseScratch& sc,
                       const DenoiseHistory* previous, const TileGrid& grid) {
     const TraceCamera& cam = in.camera;
     ReblurFrame v;
@@ -119,8 +118,8 @@ ViewShape named(ViewShape v, std::string_view field) {
     return v;
 }
 
-// The guides each signal needs, and its views.
-void checkInputs(const DenoiseInputs& in, int w, int h) {
+// The guides each signal needs, and its views: what it reads, and where it writes.
+void checkViews(const DenoiseCall& in, int w, int h) {
     const bool diffuse = in.hasDiffuse(), specular = in.hasSpecular();
     requireGBuffer("denoise", in.g,
                    kGViewZ | kGNormal | kGMotion | (diffuse ? kGAlbedo | kGMetallic : 0u) |
@@ -130,18 +129,27 @@ void checkInputs(const DenoiseInputs& in, int w, int h) {
         requireViews(
             "denoise", w, h,
             {named(in.diffuse[0], "diffuse"), named(in.diffuse[1], "diffuse"),
-             named(in.diffuse[2], "diffuse"), named(in.diffuseHitDistance, "diffuseHitDistance")});
+             named(in.diffuse[2], "diffuse"), named(in.diffuseHitDistance, "diffuseHitDistance"),
+             named(in.denoisedDiffuse[0], "denoisedDiffuse"),
+             named(in.denoisedDiffuse[1], "denoisedDiffuse"),
+             named(in.denoisedDiffuse[2], "denoisedDiffuse")});
     if (specular)
         requireViews(
             "denoise", w, h,
             {named(in.ssr[0], "ssr"), named(in.ssr[1], "ssr"), named(in.ssr[2], "ssr"),
              named(in.ssrOpacity, "ssrOpacity"), named(in.envSpecular[0], "envSpecular"),
              named(in.envSpecular[1], "envSpecular"), named(in.envSpecular[2], "envSpecular"),
-             named(in.specularHitDistance, "specularHitDistance")});
+             named(in.specularHitDistance, "specularHitDistance"),
+             named(in.denoisedSpecular[0], "denoisedSpecular"),
+             named(in.denoisedSpecular[1], "denoisedSpecular"),
+             named(in.denoisedSpecular[2], "denoisedSpecular")});
+    // (The history lengths only where asked for.)
+    if (diffuse && in.diffuseFrames) requireViews("denoise", w, h, {in.diffuseFrames});
+    if (specular && in.specularFrames) requireViews("denoise", w, h, {in.specularFrames});
 }
 
 void frontEnd(Context& c) {
-    const DenoiseInputs& in = c.in;
+    const DenoiseCall& in = c.in;
     ReblurPassArgs a;
     a.frame = c.frame;
     a.signals = in;  // (the traced signals: DenoiseSignals)
@@ -242,7 +250,7 @@ void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2]) 
 // commit after the post-blur.
 void commitHistoryTile(const Context& c, int tile) {
     DenoiseHistory& h = *c.next;
-    const DenoiseInputs& in = c.in;
+    const DenoiseCall& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
     const bool signals[2] = {in.hasDiffuse(), in.hasSpecular()};
     const TileRect r = c.grid.rect(tile);
@@ -338,20 +346,22 @@ void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
         PlaneU64* history = nullptr;
         if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
         SignalOut4 out;
-        PlaneF* const outputs = specular ? c.out.specular : c.out.diffuse;
-        for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].row(0);
+        const OutF* const outputs = specular ? c.in.denoisedSpecular : c.in.denoisedDiffuse;
+        for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].data;
         args[k] =
             spatial(c, specular, ReblurSpatial::PostBlur, current[k], out, history, frames[k]);
         run[k] = &args[k];
     }
     // The history length the EXR shows: frames behind each pixel (copied tile by tile after
     // the tile's post-blur, which reads the speeds and not the outputs' copy of them).
-    PlaneF* const framesOut[2] = {&c.out.diffuseFrames, &c.out.specularFrames};
+    const OutF framesOut[2] = {c.in.diffuseFrames, c.in.specularFrames};
     bool lengths[2] = {};
     for (int k = 0; k < 2; ++k) {
-        if (!on[k] || !c.in.historyLengths) continue;
+        if (!on[k] || !framesOut[k]) continue;
         if (frames[k]) lengths[k] = true;
-        else framesOut[k]->fill(0.0f);
+        else
+            for (int y = 0; y < framesOut[k].height; ++y)
+                std::fill_n(framesOut[k].row(y), framesOut[k].width, 0.0f);
     }
     // (Its time includes, per tile, the history lengths' copy and the history's commit,
     // commitHistoryTile; the "history" line is what is left of the commit, finishHistory.)
@@ -362,7 +372,7 @@ void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
                 if (lengths[k])
                     for (int y = r.y0; y < r.y1; ++y)
                         std::copy(frames[k]->row(y) + r.x0, frames[k]->row(y) + r.x1,
-                                  framesOut[k]->row(y) + r.x0);
+                                  framesOut[k].row(y) + r.x0);
             if (c.next) commitHistoryTile(c, tile);
         });
     });
@@ -394,10 +404,9 @@ void ensurePassScratch(int w, int h, DenoiseScratch& sc, bool diffuse, bool spec
     }
 }
 
-// The front end's scratch (the noisy signals and where they exist), the outputs and the
-// history.
-void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseHistory* history,
-                 bool diffuse, bool specular, bool lengths, const TileGrid& grid, PlanePool* pool) {
+// The front end's scratch (the noisy signals and where they exist) and the history.
+void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseHistory* history, bool diffuse,
+                 bool specular, const TileGrid& grid, PlanePool* pool) {
     const auto keepIf = [&](bool on, auto& p) {
         if (on) p.ensureSize(w, h);
         else p = std::decay_t<decltype(p)>();
@@ -407,13 +416,6 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
     keepScratch(specular, sc.noisySpecular, w, h, pool);
     for (int i = 0; i < 2; ++i) keepScratch(i == 0 ? diffuse : specular, sc.signalZ[i], w, h, pool);
     sc.tiles.assign(std::size_t(grid.count()), 0);
-    // The outputs of a signal not given are left as they are (the caller may fill them).
-    for (int ch = 0; ch < 3; ++ch) {
-        if (diffuse) out.diffuse[ch].ensureSize(w, h);
-        if (specular) out.specular[ch].ensureSize(w, h);
-    }
-    if (diffuse && lengths) out.diffuseFrames.ensureSize(w, h);
-    if (specular && lengths) out.specularFrames.ensureSize(w, h);
     if (!history) return;
     // The guides, and each signal's own planes only where the signal is (roughness guides the
     // specular alone).
@@ -428,13 +430,13 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseOutputs& out, DenoiseH
 
 }  // namespace
 
-void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
-             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, DenoiseOutputs& out,
-             int threads, std::vector<DenoisePassTime>* times) {
+void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseCall& in,
+             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads,
+             std::vector<DenoisePassTime>* times) {
     settings.validate();
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("denoise: empty camera");
-    checkInputs(in, w, h);
+    checkViews(in, w, h);
     const bool diffuse = in.hasDiffuse(), specular = in.hasSpecular();
     const TileGrid grid(w, h);
     const bool readHistory = history && !reset && history->usableAt(w, h);
@@ -445,18 +447,12 @@ void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
         throw std::logic_error("denoise: a history is read or kept without the temporal pass");
     const bool previousHas[2] = {previous && previous->hasSignal(false),
                                  previous && previous->hasSignal(true)};
-    ensureSizes(w, h, scratch, out, next, diffuse, specular, in.historyLengths, grid, in.pool);
-    Context c{settings,
-              in,
-              scratch,
-              out,
-              previous,
-              next,
-              {previousHas[0], previousHas[1]},
-              isa,
-              threads,
-              grid,
-              makeFrame(in, settings, scratch, previous, grid)};
+    ensureSizes(w, h, scratch, next, diffuse, specular, grid, in.pool);
+    Context c{settings, in,
+              scratch,  previous,
+              next,     {previousHas[0], previousHas[1]},
+              isa,      threads,
+              grid,     makeFrame(in, settings, scratch, previous, grid)};
     PassTimes pt(times);
     pt.run("front end", [&] { frontEnd(c); });
     if (in.signalsRead) in.signalsRead();

@@ -14,7 +14,7 @@
 //                 with a bilinear fallback where a tap is occluded, the accumulation speed
 //                 (frames, capped), the fast history, the firefly suppressor; for specular
 //                 also the virtual motion of the reflection, blended by confidence (only
-//                 with a history to read or keep: DenoiseInputs::temporal)
+//                 with a history to read or keep: DenoiseCall::temporal)
 //   history fix   a wider reconstruction for pixels younger than historyFixFrames, and the
 //                 fast history's clamp of the slow one (anti-lag)
 //   blur          8 taps, radius shrinking as the history grows
@@ -43,21 +43,26 @@
 
 namespace ssrt {
 
-// What one frame hands the denoiser: the traced signals (DenoiseSignals, views of the frame's
-// size) and the rest.
-struct DenoiseInputs : DenoiseSignals {
+// One frame's call: the traced signals (DenoiseSignals, views of the frame's size), the guides,
+// where it writes, and the rest. (NRD's dispatch: its common settings and the pool of the
+// caller's resources, inputs and outputs, in one.)
+struct DenoiseCall : DenoiseSignals {
     TraceCamera camera;
     uint32_t frameIndex = 0;  // rotates the spatial kernels (counter RNG, core/rng.h)
     // The guides: viewZ (0: background), normal and motion; roughness for the specular signal
     // alone; albedo with metallic (where the diffuse signal exists) for the diffuse alone.
     GBufferView g;
+    // Where it writes, the caller's planes, sized by the caller to the frame: each signal's
+    // denoised incoming radiance (diffuse: what the composite multiplies by albedo; specular:
+    // by specWeight), required where the signal is given; the frames of history behind each
+    // pixel (0: none), planes only to be looked at: absent, not made.
+    OutF denoisedDiffuse[3], denoisedSpecular[3];
+    OutF diffuseFrames, specularFrames;
     // Pixels this rough or rougher have no specular signal (SSR's roughness fade end).
     float specularMaxRoughness = 1.0f;
     // false: the history is read but left as it was (no later frame reads this one's): the
     // same output, without writing the next history.
     bool replaceHistory = true;
-    // false: DenoiseOutputs' history lengths (planes only to be looked at) are not made.
-    bool historyLengths = true;
     // false: the temporal pass does not run (the frame graph culls it where no history is read
     // or kept: it would copy its input, with no speed and its own luma as the fast history);
     // the history fix reads its input instead, and the same output follows, bit for bit.
@@ -71,25 +76,6 @@ struct DenoiseInputs : DenoiseSignals {
     // later passes write are taken from the pool: a caller whose signal planes are pooled
     // gives them back here, and the passes reuse their memory (optional).
     std::function<void()> signalsRead;
-};
-
-// The denoiser's output, of the frame's size. The frame hands it out as file layers.
-struct DenoiseOutputs : PlaneTable<DenoiseOutputs> {
-    PlaneF diffuse[3];   // incoming diffuse radiance (what the composite multiplies by albedo)
-    PlaneF specular[3];  // incoming specular radiance (what it multiplies by specWeight)
-    // Frames of history behind each pixel (0: none); with DenoiseInputs::historyLengths only.
-    PlaneF diffuseFrames, specularFrames;
-
-    // (Named as the renderer's resource table names their channels, renderer/resources.cpp:
-    // tests/renderer/denoise_formats_test.cpp holds each name to it.)
-    template <class G, class Fn>
-    static void table(G& g, Fn& fn) {
-        fn("denoisedDiffuse.R", g.diffuse[0]), fn("denoisedDiffuse.G", g.diffuse[1]);
-        fn("denoisedDiffuse.B", g.diffuse[2]);
-        fn("denoisedSpecular.R", g.specular[0]), fn("denoisedSpecular.G", g.specular[1]);
-        fn("denoisedSpecular.B", g.specular[2]);
-        fn("diffuseFrames", g.diffuseFrames), fn("specularFrames", g.specularFrames);
-    }
 };
 
 // What one frame leaves the next: the post-blur's result (REBLUR is recurrent), the
@@ -168,13 +154,12 @@ struct DenoisePassTime {
     double ms = 0.0;
 };
 
-// Denoises one frame into `out`. `history` (null: none, every pixel starts afresh) is read
-// when usable at this size and `reset` is false, then replaced with this frame's (unless
-// in.replaceHistory is false). Throws
-// std::invalid_argument on a missing or mis-sized plane. Appends each pass's time to `times`
-// (optional).
-void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseInputs& in,
-             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, DenoiseOutputs& out,
-             int threads, std::vector<DenoisePassTime>* times = nullptr);
+// Denoises one frame into the call's outputs. `history` (null: none, every pixel starts afresh)
+// is read when usable at this size and `reset` is false, then replaced with this frame's
+// (unless call.replaceHistory is false). Throws std::invalid_argument on a missing or
+// mis-sized plane. Appends each pass's time to `times` (optional).
+void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseCall& call,
+             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads,
+             std::vector<DenoisePassTime>* times = nullptr);
 
 }  // namespace ssrt

@@ -63,7 +63,7 @@ enum class ReblurSpatial { PreBlur, Blur, PostBlur };
 // Their stride is the frame's.
 
 // The traced signals the denoiser reads, views of the frame's size: what a caller hands it
-// (DenoiseInputs), and as they are what the front end's kernel reads. A signal whose first view
+// (DenoiseCall), and as they are what the front end's kernel reads. A signal whose first view
 // is absent is not traced.
 struct DenoiseSignals {
     // Diffuse (absent: no SSGI): incoming radiance and the mean hit distance (0: no hit).

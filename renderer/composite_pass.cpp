@@ -1,4 +1,6 @@
 #include <chrono>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "core/plane_view.h"
@@ -18,8 +20,9 @@ namespace {
 // loop's, shared by the threads' time in each.
 void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeArgs& ca) {
     using Clock = std::chrono::steady_clock;
-    const DenoiseOutputs& half = frame.scratch.half.denoised;
-    const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]}};
+    const std::span<const PlaneF, 3> half =
+        std::as_const(frame.scratch.half.denoised).rgb(Res::HalfDenoised);
+    const ReconstructSource from{{&half[0], &half[1], &half[2]}};
     const HalfUpsampler up(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
                            from);
     const Compositor comp(c.isa, ca, true);
@@ -65,15 +68,11 @@ void compositePass(const TraceContext& c, Frame& frame) {
             ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
         ca.envSpecular[ch] = viewOf(parts.envSpecular[ch], channelName(Res::EnvSpecular, ch));
         ca.specWeight[ch] = viewOf(parts.specWeight[ch], channelName(Res::SpecWeight, ch));
-        const DenoiseOutputs& d = frame.denoised;
         if (ts.ssgi && !inComposite)
-            ca.ssgi[ch] = ts.denoise.enabled
-                              ? viewOf(d.diffuse[ch], channelName(Res::DenoisedDiffuse, ch))
-                              : viewOf(frame.rgb(Res::Ssgi)[ch], channelName(Res::Ssgi, ch));
+            ca.ssgi[ch] = frame.view(ts.denoise.enabled ? Res::DenoisedDiffuse : Res::Ssgi, ch);
         if (ts.ssr) {  // the denoiser's output, or SSR's own
-            if (ts.denoise.enabled)
-                ca.specular[ch] = viewOf(d.specular[ch], channelName(Res::DenoisedSpecular, ch));
-            else ca.ssrColor[ch] = viewOf(frame.rgb(Res::Ssr)[ch], channelName(Res::Ssr, ch));
+            if (ts.denoise.enabled) ca.specular[ch] = frame.view(Res::DenoisedSpecular, ch);
+            else ca.ssrColor[ch] = frame.view(Res::Ssr, ch);
         }
         ca.color[ch] = outputOf(frame.rgb(Res::Color)[ch], channelName(Res::Color, ch));
         ca.display[ch] = outputOf(frame.rgb(Res::Display)[ch], channelName(Res::Display, ch));

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <chrono>
+#include <span>
 #include <vector>
 
 #include "renderer/trace_stages.h"
@@ -12,17 +13,20 @@ namespace {
 // What both of the frame's denoiser calls share: the camera they run at (the half frame's or
 // the frame's), the frame, whether the history is replaced and the temporal pass runs, the debug
 // planes and the frame's pool of scratch.
-DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera,
-                          bool half) {
-    DenoiseInputs in;
+DenoiseCall denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera, bool half) {
+    DenoiseCall in;
     in.camera = camera;
     in.frameIndex = c.frameIndex;
     in.replaceHistory = c.replaceHistory;
-    in.historyLengths = c.settings.debugPlanes;
     // (Where the graph culls the temporal pass: no history to read or keep.)
     in.temporal = c.graph.runs(half ? pass::kDenoiseTemporalHalf : pass::kDenoiseTemporal);
     in.pool = &frame.scratch.pool;
     return in;
+}
+
+// A signal's history lengths, a plane only to be looked at: absent when not asked for.
+OutF historyLengths(const TraceContext& c, PlaneStore& store, Res id, int w, int h) {
+    return c.settings.debugPlanes ? store.output(id, 0, w, h) : OutF{};
 }
 
 // The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
@@ -32,7 +36,7 @@ DenoiseInputs denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera
 void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     const HalfFrame& hf = ht.frame;
-    DenoiseInputs in = denoiseCall(c, frame, hf.camera, true);
+    DenoiseCall in = denoiseCall(c, frame, hf.camera, true);
     in.g = gbufferView("the half frame's guides", hf.camera.width, hf.camera.height,
                        {{kGViewZ, &hf.guideZ},
                         {kGNormalX, &hf.guideNormal[0]},
@@ -48,43 +52,55 @@ void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<Denoise
     in.diffuseHitDistance = viewIn(ht.resolved, ht.resolved.hitDistance);
     if (tracedSignalsPooled(c.settings))
         in.signalsRead = [&frame] { frame.scratch.pool.give(frame.scratch.half.resolved); };
+    PlaneStore& half = ht.denoised;
+    const int w = hf.camera.width, h = hf.camera.height;
+    for (int ch = 0; ch < 3; ++ch)
+        in.denoisedDiffuse[ch] = half.output(Res::HalfDenoised, ch, w, h);
+    in.diffuseFrames = historyLengths(c, half, Res::HalfDiffuseFrames, w, h);
     DenoiseHistory* history = c.sequence ? &c.sequence->denoiseHalf : nullptr;
-    DenoiseOutputs& half = ht.denoised;
     denoise(c.isa, halfResolutionDiffuse(c.ts().denoise), in, history, c.resetHistory, ht.denoise,
-            half, c.threads(), &times);
+            c.threads(), &times);
     if (diffuseUpsampledInComposite(c.settings)) return;  // (compositePass)
     const auto t0 = std::chrono::steady_clock::now();
-    DenoiseOutputs& out = frame.denoised;
     // (The history length, a plane to look at, is blended as the hit share is.)
-    const ReconstructSource from{{&half.diffuse[0], &half.diffuse[1], &half.diffuse[2]},
-                                 nullptr,
-                                 c.debugPlane(half.diffuseFrames)};
-    const ReconstructPlanes to{{&out.diffuse[0], &out.diffuse[1], &out.diffuse[2]},
-                               nullptr,
-                               c.debugPlane(out.diffuseFrames)};
-    upsampleHalf(c.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, from, to, c.threads());
+    const std::span<PlaneF, 3> from = half.rgb(Res::HalfDenoised);
+    const std::span<PlaneF, 3> to = frame.rgb(Res::DenoisedDiffuse);
+    const ReconstructSource source{
+        {&from[0], &from[1], &from[2]}, nullptr, c.debugPlane(half.plane(Res::HalfDiffuseFrames))};
+    const ReconstructPlanes target{
+        {&to[0], &to[1], &to[2]}, nullptr, c.debugPlane(frame.plane(Res::DiffuseFrames))};
+    upsampleHalf(c.isa, c.guides(frame), PixelOffset{0, 0}, ht.rays.pdf, source, target,
+                 c.threads());
     const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
     times.push_back({"denoise upsample", ms.count()});
 }
 
 }  // namespace
 
-// REBLUR over SSGI's and SSR's signals (denoise/denoise.h): frame.denoised, which the
-// composite then reads; the traced planes stay as they were (the undenoised layers).
+// REBLUR over SSGI's and SSR's signals (denoise/denoise.h) into the frame's denoised outputs
+// (Res::DenoisedDiffuse, Res::DenoisedSpecular), which the composite then reads; the traced
+// planes stay as they were (the undenoised layers).
 void denoisePass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts();
     const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
-    DenoiseInputs in = denoiseCall(c, frame, c.camera, false);
+    const int w = c.camera.width, h = c.camera.height;
+    DenoiseCall in = denoiseCall(c, frame, c.camera, false);
     in.g = frame.gbuffer.view();
     if (ts.ssgi && !halfDiffuse) {
-        for (int ch = 0; ch < 3; ++ch) in.diffuse[ch] = frame.view(Res::Ssgi, ch);
+        for (int ch = 0; ch < 3; ++ch) {
+            in.diffuse[ch] = frame.view(Res::Ssgi, ch);
+            in.denoisedDiffuse[ch] = frame.outputs.output(Res::DenoisedDiffuse, ch, w, h);
+        }
         in.diffuseHitDistance = frame.view(Res::SsgiHitDistance);
+        in.diffuseFrames = historyLengths(c, frame.outputs, Res::DiffuseFrames, w, h);
     }
     if (ts.ssr) {
         for (int ch = 0; ch < 3; ++ch) {
             in.ssr[ch] = frame.view(Res::Ssr, ch);
             in.envSpecular[ch] = viewIn(frame.direct, frame.direct.envSpecular[ch]);
+            in.denoisedSpecular[ch] = frame.outputs.output(Res::DenoisedSpecular, ch, w, h);
         }
+        in.specularFrames = historyLengths(c, frame.outputs, Res::SpecularFrames, w, h);
         in.ssrOpacity = frame.view(Res::SsrOpacity);
         in.specularHitDistance = frame.view(Res::SsrHitDistance);
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
@@ -102,8 +118,8 @@ void denoisePass(const TraceContext& c, Frame& frame) {
         c.memory.giveThrough(pass::kDenoiseUpsample);
     }
     if (in.hasDiffuse() || in.hasSpecular())
-        denoise(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise,
-                frame.denoised, c.threads(), &times);
+        denoise(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise, c.threads(),
+                &times);
     // One line per pass, summed over the two calls.
     for (const DenoisePassTime& t : times) {
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),

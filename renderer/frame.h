@@ -1,6 +1,6 @@
 // What a frame is made of, and the history a sequence carries from one frame to the next.
 //
-// Its outputs are held by resource (OutputStore: Frame::rgb, Frame::plane), but for the
+// Its outputs are held by resource (PlaneStore: Frame::rgb, Frame::plane), but for the
 // G-buffer and the direct pass's parts, typed groups of planes that list their planes once, in
 // `table` (core/plane_table.h), because passes read them as one view. Every plane is named
 // from the frame's resource table (renderer/resources.h), the only place a plane's name is
@@ -23,7 +23,7 @@
 #include "raster/raster_stats.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
-#include "renderer/output_store.h"
+#include "renderer/plane_store.h"
 #include "renderer/resources.h"
 #include "trace/color_pyramid.h"
 #include "trace/march.h"
@@ -179,14 +179,13 @@ struct Frame {
     TraceCamera camera;  // the camera it was rendered from, as the trace passes see it
     uint32_t index = 0;  // the FrameInput::frameIndex it was rendered with
     // The image (Res::Color: linear radiance times the exposure; Res::Display: tone mapped,
-    // sRGB encoded, in [0, 1]; Res::Shadow: the light's visibility, 0..1) and what SSR and SSGI
-    // hand out (Res::Ssr ... Res::SsgiSteps; renderer/resources.cpp says what each holds).
-    OutputStore outputs;
+    // sRGB encoded, in [0, 1]; Res::Shadow: the light's visibility, 0..1), what SSR and SSGI
+    // hand out (Res::Ssr ... Res::SsgiSteps) and what the denoiser does (Res::DenoisedDiffuse
+    // ... Res::SpecularFrames: the composite reads these in place of the traced signals, which
+    // stay layers, undenoised); renderer/resources.cpp says what each holds.
+    PlaneStore outputs = PlaneStore::frameOutputs();
     GBuffer gbuffer;
     DirectParts direct;  // only when a trace pass runs
-    // What the denoiser hands out (TraceSettings::denoise): the composite reads these in place
-    // of the traced signals (which stay layers, undenoised).
-    DenoiseOutputs denoised;
     // Layers a caller adds after rendering (`ssrt compare`: the truth's), written after ours.
     std::vector<NamedPlane> extraLayers;
     FrameStats stats;
@@ -234,9 +233,9 @@ struct Frame {
                 }
             } resolved;
             // The diffuse signal denoised on the half frame (with the denoiser), before the
-            // upsample.
+            // upsample, and its history lengths (debug planes).
             DenoiseScratch denoise;
-            DenoiseOutputs denoised;
+            PlaneStore denoised{Res::HalfDenoised, Res::HalfDiffuseFrames};
         } half;
 
         // Every buffer above but the pool, once: fn(group, name, buffer), where `name` is the
@@ -262,7 +261,7 @@ struct Frame {
     }
 
     // An output's planes, one per channel, an RGB one's three, and one of its planes
-    // (OutputStore).
+    // (PlaneStore).
     PlaneF* planes(Res id) { return outputs.planes(id); }
     const PlaneF* planes(Res id) const { return outputs.planes(id); }
     std::span<PlaneF, 3> rgb(Res id) { return outputs.rgb(id); }
@@ -285,7 +284,6 @@ private:
         f.gbuffer.forEachPlane(fn);
         f.direct.forEachPlane(fn);
         f.outputs.forEachPlane(LayerGroup::Trace, fn);
-        f.denoised.forEachPlane(fn);
     }
 };
 
@@ -320,7 +318,7 @@ void Frame::Scratch::forEachBuffer(Fn&& fn) const {
     in("half march", half.march, "half.");
     in("half resolved", half.resolved);
     in("half denoise scratch", half.denoise, "half.");
-    in("half denoised", half.denoised, "half.");
+    in("half denoised", half.denoised);
 }
 
 }  // namespace ssrt

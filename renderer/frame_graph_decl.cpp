@@ -66,6 +66,7 @@ bool debugSpecular(const GraphKey& k) { return denoiseSpecular(k) && debug(k); }
 bool debugFullDiffuse(const GraphKey& k) { return denoiseFullDiffuse(k) && debug(k); }
 bool denoiseFull(const GraphKey& k) { return denoiseSpecular(k) || denoiseFullDiffuse(k); }
 bool denoiseHalf(const GraphKey& k) { return denoise(k) && halfSsgi(k); }
+bool debugHalfDenoise(const GraphKey& k) { return denoiseHalf(k) && debug(k); }
 // The denoiser's history: read (the last frame's), kept (this frame's, for the next).
 bool readFull(const GraphKey& k) { return k.history && denoiseFull(k); }
 bool readHalf(const GraphKey& k) { return k.history && denoiseHalf(k); }
@@ -444,8 +445,8 @@ std::vector<PassDecl> declarePasses() {
                            {Res::HalfDenoiseState, Res::Count},
                            {Res::HalfDenoiseFast, Res::Count},
                            {Res::HalfDenoised, Res::Count},
-                           {Res::Count, Res::Count},
-                           {nullptr, nullptr},
+                           {Res::HalfDiffuseFrames, Res::Count},
+                           {debugHalfDenoise, nullptr},
                            {Res::HalfDenoiseHistory, Res::HalfDenoiseHistorySignal, Res::Count},
                            {readHalf, readHalf, nullptr},
                            {keepHalf, keepHalf, nullptr},
@@ -459,6 +460,7 @@ std::vector<PassDecl> declarePasses() {
     p.push_back({pass::kDenoiseUpsample,
                  denoiseUpsample,
                  {{Res::HalfDenoised, P::Around},
+                  {Res::HalfDiffuseFrames, P::Around, debug},
                   {Res::HalfRayPdf, P::Around},
                   {Res::ViewZ},
                   {Res::Normal}},

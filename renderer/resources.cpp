@@ -122,6 +122,7 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HalfDenoiseState, "half.state.diffuse", "signalZ,frames", F::F32, R::Half, L::Transient},
     {Res::HalfDenoiseFast, "half.fast.diffuse", "", F::F16, R::Half, L::Transient},
     {Res::HalfDenoised, "half.denoisedDiffuse", "R,G,B", F::F32, R::Half, L::Transient},
+    {Res::HalfDiffuseFrames, "half.diffuseFrames", "", F::F32, R::Half, L::Transient},
     {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
     {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
     {Res::DenoiseHistoryGuides, "history.denoise.guide",

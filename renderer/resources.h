@@ -156,6 +156,7 @@ enum class Res : uint8_t {
     HalfDenoiseState,
     HalfDenoiseFast,
     HalfDenoised,
+    HalfDiffuseFrames,
     // History (FrameHistory)
     HistoryColor,
     HistoryDiffuse,

@@ -1,2 +1,2 @@
 list(APPEND SSRT_SOURCES renderer/direct_lighting.cpp renderer/frame_graph.cpp renderer/resources.cpp renderer/frame_graph_decl.cpp renderer/frame_memory.cpp renderer/frame_scheduler.cpp renderer/layer_groups.cpp renderer/memory_use.cpp renderer/renderer.cpp renderer/resolve_tables.cpp renderer/settings.cpp renderer/sky_lighting.cpp renderer/texture_pass.cpp
-     renderer/trace_pass.cpp renderer/trace_stages.cpp renderer/ssr_pass.cpp renderer/ssgi_pass.cpp renderer/denoise_pass.cpp renderer/composite_pass.cpp renderer/quality.cpp renderer/output_store.cpp)
+     renderer/trace_pass.cpp renderer/trace_stages.cpp renderer/ssr_pass.cpp renderer/ssgi_pass.cpp renderer/denoise_pass.cpp renderer/composite_pass.cpp renderer/quality.cpp renderer/plane_store.cpp)

@@ -69,8 +69,8 @@ namespace {
 // planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
 // bounce of one-ray noise fed back would come back as noise), else SSGI's.
 std::span<const PlaneF, 3> committedDiffuse(const Frame& frame) {
-    const DenoiseOutputs& d = frame.denoised;
-    return d.diffuse[0].empty() ? frame.rgb(Res::Ssgi) : std::span<const PlaneF, 3>(d.diffuse);
+    const std::span<const PlaneF, 3> d = frame.rgb(Res::DenoisedDiffuse);
+    return d[0].empty() ? frame.rgb(Res::Ssgi) : d;
 }
 
 // A non-finite value (a NaN from a bad input, an overflow) is committed as 0, no light: the

@@ -59,9 +59,10 @@ FrameParts frameParts(const Frame& frame) {
     // Where the denoiser ran, the composite read its planes: the specular one as the whole
     // incoming radiance (opacity 1 over it), the diffuse one in place of SSGI's (whose own
     // planes may then not be made: RenderSettings::debugPlanes).
-    const DenoiseOutputs& denoised = frame.denoised;
-    const bool specDenoised = !denoised.specular[0].empty();
-    const bool diffDenoised = !denoised.diffuse[0].empty();
+    const std::span<const PlaneF, 3> denoisedSpecular = frame.rgb(Res::DenoisedSpecular);
+    const std::span<const PlaneF, 3> denoisedDiffuse = frame.rgb(Res::DenoisedDiffuse);
+    const bool specDenoised = !denoisedSpecular[0].empty();
+    const bool diffDenoised = !denoisedDiffuse[0].empty();
     const bool ssrOn = !frame.plane(Res::SsrOpacity).empty();
     const bool ssgiOn = !frame.plane(Res::SsgiHit).empty() || diffDenoised;
     const PlaneF opacity = !ssrOn         ? PlaneF(frame.width, frame.height)
@@ -71,10 +72,10 @@ FrameParts frameParts(const Frame& frame) {
     FloatPlane ssgi[3];
     for (int c = 0; c < 3; ++c) {
         ssr[c] = !ssrOn         ? FloatPlane(&parts.envSpecular[c])
-                 : specDenoised ? FloatPlane(&denoised.specular[c])
+                 : specDenoised ? FloatPlane(&denoisedSpecular[c])
                                 : FloatPlane(&frame.rgb(Res::Ssr)[c]);
         ssgi[c] = !ssgiOn        ? FloatPlane(&parts.envDiffuse[c])
-                  : diffDenoised ? FloatPlane(&denoised.diffuse[c])
+                  : diffDenoised ? FloatPlane(&denoisedDiffuse[c])
                                  : FloatPlane(&frame.rgb(Res::Ssgi)[c]);
     }
     specularDiffuse(frame, ssr, ssrOn && !specDenoised ? frame.plane(Res::SsrOpacity) : opacity,

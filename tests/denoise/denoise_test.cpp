@@ -51,8 +51,8 @@ struct Synthetic {
                 &diffuse[1], &diffuse[2], &diffuseHit, &ssr[0],    &ssr[1],    &ssr[2],
                 &opacity,    &env[0],     &env[1],     &env[2],    &specHit};
     }
-    DenoiseInputs inputs(uint32_t frame) const {
-        DenoiseInputs in;
+    DenoiseCall inputs(uint32_t frame) const {
+        DenoiseCall in;
         in.camera = camera;
         in.frameIndex = frame;
         in.g = gbufferView("the test's guides", w, h,
@@ -84,17 +84,47 @@ struct Synthetic {
     }
 };
 
+// The planes the denoiser writes (a frame's are its outputs: renderer/plane_store.h).
+struct Outputs {
+    PlaneF diffuse[3], specular[3], diffuseFrames, specularFrames;
+
+    // `in`, writing into these (sized to its camera) for the signals it has, history lengths
+    // with them.
+    DenoiseCall into(DenoiseCall in) {
+        const int w = in.camera.width, h = in.camera.height;
+        const auto out = [&](PlaneF& p, const char* name) {
+            p.ensureSize(w, h);
+            return outputOf(p, name);
+        };
+        const char* const names[2][3] = {
+            {"denoisedDiffuse.R", "denoisedDiffuse.G", "denoisedDiffuse.B"},
+            {"denoisedSpecular.R", "denoisedSpecular.G", "denoisedSpecular.B"}};
+        if (in.hasDiffuse()) {
+            for (int c = 0; c < 3; ++c) in.denoisedDiffuse[c] = out(diffuse[c], names[0][c]);
+            in.diffuseFrames = out(diffuseFrames, "diffuseFrames");
+        }
+        if (in.hasSpecular()) {
+            for (int c = 0; c < 3; ++c) in.denoisedSpecular[c] = out(specular[c], names[1][c]);
+            in.specularFrames = out(specularFrames, "specularFrames");
+        }
+        return in;
+    }
+};
+
 // Runs one frame.
 struct Denoiser {
     DenoiseSettings settings;
     DenoiseHistory history;
     DenoiseScratch scratch;
-    DenoiseOutputs out;
+    Outputs out;
     Isa isa = defaultIsa();
     int threads = 2;
 
     void run(const Synthetic& s, uint32_t frame, bool reset = false) {
-        denoise(isa, settings, s.inputs(frame), &history, reset, scratch, out, threads);
+        run(s.inputs(frame), reset);
+    }
+    void run(const DenoiseCall& in, bool reset = false) {
+        denoise(isa, settings, out.into(in), &history, reset, scratch, threads);
     }
 };
 
@@ -185,9 +215,9 @@ TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks s
     // Both signals for three frames, then the diffuse alone (as when SSR is turned off).
     for (uint32_t f = 0; f < 3; ++f) d.run(s, f);
     REQUIRE(d.out.specularFrames.at(20, 10) > 1.0f);
-    DenoiseInputs diffuseOnly = s.inputs(3);
+    DenoiseCall diffuseOnly = s.inputs(3);
     for (auto& p : diffuseOnly.ssr) p = {};
-    denoise(d.isa, d.settings, diffuseOnly, &d.history, false, d.scratch, d.out, d.threads);
+    d.run(diffuseOnly);
     CHECK(d.history.hasSignal(false));
     CHECK_FALSE(d.history.hasSignal(true));
     CHECK(d.history.specular.empty());
@@ -287,13 +317,14 @@ TEST_CASE("denoise: a frame without history skips the temporal pass, to the same
         return false;
     };
     for (const DenoiseSettings& settings : {DenoiseSettings(), everyPass()}) {
-        DenoiseInputs in = s.inputs(5);
+        DenoiseCall in = s.inputs(5);
         DenoiseScratch scratch[2];
-        DenoiseOutputs out[2];
+        Outputs out[2];
         std::vector<DenoisePassTime> times[2];
         for (int k = 0; k < 2; ++k) {
             in.temporal = k == 0;
-            denoise(defaultIsa(), settings, in, nullptr, false, scratch[k], out[k], 2, &times[k]);
+            denoise(defaultIsa(), settings, out[k].into(in), nullptr, false, scratch[k], 2,
+                    &times[k]);
         }
         CHECK(timed(times[0], "denoise temporal"));
         CHECK_FALSE(timed(times[1], "denoise temporal"));
@@ -305,27 +336,28 @@ TEST_CASE("denoise: a frame without history skips the temporal pass, to the same
         CHECK(hashPlane(out[0].specularFrames) == hashPlane(out[1].specularFrames));
     }
     // A history to read or to keep needs the pass.
-    DenoiseInputs in = s.inputs(5);
+    DenoiseCall in = s.inputs(5);
     in.temporal = false;
     DenoiseHistory history;
     DenoiseScratch scratch;
-    DenoiseOutputs out;
-    CHECK_THROWS_AS(denoise(defaultIsa(), DenoiseSettings(), in, &history, false, scratch, out, 2),
-                    std::logic_error);
+    Outputs out;
+    CHECK_THROWS_AS(
+        denoise(defaultIsa(), DenoiseSettings(), out.into(in), &history, false, scratch, 2),
+        std::logic_error);
 }
 
 TEST_CASE("denoise: a missing or mis-sized plane is an error naming it") {
     Synthetic s(64, 48);
     Denoiser d;
-    const auto message = [&](const DenoiseInputs& in) {
+    const auto message = [&](const DenoiseCall& in) {
         try {
-            denoise(d.isa, d.settings, in, &d.history, false, d.scratch, d.out, d.threads);
+            d.run(in);
         } catch (const std::invalid_argument& e) {
             return std::string(e.what());
         }
         return std::string("no error");
     };
-    DenoiseInputs in = s.inputs(0);
+    DenoiseCall in = s.inputs(0);
     in.specularHitDistance = {};
     CHECK(message(in) == "denoise: specularHitDistance is missing");
     const PlaneF small(32, 48, 1.0f);
@@ -339,6 +371,12 @@ TEST_CASE("denoise: a missing or mis-sized plane is an error naming it") {
     CHECK(message(in) == "no error");
     in.g.motion[1] = nullptr;
     CHECK(message(in) == "denoise: motion.Y is missing");
+    // Where it writes is the caller's, checked as what it reads.
+    DenoiseCall unwritable = d.out.into(s.inputs(0));
+    unwritable.denoisedSpecular[1] = {};
+    CHECK_THROWS_WITH_AS(
+        denoise(d.isa, d.settings, unwritable, &d.history, false, d.scratch, d.threads),
+        "denoise: denoisedSpecular is missing", std::invalid_argument);
 }
 
 TEST_CASE("denoise: a camera cut gives the frame a fresh history, bit for bit") {

@@ -70,20 +70,3 @@ TEST_CASE(
     CHECK(resourceDecl(resourceOfChannel("history.denoise.guide.viewZ")).format ==
           PixelFormat::F32);
 }
-
-TEST_CASE(
-    "denoise formats: the denoiser's outputs are the table's, handed out at full resolution") {
-    const DenoiseOutputs out;
-    int planes = 0;
-    out.forEachPlane([&](std::string_view name, const PlaneF&) {
-        CAPTURE(name);
-        const Res res = resourceOfChannel(name);
-        REQUIRE(res != Res::Count);
-        CHECK(resourceDecl(res).lifetime == Lifetime::Output);
-        CHECK(resourceDecl(res).format == PixelFormat::F32);
-        ++planes;
-    });
-    CHECK(planes == 8);
-    // The half frame's diffuse, before the upsample.
-    CHECK(resourceOfChannel("half.denoisedDiffuse.G") == Res::HalfDenoised);
-}

@@ -88,7 +88,7 @@ double specularError(const Frame& f, const Frame& ref) {
                     ref.rgb(Res::Ssr)[c].at(x, y) * ref.plane(Res::SsrOpacity).at(x, y) +
                     decodeF16(ref.direct.envSpecular[c].at(x, y)) *
                         (1.0 - ref.plane(Res::SsrOpacity).at(x, y));
-                const double d = f.denoised.specular[c].at(x, y) - r;
+                const double d = f.rgb(Res::DenoisedSpecular)[c].at(x, y) - r;
                 sum += d * d / (r * r + 0.01);
             }
             ++n;
@@ -184,7 +184,7 @@ TEST_CASE("denoise sequence: a camera cut renders as a fresh history would") {
     input.resetHistory = false;
     renderer.render(scene, input, fresh, b);
     CHECK(frameHash(a) == frameHash(b));
-    CHECK(a.denoised.diffuseFrames.at(80, 45) == 0.0f);
+    CHECK(a.plane(Res::DiffuseFrames).at(80, 45) == 0.0f);
 }
 
 TEST_CASE("denoise sequence: a camera pan reveals background that restarts its history") {
@@ -217,7 +217,7 @@ TEST_CASE("denoise sequence: a camera pan reveals background that restarts its h
                     for (int dy = -2; dy <= 2; ++dy)
                         for (int dx = -2; dx <= 2; ++dx)
                             same &= previousIds.at(px + dx, py + dy) == id;
-                    const float frames = f.denoised.diffuseFrames.at(x, y);
+                    const float frames = f.plane(Res::DiffuseFrames).at(x, y);
                     // Revealed: the whole footprint showed something nearer.
                     const float z = f.gbuffer.viewZ.at(x, y);
                     bool occluded = true;

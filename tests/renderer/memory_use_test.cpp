@@ -133,7 +133,7 @@ TEST_CASE("memory use: each resource's planes, named from the resource table") {
         CHECK(dm.count("blurred.specular") == 0);
         // diffuse RGB and its history length
         CHECK(dm.at("denoisedDiffuse") + dm.at("diffuseFrames") == 4 * plane);
-        CHECK(diffuseOnly.denoised.specular[0].empty());
+        CHECK(diffuseOnly.rgb(Res::DenoisedSpecular)[0].empty());
     }
     // Without a history, and without the trace, those groups are gone.
     Frame still;

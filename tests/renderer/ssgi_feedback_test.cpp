@@ -75,7 +75,7 @@ TEST_CASE("ssgi feedback: each frame of a still camera adds a bounce -- the firs
         REQUIRE(history.valid);
         for (int c = 0; c < 3; ++c) {
             CHECK(sameBits(history.color[c], f.rgb(Res::Color)[c]));
-            CHECK(sameBits(history.diffuse[c], f.denoised.diffuse[c]));
+            CHECK(sameBits(history.diffuse[c], f.rgb(Res::DenoisedDiffuse)[c]));
         }
         mean.push_back(meanOf(f.rgb(Res::Ssgi)));
         MESSAGE("frame " << k << ": mean incoming diffuse " << mean.back());
@@ -172,9 +172,8 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
     fed.render(scene, input, history, f);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    DenoiseOutputs& d = f.denoised;
-    const std::span<PlaneF, 3> diffuse =
-        d.diffuse[0].empty() ? f.rgb(Res::Ssgi) : std::span<PlaneF, 3>(d.diffuse);
+    const std::span<PlaneF, 3> denoised = f.rgb(Res::DenoisedDiffuse);
+    const std::span<PlaneF, 3> diffuse = denoised[0].empty() ? f.rgb(Res::Ssgi) : denoised;
     for (int c = 0; c < 3; ++c) {
         f.rgb(Res::Color)[c].at(40, 30) = nan;
         f.rgb(Res::Color)[c].at(41, 30) = inf;

@@ -316,8 +316,8 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
             CHECK(test::sameBits(a.rgb(Res::Color)[ch], b.rgb(Res::Color)[ch]));
             CHECK(test::sameBits(a.rgb(Res::Display)[ch], b.rgb(Res::Display)[ch]));
         }
-        CHECK(a.denoised.diffuse[0].empty());
-        CHECK_FALSE(b.denoised.diffuse[0].empty());
+        CHECK(a.rgb(Res::DenoisedDiffuse)[0].empty());
+        CHECK_FALSE(b.rgb(Res::DenoisedDiffuse)[0].empty());
         // SSR's planes went back to the pool once the denoiser read them, and its passes
         // reused them: the frame holds less in all for not showing them.
         CHECK(a.rgb(Res::Ssr)[0].empty());

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "core/pixel_formats.h"
@@ -80,7 +81,8 @@ MirrorMask mirrorMask(const Frame& f, const PlaneF (&traced)[3], const PlaneF (&
 // LDR-FLIP (io/flip.h) of `image` against `reference` (radiance planes) over the mask's box,
 // tone-mapped; pixels outside the mask take the reference's value in both, and the mean is
 // over the mask's pixels.
-double maskedFlip(const PlaneF (&image)[3], const PlaneF (&reference)[3], const MirrorMask& m) {
+double maskedFlip(std::span<const PlaneF, 3> image, const PlaneF (&reference)[3],
+                  const MirrorMask& m) {
     const int w = m.x1 - m.x0, h = m.y1 - m.y0;
     RgbImage test, ref;
     PlaneF* const t[3] = {&test.r, &test.g, &test.b};
@@ -116,7 +118,7 @@ TEST_CASE("mirror: the denoised reflection on cornell's mirror sphere is as shar
     tracedSpecular(f, traced);
     const MirrorMask mask = mirrorMask(f, traced, ref.ssr);
     REQUIRE(mask.count > 150);
-    const double denoised = maskedFlip(f.denoised.specular, ref.ssr, mask);
+    const double denoised = maskedFlip(f.rgb(Res::DenoisedSpecular), ref.ssr, mask);
     const double tracedFlip = maskedFlip(traced, ref.ssr, mask);
     MESSAGE("mirror pixels " << mask.count << ", mean FLIP against Embree: denoised " << denoised
                              << ", traced " << tracedFlip);

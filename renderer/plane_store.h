@@ -1,8 +1,9 @@
-// A frame's outputs besides the G-buffer (its image, what SSR and SSGI hand out), held by
-// resource: one f32 plane per channel of each, in the resource table's order
-// (renderer/resources.cpp). So an output is one line of that table, and no struct lists it
-// again with a member and a name per plane. A resource the frame does not hold this time has
-// empty planes (and is no layer).
+// f32 planes held by resource: one plane per channel of each resource a store is made for, in
+// the resource table's order (renderer/resources.cpp). So a resource is one line of that table,
+// and no struct lists it again with a member and a name per plane. The frame's outputs are one
+// store (its image, what SSR and SSGI hand out, the denoiser's), the half frame's denoised
+// diffuse another, the truth's per-ray checks a third. A resource a store holds but that was
+// not made this time has empty planes (and is no layer).
 #pragma once
 
 #include <array>
@@ -16,13 +17,17 @@
 
 namespace ssrt {
 
-class OutputStore {
+class PlaneStore {
 public:
-    OutputStore();
+    // A store of `ids` (each f32: std::logic_error for another format).
+    explicit PlaneStore(std::span<const Res> ids);
+    PlaneStore(std::initializer_list<Res> ids)
+        : PlaneStore(std::span<const Res>(ids.begin(), ids.size())) {}
+    // The frame's outputs: every output outside the G-buffer, in the table's order.
+    static PlaneStore frameOutputs();
 
-    // Whether `id` is one of the store's: an f32 output outside the G-buffer. (The denoiser's
-    // outputs are its own: denoise/denoise.h.)
-    static bool holds(Res id);
+    // Whether the store holds `id`.
+    bool holds(Res id) const { return !planes_[std::size_t(id)].empty(); }
 
     // A resource's planes, one per channel (std::logic_error for one the store does not hold).
     PlaneF* planes(Res id);
@@ -44,15 +49,23 @@ public:
         return outputOf(p, channelName(id, channel));
     }
 
-    // fn(channel name, plane) for every plane of the store's resources of `group`, in the
-    // table's order.
+    // fn(channel name, plane) for every plane of the store's resources of `group` (outputs), or
+    // of all of them, in the table's order.
     template <class Fn>
     void forEachPlane(LayerGroup group, Fn&& fn) {
-        forEachOf(*this, group, fn);
+        forEachOf(*this, &group, fn);
     }
     template <class Fn>
     void forEachPlane(LayerGroup group, Fn&& fn) const {
-        forEachOf(*this, group, fn);
+        forEachOf(*this, &group, fn);
+    }
+    template <class Fn>
+    void forEachPlane(Fn&& fn) {
+        forEachOf(*this, nullptr, fn);
+    }
+    template <class Fn>
+    void forEachPlane(Fn&& fn) const {
+        forEachOf(*this, nullptr, fn);
     }
     // fn(channel name, plane) for each channel of one resource.
     template <class Fn>
@@ -63,10 +76,10 @@ public:
 
 private:
     template <class S, class Fn>
-    static void forEachOf(S& s, LayerGroup group, Fn& fn) {
+    static void forEachOf(S& s, const LayerGroup* group, Fn& fn) {
         for (int r = 0; r < kResourceCount; ++r) {
-            if (!holds(Res(r)) || resourceDecl(Res(r)).group != group) continue;
             auto& planes = s.planes_[std::size_t(r)];
+            if (planes.empty() || (group && resourceDecl(Res(r)).group != *group)) continue;
             for (std::size_t i = 0; i < planes.size(); ++i)
                 fn(channelName(Res(r), int(i)), planes[i]);
         }
