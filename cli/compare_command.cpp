@@ -125,22 +125,15 @@ void warnUnchecked(std::ostream& err, const char* pass, const char* flag, const 
         << gen.belowSurface << " drew a ray below the surface\n";
 }
 
-// The reference and the first sample's checks as extra layers of the frame.
-void appendTruthPlanes(Frame& frame, const ReferenceImage& ref, const Evaluation& ev) {
+// The reference as extra layers of the frame (the first sample's checks are its own already:
+// Res::SsrCheck, Res::SsgiCheck).
+void appendTruthPlanes(Frame& frame, const ReferenceImage& ref) {
     const char* suffix[3] = {".R", ".G", ".B"};
     for (int c = 0; c < 3; ++c) {
         frame.extraLayers.push_back({std::string("ref.color") + suffix[c], ref.color[c].clone()});
         frame.extraLayers.push_back({std::string("ref.ssr") + suffix[c], ref.ssr[c].clone()});
         frame.extraLayers.push_back({std::string("ref.ssgi") + suffix[c], ref.ssgi[c].clone()});
     }
-    const auto checks = [&](const char* base, const RayCheckPlanes& p) {
-        if (p.rayClass.width() != frame.width) return;  // the pass did not run
-        frame.extraLayers.push_back({std::string(base) + ".class", p.rayClass.clone()});
-        frame.extraLayers.push_back({std::string(base) + ".pixelError", p.pixelError.clone()});
-        frame.extraLayers.push_back({std::string(base) + ".depthError", p.depthError.clone()});
-    };
-    if (ev.ssr) checks("ssrCheck", ev.ssrPlanes);
-    if (ev.ssgi) checks("ssgiCheck", ev.ssgiPlanes);
 }
 
 }  // namespace
@@ -284,7 +277,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
            "-o,--output", [&o](const std::string& v) { o.output = v; },
            "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
            "per-pixel checks of the first sample (ssrCheck.class, .pixelError, .depthError, "
-           "ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
+           ".trueT: Embree's hit distance, 0 for none; ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
            "off-screen truth, 0 no ray: a pixel that traced none, such as a checkerboard's "
            "other phase or, for the half layout, a block's unchosen pixels; the half layout's "
            "ray is at its block's chosen pixel, its pixel error in full-resolution pixels), or "
@@ -378,7 +371,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
         if (progress) *progress << "wrote " << *o.truth.perFrame << "\n";
     }
     if (o.output) {
-        appendTruthPlanes(frame, result.reference, ev);
+        appendTruthPlanes(frame, result.reference);
         writeFrame(*o.output, frame, writeOptions);
         if (progress) *progress << "wrote " << *o.output << "\n";
     }

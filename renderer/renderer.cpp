@@ -288,6 +288,9 @@ std::vector<PlaneRef> Frame::layers() const {
         }
     });
     for (const NamedPlane& p : extraLayers) out.push_back({p.name, &p.plane, LayerGroup::Truth});
+    outputs.forEachPlane(LayerGroup::Truth, [&](std::string_view name, const PlaneF& p) {
+        if (!p.empty()) out.push_back({name, &p, LayerGroup::Truth});
+    });
     return out;
 }
 

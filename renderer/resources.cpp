@@ -62,6 +62,13 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
      trace},
     {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
     {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    // Embree's check of the first sample's rays of each pass, at each ray's pixel (truth/
+    // ray_check.h): its class, the pixel and relative depth error where both hit, Embree's hit
+    // distance. Written by `ssrt compare` alone, after the frame: no pass declares them.
+    {Res::SsrCheck, "ssrCheck", "class,pixelError,depthError,trueT", F::F32, R::Full, L::Output,
+     G::Truth},
+    {Res::SsgiCheck, "ssgiCheck", "class,pixelError,depthError,trueT", F::F32, R::Full, L::Output,
+     G::Truth},
     {Res::ShadowMap, "shadowMap", "", F::F32, R::ShadowMap, L::Transient},
     {Res::VisibilityDepth, "visibility.depth", "", F::F32, R::Full, L::Transient},
     {Res::VisibilityIds, "visibility.ids", "", F::U32, R::Full, L::Transient},

@@ -23,7 +23,7 @@ enum class LayerGroup : uint8_t {
     Color,    // colour, display, shadow
     GBuffer,  // the G-buffer, the material planes, the ids
     Trace,    // SSR, SSGI, the denoiser's
-    Truth,    // Frame::extraLayers (`ssrt compare`: the reference and the ray checks)
+    Truth,    // `ssrt compare`'s: the ray checks, and Frame::extraLayers (the reference)
 };
 inline constexpr int kLayerGroupCount = 4;
 
@@ -99,6 +99,8 @@ enum class Res : uint8_t {
     DenoisedSpecular,
     DiffuseFrames,
     SpecularFrames,
+    SsrCheck,
+    SsgiCheck,
     // Raster
     ShadowMap,
     VisibilityDepth,

@@ -99,14 +99,18 @@ Evaluation checkedRender(const EmbreeScene& embree, const Scene& scene, const Fr
     ev.ssr = settings.trace.ssr;
     ev.ssgi = settings.trace.ssgi;
 
-    // Embree sees each sample's rays as they were marched.
+    // Embree sees each sample's rays as they were marched; a pass that does not run this time
+    // leaves no check planes of an earlier frame behind.
+    for (Res id : {Res::SsrCheck, Res::SsgiCheck})
+        for (int ch = 0; ch < kCheckChannels; ++ch) frame.outputs.plane(id, ch) = PlaneF();
     RayCheckSettings check = es.check;
     const PlaneF* viewZ = nullptr;
     const TraceObserver observer = [&](TracePass pass, int sample, const RayBatch& rays,
                                        const MarchResult& march, const HalfFrame* half) {
         const bool ssr = pass == TracePass::Ssr;
-        RayCheckPlanes* planes =
-            es.planes && sample == 0 ? (ssr ? &ev.ssrPlanes : &ev.ssgiPlanes) : nullptr;
+        PlaneF* planes = es.planes && sample == 0
+                             ? frame.outputs.planes(ssr ? Res::SsrCheck : Res::SsgiCheck)
+                             : nullptr;
         // The G-buffer is complete before the trace passes run; the frame's camera too.
         if (!viewZ) {
             viewZ = &frame.gbuffer.viewZ;

@@ -29,7 +29,7 @@ ErrorTable referenceErrors(const ReferenceImage& image, const ReferenceImage& re
 struct EvaluationSettings {
     int repeats = 3;         // timed renders (the median of each pass is kept), >= 1
     RayCheckSettings check;  // maxDistance is taken from the render settings
-    bool planes = true;      // keep the per-pixel check planes of sample 0
+    bool planes = true;      // the frame's check planes (Res::SsrCheck, Res::SsgiCheck): sample 0's
     void validate() const;   // throws std::invalid_argument naming the field
 };
 
@@ -38,8 +38,7 @@ struct Evaluation {
     double frameMs = 0.0;          // median over the repeats of the sum of the passes
     FrameStats stats;              // of the checked render (counters)
     bool ssr = false, ssgi = false;
-    RayCheckTable ssrCheck, ssgiCheck;     // every sample's rays, errors sorted
-    RayCheckPlanes ssrPlanes, ssgiPlanes;  // sample 0, when settings.planes
+    RayCheckTable ssrCheck, ssgiCheck;  // every sample's rays, errors sorted
     ErrorTable error;
     double marchMraysPerSecond = 0.0;   // rays marched (both passes) / march time (medians)
     double embreeMraysPerSecond = 0.0;  // the same rays / Embree's traversal time

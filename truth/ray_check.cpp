@@ -55,10 +55,6 @@ float RayCheckTable::quantile(const std::vector<float>& sorted, double q) {
     return sorted[std::min(i, sorted.size() - 1)];
 }
 
-void RayCheckPlanes::ensureSize(int width, int height) {
-    for (PlaneF* p : {&rayClass, &pixelError, &depthError, &trueT}) p->ensureSize(width, height);
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -237,18 +233,18 @@ PixelCheck classify(const BatchGrid& g, const MarchResult& m, const TrueHit& tru
     return c;
 }
 
-void writePlanes(RayCheckPlanes* planes, const PixelCheck& c, float trueT, PixelOffset p) {
+void writePlanes(PlaneF* planes, const PixelCheck& c, float trueT, PixelOffset p) {
     if (!planes) return;
-    planes->rayClass.at(p.x, p.y) = float(int(c.cls));
-    planes->pixelError.at(p.x, p.y) = c.bothHit ? c.pixelError : 0.0f;
-    planes->depthError.at(p.x, p.y) = c.bothHit ? c.depthError : 0.0f;
-    planes->trueT.at(p.x, p.y) = trueT;
+    planes[kCheckClass].at(p.x, p.y) = float(int(c.cls));
+    planes[kCheckPixelError].at(p.x, p.y) = c.bothHit ? c.pixelError : 0.0f;
+    planes[kCheckDepthError].at(p.x, p.y) = c.bothHit ? c.depthError : 0.0f;
+    planes[kCheckTrueT].at(p.x, p.y) = trueT;
 }
 
 // Classifies one tile's rays (of the batch) into its own table (row order within the tile).
 void classifyTile(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
                   const MarchResult& m, const RayCheckSettings& s, const PlaneF& trueT,
-                  RayCheckPlanes* planes, const TileRect& r, RayCheckTable& table) {
+                  PlaneF* planes, const TileRect& r, RayCheckTable& table) {
     for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) {
             PixelCheck c;
@@ -270,21 +266,19 @@ void classifyTile(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
 
 RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& cam, const PlaneF& viewZ,
                         const RayBatch& rays, const MarchResult& march,
-                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads,
+                        const RayCheckSettings& settings, PlaneF* planes, int threads,
                         const HalfFrame* half) {
     const BatchGrid g(cam, half);
     requireSizes(g, viewZ, rays, march);
     requireSameOrigin(embree, cam, "checkRays");
     if (!(settings.maxDistance > 0.0f))
         throw std::invalid_argument("checkRays: maxDistance must be > 0");
-    if (planes) {
-        planes->ensureSize(cam.width, cam.height);
-        // (The half frame's rays write only their chosen pixels: the others hold no ray.)
-        if (half)
-            for (PlaneF* p :
-                 {&planes->rayClass, &planes->pixelError, &planes->depthError, &planes->trueT})
-                p->fill(0.0f);
-    }
+    if (planes)
+        for (int i = 0; i < kCheckChannels; ++i) {
+            planes[i].ensureSize(cam.width, cam.height);
+            // (The half frame's rays write only their chosen pixels: the others hold no ray.)
+            if (half) planes[i].fill(0.0f);
+        }
     // Embree first, alone, so that its wall clock is its own.
     PlaneF trueT(g.batch.width, g.batch.height);
     RayCheckTable total;

@@ -78,25 +78,30 @@ struct RayCheckTable {
     static float quantile(const std::vector<float>& sorted, double q);
 };
 
-// Per-pixel results of one sample's check, planes of the frame's size. A pixel that traced no
-// ray (a layout's untraced pixel, a cut one, the background) holds NoRay (0) and 0 in every
-// plane; the half layout's ray is written at its block's chosen pixel.
-struct RayCheckPlanes {
-    PlaneF rayClass;    // RayClass as a float
-    PlaneF pixelError;  // where both hit, else 0 (inf stays inf)
-    PlaneF depthError;  // where both hit, else 0
-    PlaneF trueT;       // Embree's hit distance (0: no true hit)
-    void ensureSize(int width, int height);
+// Per-pixel results of one sample's check: the channels of a pass's check resource
+// (Res::SsrCheck, Res::SsgiCheck: renderer/resources.cpp), planes of the frame's size, in the
+// table's order. A pixel that traced no ray (a layout's untraced pixel, a cut one, the
+// background) holds NoRay (0) and 0 in every plane; the half layout's ray is written at its
+// block's chosen pixel.
+enum RayCheckChannel : int {
+    kCheckClass,       // RayClass as a float
+    kCheckPixelError,  // where both hit, else 0 (inf stays inf)
+    kCheckDepthError,  // where both hit, else 0
+    kCheckTrueT,       // Embree's hit distance (0: no true hit)
+    kCheckChannels
 };
+// Check planes of a caller's own (a frame holds its passes' as outputs).
+using CheckPlanes = std::array<PlaneF, kCheckChannels>;
 
 // Checks one sample's rays: Embree traces them (16-ray packets over tiles, `threads`
-// workers, 0 = every core), each is classified. Writes `planes` when not null. `camera` and
+// workers, 0 = every core), each is classified. Writes `planes` (kCheckChannels of them, as
+// above; sized here) when not null. `camera` and
 // `viewZ` are the frame's (for "visible on screen"); `half`, when not null, the half frame the
 // batches were marched on (TraceLayout::Half, above). Throws std::invalid_argument on planes
 // of the wrong size.
 RayCheckTable checkRays(const EmbreeScene& embree, const TraceCamera& camera, const PlaneF& viewZ,
                         const RayBatch& rays, const MarchResult& march,
-                        const RayCheckSettings& settings, RayCheckPlanes* planes, int threads,
+                        const RayCheckSettings& settings, PlaneF* planes, int threads,
                         const HalfFrame* half = nullptr);
 
 }  // namespace ssrt

@@ -32,8 +32,8 @@ Scene levelCornell() {
 }
 
 struct LayoutCheck {
-    RayCheckTable table;    // every SSGI ray
-    RayCheckPlanes planes;  // sample 0's, in the frame's pixels
+    RayCheckTable table;  // every SSGI ray
+    CheckPlanes planes;   // sample 0's, in the frame's pixels
     Frame frame;
     std::vector<std::array<int, 2>> chosen;  // the frame pixels the half frame's rays stand for
 };
@@ -53,7 +53,7 @@ LayoutCheck checkSsgi(const Scene& scene, const EmbreeScene& embree, TraceLayout
     const TraceObserver check = [&](TracePass, int, const RayBatch& rays, const MarchResult& march,
                                     const HalfFrame* half) {
         out.table.add(checkRays(embree, out.frame.camera, out.frame.gbuffer.viewZ, rays, march, cs,
-                                &out.planes, 0, half));
+                                out.planes.data(), 0, half));
         if (!half) return;
         for (int y = 0; y < rays.height(); ++y)
             for (int x = 0; x < rays.width(); ++x)
@@ -72,10 +72,10 @@ std::array<double, kRayClassCount> backWallShares(const LayoutCheck& c, uint64_t
     std::array<uint64_t, kRayClassCount> n{};
     rays = 0;
     const PlaneF& ids = c.frame.gbuffer.instanceId;
-    REQUIRE(c.planes.rayClass.width() == ids.width());
+    REQUIRE(c.planes[kCheckClass].width() == ids.width());
     for (int y = 0; y < ids.height(); ++y)
         for (int x = 0; x < ids.width(); ++x) {
-            const int cls = int(c.planes.rayClass.at(x, y));
+            const int cls = int(c.planes[kCheckClass].at(x, y));
             if (cls == int(RayClass::NoRay) || int(ids.at(x, y)) != kBackWall) continue;
             ++n[std::size_t(cls)];
             ++rays;
@@ -99,12 +99,12 @@ TEST_CASE("ray check: the half layout's SSGI rays are all checked, each at its c
     CHECK(classified == half.table.rays);
     // The planes hold a class exactly at the chosen pixels of the rays (NoRay elsewhere).
     uint64_t marked = 0;
-    for (int y = 0; y < half.planes.rayClass.height(); ++y)
-        for (int x = 0; x < half.planes.rayClass.width(); ++x)
-            marked += half.planes.rayClass.at(x, y) != float(int(RayClass::NoRay));
+    for (int y = 0; y < half.planes[kCheckClass].height(); ++y)
+        for (int x = 0; x < half.planes[kCheckClass].width(); ++x)
+            marked += half.planes[kCheckClass].at(x, y) != float(int(RayClass::NoRay));
     CHECK(marked == half.table.rays);
     uint64_t misplaced = 0;
-    for (const auto& p : half.chosen) misplaced += half.planes.rayClass.at(p[0], p[1]) == 0.0f;
+    for (const auto& p : half.chosen) misplaced += half.planes[kCheckClass].at(p[0], p[1]) == 0.0f;
     CHECK(misplaced == 0);
 }
 

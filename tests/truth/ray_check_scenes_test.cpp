@@ -73,7 +73,7 @@ glm::mat3 rotationOf(const TraceCamera& c) {
 }
 
 // Every ray of one checked sample, as records.
-void addRecords(const Frame& frame, const Sample& s, const RayCheckPlanes& planes,
+void addRecords(const Frame& frame, const Sample& s, const CheckPlanes& planes,
                 std::vector<RayRecord>& out) {
     const TraceCamera& c = frame.camera;
     const glm::mat3 rot = rotationOf(c);
@@ -84,8 +84,8 @@ void addRecords(const Frame& frame, const Sample& s, const RayCheckPlanes& plane
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {
             if (!(s.rays.pdf.at(x, y) > 0.0f)) continue;
-            RayRecord r{s.pass, RayClass(int(planes.rayClass.at(x, y))), false, {}, -1};
-            const float t = planes.trueT.at(x, y);
+            RayRecord r{s.pass, RayClass(int(planes[kCheckClass].at(x, y))), false, {}, -1};
+            const float t = planes[kCheckTrueT].at(x, y);
             if (t > 0.0f) {
                 const glm::vec3 o(s.rays.ox.at(x, y), s.rays.oy.at(x, y), s.rays.oz.at(x, y));
                 const glm::vec3 d(s.rays.dx.at(x, y), s.rays.dy.at(x, y), s.rays.dz.at(x, y));
@@ -125,9 +125,9 @@ SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher
     cs.maxDistance = marchLengths(rs.trace.march, scene.diagonal()).maxDistance;
     SceneCheck out;
     for (const Sample& s : samples) {
-        RayCheckPlanes planes;
-        const RayCheckTable one =
-            checkRays(embree, frame.camera, frame.gbuffer.viewZ, s.rays, s.march, cs, &planes, 0);
+        CheckPlanes planes;
+        const RayCheckTable one = checkRays(embree, frame.camera, frame.gbuffer.viewZ, s.rays,
+                                            s.march, cs, planes.data(), 0);
         (s.pass == TracePass::Ssr ? out.tables.ssr : out.tables.ssgi).add(one);
         addRecords(frame, s, planes, out.rays);
     }

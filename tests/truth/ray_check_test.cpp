@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "renderer/renderer.h"
+#include "renderer/resources.h"
 #include "scenes/builtin_scenes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
@@ -114,8 +115,8 @@ void setMarchHit(Frame1& f, int x, int y, glm::vec2 pixel, float z) {
     f.march.cause.at(x, y) = float(int(MarchEnd::Hit));
 }
 
-RayClass classAt(const RayCheckPlanes& p, int x, int y) {
-    return RayClass(int(p.rayClass.at(x, y)));
+RayClass classAt(const CheckPlanes& p, int x, int y) {
+    return RayClass(int(p[kCheckClass].at(x, y)));
 }
 
 std::string tableText(const RayCheckTable& t) {
@@ -130,10 +131,9 @@ std::string tableText(const RayCheckTable& t) {
     return s.str();
 }
 
-uint64_t planesHash(const RayCheckPlanes& p) {
+uint64_t planesHash(const CheckPlanes& p) {
     uint64_t h = 0xcbf29ce484222325ull;
-    for (const PlaneF* q : {&p.rayClass, &p.pixelError, &p.depthError, &p.trueT})
-        h = hashPlane(*q, h);
+    for (const PlaneF& q : p) h = hashPlane(q, h);
     return h;
 }
 
@@ -204,8 +204,8 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
     // A pixel of the last tile row and column, so partial 4x4 blocks are traced: missed.
     setRay(f, 79, 69, o, w3);
 
-    RayCheckPlanes planes;
-    RayCheckTable t = checkRays(embree, c, f.viewZ, f.rays, f.march, {}, &planes, 1);
+    CheckPlanes planes;
+    RayCheckTable t = checkRays(embree, c, f.viewZ, f.rays, f.march, {}, planes.data(), 1);
     t.finish();
     MESSAGE(tableText(t));
     CHECK(t.rays == 9);
@@ -226,19 +226,19 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
     CHECK(classAt(planes, 11, 10) == RayClass::NoRay);
     CHECK(classAt(planes, 0, 0) == RayClass::NoRay);
     // True distances, 0 without a true hit.
-    CHECK(planes.trueT.at(10, 10) == doctest::Approx(glm::length(w1 - o)).epsilon(1e-5));
-    CHECK(planes.trueT.at(60, 10) ==
+    CHECK(planes[kCheckTrueT].at(10, 10) == doctest::Approx(glm::length(w1 - o)).epsilon(1e-5));
+    CHECK(planes[kCheckTrueT].at(60, 10) ==
           doctest::Approx(glm::length(hidden - behindOccluder)).epsilon(1e-5));
-    CHECK(planes.trueT.at(30, 10) == 0.0f);
-    CHECK(planes.trueT.at(50, 10) == 0.0f);
-    CHECK(planes.trueT.at(11, 10) == 0.0f);
+    CHECK(planes[kCheckTrueT].at(30, 10) == 0.0f);
+    CHECK(planes[kCheckTrueT].at(50, 10) == 0.0f);
+    CHECK(planes[kCheckTrueT].at(11, 10) == 0.0f);
     // Errors where both hit (agreed, wrong place, hidden truth): pixels and relative depth.
     const float wrong = glm::length(glm::vec2(30.5f, 30.5f) - project(c, w2));
-    CHECK(planes.pixelError.at(10, 10) == doctest::Approx(1.0f).epsilon(1e-4));
-    CHECK(planes.depthError.at(10, 10) == doctest::Approx(0.01f).epsilon(1e-3));
-    CHECK(planes.pixelError.at(20, 10) == doctest::Approx(wrong).epsilon(1e-5));
-    CHECK(planes.pixelError.at(35, 10) < 1e-3f);
-    CHECK(planes.pixelError.at(30, 10) == 0.0f);  // no truth: no error
+    CHECK(planes[kCheckPixelError].at(10, 10) == doctest::Approx(1.0f).epsilon(1e-4));
+    CHECK(planes[kCheckDepthError].at(10, 10) == doctest::Approx(0.01f).epsilon(1e-3));
+    CHECK(planes[kCheckPixelError].at(20, 10) == doctest::Approx(wrong).epsilon(1e-5));
+    CHECK(planes[kCheckPixelError].at(35, 10) < 1e-3f);
+    CHECK(planes[kCheckPixelError].at(30, 10) == 0.0f);  // no truth: no error
     REQUIRE(t.pixelError.size() == 3);
     REQUIRE(t.depthError.size() == 3);
     CHECK(t.pixelError[0] < 1e-3f);
@@ -264,6 +264,18 @@ TEST_CASE("ray check: one ray of each class on a hand-made wall scene") {
         checkRays(embree, c, f.viewZ, f.rays, f.march, tight, nullptr, 1);
     CHECK(shortRays.count[int(RayClass::TrueMiss)] == 5);
     CHECK(shortRays.count[int(RayClass::FalseHit)] == 4);
+}
+
+TEST_CASE("ray check: the check planes' channels are the resource table's, in its order") {
+    for (Res id : {Res::SsrCheck, Res::SsgiCheck}) {
+        checkChannelCount(id, kCheckChannels);
+        const std::string base(resourceDecl(id).name);
+        CHECK(channelName(id, kCheckClass) == base + ".class");
+        CHECK(channelName(id, kCheckPixelError) == base + ".pixelError");
+        CHECK(channelName(id, kCheckDepthError) == base + ".depthError");
+        CHECK(channelName(id, kCheckTrueT) == base + ".trueT");
+        CHECK(resourceDecl(id).group == LayerGroup::Truth);
+    }
 }
 
 TEST_CASE("ray check: planes of the wrong size are refused") {
@@ -303,9 +315,9 @@ TEST_CASE("ray check: the same table and planes for 1, 2 and 8 threads") {
             if (next() < 0.5f)
                 setMarchHit(f, x, y, {next() * 200.0f, next() * 150.0f}, 3.0f + 2.0f * next());
         }
-    RayCheckPlanes reference;
+    CheckPlanes reference;
     const RayCheckTable first =
-        checkRays(embree, f.camera, f.viewZ, f.rays, f.march, {}, &reference, 1);
+        checkRays(embree, f.camera, f.viewZ, f.rays, f.march, {}, reference.data(), 1);
     RayCheckTable sorted = first;  // the error lists of `first` stay in tile order
     sorted.finish();
     MESSAGE(tableText(sorted));
@@ -319,9 +331,9 @@ TEST_CASE("ray check: the same table and planes for 1, 2 and 8 threads") {
         CHECK(first.count[int(c)] > 0);
     for (int threads : {2, 8}) {
         CAPTURE(threads);
-        RayCheckPlanes planes;
+        CheckPlanes planes;
         const RayCheckTable t =
-            checkRays(embree, f.camera, f.viewZ, f.rays, f.march, {}, &planes, threads);
+            checkRays(embree, f.camera, f.viewZ, f.rays, f.march, {}, planes.data(), threads);
         CHECK(t.rays == first.rays);
         CHECK(t.count == first.count);
         CHECK(t.embreeHits == first.embreeHits);
