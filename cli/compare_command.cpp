@@ -277,7 +277,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
            "-o,--output", [&o](const std::string& v) { o.output = v; },
            "Also write the frame: .exr with every plane plus the reference (ref.*) and the "
            "per-pixel checks of the first sample (ssrCheck.class, .pixelError, .depthError, "
-           ".trueT: Embree's hit distance, 0 for none; ssgiCheck.*; class: 1 agreed, 2 false hit, 3 missed on screen, 4 true miss, 5 "
+           ".trueT: Embree's hit distance, 0 for none; ssgiCheck.*; class: 1 agreed, 2 false hit, "
+           "3 missed on screen, 4 true miss, 5 "
            "off-screen truth, 0 no ray: a pixel that traced none, such as a checkerboard's "
            "other phase or, for the half layout, a block's unchosen pixels; the half layout's "
            "ray is at its block's chosen pixel, its pixel error in full-resolution pixels), or "
