@@ -36,7 +36,13 @@ public:
 // each with its own texCoord and transform; TANGENT into Mesh::tangents (generated where a
 // normal map needs them and the file has none, scenes/tangents.h).
 // Geometry: plain, or compressed with KHR_draco_mesh_compression or EXT_meshopt_compression
-// (decoded first, then checked as plain data: scenes/gltf_compression.h).
+// (decoded first, then checked as plain data: scenes/gltf_compression.h). Attributes may be
+// quantized under KHR_mesh_quantization (POSITION and TEXCOORD_n any 8- or 16-bit integer,
+// normalized or not; NORMAL and TANGENT normalized BYTE or SHORT), decoded by glTF 2.0's rules
+// for normalized integers (section 3.11: c / 255, max(c / 127, -1), ...) or as their integer
+// values; the dequantization is the node's transform (and KHR_texture_transform for UVs), read
+// as for any file. A component type the attribute may not have is an error that says which it
+// may have (and when only KHR_mesh_quantization would allow it).
 // alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
 // BLEND is drawn as MASK at the default cutoff 0.5, with a warning); an alphaMode other than
 // OPAQUE, MASK or BLEND, or a negative or non-finite cutoff, is an error.
@@ -59,8 +65,8 @@ struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
 inline const std::vector<std::string> kSupportedGltfExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
-    "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
+    "KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression",      "KHR_mesh_quantization"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);
