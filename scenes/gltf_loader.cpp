@@ -1013,17 +1013,6 @@ std::vector<std::string> warningLines(const Context& ctx, const Scene& scene) {
     if (!n.blendMaterials.empty())
         lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
                         named("material", n.blendMaterials) + ")");
-    std::vector<std::size_t> samplers;
-    for (std::size_t i = 0; i < m.samplers.size(); ++i) {
-        const tinygltf::Sampler& s = m.samplers[i];
-        const bool trilinear =
-            (s.minFilter == -1 || s.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR) &&
-            (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR);
-        if (!trilinear) samplers.push_back(i);
-    }
-    if (!samplers.empty())
-        lines.push_back("sampler filters are ignored (" + named("sampler", samplers) +
-                        "; textures are always sampled trilinearly)");
     if (n.vertexColours > 0)
         lines.push_back("vertex colours (COLOR_0) are not applied (" +
                         counted(n.vertexColours, "primitive") + ")");

@@ -52,8 +52,10 @@ public:
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
 // cameras other than the one used and orthographic cameras, a camera node's scale, shear or
-// mirror and the triangles wholly past its far plane, alphaMode BLEND, sampler
-// filters other than trilinear, COLOR_0, skins, animations and morph targets.
+// mirror and the triangles wholly past its far plane, alphaMode BLEND, COLOR_0, skins,
+// animations and morph targets. Samplers' filters are checked to be glTF's values and
+// otherwise not read, without a warning: every texture is filtered one way
+// (scenes/texture.h).
 // kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is
 // not among them is an error naming it.
 //
