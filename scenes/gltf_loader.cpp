@@ -609,7 +609,10 @@ float emissiveStrength(const Context& ctx, const std::string& name, const tinygl
 
 // alphaMode and alphaCutoff (glTF 2.0 section 3.9.4), and baseColorFactor's alpha. BLEND is
 // drawn as MASK at the default cutoff 0.5 (the specification has the cutoff ignored outside
-// MASK): a cut where coverage is one half, which keeps the holes' sizes.
+// MASK): a cut where coverage is one half, which keeps the holes' sizes. True blending would
+// need a forward pass over sorted layers, which a deferred G-buffer of one surface per pixel
+// (and the SSR, SSGI and denoiser passes that read it) does not have; the warning says what
+// is drawn instead.
 void convertAlpha(const Context& ctx, std::size_t index, const std::string& name,
                   const tinygltf::Material& g, Material& m) {
     m.baseColorAlpha =
@@ -1010,9 +1013,14 @@ std::vector<std::string> warningLines(const Context& ctx, const Scene& scene) {
         for (std::string& line : gltf::placementWarnings(n.placement, p.znear, p.zfar, scene))
             lines.push_back("camera " + std::to_string(n.usedCamera) + ": " + line);
     }
-    if (!n.blendMaterials.empty())
-        lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
-                        named("material", n.blendMaterials) + ")");
+    if (!n.blendMaterials.empty()) {
+        std::vector<std::string> indices;
+        for (std::size_t i : n.blendMaterials) indices.push_back(str(i));
+        lines.push_back(
+            "alphaMode BLEND is drawn as MASK with alphaCutoff 0.5, not blended: where alpha is "
+            "0.5 or more the surface is opaque, elsewhere it is not drawn (" +
+            counted(n.blendMaterials.size(), "material") + ": " + joined(indices) + ")");
+    }
     if (n.vertexColours > 0)
         lines.push_back("vertex colours (COLOR_0) are not applied (" +
                         counted(n.vertexColours, "primitive") + ")");

@@ -44,8 +44,9 @@ public:
 // as for any file. A component type the attribute may not have is an error that says which it
 // may have (and when only KHR_mesh_quantization would allow it).
 // alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
-// BLEND is drawn as MASK at the default cutoff 0.5, with a warning); an alphaMode other than
-// OPAQUE, MASK or BLEND, or a negative or non-finite cutoff, is an error.
+// BLEND is drawn as MASK at the default cutoff 0.5, not blended, with one warning line that
+// says so and counts the materials); an alphaMode other than OPAQUE, MASK or BLEND, or a
+// negative or non-finite cutoff, is an error.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
