@@ -3,7 +3,9 @@
 // as the float file, each value within its quantization step; glTF's normalized-integer rules
 // decoded exactly; the same quantized views compressed with EXT_meshopt_compression (normals
 // through the OCTAHEDRAL filter) load to the same bits; and component types that the
-// attribute may not have are refused, saying which it may have.
+// attribute may not have are refused, saying which it may have. And a sphere that gltfpack
+// itself packed (tests/scenes/data/gltfpack_sphere.glb, from gltfpack_sphere.gltf beside it:
+// gen_gltfpack_sphere.py says how) loads to its source's triangles.
 #include <doctest/doctest.h>
 #include <meshoptimizer.h>
 
@@ -393,4 +395,82 @@ TEST_CASE("gltf quantization: component types the attribute may not have are ref
     l.position = kUnsignedInt;  // no 32-bit integers for attributes, quantized or not
     checkRefused(sphereFile(dir, "uint.gltf", l),
                  "component type UNSIGNED_INT (5125) is not allowed for POSITION");
+}
+
+namespace {
+
+const std::string kPackedSphere = SSRT_SOURCE_DIR "/tests/scenes/data/gltfpack_sphere.glb";
+const std::string kFloatSphere = SSRT_SOURCE_DIR "/tests/scenes/data/gltfpack_sphere.gltf";
+
+struct Corner {
+    glm::vec3 position, normal;
+    glm::vec2 uv;  // through the base colour's UV transform
+};
+
+std::vector<Corner> corners(const ssrt::Scene& s) {
+    REQUIRE(s.meshes.size() == 1);
+    REQUIRE(s.instances.size() == 1);
+    const ssrt::Mesh& m = s.meshes[0];
+    const ssrt::Material& mat = s.materials[s.instances[0].material];
+    std::vector<Corner> out;
+    for (uint32_t i : m.indices)
+        out.push_back({glm::vec3(s.instances[0].transform * glm::vec4(m.positions[i], 1.0f)),
+                       m.normals[i], mat.baseColorUv.apply(m.uvs[i])});
+    return out;
+}
+
+}  // namespace
+
+// gltfpack's defaults: 14-bit positions (UNSIGNED_SHORT, the node's scale and translation),
+// 8-bit normals (normalized BYTE), 12-bit UVs (normalized UNSIGNED_SHORT, KHR_texture_transform
+// scaling them back), every view meshopt-compressed; its triangles reordered and rotated.
+TEST_CASE("gltf quantization: gltfpack's output loads to its source's triangles") {
+    ssrt::GltfLoadReport report;
+    const ssrt::Scene packed = loadGltf(kPackedSphere, {.strict = true}, &report);
+    CHECK(report.warnings.empty());
+    const ssrt::Scene source = loadGltf(kFloatSphere);
+    const std::vector<Corner> p = corners(packed), f = corners(source);
+    REQUIRE(p.size() == f.size());
+    // The dequantization steps, from what the file says: the node's scale for positions, the
+    // UV transform's scale over 65535 for UVs; normals one 8-bit step.
+    const float posStep = packed.instances[0].transform[0][0];
+    const glm::vec2 uvStep =
+        glm::vec2(packed.materials[0].baseColorUv.row0.x, packed.materials[0].baseColorUv.row1.y) /
+        65535.0f;
+    INFO("position step " << posStep << ", uv steps " << uvStep.x << " " << uvStep.y);
+    CHECK(posStep > 0.0f);
+    CHECK(posStep < 1e-3f);
+    // Each packed triangle is a source triangle, its corners maybe rotated: matched by
+    // position (the sphere's vertices lie far more than a step apart, but for its poles,
+    // whose triangles the other two corners tell apart).
+    std::vector<bool> used(f.size() / 3, false);
+    float pos = 0, nrm = 0, uv = 0;
+    std::size_t matched = 0;
+    for (std::size_t t = 0; t < p.size(); t += 3) {
+        for (std::size_t g = 0; g < f.size(); g += 3) {
+            for (std::size_t r = 0; r < 3 && !used[g / 3]; ++r) {
+                float d = 0;
+                for (std::size_t k = 0; k < 3; ++k)
+                    d = std::max(d, glm::length(p[t + k].position - f[g + (k + r) % 3].position));
+                if (d > 0.01f) continue;
+                used[g / 3] = true;
+                ++matched;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const Corner &a = p[t + k], &b = f[g + (k + r) % 3];
+                    for (int c = 0; c < 3; ++c) {
+                        pos = std::max(pos, std::abs(a.position[c] - b.position[c]));
+                        nrm = std::max(nrm, std::abs(a.normal[c] - b.normal[c]));
+                    }
+                    uv = std::max({uv, std::abs(a.uv.x - b.uv.x) / uvStep.x,
+                                   std::abs(a.uv.y - b.uv.y) / uvStep.y});
+                }
+            }
+        }
+    }
+    INFO("largest differences: position " << pos << ", normal " << nrm << ", uv " << uv
+                                          << " steps");
+    CHECK(matched == p.size() / 3);
+    CHECK(pos <= 0.5f * posStep + 1e-5f);
+    CHECK(nrm <= 1.0f / 127.0f);
+    CHECK(uv <= 0.5f + 1e-2f);
 }
