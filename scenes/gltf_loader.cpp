@@ -284,7 +284,7 @@ T load(const unsigned char* p) {
     return v;
 }
 
-// A component as a float: float as stored; integers as glTF 2.0 section 3.11 decodes
+// A component as a float: float as stored; integers as glTF 2.0's equations decode
 // normalized ones (c / 255, c / 65535, max(c / 127, -1), max(c / 32767, -1), each one
 // correctly rounded float division), and as their value when not normalized.
 float readComponent(const AccessorView& v, std::size_t element, int component) {

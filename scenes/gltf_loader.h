@@ -39,10 +39,10 @@ public:
 // (decoded first, then checked as plain data: scenes/gltf_compression.h). Attributes may be
 // quantized under KHR_mesh_quantization (POSITION and TEXCOORD_n any 8- or 16-bit integer,
 // normalized or not; NORMAL and TANGENT normalized BYTE or SHORT), decoded by glTF 2.0's rules
-// for normalized integers (section 3.11: c / 255, max(c / 127, -1), ...) or as their integer
-// values; the dequantization is the node's transform (and KHR_texture_transform for UVs), read
-// as for any file. A component type the attribute may not have is an error that says which it
-// may have (and when only KHR_mesh_quantization would allow it).
+// for normalized integers (c / 255, max(c / 127, -1), ...) or as their integer values; the
+// dequantization is the node's transform (and KHR_texture_transform for UVs), read as for any
+// file. A component type the attribute may not have is an error that says which it may have
+// (and when only KHR_mesh_quantization would allow it).
 // alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
 // BLEND is drawn as MASK at the default cutoff 0.5, not blended, with one warning line that
 // says so and counts the materials); an alphaMode other than OPAQUE, MASK or BLEND, or a

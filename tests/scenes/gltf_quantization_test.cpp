@@ -1,8 +1,8 @@
 // KHR_mesh_quantization: a sphere written here with quantized positions, normals and UVs (the
 // dequantization in the node's transform, as gltfpack writes it) loads to the same triangles
 // as the float file, each value within its quantization step; glTF's normalized-integer rules
-// decoded exactly; the same quantized views compressed with EXT_meshopt_compression (normals
-// through the OCTAHEDRAL filter) load to the same bits; and component types that the
+// decoded exactly; quantized views compressed with EXT_meshopt_compression (normals through
+// the OCTAHEDRAL filter) load to the bits of the same views plain; and component types that the
 // attribute may not have are refused, saying which it may have. And a sphere that gltfpack
 // itself packed (tests/scenes/data/gltfpack_sphere.glb, from gltfpack_sphere.gltf beside it:
 // gen_gltfpack_sphere.py says how) loads to its source's triangles.
@@ -96,15 +96,9 @@ double maxOf(int type) {
     }
 }
 
-struct Quantized {
-    int componentType = kFloat;
-    bool normalized = false;
-    double step = 0;  // what one integer step is worth once dequantized
-};
-
-// The sphere's values in [lo, lo + extent] quantized to `type` (step extent / max), and the
-// step; the file's dequantization is then value * step + lo (for normalized types the
-// decoder's division by max is the first part of it).
+// Values in [lo, lo + extent] quantized to `type`: round((x - lo) / extent * max), so one
+// integer step is extent / max once dequantized (for normalized types the decoder's division
+// by max is the first part of that).
 std::vector<double> quantize(const std::vector<double>& values, double lo, double extent,
                              int type) {
     std::vector<double> out;
@@ -126,7 +120,8 @@ std::vector<double> flat(const std::vector<glm::vec<N, float>>& v) {
 struct Layout {
     int position = kFloat, normal = kFloat, uv = kFloat;
     bool positionNormalized = false, uvNormalized = false;
-    bool meshopt = false;  // the three attribute views compressed, normals OCTAHEDRAL
+    bool octahedral = false;  // normals as the OCTAHEDRAL filter decodes them (8 bits)
+    bool meshopt = false;     // the three attribute views compressed, normals through the filter
     std::string extensions = R"("extensionsUsed": ["KHR_mesh_quantization"], )"
                              R"("extensionsRequired": ["KHR_mesh_quantization"], )";
 };
@@ -153,7 +148,7 @@ std::string sphereFile(const TempDir& dir, const std::string& name, const Layout
     else views.push_back(viewOf(quantize(flat(m.normals), 0, 1, l.normal), 3, l.normal, true));
     if (l.uv == kFloat) views.push_back(viewOf(flat(m.uvs), 2, kFloat, false));
     else views.push_back(viewOf(quantize(flat(m.uvs), 0, 1, l.uv), 2, l.uv, l.uvNormalized));
-    if (l.meshopt) {  // normals through the OCTAHEDRAL filter: its decoded bytes are the plain
+    if (l.octahedral) {  // the OCTAHEDRAL filter's encoding; its decoded bytes are the plain
         View& n = views[1];
         REQUIRE(n.stride == 4);
         std::vector<float> xyzw;
@@ -361,13 +356,23 @@ TEST_CASE("gltf quantization: quantized views compressed with EXT_meshopt_compre
     l.normal = kByte;
     l.uv = kUnsignedShort;
     l.uvNormalized = true;
+    l.octahedral = true;
+    const ssrt::Scene plain = loadGltf(sphereFile(dir, "plain.gltf", l));
     l.meshopt = true;
     ssrt::GltfLoadReport report;
     const ssrt::Scene packed =
         loadGltf(sphereFile(dir, "meshopt.gltf", l), {.strict = true}, &report);
     CHECK(report.warnings.empty());
+    REQUIRE(packed.meshes.size() == 1);
+    REQUIRE(plain.meshes.size() == 1);
+    CHECK(packed.meshes[0].positions == plain.meshes[0].positions);
+    CHECK(packed.meshes[0].normals == plain.meshes[0].normals);
+    CHECK(packed.meshes[0].uvs == plain.meshes[0].uvs);
+    CHECK(packed.meshes[0].indices == plain.meshes[0].indices);
+    CHECK(packed.instances[0].transform == plain.instances[0].transform);
+    // And both hold the float file's triangles; octahedral 8-bit normals are coarser than
+    // rounding each component: within 4 steps.
     const ssrt::Scene f = loadGltf(sphereFile(dir, "float.gltf", Layout{.extensions = ""}));
-    // Octahedral 8-bit normals are coarser than rounding each component: within 4 steps.
     checkSameTriangles(packed, f, 2.0 / 65535, 4.0 / 127, 1.0 / 65535, 1.0f);
 }
 
