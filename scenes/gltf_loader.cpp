@@ -221,6 +221,7 @@ struct AccessorView {
     std::size_t stride = 0;
     int componentType = 0;
     int components = 0;
+    bool normalized = false;
 };
 
 std::size_t componentBytes(int type) {
@@ -268,8 +269,12 @@ AccessorView viewAccessor(const Context& ctx, int index, const std::string& role
     if (!fits)
         ctx.fail(name + ": count " + str(a.count) + " overruns bufferView " +
                  std::to_string(a.bufferView) + " (" + str(avail) + " bytes)");
-    return {buf.data() + bv.byteOffset + a.byteOffset, a.count, stride, a.componentType,
-            components};
+    return {buf.data() + bv.byteOffset + a.byteOffset,
+            a.count,
+            stride,
+            a.componentType,
+            components,
+            a.normalized};
 }
 
 template <class T>
@@ -279,31 +284,117 @@ T load(const unsigned char* p) {
     return v;
 }
 
-// Float, or normalized unsigned integer components (allowed for TEXCOORD_n).
+// A component as a float: float as stored; integers as glTF 2.0's equations decode
+// normalized ones (c / 255, c / 65535, max(c / 127, -1), max(c / 32767, -1), each one
+// correctly rounded float division), and as their value when not normalized.
 float readComponent(const AccessorView& v, std::size_t element, int component) {
     const unsigned char* p = v.data + element * v.stride;
     switch (v.componentType) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p + 4 * component);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[component]) / 255.0f;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return float(load<uint16_t>(p + 2 * component)) / 65535.0f;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const float c = float(load<int8_t>(p + component));
+            return v.normalized ? std::max(c / 127.0f, -1.0f) : c;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const float c = float(p[component]);
+            return v.normalized ? c / 255.0f : c;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const float c = float(load<int16_t>(p + 2 * component));
+            return v.normalized ? std::max(c / 32767.0f, -1.0f) : c;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const float c = float(load<uint16_t>(p + 2 * component));
+            return v.normalized ? c / 65535.0f : c;
+        }
         default: return 0.0f;
     }
 }
 
+// The vertex attributes read here and the component types each may have.
+enum class Semantic { Position, Normal, Tangent, Texcoord };
+
+const char* componentTypeName(int type) {
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+        default: return "unknown";
+    }
+}
+
+// What glTF 2.0 (section 3.7.2.1) allows for the attribute, and what KHR_mesh_quantization
+// adds: POSITION and TEXCOORD_n any 8- or 16-bit integer, normalized or not; NORMAL and
+// TANGENT normalized BYTE or SHORT.
+bool coreAllows(Semantic s, int type, bool normalized) {
+    if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+    return s == Semantic::Texcoord && normalized &&
+           (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+            type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+}
+
+bool quantizationAllows(Semantic s, int type, bool normalized) {
+    const bool signedType =
+        type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
+    const bool integer = signedType || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
+    if (s == Semantic::Position || s == Semantic::Texcoord) return integer;
+    return signedType && normalized;
+}
+
+const char* coreChoices(Semantic s) {
+    return s == Semantic::Texcoord ? "FLOAT, normalized UNSIGNED_BYTE or normalized UNSIGNED_SHORT"
+                                   : "only FLOAT";
+}
+
+const char* quantizationChoices(Semantic s) {
+    return s == Semantic::Position || s == Semantic::Texcoord
+               ? "FLOAT or BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT, normalized or not"
+               : "FLOAT, normalized BYTE or normalized SHORT";
+}
+
+bool usesQuantization(const tinygltf::Model& m) {
+    const auto has = [](const std::vector<std::string>& list) {
+        return std::find(list.begin(), list.end(), "KHR_mesh_quantization") != list.end();
+    };
+    return has(m.extensionsUsed) || has(m.extensionsRequired);
+}
+
+// An accessor's component type that the attribute may not have is an error that says what
+// it may have, and whether KHR_mesh_quantization would allow it.
+void checkComponentType(const Context& ctx, int index, const std::string& role, Semantic s,
+                        const AccessorView& v) {
+    const bool quantized = usesQuantization(ctx.model);
+    if (coreAllows(s, v.componentType, v.normalized) ||
+        (quantized && quantizationAllows(s, v.componentType, v.normalized)))
+        return;
+    const std::string type = std::string(v.normalized ? "normalized " : "") +
+                             componentTypeName(v.componentType) + " (" +
+                             std::to_string(v.componentType) + ")";
+    const std::string name = "accessor " + std::to_string(index) + " (" + role + "): ";
+    if (!quantized && quantizationAllows(s, v.componentType, v.normalized))
+        ctx.fail(name + "component type " + type +
+                 " needs KHR_mesh_quantization, which the file does not declare (glTF 2.0 "
+                 "alone allows " +
+                 coreChoices(s) + " for " + role + ")");
+    ctx.fail(name + "component type " + type + " is not allowed for " + role + " (" +
+             (quantized ? std::string("KHR_mesh_quantization allows ") + quantizationChoices(s)
+                        : std::string("glTF 2.0 allows ") + coreChoices(s)) +
+             ")");
+}
+
 template <int N>
 std::vector<glm::vec<N, float>> readVectors(const Context& ctx, int index, const std::string& role,
-                                            bool floatOnly) {
+                                            Semantic semantic) {
     const AccessorView v = viewAccessor(ctx, index, role,
                                         N == 2   ? TINYGLTF_TYPE_VEC2
                                         : N == 3 ? TINYGLTF_TYPE_VEC3
                                                  : TINYGLTF_TYPE_VEC4);
-    const bool isFloat = v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-    const bool isUnorm = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                         v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    if (!isFloat && (floatOnly || !isUnorm))
-        ctx.fail("accessor " + std::to_string(index) + " (" + role +
-                 "): unsupported component type " + std::to_string(v.componentType));
+    checkComponentType(ctx, index, role, semantic, v);
     std::vector<glm::vec<N, float>> out(v.count);
     for (std::size_t i = 0; i < v.count; ++i) {
         for (int c = 0; c < N; ++c) {
@@ -399,7 +490,7 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
 
     Mesh mesh;
     mesh.name = name;
-    mesh.positions = readVectors<3>(ctx, pos, "POSITION", true);
+    mesh.positions = readVectors<3>(ctx, pos, "POSITION", Semantic::Position);
     std::vector<uint32_t> order;
     if (p.indices >= 0) {
         order = readIndices(ctx, p.indices, mesh.positions.size());
@@ -411,7 +502,7 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
 
     const int nrm = attribute(p, "NORMAL");
     if (nrm >= 0) {
-        mesh.normals = readVectors<3>(ctx, nrm, "NORMAL", true);
+        mesh.normals = readVectors<3>(ctx, nrm, "NORMAL", Semantic::Normal);
         if (mesh.normals.size() != mesh.positions.size())
             ctx.fail(name + ": NORMAL count differs from POSITION count");
         for (glm::vec3& n : mesh.normals) {
@@ -423,19 +514,19 @@ Mesh convertPrimitive(const Context& ctx, const std::string& name, const tinyglt
     }
     const int uv = attribute(p, "TEXCOORD_0");
     if (uv >= 0) {
-        mesh.uvs = readVectors<2>(ctx, uv, "TEXCOORD_0", false);
+        mesh.uvs = readVectors<2>(ctx, uv, "TEXCOORD_0", Semantic::Texcoord);
         if (mesh.uvs.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_0 count differs from POSITION count");
     }
     const int uv1 = attribute(p, "TEXCOORD_1");
     if (uv1 >= 0) {
-        mesh.uvs1 = readVectors<2>(ctx, uv1, "TEXCOORD_1", false);
+        mesh.uvs1 = readVectors<2>(ctx, uv1, "TEXCOORD_1", Semantic::Texcoord);
         if (mesh.uvs1.size() != mesh.positions.size())
             ctx.fail(name + ": TEXCOORD_1 count differs from POSITION count");
     }
     const int tan = attribute(p, "TANGENT");
     if (tan >= 0) {
-        mesh.tangents = readVectors<4>(ctx, tan, "TANGENT", true);
+        mesh.tangents = readVectors<4>(ctx, tan, "TANGENT", Semantic::Tangent);
         if (mesh.tangents.size() != mesh.positions.size())
             ctx.fail(name + ": TANGENT count differs from POSITION count");
         // xyz unit and w = +-1, as the specification requires of the file (lenient on
@@ -518,7 +609,10 @@ float emissiveStrength(const Context& ctx, const std::string& name, const tinygl
 
 // alphaMode and alphaCutoff (glTF 2.0 section 3.9.4), and baseColorFactor's alpha. BLEND is
 // drawn as MASK at the default cutoff 0.5 (the specification has the cutoff ignored outside
-// MASK): a cut where coverage is one half, which keeps the holes' sizes.
+// MASK): a cut where coverage is one half, which keeps the holes' sizes. True blending would
+// need a forward pass over sorted layers, which a deferred G-buffer of one surface per pixel
+// (and the SSR, SSGI and denoiser passes that read it) does not have; the warning says what
+// is drawn instead.
 void convertAlpha(const Context& ctx, std::size_t index, const std::string& name,
                   const tinygltf::Material& g, Material& m) {
     m.baseColorAlpha =
@@ -919,20 +1013,14 @@ std::vector<std::string> warningLines(const Context& ctx, const Scene& scene) {
         for (std::string& line : gltf::placementWarnings(n.placement, p.znear, p.zfar, scene))
             lines.push_back("camera " + std::to_string(n.usedCamera) + ": " + line);
     }
-    if (!n.blendMaterials.empty())
-        lines.push_back("alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (" +
-                        named("material", n.blendMaterials) + ")");
-    std::vector<std::size_t> samplers;
-    for (std::size_t i = 0; i < m.samplers.size(); ++i) {
-        const tinygltf::Sampler& s = m.samplers[i];
-        const bool trilinear =
-            (s.minFilter == -1 || s.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR) &&
-            (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR);
-        if (!trilinear) samplers.push_back(i);
+    if (!n.blendMaterials.empty()) {
+        std::vector<std::string> indices;
+        for (std::size_t i : n.blendMaterials) indices.push_back(str(i));
+        lines.push_back(
+            "alphaMode BLEND is drawn as MASK with alphaCutoff 0.5, not blended: where alpha is "
+            "0.5 or more the surface is opaque, elsewhere it is not drawn (" +
+            counted(n.blendMaterials.size(), "material") + ": " + joined(indices) + ")");
     }
-    if (!samplers.empty())
-        lines.push_back("sampler filters are ignored (" + named("sampler", samplers) +
-                        "; textures are always sampled trilinearly)");
     if (n.vertexColours > 0)
         lines.push_back("vertex colours (COLOR_0) are not applied (" +
                         counted(n.vertexColours, "primitive") + ")");

@@ -36,18 +36,27 @@ public:
 // each with its own texCoord and transform; TANGENT into Mesh::tangents (generated where a
 // normal map needs them and the file has none, scenes/tangents.h).
 // Geometry: plain, or compressed with KHR_draco_mesh_compression or EXT_meshopt_compression
-// (decoded first, then checked as plain data: scenes/gltf_compression.h).
+// (decoded first, then checked as plain data: scenes/gltf_compression.h). Attributes may be
+// quantized under KHR_mesh_quantization (POSITION and TEXCOORD_n any 8- or 16-bit integer,
+// normalized or not; NORMAL and TANGENT normalized BYTE or SHORT), decoded by glTF 2.0's rules
+// for normalized integers (c / 255, max(c / 127, -1), ...) or as their integer values; the
+// dequantization is the node's transform (and KHR_texture_transform for UVs), read as for any
+// file. A component type the attribute may not have is an error that says which it may have
+// (and when only KHR_mesh_quantization would allow it).
 // alphaMode, alphaCutoff and baseColorFactor's alpha go to the Material (MASK is a cut-out;
-// BLEND is drawn as MASK at the default cutoff 0.5, with a warning); an alphaMode other than
-// OPAQUE, MASK or BLEND, or a negative or non-finite cutoff, is an error.
+// BLEND is drawn as MASK at the default cutoff 0.5, not blended, with one warning line that
+// says so and counts the materials); an alphaMode other than OPAQUE, MASK or BLEND, or a
+// negative or non-finite cutoff, is an error.
 //
 // What the file holds beyond this is a warning, never a silent drop (one line per kind, in
 // a fixed order, each "<path>: <what was ignored>"): point and line primitives (skipped; a
 // file with nothing else has no triangles and is an error), extensions in extensionsUsed that
 // ssrt does not support, point and spot lights and directional lights after the first,
 // cameras other than the one used and orthographic cameras, a camera node's scale, shear or
-// mirror and the triangles wholly past its far plane, alphaMode BLEND, sampler
-// filters other than trilinear, COLOR_0, skins, animations and morph targets.
+// mirror and the triangles wholly past its far plane, alphaMode BLEND, COLOR_0, skins,
+// animations and morph targets. Samplers' filters are checked to be glTF's values and
+// otherwise not read, without a warning: every texture is filtered one way
+// (scenes/texture.h).
 // kSupportedGltfExtensions are the extensions ssrt honours; one in extensionsRequired that is
 // not among them is an error naming it.
 //
@@ -59,8 +68,8 @@ struct GltfLoadReport {
     std::vector<std::string> warnings;  // one line each, naming the file
 };
 inline const std::vector<std::string> kSupportedGltfExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
-    "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
+    "KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression",      "KHR_mesh_quantization"};
 
 // `report` (may be null) is cleared, then receives the warnings of a successful load.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options, GltfLoadReport* report);

@@ -50,6 +50,23 @@ TextureWrap wrapMode(int gl) {
     }
 }
 
+// glTF 2.0's sampler filters (magFilter, minFilter): any of them is accepted and none changes how
+// the texture is sampled (scenes/texture.h). -1: absent.
+void checkFilters(const tinygltf::Sampler& s, int index) {
+    const auto bad = [&](const char* key, int value) {
+        fail("sampler " + std::to_string(index) + ": " + key + " " + std::to_string(value) +
+             " is not a glTF filter");
+    };
+    if (s.magFilter != -1 && s.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+        s.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+        bad("magFilter", s.magFilter);
+    if (s.minFilter != -1 && s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+        s.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
+        (s.minFilter < TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+         s.minFilter > TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR))
+        bad("minFilter", s.minFilter);
+}
+
 // A finite number, or a finite pair, of the extension `ext` named `key`; `fallback` when
 // the member is absent.
 double finiteNumber(const tinygltf::Value& ext, const char* key, double fallback) {
@@ -170,6 +187,7 @@ Texture TextureTable::load(int textureIndex, TextureEncoding encoding) const {
         if (std::size_t(tex.sampler) >= model_.samplers.size())
             fail(what + ": sampler " + std::to_string(tex.sampler) + " does not exist");
         const tinygltf::Sampler& s = model_.samplers[tex.sampler];
+        checkFilters(s, tex.sampler);
         texture.wrapU = wrapMode(s.wrapS);
         texture.wrapV = wrapMode(s.wrapT);
     }

@@ -1,7 +1,7 @@
 // glTF textures for the loader (part of ssrt_gltf): images from external files, data URIs
 // or buffer views, decoded through OpenImageIO (io/texture_io.h), each (texture, encoding)
-// pair once, with the sampler's wrap modes. Filters are not read: sampling is always
-// trilinear (scenes/texture.h).
+// pair once, with the sampler's wrap modes (all three of glTF's). Filters are checked to be
+// glTF's values and otherwise not used: every texture is sampled one way (scenes/texture.h).
 #pragma once
 
 #include <cstdint>
@@ -50,8 +50,8 @@ public:
 
     // The index in `out` of glTF texture `textureIndex` decoded with `encoding`. Throws
     // std::runtime_error (one line, without the file's path) for a texture or image that is
-    // missing, out of range, uses a texture coordinate set other than 0 and 1, or cannot be
-    // decoded.
+    // missing, out of range, uses a texture coordinate set other than 0 and 1, has a wrap
+    // mode or filter that is not glTF's, or cannot be decoded.
     int32_t get(int textureIndex, int texCoord, TextureEncoding encoding);
 
 private:

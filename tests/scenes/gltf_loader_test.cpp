@@ -485,22 +485,25 @@ TEST_CASE("gltf warnings: cameras other than the first perspective one are named
               path + ": orthographic camera 0 ignored (only perspective cameras are supported)"});
 }
 
-TEST_CASE("gltf warnings: alpha modes and filters that are not applied are named") {
+// BLEND is not blended: the one line says what is drawn instead and counts the materials.
+TEST_CASE("gltf warnings: alphaMode BLEND says what is drawn, once, counting the materials") {
     TempDir dir("gltf-warn");
-    writeFile(dir.file("n.png"), "not read: no material uses it");
-    Knobs k;
-    k.extra = R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}],)"
-              R"( "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
-    std::string json = jsonOf(k, "");
-    const std::string at = R"("doubleSided")";
-    json.replace(json.find(at), 0, R"("alphaMode": "BLEND", )");
-    const std::string path = dir.file("material.gltf");
+    std::string json = jsonOf(Knobs{}, "");
+    const std::string material =
+        R"({"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1],)"
+        R"( "metallicFactor": 0.3, "roughnessFactor": 0.7}, "emissiveFactor": [1, 0.5, 0],)"
+        R"( "doubleSided": true})";
+    REQUIRE(json.find(material) != std::string::npos);
+    // Materials 0 and 2 of four blend; the triangle uses material 0.
+    json.replace(json.find(material), material.size(),
+                 R"({"alphaMode": "BLEND"}, {"alphaMode": "MASK"}, {"alphaMode": "BLEND"}, {})");
+    const std::string path = dir.file("blend.gltf");
     writeFile(path, json);
     CHECK(warningsOf(path) ==
           std::vector<std::string>{
-              path + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 (material 0)",
-              path + ": sampler filters are ignored (sampler 0; textures are always sampled "
-                     "trilinearly)"});
+              path + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5, not blended: where "
+                     "alpha is 0.5 or more the surface is opaque, elsewhere it is not drawn (2 "
+                     "materials: 0 and 2)"});
 }
 
 TEST_CASE("gltf warnings: strict makes the first warning an error, with no scene") {
@@ -580,9 +583,11 @@ TEST_CASE("gltf materials: alphaMode, alphaCutoff and baseColorFactor's alpha ar
     CHECK(materialOf(b).alphaMode == Mode::Blend);
     CHECK(materialOf(b).alphaTested());
     CHECK(materialOf(b).alphaCutoff == 0.5f);
-    CHECK(report.warnings == std::vector<std::string>{
-                                 blend + ": alphaMode BLEND is drawn as MASK with alphaCutoff 0.5 "
-                                         "(material 0)"});
+    CHECK(report.warnings ==
+          std::vector<std::string>{blend + ": alphaMode BLEND is drawn as MASK with alphaCutoff "
+                                           "0.5, not blended: where alpha is 0.5 or more the "
+                                           "surface is opaque, elsewhere it is not drawn (1 "
+                                           "material: 0)"});
 
     checkRefused(withAlpha(R"("alphaMode": "ADD", )"),
                  "alphaMode 'ADD' is not OPAQUE, MASK or BLEND");

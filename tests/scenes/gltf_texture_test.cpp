@@ -248,6 +248,36 @@ TEST_CASE("gltf textures: textures that cannot be used give one clear error") {
         q.pbr = R"("metallicRoughnessTexture": {"index": 9})";
         checkRefused(writeGltf(dir, "index.gltf", q), "texture 9 does not exist");
     }
+    SUBCASE("a filter or wrap mode that is not glTF's") {
+        q.samplers = R"([{"magFilter": 9987}])";  // a mipmap filter, for minFilter only
+        checkRefused(writeGltf(dir, "mag.gltf", q),
+                     "sampler 0: magFilter 9987 is not a glTF filter");
+        q.samplers = R"([{"minFilter": 9730}])";
+        checkRefused(writeGltf(dir, "min.gltf", q),
+                     "sampler 0: minFilter 9730 is not a glTF filter");
+        q.samplers = R"([{"wrapS": 10497, "wrapT": 1234}])";
+        checkRefused(writeGltf(dir, "wrap.gltf", q), "sampler wrap mode 1234");
+    }
+}
+
+// Every Khronos sample sets its samplers' filters; every glTF filter loads without a word
+// (the texture is sampled the one way scenes/texture.h describes), the wrap modes still read.
+TEST_CASE("gltf textures: sampler filters of every kind load without a warning") {
+    TempDir dir("gltf-tex-filter");
+    writeFile(dir.file("tex.png"), pngBytes(dir));
+    const std::vector<std::pair<int, int>> filters = {{9728, 9728}, {9729, 9729}, {9728, 9984},
+                                                      {9729, 9985}, {9728, 9986}, {9729, 9987}};
+    for (const auto& [mag, min] : filters) {
+        CAPTURE(mag);
+        CAPTURE(min);
+        Quad q;
+        q.samplers = R"([{"magFilter": )" + std::to_string(mag) + R"(, "minFilter": )" +
+                     std::to_string(min) + R"(, "wrapS": 33071, "wrapT": 33648}])";
+        ssrt::GltfLoadReport report;
+        const Scene s = loadGltf(writeGltf(dir, "filters.gltf", q), {.strict = true}, &report);
+        CHECK(report.warnings.empty());
+        checkTexturedQuad(s);
+    }
 }
 
 TEST_CASE("gltf textures: KHR_texture_transform is read per texture reference") {
