@@ -340,6 +340,30 @@ std::optional<ReferenceImage> oneBounceReference(const TruthContext& t, const Fr
     return image;
 }
 
+// What was compared, for --json: the text's heading line as keys.
+Json setupJson(const std::string& scene, const RenderSettings& settings,
+               const ReferenceSettings& reference, const std::string& visibility,
+               const SequencePlan& plan) {
+    const TraceSettings& t = settings.trace;
+    const bool sequenceRun = plan.frames > 1 || plan.warmup > 0;
+    return {{"scene", scene},
+            {"width", settings.width},
+            {"height", settings.height},
+            {"marcher", marcherName(t.marcher)},
+            {"ssr", t.ssr ? Json({{"method", ssrMethodName(t.ssrMethod)}, {"spp", t.ssrSpp}})
+                          : Json(nullptr)},
+            {"ssgi", t.ssgi ? Json({{"spp", t.ssgiSpp}}) : Json(nullptr)},
+            {"trace_hidden", t.traceHidden},
+            {"ssgi_feedback", t.ssgiFeedback},
+            {"reference",
+             {{"spp", reference.spp},
+              {"bounces", bouncesName(reference.bounces)},
+              {"visibility", visibility}}},
+            {"evaluated_frame", sequenceRun ? Json(plan.frames - 1) : Json(nullptr)},
+            {"frames", plan.frames},
+            {"warmup_frames", plan.warmup}};
+}
+
 }  // namespace
 
 int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
@@ -380,24 +404,7 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     warnUnchecked(err, "ssgi", "--no-ssgi", "without diffuse colour", ev.ssgi, ev.ssgiCheck,
                   ev.stats.ssgi.rays);
     if (o.render.json) {
-        const TraceSettings& t = settings.trace;
-        Json document = {
-            {"scene", request.name},
-            {"width", settings.width},
-            {"height", settings.height},
-            {"marcher", marcherName(t.marcher)},
-            {"ssr", t.ssr ? Json({{"method", ssrMethodName(t.ssrMethod)}, {"spp", t.ssrSpp}})
-                          : Json(nullptr)},
-            {"ssgi", t.ssgi ? Json({{"spp", t.ssgiSpp}}) : Json(nullptr)},
-            {"trace_hidden", t.traceHidden},
-            {"ssgi_feedback", t.ssgiFeedback},
-            {"reference",
-             {{"spp", refSettings.spp},
-              {"bounces", bouncesName(refSettings.bounces)},
-              {"visibility", o.truth.visibility}}},
-            {"evaluated_frame", sequenceRun ? Json(plan.frames - 1) : Json(nullptr)},
-            {"frames", plan.frames},
-            {"warmup_frames", plan.warmup}};
+        Json document = setupJson(request.name, settings, refSettings, o.truth.visibility, plan);
         document.update(evaluationJson(embree.stats(), ev));
         document["one_bounce"] =
             oneBounce
