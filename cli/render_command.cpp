@@ -96,7 +96,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     addTraceOptions(*cmd, o);
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
-                  "counters (per frame)");
+                  "counters and speed (Mrays per second, ns per step; per frame)");
     cmd->add_flag("--json", o.json,
                   "Print the --stats figures (every frame's) and the --compare report as one "
                   "JSON document on stdout instead of their tables (docs/cli.md gives its keys); "
