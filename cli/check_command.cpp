@@ -16,6 +16,7 @@
 #include "cli/check_case.h"
 #include "cli/child_process.h"
 #include "cli/cli.h"
+#include "cli/json_output.h"
 #include "cli/options.h"
 #include "core/isa.h"
 #include "io/check_report.h"
@@ -99,7 +100,7 @@ std::vector<std::pair<std::string, std::string>> provenance(const CheckContext& 
 
 // --update: the failing and new cases' references rewritten from their renders, one by one.
 void updateReferences(const Suite& suite, const CheckContext& context,
-                      std::vector<CaseResult>& results, std::ostream& out) {
+                      std::vector<CaseResult>& results, std::ostream* out) {
     for (std::size_t i = 0; i < results.size(); ++i) {
         CaseResult& r = results[i];
         if (r.status != CaseStatus::Fail && r.status != CaseStatus::New) continue;
@@ -110,12 +111,14 @@ void updateReferences(const Suite& suite, const CheckContext& context,
         r.status = CaseStatus::Updated;
         r.report.status = caseStatusName(r.status);
         r.report.outcome = ReportOutcome::Pass;
-        out << "UPDATED  " << r.report.name << "  " << r.report.message << "\n";
+        if (out) *out << "UPDATED  " << r.report.name << "  " << r.report.message << "\n";
     }
 }
 
+constexpr int kStatusCount = int(CaseStatus::Updated) + 1;
+
 std::string summaryOf(const std::vector<CaseResult>& results) {
-    int count[6] = {};
+    int count[kStatusCount] = {};
     for (const CaseResult& r : results) ++count[int(r.status)];
     std::string s = plural(int(results.size()), "case") + ": " + std::to_string(count[0]) +
                     " passed, " + std::to_string(count[2]) + " failed, " +
@@ -123,6 +126,42 @@ std::string summaryOf(const std::vector<CaseResult>& results) {
                     plural(count[4], "error");
     if (count[5] > 0) s += ", " + std::to_string(count[5]) + " updated";
     return s;
+}
+
+// The run for --json (docs/golden.md): the cases as their lines and the report show them.
+Json checkJson(const CheckReport& report, const std::string& html, const std::string& junit) {
+    // {"pass": n, "stale": n, ...}: every status, from the names the lines print.
+    Json counts = Json::object();
+    for (int s = 0; s < kStatusCount; ++s) counts[jsonKey(caseStatusName(CaseStatus(s)))] = 0;
+    Json cases = Json::array();
+    for (const ReportCase& c : report.cases) {
+        counts[jsonKey(c.status)] = counts[jsonKey(c.status)].get<int>() + 1;
+        Json layers = Json::array();
+        for (const ReportLayer& l : c.layers)
+            layers.push_back({{"name", l.name},
+                              {"channels", l.channels},
+                              {"max_error", l.maxError},
+                              {"where", l.where},
+                              {"pixels_over", l.pixelsOver},
+                              {"hash", l.hash},
+                              {"rule", l.rule},
+                              {"verdict", l.verdict},
+                              {"bad", l.bad}});
+        cases.push_back({{"name", c.name},
+                         {"status", c.status},
+                         {"message", c.message},
+                         {"seconds", c.seconds},
+                         {"command", c.command},
+                         {"reference", c.reference},
+                         {"flip", c.flipLine},
+                         {"layers", std::move(layers)}});
+    }
+    return {{"suite", report.suite},
+            {"summary", report.summary},
+            {"counts", std::move(counts)},
+            {"cases", std::move(cases)},
+            {"report", html},
+            {"junit", junit}};
 }
 
 int exitStatus(const std::vector<CaseResult>& results) {
@@ -163,6 +202,10 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& o) {
                   "Rewrite the references of the failing and new cases (never a passing or stale "
                   "one, never the suite's rules), each recording the commit, ISA, compiler and "
                   "ssrt version that made it (EXR header attributes, PNG text)");
+    cmd->add_flag("--json", o.json,
+                  "Print the run as one JSON document on stdout when it ends, instead of a line "
+                  "per case and the summary (docs/golden.md gives its keys); the same exit status "
+                  "and reports");
     return cmd;
 }
 
@@ -179,11 +222,12 @@ int runCheck(const CheckOptions& o, std::ostream& out) {
     context.machine = suiteMachineKeys();
     const int workers = jobs > 0 ? jobs : int(std::max(1u, std::thread::hardware_concurrency()));
     std::vector<CaseResult> results = runCases(suite, context, workers, [&](const CaseResult& r) {
+        if (o.json) return;  // (the document comes whole at the end)
         out << r.report.status << std::string(9 - r.report.status.size(), ' ') << r.report.name
             << "  " << r.report.message << "\n"
             << std::flush;
     });
-    if (o.update) updateReferences(suite, context, results, out);
+    if (o.update) updateReferences(suite, context, results, o.json ? nullptr : &out);
     CheckReport report;
     report.suite = o.suite;
     report.summary = summaryOf(results);
@@ -192,7 +236,8 @@ int runCheck(const CheckOptions& o, std::ostream& out) {
     const std::string junit = (fs::path(context.outDir) / "junit.xml").string();
     writeHtmlReport(html, report);
     writeJunitReport(junit, report);
-    out << "check: " << report.summary << " (" << html << ", " << junit << ")\n";
+    if (o.json) printJson(out, checkJson(report, html, junit));
+    else out << "check: " << report.summary << " (" << html << ", " << junit << ")\n";
     return exitStatus(results);
 }
 

@@ -21,6 +21,7 @@ struct CheckOptions {
     std::string jobs = "0";              // cases at a time (0: one per core)
     std::optional<std::string> program;  // --ssrt: the ssrt that renders (default: this one)
     bool update = false;
+    bool json = false;  // --json: the run as one JSON document instead of the lines
 };
 
 // Registers the `check` subcommand on `app`, bound to `options`, and returns it.

@@ -84,7 +84,7 @@ CommandLine::CommandLine()
     commands_[int(Command::Reference)] = addReferenceCommand(app, reference);
     commands_[int(Command::Merge)] = addMergeCommand(app, merge);
     commands_[int(Command::Graph)] = addGraphCommand(app, graph);
-    commands_[int(Command::Scenes)] = addScenesCommand(app);
+    commands_[int(Command::Scenes)] = addScenesCommand(app, scenes);
 }
 
 CommandLine::~CommandLine() = default;
@@ -101,6 +101,7 @@ void CommandLine::reset() {
     reference = {};
     merge = {};
     graph = {};
+    scenes = {};
     command_ = Command::Scenes;
 }
 
@@ -169,7 +170,7 @@ int runCli(CommandLine& line, int argc, const char* const* argv, std::ostream& o
             return reportErrors(err, [&] { return runMerge(line.merge, out, err); });
         case Command::Graph:
             return reportErrors(err, [&] { return runGraph(line.graph, out, err); });
-        case Command::Scenes: return reportErrors(err, [&] { return runScenes(out); });
+        case Command::Scenes: return reportErrors(err, [&] { return runScenes(line.scenes, out); });
     }
     return kExitUsage;  // unreachable: every command is a case
 }

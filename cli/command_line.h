@@ -15,6 +15,7 @@
 #include "cli/merge_command.h"
 #include "cli/reference_command.h"
 #include "cli/render_command.h"
+#include "cli/scenes_command.h"
 #include "cli/sweep_command.h"
 
 namespace CLI {
@@ -49,6 +50,7 @@ public:
     ReferenceOptions reference;
     MergeOptions merge;
     GraphOptions graph;
+    ScenesOptions scenes;
 
 private:
     std::unique_ptr<CLI::App> app_;

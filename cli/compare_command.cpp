@@ -1,12 +1,14 @@
 #include "cli/compare_command.h"
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/json_output.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
 #include "cli/sequence.h"
@@ -31,41 +33,65 @@ std::optional<ReferenceSettings::Visibility> parseVisibility(std::string_view s)
     return std::nullopt;
 }
 
-// The ray-check table: one column per pass that ran.
-void printChecks(std::ostream& out, const Evaluation& ev) {
-    const RayCheckTable* tables[2] = {ev.ssr ? &ev.ssrCheck : nullptr,
-                                      ev.ssgi ? &ev.ssgiCheck : nullptr};
-    const auto row = [&](const std::string& label, auto value) {
-        out << "  " << std::left << std::setw(kLabel) << label << std::right;
-        for (const RayCheckTable* t : tables) {
-            out << std::setw(kValue);
-            if (t) out << value(*t);
-            else out << "-";
-        }
-        out << "\n";
-    };
-    out << std::left << std::setw(kLabel + 2) << "ray check (Embree)" << std::right
-        << std::setw(kValue) << "ssr" << std::setw(kValue) << "ssgi"
-        << "\n";
-    row("rays", [](const RayCheckTable& t) { return t.rays; });
-    out << std::fixed << std::setprecision(2);
+// One row of the ray-check table: its label (the JSON key is jsonKey(label)), its value for
+// a pass that ran, and the decimals the text gives it (an integer prints whole).
+struct CheckRow {
+    std::string label;
+    std::function<Json(const RayCheckTable&)> value;
+    int decimals = 0;
+};
+
+// The ray-check table's rows, in order: rays, each class's share, the hit errors' quantiles.
+std::vector<CheckRow> checkRows() {
+    std::vector<CheckRow> rows = {{"rays", [](const RayCheckTable& t) { return Json(t.rays); }}};
     for (int c = 1; c < kRayClassCount; ++c) {
         const RayClass rc = RayClass(c);
-        row(std::string(rayClassName(rc)) + " %",
-            [rc](const RayCheckTable& t) { return 100.0 * t.share(rc); });
+        rows.push_back({std::string(rayClassName(rc)) + " %",
+                        [rc](const RayCheckTable& t) { return Json(100.0 * t.share(rc)); }, 2});
     }
-    out << std::setprecision(3);
     const auto err = [&](const char* label, bool pixels, double q) {
-        row(label, [=](const RayCheckTable& t) {
-            return RayCheckTable::quantile(pixels ? t.pixelError : t.depthError, q);
-        });
+        rows.push_back({label,
+                        [=](const RayCheckTable& t) {
+                            return Json(
+                                RayCheckTable::quantile(pixels ? t.pixelError : t.depthError, q));
+                        },
+                        3});
     };
     err("hit error px, p50", true, 0.5);
     err("hit error px, p95", true, 0.95);
     err("hit error px, max", true, 1.0);
     err("depth error rel, p50", false, 0.5);
     err("depth error rel, p95", false, 0.95);
+    return rows;
+}
+
+// The ray-check table: one column per pass that ran.
+void printChecks(std::ostream& out, const Evaluation& ev) {
+    const RayCheckTable* tables[2] = {ev.ssr ? &ev.ssrCheck : nullptr,
+                                      ev.ssgi ? &ev.ssgiCheck : nullptr};
+    out << std::left << std::setw(kLabel + 2) << "ray check (Embree)" << std::right
+        << std::setw(kValue) << "ssr" << std::setw(kValue) << "ssgi"
+        << "\n";
+    for (const CheckRow& r : checkRows()) {
+        out << "  " << std::left << std::setw(kLabel) << r.label << std::right;
+        for (const RayCheckTable* t : tables) {
+            out << std::setw(kValue);
+            if (!t) out << "-";
+            else if (const Json v = r.value(*t); v.is_number_float())
+                out << std::fixed << std::setprecision(r.decimals) << v.get<double>();
+            else out << v.dump();
+        }
+        out << "\n";
+    }
     out << std::defaultfloat;
+}
+
+// One pass's column of the ray-check table: {key: value}; null for a pass that did not run.
+Json checksJson(bool ran, const RayCheckTable& t) {
+    if (!ran) return nullptr;
+    Json out = Json::object();
+    for (const CheckRow& r : checkRows()) out[jsonKey(r.label)] = r.value(t);
+    return out;
 }
 
 void printErrors(std::ostream& out, const ErrorTable& e) {
@@ -285,6 +311,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
            ".png")
         ->type_name("FILE");
     addImageOutputOptions(*cmd, o.render);
+    cmd->add_flag("--json", o.render.json,
+                  "Print the report as one JSON document on stdout instead of its tables "
+                  "(docs/truth.md gives its keys); warnings and progress stay on stderr");
     return cmd;
 }
 
@@ -303,6 +332,30 @@ std::optional<ReferenceImage> oneBounceReference(const TruthContext& t, const Fr
         *t.progress << "reference: " << (fromCache ? "from the cache" : "rendered") << " ("
                     << describeReference(one) << ", for the model's error)\n";
     return image;
+}
+
+// What was compared, for --json: the text's heading line as keys.
+Json setupJson(const std::string& scene, const RenderSettings& settings,
+               const ReferenceSettings& reference, const std::string& visibility,
+               const SequencePlan& plan) {
+    const TraceSettings& t = settings.trace;
+    const bool sequenceRun = plan.frames > 1 || plan.warmup > 0;
+    return {{"scene", scene},
+            {"width", settings.width},
+            {"height", settings.height},
+            {"marcher", marcherName(t.marcher)},
+            {"ssr", t.ssr ? Json({{"method", ssrMethodName(t.ssrMethod)}, {"spp", t.ssrSpp}})
+                          : Json(nullptr)},
+            {"ssgi", t.ssgi ? Json({{"spp", t.ssgiSpp}}) : Json(nullptr)},
+            {"trace_hidden", t.traceHidden},
+            {"ssgi_feedback", t.ssgiFeedback},
+            {"reference",
+             {{"spp", reference.spp},
+              {"bounces", bouncesName(reference.bounces)},
+              {"visibility", visibility}}},
+            {"evaluated_frame", sequenceRun ? Json(plan.frames - 1) : Json(nullptr)},
+            {"frames", plan.frames},
+            {"warmup_frames", plan.warmup}};
 }
 
 }  // namespace
@@ -344,27 +397,41 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                   ev.stats.ssr.rays);
     warnUnchecked(err, "ssgi", "--no-ssgi", "without diffuse colour", ev.ssgi, ev.ssgiCheck,
                   ev.stats.ssgi.rays);
-    out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
-        << marcherName(settings.trace.marcher) << ", ssr "
-        << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +
-                                     std::to_string(settings.trace.ssrSpp)
-                               : std::string("off"))
-        << ", ssgi " << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
-        << (settings.trace.traceHidden ? ", hidden rays traced" : "")
-        << (settings.trace.ssgiFeedback ? ", ssgi feedback" : "") << ", reference "
-        << describeReference(refSettings)
-        << (sequenceRun ? "; frame " + std::to_string(plan.frames - 1) + " of " + sequenceText(plan)
-                        : std::string())
-        << "\n\n";
-    printEvaluation(out, embree.stats(), ev);
-    if (oneBounce) {
-        out << "\n";
-        printModelErrors(out, imageErrors(frame, *oneBounce),
-                         referenceErrors(*oneBounce, result.reference));
-    }
-    if (sequenceRun) {
-        out << "\nper frame\n";
-        printFrameErrors(out, result.frames);
+    if (o.render.json) {
+        Json document = setupJson(request.name, settings, refSettings, o.truth.visibility, plan);
+        document.update(evaluationJson(embree.stats(), ev));
+        document["one_bounce"] =
+            oneBounce
+                ? Json({{"method", errorTableJson(imageErrors(frame, *oneBounce))},
+                        {"model", errorTableJson(referenceErrors(*oneBounce, result.reference))}})
+                : Json(nullptr);
+        document["per_frame"] = sequenceRun ? frameErrorsJson(result.frames) : Json(nullptr);
+        printJson(out, document);
+    } else {
+        out << request.name << " " << settings.width << "x" << settings.height << ", marcher "
+            << marcherName(settings.trace.marcher) << ", ssr "
+            << (settings.trace.ssr ? std::string(ssrMethodName(settings.trace.ssrMethod)) + " x" +
+                                         std::to_string(settings.trace.ssrSpp)
+                                   : std::string("off"))
+            << ", ssgi "
+            << (settings.trace.ssgi ? "x" + std::to_string(settings.trace.ssgiSpp) : "off")
+            << (settings.trace.traceHidden ? ", hidden rays traced" : "")
+            << (settings.trace.ssgiFeedback ? ", ssgi feedback" : "") << ", reference "
+            << describeReference(refSettings)
+            << (sequenceRun
+                    ? "; frame " + std::to_string(plan.frames - 1) + " of " + sequenceText(plan)
+                    : std::string())
+            << "\n\n";
+        printEvaluation(out, embree.stats(), ev);
+        if (oneBounce) {
+            out << "\n";
+            printModelErrors(out, imageErrors(frame, *oneBounce),
+                             referenceErrors(*oneBounce, result.reference));
+        }
+        if (sequenceRun) {
+            out << "\nper frame\n";
+            printFrameErrors(out, result.frames);
+        }
     }
     if (o.truth.perFrame) {
         writeTextFile(*o.truth.perFrame,
@@ -404,6 +471,26 @@ void printEvaluation(std::ostream& out, const BvhStats& bvh, const Evaluation& e
         << " M, Embree " << ev.embreeMraysPerSecond << " M on the same rays (march / Embree "
         << std::setprecision(3) << ev.marchVsEmbree() << ")\n";
     out.copyfmt(saved);
+}
+
+Json evaluationJson(const BvhStats& bvh, const Evaluation& ev) {
+    Json passes = Json::object();
+    for (const PassTime& p : ev.passes) passes[p.name] = p.ms;
+    return {
+        {"bvh",
+         {{"triangles", bvh.triangles},
+          {"meshes", bvh.meshes},
+          {"instances", bvh.instances},
+          {"build_ms", bvh.buildMs},
+          {"bytes", bvh.bytes}}},
+        {"ray_check",
+         {{"ssr", checksJson(ev.ssr, ev.ssrCheck)}, {"ssgi", checksJson(ev.ssgi, ev.ssgiCheck)}}},
+        {"image_error", errorTableJson(ev.error)},
+        {"pass_times", std::move(passes)},
+        {"frame_ms", ev.frameMs},
+        {"march_mrays_per_second", ev.marchMraysPerSecond},
+        {"embree_mrays_per_second", ev.embreeMraysPerSecond},
+        {"march_vs_embree", ev.marchVsEmbree()}};
 }
 
 }  // namespace ssrt::cli

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 
@@ -74,5 +75,8 @@ int runCompare(const CompareOptions& options, std::ostream& out, std::ostream& e
 
 // The tables compare prints, for one evaluation (also used by tests).
 void printEvaluation(std::ostream& out, const BvhStats& bvh, const Evaluation& ev);
+// The same figures for --json, unrounded (docs/truth.md): {bvh, ray_check, image_error,
+// pass_times, frame_ms, march_mrays_per_second, embree_mrays_per_second, march_vs_embree}.
+nlohmann::ordered_json evaluationJson(const BvhStats& bvh, const Evaluation& ev);
 
 }  // namespace ssrt::cli

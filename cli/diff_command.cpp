@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/json_output.h"
 #include "cli/options.h"
 #include "io/image_io.h"
 
@@ -210,20 +211,70 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
            "a threshold; implies --flip")
         ->type_name("M")
         ->group("FLIP");
+    cmd->add_flag("--json", o.json,
+                  "Print the report as one JSON document on stdout instead of the table "
+                  "(docs/golden.md gives its keys); the exit status is the same");
     return cmd;
 }
 
+namespace {
+
+// FLIP's figures and options, as printFlip prints them.
+Json flipJson(const FlipResult& r, const FlipFileOptions& options,
+              std::optional<double> maxFlipMean, bool beyond) {
+    Json out = {{"hdr", r.hdr}, {"pixels_per_degree", options.ppd}};
+    if (r.hdr) {
+        out["exposures"] = r.exposures;
+        out["start_exposure"] = r.startExposure;
+        out["stop_exposure"] = r.stopExposure;
+    }
+    out["mean"] = r.stats.mean;
+    out["weighted_median"] = r.stats.weightedMedian;
+    out["max"] = r.stats.max;
+    out["heatmap"] = options.heatmap.empty() ? Json(nullptr) : Json(options.heatmap);
+    out["max_mean"] = maxFlipMean ? Json(*maxFlipMean) : Json(nullptr);
+    out["beyond"] = beyond;
+    return out;
+}
+
+}  // namespace
+
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
-               std::ostream& out, const FlipFileOptions* flip, std::optional<double> maxFlipMean) {
+               std::ostream& out, const FlipFileOptions* flip, std::optional<double> maxFlipMean,
+               Json* json) {
     const ImageDiff diff = compareImages(a, b, settings.compare);
-    std::vector<std::vector<std::string>> rows{{"layer", "channels", "max error", "at (x, y)",
-                                                "relMSE", "pixels over", "share", "verdict"}};
     int beyond = 0, identical = 0;
     for (const LayerDiff& l : diff.layers) {
-        rows.push_back(rowOf(l, settings.limits));
         beyond += withinThresholds(l, settings.limits) ? 0 : 1;
         identical += l.presence == LayerDiff::Presence::Both && l.identical ? 1 : 0;
     }
+    // FLIP is a verdict only when a limit for it is given: its mean above the limit differs.
+    std::optional<FlipResult> flipResult;
+    if (flip) flipResult = flipImages(a, b, *flip);
+    const bool flipBeyond = flipResult && maxFlipMean && !(flipResult->stats.mean <= *maxFlipMean);
+    const int n = int(diff.layers.size());
+    const int status = !diff.identical() && (flipBeyond || beyond > 0) ? kExitDiffer : kExitOk;
+
+    if (json) {
+        *json = {{"a", a}, {"reference", b}};
+        json->update(imageDiffJson(diff, settings.limits));
+        (*json)["verdict"] = diff.identical()    ? "bit-identical"
+                             : status == kExitOk ? "within thresholds"
+                                                 : "DIFFER";
+        (*json)["layers_beyond"] = beyond;
+        (*json)["layers_identical"] = identical;
+        (*json)["heatmap"] =
+            settings.compare.heatmap.empty()
+                ? Json(nullptr)
+                : Json({{"file", settings.compare.heatmap}, {"scale", diff.heatScale}});
+        (*json)["flip"] =
+            flipResult ? flipJson(*flipResult, *flip, maxFlipMean, flipBeyond) : Json(nullptr);
+        return status;
+    }
+
+    std::vector<std::vector<std::string>> rows{{"layer", "channels", "max error", "at (x, y)",
+                                                "relMSE", "pixels over", "share", "verdict"}};
+    for (const LayerDiff& l : diff.layers) rows.push_back(rowOf(l, settings.limits));
     printTable(out, rows);
     // A NaN or infinity against anything else is spelled out, not left to read from "inf".
     for (const LayerDiff& l : diff.layers)
@@ -236,36 +287,23 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
             << ": black = equal, dark red to white = a difference up to " << number(diff.heatScale)
             << " (the largest finite one; any difference at least dark red), blue = a NaN or "
                "infinity against a different value\n";
-    // FLIP is a verdict only when a limit for it is given: its mean above the limit differs.
-    bool flipBeyond = false;
-    if (flip) {
-        const FlipResult r = flipImages(a, b, *flip);
-        printFlip(out, r, *flip);
-        flipBeyond = maxFlipMean && !(r.stats.mean <= *maxFlipMean);
+    if (flipResult) {
+        printFlip(out, *flipResult, *flip);
         if (flipBeyond)
-            out << "FLIP mean " << number(r.stats.mean) << " > --max-flip-mean "
+            out << "FLIP mean " << number(flipResult->stats.mean) << " > --max-flip-mean "
                 << number(*maxFlipMean) << "\n";
     }
     const std::string pair = a + " against " + b + " (" + std::to_string(diff.width) + "x" +
-                             std::to_string(diff.height) + ", " +
-                             plural(int(diff.layers.size()), "layer") + ")";
-    if (diff.identical()) {
-        out << "bit-identical: " << pair << "\n";
-        return kExitOk;
-    }
-    const int n = int(diff.layers.size());
-    if (flipBeyond) {
+                             std::to_string(diff.height) + ", " + plural(n, "layer") + ")";
+    if (diff.identical()) out << "bit-identical: " << pair << "\n";
+    else if (flipBeyond)
         out << "DIFFER: " << pair << ", FLIP's mean beyond --max-flip-mean, " << beyond << " of "
             << n << " layers beyond a threshold\n";
-        return kExitDiffer;
-    }
-    if (beyond == 0) {
+    else if (beyond == 0)
         out << "within thresholds: " << pair << ", " << identical << " of " << n
             << " bit-identical\n";
-        return kExitOk;
-    }
-    out << "DIFFER: " << pair << ", " << beyond << " of " << n << " beyond a threshold\n";
-    return kExitDiffer;
+    else out << "DIFFER: " << pair << ", " << beyond << " of " << n << " beyond a threshold\n";
+    return status;
 }
 
 int runDiff(const DiffOptions& o, std::ostream& out) {
@@ -276,7 +314,14 @@ int runDiff(const DiffOptions& o, std::ostream& out) {
     if (o.maxFlipMean)
         maxFlipMean =
             parseNumber("--max-flip-mean", *o.maxFlipMean, 0.0, 1.0, "a number in [0, 1]");
-    if (!o.flip && !o.flipHeatmap && !maxFlipMean) return diffImages(o.a, o.b, settings, out);
+    Json json;
+    Json* report = o.json ? &json : nullptr;
+    const auto printed = [&](int status) {
+        if (report) printJson(out, json);
+        return status;
+    };
+    if (!o.flip && !o.flipHeatmap && !maxFlipMean)
+        return printed(diffImages(o.a, o.b, settings, out, nullptr, std::nullopt, report));
     FlipFileOptions flip;
     if (o.flipHeatmap) {
         if (!isPngPath(*o.flipHeatmap)) badValue("--flip-heatmap", *o.flipHeatmap, "a .png file");
@@ -290,7 +335,7 @@ int runDiff(const DiffOptions& o, std::ostream& out) {
                                         "' is also --heatmap");
         flip.heatmap = *o.flipHeatmap;
     }
-    return diffImages(o.a, o.b, settings, out, &flip, maxFlipMean);
+    return printed(diffImages(o.a, o.b, settings, out, &flip, maxFlipMean, report));
 }
 
 }  // namespace ssrt::cli

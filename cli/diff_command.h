@@ -4,6 +4,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@ struct DiffOptions {
     bool flip = false;                       // print FLIP (--flip, or implied by --flip-heatmap)
     std::optional<std::string> flipHeatmap;  // a .png of FLIP's error on the magma map
     std::optional<std::string> maxFlipMean;  // FLIP's mean above it differs (implies --flip)
+    bool json = false;                       // --json: the report as JSON (cli/json_output.h)
 };
 
 // What the flags mean, checked.
@@ -69,10 +71,11 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 // its mean, weighted median and maximum) and a summary line to `out` and returns kExitOk (every
 // layer within the thresholds, and FLIP's mean at most `maxFlipMean` when that is given) or
 // kExitDiffer; throws on errors. FLIP without `maxFlipMean` sets no exit status: it is a
-// report until someone states the limit.
+// report until someone states the limit. With `json`, the same report goes there as a JSON
+// object (docs/golden.md gives its keys) and nothing to `out`.
 int diffImages(const std::string& a, const std::string& b, const DiffSettings& settings,
                std::ostream& out, const FlipFileOptions* flip = nullptr,
-               std::optional<double> maxFlipMean = {});
+               std::optional<double> maxFlipMean = {}, nlohmann::ordered_json* json = nullptr);
 
 // `ssrt diff`: diffSettingsFrom, then diffImages.
 int runDiff(const DiffOptions& options, std::ostream& out);

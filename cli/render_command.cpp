@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -12,6 +13,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/json_output.h"
 #include "cli/options.h"
 #include "cli/sequence.h"
 #include "cli/shard.h"
@@ -56,6 +58,8 @@ constexpr Counter kCounters[] = {
 constexpr int kLabelWidth = 20;
 constexpr int kValueWidth = 14;
 
+Json statsJson(const FrameStats& stats, double wallMs, double writeMs);  // (below printStats)
+
 }  // namespace
 
 RenderOptions::RenderOptions() {
@@ -92,7 +96,11 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     addTraceOptions(*cmd, o);
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
-                  "counters (per frame)");
+                  "counters and speed (Mrays per second, ns per step; per frame)");
+    cmd->add_flag("--json", o.json,
+                  "Print the --stats figures (every frame's) and the --compare report as one "
+                  "JSON document on stdout instead of their tables (docs/cli.md gives its keys); "
+                  "needs --stats or --compare");
     cmd->add_flag("-q,--quiet", o.quiet, "No progress lines on stderr (warnings still print)");
     CLI::Option* compare =
         cmd->add_option_function<std::string>(
@@ -187,6 +195,11 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         checkHeatmapApart(diff->compare.heatmap, {output, *o.compare});
         readChannelNames(*o.compare);
     }
+    // --json replaces the text of --stats and --compare; alone it would print nothing.
+    if (o.json && !o.stats && !o.compare)
+        throw std::invalid_argument(
+            "--json: prints the --stats or --compare report, and neither "
+            "was given");
     checkWritable(sequenceFileName(output, int(block.begin), frames));
     const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
     planesForFile(output, writeOptions.layers, request.settings);
@@ -228,6 +241,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const Renderer renderer(settings);
     Frame frame;
     FrameHistory history;
+    Json document = Json::object();  // --json: printed whole once every frame is written
+    if (o.json && o.stats) document["frames"] = Json::array();
     for (int step = startStep; step < endStep; ++step) {
         FrameInput input = sequence.input(step);
         // No frame reads the last one's history: it is read, not replaced (the same image,
@@ -259,60 +274,119 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             else err << "wrote " << file << "\n";
         }
         if (o.stats) {
-            if (frames > 1) out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";
             // The renderer may report the thread setting (0 = every core) rather than the count.
             FrameStats stats = frame.stats;
             if (stats.threads <= 0) stats.threads = threadsFor(settings);
-            printStats(out, stats, double(frame.width) * double(frame.height), wall.count(),
-                       write.count());
+            if (o.json) {
+                Json entry = {{"frame", i}, {"file", file}};
+                entry.update(statsJson(stats, wall.count(), write.count()));
+                document["frames"].push_back(std::move(entry));
+            } else {
+                if (frames > 1)
+                    out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";
+                printStats(out, stats, double(frame.width) * double(frame.height), wall.count(),
+                           write.count());
+            }
         }
     }
-    if (diff) return diffImages(output, *o.compare, *diff, out);
-    return kExitOk;
+    int status = kExitOk;
+    if (diff)
+        status = diffImages(output, *o.compare, *diff, out, nullptr, std::nullopt,
+                            o.json ? &document["compare"] : nullptr);
+    if (o.json) printJson(out, document);
+    return status;
 }
 
 namespace {
 
-// The screen-space passes side by side: rays, how they ended, steps per ray, lane use.
-void printTraceStats(std::ostream& out, const FrameStats& stats) {
-    const TraceStats* passes[2] = {&stats.ssr, &stats.ssgi};
-    const auto row = [&](const std::string& label, auto value) {
-        out << "  " << std::left << std::setw(kLabelWidth) << label << std::right;
-        for (const TraceStats* t : passes) {
-            out << std::setw(kValueWidth);
-            if (t->ran) out << value(*t);
-            else out << "-";
-        }
-        out << "\n";
+// Milliseconds of the pass named `name` (0 if it did not run).
+double passMs(const FrameStats& stats, const std::string& name) {
+    for (const PassTime& p : stats.passes)
+        if (p.name == name) return p.ms;
+    return 0.0;
+}
+
+// One row of the trace table: its label (the JSON key is jsonKey(label)), its value for a pass
+// that ran, and the decimals the text gives a fraction (an integer prints whole).
+struct TraceRow {
+    std::string label;
+    std::function<Json(const TraceStats&, double marchMs)> value;
+    int decimals = 2;
+};
+
+// The trace table's rows, in order: rays, how they ended, steps per ray, lane use, and the
+// march's speed over its stage's time ("ssr march", "ssgi march"), null where there is none.
+std::vector<TraceRow> traceRows() {
+    using T = const TraceStats&;
+    std::vector<TraceRow> rows = {
+        {"rays per pixel", [](T t, double) { return Json(t.spp); }},
+        {"surface pixels", [](T t, double) { return Json(t.rays.pixels); }},
+        {"rays traced", [](T t, double) { return Json(t.march.rays); }},
+        {"below surface", [](T t, double) { return Json(t.rays.belowSurface); }},
+        {"hidden, no ray", [](T t, double) { return Json(t.rays.hidden); }},
+        {"layout cut, no ray", [](T t, double) { return Json(t.rays.cut); }},
     };
-    const auto share = [](uint64_t part, uint64_t whole) {
-        return whole ? 100.0 * double(part) / double(whole) : 0.0;
-    };
-    out << "\n"
-        << std::left << std::setw(kLabelWidth + 2) << "trace counter" << std::right
-        << std::setw(kValueWidth) << "ssr" << std::setw(kValueWidth) << "ssgi"
-        << "\n";
-    row("rays per pixel", [](const TraceStats& t) { return t.spp; });
-    row("surface pixels", [](const TraceStats& t) { return t.rays.pixels; });
-    row("rays traced", [](const TraceStats& t) { return t.march.rays; });
-    row("below surface", [](const TraceStats& t) { return t.rays.belowSurface; });
-    row("hidden, no ray", [](const TraceStats& t) { return t.rays.hidden; });
-    row("layout cut, no ray", [](const TraceStats& t) { return t.rays.cut; });
     for (int e = 0; e < kMarchEndCount; ++e) {
         if (MarchEnd(e) == MarchEnd::NoRay) continue;
         const std::string label = MarchEnd(e) == MarchEnd::Hit
                                       ? std::string("hits")
                                       : "miss: " + std::string(marchEndName(MarchEnd(e)));
-        row(label, [e](const TraceStats& t) { return t.march.ends[e]; });
+        rows.push_back({label, [e](T t, double) { return Json(t.march.ends[e]); }});
     }
-    out << std::fixed << std::setprecision(2);
-    row("steps per ray, mean", [](const TraceStats& t) { return t.march.meanSteps(); });
-    row("steps per ray, p50", [](const TraceStats& t) { return t.march.stepsPercentile(0.5); });
-    row("steps per ray, p95", [](const TraceStats& t) { return t.march.stepsPercentile(0.95); });
-    row("steps per ray, max", [](const TraceStats& t) { return t.march.maxStepsTaken(); });
-    row("steps in all", [](const TraceStats& t) { return t.march.steps; });
-    row("lanes active %",
-        [&](const TraceStats& t) { return share(t.march.laneActive, t.march.laneSlots); });
+    const auto share = [](uint64_t part, uint64_t whole) {
+        return whole ? 100.0 * double(part) / double(whole) : 0.0;
+    };
+    std::vector<TraceRow> rest = {
+        {"steps per ray, mean", [](T t, double) { return Json(t.march.meanSteps()); }},
+        {"steps per ray, p50", [](T t, double) { return Json(t.march.stepsPercentile(0.5)); }},
+        {"steps per ray, p95", [](T t, double) { return Json(t.march.stepsPercentile(0.95)); }},
+        {"steps per ray, max", [](T t, double) { return Json(t.march.maxStepsTaken()); }},
+        {"steps in all", [](T t, double) { return Json(t.march.steps); }},
+        {"lanes active %",
+         [share](T t, double) { return Json(share(t.march.laneActive, t.march.laneSlots)); }},
+        // The march's speed: its rays, and its steps, over the march stage's wall time (summed
+        // over the samples, every thread at work), as ssrt compare's "rays per second" is.
+        {"Mrays per second",
+         [](T t, double ms) {
+             return ms > 0.0 ? Json(double(t.march.rays) * 1e-3 / ms) : Json(nullptr);
+         }},
+        {"ns per march step",
+         [](T t, double ms) {
+             return t.march.steps > 0 ? Json(ms * 1e6 / double(t.march.steps)) : Json(nullptr);
+         }},
+    };
+    rows.insert(rows.end(), rest.begin(), rest.end());
+    return rows;
+}
+
+// The screen-space passes side by side, from traceRows().
+void printTraceStats(std::ostream& out, const FrameStats& stats) {
+    const TraceStats* passes[2] = {&stats.ssr, &stats.ssgi};
+    const double marchMs[2] = {passMs(stats, "ssr march"), passMs(stats, "ssgi march")};
+    out << "\n"
+        << std::left << std::setw(kLabelWidth + 2) << "trace counter" << std::right
+        << std::setw(kValueWidth) << "ssr" << std::setw(kValueWidth) << "ssgi"
+        << "\n";
+    for (const TraceRow& r : traceRows()) {
+        out << "  " << std::left << std::setw(kLabelWidth) << r.label << std::right;
+        for (int p = 0; p < 2; ++p) {
+            out << std::setw(kValueWidth);
+            const Json v = passes[p]->ran ? r.value(*passes[p], marchMs[p]) : Json(nullptr);
+            if (v.is_number_float())
+                out << std::fixed << std::setprecision(r.decimals) << v.get<double>();
+            else if (v.is_null()) out << "-";
+            else out << v.dump();
+        }
+        out << "\n";
+    }
+}
+
+// One pass's column of the trace table: {key: value}; null for a pass that did not run.
+Json traceJson(const TraceStats& t, double marchMs) {
+    if (!t.ran) return nullptr;
+    Json out = Json::object();
+    for (const TraceRow& r : traceRows()) out[jsonKey(r.label)] = r.value(t, marchMs);
+    return out;
 }
 
 // What the frame holds, by resource group: bytes per pixel of the frame, and megabytes.
@@ -337,6 +411,45 @@ void printMemory(std::ostream& out, const char* title, const std::vector<MemoryU
         sum += m.bytes;
     }
     row("in all", sum);
+}
+
+// A memory table in bytes, the text's rows before their units: {by_resource: {name: bytes},
+// in_all: their sum}.
+Json memoryJson(const std::vector<MemoryUse>& memory) {
+    Json rows = Json::object();
+    std::size_t sum = 0;
+    for (const MemoryUse& m : memory) {
+        rows[m.name] = m.bytes;
+        sum += m.bytes;
+    }
+    return {{"by_resource", std::move(rows)}, {"in_all", sum}};
+}
+
+// The --stats figures of one frame as JSON, unrounded (docs/cli.md, "--json").
+Json statsJson(const FrameStats& stats, double wallMs, double writeMs) {
+    Json passes = Json::object();
+    double sum = 0.0;
+    for (const PassTime& p : stats.passes) {
+        passes[p.name] = p.ms;
+        sum += p.ms;
+    }
+    Json raster = {{"visibility", Json::object()}, {"shadow", Json::object()}};
+    for (const Counter& c : kCounters) {
+        raster["visibility"][jsonKey(c.label)] = stats.visibility.*c.field;
+        raster["shadow"][jsonKey(c.label)] = stats.shadow.*c.field;
+    }
+    return {{"isa", isaName(stats.isa)},
+            {"threads", stats.threads},
+            {"pass_times", std::move(passes)},
+            {"sum_of_passes_ms", sum},
+            {"render_call_ms", wallMs},
+            {"image_write_ms", writeMs},
+            {"raster", std::move(raster)},
+            {"trace",
+             {{"ssr", traceJson(stats.ssr, passMs(stats, "ssr march"))},
+              {"ssgi", traceJson(stats.ssgi, passMs(stats, "ssgi march"))}}},
+            {"memory", memoryJson(stats.memory)},
+            {"memory_declared", memoryJson(stats.declared)}};
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ struct RenderOptions {
     // --layers and --exr-compression as typed (unset: every layer, the default compression).
     std::optional<std::string> layers, exrCompression;
     bool stats = false;
+    bool json = false;  // --json: the command's report (render: --stats, --compare) as JSON
     bool quiet = false;
     bool strict = false;               // --strict: a glTF file's warnings are errors
     std::optional<std::string> shard;  // render's --shard K/N (cli/shard.h): a block of frames
@@ -79,10 +80,11 @@ void planesForFile(const std::string& output, const LayerGroups& layers, RenderS
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
 
 // The --stats table: ISA, threads, per-pass milliseconds, raster counters per pass, and for
-// the screen-space passes rays, misses by cause, steps per ray and SIMD lane utilisation;
-// last the memory the frame holds by resource group, per pixel of the frame's `pixels`.
-// `wallMs` is the whole render call as the CLI timed it, `writeMs` the image file's write
-// (encoding, compression and the rename), after it.
+// the screen-space passes rays, misses by cause, steps per ray, SIMD lane utilisation and the
+// march's speed (rays per second and nanoseconds per step, over its stage's time); last the
+// memory the frame holds by resource group, per pixel of the frame's `pixels`. `wallMs` is the
+// whole render call as the CLI timed it, `writeMs` the image file's write (encoding,
+// compression and the rename), after it.
 void printStats(std::ostream& out, const FrameStats& stats, double pixels, double wallMs,
                 double writeMs);
 

@@ -9,10 +9,15 @@ class App;
 
 namespace ssrt::cli {
 
-// Registers the `scenes` subcommand on `app` and returns it.
-CLI::App* addScenesCommand(CLI::App& app);
+struct ScenesOptions {
+    bool json = false;  // --json: {name: description}, as ssrt.builtin_scenes() returns them
+};
 
-// Prints "name  description" for every built-in scene, the default first; returns 0.
-int runScenes(std::ostream& out);
+// Registers the `scenes` subcommand on `app`, bound to `options`, and returns it.
+CLI::App* addScenesCommand(CLI::App& app, ScenesOptions& options);
+
+// Prints "name  description" for every built-in scene, the default first (with --json one
+// JSON object of them instead); returns 0.
+int runScenes(const ScenesOptions& options, std::ostream& out);
 
 }  // namespace ssrt::cli

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "cli/compare_command.h"
+#include "cli/json_output.h"
 
 namespace ssrt::cli {
 
@@ -157,6 +158,17 @@ void printFrameErrors(std::ostream& out, const std::vector<FrameError>& frames) 
     out << "  flicker = sum |frame - previous frame| / sum reference, over pixels and RGB (a "
            "still camera only)\n";
     out.copyfmt(saved);
+}
+
+Json frameErrorsJson(const std::vector<FrameError>& frames) {
+    Json rows = Json::array();
+    for (const FrameError& f : frames)
+        rows.push_back({{"frame", f.frame},
+                        {"frame_index", f.frameIndex},
+                        {"cut", f.cut},
+                        {"rel_mse", f.relMse},
+                        {"flicker", f.flicker ? Json(*f.flicker) : Json(nullptr)}});
+    return rows;
 }
 
 std::string frameErrorsCsvHeader(bool withSetting) {

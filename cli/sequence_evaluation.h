@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,6 +75,8 @@ void printFrameErrors(std::ostream& out, const std::vector<FrameError>& frames);
 // The per-frame CSV: the header line, and one line per frame; with `setting`, a first column
 // naming the row of sweep's CSV the frames belong to (0 = its first setting).
 std::string frameErrorsCsvHeader(bool withSetting);
+// The per-frame table for --json: [{frame, frame_index, cut, rel_mse, flicker (null: none)}].
+nlohmann::ordered_json frameErrorsJson(const std::vector<FrameError>& frames);
 std::string frameErrorsCsvRows(const std::vector<FrameError>& frames,
                                std::optional<int> setting = std::nullopt);
 

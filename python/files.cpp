@@ -6,8 +6,10 @@
 #include <filesystem>
 
 #include "binding.h"
+#include "cli/json_output.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
+#include "json_dict.h"
 #include "renderer/layer_groups.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/shot.h"
@@ -118,22 +120,8 @@ py::dict readLayers(py::handle pathObject) {
     return out;
 }
 
-py::dict layerDiff(const LayerDiff& l, const DiffThresholds& limits) {
-    py::dict d;
-    std::string why;
-    d["passed"] = withinThresholds(l, limits, &why);
-    d["why"] = why;
-    d["present"] = l.presence == LayerDiff::Presence::Both;
-    d["identical"] = l.identical;
-    d["max_error"] = l.maxError;
-    d["max_at"] = py::make_tuple(l.maxX, l.maxY, l.maxChannel);
-    d["rel_mse"] = l.relMse;
-    d["non_finite"] = l.nonFinite;
-    d["share_over"] = l.shareOver;
-    return d;
-}
-
-// `ssrt diff A REFERENCE` as a dict: identical, passed, and per layer what compareImages finds.
+// `ssrt diff A REFERENCE` as a dict: identical, passed, and per layer what compareImages finds,
+// the keys of `ssrt diff --json` (cli/json_output.h imageDiffJson).
 py::dict diffFiles(py::handle a, py::handle b, double threshold, std::optional<double> maxError,
                    std::optional<double> maxRelMse, double maxShare,
                    const std::vector<std::string>& layers, std::optional<std::string> heatmap) {
@@ -148,25 +136,7 @@ py::dict diffFiles(py::handle a, py::handle b, double threshold, std::optional<d
         py::gil_scoped_release unlocked;
         diff = compareImages(pa, pb, options);
     });
-    py::dict out, perLayer;
-    bool passed = true;
-    for (const LayerDiff& l : diff.layers) {
-        py::dict d = layerDiff(l, limits);
-        passed = passed && d["passed"].cast<bool>();
-        perLayer[py::str(l.name)] = d;
-    }
-    out["identical"] = diff.identical();
-    out["passed"] = passed;
-    out["layers"] = perLayer;
-    return out;
-}
-
-py::dict errorDict(const ImageError& e) {
-    py::dict d;
-    d["rel_mse"] = e.relMse;
-    d["rmse"] = e.rmse;
-    d["non_finite"] = e.nonFinite;
-    return d;
+    return jsonToPython(cli::imageDiffJson(diff, limits));
 }
 
 // The frame against the Embree reference of its lighting model (truth/reference_image.h):
@@ -194,13 +164,8 @@ py::dict compareFrame(const PyFrame& frame, int spp, int bounces, const std::str
         *reference = renderReference(embree, renderer, *frame.frame, rs);
         error = imageErrors(*frame.frame, *reference);
     });
-    py::dict out;
-    out["color"] = errorDict(error.color);
-    if (error.parts) {
-        out["direct"] = errorDict(error.direct);
-        out["specular"] = errorDict(error.specular);
-        out["diffuse"] = errorDict(error.diffuse);
-    }
+    // The image errors under `ssrt compare --json`'s image_error keys.
+    py::dict out = jsonToPython(cli::errorTableJson(error));
     // The reference's planes as views owned by a capsule holding it.
     const py::capsule owner(new std::shared_ptr<ReferenceImage>(reference), [](void* p) {
         delete static_cast<std::shared_ptr<ReferenceImage>*>(p);
@@ -232,8 +197,9 @@ void bindFiles(py::module_& m) {
           py::arg("threshold") = 0.0, py::arg("max_error") = py::none(),
           py::arg("max_rel_mse") = py::none(), py::arg("max_share") = 0.0,
           py::arg("layers") = std::vector<std::string>{}, py::arg("heatmap") = py::none(),
-          "Two image files compared layer by layer as `ssrt diff A REFERENCE` does: "
-          "{'identical', 'passed', 'layers': {name: {...}}}. A pixel differs when a channel "
+          "Two image files compared layer by layer as `ssrt diff A REFERENCE` does, with the "
+          "keys of `ssrt diff --json`: {'width', 'height', 'identical', 'passed', 'layers': "
+          "{name: {...}}}. A pixel differs when a channel "
           "differs by more than `threshold`; a layer passes within max_error, max_rel_mse and "
           "max_share (the share of pixels that differ).");
     m.def("compare", &compareFrame, py::arg("frame"), py::kw_only(), py::arg("spp") = 64,

@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "binding.h"
+#include "cli/json_output.h"
 #include "cli/sequence.h"
+#include "json_dict.h"
 #include "scenes/builtin_scenes.h"
 
 namespace ssrt::python {
@@ -127,13 +129,8 @@ void bindScenes(py::module_& m) {
         .def_readonly("first_frame", &PyShot::firstFrame);
 
     m.def(
-        "builtin_scenes",
-        [] {
-            py::dict out;
-            for (const BuiltinSceneInfo& s : builtinScenes()) out[py::str(s.name)] = s.description;
-            return out;
-        },
-        "The built-in scenes: name -> one line on what each shows.");
+        "builtin_scenes", [] { return py::dict(jsonToPython(cli::builtinScenesJson())); },
+        "The built-in scenes: name -> one line on what each shows (`ssrt scenes --json`).");
 }
 
 }  // namespace ssrt::python

@@ -1,10 +1,13 @@
 """Golden-image tests written the way a user of the module writes them: a frame's planes
 against hashes kept in the test, and a rendered image against a golden EXR with thresholds."""
 
+import json
+import subprocess
+
 import pytest
 
 import ssrt
-from conftest import plane_hash
+from conftest import CLI, plane_hash
 
 # cornell, 64x36, default settings. Any ISA and thread count gives these bits (the
 # determinism contract); a change to the renderer's output changes them, on purpose only.
@@ -61,3 +64,26 @@ def test_a_real_change_fails(golden, tmp_path):
                        layers=["color"], max_rel_mse=0.05, max_share=1.0)
     assert not result["passed"]
     assert result["layers"]["color"]["why"] == "relMSE"
+
+
+def tuples_to_lists(value):
+    """A module dict as json.loads would give it: its tuples (max_at) as lists."""
+    if isinstance(value, dict):
+        return {k: tuples_to_lists(v) for k, v in value.items()}
+    if isinstance(value, (tuple, list)):
+        return [tuples_to_lists(v) for v in value]
+    return value
+
+
+def test_diff_is_the_clis_json(golden, tmp_path):
+    # ssrt.diff() and `ssrt diff --json` are one document: the same keys and values.
+    image = render_to(tmp_path / "d.exr", frame=3)
+    result = ssrt.diff(image, golden, max_rel_mse=0.05, max_share=1.0)
+    done = subprocess.run([CLI, "diff", str(image), str(golden), "--max-relmse", "0.05",
+                           "--max-share", "1", "--json"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    document = json.loads(done.stdout)
+    assert {k: document[k] for k in result} == tuples_to_lists(result)
+    assert list(ssrt.builtin_scenes().items()) == list(
+        json.loads(subprocess.run([CLI, "scenes", "--json"], capture_output=True,
+                                  text=True).stdout).items())
