@@ -217,6 +217,51 @@ TEST_CASE("image compare: a layer or channel in one file only is reported and ne
                          doctest::Contains("'nosuch'"), std::invalid_argument);
 }
 
+TEST_CASE("image compare: R, G, B that copy the colour layer are compared once, as color") {
+    TempDir dir;
+    // As ssrt writes a frame (R, G, B added by the writer), and a file of the named layers
+    // only (as ssrt wrote them before it added R, G, B; here through OpenImageIO).
+    LayeredImage a(kW, kH, kChannels);
+    a.write(dir.file("a.exr"));
+    REQUIRE(readChannelNames(dir.file("a.exr")).size() == kChannels.size() + 3);
+    {
+        OIIO::ImageSpec spec(kW, kH, int(kChannels.size()), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = kChannels;
+        OIIO::ImageBuf old(spec);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                float pixel[4];
+                for (std::size_t c = 0; c < kChannels.size(); ++c)
+                    pixel[c] = a.at(kChannels[c], x, y);
+                old.setpixel(x, y, pixel, int(kChannels.size()));
+            }
+        REQUIRE(old.write(dir.file("old.exr")));
+    }
+    REQUIRE(readChannelNames(dir.file("old.exr")).size() == kChannels.size());
+    for (const auto& [x, y] : {std::pair{"a.exr", "old.exr"}, std::pair{"old.exr", "a.exr"},
+                               std::pair{"a.exr", "a.exr"}}) {
+        CAPTURE(x);
+        CAPTURE(y);
+        const ImageDiff d = compareImages(dir.file(x), dir.file(y));
+        CHECK(d.identical());
+        REQUIRE(d.layers.size() == 2);  // color and viewZ: no RGB layer, none missing
+        CHECK(layer(d, "color").channels.size() == 3);
+    }
+    // A difference in the colour counts once, in the color layer.
+    a.at("color.G", 2, 1) += 0.25f;
+    a.write(dir.file("changed.exr"));
+    const ImageDiff d = compareImages(dir.file("changed.exr"), dir.file("old.exr"));
+    REQUIRE(d.layers.size() == 2);
+    CHECK(layer(d, "color").pixelsOver == 1);
+    CHECK(layer(d, "color").maxError == doctest::Approx(0.25).epsilon(1e-5));
+    // R, G, B of a file's own, not the colour's, are a layer like any other.
+    LayeredImage own(kW, kH, {"R", "G", "B", "color.R", "color.G", "color.B"});
+    own.write(dir.file("own.exr"));
+    const ImageDiff o = compareImages(dir.file("own.exr"), dir.file("own.exr"));
+    CHECK(o.layers.size() == 2);
+    CHECK(layer(o, "RGB").identical);
+}
+
 TEST_CASE("image compare: sizes that differ are an error, and no heat map is written") {
     TempDir dir;
     LayeredImage(kW, kH, kChannels).write(dir.file("a.exr"));
