@@ -39,7 +39,7 @@ commands=$("$ssrt" --help | sed -n '/^Subcommands:/,/^$/p' | awk 'NR > 1 && /^  
 expect "$commands" ssrt ""
 expect "reference render" ssrt re
 expect "--width" ssrt render --wi
-expect "--heatmap" ssrt diff --heat
+expect "--heatmap --heatmap-layer --heatmap-scale" ssrt diff --heat
 expect "cornell corridor" ssrt render -s cor
 expect "cornell corridor" ssrt compare --scene cor
 expect "cornell corridor" ssrt render --scene = cor

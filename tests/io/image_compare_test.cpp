@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -278,8 +279,8 @@ TEST_CASE("image compare: the heat map shows where and how much, NaN apart") {
     TempDir dir;
     LayeredImage a(kW, kH, kChannels);
     const LayeredImage b(kW, kH, kChannels);
-    a.at("color.G", 1, 1) += 0.5f;   // the largest: white
-    a.at("viewZ", 3, 2) += 0.0001f;  // tiny: at least the floor (dark red)
+    a.at("color.G", 1, 1) += 0.5f;     // the largest: white
+    a.at("color.B", 3, 2) += 0.0001f;  // tiny: at least the floor (dark red)
     a.at("color.R", 4, 0) = std::numeric_limits<float>::quiet_NaN();  // blue
     a.write(dir.file("a.exr"));
     b.write(dir.file("b.exr"));
@@ -306,6 +307,67 @@ TEST_CASE("image compare: the heat map shows where and how much, NaN apart") {
     for (int c = 0; c < 3; ++c)
         CHECK(nan[c] == doctest::Approx(std::round(kHeatNonFinite[c] * 255) / 255));
     CHECK(dir.listing() == std::vector<std::string>{"a.exr", "b.exr", "heat.png"});
+}
+
+TEST_CASE("image compare: the heat map shows one layer on its own scale, the colour by default") {
+    TempDir dir;
+    const std::vector<std::string> channels{"color.R", "color.G", "color.B", "ssgiSteps"};
+    LayeredImage a(kW, kH, channels);
+    const LayeredImage b(kW, kH, channels);
+    a.at("color.G", 1, 1) += 0.01f;     // the colour's one difference
+    a.at("ssgiSteps", 2, 2) += 100.0f;  // march steps: a range the colour's is lost in
+    a.write(dir.file("a.exr"));
+    b.write(dir.file("b.exr"));
+    const auto heatAt = [&](const std::string& path, int x, int y) {
+        int w = 0, h = 0;
+        const auto rgb = readChannels(path, {"R", "G", "B"}, w, h);
+        const std::size_t i = std::size_t(y) * w + x;
+        return std::vector<float>{rgb[0][i], rgb[1][i], rgb[2][i]};
+    };
+    const std::vector<float> white{1, 1, 1}, black{0, 0, 0};
+
+    // Default: the colour, white at its own largest difference (not 0.01/100 of the ramp).
+    ImageCompareOptions options;
+    options.heatmap = dir.file("colour.png");
+    ImageDiff d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatLayer == "color");
+    CHECK(d.heatScale == doctest::Approx(0.01).epsilon(1e-4));
+    CHECK(heatAt(options.heatmap, 1, 1) == white);
+    CHECK(heatAt(options.heatmap, 2, 2) == black);  // another layer's difference: not shown
+
+    // --heatmap-layer: that layer, on its scale.
+    options.heatmap = dir.file("steps.png");
+    options.heatmapLayer = "ssgiSteps";
+    d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatLayer == "ssgiSteps");
+    CHECK(d.heatScale == doctest::Approx(100.0));
+    CHECK(heatAt(options.heatmap, 2, 2) == white);
+    CHECK(heatAt(options.heatmap, 1, 1) == black);
+
+    // --heatmap-scale: a fixed top, 0.04 -> the colour's 0.01 at a quarter of the ramp.
+    options.heatmap = dir.file("fixed.png");
+    options.heatmapLayer.clear();
+    options.heatmapScale = 0.04;
+    d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatScale == 0.04);
+    float quarter[3];
+    heatColour(0.01f / 0.04, quarter);  // (the difference as the file's float)
+    const std::vector<float> got = heatAt(options.heatmap, 1, 1);
+    for (int c = 0; c < 3; ++c)
+        CHECK(got[c] == doctest::Approx(std::round(quarter[c] * 255) / 255).epsilon(0.01));
+    CHECK(got != white);
+
+    // A layer neither file has in both, or a scale that is not > 0: an error, no file.
+    options.heatmap = dir.file("never.png");
+    options.heatmapScale.reset();
+    options.heatmapLayer = "viewZ";
+    CHECK_THROWS_WITH_AS(compareImages(dir.file("a.exr"), dir.file("b.exr"), options),
+                         doctest::Contains("'viewZ'"), std::invalid_argument);
+    options.heatmapLayer.clear();
+    options.heatmapScale = 0.0;
+    CHECK_THROWS_AS(compareImages(dir.file("a.exr"), dir.file("b.exr"), options),
+                    std::invalid_argument);
+    CHECK_FALSE(std::filesystem::exists(dir.file("never.png")));
 }
 
 // Why io/image_compare.cpp counts for itself rather than calling ImageBufAlgo::compare: in
