@@ -76,25 +76,28 @@ std::vector<LayerPlan> planLayers(const std::vector<std::string>& a,
 }
 
 // The channels of `image` a comparison sees: all of them, but R, G and B where they are a copy
-// of the color layer, as ssrt's EXRs carry it for viewers (io/image_io.h): bit for bit the
-// same values as color.R, .G, .B. The copy is compared as the color layer, not a second time
-// (nor reported missing against a file written without it); R, G, B that differ from the
-// colour are a layer of their own, as in any file.
+// of the colour layer, as ssrt's EXRs carry it for viewers (io/image_io.h): bit for bit the
+// same values as color.R, .G, .B (a reference's: ref.color.R, .G, .B). The copy is compared as
+// that layer, not a second time (nor reported missing against a file written without it);
+// R, G, B that differ from the colour are a layer of their own, as in any file.
 bool sameBits(float a, float b);
 
 std::vector<std::string> comparedChannels(const LoadedImage& image) {
     const auto& names = image.names;
-    const char* copies[3][2] = {{"R", "color.R"}, {"G", "color.G"}, {"B", "color.B"}};
     const std::size_t n = std::size_t(image.channels);
     const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
-    for (const auto& [plain, layered] : copies) {
-        const int p = indexOf(names, plain), l = indexOf(names, layered);
-        if (p < 0 || l < 0) return names;
-        for (std::size_t i = 0; i < pixels; ++i)
-            if (!sameBits(image.values[i * n + std::size_t(p)],
-                          image.values[i * n + std::size_t(l)]))
-                return names;
-    }
+    const auto copies = [&](const std::string& layer) {
+        for (const char* c : {"R", "G", "B"}) {
+            const int p = indexOf(names, c), l = indexOf(names, layer + "." + c);
+            if (p < 0 || l < 0) return false;
+            for (std::size_t i = 0; i < pixels; ++i)
+                if (!sameBits(image.values[i * n + std::size_t(p)],
+                              image.values[i * n + std::size_t(l)]))
+                    return false;
+        }
+        return true;
+    };
+    if (!copies("color") && !copies("ref.color")) return names;
     std::vector<std::string> kept;
     for (const std::string& c : names)
         if (c != "R" && c != "G" && c != "B") kept.push_back(c);

@@ -6,8 +6,9 @@
 // color.B are the layer "color"; viewZ, a channel without a dot, is a layer of its own. The
 // dotless colour channels R, G, B, A and Y (a plain PNG's, an EXR's default layer) are one
 // layer named after them in file order ("RGB", "RGBA", "Y"). R, G and B that are bit for bit
-// a file's color layer (ssrt's EXRs carry that copy for viewers: io/image_io.h) are left out:
-// the color layer is compared once, and a file written without the copy compares the same.
+// a file's color layer, or its ref.color (ssrt's EXRs carry that copy for viewers:
+// io/image_io.h), are left out: the layer is compared once, and a file written without the
+// copy compares the same.
 //
 // Per value, a is the first file's and b the reference's (the second file):
 //   difference  |a - b|; 0 when both are NaN or both the same infinity; +inf when only one

@@ -218,14 +218,19 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
                                        std::size_t(plane.stride()) * sizeof(float)));
     };
     for (const LayerRef& p : image.layers) addChannel(std::string(p.name), *p.plane);
-    // The colour layer once more as the default channels R, G, B, which viewers and
-    // `oiiotool --stats` show when they are not told a layer; readers that know the layers
-    // (io/image_compare.h) take these as the copy they are.
-    const PlaneF* colour[3] = {findPlane(image, "color.R"), findPlane(image, "color.G"),
-                               findPlane(image, "color.B")};
-    if (colour[0] && colour[1] && colour[2] && !findPlane(image, "R") && !findPlane(image, "G") &&
-        !findPlane(image, "B"))
-        for (int c = 0; c < 3; ++c) addChannel(kDefaultColourChannels[c], *colour[c]);
+    // The colour layer (a frame's color, else a reference's ref.color) once more as the
+    // default channels R, G, B, which viewers and `oiiotool --stats` show when they are not
+    // told a layer; readers that know the layers (io/image_compare.h) take these as the copy
+    // they are, and a merge or copy that writes the layer again writes its copy with it.
+    if (!findPlane(image, "R") && !findPlane(image, "G") && !findPlane(image, "B"))
+        for (const std::string layer : {"color", "ref.color"}) {
+            const PlaneF* colour[3] = {findPlane(image, layer + ".R"),
+                                       findPlane(image, layer + ".G"),
+                                       findPlane(image, layer + ".B")};
+            if (!colour[0] || !colour[1] || !colour[2]) continue;
+            for (int c = 0; c < 3; ++c) addChannel(kDefaultColourChannels[c], *colour[c]);
+            break;
+        }
     // The pool is OpenEXR's, process-wide; the file's own count is how many blocks of rows it
     // keeps in flight. Neither changes the bytes written.
     const int threads =

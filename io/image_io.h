@@ -20,8 +20,9 @@ namespace ssrt {
 //         Written by libpng at zlib level 1, byte for byte as OpenImageIO 2.4 wrote it.
 //   .exr  32-bit float, one channel per layer, in the order given, channel name = layer name
 //         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers; with a
-//         color layer (color.R, .G, .B) and no R, G or B of its own, that layer again as the
-//         default channels R, G, B, which viewers and `oiiotool --stats` show by default.
+//         colour layer (color.R, .G, .B, else a reference's ref.color.R, .G, .B) and no R, G
+//         or B of its own, that layer again as the default channels R, G, B, which viewers and
+//         `oiiotool --stats` show by default.
 //         Float, not half: ids and view depth need every bit. Written by OpenEXR with
 //         options.compression (lossless) on options.threads threads; the bytes do not depend
 //         on the thread count or on when the file is written.

@@ -110,11 +110,16 @@ TEST_CASE("EXR: the colour layer again as plain R, G, B, for viewers, and none w
         // Not the display's (which the frame fills with other values).
         CHECK(values[0] != readChannel(path, "display." + c, width, height));
     }
-    // Without a colour layer (a reference's ref.color.*), or with R, G, B of the file's own,
-    // nothing is added.
+    // A reference's colour, ref.color, the same way.
     const std::string ref = dir.file("ref.exr");
-    writeImage(ref, makeFrame(6, 4, {"ref.color.R", "ref.color.G", "ref.color.B"}));
-    CHECK(readChannelNames(ref).size() == 3);
+    writeImage(ref, makeFrame(6, 4, {"ref.color.R", "ref.color.G", "ref.color.B", "ref.ssr.R"}));
+    CHECK(readChannelNames(ref).size() == 7);
+    int width = 0, height = 0;
+    CHECK(readChannel(ref, "G", width, height) == readChannel(ref, "ref.color.G", width, height));
+    // Without a colour layer, or with R, G, B of the file's own, nothing is added.
+    const std::string none = dir.file("none.exr");
+    writeImage(none, makeFrame(6, 4, {"albedo.R", "albedo.G", "albedo.B", "ref.ssr.R"}));
+    CHECK(readChannelNames(none).size() == 4);
     const std::string own = dir.file("own.exr");
     writeImage(own, makeFrame(6, 4, {"R", "G", "B", "color.R", "color.G", "color.B"}));
     CHECK(readChannelNames(own).size() == 6);
