@@ -24,11 +24,14 @@ std::string durationText(double seconds) {
     return buf;
 }
 
+std::string timeLeftText(std::optional<double> left) {
+    if (!left) return {};
+    return *left < 0.5 ? std::string("under 1 s left") : "about " + durationText(*left) + " left";
+}
+
 std::string progressText(const std::string& label, double fraction, std::optional<double> left) {
     std::string text = label + ": " + std::to_string(int(fraction * 100.0)) + "%";
-    if (left && fraction < 1.0)
-        text += *left < 0.5 ? std::string(" (under 1 s left)")
-                            : " (about " + durationText(*left) + " left)";
+    if (left && fraction < 1.0) text += " (" + timeLeftText(left) + ")";
     return text;
 }
 

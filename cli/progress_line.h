@@ -21,8 +21,11 @@ std::optional<double> secondsLeft(double fraction, double elapsed);
 // minutes, then to the minute with hours: "7 s", "2 min 05 s", "1 h 03 min".
 std::string durationText(double seconds);
 
-// "reference: 40%", with " (about 12 s left)" (or " (under 1 s left)") when `left` is known
-// and the job not done.
+// "about 12 s left" ("under 1 s left" below half a second), or empty when `left` is unknown.
+std::string timeLeftText(std::optional<double> left);
+
+// "reference: 40%", with " (about 12 s left)" (timeLeftText) when `left` is known and the job
+// not done.
 std::string progressText(const std::string& label, double fraction, std::optional<double> left);
 
 // Whether `stream` is std::cerr (or std::clog) on a terminal, or std::cout on one.

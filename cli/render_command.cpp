@@ -13,6 +13,7 @@
 
 #include "cli/cli.h"
 #include "cli/options.h"
+#include "cli/progress_line.h"
 #include "cli/sequence.h"
 #include "cli/shard.h"
 #include "io/image_io.h"
@@ -228,6 +229,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const Renderer renderer(settings);
     Frame frame;
     FrameHistory history;
+    // For the frame lines' time left (the message only).
+    const auto sequenceStart = std::chrono::steady_clock::now();
     for (int step = startStep; step < endStep; ++step) {
         FrameInput input = sequence.input(step);
         // No frame reads the last one's history: it is read, not replaced (the same image,
@@ -253,10 +256,20 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         const std::chrono::duration<double, std::milli> write =
             std::chrono::steady_clock::now() - written;
         if (!o.quiet) {
-            if (frames > 1)
+            if (frames > 1) {
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file
-                    << (input.resetHistory ? " (camera cut: history restarted)" : "") << "\n";
-            else err << "wrote " << file << "\n";
+                    << (input.resetHistory ? " (camera cut: history restarted)" : "");
+                if (step + 1 < endStep) {
+                    const std::chrono::duration<double> elapsed =
+                        std::chrono::steady_clock::now() - sequenceStart;
+                    const double done = double(step - startStep + 1) / (endStep - startStep);
+                    const std::string left = timeLeftText(secondsLeft(done, elapsed.count()));
+                    if (!left.empty()) err << ", " << left;
+                }
+                err << "\n";
+            } else {
+                err << "wrote " << file << "\n";
+            }
         }
         if (o.stats) {
             if (frames > 1) out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";

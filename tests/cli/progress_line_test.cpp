@@ -30,6 +30,8 @@ TEST_CASE("progress line: durations to the second, then with minutes, then hours
     CHECK(progressText("reference", 0.4, 12.0) == "reference: 40% (about 12 s left)");
     CHECK(progressText("reference", 0.4, std::nullopt) == "reference: 40%");
     CHECK(progressText("reference", 0.9, 0.3) == "reference: 90% (under 1 s left)");
+    CHECK(timeLeftText(125.0) == "about 2 min 05 s left");
+    CHECK(timeLeftText(std::nullopt).empty());
     CHECK(progressText("reference", 1.0, 0.0) == "reference: 100%");
 }
 
