@@ -9,8 +9,10 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "cli/bash_completion.h"
 #include "cli/build_info.h"
 #include "cli/command_line.h"
+#include "cli/man_page.h"
 #include "cli/scenes_command.h"
 #include "core/suggest.h"
 
@@ -20,7 +22,15 @@ namespace {
 
 // The commands, as the errors for a missing or mistyped one list them.
 constexpr const char* kCommandList =
-    "render, graph, compare, sweep, diff, check, reference, merge or scenes";
+    "render, graph, compare, sweep, diff, check, reference, merge, scenes, completion or man";
+
+// The exit statuses, as the help's footer and the man page's EXIT STATUS give them.
+constexpr const char* kExitStatusText =
+    "Exit status: 0 success (diff, render --compare, check: within every threshold and "
+    "rule), 1 the images differ beyond a threshold (diff, render --compare, and check: a "
+    "case failed, is stale or has no reference), 2 bad command line, 3 the work failed (a "
+    "bad shot, scene, suite or image file, file I/O, an ISA this CPU lacks, rendering, "
+    "images of different sizes).";
 
 // The first argument the parse left that looks like an option ("--widht"; its "=value" cut
 // off), or empty.
@@ -67,13 +77,8 @@ CommandLine::CommandLine()
           "direct light, screen-space reflections and diffuse, checked against Embree)",
           "ssrt")) {
     CLI::App& app = *app_;
-    app.footer(
-        "Exit status: 0 success (diff, render --compare, check: within every threshold and "
-        "rule), 1 the images differ beyond a threshold (diff, render --compare, and check: a "
-        "case failed, is stale or has no reference), 2 bad command line, 3 the work failed (a "
-        "bad shot, scene, suite or image file, file I/O, an ISA this CPU lacks, rendering, "
-        "images of different sizes).\nRun 'ssrt COMMAND --help' for "
-        "a command's options.");
+    app.footer(std::string(kExitStatusText) +
+               "\nRun 'ssrt COMMAND --help' for a command's options.");
     app.set_version_flag("--version", versionLine(), "Print the version, commit and compiler");
     app.require_subcommand(1);
     commands_[int(Command::Render)] = addRenderCommand(app, render);
@@ -85,6 +90,8 @@ CommandLine::CommandLine()
     commands_[int(Command::Merge)] = addMergeCommand(app, merge);
     commands_[int(Command::Graph)] = addGraphCommand(app, graph);
     commands_[int(Command::Scenes)] = addScenesCommand(app, scenes);
+    commands_[int(Command::Completion)] = addCompletionCommand(app, completionShell);
+    commands_[int(Command::Man)] = addManCommand(app);
 }
 
 CommandLine::~CommandLine() = default;
@@ -102,6 +109,7 @@ void CommandLine::reset() {
     merge = {};
     graph = {};
     scenes = {};
+    completionShell.clear();
     command_ = Command::Scenes;
 }
 
@@ -171,6 +179,14 @@ int runCli(CommandLine& line, int argc, const char* const* argv, std::ostream& o
         case Command::Graph:
             return reportErrors(err, [&] { return runGraph(line.graph, out, err); });
         case Command::Scenes: return reportErrors(err, [&] { return runScenes(line.scenes, out); });
+        case Command::Completion:  // its one shell, checked by the parse
+            writeBashCompletion(line.app(), out);
+            return kExitOk;
+        case Command::Man: {
+            const std::string version = versionLine();
+            writeManPage(line.app(), kExitStatusText, version.substr(0, version.find(" (")), out);
+            return kExitOk;
+        }
     }
     return kExitUsage;  // unreachable: every command is a case
 }

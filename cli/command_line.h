@@ -7,6 +7,7 @@
 #include <iosfwd>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "cli/check_command.h"
 #include "cli/compare_command.h"
@@ -24,8 +25,20 @@ class App;
 
 namespace ssrt::cli {
 
-enum class Command { Render, Compare, Sweep, Diff, Check, Reference, Merge, Graph, Scenes };
-inline constexpr int kCommandCount = int(Command::Scenes) + 1;
+enum class Command {
+    Render,
+    Compare,
+    Sweep,
+    Diff,
+    Check,
+    Reference,
+    Merge,
+    Graph,
+    Scenes,
+    Completion,
+    Man
+};
+inline constexpr int kCommandCount = int(Command::Man) + 1;
 
 class CommandLine {
 public:
@@ -51,6 +64,10 @@ public:
     MergeOptions merge;
     GraphOptions graph;
     ScenesOptions scenes;
+    std::string completionShell;  // `ssrt completion SHELL`
+
+    // The app itself: what the completion script and the man page are made from.
+    const CLI::App& app() const { return *app_; }
 
 private:
     std::unique_ptr<CLI::App> app_;

@@ -131,13 +131,28 @@ std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& f, const std::s
                                    "more than --threshold")
                         ->type_name("S")
                         ->capture_default_str());
+    CLI::Option* heatmap =
+        cmd.add_option_function<std::string>(
+               "--heatmap", [&f](const std::string& v) { f.heatmap = v; },
+               "Write a .png of where one layer differs (the colour unless --heatmap-layer): per "
+               "pixel the largest difference over its channels, black where equal, dark red to "
+               "white up to its largest or --heatmap-scale (the report gives the scale), blue "
+               "for a NaN or infinity against another value")
+            ->type_name("FILE.png");
+    added.push_back(heatmap);
     added.push_back(cmd.add_option_function<std::string>(
-                           "--heatmap", [&f](const std::string& v) { f.heatmap = v; },
-                           "Write a .png of where they differ: per pixel the largest difference "
-                           "over the layers, black where equal, dark red to white up to the "
-                           "largest (the report gives the scale), blue for a NaN or infinity "
-                           "against another value")
-                        ->type_name("FILE.png"));
+                           "--heatmap-layer", [&f](const std::string& v) { f.heatmapLayer = v; },
+                           "The layer the heat map shows, scaled on its own (default: color, "
+                           "else a plain file's RGB, else the first layer in both files)")
+                        ->type_name("NAME")
+                        ->needs(heatmap));
+    added.push_back(cmd.add_option_function<std::string>(
+                           "--heatmap-scale", [&f](const std::string& v) { f.heatmapScale = v; },
+                           "The difference the heat map draws white (a finite number > 0; "
+                           "larger ones are white too): one scale for every pair of images "
+                           "(default: the layer's largest difference)")
+                        ->type_name("X")
+                        ->needs(heatmap));
     for (CLI::Option* o : added) o->group(group);
     return added;
 }
@@ -159,6 +174,12 @@ DiffSettings diffSettingsFrom(const DiffFlags& f) {
         checkWritable(path);
         s.compare.heatmap = path;
     }
+    if (f.heatmapLayer) s.compare.heatmapLayer = *f.heatmapLayer;
+    if (f.heatmapScale)
+        s.compare.heatmapScale =
+            parseNumber("--heatmap-scale", *f.heatmapScale, 0.0, kHuge, "a finite number > 0");
+    if (s.compare.heatmapScale && !(*s.compare.heatmapScale > 0.0))
+        badValue("--heatmap-scale", *f.heatmapScale, "a finite number > 0");
     return s;
 }
 
@@ -263,10 +284,11 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
                                                  : "DIFFER";
         (*json)["layers_beyond"] = beyond;
         (*json)["layers_identical"] = identical;
-        (*json)["heatmap"] =
-            settings.compare.heatmap.empty()
-                ? Json(nullptr)
-                : Json({{"file", settings.compare.heatmap}, {"scale", diff.heatScale}});
+        (*json)["heatmap"] = settings.compare.heatmap.empty()
+                                 ? Json(nullptr)
+                                 : Json({{"file", settings.compare.heatmap},
+                                         {"layer", diff.heatLayer},
+                                         {"scale", diff.heatScale}});
         (*json)["flip"] =
             flipResult ? flipJson(*flipResult, *flip, maxFlipMean, flipBeyond) : Json(nullptr);
         return status;
@@ -283,10 +305,13 @@ int diffImages(const std::string& a, const std::string& b, const DiffSettings& s
                 << (l.nonFinite == 1 ? " pixel has" : " pixels have")
                 << " a NaN or infinity against a different value (max error and relMSE inf)\n";
     if (!settings.compare.heatmap.empty())
-        out << "heat map " << settings.compare.heatmap
+        out << "heat map " << settings.compare.heatmap << " of layer "
+            << (diff.heatLayer.empty() ? std::string("-") : diff.heatLayer)
             << ": black = equal, dark red to white = a difference up to " << number(diff.heatScale)
-            << " (the largest finite one; any difference at least dark red), blue = a NaN or "
-               "infinity against a different value\n";
+            << (settings.compare.heatmapScale ? " (--heatmap-scale"
+                                              : " (the layer's largest finite one")
+            << "; any difference at least dark red), blue = a NaN or infinity against a "
+               "different value\n";
     if (flipResult) {
         printFlip(out, *flipResult, *flip);
         if (flipBeyond)

@@ -25,6 +25,8 @@ struct DiffFlags {
     std::optional<std::string> maxError, maxRelMse;  // unset: not checked
     std::string maxShare = "0";                      // share of pixels over --threshold allowed
     std::optional<std::string> heatmap;              // a .png to write
+    std::optional<std::string> heatmapLayer;         // the layer it shows (default: colour)
+    std::optional<std::string> heatmapScale;         // the difference drawn white
 };
 
 struct DiffOptions {
@@ -43,8 +45,9 @@ struct DiffSettings {
     DiffThresholds limits;
 };
 
-// Adds --threshold, --max-error, --max-relmse, --max-share and --heatmap to `cmd` in the
-// group `group`, and returns them (render makes them need --compare).
+// Adds --threshold, --max-error, --max-relmse, --max-share, --heatmap, --heatmap-layer and
+// --heatmap-scale to `cmd` in the group `group`, and returns them (render makes them need
+// --compare).
 std::vector<CLI::Option*> addDiffFlags(CLI::App& cmd, DiffFlags& flags, const std::string& group);
 
 // Parses the flags: numbers finite and >= 0, --max-share in [0, 1], the heat map a .png

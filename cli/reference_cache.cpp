@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <mutex>
 #include <ostream>
 #include <stdexcept>
 
+#include "cli/progress_line.h"
 #include "io/image_io.h"
 
 namespace ssrt::cli {
@@ -132,17 +132,11 @@ ReferenceImage renderFresh(const EmbreeScene& embree, const Scene& scene, const 
     const Renderer renderer(base);
     Frame frame;
     renderer.renderWithoutHistory(scene, input, frame);
-    std::mutex mutex;
-    int lastPercent = -1;
-    const Progress progress = [&](double fraction) {
-        if (!source.progress) return;
-        const int percent = int(fraction * 100.0);
-        std::lock_guard lock(mutex);
-        if (percent / 10 == lastPercent / 10) return;  // a line per 10 %
-        lastPercent = percent;
-        *source.progress << "reference: " << percent << "%\n" << std::flush;
-    };
-    return renderReference(embree, renderer, frame, reference, progress, band);
+    if (!source.progress) return renderReference(embree, renderer, frame, reference, {}, band);
+    ProgressLine line(*source.progress, "reference");
+    return renderReference(
+        embree, renderer, frame, reference, [&line](double fraction) { line.update(fraction); },
+        band);
 }
 
 }  // namespace

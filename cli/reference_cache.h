@@ -21,7 +21,7 @@ std::string defaultCacheDir();
 
 struct ReferenceSource {
     std::optional<std::string> cacheDir;  // nullopt: no cache (always render, store nothing)
-    std::ostream* progress = nullptr;     // "reference: 42%" lines; null: quiet
+    std::ostream* progress = nullptr;     // "reference: 40%" (cli/progress_line.h); null: quiet
 };
 
 // The reference for `settings` (its trace settings' SSR sampler and frame index; both trace

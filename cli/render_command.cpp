@@ -15,6 +15,7 @@
 #include "cli/cli.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
+#include "cli/progress_line.h"
 #include "cli/sequence.h"
 #include "cli/shard.h"
 #include "io/image_io.h"
@@ -243,6 +244,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     FrameHistory history;
     Json document = Json::object();  // --json: printed whole once every frame is written
     if (o.json && o.stats) document["frames"] = Json::array();
+    // For the frame lines' time left (the message only).
+    const auto sequenceStart = std::chrono::steady_clock::now();
     for (int step = startStep; step < endStep; ++step) {
         FrameInput input = sequence.input(step);
         // No frame reads the last one's history: it is read, not replaced (the same image,
@@ -268,10 +271,20 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         const std::chrono::duration<double, std::milli> write =
             std::chrono::steady_clock::now() - written;
         if (!o.quiet) {
-            if (frames > 1)
+            if (frames > 1) {
                 err << "frame " << (i + 1) << "/" << frames << ": wrote " << file
-                    << (input.resetHistory ? " (camera cut: history restarted)" : "") << "\n";
-            else err << "wrote " << file << "\n";
+                    << (input.resetHistory ? " (camera cut: history restarted)" : "");
+                if (step + 1 < endStep) {
+                    const std::chrono::duration<double> elapsed =
+                        std::chrono::steady_clock::now() - sequenceStart;
+                    const double done = double(step - startStep + 1) / (endStep - startStep);
+                    const std::string left = timeLeftText(secondsLeft(done, elapsed.count()));
+                    if (!left.empty()) err << ", " << left;
+                }
+                err << "\n";
+            } else {
+                err << "wrote " << file << "\n";
+            }
         }
         if (o.stats) {
             // The renderer may report the thread setting (0 = every core) rather than the count.

@@ -56,3 +56,27 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/ssrtConfigVersion.c
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/ssrtConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/ssrtConfigVersion.cmake
         DESTINATION ${SSRT_CMAKE_DIR})
+
+# The ssrt command's bash completion and man page, which it writes itself from its own table of
+# commands and flags (`ssrt completion bash`, `ssrt man`): after each link of the program, so
+# that whatever builds `ssrt` (scripts/build.sh --render included) has both to install. Not in
+# a cross build that cannot run what it builds.
+if(TARGET ssrt_cli AND (NOT CMAKE_CROSSCOMPILING OR CMAKE_CROSSCOMPILING_EMULATOR))
+    set(SSRT_COMPLETION_FILE ${CMAKE_BINARY_DIR}/share/bash-completion/completions/ssrt)
+    set(SSRT_MAN_FILE ${CMAKE_BINARY_DIR}/share/man/man1/ssrt.1)
+    foreach(doc "COMPLETION;completion bash" "MAN;man")
+        list(GET doc 0 kind)
+        list(GET doc 1 args)
+        get_filename_component(dir ${SSRT_${kind}_FILE} DIRECTORY)
+        add_custom_command(TARGET ssrt_cli POST_BUILD
+                           COMMAND ${CMAKE_COMMAND} -E make_directory ${dir}
+                           COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:ssrt_cli>
+                                   "-DARGS=${args}" -DOUTPUT=${SSRT_${kind}_FILE}
+                                   "-DEMULATOR=${CMAKE_CROSSCOMPILING_EMULATOR}"
+                                   -P ${PROJECT_SOURCE_DIR}/cmake/run_to_file.cmake
+                           COMMENT "ssrt ${args} > ${SSRT_${kind}_FILE}" VERBATIM)
+    endforeach()
+    install(FILES ${SSRT_COMPLETION_FILE}
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)
+    install(FILES ${SSRT_MAN_FILE} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+endif()

@@ -111,7 +111,8 @@ void caseSection(std::ostringstream& h, const ReportCase& c) {
              "</figure>\n";
     else figure(h, c.newImage, "new");
     figure(h, c.referenceImage, "reference");
-    figure(h, c.diffImage, "difference (black: equal; dark red to white: up to the largest)");
+    figure(h, c.diffImage,
+           "difference of the colour (black: equal; dark red to white: up to its largest)");
     figure(h, c.flipImage, "FLIP (magma: black 0 to pale yellow 1)");
     h << "</div>\n";
     if (!c.flipLine.empty()) h << "<p>" << escaped(c.flipLine) << "</p>\n";

@@ -75,6 +75,35 @@ std::vector<LayerPlan> planLayers(const std::vector<std::string>& a,
     return plans;
 }
 
+// The channels of `image` a comparison sees: all of them, but R, G and B where they are a copy
+// of the colour layer, as ssrt's EXRs carry it for viewers (io/image_io.h): bit for bit the
+// same values as color.R, .G, .B (a reference's: ref.color.R, .G, .B). The copy is compared as
+// that layer, not a second time (nor reported missing against a file written without it);
+// R, G, B that differ from the colour are a layer of their own, as in any file.
+bool sameBits(float a, float b);
+
+std::vector<std::string> comparedChannels(const LoadedImage& image) {
+    const auto& names = image.names;
+    const std::size_t n = std::size_t(image.channels);
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    const auto copies = [&](const std::string& layer) {
+        for (const char* c : {"R", "G", "B"}) {
+            const int p = indexOf(names, c), l = indexOf(names, layer + "." + c);
+            if (p < 0 || l < 0) return false;
+            for (std::size_t i = 0; i < pixels; ++i)
+                if (!sameBits(image.values[i * n + std::size_t(p)],
+                              image.values[i * n + std::size_t(l)]))
+                    return false;
+        }
+        return true;
+    };
+    if (!copies("color") && !copies("ref.color")) return names;
+    std::vector<std::string> kept;
+    for (const std::string& c : names)
+        if (c != "R" && c != "G" && c != "B") kept.push_back(c);
+    return kept;
+}
+
 // Keeps the layers named in `wanted` (all when empty); a name neither file has throws.
 std::vector<LayerPlan> chosen(std::vector<LayerPlan> plans,
                               const std::vector<std::string>& wanted) {
@@ -186,6 +215,29 @@ LayerDiff compareLayer(const LayerPlan& plan, const LoadedImage& a, const Loaded
 // ---------------------------------------------------------------------------------------
 // The heat map
 
+// The layer the heat map shows (ImageCompareOptions::heatmapLayer): the one named, else the
+// colour (`color`, else the plain R, G, B layer), else the first in both files; null when no
+// layer is in both. A name that is not a compared layer in both files throws.
+const LayerPlan* heatmapPlan(const std::vector<LayerPlan>& plans,
+                             const ImageCompareOptions& options) {
+    std::vector<const LayerPlan*> both;
+    for (const LayerPlan& p : plans)
+        if (!p.both.empty()) both.push_back(&p);
+    if (!options.heatmapLayer.empty()) {
+        for (const LayerPlan* p : both)
+            if (p->name == options.heatmapLayer) return p;
+        std::string known;
+        for (const LayerPlan* p : both) known += (known.empty() ? "" : ", ") + p->name;
+        throw std::invalid_argument("no layer '" + options.heatmapLayer +
+                                    "' compared in both images for the heat map (layers: " +
+                                    (known.empty() ? std::string("none") : known) + ")");
+    }
+    for (const char* key : {"color", ""})
+        for (const LayerPlan* p : both)
+            if (p->key == key) return p;
+    return both.empty() ? nullptr : both.front();
+}
+
 void writeHeatmap(const std::string& path, const PlaneF& heat, double scale) {
     const int w = heat.width(), h = heat.height();
     PlaneF planes[3] = {PlaneF(w, h), PlaneF(w, h), PlaneF(w, h)};
@@ -245,6 +297,9 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
         throw std::invalid_argument("the pixel threshold must be a number >= 0");
     for (double t : options.moreThresholds)
         if (!(t >= 0.0)) throw std::invalid_argument("every pixel threshold must be a number >= 0");
+    if (options.heatmapScale &&
+        !(std::isfinite(*options.heatmapScale) && *options.heatmapScale > 0.0))
+        throw std::invalid_argument("the heat map's scale must be a finite number > 0");
     if (!options.heatmap.empty()) checkPngOutput(options.heatmap, "the heat map");
     const LoadedImage a = io_detail::readFloatImage(pathA);
     const LoadedImage b = io_detail::readFloatImage(pathB);
@@ -253,7 +308,9 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
                                  "x" + std::to_string(a.height) + ") with '" + pathB + "' (" +
                                  std::to_string(b.width) + "x" + std::to_string(b.height) +
                                  "): the sizes differ");
-    const std::vector<LayerPlan> plans = chosen(planLayers(a.names, b.names), options.layers);
+    const std::vector<LayerPlan> plans =
+        chosen(planLayers(comparedChannels(a), comparedChannels(b)), options.layers);
+    const LayerPlan* heatPlan = options.heatmap.empty() ? nullptr : heatmapPlan(plans, options);
 
     ImageDiff diff;
     diff.width = a.width;
@@ -262,8 +319,8 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
     if (!options.heatmap.empty()) heat = std::make_unique<PlaneF>(diff.width, diff.height, 0.0f);
     for (const LayerPlan& plan : plans) {
         if (!plan.both.empty())
-            diff.layers.push_back(
-                compareLayer(plan, a, b, diff.width, diff.height, options, heat.get()));
+            diff.layers.push_back(compareLayer(plan, a, b, diff.width, diff.height, options,
+                                               &plan == heatPlan ? heat.get() : nullptr));
         // Channels only one file has: reported, never compared.
         for (const auto& [list, presence] :
              {std::pair{&plan.onlyB, LayerDiff::Presence::MissingInA},
@@ -277,10 +334,15 @@ ImageDiff compareImages(const std::string& pathA, const std::string& pathB,
         }
     }
     if (heat) {
-        for (int y = 0; y < diff.height; ++y)
-            for (int x = 0; x < diff.width; ++x)
-                if (std::isfinite(heat->at(x, y)))
-                    diff.heatScale = std::max(diff.heatScale, double(heat->at(x, y)));
+        if (heatPlan) diff.heatLayer = heatPlan->name;
+        if (options.heatmapScale) {
+            diff.heatScale = *options.heatmapScale;
+        } else {
+            for (int y = 0; y < diff.height; ++y)
+                for (int x = 0; x < diff.width; ++x)
+                    if (std::isfinite(heat->at(x, y)))
+                        diff.heatScale = std::max(diff.heatScale, double(heat->at(x, y)));
+        }
         writeHeatmap(options.heatmap, *heat, diff.heatScale);
     }
     return diff;

@@ -5,7 +5,10 @@
 // A layer is the channels that share the name before their last '.': color.R, color.G and
 // color.B are the layer "color"; viewZ, a channel without a dot, is a layer of its own. The
 // dotless colour channels R, G, B, A and Y (a plain PNG's, an EXR's default layer) are one
-// layer named after them in file order ("RGB", "RGBA", "Y").
+// layer named after them in file order ("RGB", "RGBA", "Y"). R, G and B that are bit for bit
+// a file's color layer, or its ref.color (ssrt's EXRs carry that copy for viewers:
+// io/image_io.h), are left out: the layer is compared once, and a file written without the
+// copy compares the same.
 //
 // Per value, a is the first file's and b the reference's (the second file):
 //   difference  |a - b|; 0 when both are NaN or both the same infinity; +inf when only one
@@ -34,10 +37,18 @@ struct ImageCompareOptions {
     // More thresholds (each >= 0) whose pixel counts LayerDiff::pixelsOverEach gives, in this
     // order: a golden-image suite's buckets (cli/suite_file.h) count several in one pass.
     std::vector<double> moreThresholds;
-    // A PNG to write, or empty: per pixel the largest difference over the compared layers
-    // that are in both files, on a colour ramp (heatColour). Written only when both files
-    // were read and compared, through a temporary and a rename (io/image_io.h's writeImage).
+    // A PNG to write, or empty: per pixel the largest difference over one layer's channels,
+    // on a colour ramp (heatColour). Written only when both files were read and compared,
+    // through a temporary and a rename (io/image_io.h's writeImage).
     std::string heatmap;
+    // The layer the heat map shows, compared and in both files (else std::invalid_argument).
+    // Empty: the colour, `color` (else a plain file's RGB layer), else the first layer in
+    // both files. One layer, so that another's range (march steps up to 100, depths in
+    // metres) cannot make the colour's differences all dark.
+    std::string heatmapLayer;
+    // The difference drawn white (> 0), the same for every pair of files; unset: the shown
+    // layer's largest finite difference.
+    std::optional<double> heatmapScale;
 };
 
 // One layer of the comparison.
@@ -65,7 +76,9 @@ struct LayerDiff {
 struct ImageDiff {
     int width = 0, height = 0;
     std::vector<LayerDiff> layers;  // the reference's layer order, then those only in A
-    double heatScale = 0.0;         // with a heat map, its top: the largest finite difference
+    std::string heatLayer;          // with a heat map, the layer it shows
+    double heatScale = 0.0;         // and its top: the scale given, else the layer's largest
+                                    // finite difference
     bool identical() const;         // every layer in both files, each bit-identical
 };
 
@@ -93,8 +106,9 @@ ImageDiff compareImages(const std::string& a, const std::string& b,
 
 // The heat map: a pixel's largest difference d over heatScale (ImageDiff's) gives t on a
 // ramp from black (t = 0: equal) through dark red, red, orange and yellow to white (t = 1:
-// the largest finite difference). A pixel that differs at all is drawn at t >= kHeatFloor,
-// so the smallest difference shows; a non-finite mismatch is blue, off the ramp.
+// the shown layer's largest finite difference, or the scale given; above it, white too). A pixel
+// that differs at all is drawn at t >= kHeatFloor, so the smallest difference shows; a non-finite
+// mismatch is blue, off the ramp.
 inline constexpr double kHeatFloor = 0.15;
 // The ramp's colour at t (clamped to [0, 1]), display RGB in [0, 1].
 void heatColour(double t, float rgb[3]);

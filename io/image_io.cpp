@@ -123,6 +123,7 @@ fs::path reserveTemporary(const std::string& path, const std::string& ext) {
 // Frames
 
 constexpr const char* kDisplayPlanes[] = {"display.R", "display.G", "display.B"};
+constexpr const char* kDefaultColourChannels[] = {"R", "G", "B"};
 
 const PlaneF* findPlane(const ImageLayers& image, std::string_view name) {
     for (const LayerRef& p : image.layers)
@@ -209,14 +210,27 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
     for (const auto& [name, value] : image.attributes)
         header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer buffer;
-    for (const LayerRef& p : image.layers) {
-        const std::string name(p.name);
+    const auto addChannel = [&](const std::string& name, const PlaneF& plane) {
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
         // OpenEXR's slices take a non-const base; an output file only reads through it.
-        char* base = reinterpret_cast<char*>(const_cast<float*>(p.plane->row(0)));
+        char* base = reinterpret_cast<char*>(const_cast<float*>(plane.row(0)));
         buffer.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
-                                       std::size_t(p.plane->stride()) * sizeof(float)));
-    }
+                                       std::size_t(plane.stride()) * sizeof(float)));
+    };
+    for (const LayerRef& p : image.layers) addChannel(std::string(p.name), *p.plane);
+    // The colour layer (a frame's color, else a reference's ref.color) once more as the
+    // default channels R, G, B, which viewers and `oiiotool --stats` show when they are not
+    // told a layer; readers that know the layers (io/image_compare.h) take these as the copy
+    // they are, and a merge or copy that writes the layer again writes its copy with it.
+    if (!findPlane(image, "R") && !findPlane(image, "G") && !findPlane(image, "B"))
+        for (const std::string layer : {"color", "ref.color"}) {
+            const PlaneF* colour[3] = {findPlane(image, layer + ".R"),
+                                       findPlane(image, layer + ".G"),
+                                       findPlane(image, layer + ".B")};
+            if (!colour[0] || !colour[1] || !colour[2]) continue;
+            for (int c = 0; c < 3; ++c) addChannel(kDefaultColourChannels[c], *colour[c]);
+            break;
+        }
     // The pool is OpenEXR's, process-wide; the file's own count is how many blocks of rows it
     // keeps in flight. Neither changes the bytes written.
     const int threads =

@@ -19,8 +19,11 @@ namespace ssrt {
 //         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0. Other layers are ignored.
 //         Written by libpng at zlib level 1, byte for byte as OpenImageIO 2.4 wrote it.
 //   .exr  32-bit float, one channel per layer, in the order given, channel name = layer name
-//         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers. Float,
-//         not half: ids and view depth need every bit. Written by OpenEXR with
+//         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers; with a
+//         colour layer (color.R, .G, .B, else a reference's ref.color.R, .G, .B) and no R, G
+//         or B of its own, that layer again as the default channels R, G, B, which viewers and
+//         `oiiotool --stats` show by default.
+//         Float, not half: ids and view depth need every bit. Written by OpenEXR with
 //         options.compression (lossless) on options.threads threads; the bytes do not depend
 //         on the thread count or on when the file is written.
 // The file appears whole or not at all: it is written to a temporary beside the target and

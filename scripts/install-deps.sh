@@ -37,6 +37,8 @@ test_packages=(
     python3-matplotlib
     # Graphviz's dot, which draws `ssrt graph --dot` (its test checks that dot accepts it)
     graphviz
+    # man, which formats `ssrt man` (its test checks the page formats without a warning)
+    man-db
     # The Python module (python/: pybind11, built for /usr/bin/python3) and its pytest suite
     pybind11-dev python3-dev python3-numpy python3-pytest
 )

@@ -209,8 +209,15 @@ TEST_CASE("cli diff: the heat map is written and its scale printed") {
         run({"diff", dir.file("a.exr"), dir.file("b.exr"), "--heatmap", dir.file("heat.png")});
     CHECK(r.code == cli::kExitDiffer);
     CHECK(fs::exists(dir.file("heat.png")));
-    CHECK(contains(r.out, "heat map " + dir.file("heat.png")));
+    CHECK(contains(r.out, "heat map " + dir.file("heat.png") + " of layer color"));
     CHECK(contains(r.out, "a difference up to 0.25"));
+    const auto fixed =
+        run({"diff", dir.file("a.exr"), dir.file("b.exr"), "--heatmap", dir.file("fixed.png"),
+             "--heatmap-layer", "color", "--heatmap-scale", "2"});
+    CHECK(fixed.code == cli::kExitDiffer);
+    CHECK(contains(fixed.out,
+                   "of layer color: black = equal, dark red to white = a difference "
+                   "up to 2 (--heatmap-scale"));
 }
 
 TEST_CASE("cli diff: bad flags are one line, exit 2, before any file is read") {
@@ -225,6 +232,9 @@ TEST_CASE("cli diff: bad flags are one line, exit 2, before any file is read") {
              {"diff", a, b, "--max-relmse", ""},
              {"diff", a, b, "--max-share", "1.5"},
              {"diff", a, b, "--heatmap", dir.file("heat.jpg")},
+             {"diff", a, b, "--heatmap-layer", "color"},  // without --heatmap
+             {"diff", a, b, "--heatmap", dir.file("h.png"), "--heatmap-scale", "0"},
+             {"diff", a, b, "--heatmap", dir.file("h.png"), "--heatmap-scale", "inf"},
              {"diff", a, b, "--layers", "color,,viewZ"},
              {"diff", a, dir.file("b.png"), "--heatmap", dir.file("./b.png")},
              {"diff", dir.file("a.png"), b, "--heatmap", dir.file("a.png")}}) {

@@ -15,6 +15,7 @@
 #include "cli/cli_run.h"
 #include "cli/shard.h"
 #include "cli/sweep_command.h"
+#include "io/image_io.h"
 #include "temp_dir.h"
 
 using namespace ssrt;
@@ -227,6 +228,11 @@ TEST_CASE("shard: a reference as 2 bands, merged, is the unsharded file byte for
                      dir.file("cache")})
                 .code == 0);
     CHECK(test::readFile(dir.file("merged.exr")) == test::readFile(dir.file("full.exr")));
+    // Its plain R, G, B (the colour again, for viewers: io/image_io.h) are the merged colour.
+    int w = 0, h = 0;
+    const std::vector<std::vector<float>> rgb = readChannels(
+        dir.file("merged.exr"), {"R", "G", "B", "ref.color.R", "ref.color.G", "ref.color.B"}, w, h);
+    for (int c = 0; c < 3; ++c) CHECK(rgb[std::size_t(c)] == rgb[std::size_t(c) + 3]);
     // The merged reference lands in the cache under the name compare looks for: a compare
     // with that cache takes it from there.
     const test::CliResult c =

@@ -156,6 +156,10 @@ TEST_CASE("cli shot: a 3-frame sequence writes 3 files whose motion follows the 
     for (int i = 1; i <= 3; ++i)
         CHECK(contains(r.err, "frame " + std::to_string(i) + "/3: wrote " +
                                   dir.file("seq_000" + std::to_string(i - 1) + ".exr")));
+    // Each frame's line but the last's ends with the time left (estimated from the time taken).
+    for (const char* file : {"seq_0000.exr", "seq_0001.exr"})
+        CHECK(contains(r.err, dir.file(file) + ", "));
+    CHECK(contains(r.err, "frame 3/3: wrote " + dir.file("seq_0002.exr") + "\n"));
 
     // The cameras the sequence used: the path at times 0, 1.5 and 3
     const Shot shot = loadShot(shotFile);

@@ -3,7 +3,8 @@
 # find_package(ssrt COMPONENTS ...): the core-only example of docs/embedding.md, a tool on every component
 # (tool_example.cpp: a glTF file, a sequence with history, an EXR, the Embree truth) and every
 # installed header on its own. Runs both examples, and checks that the package refuses a
-# component it does not have and a version it is not.
+# component it does not have and a version it is not, and that the ssrt command's completion
+# and man page are installed.
 # Usage: check_install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1 src=$2
@@ -13,6 +14,12 @@ work=$(cd "$build" && pwd)/install-check
 rm -rf "$work"
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
+# The command's bash completion and man page, where bash-completion and man look for them.
+if [ -x "$build/ssrt" ]; then
+    for f in share/bash-completion/completions/ssrt share/man/man1/ssrt.1; do
+        [ -s "$work/prefix/$f" ] || { echo "FAIL: the install has no $f" >&2; exit 1; }
+    done
+fi
 # The build's compiler cache, if it has one.
 launcher=$(sed -n 's/^CMAKE_CXX_COMPILER_LAUNCHER:[A-Z]*=//p' "$build/CMakeCache.txt")
 cmake -S "$src/tests/install" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" \

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -217,6 +218,55 @@ TEST_CASE("image compare: a layer or channel in one file only is reported and ne
                          doctest::Contains("'nosuch'"), std::invalid_argument);
 }
 
+TEST_CASE("image compare: R, G, B that copy the colour layer are compared once, as color") {
+    TempDir dir;
+    // As ssrt writes a frame (R, G, B added by the writer), and a file of the named layers
+    // only (as ssrt wrote them before it added R, G, B; here through OpenImageIO).
+    LayeredImage a(kW, kH, kChannels);
+    a.write(dir.file("a.exr"));
+    REQUIRE(readChannelNames(dir.file("a.exr")).size() == kChannels.size() + 3);
+    {
+        OIIO::ImageSpec spec(kW, kH, int(kChannels.size()), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = kChannels;
+        OIIO::ImageBuf old(spec);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                float pixel[4];
+                for (std::size_t c = 0; c < kChannels.size(); ++c)
+                    pixel[c] = a.at(kChannels[c], x, y);
+                old.setpixel(x, y, pixel, int(kChannels.size()));
+            }
+        REQUIRE(old.write(dir.file("old.exr")));
+    }
+    REQUIRE(readChannelNames(dir.file("old.exr")).size() == kChannels.size());
+    for (const auto& [x, y] : {std::pair{"a.exr", "old.exr"}, std::pair{"old.exr", "a.exr"},
+                               std::pair{"a.exr", "a.exr"}}) {
+        CAPTURE(x);
+        CAPTURE(y);
+        const ImageDiff d = compareImages(dir.file(x), dir.file(y));
+        CHECK(d.identical());
+        REQUIRE(d.layers.size() == 2);  // color and viewZ: no RGB layer, none missing
+        CHECK(layer(d, "color").channels.size() == 3);
+    }
+    // A difference in the colour counts once, in the color layer.
+    a.at("color.G", 2, 1) += 0.25f;
+    a.write(dir.file("changed.exr"));
+    const ImageDiff d = compareImages(dir.file("changed.exr"), dir.file("old.exr"));
+    REQUIRE(d.layers.size() == 2);
+    CHECK(layer(d, "color").pixelsOver == 1);
+    CHECK(layer(d, "color").maxError == doctest::Approx(0.25).epsilon(1e-5));
+    // A reference's copy of ref.color likewise.
+    LayeredImage(kW, kH, {"ref.color.R", "ref.color.G", "ref.color.B"}).write(dir.file("ref.exr"));
+    REQUIRE(readChannelNames(dir.file("ref.exr")).size() == 6);
+    CHECK(compareImages(dir.file("ref.exr"), dir.file("ref.exr")).layers.size() == 1);
+    // R, G, B of a file's own, not the colour's, are a layer like any other.
+    LayeredImage own(kW, kH, {"R", "G", "B", "color.R", "color.G", "color.B"});
+    own.write(dir.file("own.exr"));
+    const ImageDiff o = compareImages(dir.file("own.exr"), dir.file("own.exr"));
+    CHECK(o.layers.size() == 2);
+    CHECK(layer(o, "RGB").identical);
+}
+
 TEST_CASE("image compare: sizes that differ are an error, and no heat map is written") {
     TempDir dir;
     LayeredImage(kW, kH, kChannels).write(dir.file("a.exr"));
@@ -233,8 +283,8 @@ TEST_CASE("image compare: the heat map shows where and how much, NaN apart") {
     TempDir dir;
     LayeredImage a(kW, kH, kChannels);
     const LayeredImage b(kW, kH, kChannels);
-    a.at("color.G", 1, 1) += 0.5f;   // the largest: white
-    a.at("viewZ", 3, 2) += 0.0001f;  // tiny: at least the floor (dark red)
+    a.at("color.G", 1, 1) += 0.5f;     // the largest: white
+    a.at("color.B", 3, 2) += 0.0001f;  // tiny: at least the floor (dark red)
     a.at("color.R", 4, 0) = std::numeric_limits<float>::quiet_NaN();  // blue
     a.write(dir.file("a.exr"));
     b.write(dir.file("b.exr"));
@@ -261,6 +311,67 @@ TEST_CASE("image compare: the heat map shows where and how much, NaN apart") {
     for (int c = 0; c < 3; ++c)
         CHECK(nan[c] == doctest::Approx(std::round(kHeatNonFinite[c] * 255) / 255));
     CHECK(dir.listing() == std::vector<std::string>{"a.exr", "b.exr", "heat.png"});
+}
+
+TEST_CASE("image compare: the heat map shows one layer on its own scale, the colour by default") {
+    TempDir dir;
+    const std::vector<std::string> channels{"color.R", "color.G", "color.B", "ssgiSteps"};
+    LayeredImage a(kW, kH, channels);
+    const LayeredImage b(kW, kH, channels);
+    a.at("color.G", 1, 1) += 0.01f;     // the colour's one difference
+    a.at("ssgiSteps", 2, 2) += 100.0f;  // march steps: a range the colour's is lost in
+    a.write(dir.file("a.exr"));
+    b.write(dir.file("b.exr"));
+    const auto heatAt = [&](const std::string& path, int x, int y) {
+        int w = 0, h = 0;
+        const auto rgb = readChannels(path, {"R", "G", "B"}, w, h);
+        const std::size_t i = std::size_t(y) * w + x;
+        return std::vector<float>{rgb[0][i], rgb[1][i], rgb[2][i]};
+    };
+    const std::vector<float> white{1, 1, 1}, black{0, 0, 0};
+
+    // Default: the colour, white at its own largest difference (not 0.01/100 of the ramp).
+    ImageCompareOptions options;
+    options.heatmap = dir.file("colour.png");
+    ImageDiff d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatLayer == "color");
+    CHECK(d.heatScale == doctest::Approx(0.01).epsilon(1e-4));
+    CHECK(heatAt(options.heatmap, 1, 1) == white);
+    CHECK(heatAt(options.heatmap, 2, 2) == black);  // another layer's difference: not shown
+
+    // --heatmap-layer: that layer, on its scale.
+    options.heatmap = dir.file("steps.png");
+    options.heatmapLayer = "ssgiSteps";
+    d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatLayer == "ssgiSteps");
+    CHECK(d.heatScale == doctest::Approx(100.0));
+    CHECK(heatAt(options.heatmap, 2, 2) == white);
+    CHECK(heatAt(options.heatmap, 1, 1) == black);
+
+    // --heatmap-scale: a fixed top, 0.04 -> the colour's 0.01 at a quarter of the ramp.
+    options.heatmap = dir.file("fixed.png");
+    options.heatmapLayer.clear();
+    options.heatmapScale = 0.04;
+    d = compareImages(dir.file("a.exr"), dir.file("b.exr"), options);
+    CHECK(d.heatScale == 0.04);
+    float quarter[3];
+    heatColour(0.01f / 0.04, quarter);  // (the difference as the file's float)
+    const std::vector<float> got = heatAt(options.heatmap, 1, 1);
+    for (int c = 0; c < 3; ++c)
+        CHECK(got[c] == doctest::Approx(std::round(quarter[c] * 255) / 255).epsilon(0.01));
+    CHECK(got != white);
+
+    // A layer neither file has in both, or a scale that is not > 0: an error, no file.
+    options.heatmap = dir.file("never.png");
+    options.heatmapScale.reset();
+    options.heatmapLayer = "viewZ";
+    CHECK_THROWS_WITH_AS(compareImages(dir.file("a.exr"), dir.file("b.exr"), options),
+                         doctest::Contains("'viewZ'"), std::invalid_argument);
+    options.heatmapLayer.clear();
+    options.heatmapScale = 0.0;
+    CHECK_THROWS_AS(compareImages(dir.file("a.exr"), dir.file("b.exr"), options),
+                    std::invalid_argument);
+    CHECK_FALSE(std::filesystem::exists(dir.file("never.png")));
 }
 
 // Why io/image_compare.cpp counts for itself rather than calling ImageBufAlgo::compare: in

@@ -69,9 +69,11 @@ TEST_CASE("EXR round trip keeps every plane's name and bits") {
     writeImage(path, frame);
     CHECK(dir.listing() == std::vector<std::string>{"frame.exr"});
 
-    // OpenEXR stores channels sorted, so compare as sets.
+    // OpenEXR stores channels sorted, so compare as sets; the colour layer comes again as the
+    // default channels R, G, B (checked below).
     std::vector<std::string> got = readChannelNames(path);
     std::vector<std::string> want = names;
+    want.insert(want.end(), {"R", "G", "B"});
     std::sort(got.begin(), got.end());
     std::sort(want.begin(), want.end());
     CHECK(got == want);
@@ -86,6 +88,41 @@ TEST_CASE("EXR round trip keeps every plane's name and bits") {
             for (int x = 0; x < width; ++x)
                 CHECK(sameBits(values[y * width + x], probeValue(int(c), x, y, width)));
     }
+}
+
+TEST_CASE("EXR: the colour layer again as plain R, G, B, for viewers, and none without one") {
+    TempDir dir;
+    const std::vector<std::string> names{"viewZ",     "color.R",   "color.G",  "color.B",
+                                         "display.R", "display.G", "display.B"};
+    const std::string path = dir.file("frame.exr");
+    writeImage(path, makeFrame(6, 4, names));
+    const std::vector<std::string> got = readChannelNames(path);
+    for (const char* c : {"R", "G", "B"}) CHECK(std::count(got.begin(), got.end(), c) == 1);
+    CHECK(std::count(got.begin(), got.end(), "A") == 0);
+    for (const std::string c : {"R", "G", "B"}) {
+        CAPTURE(c);
+        int width = 0, height = 0;
+        const std::vector<std::vector<float>> values =
+            readChannels(path, {c, "color." + c}, width, height);
+        REQUIRE(values[0].size() == std::size_t(6 * 4));
+        for (std::size_t i = 0; i < values[0].size(); ++i)
+            CHECK(sameBits(values[0][i], values[1][i]));
+        // Not the display's (which the frame fills with other values).
+        CHECK(values[0] != readChannel(path, "display." + c, width, height));
+    }
+    // A reference's colour, ref.color, the same way.
+    const std::string ref = dir.file("ref.exr");
+    writeImage(ref, makeFrame(6, 4, {"ref.color.R", "ref.color.G", "ref.color.B", "ref.ssr.R"}));
+    CHECK(readChannelNames(ref).size() == 7);
+    int width = 0, height = 0;
+    CHECK(readChannel(ref, "G", width, height) == readChannel(ref, "ref.color.G", width, height));
+    // Without a colour layer, or with R, G, B of the file's own, nothing is added.
+    const std::string none = dir.file("none.exr");
+    writeImage(none, makeFrame(6, 4, {"albedo.R", "albedo.G", "albedo.B", "ref.ssr.R"}));
+    CHECK(readChannelNames(none).size() == 4);
+    const std::string own = dir.file("own.exr");
+    writeImage(own, makeFrame(6, 4, {"R", "G", "B", "color.R", "color.G", "color.B"}));
+    CHECK(readChannelNames(own).size() == 6);
 }
 
 TEST_CASE("readChannels reads several channels at once, each as readChannel would") {
