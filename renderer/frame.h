@@ -94,8 +94,8 @@ struct DirectParts : PlaneTable<DirectParts> {
     PlaneU16 envDiffuse[3];  // only without SSGI (whose light the composite reads instead)
     PlaneU16 envSpecular[3];
     PlaneU16 specWeight[3];
-    PlaneU16 hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the SSGI
-                           // pass adds the reflected last frame's light: addSsgiFeedback)
+    PlaneU16 hitLight[3];  // DirectArgs::hitLight; only with SSGI (with its feedback, the
+                           // reflected last frame's light too: DirectArgs::prevDiffuse)
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {

@@ -307,7 +307,10 @@ std::vector<PassDecl> declarePasses() {
                       {Res::MaterialId},
                       {Res::Motion},
                       {Res::Emissive, P::Pixel, emissiveTextured},
-                      {Res::Occlusion, P::Pixel, occlusionTextured}},
+                      {Res::Occlusion, P::Pixel, occlusionTextured},
+                      // SSGI's multi-bounce: last frame's diffuse light reflected into the hit
+                      // light (shading/direct_kernel.h, prevDiffuse).
+                      {Res::HistoryDiffuse, P::Anywhere, feedback}},
                      {{Res::Color},
                       {Res::Shadow},
                       {Res::Display, P::Pixel, noTrace},
@@ -362,17 +365,6 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsrHit, P::Around},
                   {Res::SsrHitDistance, P::Around}},
                  {{Res::Ssr}, {Res::SsrOpacity}, {Res::SsrHit}, {Res::SsrHitDistance}}});
-    // SSGI: last frame's diffuse light reflected into the hit light (multi-bounce).
-    p.push_back({"ssgi feedback",
-                 feedback,
-                 {{Res::HistoryDiffuse, P::Anywhere},
-                  {Res::Motion},
-                  {Res::ViewZ},
-                  {Res::Albedo},
-                  {Res::Metallic},
-                  {Res::Occlusion, P::Pixel, occlusionTextured},
-                  {Res::HitLight}},
-                 {{Res::HitLight}}});
     // The half frame: one chosen pixel of each 2x2 block, its own pyramid.
     p.push_back({"ssgi half frame",
                  halfSsgi,

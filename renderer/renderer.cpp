@@ -209,8 +209,8 @@ std::shared_ptr<const SkyLighting> environmentPass(const FrameContext& c, const 
 // Display, Shadow); with a trace pass on, the parts the composite rebuilds the colour from
 // (frame.direct; shading/direct_kernel.h) instead of the tone map, which the composite does.
 void setDirectArgs(const FrameContext& c, const Scene& scene,
-                   std::shared_ptr<const SkyLighting> sky, uint32_t frameIndex, Frame& frame,
-                   DirectLighting& lighting) {
+                   std::shared_ptr<const SkyLighting> sky, uint32_t frameIndex,
+                   const FrameHistory* previous, Frame& frame, DirectLighting& lighting) {
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
     setDirectGBuffer(frame.gbuffer, da);
@@ -240,6 +240,14 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
             da.specWeight[ch] = p.specWeight[ch].row(0);
             if (c.settings.trace.ssgi && !p.hitLight[ch].empty())
                 da.hitLight[ch] = p.hitLight[ch].row(0);
+        }
+        // Multi-bounce diffuse (ssgiFeedback): the last frame's incoming diffuse light, where
+        // the history has it at this size, reflected into the hit light (none: one bounce).
+        if (c.settings.trace.ssgiFeedback && da.hitLight[0] && previous &&
+            previous->diffuse[0].width() == frame.width &&
+            previous->diffuse[0].height() == frame.height) {
+            requireGBuffer("ssgi feedback", da.g, kGMotion, frame.width, frame.height);
+            for (int ch = 0; ch < 3; ++ch) da.prevDiffuse[ch] = previous->diffuse[ch].row(0);
         }
         if (hitLightAtHalf(c.settings)) {
             // Straight into the half frame that SSGI traces (its chosen pixels this frame).
@@ -366,20 +374,20 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
         });
     passes.tiled(pass::kTextures, [&](int tile) { applyTexturesTile(scene, frame, c.grid, tile); });
     passes.tiled(pass::kIds, [&](int tile) { idTile(c.grid, tables.triangles, frame, tile); });
+    // The last frame's, where usable at this size (none after a cut).
+    const FrameHistory* previous =
+        history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
+                                                                                       : nullptr;
     DirectLighting lighting;
     const std::shared_ptr<const SkyLighting> sky = environmentPass(c, scene, frame);
     const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
     passes.tiled(
         pass::kShading, [&](int tile) { shade(lighting.args, tile); },
-        [&] { setDirectArgs(c, scene, sky, input.frameIndex, frame, lighting); });
+        [&] { setDirectArgs(c, scene, sky, input.frameIndex, previous, frame, lighting); });
     memory.step(pass::kShading, [&] { passes.run(frame.stats); });
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {
-        const FrameHistory* previous =
-            history && !input.resetHistory && history->usableAt(frame.width, frame.height)
-                ? history
-                : nullptr;
         runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
                         history, input.resetHistory, input.replaceHistory, observer},
                        frame);

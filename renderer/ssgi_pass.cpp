@@ -112,23 +112,6 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     });
 }
 
-// Multi-bounce diffuse (TraceSettings::ssgiFeedback): the last frame's incoming diffuse
-// radiance, where the history has it at this size, reflected into the hit light SSGI reads
-// (trace/ssgi.h); none (one bounce) otherwise.
-void feedbackPass(const TraceContext& c, Frame& frame) {
-    const FrameHistory* h = c.history;
-    if (!c.ts().ssgiFeedback || !h || h->diffuse[0].width() != frame.width ||
-        h->diffuse[0].height() != frame.height)
-        return;
-    SsgiFeedbackArgs in;
-    in.g = frame.gbuffer.view();
-    for (int ch = 0; ch < 3; ++ch) in.prevDiffuse[ch] = viewIn(*h, h->diffuse[ch]);
-    // (absent without occlusion textures: 1)
-    in.occlusion = viewIn(frame.gbuffer, frame.gbuffer.occlusion);
-    const ScopedPass timer(frame.stats, "ssgi feedback");
-    addSsgiFeedback(c.isa, in, frame.direct.hitLight, c.threads());
-}
-
 }  // namespace
 
 void ssgiPass(const TraceContext& c, Frame& frame) {
@@ -151,7 +134,6 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     st.ran = true;
     st.spp = ts.ssgiSpp;
     StageTimes times;
-    feedbackPass(c, frame);
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
     if (ts.ssgiLayout == TraceLayout::Half) {
         ssgiHalf(c, frame, in, cut, st, times);

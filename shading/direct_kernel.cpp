@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/lane_vec.h"
+#include "core/screen_lanes.h"
 #include "core/signal_lanes.h"
 #include "core/tiles.h"
 #include "shading/direct_kernel.h"
@@ -12,6 +13,7 @@ namespace ssrt::SSRT_ISA_NS {
 
 namespace ln = ssrt::lanes;
 using V3 = ln::V3<Lane>;
+using ILane = ln::IntOf<Lane>;
 
 namespace {
 
@@ -45,6 +47,35 @@ void hitLightToHalf(const DirectArgs& a, int x, int y, const V3& light) {
         const int px = x + i;
         if (!chosen(px, a.halfOffsetX, a.width)) continue;
         for (int c = 0; c < 3; ++c) a.hitLightHalf[c][row + std::size_t(px / 2)] = v[c][i];
+    }
+}
+
+// The feedback (DirectArgs::prevDiffuse) for lane group x of row y, into the hit light just
+// stored: hitLight += diffuse colour x occlusion x the previous frame's incoming diffuse light
+// at the nearest pixel of the reprojected centre.
+void addFeedback(const DirectArgs& a, int x, int y) {
+    const std::size_t go = std::size_t(y) * a.g.stride + x;
+    const std::size_t oo = std::size_t(y) * a.outStride + x;
+    const Lane zero(0.0f);
+    const auto surface = ln::load<Lane>(a.g.viewZ + go) > zero;
+    if (!ln::any(surface)) return;
+    const Lane cx = (Lane(float(x)) + ln::laneIndex<Lane>()) + Lane(0.5f);
+    const Lane px = cx + ln::load<Lane>(a.g.motion[0] + go);
+    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.g.motion[1] + go);
+    const auto use = surface & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
+                     (py < Lane(float(a.height)));
+    const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.outStride);
+    Lane keep = Lane(1.0f) - ln::load<Lane>(a.g.metallic + go);
+    if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion + go);
+    const V3 albedo{ln::load<Lane>(a.g.albedo[0] + go), ln::load<Lane>(a.g.albedo[1] + go),
+                    ln::load<Lane>(a.g.albedo[2] + go)};
+    const V3 previous{ln::gather(a.prevDiffuse[0], j), ln::gather(a.prevDiffuse[1], j),
+                      ln::gather(a.prevDiffuse[2], j)};
+    const V3 reflected = albedo * keep * previous;
+    const Lane add[3] = {reflected.x, reflected.y, reflected.z};
+    for (int c = 0; c < 3; ++c) {
+        const Lane lit = ln::loadSignal<Lane>(a.hitLight[c].in(), oo);
+        ln::storeSignal(a.hitLight[c], oo, ln::select(use, lit + add[c], lit));
     }
 }
 
@@ -127,6 +158,7 @@ void shadeChunk(const DirectArgs& a, int x, int y, float* const* out, int x0) {
     put(a.envSpecular, envSpecular);
     put(a.specWeight, specWeight);
     put(a.hitLight, hitLight);
+    if (a.prevDiffuse[0]) addFeedback(a, x, y);
     if (a.hitLightHalf[0]) hitLightToHalf(a, x, y, hitLight);
     const int o = x - x0;
     const Lane rgb[3] = {color.x * Lane(a.exposure), color.y * Lane(a.exposure),

@@ -17,7 +17,7 @@ inline constexpr int kMaxPcfRadius = 8;
 
 // Plain values and pointers only: this crosses into code compiled with other ISA flags.
 struct DirectArgs {
-    GBufferView g;  // viewZ, normal, albedo, metallic, roughness, materialId (not motion)
+    GBufferView g;  // viewZ, normal, albedo, metallic, roughness, materialId (motion: feedback)
     int width, height, tilesX;
     float tanHalfX, tanHalfY;
     float camPos[3];
@@ -107,6 +107,14 @@ struct DirectArgs {
     uint16_t* hitLightHalf[3];
     std::size_t halfStride;
     int halfOffsetX, halfOffsetY;
+    // Multi-bounce diffuse (TraceSettings::ssgiFeedback; null: none): the previous frame's
+    // incoming diffuse radiance (f32, the frame's size: outStride), added into hitLight once
+    // it is stored, for each surface pixel from the nearest pixel of its reprojected centre
+    // (g.motion: previous = current + motion; none off the frame), times its diffuse colour
+    // albedo (1 - metallic) and the occlusion where there is one: the light SSGI's hits then
+    // reflect. (hitLight is read back as stored and the sum stored again, so f16 planes round
+    // twice, as a pass of its own after this one would.)
+    const float* prevDiffuse[3];
     // The GGX energy tables (E, E_avg, DFG; shading/energy_tables.h) that shade the
     // specular of every surface pixel, sun and sky: required (setDirectLighting sets the
     // stored ones, energyTables()).

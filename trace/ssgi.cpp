@@ -11,38 +11,9 @@ namespace ssrt {
 
 namespace {
 
-constexpr std::string_view kFeedback = "addSsgiFeedback", kResolve = "resolveSsgi";
-
-template <class T>
-void feedback(Isa isa, const SsgiFeedbackArgs& in, Plane<T> hitLight[3], int threads) {
-    const int w = hitLight[0].width(), h = hitLight[0].height();
-    if (w <= 0 || h <= 0) throw std::invalid_argument("addSsgiFeedback: empty hitLight");
-    const TileGrid grid(w, h);
-    SsgiFeedbackArgs a = in;
-    a.width = w;
-    a.height = h;
-    a.tilesX = grid.tilesX;
-    requireGBuffer(kFeedback, a.g, kGViewZ | kGAlbedo | kGMetallic | kGMotion, w, h);
-    const PlaneView<T> lit[3] = {outputOf(hitLight[0], "hitLight.R"),
-                                 outputOf(hitLight[1], "hitLight.G"),
-                                 outputOf(hitLight[2], "hitLight.B")};
-    a.stride = requireViews(
-        kFeedback, w, h,
-        {a.prevDiffuse[0], a.prevDiffuse[1], a.prevDiffuse[2], lit[0], lit[1], lit[2]});
-    if (a.occlusion) requireViews(kFeedback, w, h, {a.occlusion});
-    for (int c = 0; c < 3; ++c) a.hitLight[c] = lit[c].data;
-    const auto tileFn = SSRT_DISPATCH(isa, ssgiFeedbackTile);
-    parallelForTiles(grid.count(), threads, [&](int tile) { tileFn(a, tile); });
-}
+constexpr std::string_view kResolve = "resolveSsgi";
 
 }  // namespace
-
-void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& in, PlaneU16 hitLight[3], int threads) {
-    feedback(isa, in, hitLight, threads);
-}
-void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& in, PlaneF hitLight[3], int threads) {
-    feedback(isa, in, hitLight, threads);
-}
 
 SsgiResolver::SsgiResolver(Isa isa, const SsgiArgs& in, PlaneF out[3], int sample, int sampleCount,
                            PlaneF* pdfCopy)

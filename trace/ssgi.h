@@ -26,11 +26,11 @@
 // blurred), nothing where it falls off the frame. With cosine rays the Lambert reflection of
 // E' is exactly that (f_r cos / pdf = albedo (1 - metallic)); so each frame adds a bounce and
 // a still camera converges to all of them, the path tracer's geometric series
-// (truth/reference_image.h, ReferenceSettings::bounces). addSsgiFeedback adds it to the
-// hitLight planes once per frame, per pixel, before the samples: the resolve's gathers at
-// the hits stay 3 (per hit it would take 9 more, 4x the resolve's time at 1 ray). E' is not
-// tested for disocclusion: a pixel that showed another surface a frame ago lends that
-// surface's light for a frame.
+// (truth/reference_image.h, ReferenceSettings::bounces). The direct pass adds it to the
+// hitLight planes as it writes them (DirectArgs::prevDiffuse, shading/direct_kernel.h), once
+// per frame, per pixel, before the samples: the resolve's gathers at the hits stay 3 (per hit it
+// would take 9 more, 4x the resolve's time at 1 ray). E' is not tested for disocclusion: a pixel
+// that showed another surface a frame ago lends that surface's light for a frame.
 #pragma once
 
 #include "core/gbuffer_view.h"
@@ -42,14 +42,6 @@
 #include "trace/trace_types.h"
 
 namespace ssrt {
-
-// Adds the feedback above to every surface pixel of hitLight[3] (the direct pass's
-// DirectArgs::hitLight, in place), so that resolveSsgi's hits read it; `args` (SsgiFeedbackArgs:
-// the caller's part) names what it reads. Throws std::invalid_argument when a plane is missing
-// or not of hitLight's size.
-void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& args, PlaneU16 hitLight[3], int threads);
-// The same on f32 planes.
-void addSsgiFeedback(Isa isa, const SsgiFeedbackArgs& args, PlaneF hitLight[3], int threads);
 
 // One sample's diffuse rays into out[3] (ensured to the frame's size); `args` (SsgiArgs: the
 // caller's part) names the camera, the planes and the lighting: sample 0 overwrites,

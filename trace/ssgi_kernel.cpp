@@ -22,10 +22,6 @@ constexpr int kW = int(ln::kWidth<Lane>);
 SSRT_INLINE V3 gather3(const float* const* planes, ILane i) {
     return {ln::gather(planes[0], i), ln::gather(planes[1], i), ln::gather(planes[2], i)};
 }
-SSRT_INLINE V3 gather3(const ViewF* planes, ILane i) {
-    return {ln::gather(planes[0].data, i), ln::gather(planes[1].data, i),
-            ln::gather(planes[2].data, i)};
-}
 SSRT_INLINE V3 gather3(const SignalIn* planes, ILane i) {
     const ln::Run run = ln::runOf(i);
     return {ln::gatherSignal<Lane>(planes[0], i, run), ln::gatherSignal<Lane>(planes[1], i, run),
@@ -87,38 +83,7 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
     ln::store(a.out[2] + o, acc.z);
 }
 
-// Feedback (trace/ssgi.h) for one lane group: hitLight += diffuse colour x occlusion x the
-// previous frame's incoming diffuse light at the nearest pixel of the reprojected centre.
-void feedbackChunk(const SsgiFeedbackArgs& a, int x, int y) {
-    const std::size_t o = std::size_t(y) * a.stride + x;
-    const Lane zero(0.0f);
-    const auto surface = ln::load<Lane>(a.g.viewZ + o) > zero;
-    if (!ln::any(surface)) return;
-    const Lane cx = (Lane(float(x)) + ln::laneIndex<Lane>()) + Lane(0.5f);
-    const Lane px = cx + ln::load<Lane>(a.g.motion[0] + o);
-    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.g.motion[1] + o);
-    const auto use = surface & (px >= zero) & (py >= zero) & (px < Lane(float(a.width))) &
-                     (py < Lane(float(a.height)));
-    const ILane j = screen::nearestIndex(px, py, a.width, a.height, a.stride);
-    Lane keep = Lane(1.0f) - ln::load<Lane>(a.g.metallic + o);
-    if (a.occlusion) keep = keep * ln::load<Lane>(a.occlusion.data + o);
-    const V3 albedo{ln::load<Lane>(a.g.albedo[0] + o), ln::load<Lane>(a.g.albedo[1] + o),
-                    ln::load<Lane>(a.g.albedo[2] + o)};
-    const V3 reflected = albedo * keep * gather3(a.prevDiffuse, j);
-    const Lane add[3] = {reflected.x, reflected.y, reflected.z};
-    for (int c = 0; c < 3; ++c) {
-        const Lane lit = ln::loadSignal<Lane>(a.hitLight[c].in(), o);
-        ln::storeSignal(a.hitLight[c], o, ln::select(use, lit + add[c], lit));
-    }
-}
-
 }  // namespace
-
-void ssgiFeedbackTile(const SsgiFeedbackArgs& args, int tile) {
-    const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) feedbackChunk(args, x, y);
-}
 
 void ssgiTile(const SsgiArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);

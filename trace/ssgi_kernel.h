@@ -52,21 +52,4 @@ struct SsgiArgs {
 
 SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
 
-// addSsgiFeedback's (trace/ssgi.h), likewise plain: the caller sets the planes (views of the
-// hit light's size), addSsgiFeedback the rest.
-struct SsgiFeedbackArgs {
-    // The caller's.
-    // viewZ (background pixels, 0, are left as they are), albedo, metallic, motion (previous
-    // position = current + motion)
-    GBufferView g;
-    ViewF occlusion{};          // optional: GBuffer::occlusion (absent: 1)
-    ViewF prevDiffuse[3] = {};  // the previous frame's E' (FrameHistory::diffuse)
-    // Set by addSsgiFeedback: the hit light's size, the one stride, the hit light.
-    int width = 0, height = 0, tilesX = 0;
-    std::size_t stride = 0;
-    SignalOut hitLight[3] = {};  // read and written in place (f32 or f16)
-};
-
-SSRT_DECLARE_KERNEL(void, ssgiFeedbackTile, (const SsgiFeedbackArgs& args, int tile))
-
 }  // namespace ssrt

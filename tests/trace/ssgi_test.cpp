@@ -41,7 +41,7 @@ DirectArgs lighting(bool gradient) {
 
 // The view of a G-buffer's planes that SSGI reads (null: absent), all of viewZ's size.
 GBufferView ssgiView(const PlaneF& viewZ, const PlaneF normal[3], const PlaneF albedo[3],
-                     const PlaneF& metallic, const PlaneF* motion = nullptr) {
+                     const PlaneF& metallic) {
     return gbufferView("test", viewZ.width(), viewZ.height(),
                        {{kGViewZ, &viewZ},
                         {kGNormalX, normal ? &normal[0] : nullptr},
@@ -50,9 +50,7 @@ GBufferView ssgiView(const PlaneF& viewZ, const PlaneF normal[3], const PlaneF a
                         {kGAlbedoR, &albedo[0]},
                         {kGAlbedoG, &albedo[1]},
                         {kGAlbedoB, &albedo[2]},
-                        {kGMetallic, &metallic},
-                        {kGMotionX, motion ? &motion[0] : nullptr},
-                        {kGMotionY, motion ? &motion[1] : nullptr}});
+                        {kGMetallic, &metallic}});
 }
 
 // A uniform surface: normal +y (towards the light), one albedo and metallic, shadow 0.5,
@@ -328,122 +326,4 @@ TEST_CASE("ssgi: the direct pass's hit light gives the bits of the G-buffer path
         CHECK(rounded > 100);
         CHECK(other == 0);
     }
-}
-
-namespace {
-
-// The feedback's inputs on the furnace frame: the previous frame's incoming diffuse radiance (a
-// ramp over the pixels, so that which pixel is read shows), motion and occlusion planes, and
-// hit light to add to.
-struct Feedback {
-    Furnace f;
-    PlaneF prev[3] = {PlaneF(kW, kH), PlaneF(kW, kH), PlaneF(kW, kH)};
-    PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
-    PlaneF occlusion{kW, kH, 0.5f};
-    PlaneF hitLight[3] = {PlaneF(kW, kH, 0.25f), PlaneF(kW, kH, 0.5f), PlaneF(kW, kH, 1.0f)};
-    SsgiFeedbackArgs in;
-    Feedback() {
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x)
-                for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
-        in.g = ssgiView(f.viewZ, nullptr, f.albedo, f.metallic, motion);
-        for (int c = 0; c < 3; ++c) in.prevDiffuse[c] = viewOf(prev[c], "prevDiffuse");
-    }
-    static float prevAt(int x, int y, int c) { return 0.01f * float(x + 1) + 0.1f * float(c + y); }
-    // hitLight after the feedback, fresh each time.
-    void run(PlaneF out[3]) const {
-        for (int c = 0; c < 3; ++c) out[c] = hitLight[c].clone();
-        addSsgiFeedback(Isa::Scalar, in, out, 2);
-    }
-};
-
-}  // namespace
-
-TEST_CASE("ssgi: feedback adds each pixel's diffuse colour times last frame's light there") {
-    Feedback fb;
-    const float albedo[3] = {0.5f, 0.6f, 0.7f}, lit[3] = {0.25f, 0.5f, 1.0f};
-    const auto expect = [&](int x, int y, int c, int dx, float occlusion) {
-        const double prev = x + dx < kW ? Feedback::prevAt(x + dx, y, c) : 0.0;
-        return lit[c] + albedo[c] * 0.8 * occlusion * prev;
-    };
-    PlaneF out[3];
-    // A still camera (motion 0) reads the pixel itself.
-    fb.run(out);
-    int off = 0;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x)
-            for (int c = 0; c < 3; ++c)
-                off +=
-                    !(out[c].at(x, y) == doctest::Approx(expect(x, y, c, 0, 1.0f)).epsilon(1e-6));
-    CHECK(off == 0);
-    // Moved one pixel right since the last frame (motion = previous - current = +1): the pixel
-    // to the right, nothing past the frame's edge; the occlusion scales the bounce; background
-    // pixels are left alone.
-    fb.motion[0].fill(1.0f);
-    fb.in.occlusion = viewOf(fb.occlusion, "occlusion");
-    fb.f.viewZ.at(3, 4) = 0.0f;
-    fb.run(out);
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const double e = x == 3 && y == 4 ? lit[c] : expect(x, y, c, 1, 0.5f);
-                off += !(out[c].at(x, y) == doctest::Approx(e).epsilon(1e-6));
-            }
-    CHECK(off == 0);
-    CHECK(out[0].at(kW - 1, 7) == lit[0]);
-    // All off the frame: the hit light as it was, to the bit.
-    fb.motion[1].fill(-float(kH));
-    fb.run(out);
-    for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], fb.hitLight[c]));
-    // A missing plane is refused.
-    fb.in.g.motion[1] = nullptr;
-    CHECK_THROWS_AS(fb.run(out), std::invalid_argument);
-}
-
-TEST_CASE("ssgi: feedback on a rendered frame gives the same bits on every ISA and thread count") {
-    RenderSettings rs;
-    rs.width = 133;
-    rs.height = 77;
-    rs.shadowMapSize = 128;
-    rs.threads = 2;
-    const Scene scene = makeBuiltinScene("cornell");
-    Frame frame;
-    Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame);
-    const int w = frame.width, h = frame.height;
-    SsgiFeedbackArgs in;
-    for (int c = 0; c < 3; ++c)
-        in.prevDiffuse[c] =
-            viewOf(frame.rgb(Res::Ssgi)[c], "ssgi");  // a frame's own light stands in
-    // Motion that moves some pixels off the frame.
-    PlaneF motion[2] = {PlaneF(w, h), PlaneF(w, h)};
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const uint32_t i = uint32_t(y * w + x);
-            motion[0].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 0) - 0.5f);
-            motion[1].at(x, y) = 40.0f * (randomFloat(i, 3, 0, 1) - 0.5f);
-        }
-    const GBuffer& g = frame.gbuffer;
-    in.g = ssgiView(g.viewZ, nullptr, g.albedo, g.metallic, motion);
-    // (The renderer's hit light, f16: stored rounded, clamped to 65504.)
-    const auto fed = [&](Isa isa, int threads, PlaneU16 out[3]) {
-        for (int c = 0; c < 3; ++c) out[c] = frame.direct.hitLight[c].clone();
-        addSsgiFeedback(isa, in, out, threads);
-    };
-    PlaneU16 ref[3];
-    fed(Isa::Scalar, 1, ref);
-    bool finite = true;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c)
-                finite = finite && std::isfinite(decodeF16(ref[c].at(x, y)));
-    CHECK(finite);
-    CHECK_FALSE(sameBits(ref[0], frame.direct.hitLight[0]));  // the feedback adds something
-    for (Isa isa : supportedIsas())
-        for (int threads : {1, 2, 8}) {
-            CAPTURE(isaName(isa));
-            CAPTURE(threads);
-            PlaneU16 out[3];
-            fed(isa, threads, out);
-            for (int c = 0; c < 3; ++c) CHECK(sameBits(out[c], ref[c]));
-        }
 }
