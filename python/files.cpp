@@ -129,7 +129,10 @@ py::dict diffFiles(py::handle a, py::handle b, double threshold, std::optional<d
     if (!(threshold >= 0.0)) throw py::value_error("threshold: expected a number >= 0");
     if (!(maxShare >= 0.0 && maxShare <= 1.0))
         throw py::value_error("max_share: expected a number in [0, 1]");
-    ImageCompareOptions options{threshold, layers, {}, heatmap.value_or("")};
+    ImageCompareOptions options;  // (the heat map's layer and scale: their defaults)
+    options.threshold = threshold;
+    options.layers = layers;
+    options.heatmap = heatmap.value_or("");
     const DiffThresholds limits{maxError, maxRelMse, maxShare};
     ImageDiff diff;
     withFiles({pa, pb}, [&] {

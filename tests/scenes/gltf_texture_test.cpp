@@ -267,7 +267,9 @@ TEST_CASE("gltf textures: sampler filters of every kind load without a warning")
     writeFile(dir.file("tex.png"), pngBytes(dir));
     const std::vector<std::pair<int, int>> filters = {{9728, 9728}, {9729, 9729}, {9728, 9984},
                                                       {9729, 9985}, {9728, 9986}, {9729, 9987}};
-    for (const auto& [mag, min] : filters) {
+    for (const std::pair<int, int>& filter : filters) {
+        // (Not a structured binding: clang 14's lambdas, which CAPTURE makes, cannot name one.)
+        const int mag = filter.first, min = filter.second;
         CAPTURE(mag);
         CAPTURE(min);
         Quad q;
