@@ -11,8 +11,8 @@ namespace ssrt::trace_stages {
 namespace {
 
 // What both of the frame's denoiser calls share: the camera they run at (the half frame's or
-// the frame's), the frame, whether the history is replaced and the temporal pass runs, the debug
-// planes and the frame's pool of scratch.
+// the frame's), the frame, whether the history is replaced and the temporal pass runs, and the
+// frame's pool of scratch.
 DenoiseCall denoiseCall(const TraceContext& c, Frame& frame, const TraceCamera& camera, bool half) {
     DenoiseCall in;
     in.camera = camera;

@@ -46,14 +46,14 @@ struct TraceContext {
     ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
 };
 
-// Fills SSR's and SSGI's outputs (Res::Ssr ... Res::SsgiSteps) and frame.denoised and replaces
+// Fills SSR's, SSGI's and the denoiser's outputs (Res::Ssr ... Res::SpecularFrames) and replaces
 // the image's colour and display (Res::Color, Res::Display) with the composite; appends pass
 // times and stats to frame.stats.
 void runTracePasses(TraceContext c, Frame& frame);
 
 // Whether the half-resolution diffuse, once denoised, is brought to the frame tile by tile
 // inside the composite, which alone reads it, instead of into the frame's planes
-// (frame.denoised.diffuse, then not made): unless a file shows them (debugPlanes)
+// (Res::DenoisedDiffuse, then not made): unless a file shows them (debugPlanes)
 // or the next frame's SSGI feedback reads them.
 bool diffuseUpsampledInComposite(const RenderSettings& settings);
 
