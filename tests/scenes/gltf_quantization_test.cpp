@@ -65,14 +65,16 @@ View viewOf(const std::vector<double>& values, int n, int componentType, bool no
             const double x = values[i * std::size_t(n) + std::size_t(c)];
             switch (componentType) {
                 case kByte: *reinterpret_cast<int8_t*>(p) = int8_t(x); break;
-                case kUnsignedByte: *p = uint8_t(x); break;
+                // (Through int: a refused file writes negative normals as unsigned bytes, and a
+                // double out of uint8_t's range would be undefined; int to unsigned wraps.)
+                case kUnsignedByte: *p = uint8_t(int(x)); break;
                 case kShort: {
                     const int16_t s = int16_t(x);
                     std::memcpy(p, &s, 2);
                     break;
                 }
                 case kUnsignedShort: {
-                    const uint16_t s = uint16_t(x);
+                    const uint16_t s = uint16_t(int(x));
                     std::memcpy(p, &s, 2);
                     break;
                 }
