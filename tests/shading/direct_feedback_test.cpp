@@ -7,10 +7,9 @@
 
 #include <algorithm>
 
-#include "core/gbuffer_view.h"
-#include "core/rng.h"
 #include "core/tiles.h"
 #include "plane_compare.h"
+#include "renderer/frame.h"
 #include "shading/direct_kernel.h"
 #include "shading/energy_tables.h"
 
@@ -24,11 +23,7 @@ constexpr int kW = 90, kH = 50;
 // the previous frame's light a ramp over the pixels (so that which pixel is read shows),
 // motion and occlusion planes to set, and the hit light written as f32 (no rounding).
 struct FeedbackFrame {
-    PlaneF viewZ{kW, kH, 5.0f};
-    PlaneF normal[3] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 1.0f), PlaneF(kW, kH, 0.0f)};
-    PlaneF albedo[3] = {PlaneF(kW, kH, 0.5f), PlaneF(kW, kH, 0.6f), PlaneF(kW, kH, 0.7f)};
-    PlaneF metallic{kW, kH, 0.2f}, roughness{kW, kH, 0.5f}, materialId{kW, kH, 0.0f};
-    PlaneF motion[2] = {PlaneF(kW, kH, 0.0f), PlaneF(kW, kH, 0.0f)};
+    GBuffer g;
     PlaneF occlusion{kW, kH, 0.5f};
     PlaneF prev[3] = {PlaneF(kW, kH), PlaneF(kW, kH), PlaneF(kW, kH)};
     PlaneF shadowMap{16, 16, 0.0f};
@@ -36,6 +31,16 @@ struct FeedbackFrame {
     DirectArgs args{};
 
     FeedbackFrame() {
+        g.viewZ = PlaneF(kW, kH, 5.0f);
+        const float normal[3] = {0.0f, 1.0f, 0.0f}, albedo[3] = {0.5f, 0.6f, 0.7f};
+        for (int c = 0; c < 3; ++c) {
+            g.normal[c] = PlaneF(kW, kH, normal[c]);
+            g.albedo[c] = PlaneF(kW, kH, albedo[c]);
+        }
+        g.metallic = PlaneF(kW, kH, 0.2f);
+        g.roughness = PlaneF(kW, kH, 0.5f);
+        g.materialId = PlaneF(kW, kH, 0.0f);
+        for (PlaneF& m : g.motion) m = PlaneF(kW, kH, 0.0f);
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
                 for (int c = 0; c < 3; ++c) prev[c].at(x, y) = prevAt(x, y, c);
@@ -66,19 +71,7 @@ struct FeedbackFrame {
 
     // The hit light the kernel writes, with the feedback or without.
     void shade(bool fed, PlaneF hitLight[3]) {
-        args.g = gbufferView("test", kW, kH,
-                             {{kGViewZ, &viewZ},
-                              {kGNormalX, &normal[0]},
-                              {kGNormalY, &normal[1]},
-                              {kGNormalZ, &normal[2]},
-                              {kGAlbedoR, &albedo[0]},
-                              {kGAlbedoG, &albedo[1]},
-                              {kGAlbedoB, &albedo[2]},
-                              {kGMetallic, &metallic},
-                              {kGRoughness, &roughness},
-                              {kGMaterialId, &materialId},
-                              {kGMotionX, &motion[0]},
-                              {kGMotionY, &motion[1]}});
+        args.g = g.view();
         for (int c = 0; c < 3; ++c) {
             hitLight[c] = PlaneF(kW, kH);
             args.hitLight[c] = hitLight[c].row(0);
@@ -100,7 +93,7 @@ TEST_CASE("direct feedback: each pixel's diffuse colour times last frame's light
         int off = 0;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
-                for (int c = 0; c < 3 && f.viewZ.at(x, y) > 0.0f; ++c) {
+                for (int c = 0; c < 3 && f.g.viewZ.at(x, y) > 0.0f; ++c) {
                     const double prev = x + dx < kW ? FeedbackFrame::prevAt(x + dx, y, c) : 0.0;
                     const double gain = double(fed[c].at(x, y)) - double(lit[c].at(x, y));
                     off += !(gain == doctest::Approx(albedo[c] * 0.8 * occlusion * prev)
@@ -117,9 +110,9 @@ TEST_CASE("direct feedback: each pixel's diffuse colour times last frame's light
     // Moved one pixel right since the last frame (motion = previous - current = +1): the pixel
     // to the right, nothing past the frame's edge; the occlusion scales the bounce; background
     // pixels are left alone, to the bit.
-    f.motion[0].fill(1.0f);
+    f.g.motion[0].fill(1.0f);
     f.args.occlusion = f.occlusion.row(0);
-    f.viewZ.at(3, 4) = 0.0f;
+    f.g.viewZ.at(3, 4) = 0.0f;
     f.shade(false, lit);
     f.shade(true, fed);
     for (int c = 0; c < 3; ++c) {
@@ -128,7 +121,7 @@ TEST_CASE("direct feedback: each pixel's diffuse colour times last frame's light
     }
     CHECK(wrong(1, 0.5f) == 0);
     // All off the frame: the hit light as it was, to the bit.
-    f.motion[1].fill(-float(kH));
+    f.g.motion[1].fill(-float(kH));
     f.shade(true, fed);
     for (int c = 0; c < 3; ++c) CHECK(test::sameBits(fed[c], lit[c]));
 }
