@@ -1,5 +1,9 @@
 #include "core/gbuffer_view.h"
 
+#include <array>
+#include <bit>
+#include <map>
+#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -7,30 +11,6 @@
 #include "core/plane_view.h"
 
 namespace ssrt {
-
-namespace {
-
-// The view's member for plane `which` (GBufferView's order); V: GBufferView, const or not.
-template <class V>
-auto& member(V& g, GBufferPlane which) {
-    switch (which) {
-        case kGViewZ: return g.viewZ;
-        case kGNormalX: return g.normal[0];
-        case kGNormalY: return g.normal[1];
-        case kGNormalZ: return g.normal[2];
-        case kGAlbedoR: return g.albedo[0];
-        case kGAlbedoG: return g.albedo[1];
-        case kGAlbedoB: return g.albedo[2];
-        case kGMetallic: return g.metallic;
-        case kGRoughness: return g.roughness;
-        case kGMaterialId: return g.materialId;
-        case kGMotionX: return g.motion[0];
-        case kGMotionY: return g.motion[1];
-    }
-    throw std::logic_error("GBufferView: not a plane");
-}
-
-}  // namespace
 
 std::string_view gbufferPlaneName(GBufferPlane which) {
     switch (which) {
@@ -46,14 +26,32 @@ std::string_view gbufferPlaneName(GBufferPlane which) {
         case kGMaterialId: return "materialId";
         case kGMotionX: return "motion.X";
         case kGMotionY: return "motion.Y";
+        case kGEmissionR: return "emissive.R";
+        case kGEmissionG: return "emissive.G";
+        case kGEmissionB: return "emissive.B";
+        case kGOcclusion: return "occlusion";
+        case kGInstanceId: return "instanceId";
+        case kGTriangleId: return "triangleId";
     }
     return "?";
 }
 
-unsigned gbufferPlaneNamed(std::string_view name) {
-    for (int i = 0; i < kGBufferPlaneCount; ++i)
-        if (gbufferPlaneName(GBufferPlane(1u << i)) == name) return 1u << i;
-    return 0;
+std::string_view gbufferPlaneName(std::string_view prefix, GBufferPlane which) {
+    if (prefix.empty()) return gbufferPlaneName(which);
+    // (A handful of prefixes in a program, each made once: the names live as long as it does.)
+    using Names = std::array<std::string, kGBufferPlaneCount>;
+    static std::mutex mutex;
+    static std::map<std::string, Names, std::less<>> byPrefix;
+    const std::lock_guard lock(mutex);
+    auto it = byPrefix.find(prefix);
+    if (it == byPrefix.end()) {
+        Names names;
+        for (int i = 0; i < kGBufferPlaneCount; ++i)
+            names[std::size_t(i)] =
+                std::string(prefix).append(gbufferPlaneName(GBufferPlane(1u << i)));
+        it = byPrefix.emplace(std::string(prefix), std::move(names)).first;
+    }
+    return it->second[std::size_t(std::countr_zero(uint32_t(which)))];
 }
 
 GBufferView gbufferView(std::string_view pass, int width, int height, const GBufferSlot* planes,
@@ -65,10 +63,28 @@ GBufferView gbufferView(std::string_view pass, int width, int height, const GBuf
         if (!s.plane || s.plane->empty()) continue;
         const ViewF v = viewOf(*s.plane, gbufferPlaneName(s.which));
         g.stride = requireViews(pass, width, height, {v});
-        member(g, s.which) = v.data;
+        GBufferView::at(g, s.which) = v.data;
     }
     requireGBuffer(pass, g, need, width, height);
     return g;
+}
+
+GBufferView gbufferView(std::string_view pass, int width, int height, const GBufferPlanesF& planes,
+                        GBufferPlanes need) {
+    GBufferSlot slots[kGBufferPlaneCount];
+    std::size_t n = 0;
+    GBufferPlanesF::forEach(planes, [&](GBufferPlane which, const PlaneF& p) {
+        slots[n++] = {which, &p};
+    });
+    return gbufferView(pass, width, height, slots, n, need);
+}
+
+GBufferView withPlanes(GBufferView to, const GBufferView& from, GBufferPlanes mask) {
+    if (to.width != from.width || to.height != from.height || to.stride != from.stride)
+        throw std::invalid_argument("withPlanes: G-buffer views of different sizes or strides");
+    GBufferView::forEach(
+        from, [&](GBufferPlane which, const float* p) { GBufferView::at(to, which) = p; }, mask);
+    return to;
 }
 
 void requireGBuffer(std::string_view pass, const GBufferView& g, GBufferPlanes need, int width,
@@ -78,12 +94,11 @@ void requireGBuffer(std::string_view pass, const GBufferView& g, GBufferPlanes n
         throw std::invalid_argument(who + " is " + std::to_string(g.width) + "x" +
                                     std::to_string(g.height) + ", not " + std::to_string(width) +
                                     "x" + std::to_string(height));
-    for (int i = 0; i < kGBufferPlaneCount; ++i) {
-        const auto which = GBufferPlane(1u << i);
-        if ((need & which) && !member(g, which))
+    GBufferView::forEach(g, [&](GBufferPlane which, const float* p) {
+        if ((need & which) && !p)
             throw std::invalid_argument(std::string(pass) + ": " +
                                         std::string(gbufferPlaneName(which)) + " is missing");
-    }
+    });
 }
 
 }  // namespace ssrt

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 
@@ -86,9 +87,12 @@ ReblurFrame makeFrame(const DenoiseCall& in, const DenoiseSettings& s, DenoiseSc
     v.hitScale = {s.hitDistanceA * diagonal, s.hitDistanceB, s.hitDistanceC, s.hitDistanceD};
     if (previous && s.maxAccumulatedFrames > 0) {
         const DenoiseHistory& h = *previous;
-        v.prevViewZ = h.viewZ.row(0);
-        for (int i = 0; i < 3; ++i) v.prevNormal[i] = h.normal[i].row(0);
-        v.prevRoughness = h.roughness.empty() ? nullptr : h.roughness.row(0);
+        GBufferPlanesF::forEach(
+            h.guide,
+            [&](GBufferPlane which, const PlaneF& p) {
+                GBufferView::at(v.prev, which) = p.empty() ? nullptr : p.row(0);
+            },
+            DenoiseHistory::kGuidePlanes);
         std::copy_n(h.camera.viewToWorld, 9, v.prevViewToWorld);
         v.prevTanHalfX = h.camera.tanHalfX;
         v.prevTanHalfY = h.camera.tanHalfY;
@@ -199,7 +203,7 @@ ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64*
     ReblurPassArgs a = passArgs(c, specular, in, out->row(0));
     a.outFrames = c.sc.frames[k].row(0);
     a.outFast = c.sc.fast[k].row(0);
-    if (c.frame.prevViewZ && c.previousHas[k]) {
+    if (c.frame.prev.viewZ && c.previousHas[k]) {
         const DenoiseHistory& h = *c.previous;
         a.prevSignal = (specular ? h.specular : h.diffuse).row(0);
         a.prevFrames = (specular ? h.specularFrames : h.diffuseFrames).row(0);
@@ -253,15 +257,24 @@ void commitHistoryTile(const Context& c, int tile) {
     const DenoiseCall& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
     const bool signals[2] = {in.hasDiffuse(), in.hasSpecular()};
+    // The guides the history keeps (roughness only with the specular signal: ensureSizes).
+    struct Guide {
+        const float* from;
+        PlaneF* to;
+    };
+    Guide guides[kGBufferPlaneCount];
+    int n = 0;
+    GBufferPlanesF::forEach(
+        h.guide,
+        [&](GBufferPlane which, PlaneF& p) {
+            if (!p.empty()) guides[n++] = {GBufferView::at(in.g, which), &p};
+        },
+        DenoiseHistory::kGuidePlanes);
     const TileRect r = c.grid.rect(tile);
     for (int y = r.y0; y < r.y1; ++y) {
         const std::size_t o = std::size_t(y) * in.g.stride;
-        const auto copyRow = [&](const float* src, PlaneF& dst) {
-            std::copy(src + o + r.x0, src + o + r.x1, dst.row(y) + r.x0);
-        };
-        copyRow(in.g.viewZ, h.viewZ);
-        for (int i = 0; i < 3; ++i) copyRow(in.g.normal[i], h.normal[i]);
-        if (signals[1]) copyRow(in.g.roughness, h.roughness);
+        for (const Guide& g : std::span(guides, std::size_t(n)))
+            std::copy(g.from + o + r.x0, g.from + o + r.x1, g.to->row(y) + r.x0);
         for (int k = 0; k < 2; ++k) {
             if (!signals[k]) continue;
             const float* a = c.sc.frames[k].row(y);
@@ -419,9 +432,10 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseHistory* history, bool
     if (!history) return;
     // The guides, and each signal's own planes only where the signal is (roughness guides the
     // specular alone).
-    history->viewZ.ensureSize(w, h);
-    for (int i = 0; i < 3; ++i) history->normal[i].ensureSize(w, h);
-    keepIf(specular, history->roughness);
+    GBufferPlanesF::forEach(
+        history->guide,
+        [&](GBufferPlane which, PlaneF& p) { keepIf(which != kGRoughness || specular, p); },
+        DenoiseHistory::kGuidePlanes);
     keepIf(diffuse, history->diffuse);
     keepIf(specular, history->specular);
     keepIf(diffuse, history->diffuseFrames), keepIf(diffuse, history->diffuseFast);

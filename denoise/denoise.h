@@ -83,8 +83,10 @@ struct DenoiseCall : DenoiseSignals {
 // signal's planes are kept only when that frame had the signal (hasSignal); a signal without
 // them starts afresh.
 struct DenoiseHistory : PlaneTable<DenoiseHistory> {
-    PlaneF viewZ, normal[3], roughness;  // guides of the edge stops: f32
-    PlaneU64 diffuse, specular;          // RGB and normalised hit distance, f16x4
+    // The guides of the edge stops (f32): viewZ, normal, and roughness with the specular.
+    static constexpr GBufferPlanes kGuidePlanes = kGViewZ | kGNormal | kGRoughness;
+    GBufferPlanesF guide;
+    PlaneU64 diffuse, specular;  // RGB and normalised hit distance, f16x4
     PlaneF diffuseFrames, specularFrames;
     PlaneU16 diffuseFast, specularFast;  // luma, f16
     TraceCamera camera;
@@ -95,11 +97,7 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     // size to the format declared there.)
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn("history.denoise.guide.viewZ", g.viewZ);
-        fn("history.denoise.guide.normal.X", g.normal[0]);
-        fn("history.denoise.guide.normal.Y", g.normal[1]);
-        fn("history.denoise.guide.normal.Z", g.normal[2]);
-        fn("history.denoise.guide.roughness", g.roughness);
+        forEachGBufferChannel("history.denoise.guide.", g.guide, kGuidePlanes, fn);
         fn("history.denoise.diffuse", g.diffuse);
         fn("history.denoise.specular", g.specular);
         fn("history.denoise.diffuseFrames", g.diffuseFrames);
@@ -109,7 +107,7 @@ struct DenoiseHistory : PlaneTable<DenoiseHistory> {
     }
 
     bool usableAt(int width, int height) const {
-        return valid && viewZ.width() == width && viewZ.height() == height;
+        return valid && guide.viewZ.width() == width && guide.viewZ.height() == height;
     }
     // It holds that signal's planes (only the signals of the frame that made it are kept).
     bool hasSignal(bool specular) const {

@@ -31,9 +31,7 @@ struct ReblurFrame : GBufferView {
     const float* signalZ[2] = {};
     const uint8_t* tiles = nullptr;  // per tile: bit 0 diffuse, bit 1 specular signal
     // The previous frame's guides and camera (null: none; the temporal pass reads them).
-    const float* prevViewZ = nullptr;
-    const float* prevNormal[3] = {};
-    const float* prevRoughness = nullptr;
+    GBufferOf<const float*> prev;  // viewZ, normal; roughness with the specular
     float prevViewToWorld[9] = {};
     float prevTanHalfX = 1.0f, prevTanHalfY = 1.0f;
     float cameraDelta[3] = {};  // this camera's position minus the previous one's

@@ -104,17 +104,17 @@ SSRT_INLINE Footprint testFootprint(const ReblurPassArgs& a, const Centre& p, Ma
             f.pair[j][i] = pairable(f.index[j][i], f.run[j][i], f.index[j][i + 1]);
         Lane zp[4];
         if (surface) {
-            gatherTwoAt(a.frame.prevViewZ, f, j, 0, zp[0], zp[1]);
-            gatherTwoAt(a.frame.prevViewZ, f, j, 2, zp[2], zp[3]);
+            gatherTwoAt(a.frame.prev.viewZ, f, j, 0, zp[0], zp[1]);
+            gatherTwoAt(a.frame.prev.viewZ, f, j, 2, zp[2], zp[3]);
         } else {
-            gatherTwoAt(a.frame.prevViewZ, f, j, 1, zp[1], zp[2]);
+            gatherTwoAt(a.frame.prev.viewZ, f, j, 1, zp[1], zp[2]);
         }
         Lane nx[4], ny[4], nz[4], rp[4];
         if (innerRow) {
-            gatherTwoAt(a.frame.prevNormal[0], f, j, 1, nx[1], nx[2]);
-            gatherTwoAt(a.frame.prevNormal[1], f, j, 1, ny[1], ny[2]);
-            gatherTwoAt(a.frame.prevNormal[2], f, j, 1, nz[1], nz[2]);
-            if (spec) gatherTwoAt(a.frame.prevRoughness, f, j, 1, rp[1], rp[2]);
+            gatherTwoAt(a.frame.prev.normal[0], f, j, 1, nx[1], nx[2]);
+            gatherTwoAt(a.frame.prev.normal[1], f, j, 1, ny[1], ny[2]);
+            gatherTwoAt(a.frame.prev.normal[2], f, j, 1, nz[1], nz[2]);
+            if (spec) gatherTwoAt(a.frame.prev.roughness, f, j, 1, rp[1], rp[2]);
         }
         for (int i = i0; i < i1; ++i) {
             const bool inner = innerRow && (i == 1 || i == 2);

@@ -1,6 +1,7 @@
 #include "core/isa_target.h"
 // (isa_target.h first: it names this copy's lane type)
 #include <algorithm>
+#include <bit>
 
 #include "core/lane_vec.h"
 #include "core/tiles.h"
@@ -17,7 +18,7 @@ namespace {
 constexpr int kW = int(ln::kWidth<Lane>);
 // The planes a tile writes, in the order resolveChunk computes them: the G-buffer's 12, then
 // each UV set's, then the tangent frame's (outputPlanes).
-constexpr int kOutputs = 12;
+constexpr int kOutputs = std::popcount(kResolvedPlanes);
 constexpr int kMaxOutputs = kOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
@@ -50,11 +51,9 @@ SSRT_INLINE int outputCount(const ResolveArgs& a) {
 
 // The output planes in that order (outputCount of them).
 void outputPlanes(const ResolveArgs& a, float* (&out)[kMaxOutputs]) {
-    float* const gbuffer[kOutputs] = {a.viewZ,     a.normal[0],  a.normal[1], a.normal[2],
-                                      a.albedo[0], a.albedo[1],  a.albedo[2], a.metallic,
-                                      a.roughness, a.materialId, a.motion[0], a.motion[1]};
     int n = 0;
-    for (float* p : gbuffer) out[n++] = p;
+    GBufferOf<float*>::forEach(
+        a.out, [&](GBufferPlane, float* p) { out[n++] = p; }, kResolvedPlanes);
     for (int s = 0; s < (a.u1 ? 2 : a.u ? 1 : 0); ++s)
         for (float* p : a.uv[s]) out[n++] = p;
     if (a.tangent[0])

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/dispatch.h"
+#include "core/gbuffer_view.h"
 
 namespace ssrt {
 
@@ -33,6 +34,10 @@ inline constexpr int kResolveUvSets = 2;  // TEXCOORD_0, and TEXCOORD_1 when u1 
 // negated where the normal is (a back face seen), so the whole tangent frame turns over.
 inline constexpr int kResolveTangentOutputs = 4;
 
+// The G-buffer planes the resolve writes (the texture pass writes the material terms).
+inline constexpr GBufferPlanes kResolvedPlanes =
+    kGViewZ | kGNormal | kGAlbedo | kGMetallic | kGRoughness | kGMaterialId | kGMotion;
+
 struct ResolveArgs {
     const ResolveTriangle* triangles;  // indexed by global triangle id
     const ResolveInstance* instances;
@@ -58,13 +63,7 @@ struct ResolveArgs {
     const float* tangent[4] = {};
     // Outputs, every one with outStride: the G-buffer (renderer/frame.h's GBuffer says what
     // each holds; background: viewZ 0, materialId -1, the rest 0) ...
-    float* viewZ;
-    float* normal[3];
-    float* albedo[3];
-    float* metallic;
-    float* roughness;
-    float* materialId;
-    float* motion[2];
+    GBufferOf<float*> out;  // the planes of kResolvedPlanes
     // ... each UV set's outputs (set 0 with u, set 1 with u1; null otherwise) ...
     float* uv[kResolveUvSets][kResolveUvOutputs];
     // ... and the tangent frame x, y, z, w (with tangent; null otherwise).

@@ -31,23 +31,16 @@ OutF historyLengths(const TraceContext& c, PlaneStore& store, Res id, int w, int
 
 // The diffuse signal where SSGI traces at half resolution: denoised on the half frame (a
 // quarter of the pixels, at the resolution it was traced), on guides from each block's first
-// pixel (HalfFrame::guideZ), then brought to the frame by the guided upsample that brings the
+// pixel (HalfFrame::guide), then brought to the frame by the guided upsample that brings the
 // raw signal (trace/reconstruct.h), placing each half pixel at that first pixel.
 void denoiseHalfDiffuse(const TraceContext& c, Frame& frame, std::vector<DenoisePassTime>& times) {
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     const HalfFrame& hf = ht.frame;
     DenoiseCall in = denoiseCall(c, frame, hf.camera, true);
-    in.g = gbufferView("the half frame's guides", hf.camera.width, hf.camera.height,
-                       {{kGViewZ, &hf.guideZ},
-                        {kGNormalX, &hf.guideNormal[0]},
-                        {kGNormalY, &hf.guideNormal[1]},
-                        {kGNormalZ, &hf.guideNormal[2]},
-                        {kGAlbedoR, &hf.albedo[0]},
-                        {kGAlbedoG, &hf.albedo[1]},
-                        {kGAlbedoB, &hf.albedo[2]},
-                        {kGMetallic, &hf.metallic},
-                        {kGMotionX, &hf.guideMotion[0]},
-                        {kGMotionY, &hf.guideMotion[1]}});
+    // The guides, with the chosen pixels' albedo and metallic for the diffuse signal.
+    in.g = withPlanes(
+        gbufferView("the half frame's guides", hf.camera.width, hf.camera.height, hf.guide),
+        hf.view(), kGAlbedo | kGMetallic);
     for (int i = 0; i < 3; ++i) in.diffuse[i] = viewIn(ht.resolved, ht.resolved.color[i]);
     in.diffuseHitDistance = viewIn(ht.resolved, ht.resolved.hitDistance);
     if (tracedSignalsPooled(c.settings))

@@ -41,8 +41,8 @@ struct PlaneRef {
     LayerGroup group = LayerGroup::Color;
 };
 
-// The G-buffer: attributes of the visible surface per pixel. Background pixels: viewZ 0,
-// materialId -1, motion 0, instance and triangle -1.
+// The frame's G-buffer (core/gbuffer_view.h lists its planes and says what each holds), named
+// as the resource table names its channels.
 //
 // Its material terms are per-pixel planes the texture pass writes when some material needs
 // them, each empty (and no layer) otherwise: emission with emissive textures (every surface
@@ -51,35 +51,13 @@ struct PlaneRef {
 // where a material has none, and on background), which scales indirect light only
 // (shading/direct_kernel.h, DirectArgs::occlusion). The instance and triangle ids, as floats,
 // with RenderSettings::idPlanes.
-struct GBuffer : PlaneTable<GBuffer> {
-    PlaneF viewZ;      // positive view-space depth
-    PlaneF normal[3];  // world space, unit
-    PlaneF albedo[3];  // base colour (linear)
-    PlaneF metallic;
-    PlaneF roughness;  // perceptual
-    PlaneF materialId;
-    PlaneF motion[2];    // previous minus current position, pixels
-    PlaneF emission[3];  // scene-linear radiance
-    PlaneF occlusion;
-    PlaneF instanceId;
-    PlaneF triangleId;
-
+struct GBuffer : PlaneTable<GBuffer>, GBufferPlanesF {
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
-        fn(channelName(Res::ViewZ), g.viewZ);
-        forEachChannel(Res::Normal, g.normal, fn);
-        forEachChannel(Res::Albedo, g.albedo, fn);
-        fn(channelName(Res::Metallic), g.metallic), fn(channelName(Res::Roughness), g.roughness);
-        fn(channelName(Res::MaterialId), g.materialId);
-        forEachChannel(Res::Motion, g.motion, fn);
-        forEachChannel(Res::Emissive, g.emission, fn);
-        fn(channelName(Res::Occlusion), g.occlusion);
-        fn(channelName(Res::InstanceId), g.instanceId);
-        fn(channelName(Res::TriangleId), g.triangleId);
+        forEachGBufferChannel("", g, kGAllPlanes, fn);
     }
     // Its planes as passes and kernels read them (every plane of one size, so one stride;
-    // the view checks it); a freed plane is missing from it. (The material terms and ids are
-    // not in it: their passes take them as planes of their own.)
+    // the view checks it); a freed plane is missing from it.
     GBufferView view() const;
 };
 

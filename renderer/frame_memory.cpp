@@ -30,24 +30,19 @@ bool inScratch(Frame& f, Res id, bool release) {
         case Res::BackIds: return free(s.backVisibility.ids);
         case Res::BackZ: return free(s.backZ);
         case Res::HiZ: return freeHiZ(s.hiz, release);
-        case Res::HalfGBuffer: {
-            HalfFrame& h = s.half.frame;
-            for (PlaneF* p : {&h.viewZ, &h.normal[0], &h.normal[1], &h.normal[2], &h.albedo[0],
-                              &h.albedo[1], &h.albedo[2], &h.metallic})
-                free(*p);
+        case Res::HalfGBuffer:
+            GBufferPlanesF::forEach(
+                s.half.frame, [&](GBufferPlane, PlaneF& p) { free(p); }, HalfFrame::kPlanes);
             return true;
-        }
         case Res::HalfHitLight:
             for (auto& p : s.half.frame.hitLight) free(p);
             return true;
         case Res::HalfBackZ: return free(s.half.frame.backZ);
-        case Res::HalfGuides: {
-            HalfFrame& h = s.half.frame;
-            for (PlaneF* p : {&h.guideZ, &h.guideNormal[0], &h.guideNormal[1], &h.guideNormal[2],
-                              &h.guideMotion[0], &h.guideMotion[1]})
-                free(*p);
+        case Res::HalfGuides:
+            GBufferPlanesF::forEach(
+                s.half.frame.guide, [&](GBufferPlane, PlaneF& p) { free(p); },
+                HalfFrame::kGuidePlanes);
             return true;
-        }
         case Res::HalfHiZ: return freeHiZ(s.half.hiz, release);
         case Res::HalfRayPdf: return free(s.half.rays.pdf);
         default: return false;

@@ -146,15 +146,9 @@ ResolveArgs resolveArgs(const FrameContext& c, const ResolveTables& tables, bool
     ra.nearZ = c.trace.nearZ;
     ra.farZ = c.trace.farZ;
     // Every output with one stride.
-    ra.viewZ = g.viewZ.row(0);
-    for (int i = 0; i < 3; ++i) {
-        ra.normal[i] = g.normal[i].row(0);
-        ra.albedo[i] = g.albedo[i].row(0);
-    }
-    ra.metallic = g.metallic.row(0);
-    ra.roughness = g.roughness.row(0);
-    ra.materialId = g.materialId.row(0);
-    for (int i = 0; i < 2; ++i) ra.motion[i] = g.motion[i].row(0);
+    GBufferPlanesF::forEach(
+        g, [&](GBufferPlane which, PlaneF& p) { GBufferOf<float*>::at(ra.out, which) = p.row(0); },
+        kResolvedPlanes);
     ra.outStride = g.viewZ.stride();
     if (textured) {
         ra.u = tables.u.data();
@@ -266,24 +260,13 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
 }  // namespace
 
 GBufferView GBuffer::view() const {
-    // Its planes as its table names them (the view's names are the table's); of the planes'
-    // size: any still held, as the frame's memory frees each after its last reader.
-    GBufferSlot slots[kGBufferPlaneCount];
-    std::size_t n = 0;
+    // Of its planes' size: any still held, as the frame's memory frees each after its last
+    // reader.
     int w = 0, h = 0;
-    forEachPlane([&](std::string_view name, const PlaneF& p) {
-        const Res res = resourceOfChannel(name);
-        if (res == Res::Emissive || res == Res::Occlusion || res == Res::InstanceId ||
-            res == Res::TriangleId)
-            return;  // (not the view's: see view())
-        const unsigned which = gbufferPlaneNamed(name);
-        if (which == 0 || n == kGBufferPlaneCount)
-            throw std::logic_error("the G-buffer's plane '" + std::string(name) +
-                                   "' is none of its view's");
-        slots[n++] = {GBufferPlane(which), &p};
+    forEach(*this, [&](GBufferPlane, const PlaneF& p) {
         if (w == 0 && !p.empty()) w = p.width(), h = p.height();
     });
-    return gbufferView("the G-buffer", w, h, slots, n);
+    return gbufferView("the G-buffer", w, h, *this);
 }
 
 std::vector<PlaneRef> Frame::layers() const {

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <stdexcept>
 
+#include "denoise/denoise.h"
 #include "renderer/direct_lighting.h"
 #include "renderer/resolve_tables.h"
 #include "renderer/trace_pass.h"
+#include "trace/trace_layout.h"
 
 namespace ssrt {
 
@@ -32,17 +35,20 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
-    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Normal, "normal", "X,Y,Z", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Albedo, "albedo", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Motion, "motion", "X,Y", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Emissive, "emissive", "R,G,B", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer},
-    {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer},
-    {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer},
+    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGViewZ},
+    {Res::Normal, "normal", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGNormal},
+    {Res::Albedo, "albedo", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGAlbedo},
+    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGMetallic},
+    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGRoughness},
+    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer,
+     kGMaterialId},
+    {Res::Motion, "motion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGMotion},
+    {Res::Emissive, "emissive", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGEmission},
+    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGOcclusion},
+    {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer, nullptr,
+     kGInstanceId},
+    {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer, nullptr,
+     kGTriangleId},
     // What SSR hands out: reflected radiance (before the BRDF factor); opacity, 0..1, the share
     // of SSR over the environment; the share of the pixel's rays that hit; the view-space
     // distance to the hit, mean over hits (0 without one: the denoiser's guide); mean march
@@ -91,14 +97,12 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::MarchHit, "march.hit", "", F::F32, R::TileRing, L::Transient},
     {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::TileRing, L::Transient},
     {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::TileRing, L::Transient},
-    {Res::HalfGBuffer, "half.gbuffer",
-     "viewZ,normal.X,normal.Y,normal.Z,albedo.R,albedo.G,"
-     "albedo.B,metallic",
-     F::F32, R::Half, L::Transient},
+    {Res::HalfGBuffer, "half.gbuffer", "", F::F32, R::Half, L::Transient, G::Color, nullptr,
+     HalfFrame::kPlanes},
     {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F16, R::Half, L::Transient},
     {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},
-    {Res::HalfGuides, "half.guide", "viewZ,normal.X,normal.Y,normal.Z,motion.X,motion.Y", F::F32,
-     R::Half, L::Transient},
+    {Res::HalfGuides, "half.guide", "", F::F32, R::Half, L::Transient, G::Color, nullptr,
+     HalfFrame::kGuidePlanes},
     {Res::HalfHiZ, "half.hiz", "minZ,packed", F::F32, R::HalfPyramid, L::Transient},
     {Res::HalfRayPdf, "half.ray.pdf", "", F::F32, R::Half, L::Transient},
     {Res::HalfSsgi, "half.ssgi", "R,G,B,hit,hitDistance", F::F32, R::Half, L::Transient},
@@ -132,10 +136,8 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HalfDiffuseFrames, "half.diffuseFrames", "", F::F32, R::Half, L::Transient},
     {Res::HistoryColor, "history.color", "R,G,B", F::F32, R::Full, L::History},
     {Res::HistoryDiffuse, "history.diffuse", "R,G,B", F::F32, R::Full, L::History},
-    {Res::DenoiseHistoryGuides, "history.denoise.guide",
-     "viewZ,normal.X,normal.Y,normal.Z,"
-     "roughness",
-     F::F32, R::Full, L::History},
+    {Res::DenoiseHistoryGuides, "history.denoise.guide", "", F::F32, R::Full, L::History, G::Color,
+     nullptr, DenoiseHistory::kGuidePlanes},
     {Res::DenoiseHistoryDiffuse, "history.denoise.diffuse", "", F::F16x4, R::Full, L::History},
     {Res::DenoiseHistorySpecular, "history.denoise.specular", "", F::F16x4, R::Full, L::History},
     {Res::DenoiseHistoryDiffuseFrames, "history.denoise.diffuseFrames", "", F::F32, R::Full,
@@ -203,12 +205,22 @@ SceneFacts SceneFacts::of(const Scene& scene) {
 }
 
 int ResourceDecl::channelCount() const {
+    if (gbuffer) return std::popcount(gbuffer);
     return channels.empty() ? 1 : int(std::count(channels.begin(), channels.end(), ',')) + 1;
 }
 
 std::vector<std::string> ResourceDecl::channelNames() const {
-    if (channels.empty()) return {std::string(name)};
     std::vector<std::string> out;
+    if (gbuffer) {
+        // (The frame's G-buffer layers are named as their planes; a group held elsewhere
+        // prefixes its planes' names with its own.)
+        const std::string prefix = group == LayerGroup::GBuffer ? "" : std::string(name) + ".";
+        for (int i = 0; i < kGBufferPlaneCount; ++i)
+            if (gbuffer & (1u << i))
+                out.push_back(prefix + std::string(gbufferPlaneName(GBufferPlane(1u << i))));
+        return out;
+    }
+    if (channels.empty()) return {std::string(name)};
     std::size_t at = 0;
     while (at <= channels.size()) {
         const std::size_t end = std::min(channels.find(',', at), channels.size());

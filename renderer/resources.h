@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/gbuffer_view.h"
 #include "core/pixel_formats.h"
 #include "renderer/settings.h"
 #include "scenes/scene.h"
@@ -187,6 +188,11 @@ struct ResourceDecl {
     // An output that exists only to be looked at: handed out when this holds, and otherwise
     // transient (gone when no later pass reads it). Null: always handed out.
     GraphCondition handedOut = nullptr;
+    // G-buffer planes (core/gbuffer_view.h names them), `channels` then empty: the channels
+    // are the planes' names in the G-buffer's order, for a layer of the frame's G-buffer (group
+    // GBuffer: "normal.X", ...), and after the resource's name for a group of planes held
+    // elsewhere ("half.guide.normal.X").
+    GBufferPlanes gbuffer = 0;
     int channelCount() const;
     // The file's channel names ("normal.X", ...; "viewZ" for one channel).
     std::vector<std::string> channelNames() const;

@@ -92,10 +92,10 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     }
     if (hitLight)
         for (PlaneU16& p : out.hitLight) p.ensureSize(hw, hh);
-    std::vector<Copy> guides = {{&out.guideZ, g.viewZ}};
-    for (int c = 0; c < 3; ++c) guides.push_back({&out.guideNormal[c], g.normal[c]});
+    std::vector<Copy> guides = {{&out.guide.viewZ, g.viewZ}};
+    for (int c = 0; c < 3; ++c) guides.push_back({&out.guide.normal[c], g.normal[c]});
     // (Motion in half pixels: halving is exact.)
-    for (int c = 0; c < 2; ++c) guides.push_back({&out.guideMotion[c], g.motion[c], 0.5f});
+    for (int c = 0; c < 2; ++c) guides.push_back({&out.guide.motion[c], g.motion[c], 0.5f});
     // (Sized one by one: the guides are not made and freed again on every frame without them.)
     for (const Copy& p : chosen) p.to->ensureSize(hw, hh);
     for (const Copy& p : guides) {
@@ -143,15 +143,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
 }
 
 GBufferView HalfFrame::view() const {
-    return gbufferView("the half frame", camera.width, camera.height,
-                       {{kGViewZ, &viewZ},
-                        {kGNormalX, &normal[0]},
-                        {kGNormalY, &normal[1]},
-                        {kGNormalZ, &normal[2]},
-                        {kGAlbedoR, &albedo[0]},
-                        {kGAlbedoG, &albedo[1]},
-                        {kGAlbedoB, &albedo[2]},
-                        {kGMetallic, &metallic}});
+    return gbufferView("the half frame", camera.width, camera.height, *this);
 }
 
 }  // namespace ssrt

@@ -82,10 +82,14 @@ TraceCamera halfCamera(const TraceCamera& full);
 // frames. (The half frame puts that depth at its own pixel centre, the block's centre, so a
 // ray leaves up to half a full pixel beside the chosen pixel in each axis: the price of a
 // plain camera for the half frame; the upsample places the result at the chosen pixel.)
-struct HalfFrame : PlaneTable<HalfFrame> {
-    TraceCamera camera;  // halfCamera of the full one
-    PixelOffset offset;  // the frame's chosen pixel in each block
-    PlaneF viewZ, normal[3], albedo[3], metallic;
+struct HalfFrame : PlaneTable<HalfFrame>, GBufferPlanesF {
+    // Its G-buffer planes (the rest stay empty): the chosen pixels' viewZ, normal, albedo,
+    // metallic.
+    static constexpr GBufferPlanes kPlanes = kGViewZ | kGNormal | kGAlbedo | kGMetallic;
+    // The guides' planes (HalfFrame::guide).
+    static constexpr GBufferPlanes kGuidePlanes = kGViewZ | kGNormal | kGMotion;
+    TraceCamera camera;    // halfCamera of the full one
+    PixelOffset offset;    // the frame's chosen pixel in each block
     PlaneU16 hitLight[3];  // f16, as the direct pass's (renderer/frame.h, DirectParts)
     PlaneF backZ;  // the chosen pixels' back-face depth (HalfFrameSource::backZ given; empty
                    // otherwise)
@@ -93,21 +97,14 @@ struct HalfFrame : PlaneTable<HalfFrame> {
     // otherwise): the block's first pixel (offset (0, 0)) every frame, not the rotating chosen
     // one, so that the denoiser's history sees the same surface frame after frame; motion in
     // half pixels (previous minus current).
-    PlaneF guideZ, guideNormal[3], guideMotion[2];
+    GBufferPlanesF guide;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
         // (Named as the renderer's resource table names their channels, renderer/resources.cpp.)
-        fn("half.gbuffer.viewZ", g.viewZ);
+        forEachGBufferChannel("half.gbuffer.", g, kPlanes, fn);
         fn("half.backZ", g.backZ);
-        fn("half.guide.viewZ", g.guideZ);
-        fn("half.guide.normal.X", g.guideNormal[0]), fn("half.guide.normal.Y", g.guideNormal[1]);
-        fn("half.guide.normal.Z", g.guideNormal[2]);
-        fn("half.guide.motion.X", g.guideMotion[0]), fn("half.guide.motion.Y", g.guideMotion[1]);
-        fn("half.gbuffer.normal.X", g.normal[0]), fn("half.gbuffer.normal.Y", g.normal[1]);
-        fn("half.gbuffer.normal.Z", g.normal[2]);
-        fn("half.gbuffer.albedo.R", g.albedo[0]), fn("half.gbuffer.albedo.G", g.albedo[1]);
-        fn("half.gbuffer.albedo.B", g.albedo[2]), fn("half.gbuffer.metallic", g.metallic);
+        forEachGBufferChannel("half.guide.", g.guide, kGuidePlanes, fn);
         fn("half.hitLight.R", g.hitLight[0]), fn("half.hitLight.G", g.hitLight[1]);
         fn("half.hitLight.B", g.hitLight[2]);
     }
@@ -119,7 +116,7 @@ struct HalfFrame : PlaneTable<HalfFrame> {
 
 struct HalfFrameSource {
     GBufferView g;        // the frame's: viewZ, normal, albedo, metallic; motion with `guides`
-    bool guides = false;  // make the denoiser's guides (HalfFrame::guideZ, ...)
+    bool guides = false;  // make the denoiser's guides (HalfFrame::guide)
     // DirectArgs::hitLight (SSGI's radiance at a hit); all absent: out.hitLight holds the
     // chosen pixels' already, at the half frame's size (DirectArgs::hitLightHalf).
     ViewU16 hitLight[3] = {};  // f16

@@ -59,3 +59,50 @@ TEST_CASE("G-buffer view: a plane of another size, or one a pass reads missing, 
           "resolveSsr: the G-buffer is 10x6, not 12x6");
     CHECK(refusal([&] { requireGBuffer("resolveSsr", g, kGViewZ, 10, 6); }).empty());
 }
+
+TEST_CASE("G-buffer planes: one list, walked in bit order, a mask choosing the planes") {
+    // Every plane once, in GBufferPlane's order, each at its own member.
+    GBufferOf<int> g;
+    int next = 0;
+    GBufferOf<int>::forEach(g, [&](GBufferPlane which, int& p) {
+        CHECK(which == GBufferPlane(1u << next));
+        p = ++next;
+    });
+    CHECK(next == kGBufferPlaneCount);
+    CHECK(g.viewZ == 1);
+    CHECK(g.normal[2] == 4);
+    CHECK(g.albedo[0] == 5);
+    CHECK(g.roughness == 9);
+    CHECK(g.motion[1] == 12);
+    CHECK(g.emission[0] == 13);
+    CHECK(g.triangleId == 18);
+    for (int i = 0; i < kGBufferPlaneCount; ++i)
+        CHECK(GBufferOf<int>::at(g, GBufferPlane(1u << i)) == i + 1);
+    // A mask walks its planes alone.
+    GBufferPlanes seen = 0;
+    GBufferOf<int>::forEach(
+        g, [&](GBufferPlane which, int&) { seen |= which; }, kGNormal | kGMotion);
+    CHECK(seen == (kGNormal | kGMotion));
+}
+
+TEST_CASE("G-buffer planes: a holder's names are its prefix and the plane's, kept for good") {
+    const std::string_view a = gbufferPlaneName("half.guide.", kGNormalY);
+    CHECK(a == "half.guide.normal.Y");
+    CHECK(gbufferPlaneName("half.guide.", kGNormalY).data() == a.data());  // made once
+    CHECK(gbufferPlaneName("", kGMotionX) == "motion.X");
+    CHECK(gbufferPlaneName("history.", kGTriangleId) == "history.triangleId");
+}
+
+TEST_CASE("G-buffer view: the planes of one view taken into another of the same size") {
+    const PlaneF z(10, 6, 1.0f), a(10, 6, 0.5f), m(10, 6, 0.0f), other(12, 6, 0.0f);
+    const GBufferView guides = gbufferView("test", 10, 6, {{kGViewZ, &z}});
+    const GBufferView frame = gbufferView("test", 10, 6, {{kGAlbedoG, &a}, {kGMetallic, &m}});
+    const GBufferView both = withPlanes(guides, frame, kGAlbedo | kGMetallic);
+    CHECK(both.viewZ == z.row(0));
+    CHECK(both.albedo[1] == a.row(0));
+    CHECK(both.albedo[0] == nullptr);
+    CHECK(both.metallic == m.row(0));
+    const GBufferView wide = gbufferView("test", 12, 6, {{kGMetallic, &other}});
+    CHECK(refusal([&] { withPlanes(guides, wide, kGMetallic); }) ==
+          "withPlanes: G-buffer views of different sizes or strides");
+}

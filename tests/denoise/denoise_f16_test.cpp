@@ -114,9 +114,9 @@ TEST_CASE("denoise f16 storage: the temporal pass over f16 planes is its f32 res
             a.frame = g.view();
             a.specular = specular;
             a.frame.motion[0] = motion[0].row(0), a.frame.motion[1] = motion[1].row(0);
-            a.frame.prevViewZ = g.viewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
-            a.frame.prevRoughness = g.roughness.row(0);
+            a.frame.prev.viewZ = g.viewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prev.normal[i] = g.normal[i].row(0);
+            a.frame.prev.roughness = g.roughness.row(0);
             a.prevFrames = prevFrames.row(0);
             for (int i = 0; i < 9; i += 4) a.frame.prevViewToWorld[i] = 1.0f;
             a.frame.prevTanHalfX = a.frame.tanHalfX;

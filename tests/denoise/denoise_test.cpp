@@ -221,7 +221,7 @@ TEST_CASE("denoise: a history keeps only its frame's signals, and one it lacks s
     CHECK(d.history.hasSignal(false));
     CHECK_FALSE(d.history.hasSignal(true));
     CHECK(d.history.specular.empty());
-    CHECK(d.history.roughness.empty());  // it guides the specular alone
+    CHECK(d.history.guide.roughness.empty());  // it guides the specular alone
     CHECK(d.scratch.frames[1].empty());
     CHECK(d.out.diffuseFrames.at(20, 10) == 3.0f);
     // The specular comes back: the diffuse goes on, the specular has no frame behind it,

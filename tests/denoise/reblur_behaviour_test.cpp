@@ -259,9 +259,9 @@ struct Temporal {
         a.outFrames = outFrames.row(0);
         a.outFast = outFast.row(0);
         if (history) {
-            a.frame.prevViewZ = prevViewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
-            a.frame.prevRoughness = g.roughness.row(0);
+            a.frame.prev.viewZ = prevViewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prev.normal[i] = g.normal[i].row(0);
+            a.frame.prev.roughness = g.roughness.row(0);
             for (int c = 0; c < 4; ++c) a.prevSignal[c] = previous.in(c);
             a.prevFrames = prevFrames.row(0);
             a.prevFast = prevFast.row(0);

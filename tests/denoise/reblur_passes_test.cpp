@@ -261,9 +261,9 @@ TEST_CASE("reblur temporal pass: no history, a still one, and a surface that is 
             CHECK(outFrames.at(30, 10) == 0.0f);
             // A still camera over the same surface: the same signal keeps it, and the frames
             // behind it carry on.
-            a.frame.prevViewZ = prevViewZ.row(0);
-            for (int i = 0; i < 3; ++i) a.frame.prevNormal[i] = g.normal[i].row(0);
-            a.frame.prevRoughness = g.roughness.row(0);
+            a.frame.prev.viewZ = prevViewZ.row(0);
+            for (int i = 0; i < 3; ++i) a.frame.prev.normal[i] = g.normal[i].row(0);
+            a.frame.prev.roughness = g.roughness.row(0);
             for (int c = 0; c < 4; ++c) a.prevSignal[c] = previous.in(c);
             a.prevFrames = prevFrames.row(0);
             a.prevFast = prevFast.row(0);

@@ -262,7 +262,7 @@ TEST_CASE("denoise sequence: a frame that does not replace the history renders t
     input.frameIndex = 3;
     // (The default preset traces SSGI at half resolution: its diffuse history is the half one.)
     FrameHistory kept;
-    kept.denoise.viewZ = history.denoise.viewZ.clone();
+    kept.denoise.guide.viewZ = history.denoise.guide.viewZ.clone();
     kept.denoise.specular = history.denoise.specular.clone();
     kept.denoise.specularFrames = history.denoise.specularFrames.clone();
     kept.denoiseHalf.diffuse = history.denoiseHalf.diffuse.clone();
@@ -271,7 +271,7 @@ TEST_CASE("denoise sequence: a frame that does not replace the history renders t
     renderer.render(scene, input, history, last);
     CHECK(history.denoise.valid);
     CHECK(history.denoiseHalf.valid);
-    CHECK(hashPlane(history.denoise.viewZ) == hashPlane(kept.denoise.viewZ));
+    CHECK(hashPlane(history.denoise.guide.viewZ) == hashPlane(kept.denoise.guide.viewZ));
     CHECK(hashPlane(history.denoise.specular) == hashPlane(kept.denoise.specular));
     CHECK(hashPlane(history.denoise.specularFrames) == hashPlane(kept.denoise.specularFrames));
     CHECK(hashPlane(history.denoiseHalf.diffuse) == hashPlane(kept.denoiseHalf.diffuse));
@@ -284,7 +284,7 @@ TEST_CASE("denoise sequence: a frame that does not replace the history renders t
     FrameHistory none;
     input.replaceHistory = false;
     renderer.render(scene, input, none, last);
-    CHECK(none.denoise.viewZ.empty());
-    CHECK(none.denoiseHalf.viewZ.empty());
+    CHECK(none.denoise.guide.viewZ.empty());
+    CHECK(none.denoiseHalf.guide.viewZ.empty());
     CHECK_FALSE(none.denoise.valid);
 }

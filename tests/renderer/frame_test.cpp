@@ -191,3 +191,34 @@ TEST_CASE("frame: extra layers follow the renderer's") {
     CHECK(layers.back().name == "ref.color.R");
     CHECK(f.plane("ref.color.R").at(0, 0) == 0.5f);
 }
+
+TEST_CASE("frame: the G-buffer's plane names are its resources' channels, one for one") {
+    // core/gbuffer_view.h names the planes; the resource table names the G-buffer's layers and
+    // the groups of G-buffer planes the half frame and the denoiser's history hold. Each plane
+    // is one channel of a G-buffer layer, and every channel of those layers is a plane.
+    std::set<std::string> planes, channels;
+    for (int i = 0; i < kGBufferPlaneCount; ++i) {
+        const std::string name(gbufferPlaneName(GBufferPlane(1u << i)));
+        CAPTURE(name);
+        const Res res = resourceOfChannel(name);
+        REQUIRE(res != Res::Count);
+        CHECK(resourceDecl(res).group == LayerGroup::GBuffer);
+        planes.insert(name);
+    }
+    for (int r = 0; r < kResourceCount; ++r)
+        if (resourceDecl(Res(r)).lifetime == Lifetime::Output &&
+            resourceDecl(Res(r)).group == LayerGroup::GBuffer)
+            for (const std::string& c : resourceDecl(Res(r)).channelNames()) {
+                // (a layer's channels are its name, or its name and a suffix)
+                const std::string layer(resourceDecl(Res(r)).name);
+                CHECK((c == layer || c.starts_with(layer + ".")));
+                channels.insert(c);
+            }
+    CHECK(planes == channels);
+    // A group's channels are its name and its planes' names, in the G-buffer's order.
+    CHECK(resourceDecl(Res::HalfGuides).channelNames() ==
+          std::vector<std::string>{"half.guide.viewZ", "half.guide.normal.X", "half.guide.normal.Y",
+                                   "half.guide.normal.Z", "half.guide.motion.X",
+                                   "half.guide.motion.Y"});
+    CHECK(resourceDecl(Res::DenoiseHistoryGuides).channelCount() == 5);
+}

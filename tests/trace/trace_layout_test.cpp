@@ -272,18 +272,18 @@ TEST_CASE("half resolution: the denoiser's guides are each block's first pixel, 
         for (int hy = 0; hy < 3; ++hy)
             for (int hx = 0; hx < 4; ++hx) {
                 const int x = std::min(2 * hx, w - 1), y = std::min(2 * hy, h - 1);
-                first &= hf.guideZ.at(hx, hy) == z.at(x, y);
-                first &= hf.guideNormal[1].at(hx, hy) == n[1].at(x, y);
-                first &= hf.guideMotion[0].at(hx, hy) == 0.5f * motion[0].at(x, y);
-                first &= hf.guideMotion[1].at(hx, hy) == 0.5f * motion[1].at(x, y);
+                first &= hf.guide.viewZ.at(hx, hy) == z.at(x, y);
+                first &= hf.guide.normal[1].at(hx, hy) == n[1].at(x, y);
+                first &= hf.guide.motion[0].at(hx, hy) == 0.5f * motion[0].at(x, y);
+                first &= hf.guide.motion[1].at(hx, hy) == 0.5f * motion[1].at(x, y);
             }
         CHECK(first);
     }
     src.guides = false;
     HalfFrame none;
     buildHalfFrame(cam, src, 1, none, 1);
-    CHECK(none.guideZ.empty());
-    CHECK(none.guideMotion[0].empty());
+    CHECK(none.guide.viewZ.empty());
+    CHECK(none.guide.motion[0].empty());
     CHECK(!none.viewZ.empty());
     // Its view: the half frame's planes at its size.
     const GBufferView hv = none.view();
