@@ -19,7 +19,13 @@
 #                  hash) or when it is older than a week (Debian's updates move on);
 #   apt-archives/  the .deb files the roots downloaded (what a newcomer's apt fetches; kept so
 #                  a second run does not fetch them again; the packages are still installed);
-#   run/           the root of the latest run (removed at the start of the next), and its logs.
+#   run/           the root of the latest run (removed at the start of the next), and its logs;
+#   ccache/        the root's compiler cache (SSRT_FRESH_CCACHE=1, the default): ccache is
+#                  installed in the root before the commands and this folder mounted as its
+#                  cache, so a second run compiles only what changed (the commands are the same;
+#                  scripts/lib/compiler-cache.sh finds ccache as on any machine that has it). The
+#                  first run, with an empty cache, is a newcomer's cold build.
+#                  SSRT_FRESH_CCACHE=0: no ccache in the root, every build cold.
 # Where debootstrap cannot reach the package archive it prints one line
 # "test-fresh: SKIPPED: ..." and exits 0; any other failure fails.
 set -euo pipefail
@@ -33,6 +39,7 @@ readonly kSuite=bookworm
 readonly kMaxAgeDays=7
 cache="${SSRT_FRESH_CACHE:-/var/cache/ssrt-fresh}"
 tests="${SSRT_FRESH_TESTS:-all}"
+use_ccache="${SSRT_FRESH_CCACHE:-1}"
 case "$tests" in all | none) ;; *) say "SSRT_FRESH_TESTS must be all or none"; exit 2 ;; esac
 [ "$(id -u)" -eq 0 ] || { say "needs root (debootstrap, chroot and mounts)"; exit 2; }
 
@@ -122,11 +129,28 @@ in_root() { # name, command
         mount -t proc proc "$root/proc"
         mount --rbind /dev "$root/dev"
         mount --bind "$2" "$root/var/cache/apt/archives"
+        if [ -n "$4" ]; then
+            mkdir -p "$root/root/.cache/ccache"
+            mount --bind "$4" "$root/root/.cache/ccache"
+        fi
         exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb \
             PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
             /bin/bash -c "cd /root/ssrt && $3"
-    ' bash "$root" "$cache/apt-archives" "$cmd" >"$run/logs/$name.log" 2>&1
+    ' bash "$root" "$cache/apt-archives" "$cmd" "$ccache_dir" >"$run/logs/$name.log" 2>&1
 }
+
+# The root's compiler cache (see the header).
+ccache_dir=""
+if [ "$use_ccache" = 1 ]; then
+    ccache_dir="$cache/ccache"
+    mkdir -p "$ccache_dir"
+    if ! in_root ccache "apt-get update -q && apt-get install -y -q --no-install-recommends ccache"; then
+        tail -n 20 "$run/logs/ccache.log" | sed 's/^/  | /' >&2
+        fail "installing ccache in the root failed (log above)"
+        finish
+    fi
+    say "ccache in the root, its cache in $ccache_dir ($(du -sh "$ccache_dir" | cut -f1))"
+fi
 # "packages P s, build B s, OTHER R s" from a log and the command's time.
 split_time() { # log, total seconds, name of the rest
     local p b
