@@ -6,6 +6,7 @@
 #include <exception>
 #include <iterator>
 #include <memory>
+#include <new>
 #include <ostream>
 #include <stdexcept>
 
@@ -13,6 +14,7 @@
 #include "cli/build_info.h"
 #include "cli/command_line.h"
 #include "cli/man_page.h"
+#include "cli/memory_check.h"
 #include "cli/scenes_command.h"
 #include "core/suggest.h"
 
@@ -65,6 +67,9 @@ int reportErrors(std::ostream& err, const std::function<int()>& command) {
     } catch (const std::invalid_argument& e) {
         err << "ssrt: error: " << oneLine(e.what()) << "\n";
         return kExitUsage;
+    } catch (const std::bad_alloc&) {  // past the checks made before the work: still one line
+        err << "ssrt: error: " << outOfMemoryMessage() << "\n";
+        return kExitFailure;
     } catch (const std::exception& e) {
         err << "ssrt: error: " << oneLine(e.what()) << "\n";
         return kExitFailure;

@@ -179,6 +179,7 @@ RenderSettings truthDefaults() {
 ReferenceSource referenceSourceFrom(const TruthOptions& o, std::ostream& err) {
     ReferenceSource source;
     source.progress = o.quiet ? nullptr : &err;
+    source.warnings = &err;
     if (!o.noCache) {
         const std::string dir = o.cacheDir ? *o.cacheDir : defaultCacheDir();
         if (!dir.empty()) source.cacheDir = dir;

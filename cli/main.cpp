@@ -1,6 +1,17 @@
 // The ssrt command: everything lives in runCli so tests can drive it without a process.
+#include <cstdio>
 #include <iostream>
+#include <new>
 
 #include "cli/cli.h"
 
-int main(int argc, char** argv) { return ssrt::cli::runCli(argc, argv, std::cout, std::cerr); }
+int main(int argc, char** argv) {
+    try {
+        return ssrt::cli::runCli(argc, argv, std::cout, std::cerr);
+    } catch (const std::bad_alloc&) {
+        // Out of memory outside a command's own handler (reading the command line): one line
+        // that allocates nothing, the status of the other resource errors.
+        std::fputs("ssrt: error: out of memory\n", stderr);
+        return ssrt::cli::kExitFailure;
+    }
+}

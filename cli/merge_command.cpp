@@ -251,9 +251,8 @@ int runMerge(const MergeOptions& o, std::ostream& /*out*/, std::ostream& err) {
         const ReferenceBands merged = mergeReference(parts);
         writeReferenceImage(o.output, merged.image);
         if (o.cacheDir) {
-            fs::create_directories(*o.cacheDir);
-            const std::string cached = (fs::path(*o.cacheDir) / merged.cacheName).string();
-            writeReferenceImage(cached, merged.image);
+            const std::string cached = writeCacheEntry(
+                *o.cacheDir, referenceKeyOfCacheFileName(merged.cacheName), merged.image);
             if (!o.quiet) err << "stored " << cached << "\n";
         }
     }

@@ -3,7 +3,12 @@
 // path with two cuts, its mirror sphere moving on a circle (rigid motion: motion vectors), one
 // history carried from frame to frame as `ssrt render` carries it. Per frame it writes a CSV
 // row: the frame, a hash of every layer (tests/frame_hash.h's), the layers' non-finite values,
-// the wall and CPU time and the resident memory after the frame.
+// the wall and CPU time, the resident memory and the open file descriptors after the frame.
+//
+// --write-every N --out DIR writes every N-th frame (i % N == 0) as `ssrt render` writes a
+// frame (cli/options.h writeFrame: every layer, an EXR), DIR/frame_NNNNN.exr: what a long
+// run's file output leaks or leaves behind (descriptors, temporaries) shows in the
+// descriptor count and in DIR's listing.
 //
 // --nan-frame F corrupts the input of frame F: before it renders, one pixel of every plane of
 // the history (the caller's FrameHistory, which the frame reads) is set to NaN, as a corrupt
@@ -18,11 +23,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "cli/options.h"
 #include "cli/shard.h"
 #include "core/pixel_formats.h"
 #include "renderer/renderer.h"
@@ -39,12 +46,14 @@ struct Options {
     int nanFrame = -1;  // none
     cli::Shard shard;
     std::string csv = "soak.csv";
+    int writeEvery = 0;  // 0: no frame written
+    std::string out;     // the folder frames are written to
 };
 
 [[noreturn]] void usage(const std::string& problem) {
     std::fprintf(stderr,
                  "ssrt_soak: %s\nusage: ssrt_soak [--frames N] [--width W] [--height H] "
-                 "[--nan-frame F] [--shard K/N] [--csv FILE]\n",
+                 "[--nan-frame F] [--shard K/N] [--csv FILE] [--write-every N --out DIR]\n",
                  problem.c_str());
     std::exit(2);
 }
@@ -70,8 +79,11 @@ Options parseOptions(int argc, char** argv) {
         else if (flag == "--nan-frame") o.nanFrame = intArg(flag, value, 0, 1000000);
         else if (flag == "--shard") o.shard = cli::parseShard("--shard", value);
         else if (flag == "--csv") o.csv = value;
+        else if (flag == "--write-every") o.writeEvery = intArg(flag, value, 1, 1000000);
+        else if (flag == "--out") o.out = value;
         else usage("unknown option '" + flag + "'");
     }
+    if ((o.writeEvery > 0) != !o.out.empty()) usage("--write-every and --out go together");
     return o;
 }
 
@@ -164,6 +176,22 @@ long residentKiB() {
     return resident * (sysconf(_SC_PAGESIZE) / 1024);
 }
 
+// The process's open file descriptors (the entries of /proc/self/fd, less the one that lists
+// them): a write that leaks one shows as a count that grows.
+long openDescriptors() {
+    long n = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/fd"))
+        ++n;
+    return n - 1;
+}
+
+// frame_00042.exr
+std::string frameFileName(int i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.exr", i);
+    return name;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -186,7 +214,7 @@ int main(int argc, char** argv) try {
     while (start > 0 && !restarts(start)) --start;
 
     std::ofstream csv(o.csv);
-    csv << "frame,hash,nonfinite,ms,cpu_ms,rss_kib\n";
+    csv << "frame,hash,nonfinite,ms,cpu_ms,rss_kib,fds\n";
     FrameHistory history;
     Frame frame;
     for (int i = start; i < int(block.end); ++i) {
@@ -209,10 +237,12 @@ int main(int argc, char** argv) try {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
         if (i < block.begin) continue;  // replayed for its history only
+        if (o.writeEvery > 0 && i % o.writeEvery == 0)
+            cli::writeFrame((std::filesystem::path(o.out) / frameFileName(i)).string(), frame, {});
         char hash[17];
         std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)frameHash(frame));
         csv << i << "," << hash << "," << nonFinite(frame) << "," << ms << "," << cpu << ","
-            << residentKiB() << "\n";
+            << residentKiB() << "," << openDescriptors() << "\n";
     }
     if (!csv.flush()) throw std::runtime_error("cannot write '" + o.csv + "'");
     return 0;

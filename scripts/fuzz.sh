@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh replay               every target over its committed seeds, once each
 #                                        (what CI runs: a crash, leak or UB report fails it)
 #   scripts/fuzz.sh run TARGET [ARGS]    a campaign: TARGET (shot, sky_image, texture, merge,
-#                                        diff, cli, gltf) from its seeds, its corpus kept in
+#                                        diff, cli, gltf, suite) from its seeds, its corpus kept in
 #                                        build-asan/fuzz/corpus/TARGET; ARGS go to libFuzzer
 #                                        (e.g. -runs=1000000); crashes land in
 #                                        build-asan/fuzz/artifacts/TARGET/
@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/sanitizer-options.sh
 bin=build-asan/fuzz
-targets=(cli diff gltf merge shot sky_image texture)
+targets=(cli diff gltf merge shot sky_image suite texture)
 
 require() {
     [ -x "$bin/${1}_fuzz" ] || {

@@ -42,7 +42,7 @@ int check(const CommandLine& line) {
             break;
         case Command::Graph: checkRenderOptions(line.graph.render, {}); break;
         case Command::Diff: diffSettingsFrom(line.diff.flags); break;
-        case Command::Check:  // (its suite file is read when it runs: not fuzzed yet)
+        case Command::Check:  // (its suite file is read when it runs: suite_fuzz.cpp)
         case Command::Merge:
         case Command::Scenes:
         case Command::Completion:

@@ -20,7 +20,7 @@ set_source_files_properties(io/flip.cpp PROPERTIES COMPILE_OPTIONS
                             "-fno-sanitize-coverage=trace-cmp,inline-8bit-counters,pc-table")
 
 set(SSRT_FUZZ_TARGETS cli_fuzz diff_fuzz gltf_fuzz merge_fuzz shot_fuzz sky_image_fuzz
-                      texture_fuzz)
+                      suite_fuzz texture_fuzz)
 foreach(target ${SSRT_FUZZ_TARGETS})
     add_executable(${target} EXCLUDE_FROM_ALL tests/fuzz/${target}.cpp)
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
