@@ -6,7 +6,8 @@
 # ray checks,
 # reference image, image error, the compare and sweep commands and their sequences,
 # the image comparison (ssrt diff, render --compare), shards and ssrt merge, the reference
-# cache's racing writers, under AddressSanitizer and UndefinedBehaviorSanitizer.
+# cache's racing writers, the cgroup memory reader, under AddressSanitizer and
+# UndefinedBehaviorSanitizer.
 # Then the libFuzzer targets of tests/fuzz (built here too: -DSSRT_BUILD_FUZZ=ON) replay their
 # committed seeds (scripts/fuzz.sh replay): a crash, leak or UB report on any fails.
 # Builds in build-asan/; CI runs it after scripts/test.sh.
@@ -43,7 +44,7 @@ CC="$cc" CXX="$cxx" cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWith
 cmake --build build-asan --target ssrt_tests ssrt_fuzz --parallel "${SSRT_BUILD_JOBS:-$(nproc)}"
 echo "test-sanitized: built build-asan/ in $((SECONDS - t0)) s" >&2
 source scripts/lib/sanitizer-options.sh
-./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*,image limits:*,command line:*,cli limits:*'
+./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*,image limits:*,command line:*,cli limits:*,cgroup memory:*'
 t0=$SECONDS
 bash scripts/fuzz.sh replay
 echo "test-sanitized: replayed the fuzz seeds in $((SECONDS - t0)) s" >&2
