@@ -2,5 +2,10 @@
 #include <iostream>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 
-int main(int argc, char** argv) { return ssrt::cli::runCli(argc, argv, std::cout, std::cerr); }
+int main(int argc, char** argv) {
+    // The process's own handlers: tests that call runCli in-process keep theirs.
+    ssrt::cli::installInterruptHandlers();
+    return ssrt::cli::runCli(argc, argv, std::cout, std::cerr);
+}
