@@ -52,6 +52,13 @@ stop() {
     local t0
     t0=$(date +%s%N)
     for s in "$@"; do kill -s "$s" "$pid"; done
+    while kill -0 "$pid" 2>/dev/null && [ $(($(date +%s%N) - t0)) -lt 15000000000 ]; do
+        sleep 0.05
+    done
+    if kill -0 "$pid" 2>/dev/null; then
+        kill -s KILL "$pid"
+        fail "$job: still running 15 s after the signal"
+    fi
     wait "$pid"
     code=$?
     ms=$((($(date +%s%N) - t0) / 1000000))
@@ -96,11 +103,18 @@ render_stops() {  # render_stops SIGNAL CODE
 render_stops INT 130
 render_stops TERM 143
 
-# A second signal ends at once, by that signal (no line), still without a temporary. (Two
-# signals of one kind sent at once may arrive as one, so the second is another: SIGTERM.)
+# A second signal ends at once, by that signal (no line), and removes the temporary being
+# written: sent while one is (a 640x360 EXR of every layer, ZIP-compressed, takes longer to
+# write than to render). Two signals of one kind sent at once may arrive as one, so the second
+# is another: SIGTERM.
 mkdir -p "$dir/twice"
-start render-twice "$ssrt" render --scene cornell "${size[@]}" --frames 200 -o "$dir/twice/f.png"
-wait_for "$dir/twice/f_0000.png"
+start render-twice "$ssrt" render --scene cornell --width 640 --height 360 --frames 200 \
+    --exr-compression zip -o "$dir/twice/f.exr"
+for _ in $(seq 2000); do
+    [ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] && break
+    sleep 0.01
+done
+[ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] || fail "render-twice: no write seen under way"
 stop INT TERM
 [ "$code" = 130 ] || [ "$code" = 143 ] || fail "render-twice: exit $code, not 130 or 143"
 ! grep -q "interrupted after" "$dir/render-twice.err" || fail "render-twice: it stopped cleanly"
