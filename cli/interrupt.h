@@ -8,7 +8,8 @@
 // (frames, reference tiles, sweep settings, check cases), stops with every file it wrote whole,
 // prints "ssrt: interrupted after N of M frames (...)" and exits 128 + the signal (130 for
 // SIGINT, 143 for SIGTERM). A second signal ends the process at once, as outside a scope.
-// Every signal is passed on to the child processes running (ssrt check's cases).
+// Every signal is passed on to the child processes running (ssrt check's cases). A SIGINT
+// ignored when the process starts (a script's background job) stays ignored.
 #pragma once
 
 #include <sys/types.h>
