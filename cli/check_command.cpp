@@ -16,6 +16,7 @@
 #include "cli/check_case.h"
 #include "cli/child_process.h"
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
 #include "core/isa.h"
@@ -39,7 +40,9 @@ std::string renderProgram(const CheckOptions& o) {
 }
 
 // Every case, `jobs` at a time; `done(i, result)` called in the suite's order as each one is
-// known (case 3 waits for case 2's line, never the other way).
+// known (case 3 waits for case 2's line, never the other way). An interrupt (cli/interrupt.h,
+// passed on to the cases' processes, which stop as render does) starts no further case and
+// ends the run with Interrupted once the cases under way have ended, no report written.
 template <class Done>
 std::vector<CaseResult> runCases(const Suite& suite, const CheckContext& context, int jobs,
                                  Done done) {
@@ -53,7 +56,9 @@ std::vector<CaseResult> runCases(const Suite& suite, const CheckContext& context
         workers.emplace_back([&] {
             for (std::size_t i; (i = next++) < n;) {
                 try {
-                    promises[i].set_value(runCase(suite, suite.cases[i], context));
+                    // After an interrupt no case starts: its empty result is never shown.
+                    promises[i].set_value(interrupted() ? CaseResult{}
+                                                        : runCase(suite, suite.cases[i], context));
                 } catch (...) {
                     promises[i].set_exception(std::current_exception());
                 }
@@ -62,7 +67,12 @@ std::vector<CaseResult> runCases(const Suite& suite, const CheckContext& context
     std::vector<CaseResult> results;
     try {
         for (std::size_t i = 0; i < n; ++i) {
-            results.push_back(futures[i].get());
+            CaseResult result = futures[i].get();
+            // A case whose process the interrupt ended (or that never started) has no result.
+            stopIfInterrupted([&] {
+                return std::to_string(i) + " of " + plural(int(n), "case") + " (no report written)";
+            });
+            results.push_back(std::move(result));
             done(results.back());
         }
     } catch (...) {
@@ -210,6 +220,7 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& o) {
 }
 
 int runCheck(const CheckOptions& o, std::ostream& out) {
+    const InterruptScope interruptible;  // stops between cases (runCases)
     const int jobs = int(parseInteger("--jobs", o.jobs, 0, kMaxJobs));
     CheckContext context;
     context.program = renderProgram(o);

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "cli/interrupt.h"
+
 extern char** environ;
 
 namespace ssrt::cli {
@@ -21,6 +23,13 @@ struct FileActions {
     posix_spawn_file_actions_t actions;
     FileActions() { posix_spawn_file_actions_init(&actions); }
     ~FileActions() { posix_spawn_file_actions_destroy(&actions); }
+};
+
+// posix_spawn's attributes, likewise.
+struct SpawnAttributes {
+    posix_spawnattr_t attributes;
+    SpawnAttributes() { posix_spawnattr_init(&attributes); }
+    ~SpawnAttributes() { posix_spawnattr_destroy(&attributes); }
 };
 
 }  // namespace
@@ -38,11 +47,23 @@ int runProcess(const std::string& program, const std::vector<std::string>& args,
     posix_spawn_file_actions_adddup2(&fa.actions, STDOUT_FILENO, STDERR_FILENO);
     posix_spawn_file_actions_addopen(&fa.actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_addchdir_np(&fa.actions, folder.c_str());
+    // A process group of its own: a terminal's Ctrl-C reaches it once, passed on by our
+    // handler (cli/interrupt.h), not a second time from the terminal (which would end it at once).
+    SpawnAttributes sa;
+    posix_spawnattr_setflags(&sa.attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&sa.attributes, 0);
     pid_t pid = 0;
     const int started =
-        posix_spawn(&pid, program.c_str(), &fa.actions, nullptr, argv.data(), environ);
+        posix_spawn(&pid, program.c_str(), &fa.actions, &sa.attributes, argv.data(), environ);
     if (started != 0)
         throw std::runtime_error("cannot run '" + program + "': " + std::strerror(started));
+    addChildProcess(pid);
+    // Waited for without reaping first, so that its pid is no one else's while a signal may
+    // still be passed on to it.
+    siginfo_t info = {};
+    while (waitid(P_PID, id_t(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+    }
+    removeChildProcess(pid);
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR) throw std::runtime_error("cannot wait for '" + program + "'");

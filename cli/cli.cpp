@@ -13,6 +13,7 @@
 #include "cli/bash_completion.h"
 #include "cli/build_info.h"
 #include "cli/command_line.h"
+#include "cli/interrupt.h"
 #include "cli/man_page.h"
 #include "cli/memory_check.h"
 #include "cli/scenes_command.h"
@@ -64,6 +65,9 @@ std::string oneLine(std::string text) {
 int reportErrors(std::ostream& err, const std::function<int()>& command) {
     try {
         return command();
+    } catch (const Interrupted& e) {
+        err << "ssrt: " << e.what() << "\n";
+        return e.status();
     } catch (const std::invalid_argument& e) {
         err << "ssrt: error: " << oneLine(e.what()) << "\n";
         return kExitUsage;

@@ -4,8 +4,11 @@
 #include <new>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 
 int main(int argc, char** argv) {
+    // The process's own handlers: tests that call runCli in-process keep theirs.
+    ssrt::cli::installInterruptHandlers();
     try {
         return ssrt::cli::runCli(argc, argv, std::cout, std::cerr);
     } catch (const std::bad_alloc&) {

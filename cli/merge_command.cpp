@@ -35,6 +35,15 @@ struct Part {
     throw std::runtime_error("merge: '" + path + "': " + why);
 }
 
+// The file shard `index` writes, named like `part` (another shard of the same work): what a
+// missing part is called.
+std::string siblingPart(const Part& part, int index) {
+    const fs::path p(part.path);
+    const std::string name = p.filename().string();
+    const std::string unsharded = name.substr(0, name.rfind(".shard-")) + p.extension().string();
+    return shardFileName((p.parent_path() / unsharded).string(), Shard{index, part.shard.count});
+}
+
 // The parts in shard order, checked to be shards 1..N of one N, each once.
 std::vector<Part> shardParts(const std::vector<std::string>& paths) {
     std::vector<Part> parts;
@@ -52,7 +61,7 @@ std::vector<Part> shardParts(const std::vector<std::string>& paths) {
     std::sort(parts.begin(), parts.end(),
               [](const Part& a, const Part& b) { return a.shard.index < b.shard.index; });
     const int n = parts.front().shard.count;
-    std::string missing;
+    std::string missing, missingFiles;
     int missingCount = 0;
     for (int k = 0, i = 0; k < n; ++k) {
         if (i < int(parts.size()) && parts[i].shard.index == k) {
@@ -61,13 +70,15 @@ std::vector<Part> shardParts(const std::vector<std::string>& paths) {
             ++i;
         } else {
             missing += (missing.empty() ? "" : ", ") + std::to_string(k + 1);
+            missingFiles += (missingFiles.empty() ? "" : ", ") + siblingPart(parts.front(), k);
             ++missingCount;
         }
     }
     if (missingCount > 0)
         throw std::runtime_error("merge: " + std::string(missingCount == 1 ? "shard " : "shards ") +
                                  missing + " of " + std::to_string(n) +
-                                 (missingCount == 1 ? " is" : " are") + " missing");
+                                 (missingCount == 1 ? " is" : " are") + " missing (" +
+                                 missingFiles + ")");
     return parts;
 }
 

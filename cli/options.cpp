@@ -320,21 +320,7 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
     return items;
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".tmp");
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        f << text;
-        f.close();
-        if (!f) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw std::runtime_error(path + ": cannot write");
-        }
-    }
-    fs::rename(tmp, target);
-}
+void writeTextFile(const std::string& path, const std::string& text) { writeTextWhole(path, text); }
 
 void checkCsvPath(const std::string& option, const std::string& path) {
     const fs::path p(path);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
 #include "cli/sequence.h"
@@ -35,9 +36,11 @@ CLI::App* addReferenceCommand(CLI::App& app, ReferenceOptions& o) {
 }
 
 int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream& err) {
+    const InterruptScope interruptible;  // the reference stops between tiles (cli/interrupt.h)
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
+    refSettings.cancel = interruptFlag();
     if (!isExrPath(o.output))
         throw std::invalid_argument("-o: '" + o.output +
                                     "': a reference is written as an EXR (.exr): its planes are "
@@ -79,8 +82,16 @@ int runReference(const ReferenceOptions& o, std::ostream& /*out*/, std::ostream&
     // The key hashes the whole scene: once, for the cache and for a band's header.
     const uint64_t key = referenceKey(scene, input.camera, input.frameIndex, settings, refSettings);
     bool fromCache = false;
-    const ReferenceImage ref =
-        referenceForKey(key, embree, scene, input, settings, refSettings, source, fromCache, band);
+    const auto stopped = [&] { return "0 of 1 reference (" + output + " not written)"; };
+    stopIfInterrupted(stopped);
+    const ReferenceImage ref = [&] {
+        try {
+            return referenceForKey(key, embree, scene, input, settings, refSettings, source,
+                                   fromCache, band);
+        } catch (const ReferenceCancelled&) {
+            throw Interrupted(stopped());
+        }
+    }();
     if (progress) *progress << "reference: " << (fromCache ? "from the cache" : "rendered") << "\n";
     if (band) {
         writeReferenceImage(

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
 #include "cli/progress_line.h"
@@ -170,7 +171,22 @@ std::string renderOutput(const RenderOptions& o) {
 // ---------------------------------------------------------------------------------------
 // The command
 
+namespace {
+
+// How far an interrupted render got: "3 of 200 frames (out_0000.png to out_0002.png written
+// whole)".
+std::string framesWrittenText(int written, int total, const std::string& first,
+                              const std::string& last) {
+    const std::string files = written == 0   ? "none written"
+                              : written == 1 ? last + " written whole"
+                                             : first + " to " + last + " written whole";
+    return std::to_string(written) + " of " + plural(total, "frame") + " (" + files + ")";
+}
+
+}  // namespace
+
 int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
+    const InterruptScope interruptible;  // stops between frames (cli/interrupt.h)
     SceneRequest request = loadSceneRequest(o);
     const RenderSettings& settings = request.settings;
     const SequencePlan plan = sequencePlanFrom(o, request);
@@ -246,7 +262,13 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     if (o.json && o.stats) document["frames"] = Json::array();
     // For the frame lines' time left (the message only).
     const auto sequenceStart = std::chrono::steady_clock::now();
+    int framesWritten = 0;
+    std::string firstWritten, lastWritten;
     for (int step = startStep; step < endStep; ++step) {
+        stopIfInterrupted([&] {
+            return framesWrittenText(framesWritten, int(block.end - block.begin), firstWritten,
+                                     lastWritten);
+        });
         FrameInput input = sequence.input(step);
         // No frame reads the last one's history: it is read, not replaced (the same image,
         // without the denoiser's history planes and their writes).
@@ -268,6 +290,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         const std::string file = sequenceFileName(output, i, frames);
         const auto written = std::chrono::steady_clock::now();
         writeFrame(file, frame, writeOptions);
+        if (framesWritten++ == 0) firstWritten = file;
+        lastWritten = file;
         const std::chrono::duration<double, std::milli> write =
             std::chrono::steady_clock::now() - written;
         if (!o.quiet) {

@@ -105,6 +105,8 @@ SequenceEvaluation evaluateSequence(const TruthContext& t, const FrameSequence& 
     const std::size_t earlier = std::size_t(t.evaluation.repeats - 1);
     PlaneF previous[3];
     for (int step = 0; step < sequence.steps(); ++step) {
+        // The reference's cancel flag (ssrt sweep's interrupt) stops the frames between too.
+        if (t.reference.cancel && t.reference.cancel->load()) throw ReferenceCancelled();
         const FrameInput input = sequence.input(step);
         const int i = sequence.frameOf(step);
         const bool last = step == sequence.steps() - 1;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
 #include "cli/sequence.h"
@@ -407,6 +408,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
 }
 
 int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
+    const InterruptScope interruptible;  // stops between settings and reference tiles
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     request.settings.trace.traceHidden = o.traceHidden;
     std::vector<Point> points = grid(o);
@@ -417,7 +419,8 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     }
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
-    const ReferenceSettings refBase = referenceSettingsFrom(o.truth);
+    ReferenceSettings refBase = referenceSettingsFrom(o.truth);
+    refBase.cancel = interruptFlag();
     std::string shardSource;
     const Shard shard = shardFrom(o.shard, &shardSource);
     const std::string output = shardFileName(o.output, shard);
@@ -452,8 +455,16 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         << std::setw(12) << "relMSE"
         << "\n";
     Frame frame;
+    int done = 0;
+    // The CSV is written whole at the end, so a stopped sweep (or shard) leaves none: merge
+    // then names the shard as missing rather than taking a part with rows missing.
+    const auto stopped = [&] {
+        return std::to_string(done) + " of " + plural(ownedCount(shard, points.size()), "setting") +
+               " (" + output + " not written: it is written when the sweep ends)";
+    };
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (!ownsSetting(shard, i)) continue;
+        stopIfInterrupted(stopped);
         if (progress)
             *progress << "setting " << (i + 1) << "/" << points.size() << ": "
                       << describe(points[i]) << "\n";
@@ -464,10 +475,15 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
         RenderSettings refRender = settings[i];
         if (!points[i].traced) refRender.trace = request.settings.trace;
         const TruthContext truth{embree, scene, refSettings, source, evalSettings, progress};
-        const SequenceEvaluation result =
-            points[i].embreeSpp > 0
-                ? evaluateEmbreePoint(truth, sequence, settings[i], points[i].embreeSpp)
-                : evaluateSequence(truth, sequence, settings[i], refRender, frame);
+        const SequenceEvaluation result = [&] {
+            try {
+                return points[i].embreeSpp > 0
+                           ? evaluateEmbreePoint(truth, sequence, settings[i], points[i].embreeSpp)
+                           : evaluateSequence(truth, sequence, settings[i], refRender, frame);
+            } catch (const ReferenceCancelled&) {
+                throw Interrupted(stopped());
+            }
+        }();
         if (points[i].embreeSpp == 0) requireSurface(frame);  // (before any file is written)
         const Evaluation& ev = result.last;
         csv << csvRow(int(i), request.name, settings[i], points[i], refSettings, plan, result)
@@ -477,6 +493,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
             << std::setprecision(2) << std::setw(12) << ev.frameMs << std::scientific
             << std::setprecision(3) << std::setw(12) << ev.error.color.relMse << std::defaultfloat
             << "\n";
+        ++done;
     }
     writeTextFile(output, csv.str());
     if (progress) *progress << "wrote " << output << "\n";

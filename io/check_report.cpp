@@ -32,23 +32,6 @@ std::string escaped(const std::string& text) {
     return out;
 }
 
-// Whole or not at all: a temporary beside the target, renamed over it.
-void writeWhole(const std::string& path, const std::string& text) {
-    const fs::path tmp = fs::path(path).concat(".tmp");
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.flush();
-        if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write '" + path + "'");
-    }
-}
-
 // Failed, erroring, stale and new cases first (the ones a person opens the page for).
 std::vector<const ReportCase*> pageOrder(const CheckReport& report) {
     std::vector<const ReportCase*> order;
@@ -143,7 +126,7 @@ void writeHtmlReport(const std::string& path, const CheckReport& report) {
       << escaped(report.summary) << "</p>\n";
     for (const ReportCase* c : pageOrder(report)) caseSection(h, *c);
     h << kScript << "</body>\n</html>\n";
-    writeWhole(path, h.str());
+    writeTextWhole(path, h.str());
 }
 
 void writeJunitReport(const std::string& path, const CheckReport& report) {
@@ -171,7 +154,7 @@ void writeJunitReport(const std::string& path, const CheckReport& report) {
           << escaped(c.message) << "\">" << escaped(c.command) << "</" << tag << ">\n</testcase>\n";
     }
     x << "</testsuite>\n</testsuites>\n";
-    writeWhole(path, x.str());
+    writeTextWhole(path, x.str());
 }
 
 void writePreviewPng(const std::string& image, const std::string& png) {

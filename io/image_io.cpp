@@ -103,10 +103,56 @@ fs::path temporaryPathFor(const std::string& path, const std::string& ext) {
     return directoryOf(path) / name;
 }
 
+// ---------------------------------------------------------------------------------------
+// Temporaries in flight, for removeTemporariesInFlight
+//
+// A signal handler may read this table at any moment, so it holds plain characters in fixed
+// slots and lock-free atomics: no allocation, no lock. A slot's state goes free -> filling ->
+// set (the path may be read) -> free; the handler claims a set slot (set -> claimed) before
+// reading its path, so a writer that finishes at that moment never frees the slot under it.
+
+constexpr int kInFlightSlots = 64;  // writes at once in one process (check's jobs, ...)
+constexpr std::size_t kInFlightPathBytes = 4096;  // PATH_MAX
+enum InFlightState : int { kFree, kFilling, kSet, kClaimed };
+struct InFlightSlot {
+    std::atomic<int> state{kFree};
+    char path[kInFlightPathBytes];
+};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads these");
+InFlightSlot gInFlight[kInFlightSlots];
+
+// Registers a temporary's path for the lifetime of a write, before the file is created (a
+// signal may come the instant it exists). A path too long for a slot, or a slot table that is
+// full, goes unregistered: such a temporary is then removed by the write's own error path only.
+class InFlight {
+public:
+    explicit InFlight(const fs::path& path) {
+        const std::string& text = path.native();
+        if (text.size() >= kInFlightPathBytes) return;
+        for (int i = 0; i < kInFlightSlots && slot_ < 0; ++i) {
+            int expected = kFree;
+            if (!gInFlight[i].state.compare_exchange_strong(expected, kFilling)) continue;
+            std::memcpy(gInFlight[i].path, text.c_str(), text.size() + 1);
+            gInFlight[i].state.store(kSet, std::memory_order_release);
+            slot_ = i;
+        }
+    }
+    ~InFlight() {
+        if (slot_ < 0) return;
+        // A slot a handler claimed stays claimed: the process is ending.
+        int expected = kSet;
+        gInFlight[slot_].state.compare_exchange_strong(expected, kFree);
+    }
+    InFlight(const InFlight&) = delete;
+    InFlight& operator=(const InFlight&) = delete;
+
+private:
+    int slot_ = -1;
+};
+
 // Creates the temporary file exclusively, so the reason a directory refuses us comes from the
 // operating system itself (permissions, read-only file system, ...) rather than a guess.
-fs::path reserveTemporary(const std::string& path, const std::string& ext) {
-    const fs::path tmp = temporaryPathFor(path, ext);
+void createTemporary(const std::string& path, const fs::path& tmp) {
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {
         const int err = errno;
@@ -116,7 +162,27 @@ fs::path reserveTemporary(const std::string& path, const std::string& ext) {
                             std::strerror(err) + ")");
     }
     ::close(fd);
-    return tmp;
+}
+
+// Writes `tmp` (registered in flight, created, filled by `fill`) and renames it over `path`;
+// on any failure the temporary is removed and the error passed on.
+template <class Fill>
+void writeThroughTemporary(const std::string& path, const std::string& ext, Fill&& fill) {
+    const fs::path tmp = temporaryPathFor(path, ext);
+    const InFlight inFlight(tmp);
+    createTemporary(path, tmp);
+    try {
+        fill(tmp);
+        // rename() within one directory replaces the target atomically: readers see the old
+        // file or the new one, never a half-written one.
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec) failWrite(path, ec.message());
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -241,7 +307,12 @@ void writeExr(const std::string& path, const fs::path& tmp, const ImageLayers& i
         file.setFrameBuffer(buffer);
         file.writePixels(image.height);
     } catch (const std::exception& e) {
-        failWrite(path, e.what());
+        // OpenEXR names the temporary, which is removed: the line names the target alone.
+        std::string why = e.what();
+        const std::string named = " \"" + tmp.string() + "\"";
+        for (std::size_t at; (at = why.find(named)) != std::string::npos;)
+            why.erase(at, named.size());
+        failWrite(path, why);
     }
 }
 
@@ -258,7 +329,9 @@ const std::vector<std::string>& supportedImageExtensions() {
 void checkWritable(const std::string& path) {
     const std::string ext = checkedExtension(path);
     checkDirectory(path);
-    const fs::path probe = reserveTemporary(path, ext);
+    const fs::path probe = temporaryPathFor(path, ext);
+    const InFlight inFlight(probe);
+    createTemporary(path, probe);
     std::error_code ec;
     fs::remove(probe, ec);
 }
@@ -282,19 +355,31 @@ void writeImage(const std::string& path, const ImageLayers& image, const WriteOp
     const std::string ext = checkedExtension(path);
     checkFrame(path, image, ext);
     checkDirectory(path);
-    const fs::path tmp = reserveTemporary(path, ext);
-    try {
+    writeThroughTemporary(path, ext, [&](const fs::path& tmp) {
         if (ext == ".png") writePng(path, tmp, image, options);
         else writeExr(path, tmp, image, options);
-        // rename() within one directory replaces the target atomically: readers see the old
-        // file or the new one, never a half-written one.
-        std::error_code ec;
-        fs::rename(tmp, path, ec);
-        if (ec) failWrite(path, ec.message());
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
+    });
+}
+
+void writeTextWhole(const std::string& path, const std::string& text) {
+    checkDirectory(path);
+    writeThroughTemporary(path, lowerExtension(path), [&](const fs::path& tmp) {
+        errno = 0;
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        const int err = errno;  // (the stream keeps no reason; the failed write's errno is it)
+        if (!out) failWrite(path, err ? std::strerror(err) : "the write failed");
+        out.close();
+        if (!out) failWrite(path, std::strerror(errno));
+    });
+}
+
+void removeTemporariesInFlight() noexcept {
+    for (InFlightSlot& slot : gInFlight) {
+        int expected = kSet;
+        if (slot.state.compare_exchange_strong(expected, kClaimed, std::memory_order_acquire))
+            ::unlink(slot.path);
     }
 }
 

@@ -34,6 +34,16 @@ namespace ssrt {
 void writeImage(const std::string& path, const ImageLayers& image,
                 const WriteOptions& options = {});
 
+// Writes `text` to `path` whole or not at all, as writeImage writes an image (a temporary
+// beside it, renamed over it): the CSVs, reports and other text files. Throws
+// std::runtime_error, one line naming the path and the reason ("No space left on device").
+void writeTextWhole(const std::string& path, const std::string& text);
+
+// Removes the temporaries of the writes in flight in this process (writeImage's,
+// writeTextWhole's, checkWritable's probe), for a signal handler about to end the process
+// (cli/interrupt.h): async-signal-safe, it only reads fixed buffers and calls unlink().
+void removeTemporariesInFlight() noexcept;
+
 // Fails fast, before minutes of rendering, for a path writeImage would reject: throws
 // std::invalid_argument for an unsupported extension and std::runtime_error when the
 // directory is missing, is not a directory, or is not writable, or the path is a directory.

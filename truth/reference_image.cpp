@@ -65,14 +65,20 @@ struct Setup {
     uint32_t frameIndex = 0;                       // the frame's RNG frame
     std::vector<glm::vec3> offset;                 // per pixel: surfaceOffsets
     int firstTile = 0, tileCount = 0;              // the band's tiles (row-major, whole rows)
+    const std::atomic<bool>* cancel = nullptr;     // ReferenceSettings::cancel
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
     explicit Setup(const Frame& f) : frame(f) {}
 };
 
 // fn(tile) for the band's tiles, on the setup's threads. Every pixel's value depends only on
 // its own rays (per-pixel random numbers), so a band's pixels are the whole frame's bits.
+// Once the cancel flag is up the remaining tiles are skipped and the reference ends.
 template <class Fn>
 void forBandTiles(const Setup& s, Fn&& fn) {
-    parallelForTiles(s.tileCount, s.threads, [&](int t) { fn(s.firstTile + t); });
+    parallelForTiles(s.tileCount, s.threads, [&](int t) {
+        if (!s.cancelled()) fn(s.firstTile + t);
+    });
+    if (s.cancelled()) throw ReferenceCancelled();
 }
 
 void requireTraced(const Frame& frame, const RenderSettings& rs) {
@@ -400,6 +406,7 @@ ReferenceImage renderReference(const EmbreeScene& embree, const Renderer& render
     settings.validate();
     requireTraced(frame, renderer.settings());
     Setup s(frame);
+    s.cancel = settings.cancel;
     fillSetup(s, embree, renderer, settings);
     if (band) {
         if (band->y0 < 0 || band->y0 >= band->y1 || band->y1 > frame.height ||

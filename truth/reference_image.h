@@ -40,9 +40,11 @@
 // reference and frame differ only where screen space guessed.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 
 #include "core/image.h"
 #include "renderer/renderer.h"
@@ -71,7 +73,16 @@ struct ReferenceSettings {
     // 64 fixed bounces' to 4 digits (tests/truth/reference_bounces_test.cpp).
     static constexpr int kConverged = 0;
     static constexpr float kNegligibleThroughput = 1e-3f;
+    // When set and true, renderReference stops at its next tile and throws ReferenceCancelled
+    // (a tile is a few milliseconds of rays at any spp): how `ssrt reference` and `ssrt sweep`
+    // stop within a second of SIGINT (cli/interrupt.h). Not part of the image or its key.
+    const std::atomic<bool>* cancel = nullptr;
     void validate() const;  // throws std::invalid_argument naming the field
+};
+
+// What renderReference throws when ReferenceSettings::cancel turned true: no image is given.
+struct ReferenceCancelled : std::runtime_error {
+    ReferenceCancelled() : std::runtime_error("the reference was cancelled") {}
 };
 
 // Planes of the frame's size. Scene-linear (before exposure) except color.
