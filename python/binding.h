@@ -32,10 +32,10 @@ struct PyFrame {
     SceneData scene;
 };
 
-// The caller's history, and whether a render is reading it now (two at once would race).
+// The caller's history (a second render call using it while one is, from another thread, is
+// refused by the renderer: FrameHistory::inUse).
 struct PyHistory {
     FrameHistory history;
-    bool busy = false;
 };
 
 // Runs `fn`; a C++ error becomes the Python exception for its kind, its message unchanged:

@@ -10,31 +10,11 @@ namespace ssrt::python {
 
 namespace {
 
-// Marks a history in use for the length of one render: a second render reading or committing
-// the same history from another thread would race, so it is refused instead.
-class HistoryLease {
-public:
-    explicit HistoryLease(PyHistory* h) : h_(h) {
-        if (!h_) return;
-        if (h_->busy)
-            throw py::value_error("history: already in use by a render on another thread");
-        h_->busy = true;
-    }
-    ~HistoryLease() {
-        if (h_) h_->busy = false;
-    }
-    HistoryLease(const HistoryLease&) = delete;
-    HistoryLease& operator=(const HistoryLease&) = delete;
-
-private:
-    PyHistory* h_;
-};
-
-// One frame into a new Frame (views of earlier frames stay as they were), the GIL released.
+// One frame into a new Frame (views of earlier frames stay as they were), the GIL released. A
+// history another thread's render is using is refused by the renderer (RuntimeError).
 PyFrame renderOne(const Renderer& renderer, const PyScene& scene, const FrameInput& input,
                   PyHistory* history) {
     auto frame = std::make_shared<Frame>();
-    const HistoryLease lease(history);
     withFiles({}, [&] {
         py::gil_scoped_release unlocked;
         if (history) renderer.render(scene.data->scene, input, history->history, *frame);
@@ -146,7 +126,11 @@ void bindFrames(py::module_& m) {
         .def(py::init<>())
         .def_property_readonly(
             "valid", [](const PyHistory& h) { return h.history.valid; },
-            "A frame has committed into it");
+            "A frame has committed into it")
+        .def_property_readonly(
+            "in_use", [](const PyHistory& h) { return h.history.inUse.held(); },
+            "A render call is using it now (another one, from another thread, is refused with "
+            "a RuntimeError)");
 
     py::class_<Sequence>(m, "Sequence", "The frames of Renderer.sequence(), rendered one per step.")
         .def("__iter__", [](py::object self) { return self; })

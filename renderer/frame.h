@@ -23,6 +23,7 @@
 #include "raster/raster_stats.h"
 #include "raster/resolve_kernel.h"
 #include "raster/shadow_map.h"
+#include "renderer/in_use.h"
 #include "renderer/plane_store.h"
 #include "renderer/resources.h"
 #include "trace/color_pyramid.h"
@@ -100,6 +101,8 @@ struct FrameHistory : PlaneTable<FrameHistory> {
     // The diffuse signal's, at half resolution, where SSGI traces at half (TraceLayout::Half):
     // it is denoised on the half frame and brought to full resolution after.
     DenoiseHistory denoiseHalf;
+    // Held by the render call reading and committing it: a second call at once is refused.
+    InUse inUse;
 
     template <class G, class Fn>
     static void table(G& g, Fn& fn) {
@@ -167,6 +170,8 @@ struct Frame {
     // Layers a caller adds after rendering (`ssrt compare`: the truth's), written after ours.
     std::vector<NamedPlane> extraLayers;
     FrameStats stats;
+    // Held by the render call filling it: a second call at once is refused.
+    InUse inUse;
 
     // Buffers the passes need but do not hand out; kept so that rendering into the same
     // Frame again reuses every allocation (no page faults, no clears).

@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "core/tiles.h"
@@ -257,6 +258,25 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
     }
 }
 
+// Holds an object's InUse (renderer/in_use.h) for one render call and lets it go on every way
+// out, an exception's too; refuses, naming the object, when another call holds it.
+class Claim {
+public:
+    Claim(InUse* flag, const char* what, const char* why) : flag_(flag) {
+        if (flag_ && !flag_->claim())
+            throw std::logic_error(std::string("render: the ") + what +
+                                   " is in use by another render call (" + why + ")");
+    }
+    ~Claim() {
+        if (flag_) flag_->release();
+    }
+    Claim(const Claim&) = delete;
+    Claim& operator=(const Claim&) = delete;
+
+private:
+    InUse* flag_;
+};
+
 }  // namespace
 
 GBufferView GBuffer::view() const {
@@ -327,6 +347,9 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
 
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
+    const Claim historyUse(history ? &history->inUse : nullptr, "FrameHistory",
+                           "a history carries one sequence, one frame at a time");
+    const Claim frameUse(&frame.inUse, "Frame", "give each thread a Frame of its own");
     scene.validate();
     const bool readsLast =
         history && !input.resetHistory && history->readableAt(settings_.width, settings_.height);

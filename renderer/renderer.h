@@ -51,8 +51,9 @@ public:
     // this frame's size) and, after the composite, commits this frame's into it when the
     // settings read it again (SSR with HitRadiance::Reprojected, SSGI with ssgiFeedback). Renders
     // into `frame`, reusing its planes and scratch buffers when their sizes match. Safe to call
-    // from several threads at once with different frames and histories. `observer` (optional) sees
-    // every traced sample. The planes: renderer/frame.h.
+    // from several threads at once with different frames and histories; a frame or history
+    // another call is using is refused (std::logic_error naming it), never raced on. `observer`
+    // (optional) sees every traced sample. The planes: renderer/frame.h.
     void render(const Scene& scene, const FrameInput& input, FrameHistory& history, Frame& frame,
                 const TraceObserver* observer = nullptr) const;
     Frame render(const Scene& scene, const FrameInput& input, FrameHistory& history) const;
