@@ -273,8 +273,17 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         // No frame reads the last one's history: it is read, not replaced (the same image,
         // without the denoiser's history planes and their writes).
         input.replaceHistory = step + 1 < endStep;
+        input.cancel = interruptFlag();  // a large frame stops between its passes
         const auto start = std::chrono::steady_clock::now();
-        renderer.render(scene, input, history, frame);
+        try {
+            renderer.render(scene, input, history, frame);
+        } catch (const RenderCancelled&) {
+            stopIfInterrupted([&] {
+                return framesWrittenText(framesWritten, int(block.end - block.begin), firstWritten,
+                                         lastWritten);
+            });
+            throw;  // (raised by no one else)
+        }
         const std::chrono::duration<double, std::milli> wall =
             std::chrono::steady_clock::now() - start;
         if (sequence.isWarmup(step)) {

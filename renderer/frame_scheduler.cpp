@@ -6,6 +6,7 @@
 #include <string>
 
 #include "renderer/pass_timer.h"
+#include "renderer/render_cancel.h"
 
 namespace ssrt {
 
@@ -72,7 +73,9 @@ void FrameScheduler::run(FrameStats& stats) {
     std::vector<const Pass*> chain;
     int chainId = -1;
     const auto flush = [&] {
-        if (!chain.empty()) runChain(chain, stats);
+        if (chain.empty()) return;
+        stopIfCancelled(cancel_);
+        runChain(chain, stats);
         chain.clear();
     };
     for (const GraphPass& g : graph_.passes) {
@@ -84,6 +87,7 @@ void FrameScheduler::run(FrameStats& stats) {
         }
         if (p->whole) {
             flush();
+            stopIfCancelled(cancel_);
             p->whole();
             continue;
         }

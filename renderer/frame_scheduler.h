@@ -11,6 +11,7 @@
 // reads around its pixel starts a chain of its own.)
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string_view>
 #include <vector>
@@ -23,8 +24,10 @@ namespace ssrt {
 
 class FrameScheduler {
 public:
-    FrameScheduler(const CompiledGraph& graph, const TileGrid& grid, int threads)
-        : graph_(graph), grid_(grid), threads_(threads) {}
+    // `cancel` (optional) is read before each whole pass and each chain (render_cancel.h).
+    FrameScheduler(const CompiledGraph& graph, const TileGrid& grid, int threads,
+                   const std::atomic<bool>* cancel = nullptr)
+        : graph_(graph), grid_(grid), threads_(threads), cancel_(cancel) {}
 
     // A pass that runs over the whole frame by itself (and times itself). A name given twice
     // is a std::logic_error.
@@ -50,6 +53,7 @@ private:
     const CompiledGraph& graph_;
     TileGrid grid_;
     int threads_;
+    const std::atomic<bool>* cancel_;
     std::vector<Pass> passes_;
 };
 

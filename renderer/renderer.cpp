@@ -364,7 +364,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
 
     // The passes up to the direct light: the rasters over the whole frame, then the resolve,
     // textures, ids and shading tile by tile, one loop, as the graph chains them.
-    FrameScheduler passes(graph, c.grid, c.threads);
+    FrameScheduler passes(graph, c.grid, c.threads, input.cancel);
     passes.whole(pass::kShadow, [&] { shadowPass(c, scene, frame); });
     passes.whole(pass::kVisibility, [&] { visibilityPass(c, scene, frame); });
     const bool textured = graph.runs(pass::kTextures);
@@ -395,8 +395,9 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {
         runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
-                        history, input.resetHistory, input.replaceHistory, observer},
+                        history, input.resetHistory, input.replaceHistory, observer, input.cancel},
                        frame);
+        stopIfCancelled(input.cancel);
         memory.step(pass::kHistoryCommit, [&] {
             if (graph.runs(pass::kHistoryCommit)) commitHistory(settings_.trace, frame, *history);
         });

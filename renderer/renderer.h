@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "renderer/frame.h"
+#include "renderer/render_cancel.h"
 #include "renderer/settings.h"
 #include "scenes/scene.h"
 
@@ -34,6 +35,9 @@ struct FrameInput {
     // false: the history is read but left as it was, for a frame no later frame reads (the
     // last of a sequence): the same image, without making the new history.
     bool replaceHistory = true;
+    // Optional: a flag read between the frame's passes; raised, the render stops at the next
+    // and throws RenderCancelled (renderer/render_cancel.h). Not part of the image.
+    const std::atomic<bool>* cancel = nullptr;
 
     // The scene's own cameras.
     static FrameInput still(const Scene& scene, uint32_t frameIndex = 0) {

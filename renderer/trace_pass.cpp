@@ -41,20 +41,25 @@ void runTracePasses(TraceContext c, Frame& frame) {
     c.backZ = backZ(frame.scratch.backZ);
     const CompiledGraph& g = c.graph;
     FrameMemory& m = c.memory;
-    m.step(pass::kHiZ, [&] {
+    // Each step after the cancel flag is read (renderer/render_cancel.h).
+    const auto step = [&](std::string_view last, auto&& run) {
+        stopIfCancelled(c.cancel);
+        m.step(last, run);
+    };
+    step(pass::kHiZ, [&] {
         if (g.runs(pass::kHiZ)) hiZPass(c, frame);
     });
-    m.step(pass::kSsrReconstruct, [&] {
+    step(pass::kSsrReconstruct, [&] {
         if (g.runs(pass::kSsr)) ssrPass(c, frame);
     });
-    m.step(pass::kSsgiReconstruct, [&] {
+    step(pass::kSsgiReconstruct, [&] {
         if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
     });
-    m.step(pass::kDenoiseHistory, [&] {
+    step(pass::kDenoiseHistory, [&] {
         if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf))
             denoisePass(c, frame);
     });
-    m.step(pass::kComposite, [&] {
+    step(pass::kComposite, [&] {
         if (g.runs(pass::kComposite)) compositePass(c, frame);
     });
 }

@@ -30,9 +30,10 @@ struct TraceContext {
     // The sequence's history for the denoiser, which reads and replaces its own part
     // (DenoiseHistory); null: no history (each pixel starts afresh, nothing is kept).
     FrameHistory* sequence;
-    bool resetHistory;              // a cut: the denoiser's history is not read
-    bool replaceHistory;            // false: the denoiser reads its history, leaves it as it was
-    const TraceObserver* observer;  // optional: sees each sample's rays and march result
+    bool resetHistory;                // a cut: the denoiser's history is not read
+    bool replaceHistory;              // false: the denoiser reads its history, leaves it as it was
+    const TraceObserver* observer;    // optional: sees each sample's rays and march result
+    const std::atomic<bool>* cancel;  // optional: read before each pass (render_cancel.h)
     // Set by runTracePasses from the frame:
     TraceCamera camera{};           // the frame's, as the kernels take it
     const PlaneF* backZ = nullptr;  // the march's back-face layer (trace/march.h); null: none
