@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cli/cli.h"
+#include "cli/interrupt.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
 #include "cli/reference_cache.h"
@@ -362,12 +363,14 @@ Json setupJson(const std::string& scene, const RenderSettings& settings,
 }  // namespace
 
 int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
+    const InterruptScope interruptible;  // stops between frames and reference tiles
     SceneRequest request = loadSceneRequest(o.render, truthDefaults());
     const RenderSettings& settings = request.settings;
     if (!settings.trace.any())
         throw std::invalid_argument("--no-ssr and --no-ssgi together leave nothing to compare");
     const SequencePlan plan = sequencePlanFrom(o.render, request);
     ReferenceSettings refSettings = referenceSettingsFrom(o.truth);
+    refSettings.cancel = interruptFlag();
     const EvaluationSettings evalSettings = evaluationSettingsFrom(o.truth);
     if (o.output) checkWritable(*o.output);
     const FrameWriteOptions writeOptions =
@@ -389,11 +392,18 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                              evalSettings, progress};
     const FrameSequence sequence(request, plan);
     Frame frame;
-    const SequenceEvaluation result = evaluateSequence(truth, sequence, settings, settings, frame);
+    // (Everything is written once the comparison is done: a stopped one writes nothing.)
+    SequenceEvaluation result;
+    std::optional<ReferenceImage> oneBounce;
+    try {
+        result = evaluateSequence(truth, sequence, settings, settings, frame);
+        requireSurface(frame);
+        oneBounce = oneBounceReference(truth, sequence.input(sequence.steps() - 1), settings);
+    } catch (const ReferenceCancelled&) {
+        throw Interrupted(
+            "part of the comparison (nothing written: compare writes its files when it is done)");
+    }
     const Evaluation& ev = result.last;
-    requireSurface(frame);
-    const std::optional<ReferenceImage> oneBounce =
-        oneBounceReference(truth, sequence.input(sequence.steps() - 1), settings);
     warnUnchecked(err, "ssr", "--no-ssr", "past the roughness fade", ev.ssr, ev.ssrCheck,
                   ev.stats.ssr.rays);
     warnUnchecked(err, "ssgi", "--no-ssgi", "without diffuse colour", ev.ssgi, ev.ssgiCheck,

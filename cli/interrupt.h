@@ -3,11 +3,12 @@
 // installInterruptHandlers (main, once) handles both signals for the whole process. While no
 // InterruptScope is alive, a signal ends the process at once, as the default action would,
 // after removing the temporaries of the writes in flight (io/image_io.h), so no command leaves
-// a `.NAME.tmp-*` file behind. While one is alive (render, reference, sweep and check: the
-// long commands), the first signal only raises a flag; the command checks it between its steps
-// (frames, reference tiles, sweep settings, check cases), stops with every file it wrote whole,
-// prints "ssrt: interrupted after N of M frames (...)" and exits 128 + the signal (130 for
-// SIGINT, 143 for SIGTERM). A second signal ends the process at once, as outside a scope.
+// a `.NAME.tmp-*` file behind. While one is alive (render, reference, compare, sweep and check:
+// the long commands), the first signal only raises a flag; the command checks it between its
+// steps (a frame's passes, reference tiles, sweep settings, check cases), stops with every file
+// it wrote whole, prints "ssrt: interrupted after N of M frames (...)" and exits 128 + the
+// signal (130 for SIGINT, 143 for SIGTERM). A second signal ends the process at once, as
+// outside a scope.
 // Every signal is passed on to the child processes running (ssrt check's cases). A SIGINT
 // ignored when the process starts (a script's background job) stays ignored.
 #pragma once

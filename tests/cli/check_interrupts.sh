@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 47's interrupts (cli/interrupt.h): SIGINT or SIGTERM during a long `render --frames`,
-# `reference`, `sweep` or `check` ends it within a second (checked loosely here: under
+# `reference`, `compare`, `sweep` or `check` ends it within a second (checked loosely here: under
 # $limit_ms on a loaded machine; each run prints the figure), exit 130 or 143, one line
 # "ssrt: interrupted after N of M ...", every file written whole (a render's frames
 # byte-identical to an uninterrupted run's), no temporary left; a second signal ends at once;
@@ -131,6 +131,16 @@ expect_stop 130 "^ssrt: interrupted after 0 of 1 reference \(.*ref.exr not writt
 [ ! -e "$dir/ref.exr" ] || fail "reference: ref.exr written"
 [ ! -e "$dir/cache" ] || [ -z "$(ls -A "$dir/cache")" ] ||
     fail "reference: the cache holds $(ls -A "$dir/cache")"
+
+# --- compare: stopped in its reference; it writes its files when done, so none -------------
+start compare "$ssrt" compare --scene cornell --width 160 --height 90 --reference-spp 65536 \
+    --no-cache -o "$dir/compare.exr"
+wait_for_line "$dir/compare.err" "^comparing"
+sleep 1
+stop INT
+expect_stop 130 "^ssrt: interrupted after part of the comparison \(nothing written: .*\)$"
+[ ! -e "$dir/compare.exr" ] || fail "compare: compare.exr written"
+no_temporaries "$dir"
 
 # --- sweep: stopped mid-setting; its CSV is written whole at the end, so not at all ---------
 start sweep "$ssrt" sweep --scene cornell --width 160 --height 90 --marchers linear,dda,hiz \
