@@ -37,13 +37,14 @@ fi
 
 # Other programs' flags that the docs quote (each with its program), not ssrt's.
 readonly kOtherFlags=(
-    --array --cpus-per-task --wait --wrap                 # sbatch
+    --array --cpus-per-task --wait --wrap --signal        # sbatch
     --install --prefix --component                        # cmake
     --variant                                             # debootstrap
     --no-install-recommends                               # apt-get
     --add-architecture                                    # dpkg
     --render                                              # scripts/build.sh
     --x --y                                               # perf/plot.py
+    --untimed                                             # perf/soak.sh
     --widht                                               # a misspelling shown as an error
 )
 
