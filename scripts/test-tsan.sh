@@ -10,10 +10,11 @@
 # synchronisation inside it (a task's spawn and its wait) and would report the tiles' writes
 # and the reads after the loop as races. So this builds Debian 12's own oneTBB (the package's
 # source and patches, checksums pinned below) with TBB_SANITIZE=thread, oneTBB's own switch, and
-# links against it: no suppression of anything. The build (about a minute) is kept outside the
+# links against it. The build (about a minute) is kept outside the
 # checkout (SSRT_TSAN_TBB_CACHE, default ~/.cache/ssrt-tsan-tbb), keyed by the recipe below, so a
 # second run reuses it. Embree and OpenImageIO stay Debian's (uninstrumented: TSan checks none
-# of their memory accesses); Embree's libtbb.so.12 is then this one, already loaded.
+# of their memory accesses); Embree's libtbb.so.12 is then this one, already loaded. One
+# suppression, for calls made from inside Embree (tests/tsan.supp says why); none for ssrt.
 #
 # Python is not instrumented, and clang 14's TSan run-time cannot be preloaded into it (it
 # crashes in libstdc++'s start-up), so the module's tests run under a two-line launcher built
@@ -128,7 +129,7 @@ for bin in build-tsan/tests/ssrt_tests build-tsan/ssrt; do
 done
 
 # halt_on_error: the first report ends the run (exit 66), so a race cannot pass unnoticed.
-export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp"
 t0=$SECONDS
 ./build-tsan/tests/ssrt_tests -tc='*thread*,concurrent render:*'
 echo "test-tsan: the threaded test cases took $((SECONDS - t0)) s" >&2
