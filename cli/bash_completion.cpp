@@ -13,7 +13,7 @@ namespace {
 // The shells `ssrt completion` writes a script for.
 const std::vector<std::string> kShells = {"bash"};
 
-std::string joined(const std::vector<std::string>& words) {
+std::string spaced(const std::vector<std::string>& words) {
     std::string out;
     for (const std::string& w : words) out += (out.empty() ? "" : " ") + w;
     return out;
@@ -42,7 +42,7 @@ ValueKind valueKind(const CLI::Option& o) {
 
 // The case arm of one command: completes the value of its options that take one, and
 // otherwise its flags (a word starting with '-') or its positional arguments.
-void writeCommand(const CLI::App& cmd, std::ostream& out) {
+void writeCompletionArm(const CLI::App& cmd, std::ostream& out) {
     std::vector<std::string> flags, scene, file, other;
     bool positionals = false;
     for (const CLI::Option* o : cmd.get_options()) {
@@ -72,9 +72,9 @@ void writeCommand(const CLI::App& cmd, std::ostream& out) {
     if (!file.empty()) out << "                " << pattern(file) << ") _ssrt_files; return ;;\n";
     if (!other.empty()) out << "                " << pattern(other) << ") return ;;\n";
     if (!scene.empty() || !file.empty() || !other.empty()) out << "            esac\n";
-    out << "            flags=\"" << joined(flags) << "\"\n";
+    out << "            flags=\"" << spaced(flags) << "\"\n";
     if (cmd.get_name() == "completion")
-        out << "            positional=(words \"" << joined(kShells) << "\")\n";
+        out << "            positional=(words \"" << spaced(kShells) << "\")\n";
     else if (positionals) out << "            positional=(files)\n";
     out << "            ;;\n";
 }
@@ -87,7 +87,7 @@ CLI::App* addCompletionCommand(CLI::App& app, std::string& shell) {
         "Print a shell completion script for ssrt, made from its own commands and flags (load "
         "it with: source <(ssrt completion bash); installed to "
         "share/bash-completion/completions/ssrt)");
-    cmd->add_option("SHELL", shell, "The shell: " + joined(kShells))
+    cmd->add_option("SHELL", shell, "The shell: " + spaced(kShells))
         ->required()
         ->check(CLI::IsMember(kShells));
     return cmd;
@@ -133,7 +133,7 @@ void writeBashCompletion(const CLI::App& app, std::ostream& out) {
            "        prev=\"${COMP_WORDS[COMP_CWORD - 2]}\"\n"
            "    fi\n"
            "    local scenes=\""
-        << joined(knownSceneNames())
+        << spaced(knownSceneNames())
         << "\"\n"
            "    for ((i = 1; i < COMP_CWORD; i++)); do\n"
            "        case \"${COMP_WORDS[i]}\" in\n"
@@ -144,14 +144,14 @@ void writeBashCompletion(const CLI::App& app, std::ostream& out) {
            "    case \"$command\" in\n"
            "        \"\")\n"
            "            flags=\""
-        << joined(topFlags)
+        << spaced(topFlags)
         << "\"\n"
            "            positional=(words \""
-        << joined(commands)
+        << spaced(commands)
         << "\")\n"
            "            ;;\n";
     for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
-        writeCommand(*c, out);
+        writeCompletionArm(*c, out);
     out << "        *) return ;;\n"
            "    esac\n"
            "    if [[ \"$cur\" == -* ]]; then\n"

@@ -39,7 +39,7 @@ std::string shortName(const std::string& channel) {
     return dot == std::string::npos ? channel : channel.substr(dot + 1);
 }
 
-std::string joined(const std::vector<std::string>& channels) {
+std::string shortChannelList(const std::vector<std::string>& channels) {
     std::string out;
     for (const std::string& c : channels) out += (out.empty() ? "" : ",") + shortName(c);
     return out;
@@ -50,7 +50,7 @@ std::vector<std::string> rowOf(const LayerDiff& l, const DiffThresholds& limits)
     std::string why;
     const bool ok = withinThresholds(l, limits, &why);
     if (l.presence != LayerDiff::Presence::Both)
-        return {l.name, joined(l.channels), "-", "-", "-", "-", "-", why};
+        return {l.name, shortChannelList(l.channels), "-", "-", "-", "-", "-", why};
     const bool differs = l.maxError > 0.0;
     const std::string where =
         differs ? "(" + std::to_string(l.maxX) + ", " + std::to_string(l.maxY) + ") " + l.maxChannel
@@ -59,7 +59,7 @@ std::vector<std::string> rowOf(const LayerDiff& l, const DiffThresholds& limits)
                                 : ok        ? (differs ? "within" : "equal")
                                             : "beyond: " + why;
     return {l.name,
-            joined(l.channels),
+            shortChannelList(l.channels),
             number(l.maxError),
             where,
             number(l.relMse),
@@ -100,7 +100,9 @@ void printFlip(std::ostream& out, const FlipResult& r, const FlipFileOptions& op
 
 }  // namespace
 
-std::string channelList(const std::vector<std::string>& channels) { return joined(channels); }
+std::string channelList(const std::vector<std::string>& channels) {
+    return shortChannelList(channels);
+}
 
 std::string number(double v) {
     if (std::isinf(v)) return "inf";

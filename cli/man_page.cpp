@@ -63,7 +63,7 @@ void writeOption(const CLI::Option& o, std::ostream& out) {
 
 // One command: its usage, description, positional arguments and options by help section, in
 // the order `ssrt COMMAND --help` gives them (an option of the empty group is hidden there).
-void writeCommand(const CLI::App& cmd, std::ostream& out) {
+void writeManSection(const CLI::App& cmd, std::ostream& out) {
     out << ".SS \"" << literal(cmd.get_name()) << "\"\n"
         << ".B " << literal(usage(cmd)) << "\n.PP\n"
         << roff(cmd.get_description()) << "\n";
@@ -116,7 +116,7 @@ void writeManPage(const CLI::App& app, const std::string& exitStatus, const std:
         << ".SH OPTIONS\n";
     for (const CLI::Option* o : app.get_options()) writeOption(*o, out);
     out << ".SH COMMANDS\n";
-    for (const CLI::App* c : commands) writeCommand(*c, out);
+    for (const CLI::App* c : commands) writeManSection(*c, out);
     // The footer's text without its own heading ("Exit status: 0 success ...").
     std::string statuses = exitStatus;
     if (statuses.rfind("Exit status: ", 0) == 0) statuses.erase(0, 13);

@@ -194,7 +194,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const std::string output = renderOutput(o);
     std::string shardSource;
     const Shard shard = shardFrom(o.shard, &shardSource);
-    const Range block = shardBlock(shard, frames);
+    const ItemRange block = shardBlock(shard, frames);
     // --compare: its flags, one frame, and a reference that can be read, before any work.
     std::optional<DiffSettings> diff;
     if (o.compare) {

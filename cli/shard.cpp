@@ -100,7 +100,7 @@ std::optional<Shard> shardOfFileName(const std::string& path) {
     return Shard{k - 1, n};
 }
 
-Range shardBlock(const Shard& shard, long long total) {
+ItemRange shardBlock(const Shard& shard, long long total) {
     return {total * shard.index / shard.count, total * (shard.index + 1) / shard.count};
 }
 

@@ -60,10 +60,10 @@ std::string shardFileName(const std::string& path, const Shard& shard);
 std::optional<Shard> shardOfFileName(const std::string& path);
 
 // [begin, end) of `total` items for a contiguous split: k total / N to (k + 1) total / N.
-struct Range {
+struct ItemRange {
     long long begin = 0, end = 0;
 };
-Range shardBlock(const Shard& shard, long long total);
+ItemRange shardBlock(const Shard& shard, long long total);
 
 // "shard 2/4 (SLURM_ARRAY_TASK_ID)": for progress lines.
 std::string describeShard(const Shard& shard, const std::string& source);

@@ -30,7 +30,7 @@ const std::vector<std::string> kAlternateKeys = {"reference", "arch", "cpu"};
 // `ssrt render` flags the runner itself gives a case's render.
 const std::vector<std::string> kOwnedFlags = {"-o", "--output", "--compare", "--shard"};
 
-std::string joined(const std::vector<std::string>& names) {
+std::string commaList(const std::vector<std::string>& names) {
     std::string out;
     for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
     return out;
@@ -51,7 +51,7 @@ public:
         for (const auto& item : j.items())
             if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
                 fail(path + "." + item.key(), "unknown key" + didYouMean(item.key(), allowed) +
-                                                  " (expected one of: " + joined(allowed) + ")");
+                                                  " (expected one of: " + commaList(allowed) + ")");
     }
 
     std::string string(const json& j, const std::string& path) const {
@@ -122,7 +122,7 @@ LayerRule parseRule(const json& j, const std::string& path, const Reader& r) {
     LayerRule rule;
     if (j.is_string() && j.get<std::string>() == "exact") return rule;
     const auto expected = [&] {
-        r.fail(path, "expected \"exact\" or an object with one or more of " + joined(kRuleKeys));
+        r.fail(path, "expected \"exact\" or an object with one or more of " + commaList(kRuleKeys));
     };
     if (!j.is_object()) expected();
     r.object(j, path, kRuleKeys);

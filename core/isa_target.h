@@ -3,6 +3,9 @@
 // xsimd::batch<float, Arch> otherwise. Kernels are written once over `Lane`.
 #pragma once
 
+#include <cstddef>
+
+#include "core/lanes.h"
 #include "core/xsimd_exact.h"
 
 #if defined(SSRT_ISA_scalar)
@@ -39,4 +42,11 @@ using Lane = float;
 #else
 using Lane = xsimd::batch<float, SSRT_ARCH>;
 #endif
+
+// This copy's lane count and its plain load, defined once for every kernel file of the copy
+// (a unity build compiles several of them as one source, where a copy per file would clash).
+inline constexpr int kW = int(ssrt::lanes::kWidth<Lane>);
+SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
+    return ssrt::lanes::load<Lane>(plane + offset);
+}
 }  // namespace ssrt::SSRT_ISA_NS

@@ -12,33 +12,33 @@ namespace ln = ssrt::lanes;
 namespace {
 
 using Int = ln::IntOf<Lane>;
-constexpr std::size_t kW = ln::kWidth<Lane>;
+constexpr std::size_t kWidthN = std::size_t(kW);  // (kW as a size, for the counts below)
 
 // One lane group from `count` (<= kW) values, zeros past them.
 SSRT_INLINE Lane loadFloats(const float* p, std::size_t count) {
-    if (count == kW) return ln::load<Lane>(p);
-    float t[kW] = {};
+    if (count == kWidthN) return ln::load<Lane>(p);
+    float t[kWidthN] = {};
     std::copy_n(p, count, t);
     return ln::load<Lane>(t);
 }
 
 template <class T>
 SSRT_INLINE Int loadCodes(const T* p, std::size_t count) {
-    int32_t t[kW] = {};
+    int32_t t[kWidthN] = {};
     for (std::size_t k = 0; k < count; ++k) t[k] = int32_t(p[k]);  // (u32: modulo 2^32)
     return ln::loadInt<Lane>(t);
 }
 
 SSRT_INLINE void storeFloats(float* p, Lane x, std::size_t count) {
-    if (count == kW) return ln::store(p, x);
-    float t[kW];
+    if (count == kWidthN) return ln::store(p, x);
+    float t[kWidthN];
     ln::store(t, x);
     std::copy_n(t, count, p);
 }
 
 template <class T>
 SSRT_INLINE void storeCodes(T* p, Int k, std::size_t count) {
-    int32_t t[kW];
+    int32_t t[kWidthN];
     ln::store(t, k);
     for (std::size_t i = 0; i < count; ++i) p[i] = T(uint32_t(t[i]));  // low bits: the code
 }
@@ -46,16 +46,16 @@ SSRT_INLINE void storeCodes(T* p, Int k, std::size_t count) {
 // out[i] = code of in[i], a lane group at a time.
 template <class T, class Encode>
 SSRT_INLINE void encodeRow(const float* in, T* out, std::size_t n, Encode encode) {
-    for (std::size_t i = 0; i < n; i += kW) {
-        const std::size_t count = std::min(kW, n - i);
+    for (std::size_t i = 0; i < n; i += kWidthN) {
+        const std::size_t count = std::min(kWidthN, n - i);
         storeCodes(out + i, encode(loadFloats(in + i, count)), count);
     }
 }
 
 template <class T, class Decode>
 SSRT_INLINE void decodeRow(const T* in, float* out, std::size_t n, Decode decode) {
-    for (std::size_t i = 0; i < n; i += kW) {
-        const std::size_t count = std::min(kW, n - i);
+    for (std::size_t i = 0; i < n; i += kWidthN) {
+        const std::size_t count = std::min(kWidthN, n - i);
         storeFloats(out + i, decode(loadCodes(in + i, count)), count);
     }
 }
@@ -77,8 +77,8 @@ void decodeUnorm8(const uint8_t* in, float* out, std::size_t n) {
 
 void encodeOct16(const float* x, const float* y, const float* z, int16_t* u, int16_t* v,
                  std::size_t n) {
-    for (std::size_t i = 0; i < n; i += kW) {
-        const std::size_t count = std::min(kW, n - i);
+    for (std::size_t i = 0; i < n; i += kWidthN) {
+        const std::size_t count = std::min(kWidthN, n - i);
         Int cu, cv;
         ln::octEncode(loadFloats(x + i, count), loadFloats(y + i, count), loadFloats(z + i, count),
                       cu, cv);
@@ -88,8 +88,8 @@ void encodeOct16(const float* x, const float* y, const float* z, int16_t* u, int
 }
 
 void decodeOct16(const int16_t* u, const int16_t* v, float* x, float* y, float* z, std::size_t n) {
-    for (std::size_t i = 0; i < n; i += kW) {
-        const std::size_t count = std::min(kW, n - i);
+    for (std::size_t i = 0; i < n; i += kWidthN) {
+        const std::size_t count = std::min(kWidthN, n - i);
         Lane dx, dy, dz;
         ln::octDecode<Lane>(loadCodes(u + i, count), loadCodes(v + i, count), dx, dy, dz);
         storeFloats(x + i, dx, count);
@@ -120,7 +120,7 @@ void decodeU32(const uint32_t* in, float* out, std::size_t n) {
 
 void gatherNeighbours(const uint16_t* f16, const float* f32, const int32_t* index, std::size_t n,
                       float* out) {
-    for (std::size_t i = 0; i < n; i += kW) {
+    for (std::size_t i = 0; i < n; i += kWidthN) {
         const Int idx = ln::loadInt<Lane>(index + i);
         Lane t[8];
         ln::gatherF16Row4<Lane>(f16, idx, t);
@@ -132,7 +132,7 @@ void gatherNeighbours(const uint16_t* f16, const float* f32, const int32_t* inde
 
 void f16x4Lanes(const uint64_t* in, const int32_t* index, std::size_t n, float* loaded,
                 float* gathered, uint64_t* stored) {
-    for (std::size_t i = 0; i < n; i += kW) {
+    for (std::size_t i = 0; i < n; i += kWidthN) {
         const Int idx = ln::loadInt<Lane>(index + i);
         Lane l[4], g[4];
         ln::loadF16x4<Lane>(in + i, l);

@@ -33,13 +33,8 @@ using Mask = ln::MaskOf<Lane>;
 
 namespace reblur_lanes {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 constexpr float kNormalUlp = 0.5f / 255.0f;  // NRD's normal-encoding floor on angles
 constexpr float kMaxSignal = 65504.0f;       // the front end's clamp (NRD's fp16 range)
-
-SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
-    return ln::load<Lane>(plane + offset);
-}
 
 // Signal planes (reblur_kernel.h: f16 or f32), through the shared conversions
 // (core/signal_lanes.h: the same bits on every ISA; stores clamp to 65504, so a Catmull-Rom

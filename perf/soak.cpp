@@ -205,7 +205,7 @@ int main(int argc, char** argv) try {
     settings.height = o.height;
     const Renderer renderer(settings);
 
-    const cli::Range block = cli::shardBlock(o.shard, o.frames);
+    const cli::ItemRange block = cli::shardBlock(o.shard, o.frames);
     const auto timeOf = [&](int i) { return path.frameTime(i, o.frames); };
     const auto restarts = [&](int i) {
         return i == 0 || path.cutBetween(timeOf(i - 1), timeOf(i));

@@ -15,11 +15,11 @@ using V3 = ln::V3<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 // The planes a tile writes, in the order resolveChunk computes them: the G-buffer's 12, then
 // each UV set's, then the tangent frame's (outputPlanes).
-constexpr int kOutputs = std::popcount(kResolvedPlanes);
-constexpr int kMaxOutputs = kOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
+constexpr int kResolveOutputs = std::popcount(kResolvedPlanes);
+constexpr int kMaxOutputs =
+    kResolveOutputs + kResolveUvSets * kResolveUvOutputs + kResolveTangentOutputs;
 constexpr int kMaterialOut = 9;  // background -1 there, 0 elsewhere
 
 // Field rows of the structure-of-arrays gather below.
@@ -46,7 +46,7 @@ SSRT_INLINE int uvOutputCount(const ResolveArgs& a) {
     return (a.u ? kResolveUvOutputs : 0) + (a.u1 ? kResolveUvOutputs : 0);
 }
 SSRT_INLINE int outputCount(const ResolveArgs& a) {
-    return kOutputs + uvOutputCount(a) + (a.tangent[0] ? kResolveTangentOutputs : 0);
+    return kResolveOutputs + uvOutputCount(a) + (a.tangent[0] ? kResolveTangentOutputs : 0);
 }
 
 // The output planes in that order (outputCount of them).
@@ -270,8 +270,9 @@ void resolveChunk(const ResolveArgs& a, int x, int y, FieldCache& cache, float* 
                               g.f[kMetallic], g.f[kRoughness], g.f[kMaterial],
                               motionX, motionY};
     // clang-format on
-    if (a.u) uvAndDerivatives(a, g, dir, b1, b2, outs + kOutputs);
-    if (a.tangent[0]) interpolateTangent(g, b1, b2, nd > zero, outs + kOutputs + uvOutputCount(a));
+    if (a.u) uvAndDerivatives(a, g, dir, b1, b2, outs + kResolveOutputs);
+    if (a.tangent[0])
+        interpolateTangent(g, b1, b2, nd > zero, outs + kResolveOutputs + uvOutputCount(a));
     for (int p = 0; p < outputs; ++p) {
         const Lane background = p == kMaterialOut ? Lane(-1.0f) : zero;
         ln::store(out[p] + o, ln::select(vis, outs[p], background));

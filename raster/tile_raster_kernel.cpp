@@ -14,7 +14,6 @@ using ILane = ln::IntOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kBlockPixels = kBlockSize * kBlockSize;
 constexpr int kChunks = kBlockPixels / kW;  // lane groups per 8x8 block
 constexpr int kBlocksPerSide = kTileSize / kBlockSize;

@@ -21,10 +21,10 @@ using L = Lifetime;
 using G = LayerGroup;
 
 // When an output only looked at is handed out (ResourceDecl::handedOut).
-bool gbuffer(const GraphKey& k) { return k.settings.gbufferPlanes; }
-bool trace(const GraphKey& k) { return k.settings.tracePlanes; }
-bool debug(const GraphKey& k) { return trace(k) && k.settings.debugPlanes; }
-bool notPooled(const GraphKey& k) { return trace(k) && !tracedSignalsPooled(k.settings); }
+bool gbufferPlanes(const GraphKey& k) { return k.settings.gbufferPlanes; }
+bool tracePlanes(const GraphKey& k) { return k.settings.tracePlanes; }
+bool debugPlanes(const GraphKey& k) { return tracePlanes(k) && k.settings.debugPlanes; }
+bool notPooled(const GraphKey& k) { return tracePlanes(k) && !tracedSignalsPooled(k.settings); }
 
 // --- The resource table, in Res order ---
 // (Every resource is f32 today but the ids, which are u32, and the denoiser's signals, which
@@ -35,16 +35,20 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::Color, "color", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Display, "display", "R,G,B", F::F32, R::Full, L::Output, G::Color},
     {Res::Shadow, "shadow", "", F::F32, R::Full, L::Output, G::Color},
-    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGViewZ},
-    {Res::Normal, "normal", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGNormal},
-    {Res::Albedo, "albedo", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGAlbedo},
-    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGMetallic},
-    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGRoughness},
-    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer,
+    {Res::ViewZ, "viewZ", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes, kGViewZ},
+    {Res::Normal, "normal", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes, kGNormal},
+    {Res::Albedo, "albedo", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes, kGAlbedo},
+    {Res::Metallic, "metallic", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes,
+     kGMetallic},
+    {Res::Roughness, "roughness", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes,
+     kGRoughness},
+    {Res::MaterialId, "materialId", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes,
      kGMaterialId},
-    {Res::Motion, "motion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGMotion},
-    {Res::Emissive, "emissive", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGEmission},
-    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbuffer, kGOcclusion},
+    {Res::Motion, "motion", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes, kGMotion},
+    {Res::Emissive, "emissive", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes,
+     kGEmission},
+    {Res::Occlusion, "occlusion", "", F::F32, R::Full, L::Output, G::GBuffer, gbufferPlanes,
+     kGOcclusion},
     {Res::InstanceId, "instanceId", "", F::F32, R::Full, L::Output, G::GBuffer, nullptr,
      kGInstanceId},
     {Res::TriangleId, "triangleId", "", F::F32, R::Full, L::Output, G::GBuffer, nullptr,
@@ -57,17 +61,18 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::SsrOpacity, "ssrOpacity", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrHit, "ssrHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsrHitDistance, "ssrHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
+    {Res::SsrSteps, "ssrSteps", "", F::F32, R::Full, L::Output, G::Trace, debugPlanes},
     // What SSGI hands out: incoming diffuse radiance, then as SSR's.
     {Res::Ssgi, "ssgi", "R,G,B", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiHit, "ssgiHit", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
     {Res::SsgiHitDistance, "ssgiHitDistance", "", F::F32, R::Full, L::Output, G::Trace, notPooled},
-    {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace, trace},
+    {Res::SsgiSteps, "ssgiSteps", "", F::F32, R::Full, L::Output, G::Trace, debugPlanes},
+    {Res::DenoisedDiffuse, "denoisedDiffuse", "R,G,B", F::F32, R::Full, L::Output, G::Trace,
+     tracePlanes},
     {Res::DenoisedSpecular, "denoisedSpecular", "R,G,B", F::F32, R::Full, L::Output, G::Trace,
-     trace},
-    {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
-    {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debug},
+     tracePlanes},
+    {Res::DiffuseFrames, "diffuseFrames", "", F::F32, R::Full, L::Output, G::Trace, debugPlanes},
+    {Res::SpecularFrames, "specularFrames", "", F::F32, R::Full, L::Output, G::Trace, debugPlanes},
     // Embree's check of the first sample's rays of each pass, at each ray's pixel (truth/
     // ray_check.h): its class, the pixel and relative depth error where both hit, Embree's hit
     // distance. Written by `ssrt compare` alone, after the frame: no pass declares them.
@@ -97,7 +102,7 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::MarchHit, "march.hit", "", F::F32, R::TileRing, L::Transient},
     {Res::SsrHitRadiance, "resolve.hitRadiance", "R,G,B,fade", F::F32, R::TileRing, L::Transient},
     {Res::SsrHitTarget, "resolve.hitTarget", "X,Y,Z", F::F32, R::TileRing, L::Transient},
-    {Res::HalfGBuffer, "half.gbuffer", "", F::F32, R::Half, L::Transient, G::Color, nullptr,
+    {Res::HalfGBuffer, "half.gbufferPlanes", "", F::F32, R::Half, L::Transient, G::Color, nullptr,
      HalfFrame::kPlanes},
     {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F16, R::Half, L::Transient},
     {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},

@@ -12,13 +12,10 @@
 #include <stdexcept>
 
 #include "scenes/gltf_compression.h"
+#include "scenes/gltf_errors.h"
 
 namespace ssrt::gltf {
 namespace {
-
-[[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
-
-std::string str(std::size_t n) { return std::to_string(n); }
 
 // A non-negative integer member of the extension object.
 int indexMember(const tinygltf::Value& ext, const char* key, const std::string& name) {

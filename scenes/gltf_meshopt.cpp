@@ -7,13 +7,10 @@
 #include <stdexcept>
 
 #include "scenes/gltf_compression.h"
+#include "scenes/gltf_errors.h"
 
 namespace ssrt::gltf {
 namespace {
-
-[[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
-
-std::string str(std::size_t n) { return std::to_string(n); }
 
 // The most bytes one compressed byte can decode to. Attributes (Appendix A, mode 0): each
 // data block's header spends 2 bits on a group of 16 bytes, so an all-zero group costs a

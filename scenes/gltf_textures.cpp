@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "scenes/gltf_errors.h"
 #include "scenes/scene.h"
 
 namespace ssrt::gltf {
@@ -13,8 +14,6 @@ namespace ssrt::gltf {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
 
 }  // namespace
 

@@ -15,8 +15,6 @@ using V3 = ln::V3<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
-
 SSRT_INLINE V3 load3(const float* const* p, std::size_t o) {
     return {ln::load<Lane>(p[0] + o), ln::load<Lane>(p[1] + o), ln::load<Lane>(p[2] + o)};
 }

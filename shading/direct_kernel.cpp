@@ -17,9 +17,8 @@ using ILane = ln::IntOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 // The planes a tile writes through its row buffers: colour RGB, display RGB, shadow.
-constexpr int kOutputs = 7;
+constexpr int kDirectOutputs = 7;
 enum Out { kColor = 0, kDisplay = 3, kShadow = 6 };
 
 using shade::skyRadiance;
@@ -176,12 +175,12 @@ void shadeTile(const DirectArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
     // Row buffer, streamed out in whole cache lines (see raster/resolve_kernel.cpp); lane
     // groups past the right edge land in the rows' 64-byte padding.
-    float* const planes[kOutputs] = {args.color[0],   args.color[1],   args.color[2],
-                                     args.display[0], args.display[1], args.display[2],
-                                     args.shadow};
-    alignas(64) float rowBuf[kOutputs][kTileSize];
-    float* bufPtr[kOutputs];
-    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = planes[p] ? rowBuf[p] : nullptr;
+    float* const planes[kDirectOutputs] = {args.color[0],   args.color[1],   args.color[2],
+                                           args.display[0], args.display[1], args.display[2],
+                                           args.shadow};
+    alignas(64) float rowBuf[kDirectOutputs][kTileSize];
+    float* bufPtr[kDirectOutputs];
+    for (int p = 0; p < kDirectOutputs; ++p) bufPtr[p] = planes[p] ? rowBuf[p] : nullptr;
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
         // The f16 parts: the row two below fetched ahead (core/signal_lanes.h).
@@ -192,7 +191,7 @@ void shadeTile(const DirectArgs& args, int tile) {
                 ln::prefetchRowF16(part, 3, ahead, x0, x1);
         }
         for (int x = x0; x < x1; x += kW) shadeChunk(args, x, y, bufPtr, x0);
-        for (int p = 0; p < kOutputs; ++p) {
+        for (int p = 0; p < kDirectOutputs; ++p) {
             if (!bufPtr[p]) continue;
             float* dst = planes[p] + std::size_t(y) * args.outStride + x0;
             for (int i = 0; i < span; i += kW)

@@ -12,8 +12,6 @@ namespace ln = ssrt::lanes;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
-
 // (not std::min: a template's copy could be shared with other ISAs' objects)
 inline int lesser(int a, int b) { return b < a ? b : a; }
 inline int greater(int a, int b) { return a < b ? b : a; }

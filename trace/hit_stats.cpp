@@ -11,24 +11,24 @@ namespace ssrt {
 
 namespace {
 
-constexpr std::string_view kPass = "accumulateHitStats";
+constexpr std::string_view kHitStatsPass = "accumulateHitStats";
 
 // Takes the batches' planes that the outputs need into `a`, checked to one size; their stride.
 std::size_t takeBatches(HitStatsArgs& a, const RayBatch& rays, const MarchResult& m) {
     const int w = m.hit.width(), h = m.hit.height();
     const ViewF hit = viewOf(m.hit, "march.hit");
-    const std::size_t stride = requireViews(kPass, w, h, {hit});
+    const std::size_t stride = requireViews(kHitStatsPass, w, h, {hit});
     a.marchHit = hit.data;
     if (a.steps) {
         const ViewF steps = viewOf(m.steps, "march.steps");
-        requireViews(kPass, w, h, {steps});
+        requireViews(kHitStatsPass, w, h, {steps});
         a.marchSteps = steps.data;
     }
     if (a.distance) {
         const ViewF hitX = viewOf(m.hitX, "march.hitX"), hitY = viewOf(m.hitY, "march.hitY"),
                     hitZ = viewOf(m.hitZ, "march.hitZ"), ox = viewOf(rays.ox, "ray.ox"),
                     oy = viewOf(rays.oy, "ray.oy"), oz = viewOf(rays.oz, "ray.oz");
-        requireViews(kPass, w, h, {hitX, hitY, hitZ, ox, oy, oz});
+        requireViews(kHitStatsPass, w, h, {hitX, hitY, hitZ, ox, oy, oz});
         a.hitPos[0] = hitX.data, a.hitPos[1] = hitY.data, a.hitPos[2] = hitZ.data;
         a.origin[0] = ox.data, a.origin[1] = oy.data, a.origin[2] = oz.data;
     }
@@ -45,10 +45,10 @@ HitStatsAccumulator::HitStatsAccumulator(Isa isa, const TraceCamera& camera,
     if (sampleCount < 1 || sample < 0 || sample >= sampleCount)
         throw std::invalid_argument("accumulateHitStats: sample must be in [0, sampleCount)");
     HitStatsArgs& a = args_;
-    a.stride = requireViews(kPass, w, h, {a.hit});
+    a.stride = requireViews(kHitStatsPass, w, h, {a.hit});
     // (steps and distance are optional: checked where given)
     for (const OutF& v : {a.steps, a.distance})
-        if (v) requireViews(kPass, w, h, {v});
+        if (v) requireViews(kHitStatsPass, w, h, {v});
     a.width = w;
     a.height = h;
     a.tilesX = grid_.tilesX;
@@ -77,8 +77,9 @@ void accumulateHitStats(Isa isa, const TraceCamera& camera, const RayBatch& rays
                         int sampleCount, int threads) {
     const HitStatsAccumulator acc(isa, camera, out, sample, sampleCount);
     // The frame's batches, of the frame's size.
-    requireViews(kPass, camera.width, camera.height, {viewOf(march.hit, "march.hit")});
-    if (out.distance) requireViews(kPass, camera.width, camera.height, {viewOf(rays.ox, "ray.ox")});
+    requireViews(kHitStatsPass, camera.width, camera.height, {viewOf(march.hit, "march.hit")});
+    if (out.distance)
+        requireViews(kHitStatsPass, camera.width, camera.height, {viewOf(rays.ox, "ray.ox")});
     parallelForTiles(acc.grid().count(), threads, [&](int t) { acc.tile(t, rays, march); });
 }
 

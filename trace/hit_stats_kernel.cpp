@@ -12,12 +12,6 @@ namespace ln = ssrt::lanes;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
-
-SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
-    return ln::load<Lane>(plane + offset);
-}
-
 void hitStatsChunk(const HitStatsArgs& a, int x, int y) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const std::size_t i = std::size_t(y - a.inY0) * a.inStride + std::size_t(x - a.inX0);

@@ -15,7 +15,6 @@ namespace ssrt::SSRT_ISA_NS {
 namespace ln = ssrt::lanes;
 using ILane = ln::IntOf<Lane>;
 using Mask = ln::MaskOf<Lane>;
-constexpr int kW = int(ln::kWidth<Lane>);
 static_assert(kMarchPad % kW == 0, "packed rays are padded to a multiple of every width");
 
 // In-lane end codes: MarchEnd values, and kMarching while a lane is still going.

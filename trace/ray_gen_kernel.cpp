@@ -19,9 +19,8 @@ using Mask = ln::MaskOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 // The planes a tile writes through its row buffers: origin XYZ, direction XYZ, PDF.
-constexpr int kOutputs = 7;
+constexpr int kRayGenOutputs = 7;
 enum Out { kOriginX = 0, kDirX = 3, kPdf = 6 };
 
 SSRT_INLINE V3 neg(V3 v) { return {Lane(0.0f) - v.x, Lane(0.0f) - v.y, Lane(0.0f) - v.z}; }
@@ -117,7 +116,7 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
     c.pixels += surfaceCount;
     c.background += validCount - surfaceCount;
     if (!ln::any(surface)) {
-        for (int p = 0; p < kOutputs; ++p) ln::store(out[p] + oo, zero);
+        for (int p = 0; p < kRayGenOutputs; ++p) ln::store(out[p] + oo, zero);
         return;
     }
     // Origin: the view ray through the pixel's point (its centre, or a half frame's chosen
@@ -190,11 +189,11 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
     // left out of the counts. Rows go through a buffer and are written in whole cache lines,
     // streamed past the cache into a frame's batch (written once per pass; see
     // raster/resolve_kernel.cpp), stored into a tile's (its march reads them next).
-    float* const planes[kOutputs] = {a.origin[0], a.origin[1], a.origin[2], a.dir[0],
-                                     a.dir[1],    a.dir[2],    a.pdf};
-    alignas(64) float rowBuf[kOutputs][kTileSize];
-    float* bufPtr[kOutputs];
-    for (int p = 0; p < kOutputs; ++p) bufPtr[p] = rowBuf[p];
+    float* const planes[kRayGenOutputs] = {a.origin[0], a.origin[1], a.origin[2], a.dir[0],
+                                           a.dir[1],    a.dir[2],    a.pdf};
+    alignas(64) float rowBuf[kRayGenOutputs][kTileSize];
+    float* bufPtr[kRayGenOutputs];
+    for (int p = 0; p < kRayGenOutputs; ++p) bufPtr[p] = rowBuf[p];
     const int span = (x1 - x0 + kW - 1) / kW * kW;
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; x += kW) {
@@ -202,7 +201,7 @@ void rayTile(const RayGenArgs& a, int tile, RayGenCounts& c) {
             const uint64_t valid = n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1u;
             rayChunk<K>(a, x, y, valid, bufPtr, x - x0, c);
         }
-        for (int p = 0; p < kOutputs; ++p) {
+        for (int p = 0; p < kRayGenOutputs; ++p) {
             float* dst =
                 planes[p] + std::size_t(y - a.outY0) * a.outStride + std::size_t(x0 - a.outX0);
             if (a.stream)

@@ -13,7 +13,7 @@ namespace ssrt {
 
 namespace {
 
-constexpr std::string_view kPass = "reconstruction";
+constexpr std::string_view kReconstructPass = "reconstruction";
 
 // The names of a signal's planes in messages, in ReconstructPlane's order.
 using PlaneNames = std::string_view[kRecN];
@@ -35,7 +35,7 @@ std::size_t takePlanes(const ReconstructPlanesOf<P>& s, int w, int h, const Plan
         to[k] = nullptr;
         if (!all[k] && !(k < 3 && color)) continue;
         const ViewF v = all[k] ? viewOf(*all[k], names[k]) : ViewF{nullptr, 0, 0, 0, names[k]};
-        stride = requireViews(kPass, w, h, {v});
+        stride = requireViews(kReconstructPass, w, h, {v});
         to[k] = v.data;
     }
     return stride;
@@ -49,7 +49,7 @@ ReconstructArgs guideArgs(const ReconstructGuides& g) {
     a.width = w;
     a.height = h;
     a.tilesX = TileGrid(w, h).tilesX;
-    requireGBuffer(kPass, g.g, kGViewZ | kGNormal, w, h);
+    requireGBuffer(kReconstructPass, g.g, kGViewZ | kGNormal, w, h);
     a.g = g.g;
     a.scaleX = 2.0f * g.camera.tanHalfX / float(w);
     a.scaleY = 2.0f * g.camera.tanHalfY / float(h);
@@ -91,7 +91,7 @@ uint64_t fillCheckerboard(Isa isa, const ReconstructGuides& g, const PlaneF& pdf
     ReconstructArgs a = guideArgs(g);
     a.half = false;
     const ViewF pdfView = viewOf(pdf, "ray.pdf");
-    std::size_t stride = requireViews(kPass, a.width, a.height, {pdfView});
+    std::size_t stride = requireViews(kReconstructPass, a.width, a.height, {pdfView});
     a.pdf = pdfView.data;
     if (out.steps) throw std::invalid_argument("fillCheckerboard: steps are not filled");
     const float* in[kRecN];
@@ -123,7 +123,7 @@ HalfUpsampler::HalfUpsampler(Isa isa, const ReconstructGuides& g, PixelOffset of
     a.srcWidth = (a.width + 1) / 2;
     a.srcHeight = (a.height + 1) / 2;
     const ViewF pdf = viewOf(halfPdf, "half.ray.pdf");
-    const std::size_t stride = requireViews(kPass, a.srcWidth, a.srcHeight, {pdf});
+    const std::size_t stride = requireViews(kReconstructPass, a.srcWidth, a.srcHeight, {pdf});
     a.pdf = pdf.data;
     a.srcStride = takePlanes(in, a.srcWidth, a.srcHeight, kHalfNames, a.in, stride);
     kernel_ = SSRT_DISPATCH(isa, reconstructTile);

@@ -17,7 +17,6 @@ using ILane = ln::IntOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 constexpr int kValues = 6;              // colour, opacity, hit, distance
 constexpr float kMinWeight = 1.0e-20f;  // smaller sums of weights count as none (blend())
 

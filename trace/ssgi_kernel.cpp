@@ -17,8 +17,6 @@ using ILane = ln::IntOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
-
 SSRT_INLINE V3 gather3(const float* const* planes, ILane i) {
     return {ln::gather(planes[0], i), ln::gather(planes[1], i), ln::gather(planes[2], i)};
 }

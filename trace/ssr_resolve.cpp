@@ -30,7 +30,7 @@ void SsrOutput::ensureSize(int width, int height, int scratchRows, bool reuse) {
 
 namespace {
 
-constexpr std::string_view kPass = "resolveSsr";
+constexpr std::string_view kResolvePass = "resolveSsr";
 
 // The view of one of the output's planes, by its table's name.
 OutF outputIn(SsrOutput& out, PlaneF& p) {
@@ -71,7 +71,7 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
     a.reuse = reuse;
     a.mip = settings.mode == SsrResolveMode::Mip;
     a.reproject = settings.radiance == HitRadiance::Reprojected;
-    requireGBuffer(kPass, a.g,
+    requireGBuffer(kResolvePass, a.g,
                    kGViewZ | kGRoughness | (a.reuse ? kGNormal : 0) | (a.reproject ? kGMotion : 0),
                    w, h);
     a.bilinear = settings.bilinear;
@@ -96,7 +96,7 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
             throw std::invalid_argument("resolveSsr: colour pyramid not of the frame's size");
     } else {
         const ViewF* src = a.reproject ? a.prevColor : a.color;
-        requireViews(kPass, w, h, {src[0], src[1], src[2]});
+        requireViews(kResolvePass, w, h, {src[0], src[1], src[2]});
         for (int c = 0; c < 3; ++c) a.source[c] = src[c].data;
     }
     a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 1.0e30f;
@@ -110,11 +110,11 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
                            outputIn(out, out.color[2])};
     const OutF opacity = outputIn(out, out.opacity), pdf = outputOf(frameRays.pdf, "ray.pdf");
     // (The scratch planes have the frame's width, so its stride.)
-    a.stride = requireViews(kPass, w, h, {color[0], color[1], color[2], opacity, pdf});
+    a.stride = requireViews(kResolvePass, w, h, {color[0], color[1], color[2], opacity, pdf});
     const OutF radiance[3] = {outputIn(out, out.hitRadiance[0]), outputIn(out, out.hitRadiance[1]),
                               outputIn(out, out.hitRadiance[2])};
     const OutF fade = outputIn(out, out.hitFade);
-    requireViews(kPass, w, rows, {radiance[0], radiance[1], radiance[2], fade});
+    requireViews(kResolvePass, w, rows, {radiance[0], radiance[1], radiance[2], fade});
     for (int c = 0; c < 3; ++c) {
         a.hitRadiance[c] = radiance[c].data;
         a.outColor[c] = color[c].data;
@@ -128,7 +128,7 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
         const OutF target[3] = {outputIn(out, out.hitTarget[0]), outputIn(out, out.hitTarget[1]),
                                 outputIn(out, out.hitTarget[2])};
         const OutF hit = outputOf(frameMarch.hit, "march.hit");
-        requireViews(kPass, w, rows, {target[0], target[1], target[2], hit});
+        requireViews(kResolvePass, w, rows, {target[0], target[1], target[2], hit});
         for (int c = 0; c < 3; ++c) a.hitTarget[c] = target[c].data;
         a.frameHit = hitTarget_ = hit.data;
     }
@@ -148,7 +148,7 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
                 dz = viewOf(rays.dz, "ray.dz"), pdf = viewOf(rays.pdf, "ray.pdf"),
                 hit = viewOf(march.hit, "march.hit"), hitX = viewOf(march.hitX, "march.hitX"),
                 hitY = viewOf(march.hitY, "march.hitY"), hitZ = viewOf(march.hitZ, "march.hitZ");
-    a.rayStride = requireViews(kPass, rays.pdf.width(), rays.pdf.height(),
+    a.rayStride = requireViews(kResolvePass, rays.pdf.width(), rays.pdf.height(),
                                {dx, dy, dz, pdf, hit, hitX, hitY, hitZ});
     a.rayDir[0] = dx.data, a.rayDir[1] = dy.data, a.rayDir[2] = dz.data;
     a.pdf = pdf.data;
@@ -175,7 +175,7 @@ void resolveSsr(Isa isa, const SsrResolveSettings& settings, const SsrResolveArg
                 int sampleCount, int threads) {
     // The frame's batches, of the frame's size: only read (pass 1 copies nothing into its own
     // input, and the resolver's sizing of the two planes pass 2 reads keeps them).
-    requireViews(kPass, in.camera.width, in.camera.height,
+    requireViews(kResolvePass, in.camera.width, in.camera.height,
                  {viewOf(rays.pdf, "ray.pdf"), viewOf(march.hit, "march.hit")});
     RayBatch& frameRays = const_cast<RayBatch&>(rays);
     MarchResult& frameMarch = const_cast<MarchResult&>(march);

@@ -16,13 +16,8 @@ using ILane = ln::IntOf<Lane>;
 
 namespace {
 
-constexpr int kW = int(ln::kWidth<Lane>);
 // Caps one neighbour's weight so that sums of weight x radiance stay finite whatever the pdf.
 constexpr float kMaxWeight = 1.0e20f;
-
-SSRT_INLINE Lane loadAt(const float* plane, std::size_t offset) {
-    return ln::load<Lane>(plane + offset);
-}
 
 // Trilinear read of the pyramid at level-0 position (x, y) and mip level `mip`: bilinear in
 // the two levels around it, linear between. Lanes may need different levels, so each level

@@ -13,7 +13,7 @@ namespace ssrt {
 
 namespace {
 
-constexpr std::string_view kPass = "buildHalfFrame";
+constexpr std::string_view kLayoutPass = "buildHalfFrame";
 
 }  // namespace
 
@@ -47,14 +47,14 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         throw std::invalid_argument("buildHalfFrame: the camera has no pixels");
     const GBufferView& g = src.g;
     const bool withGuides = src.guides;
-    requireGBuffer(kPass, g,
+    requireGBuffer(kLayoutPass, g,
                    kGViewZ | kGNormal | kGAlbedo | kGMetallic | (withGuides ? kGMotion : 0),
                    full.width, full.height);
     // Without src.hitLight the half frame's holds its chosen pixels' already (the direct pass
     // wrote them: DirectArgs::hitLightHalf).
     const bool hitLight = src.hitLight[0] || src.hitLight[1] || src.hitLight[2];
     if (hitLight)
-        requireViews(kPass, full.width, full.height,
+        requireViews(kLayoutPass, full.width, full.height,
                      {src.hitLight[0], src.hitLight[1], src.hitLight[2]});
     out.camera = halfCamera(full);
     out.offset = halfOffset(frame);
@@ -67,7 +67,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         out.forEachPlane([&](std::string_view name, const auto& p) {
             for (const PlaneU16& given : out.hitLight)
                 if (static_cast<const void*>(&p) == &given)
-                    requireViews(kPass, hw, hh, {viewOf(given, name)});
+                    requireViews(kLayoutPass, hw, hh, {viewOf(given, name)});
         });
     // What each half pixel copies from its chosen pixel (`chosen`), and from its block's
     // first pixel for the denoiser's guides (`guides`; motion halved).
@@ -79,7 +79,7 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     };
     std::vector<Copy> chosen = {{&out.viewZ, g.viewZ}, {&out.metallic, g.metallic}};
     if (src.backZ) {
-        requireViews(kPass, w, h, {src.backZ});
+        requireViews(kLayoutPass, w, h, {src.backZ});
         chosen.push_back({&out.backZ, src.backZ.data});
         if (src.backZ.stride != g.stride)
             throw std::invalid_argument("buildHalfFrame: backZ and viewZ of different strides");

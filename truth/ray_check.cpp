@@ -58,7 +58,7 @@ float RayCheckTable::quantile(const std::vector<float>& sorted, double q) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kBlock = 4;  // 4x4 pixels: one 16-ray Embree packet
+constexpr int kPacketSide = 4;  // 4x4 pixels: one 16-ray Embree packet
 
 // Where a batch's pixels lie: the frame's own, or the half frame's, each standing for its
 // block's chosen pixel (trace/trace_layout.h). The rays' view-space origins and directions are
@@ -156,11 +156,11 @@ uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& batch, const Ray
     std::vector<uint64_t> hits(std::size_t(grid.count()), 0);
     parallelForTiles(grid.count(), threads, [&](int tile) {
         const TileRect r = grid.rect(tile);
-        for (int by = r.y0; by < r.y1; by += kBlock)
-            for (int bx = r.x0; bx < r.x1; bx += kBlock)
+        for (int by = r.y0; by < r.y1; by += kPacketSide)
+            for (int bx = r.x0; bx < r.x1; bx += kPacketSide)
                 hits[std::size_t(tile)] +=
-                    traceBlock(embree, wf, rays, tfar, bx, by, std::min(bx + kBlock, r.x1),
-                               std::min(by + kBlock, r.y1), trueT);
+                    traceBlock(embree, wf, rays, tfar, bx, by, std::min(bx + kPacketSide, r.x1),
+                               std::min(by + kPacketSide, r.y1), trueT);
     });
     uint64_t total = 0;
     for (uint64_t h : hits) total += h;

@@ -101,7 +101,7 @@ TEST_CASE("shard: K/N parsed, file names, blocks and Slurm's variables") {
         for (long long total : {0ll, 1ll, 5ll, 48ll}) {
             long long next = 0;
             for (int k = 0; k < n; ++k) {
-                const cli::Range r = cli::shardBlock(cli::Shard{k, n}, total);
+                const cli::ItemRange r = cli::shardBlock(cli::Shard{k, n}, total);
                 CHECK(r.begin == next);
                 next = r.end;
             }
