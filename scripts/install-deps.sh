@@ -5,6 +5,8 @@
 #   scripts/install-deps.sh render   # only what building and running `ssrt` needs
 #   scripts/install-deps.sh ci       # everything, and CI's compiler cache and debootstrap
 #   scripts/install-deps.sh arm      # the aarch64 cross build's (scripts/test-arm.sh), below
+#   scripts/install-deps.sh download # only downloads what `all` installs, into apt's archive
+#                                    # cache (scripts/test-fresh.sh --prepare, in its fresh root)
 #
 # Idempotent: packages already present are skipped, so the README commands can call it on
 # every run at the cost of one dpkg query.
@@ -67,7 +69,8 @@ case "${1:-all}" in
     ci) packages=("${render_packages[@]}" "${test_packages[@]}" "${ci_packages[@]}") ;;
     arm) packages=("${render_packages[@]}" "${test_packages[@]}" "${arm_host_packages[@]}"
                    "${arm64_packages[@]/%/:arm64}") ;;
-    *) echo "usage: $0 [render|all|ci|arm]" >&2; exit 2 ;;
+    download) packages=("${render_packages[@]}" "${test_packages[@]}") ;;
+    *) echo "usage: $0 [render|all|ci|arm|download]" >&2; exit 2 ;;
 esac
 
 missing=()
@@ -78,7 +81,7 @@ for p in "${packages[@]}"; do
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
-echo "install-deps: installing ${missing[*]}" >&2
+echo "install-deps: $([ "${1:-}" = download ] && echo downloading || echo installing) ${missing[*]}" >&2
 t0=$SECONDS
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
@@ -95,6 +98,11 @@ if [ "${1:-}" = arm ]; then
         echo "install-deps: installing the arm64 packages would remove ${removed% }" >&2
         exit 1
     fi
+fi
+if [ "${1:-}" = download ]; then
+    $sudo apt-get install -y -qq --no-install-recommends --download-only "${missing[@]}" >/dev/null
+    echo "install-deps: downloaded ${#missing[@]} packages and their dependencies in $((SECONDS - t0)) s" >&2
+    exit 0
 fi
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 # (scripts/test-fresh.sh reads this line for the README's times.)

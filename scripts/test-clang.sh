@@ -19,18 +19,22 @@ cc="${SSRT_CLANG_CC:-clang-14}"
 # The gcc build's command, up to date (nothing to do after scripts/test.sh).
 bash scripts/build.sh --render
 
-# The clang build: the command and the tests (no benchmarks).
-source scripts/lib/compiler-cache.sh
+# Golden hashes, and the same bits for every ISA and thread count (renderer, rasterizer,
+# ray generation, SSGI, marching rays alone or together): the cases this build runs.
+cases='built-in scenes keep their golden hashes,every ISA and thread count*,*the same bits*'
+
+# The clang build: the command and the test files that hold those cases (no benchmarks), its
+# libraries a unity build (scripts/lib/second-build.sh).
+source scripts/lib/second-build.sh
 t0=$SECONDS
 CC="$cc" CXX="$cxx" cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF "${compiler_cache[@]}" >/dev/null
+    -DSSRT_BUILD_TESTS=ON -DSSRT_BUILD_PERF=OFF "-DSSRT_TEST_FILES=$(test_files_for "$cases")" \
+    "${second_build[@]}" >/dev/null
 cmake --build build-clang --target ssrt_cli ssrt_tests --parallel "$jobs"
 echo "test-clang: built build-clang/ in $((SECONDS - t0)) s" >&2
+same_cases test-clang -tc="$cases" -- ./build-clang/tests/ssrt_tests
 
-# Golden hashes, and the same bits for every ISA and thread count (renderer, rasterizer,
-# ray generation, SSGI, marching rays alone or together).
-./build-clang/tests/ssrt_tests \
-    -tc='built-in scenes keep their golden hashes,every ISA and thread count*,*the same bits*'
+run_cases test-clang -tc="$cases" -- ./build-clang/tests/ssrt_tests
 
 # The golden-image suite (tests/golden/suite.json, made by the gcc build) rendered by the clang
 # build: every case exact. Its report stays in build-clang/golden-report/.

@@ -12,6 +12,11 @@
 #
 #   scripts/test-fresh.sh                   # both commands
 #   SSRT_FRESH_TESTS=none scripts/test-fresh.sh   # command 1 only
+#   scripts/test-fresh.sh --prepare         # only what waits on the network: the cached root
+#                                           # (debootstrap) and the packages the commands will
+#                                           # install, downloaded into apt-archives/ (below);
+#                                           # .ci/run starts it early, beside the stages that
+#                                           # compute, and the fresh stage then finds both
 #
 # Needs root (debootstrap, chroot, mounts in a private mount namespace that ends with the run).
 # Kept outside the checkout, in SSRT_FRESH_CACHE (default /var/cache/ssrt-fresh):
@@ -20,12 +25,15 @@
 #   apt-archives/  the .deb files the roots downloaded (what a newcomer's apt fetches; kept so
 #                  a second run does not fetch them again; the packages are still installed);
 #   run/           the root of the latest run (removed at the start of the next), and its logs;
-#   ccache/        the root's compiler cache (SSRT_FRESH_CCACHE=1, the default): ccache is
-#                  installed in the root before the commands and this folder mounted as its
-#                  cache, so a second run compiles only what changed (the commands are the same;
-#                  scripts/lib/compiler-cache.sh finds ccache as on any machine that has it). The
-#                  first run, with an empty cache, is a newcomer's cold build.
-#                  SSRT_FRESH_CCACHE=0: no ccache in the root, every build cold.
+# The root is given the host's compiler cache (SSRT_FRESH_CCACHE=1, the default): ccache is
+# installed in the root before the commands and the host's cache folder (`ccache -k cache_dir`)
+# mounted as the root's, so the commands compile through it as on any machine that has ccache
+# (scripts/lib/compiler-cache.sh finds it; the commands are unchanged). The root's compiler is
+# the host's (the same Debian packages) and the cache is keyed on paths relative to the
+# checkout, so what CI's test stage compiled on the host is a hit in the root: a cold machine
+# builds the project once, not three times. The hits and misses are printed.
+# SSRT_FRESH_CCACHE=0: no ccache in the root, every build a newcomer's cold build (the times
+# docs/ci.md quotes for a newcomer).
 # Where debootstrap cannot reach the package archive it prints one line
 # "test-fresh: SKIPPED: ..." and exits 0; any other failure fails.
 set -euo pipefail
@@ -40,6 +48,12 @@ readonly kMaxAgeDays=7
 cache="${SSRT_FRESH_CACHE:-/var/cache/ssrt-fresh}"
 tests="${SSRT_FRESH_TESTS:-all}"
 use_ccache="${SSRT_FRESH_CCACHE:-1}"
+prepare=0
+case "${1:-}" in
+    "") ;;
+    --prepare) prepare=1 ;;
+    *) say "usage: $0 [--prepare]"; exit 2 ;;
+esac
 case "$tests" in all | none) ;; *) say "SSRT_FRESH_TESTS must be all or none"; exit 2 ;; esac
 [ "$(id -u)" -eq 0 ] || { say "needs root (debootstrap, chroot and mounts)"; exit 2; }
 
@@ -48,6 +62,7 @@ failed=0
 pass() { say "ok: $*"; passed=$((passed + 1)); }
 fail() { say "FAIL: $*"; failed=$((failed + 1)); }
 finish() {
+    [ "$(type -t ccache_summary)" != function ] || ccache_summary
     say "took $((SECONDS - t_start)) s"
     say "$passed passed, $failed failed"
     [ "$failed" -eq 0 ]
@@ -139,18 +154,44 @@ in_root() { # name, command
     ' bash "$root" "$cache/apt-archives" "$cmd" "$ccache_dir" >"$run/logs/$name.log" 2>&1
 }
 
-# The root's compiler cache (see the header).
+# --prepare: the packages the two commands install, downloaded (not installed) into the kept
+# apt-archives/, from which the commands' apt then installs without fetching them.
 ccache_dir=""
+if [ "$prepare" = 1 ]; then
+    t0=$SECONDS
+    if in_root download "bash scripts/install-deps.sh download"; then
+        pass "prepared: the root and its packages downloaded in $((SECONDS - t0)) s ($(du -sh "$cache/apt-archives" | cut -f1) in apt-archives/)"
+    else
+        tail -n 20 "$run/logs/download.log" | sed 's/^/  | /' >&2
+        fail "downloading the packages in the root failed (log above)"
+    fi
+    finish
+fi
+
+# The root's compiler cache: the host's (see the header).
+ccache_dir=""
+ccache_count() { # the cache's hits and misses so far: "HITS MISSES"
+    ccache --print-stats | awk '$1 ~ /_cache_hit$/ { h += $2 } $1 == "cache_miss" { m = $2 }
+        END { print h + 0, m + 0 }'
+}
+rm -rf "$cache/ccache" # (the root's own cache, before it was given the host's)
 if [ "$use_ccache" = 1 ]; then
-    ccache_dir="$cache/ccache"
+    ccache_dir="$(ccache -k cache_dir)"
     mkdir -p "$ccache_dir"
+    read -r hits0 misses0 <<<"$(ccache_count)"
     if ! in_root ccache "apt-get update -q && apt-get install -y -q --no-install-recommends ccache"; then
         tail -n 20 "$run/logs/ccache.log" | sed 's/^/  | /' >&2
         fail "installing ccache in the root failed (log above)"
         finish
     fi
-    say "ccache in the root, its cache in $ccache_dir ($(du -sh "$ccache_dir" | cut -f1))"
+    say "ccache in the root, the host's cache $ccache_dir ($(du -sh "$ccache_dir" | cut -f1))"
 fi
+ccache_summary() { # how much the root's builds found in the host's cache
+    [ -n "$ccache_dir" ] || return 0
+    local hits misses
+    read -r hits misses <<<"$(ccache_count)"
+    say "the root's builds: $((hits - hits0)) compiler cache hits, $((misses - misses0)) misses"
+}
 # "packages P s, build B s, OTHER R s" from a log and the command's time.
 split_time() { # log, total seconds, name of the rest
     local p b

@@ -23,28 +23,24 @@
 #  - two kernel families, scalar (the oracle the ISA tests compare with) and avx2 (a SIMD
 #    family, with its masked and gathered loads), of five: cmake/kernels.cmake's SSRT_ISAS;
 #    the other families are the same templates at other widths;
-#  - only the ssrt_tests target, no benchmarks.
+#  - only the ssrt_tests target, no benchmarks, and in it only the test files that hold the
+#    cases run here (scripts/lib/second-build.sh's test_files_for);
+#  - the libraries as a unity build (scripts/lib/second-build.sh, which configures this build
+#    and test-tsan.sh's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-source scripts/lib/compiler-cache.sh
-cxx="${SSRT_CLANG_CXX:-clang++-14}"
-cc="${SSRT_CLANG_CC:-clang-14}"
-# A build-asan/ configured with another compiler (gcc, before) is made anew.
-if [ -f build-asan/CMakeCache.txt ] &&
-    ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*$cxx\$" build-asan/CMakeCache.txt; then
-    rm -rf build-asan
-fi
+# The cases that run (doctest's filter); only the test files that hold them are compiled.
+cases='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*,image limits:*,command line:*,cli limits:*,cgroup memory:*'
+source scripts/lib/second-build.sh
 t0=$SECONDS
-CC="$cc" CXX="$cxx" cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" \
-      "-DSSRT_ISAS=scalar;avx2" -DSSRT_SANITIZE=ON -DSSRT_BUILD_PERF=OFF -DSSRT_BUILD_FUZZ=ON \
-      -DSSRT_BUILD_PYTHON=OFF \
-      "${compiler_cache[@]}" >/dev/null
+configure_clang_sanitizer_build build-asan -DSSRT_SANITIZE=ON -DSSRT_BUILD_FUZZ=ON \
+    -DSSRT_BUILD_PYTHON=OFF "-DSSRT_TEST_FILES=$(test_files_for "$cases")"
 cmake --build build-asan --target ssrt_tests ssrt_fuzz --parallel "${SSRT_BUILD_JOBS:-$(nproc)}"
 echo "test-sanitized: built build-asan/ in $((SECONDS - t0)) s" >&2
 source scripts/lib/sanitizer-options.sh
-./build-asan/tests/ssrt_tests -tc='frame:*,alpha cut-out:*,alpha truth:*,normal map:*,occlusion texture:*,emissive texture:*,tangents:*,settings fields:*,march:*,march keys:*,embree scene:*,ray check:*,image error:*,reference:*,reference bounces:*,compare*,sweep:*,ray generation:*,ssr*,ssgi*,composite:*,renderer: *,shot:*,cli shot:*,sky image io:*,texture*,*gltf*,*glTF*,*GLB*,cli:*,*EXR*,*PNG*,*unwritable*,*extension*,*checkWritable*,*writing over*,cli sequence:*,sweep --frames*,camera path:*,readChannels*,denoise:*,quality:*,trace layouts:*,checkerboard*,half resolution*,cli diff:*,cli render --compare:*,image compare:*,decoders*,shard:*,reference cache:*,image limits:*,command line:*,cli limits:*,cgroup memory:*'
+same_cases test-sanitized -tc="$cases" -- ./build-asan/tests/ssrt_tests
+run_cases test-sanitized -tc="$cases" -- ./build-asan/tests/ssrt_tests
 t0=$SECONDS
 bash scripts/fuzz.sh replay
 echo "test-sanitized: replayed the fuzz seeds in $((SECONDS - t0)) s" >&2

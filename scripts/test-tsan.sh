@@ -21,13 +21,14 @@
 # here with TSan (build-tsan/python3-tsan: Debian's libpython3.11 behind an instrumented main()),
 # which starts the run-time before the interpreter and gives the module its symbols.
 #
-# The build is cut as the sanitized stage's is (scripts/test-sanitized.sh says why): clang 14,
-# -O1 -gline-tables-only, the scalar and AVX2 kernel families, and here only the test files
-# whose cases run (SSRT_TEST_FILES), `ssrt` and the module.
+# The build is cut as the sanitized stage's is (scripts/test-sanitized.sh says why; both are
+# configured by scripts/lib/second-build.sh): clang 14, -O1 -gline-tables-only, the scalar and
+# AVX2 kernel families, the libraries as a unity build, and here only the test files whose
+# cases run (SSRT_TEST_FILES), `ssrt` and the module.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-source scripts/lib/compiler-cache.sh
+source scripts/lib/second-build.sh
 cxx="${SSRT_CLANG_CXX:-clang++-14}"
 cc="${SSRT_CLANG_CC:-clang-14}"
 jobs="${SSRT_BUILD_JOBS:-$(nproc)}"
@@ -86,30 +87,11 @@ if [ ! -d "$tbb_prefix" ]; then
 fi
 
 # --- ssrt with ThreadSanitizer --------------------------------------------------------------
-test_files=(
-    tests/renderer/concurrent_render_test.cpp tests/renderer/determinism_test.cpp
-    tests/renderer/denoise_sequence_test.cpp tests/renderer/ssgi_feedback_test.cpp
-    tests/raster/raster_rules_test.cpp tests/shading/environment_test.cpp
-    tests/trace/ray_gen_test.cpp tests/trace/march_test.cpp tests/trace/ssgi_test.cpp
-    tests/trace/trace_layout_test.cpp tests/trace/reconstruct_test.cpp
-    tests/trace/hit_stats_test.cpp tests/denoise/denoise_test.cpp
-    tests/truth/reference_image_test.cpp tests/truth/ray_check_test.cpp
-    tests/io/flip_test.cpp tests/io/image_io_test.cpp
-)
-# A build-tsan/ configured with another compiler is made anew.
-if [ -f build-tsan/CMakeCache.txt ] &&
-    ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*$cxx\$" build-tsan/CMakeCache.txt; then
-    rm -rf build-tsan
-fi
+# The cases that run (doctest's filter); only the test files that hold them are compiled.
+cases='*thread*,concurrent render:*'
 t0=$SECONDS
-CC="$cc" CXX="$cxx" cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" \
-    "-DSSRT_ISAS=scalar;avx2" -DSSRT_SANITIZE_THREAD=ON -DSSRT_BUILD_PERF=OFF \
-    -DSSRT_BUILD_PYTHON=ON "-DSSRT_TEST_FILES=$(
-        IFS=';'
-        echo "${test_files[*]}"
-    )" \
-    -DTBB_DIR="$tbb_prefix/lib/cmake/TBB" "${compiler_cache[@]}" >/dev/null
+configure_clang_sanitizer_build build-tsan -DSSRT_SANITIZE_THREAD=ON -DSSRT_BUILD_PYTHON=ON \
+    "-DSSRT_TEST_FILES=$(test_files_for "$cases")" -DTBB_DIR="$tbb_prefix/lib/cmake/TBB"
 cmake --build build-tsan --target ssrt_tests ssrt_cli ssrt_python --parallel "$jobs"
 python_include=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_paths()["include"])')
 python_lib=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_config_var("LDVERSION"))')
@@ -128,10 +110,12 @@ for bin in build-tsan/tests/ssrt_tests build-tsan/ssrt; do
     }
 done
 
+same_cases test-tsan -tc="$cases" -- ./build-tsan/tests/ssrt_tests
+
 # halt_on_error: the first report ends the run (exit 66), so a race cannot pass unnoticed.
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp"
 t0=$SECONDS
-./build-tsan/tests/ssrt_tests -tc='*thread*,concurrent render:*'
+run_cases test-tsan -tc="$cases" -- ./build-tsan/tests/ssrt_tests
 echo "test-tsan: the threaded test cases took $((SECONDS - t0)) s" >&2
 
 # A sequence with its history (the denoiser's and the reprojected colour's) at 1, 2 and 8

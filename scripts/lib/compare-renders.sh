@@ -12,6 +12,15 @@
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
 # half-resolution pick are not frame 0's ("layout:SCENE"). Returns 1 when any file differs.
+# (compare_renders' own: waits until fewer than $1 renders run, counting them in its `running`
+# and a failed one in its `status`)
+_cr_throttle() {
+    while [ "$running" -ge "$1" ]; do
+        wait -n || status=1
+        running=$((running - 1))
+    done
+}
+
 compare_renders() {
     local label=$1 out=$2 name_a=$3 name_b=$4
     local -n _cr_a=$3 _cr_b=$4  # (names of their own: a nameref must not name itself)
@@ -29,7 +38,10 @@ compare_renders() {
 
     rm -rf "$out"
     mkdir -p "$out/$name_a" "$out/$name_b"
-    local status=0 count=0 input quality kind what name extra
+    # Every render first, as many at once as there are cores (one under an emulator is slow and
+    # mostly one thread), then every pair of files compared.
+    local jobs="${SSRT_BUILD_JOBS:-$(nproc)}" running=0 renders=() status=0 count=0
+    local input quality kind what name extra
     for quality in "$@"; do
         for input in "${inputs[@]}"; do
             kind=${input%%:*} what=${input#*:}
@@ -44,17 +56,28 @@ compare_renders() {
                 extra+=(--quality "$quality")
             fi
             extra+=(--width 160 --height 90 --quiet)
-            "${_cr_a[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_a/$name.exr"
-            "${_cr_b[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_b/$name.exr"
-            count=$((count + 1))
-            if cmp "$out/$name_a/$name.exr" "$out/$name_b/$name.exr"; then
-                echo "$label: same EXR bytes: $input ($quality)"
-            else
-                echo "$label: FAIL: $name_a and $name_b EXR files differ: $input ($quality)" \
-                     "($out/$name_a/$name.exr, $out/$name_b/$name.exr)" >&2
-                status=1
-            fi
+            renders+=("$name $input ($quality)")
+            "${_cr_a[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_a/$name.exr" &
+            running=$((running + 1))
+            _cr_throttle "$jobs"
+            "${_cr_b[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_b/$name.exr" &
+            running=$((running + 1))
+            _cr_throttle "$jobs"
         done
+    done
+    _cr_throttle 1
+    [ $status -eq 0 ] || echo "$label: FAIL: a render failed (its error above)" >&2
+    local render
+    for render in "${renders[@]}"; do
+        name=${render%% *}
+        count=$((count + 1))
+        if cmp "$out/$name_a/$name.exr" "$out/$name_b/$name.exr"; then
+            echo "$label: same EXR bytes: ${render#* }"
+        else
+            echo "$label: FAIL: $name_a and $name_b EXR files differ: ${render#* }" \
+                 "($out/$name_a/$name.exr, $out/$name_b/$name.exr)" >&2
+            status=1
+        fi
     done
     if [ $status -ne 0 ]; then
         echo "$label: FAIL: the $name_b build renders other bytes than the $name_a build" >&2

@@ -1,4 +1,4 @@
-# Sourced by the scripts that configure a build (build.sh, test-clang.sh, test-sanitized.sh):
+# Sourced by the scripts that configure a build (build.sh, and lib/second-build.sh for CI's others):
 # sets `compiler_cache`, the CMake option that puts ccache in front of the compiler when it is
 # installed (install-deps.sh ci installs it; neither README command needs it), and clears it
 # when not, so a build folder configured with ccache keeps building after ccache is gone.
