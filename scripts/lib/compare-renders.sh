@@ -12,12 +12,13 @@
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
 # half-resolution pick are not frame 0's ("layout:SCENE"). Returns 1 when any file differs.
-# (compare_renders' own: waits until fewer than $1 renders run, counting them in its `running`
-# and a failed one in its `status`)
+# (compare_renders' own: waits until fewer than $1 renders run, oldest first, keeping their
+# process ids in its `pids` and noting a failed one in its `status`. `wait PID`, not `wait -n`,
+# which can miss a job that ended while a command substitution ran.)
 _cr_throttle() {
-    while [ "$running" -ge "$1" ]; do
-        wait -n || status=1
-        running=$((running - 1))
+    while [ "${#pids[@]}" -ge "$1" ]; do
+        wait "${pids[0]}" || status=1
+        pids=("${pids[@]:1}")
     done
 }
 
@@ -40,7 +41,7 @@ compare_renders() {
     mkdir -p "$out/$name_a" "$out/$name_b"
     # Every render first, as many at once as there are cores (one under an emulator is slow and
     # mostly one thread), then every pair of files compared.
-    local jobs="${SSRT_BUILD_JOBS:-$(nproc)}" running=0 renders=() status=0 count=0
+    local jobs="${SSRT_BUILD_JOBS:-$(nproc)}" pids=() renders=() status=0 count=0
     local input quality kind what name extra
     for quality in "$@"; do
         for input in "${inputs[@]}"; do
@@ -58,10 +59,10 @@ compare_renders() {
             extra+=(--width 160 --height 90 --quiet)
             renders+=("$name $input ($quality)")
             "${_cr_a[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_a/$name.exr" &
-            running=$((running + 1))
+            pids+=($!)
             _cr_throttle "$jobs"
             "${_cr_b[@]}" render "--$kind" "$what" "${extra[@]}" -o "$out/$name_b/$name.exr" &
-            running=$((running + 1))
+            pids+=($!)
             _cr_throttle "$jobs"
         done
     done

@@ -100,17 +100,18 @@ run_cases() { # label, filter..., --, command...
     fi
     # At most 32 processes: one case each where there are few (slow cases under a sanitizer or
     # an emulator), consecutive runs of them where there are many (quick ones).
-    local per=$(((count + 31) / 32)) jobs="${SSRT_BUILD_JOBS:-$(nproc)}" logs k running=0
+    local per=$(((count + 31) / 32)) jobs="${SSRT_BUILD_JOBS:-$(nproc)}" logs k pids=()
     local t0=$SECONDS
     logs=$(mktemp -d)
     for ((k = 1; k <= count; k += per)); do
         # (ordered by name, so that every process numbers the cases alike)
         { "$@" "${filters[@]}" --order-by=name --first="$k" --last="$((k + per - 1))" \
             >"$logs/$k.log" 2>&1 || echo "$k" >>"$logs/failed"; } &
-        running=$((running + 1))
-        if [ "$running" -ge "$jobs" ]; then
-            wait -n || true
-            running=$((running - 1))
+        pids+=($!)
+        # (oldest first: `wait -n` can miss a job that ended during a command substitution)
+        if [ "${#pids[@]}" -ge "$jobs" ]; then
+            wait "${pids[0]}"
+            pids=("${pids[@]:1}")
         fi
     done
     wait
