@@ -59,23 +59,30 @@ test_files_for() { # CASES
         print join(";", @files), "\n";' "$1"
 }
 
-# `same_cases LABEL FILTER... -- COMMAND...`: fails unless the test binary COMMAND lists the
-# same cases for the doctest FILTERs (-tc=..., -tce=...) as scripts/test.sh's full binary
-# (build/tests/ssrt_tests), where that is built: no case is lost to test_files_for.
-same_cases() { # label, filter..., --, command...
-    local label=$1 filters=()
-    shift
+# (same_cases' and run_cases' arguments after the label, FILTER... -- COMMAND..., into the
+# caller's `filters` and `command` arrays)
+_split_at_dashes() {
+    filters=()
     while [ "$1" != -- ]; do
         filters+=("$1")
         shift
     done
     shift
+    command=("$@")
+}
+
+# `same_cases LABEL FILTER... -- COMMAND...`: fails unless the test binary COMMAND lists the
+# same cases for the doctest FILTERs (-tc=..., -tce=...) as scripts/test.sh's full binary
+# (build/tests/ssrt_tests), where that is built: no case is lost to test_files_for.
+same_cases() { # label, filter..., --, command...
+    local label=$1 filters command
+    _split_at_dashes "${@:2}"
     [ -x build/tests/ssrt_tests ] || return 0
-    if ! diff <(build/tests/ssrt_tests "${filters[@]}" -ltc) <("$@" "${filters[@]}" -ltc) >&2; then
+    if ! diff <(build/tests/ssrt_tests "${filters[@]}" -ltc) <("${command[@]}" "${filters[@]}" -ltc) >&2; then
         echo "$label: the second build's tests match other cases than build/tests/ssrt_tests" >&2
         return 1
     fi
-    echo "$label: $("$@" "${filters[@]}" -ltc | grep -c -v -e '^\[doctest\]' -e '^====') cases, as in the full test binary" >&2
+    echo "$label: $("${command[@]}" "${filters[@]}" -ltc | grep -c -v -e '^\[doctest\]' -e '^====') cases, as in the full test binary" >&2
 }
 
 # `run_cases LABEL FILTER... -- COMMAND...`: runs the doctest cases that the FILTERs match in
@@ -85,15 +92,10 @@ same_cases() { # label, filter..., --, command...
 # would leave the other cores idle. Every case runs, once; the output of each process that
 # fails is printed, and the function fails once all have run.
 run_cases() { # label, filter..., --, command...
-    local label=$1 filters=()
-    shift
-    while [ "$1" != -- ]; do
-        filters+=("$1")
-        shift
-    done
-    shift
+    local label=$1 filters command
+    _split_at_dashes "${@:2}"
     local count
-    count=$("$@" "${filters[@]}" --count | sed -n 's/.*passing the current filters: \([0-9]*\).*/\1/p')
+    count=$("${command[@]}" "${filters[@]}" --count | sed -n 's/.*passing the current filters: \([0-9]*\).*/\1/p')
     if [ "${count:-0}" -eq 0 ]; then
         echo "$label: no test case matches ${filters[*]}" >&2
         return 1
@@ -105,7 +107,7 @@ run_cases() { # label, filter..., --, command...
     logs=$(mktemp -d)
     for ((k = 1; k <= count; k += per)); do
         # (ordered by name, so that every process numbers the cases alike)
-        { "$@" "${filters[@]}" --order-by=name --first="$k" --last="$((k + per - 1))" \
+        { "${command[@]}" "${filters[@]}" --order-by=name --first="$k" --last="$((k + per - 1))" \
             >"$logs/$k.log" 2>&1 || echo "$k" >>"$logs/failed"; } &
         pids+=($!)
         # (oldest first: `wait -n` can miss a job that ended during a command substitution)
