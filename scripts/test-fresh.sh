@@ -135,7 +135,10 @@ mkdir -p "$root/root/ssrt"
 git -C "$repo" archive --format=tar "$rev" | tar -C "$root/root/ssrt" -xf -
 say "root ready: $(git -C "$repo" rev-parse --short "$rev") in $root/root/ssrt"
 
-# Runs a command in the root (bash -c), its output in logs/NAME.log; returns its status.
+# Runs a command in the root (bash -c), its output in logs/NAME.log; returns its status. The
+# environment is a newcomer's login: HOME, TERM, PATH and the host's LANG (C.UTF-8 if unset),
+# which ccache hashes (compiler messages follow it): without it no unit would be found in the
+# host's cache.
 in_root() { # name, command
     local name="$1" cmd="$2"
     unshare --mount --propagation private -- bash -c '
@@ -148,10 +151,11 @@ in_root() { # name, command
             mkdir -p "$root/root/.cache/ccache"
             mount --bind "$4" "$root/root/.cache/ccache"
         fi
-        exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb \
+        exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG="$5" \
             PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
             /bin/bash -c "cd /root/ssrt && $3"
-    ' bash "$root" "$cache/apt-archives" "$cmd" "$ccache_dir" >"$run/logs/$name.log" 2>&1
+    ' bash "$root" "$cache/apt-archives" "$cmd" "$ccache_dir" "${LANG:-C.UTF-8}" \
+        >"$run/logs/$name.log" 2>&1
 }
 
 # --prepare: the packages the two commands install, downloaded (not installed) into the kept

@@ -115,7 +115,8 @@ same_cases test-tsan -tc="$cases" -- ./build-tsan/tests/ssrt_tests
 # halt_on_error: the first report ends the run (exit 66), so a race cannot pass unnoticed.
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp"
 t0=$SECONDS
-run_cases test-tsan -tc="$cases" -- ./build-tsan/tests/ssrt_tests
+# The thread counts over 1 (tests/thread_counts.h): one thread cannot race.
+SSRT_TEST_THREADS=parallel run_cases test-tsan -tc="$cases" -- ./build-tsan/tests/ssrt_tests
 echo "test-tsan: the threaded test cases took $((SECONDS - t0)) s" >&2
 
 # A sequence with its history (the denoiser's and the reprojected colour's) at 1, 2 and 8

@@ -14,6 +14,7 @@
 #include "core/pixel_formats.h"
 #include "core/rng.h"
 #include "denoise/denoise_fields.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -591,7 +592,7 @@ TEST_CASE("denoise: every ISA and thread count gives the same bits over a moving
     };
     const uint64_t ref = sequence(Isa::Scalar, 1);
     for (Isa isa : supportedIsas())
-        for (int threads : {1, 2, 8}) {
+        for (int threads : testThreadCounts({1, 2, 8})) {
             CAPTURE(std::string(isaName(isa)));
             CAPTURE(threads);
             CHECK(sequence(isa, threads) == ref);

@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 #include "plane_compare.h"
 #include "temp_dir.h"
+#include "thread_counts.h"
 
 // Renders through the ssrt_cli_lib target, which defines SSRT_CLI_LIB for those linking it.
 #ifdef SSRT_CLI_LIB
@@ -112,7 +113,7 @@ TEST_CASE("flip: the same bits on 1, 2 and 8 threads") {
     const FlipResult hdr1 = hdrFlip(test, reference, kFlipPixelsPerDegree, 1);
     REQUIRE(ldr1.stats.mean > 0.0);
     REQUIRE(hdr1.stats.mean > 0.0);
-    for (const int threads : {2, 8}) {
+    for (const int threads : testThreadCounts({2, 8})) {
         CAPTURE(threads);
         const FlipResult ldr = ldrFlip(test, reference, kFlipPixelsPerDegree, threads);
         const FlipResult hdr = hdrFlip(test, reference, kFlipPixelsPerDegree, threads);

@@ -8,6 +8,7 @@
 
 #include "core/rng.h"
 #include "raster_fixture.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 using namespace ssrt::test;
@@ -209,7 +210,7 @@ TEST_CASE("every ISA and thread count rasterizes the same bits") {
     const RasterResult ref = rasterPixelTris(tris, w, h, Isa::Scalar, 1);
     CHECK(coveredCount(ref.vb) > w * h / 2);
     for (Isa isa : supportedIsas())
-        for (int threads : {1, 2, 8}) {
+        for (int threads : testThreadCounts({1, 2, 8})) {
             const std::string isaStr(isaName(isa));
             CAPTURE(isaStr);
             CAPTURE(threads);

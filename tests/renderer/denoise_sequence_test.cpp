@@ -14,6 +14,7 @@
 #include "frame_hash.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -103,7 +104,7 @@ TEST_CASE("denoise sequence: a camera path renders the same bits on every ISA an
         CAPTURE(std::string(name));
         const uint64_t ref = sequenceHash(name, Isa::Scalar, 1);
         for (Isa isa : supportedIsas())
-            for (int threads : {1, 2, 8}) {
+            for (int threads : testThreadCounts({1, 2, 8})) {
                 CAPTURE(std::string(isaName(isa)));
                 CAPTURE(threads);
                 CHECK(sequenceHash(name, isa, threads) == ref);

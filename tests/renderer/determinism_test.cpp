@@ -16,6 +16,7 @@
 #include "material_maps.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -210,7 +211,7 @@ TEST_CASE("every ISA and thread count renders the same bits") {
         CAPTURE(scene);
         const uint64_t ref = frameHash(renderSmall(scene, Isa::Scalar, 1));
         for (Isa isa : supportedIsas())
-            for (int threads : {1, 2, 8}) {
+            for (int threads : testThreadCounts({1, 2, 8})) {
                 const std::string isaStr(isaName(isa));
                 CAPTURE(isaStr);
                 CAPTURE(threads);

@@ -13,6 +13,7 @@
 #include "renderer/renderer.h"
 #include "renderer/trace_pass.h"
 #include "scenes/builtin_scenes.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 using test::sameBits;
@@ -152,7 +153,7 @@ TEST_CASE("ssgi feedback: a sequence has the same bits on every ISA and thread c
     };
     const Frame ref = sequence(Isa::Scalar, 1);
     for (Isa isa : supportedIsas())
-        for (int threads : {1, 3}) {
+        for (int threads : testThreadCounts({1, 3})) {
             CAPTURE(isaName(isa));
             CAPTURE(threads);
             CHECK(sameImage(sequence(isa, threads), ref));

@@ -19,6 +19,7 @@
 #include "scenes/builtin_scenes.h"
 #include "shading/direct_kernel.h"
 #include "shading/multiscatter.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -195,7 +196,7 @@ TEST_CASE(
             for (Isa isa : supportedIsas()) {
                 CAPTURE(isaName(isa));
                 f.shade(isa, true);
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     PlaneF color[3], display[3];
                     compositeInto(isa, f.inputs(exposure), color, display, threads);
                     for (int c = 0; c < 3; ++c) {
@@ -235,7 +236,7 @@ TEST_CASE("composite: f16 parts are the f32 ones rounded, the same bits on every
                             wrong += f16[k][c].at(x, y) !=
                                      encodeF16(std::min(f32[k][c].at(x, y), 65504.0f));
             CHECK(wrong == 0);
-            for (int threads : {1, 2, 8}) {
+            for (int threads : testThreadCounts({1, 2, 8})) {
                 PlaneF color[3], display[3];
                 compositeInto(isa, f.inputsF16(1.3f), color, display, threads);
                 if (first) {

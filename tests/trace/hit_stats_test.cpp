@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "plane_compare.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 using test::sameBits;
@@ -99,7 +100,7 @@ TEST_CASE("hit statistics: the scalar loops' bits on every ISA and thread count"
                        s == spp - 1, spp);
             }
             for (Isa isa : supportedIsas())
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     PlaneF hit(cam.width, cam.height), steps, dist;

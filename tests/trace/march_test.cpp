@@ -15,6 +15,7 @@
 #include "plane_compare.h"
 #include "raster/hiz.h"
 #include "tests/trace/march_fixture.h"
+#include "thread_counts.h"
 #include "trace/ray_gen.h"
 
 using namespace ssrt;
@@ -445,7 +446,7 @@ TEST_CASE("march: bit-identical for threads 1/2/8 and every ISA the CPU runs") {
             CHECK(refStats.ends[int(MarchEnd::Hit)] > 100);
             const uint64_t h = resultHash(ref);
             for (Isa isa : supportedIsas())
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     MarchResult r;

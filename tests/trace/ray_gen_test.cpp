@@ -23,6 +23,7 @@
 #include "shading/brdf.h"
 #include "shading/sampling.h"
 #include "shading/sampling_stats.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -664,7 +665,7 @@ TEST_CASE("ray generation: the same bits for every ISA and thread count") {
             const RayGenStats refStats = generate(f, mp, ref, 2, 5, Isa::Scalar, 1);
             const uint64_t refHash = batchHash(ref);
             for (Isa isa : supportedIsas())
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     RayBatch rays;

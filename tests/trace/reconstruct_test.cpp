@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/isa.h"
+#include "thread_counts.h"
 #include "trace/trace_layout.h"
 
 using namespace ssrt;
@@ -203,7 +204,7 @@ TEST_CASE("reconstruct: the same bits for every ISA and thread count") {
     const Signal base = ref.clone();
     fillCheckerboard(Isa::Scalar, s.guides(), pdf, ref.planes(true), 1);
     for (Isa isa : supportedIsas())
-        for (int threads : {1, 2, 8}) {
+        for (int threads : testThreadCounts({1, 2, 8})) {
             const std::string isaStr(isaName(isa));
             CAPTURE(isaStr);
             CAPTURE(threads);

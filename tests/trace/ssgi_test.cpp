@@ -16,6 +16,7 @@
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 #include "shading/environment.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -220,7 +221,7 @@ TEST_CASE("ssgi: finite on a rendered frame, and the same bits on every ISA and 
             for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(ref[c].at(x, y));
     CHECK(finite);
     for (Isa isa : supportedIsas())
-        for (int threads : {1, 2, 8}) {
+        for (int threads : testThreadCounts({1, 2, 8})) {
             CAPTURE(isaName(isa));
             CAPTURE(threads);
             PlaneF out[3];

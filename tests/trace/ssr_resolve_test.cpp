@@ -14,6 +14,7 @@
 #include "plane_compare.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
+#include "thread_counts.h"
 #include "trace/color_pyramid.h"
 
 using namespace ssrt;
@@ -475,7 +476,7 @@ TEST_CASE(
             CHECK(finite);
             CHECK(inRange);
             for (Isa isa : supportedIsas())
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     CAPTURE(isaName(isa));
                     CAPTURE(threads);
                     SsrOutput out;

@@ -15,6 +15,7 @@
 #include "renderer/renderer.h"
 #include "renderer/screen_quad.h"
 #include "scenes/builtin_scenes.h"
+#include "thread_counts.h"
 
 using namespace ssrt;
 
@@ -331,7 +332,7 @@ TEST_CASE("trace layouts: the same bits for every ISA and thread count, frame af
             const uint64_t ref =
                 frameHash(Renderer(rs).renderWithoutHistory(s, FrameInput::still(s, frame)));
             for (Isa isa : supportedIsas())
-                for (int threads : {1, 2, 8}) {
+                for (int threads : testThreadCounts({1, 2, 8})) {
                     const std::string isaStr(isaName(isa));
                     CAPTURE(isaStr);
                     CAPTURE(threads);

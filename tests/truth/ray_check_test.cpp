@@ -19,6 +19,7 @@
 #include "scenes/builtin_scenes.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
+#include "thread_counts.h"
 #include "trace/march.h"
 
 using namespace ssrt;
@@ -329,7 +330,7 @@ TEST_CASE("ray check: the same table and planes for 1, 2 and 8 threads") {
     for (RayClass c : {RayClass::FalseHit, RayClass::MissedOnScreen, RayClass::TrueMiss,
                        RayClass::OffScreenTruth})
         CHECK(first.count[int(c)] > 0);
-    for (int threads : {2, 8}) {
+    for (int threads : testThreadCounts({2, 8})) {
         CAPTURE(threads);
         CheckPlanes planes;
         const RayCheckTable t =
