@@ -45,6 +45,7 @@ readonly kOtherFlags=(
     --render                                              # scripts/build.sh
     --x --y                                               # perf/plot.py
     --untimed                                             # perf/soak.sh
+    --prepare                                             # scripts/test-fresh.sh
     --widht                                               # a misspelling shown as an error
 )
 
