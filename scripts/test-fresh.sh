@@ -61,8 +61,20 @@ passed=0
 failed=0
 pass() { say "ok: $*"; passed=$((passed + 1)); }
 fail() { say "FAIL: $*"; failed=$((failed + 1)); }
+# The root's compiler cache (set below) and what its builds found there, said at the end.
+ccache_dir=""
+ccache_count() { # the cache's hits and misses so far: "HITS MISSES"
+    ccache --print-stats | awk '$1 ~ /_cache_hit$/ { h += $2 } $1 == "cache_miss" { m = $2 }
+        END { print h + 0, m + 0 }'
+}
+ccache_summary() { # how much the root's builds found in the host's cache
+    [ -n "$ccache_dir" ] || return 0
+    local hits misses
+    read -r hits misses <<<"$(ccache_count)"
+    say "the root's builds: $((hits - hits0)) compiler cache hits, $((misses - misses0)) misses"
+}
 finish() {
-    [ "$(type -t ccache_summary)" != function ] || ccache_summary
+    ccache_summary
     say "took $((SECONDS - t_start)) s"
     say "$passed passed, $failed failed"
     [ "$failed" -eq 0 ]
@@ -160,7 +172,6 @@ in_root() { # name, command
 
 # --prepare: the packages the two commands install, downloaded (not installed) into the kept
 # apt-archives/, from which the commands' apt then installs without fetching them.
-ccache_dir=""
 if [ "$prepare" = 1 ]; then
     t0=$SECONDS
     if in_root download "bash scripts/install-deps.sh download"; then
@@ -173,11 +184,6 @@ if [ "$prepare" = 1 ]; then
 fi
 
 # The root's compiler cache: the host's (see the header).
-ccache_dir=""
-ccache_count() { # the cache's hits and misses so far: "HITS MISSES"
-    ccache --print-stats | awk '$1 ~ /_cache_hit$/ { h += $2 } $1 == "cache_miss" { m = $2 }
-        END { print h + 0, m + 0 }'
-}
 rm -rf "$cache/ccache" # (the root's own cache, before it was given the host's)
 if [ "$use_ccache" = 1 ]; then
     ccache_dir="$(ccache -k cache_dir)"
@@ -190,12 +196,6 @@ if [ "$use_ccache" = 1 ]; then
     fi
     say "ccache in the root, the host's cache $ccache_dir ($(du -sh "$ccache_dir" | cut -f1))"
 fi
-ccache_summary() { # how much the root's builds found in the host's cache
-    [ -n "$ccache_dir" ] || return 0
-    local hits misses
-    read -r hits misses <<<"$(ccache_count)"
-    say "the root's builds: $((hits - hits0)) compiler cache hits, $((misses - misses0)) misses"
-}
 # "packages P s, build B s, OTHER R s" from a log and the command's time.
 split_time() { # log, total seconds, name of the rest
     local p b
