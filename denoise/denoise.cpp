@@ -1,6 +1,7 @@
 #include "denoise/denoise.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <span>
 #include <stdexcept>
@@ -25,7 +26,43 @@ DenoiseSettings halfResolutionDiffuse(const DenoiseSettings& full) {
     return s;
 }
 
+// One frame's run: what its passes share.
+struct DenoiseRun::State {
+    const DenoiseSettings& s;
+    const DenoiseCall& in;
+    DenoiseScratch& sc;
+    const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
+    DenoiseHistory* next;            // null: no history to write (may be `previous`)
+    // Which signals `previous` holds, decided before `next` (the same history, maybe) is
+    // sized for this frame's signals.
+    bool previousHas[2];
+    Isa isa;
+    int threads;
+    TileGrid grid;
+    bool on[2];           // the signals given: diffuse, specular
+    ReblurFrame frame{};  // made by the front end's set-up
+    PlanePool local;      // (without the caller's pool: each pass's result freed once read)
+    // Each signal's latest result: the plane the next pass reads.
+    PlaneU64* current[2] = {};
+    // Each signal's accumulation speeds (null without the temporal pass: the blurs take 0).
+    const PlaneF* frames[2] = {};
+    // A pass's arguments per signal (null: the signal skips it), its kernel, and the planes
+    // it gives back once run.
+    struct Pass {
+        ReblurPassArgs args[2];
+        const ReblurPassArgs* run[2] = {};
+        void (*kernel)(const ReblurPassArgs&, int) = nullptr;
+        PlaneU64* read[2] = {};
+    };
+    std::vector<Pass> passes;  // one per step, in order
+    OutF lengths[2];           // the history lengths the post-blur copies the speeds to
+
+    PlanePool& pool() { return in.pool ? *in.pool : local; }
+};
+
 namespace {
+
+using State = DenoiseRun::State;
 
 // The rotation draws' sample counters: far above any ray generator's (samples < 64), so the
 // kernels' rotations are not correlated with the rays' directions.
@@ -50,21 +87,6 @@ public:
 
 private:
     std::vector<DenoisePassTime>* out_;
-};
-
-struct Context {
-    const DenoiseSettings& s;
-    const DenoiseCall& in;
-    DenoiseScratch& sc;
-    const DenoiseHistory* previous;  // last frame's, of this size; null: none to read
-    DenoiseHistory* next;            // null: no history to write (may be `previous`)
-    // Which signals `previous` holds, decided before `next` (the same history, maybe) is
-    // sized for this frame's signals.
-    bool previousHas[2];
-    Isa isa;
-    int threads;
-    TileGrid grid;
-    ReblurFrame frame;
 };
 
 // The frame every pass reads: guides, cameras, the front end's classification and the tuning.
@@ -152,23 +174,21 @@ void checkViews(const DenoiseCall& in, int w, int h) {
     if (specular && in.specularFrames) requireViews("denoise", w, h, {in.specularFrames});
 }
 
-void frontEnd(Context& c) {
-    const DenoiseCall& in = c.in;
+// The front end's arguments: the traced signals in, the noisy signals and the tile classes out.
+ReblurPassArgs frontEndArgs(const State& c) {
     ReblurPassArgs a;
     a.frame = c.frame;
-    a.signals = in;  // (the traced signals: DenoiseSignals)
+    a.signals = c.in;  // (the traced signals: DenoiseSignals)
     a.noisyDiffuse = c.sc.noisyDiffuse.row(0);
     a.noisySpecular = c.sc.noisySpecular.row(0);
     a.signalZ[0] = c.sc.signalZ[0].row(0);
     a.signalZ[1] = c.sc.signalZ[1].row(0);
     a.tiles = c.sc.tiles.data();
-    const auto fn = SSRT_DISPATCH(c.isa, reblurFrontEndTile);
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) { fn(a, tile); });
+    return a;
 }
 
 // What every pass after the front end starts from: the frame, the signal, its input and output.
-ReblurPassArgs passArgs(const Context& c, bool specular, const PlaneU64* in,
-                        const SignalOut4& out) {
+ReblurPassArgs passArgs(const State& c, bool specular, const PlaneU64* in, const SignalOut4& out) {
     ReblurPassArgs a;
     a.frame = c.frame;
     a.specular = specular;
@@ -177,8 +197,8 @@ ReblurPassArgs passArgs(const Context& c, bool specular, const PlaneU64* in,
     return a;
 }
 
-// Each pass's arguments for one signal; runPass runs them.
-ReblurPassArgs spatial(Context& c, bool specular, ReblurSpatial pass, const PlaneU64* in,
+// Each pass's arguments for one signal (signalStep makes its step of them).
+ReblurPassArgs spatial(const State& c, bool specular, ReblurSpatial pass, const PlaneU64* in,
                        const SignalOut4& out, PlaneU64* copy, const PlaneF* frames) {
     const DenoiseSettings& s = c.s;
     ReblurPassArgs a = passArgs(c, specular, in, out);
@@ -198,7 +218,7 @@ ReblurPassArgs spatial(Context& c, bool specular, ReblurSpatial pass, const Plan
     return a;
 }
 
-ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
+ReblurPassArgs temporal(const State& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const int k = specular ? 1 : 0;
     ReblurPassArgs a = passArgs(c, specular, in, out->row(0));
     a.outFrames = c.sc.frames[k].row(0);
@@ -212,7 +232,7 @@ ReblurPassArgs temporal(Context& c, bool specular, const PlaneU64* in, PlaneU64*
     return a;
 }
 
-ReblurPassArgs historyFix(Context& c, bool specular, const PlaneU64* in, PlaneU64* out) {
+ReblurPassArgs historyFix(const State& c, bool specular, const PlaneU64* in, PlaneU64* out) {
     const DenoiseSettings& s = c.s;
     const int k = specular ? 1 : 0;
     ReblurPassArgs a = passArgs(c, specular, in, out->row(0));
@@ -226,33 +246,14 @@ ReblurPassArgs historyFix(Context& c, bool specular, const PlaneU64* in, PlaneU6
     return a;
 }
 
-using PassKernel = void (*)(const ReblurPassArgs&, int);
-
-// One pass over the signals in `args` (null: that signal skips it) in one loop over the
-// tiles: a tile goes through the diffuse's kernel, then the specular's, then `afterTile`
-// (the post-blur's: the history's commit). Each kernel writes only its own signal's planes, so
-// the bits are those of one signal's pass after the other's.
-template <class AfterTile>
-void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2],
-             const AfterTile& afterTile) {
-    parallelForTiles(c.grid.count(), c.threads, [&](int tile) {
-        for (const ReblurPassArgs* a : args)
-            if (a) fn(*a, tile);
-        afterTile(tile);
-    });
-}
-void runPass(Context& c, PassKernel fn, const ReblurPassArgs* const (&args)[2]) {
-    runPass(c, fn, args, [](int) {});
-}
-
 // The history's guides and accumulation speeds (+ 1: the next frame's count includes this
-// one) of one tile, for the next frame: run on each tile right after its post-blur (the
-// tile's guides and speeds still in cache), not in a loop of its own. It reads the G-buffer,
+// one) of one tile, for the next frame (the "history" step, which may share the post-blur's
+// loop: the tile's guides and speeds still in cache). It reads the G-buffer,
 // the signals' masks and this frame's speeds, which no pass writes after the temporal one, and
 // writes the history's guides and speeds, which only the temporal pass reads (the post-blur
 // reads neither, and the history's signals it writes itself), so the bits are those of a
 // commit after the post-blur.
-void commitHistoryTile(const Context& c, int tile) {
+void commitHistoryTile(const State& c, int tile) {
     DenoiseHistory& h = *c.next;
     const DenoiseCall& in = c.in;
     PlaneF* const frames[2] = {&h.diffuseFrames, &h.specularFrames};
@@ -287,110 +288,12 @@ void commitHistoryTile(const Context& c, int tile) {
 
 // The rest of the history's commit, once the post-blur has committed every tile's: the fast
 // histories (this frame's planes, swapped in) and the camera.
-void finishHistory(Context& c) {
+void finishHistory(State& c) {
     DenoiseHistory& h = *c.next;
     if (c.in.hasDiffuse()) std::swap(h.diffuseFast, c.sc.fast[0]);
     if (c.in.hasSpecular()) std::swap(h.specularFast, c.sc.fast[1]);
     h.camera = c.in.camera;
     h.valid = true;
-}
-
-// The signals through every pass after the front end, each pass once over both (runPass); the
-// post-blur writes the outputs and the history (its signals, and tile by tile its guides and
-// speeds: commitHistoryTile). A pass's result is a resource named for it (DenoiseScratch),
-// taken from the pool as the pass starts; the pass's input goes back to the pool once it has
-// run, where the next pass's result takes its memory.
-void denoiseSignals(Context& c, PlanePool& pool, PassTimes& times) {
-    DenoiseScratch& sc = c.sc;
-    const DenoiseSettings& s = c.s;
-    const int w = c.grid.width, h = c.grid.height;
-    const bool on[2] = {c.in.hasDiffuse(), c.in.hasSpecular()};
-    PlaneU64* current[2] = {&sc.noisyDiffuse, &sc.noisySpecular};
-    // (null without the temporal pass: the blurs take 0 frames)
-    const PlaneF* frames[2] = {c.in.temporal ? &sc.frames[0] : nullptr,
-                               c.in.temporal ? &sc.frames[1] : nullptr};
-    // A pass over the signals `runs` says, each into its plane of `results`.
-    const auto step = [&](const char* name, PassKernel fn, PlaneU64(&results)[2],
-                          const bool(&runs)[2], auto&& build) {
-        ReblurPassArgs args[2];
-        const ReblurPassArgs* run[2] = {};
-        for (int k = 0; k < 2; ++k) {
-            if (!on[k] || !runs[k]) continue;
-            pool.take(results[k], w, h);
-            args[k] = build(k == 1, current[k], &results[k]);
-            run[k] = &args[k];
-        }
-        times.run(name, [&] { runPass(c, fn, run); });
-        for (int k = 0; k < 2; ++k) {
-            if (!run[k]) continue;
-            pool.give(*current[k]);
-            current[k] = &results[k];
-        }
-    };
-    const bool preBlur[2] = {s.diffusePrepassRadius > 0.0f, s.specularPrepassRadius > 0.0f};
-    const bool all[2] = {true, true};
-    if (preBlur[0] || preBlur[1])
-        step("pre-blur", SSRT_DISPATCH(c.isa, reblurSpatialTile), sc.preBlurred, preBlur,
-             [&](bool specular, const PlaneU64* in, PlaneU64* out) {
-                 return spatial(c, specular, ReblurSpatial::PreBlur, in, out->row(0), nullptr,
-                                nullptr);
-             });
-    if (c.in.temporal)
-        step("temporal", SSRT_DISPATCH(c.isa, reblurTemporalTile), sc.temporal, all,
-             [&](bool specular, const PlaneU64* in, PlaneU64* out) {
-                 return temporal(c, specular, in, out);
-             });
-    step("history fix", SSRT_DISPATCH(c.isa, reblurHistoryFixTile), sc.fixed, all,
-         [&](bool specular, const PlaneU64* in, PlaneU64* out) {
-             return historyFix(c, specular, in, out);
-         });
-    step("blur", SSRT_DISPATCH(c.isa, reblurSpatialTile), sc.blurred, all,
-         [&](bool specular, const PlaneU64* in, PlaneU64* out) {
-             return spatial(c, specular, ReblurSpatial::Blur, in, out->row(0), nullptr,
-                            frames[specular ? 1 : 0]);
-         });
-    // The post-blur's result, RGB to the output and all four channels to the history. (The
-    // output has no hit distance: the post-blur writes that channel to the history only.)
-    ReblurPassArgs args[2];
-    const ReblurPassArgs* run[2] = {};
-    for (int k = 0; k < 2; ++k) {
-        if (!on[k]) continue;
-        const bool specular = k == 1;
-        PlaneU64* history = nullptr;
-        if (c.next) history = specular ? &c.next->specular : &c.next->diffuse;
-        SignalOut4 out;
-        const OutF* const outputs = specular ? c.in.denoisedSpecular : c.in.denoisedDiffuse;
-        for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].data;
-        args[k] =
-            spatial(c, specular, ReblurSpatial::PostBlur, current[k], out, history, frames[k]);
-        run[k] = &args[k];
-    }
-    // The history length the EXR shows: frames behind each pixel (copied tile by tile after
-    // the tile's post-blur, which reads the speeds and not the outputs' copy of them).
-    const OutF framesOut[2] = {c.in.diffuseFrames, c.in.specularFrames};
-    bool lengths[2] = {};
-    for (int k = 0; k < 2; ++k) {
-        if (!on[k] || !framesOut[k]) continue;
-        if (frames[k]) lengths[k] = true;
-        else
-            for (int y = 0; y < framesOut[k].height; ++y)
-                std::fill_n(framesOut[k].row(y), framesOut[k].width, 0.0f);
-    }
-    // (Its time includes, per tile, the history lengths' copy and the history's commit,
-    // commitHistoryTile; the "history" line is what is left of the commit, finishHistory.)
-    times.run("post-blur", [&] {
-        runPass(c, SSRT_DISPATCH(c.isa, reblurSpatialTile), run, [&](int tile) {
-            const TileRect r = c.grid.rect(tile);
-            for (int k = 0; k < 2; ++k)
-                if (lengths[k])
-                    for (int y = r.y0; y < r.y1; ++y)
-                        std::copy(frames[k]->row(y) + r.x0, frames[k]->row(y) + r.x1,
-                                  framesOut[k].row(y) + r.x0);
-            if (c.next) commitHistoryTile(c, tile);
-        });
-    });
-    for (int k = 0; k < 2; ++k)
-        if (on[k]) pool.give(*current[k]);
 }
 
 // A scratch plane sized for the signals present (`on`), from the pool where there is one.
@@ -442,39 +345,218 @@ void ensureSizes(int w, int h, DenoiseScratch& sc, DenoiseHistory* history, bool
     keepIf(specular, history->specularFrames), keepIf(specular, history->specularFast);
 }
 
+// The step a pass makes: its set-up takes each running signal's result from the pool (as its
+// pass starts, so it reuses the memory of what earlier passes gave back) and builds its
+// arguments with `build(specular, in, out)`; its tile runs the kernel on each signal, the
+// diffuse's then the specular's (each writes only its own signal's planes, so the bits are
+// those of one signal's pass after the other's); its finish gives the pass's inputs back.
+template <class Build>
+DenoiseStep signalStep(State& st, std::string_view name, void (*kernel)(const ReblurPassArgs&, int),
+                       PlaneU64 (*results)[2], const bool (&runs)[2], Build build,
+                       std::function<void()> before = {}) {
+    const std::size_t i = st.passes.size();
+    st.passes.emplace_back();
+    st.passes[i].kernel = kernel;
+    State* s = &st;
+    return {name,
+            [s, i, results, run = std::array<bool, 2>{runs[0], runs[1]}, build, before] {
+                if (before) before();
+                State::Pass& p = s->passes[i];
+                for (int k = 0; k < 2; ++k) {
+                    if (!s->on[k] || !run[std::size_t(k)]) continue;
+                    PlaneU64* out = results ? &(*results)[k] : nullptr;
+                    if (out) s->pool().take(*out, s->grid.width, s->grid.height);
+                    p.args[k] = build(k == 1, s->current[k], out);
+                    p.run[k] = &p.args[k];
+                    p.read[k] = s->current[k];
+                    if (out) s->current[k] = out;
+                }
+            },
+            [s, i](int tile) {
+                const State::Pass& p = s->passes[i];
+                for (const ReblurPassArgs* a : p.run)
+                    if (a) p.kernel(*a, tile);
+            },
+            [s, i] {
+                for (PlaneU64* r : s->passes[i].read)
+                    if (r) s->pool().give(*r);
+            }};
+}
+
+// The steps of one frame, in order: the front end, then each pass after it over the signals
+// (the post-blur writes the outputs and the history's signals), then the history's commit.
+std::vector<DenoiseStep> makeSteps(State& st) {
+    const DenoiseSettings& s = st.s;
+    const DenoiseCall& in = st.in;
+    DenoiseScratch& sc = st.sc;
+    State* c = &st;
+    std::vector<DenoiseStep> steps;
+    // Front end: the scratch sized (no pool plane is taken before it), the frame made.
+    st.passes.emplace_back();
+    steps.push_back({"front end",
+                     [c] {
+                         State& t = *c;
+                         ensureSizes(t.grid.width, t.grid.height, t.sc, t.next, t.on[0], t.on[1],
+                                     t.grid, t.in.pool);
+                         t.frame = makeFrame(t.in, t.s, t.sc, t.previous, t.grid);
+                         t.current[0] = &t.sc.noisyDiffuse;
+                         t.current[1] = &t.sc.noisySpecular;
+                         for (int k = 0; k < 2; ++k)
+                             t.frames[k] = t.in.temporal ? &t.sc.frames[k] : nullptr;
+                         State::Pass& p = t.passes[0];
+                         p.kernel = SSRT_DISPATCH(t.isa, reblurFrontEndTile);
+                         p.args[0] = frontEndArgs(t);
+                         p.run[0] = &p.args[0];
+                     },
+                     [c](int tile) { c->passes[0].kernel(c->passes[0].args[0], tile); },
+                     [c] {
+                         if (c->in.signalsRead) c->in.signalsRead();
+                     }});
+    // The scratch the temporal pass writes (the speeds and fast histories), taken with the
+    // first pass after the front end.
+    const auto passScratch = [c] {
+        State& t = *c;
+        ensurePassScratch(t.grid.width, t.grid.height, t.sc, t.on[0], t.on[1], t.in.temporal,
+                          t.in.pool);
+    };
+    bool scratchTaken = false;
+    const auto firstAfterFrontEnd = [&]() -> std::function<void()> {
+        if (scratchTaken) return {};
+        scratchTaken = true;
+        return passScratch;
+    };
+    const bool preBlur[2] = {s.diffusePrepassRadius > 0.0f, s.specularPrepassRadius > 0.0f};
+    const bool all[2] = {true, true};
+    if ((st.on[0] && preBlur[0]) || (st.on[1] && preBlur[1]))
+        steps.push_back(signalStep(
+            st, "pre-blur", SSRT_DISPATCH(st.isa, reblurSpatialTile), &sc.preBlurred, preBlur,
+            [c](bool specular, const PlaneU64* from, PlaneU64* to) {
+                return spatial(*c, specular, ReblurSpatial::PreBlur, from, to->row(0), nullptr,
+                               nullptr);
+            },
+            firstAfterFrontEnd()));
+    if (in.temporal)
+        steps.push_back(signalStep(
+            st, "temporal", SSRT_DISPATCH(st.isa, reblurTemporalTile), &sc.temporal, all,
+            [c](bool specular, const PlaneU64* from, PlaneU64* to) {
+                return temporal(*c, specular, from, to);
+            },
+            firstAfterFrontEnd()));
+    steps.push_back(signalStep(
+        st, "history fix", SSRT_DISPATCH(st.isa, reblurHistoryFixTile), &sc.fixed, all,
+        [c](bool specular, const PlaneU64* from, PlaneU64* to) {
+            return historyFix(*c, specular, from, to);
+        },
+        firstAfterFrontEnd()));
+    steps.push_back(signalStep(st, "blur", SSRT_DISPATCH(st.isa, reblurSpatialTile), &sc.blurred,
+                               all, [c](bool specular, const PlaneU64* from, PlaneU64* to) {
+                                   return spatial(*c, specular, ReblurSpatial::Blur, from,
+                                                  to->row(0), nullptr, c->frames[specular ? 1 : 0]);
+                               }));
+    // The post-blur's result, RGB to the output and all four channels to the history. (The
+    // output has no hit distance: the post-blur writes that channel to the history only.)
+    DenoiseStep post = signalStep(
+        st, "post-blur", SSRT_DISPATCH(st.isa, reblurSpatialTile), nullptr, all,
+        [c](bool specular, const PlaneU64* from, PlaneU64*) {
+            PlaneU64* history = nullptr;
+            if (c->next) history = specular ? &c->next->specular : &c->next->diffuse;
+            SignalOut4 out;
+            const OutF* const outputs = specular ? c->in.denoisedSpecular : c->in.denoisedDiffuse;
+            for (int ch = 0; ch < 3; ++ch) out[ch] = outputs[ch].data;
+            return spatial(*c, specular, ReblurSpatial::PostBlur, from, out, history,
+                           c->frames[specular ? 1 : 0]);
+        });
+    // The history lengths the EXR shows: the frames behind each pixel, copied tile by tile after
+    // the tile's post-blur (which reads the speeds, not their copy); all 0 without the temporal
+    // pass.
+    post.setUp = [c, setUp = std::move(post.setUp)] {
+        setUp();
+        const OutF lengths[2] = {c->in.diffuseFrames, c->in.specularFrames};
+        for (int k = 0; k < 2; ++k) {
+            c->lengths[k] = {};
+            if (!c->on[k] || !lengths[k]) continue;
+            if (c->frames[k]) c->lengths[k] = lengths[k];
+            else
+                for (int y = 0; y < lengths[k].height; ++y)
+                    std::fill_n(lengths[k].row(y), lengths[k].width, 0.0f);
+        }
+    };
+    post.tile = [c, tile = std::move(post.tile)](int t) {
+        tile(t);
+        const TileRect r = c->grid.rect(t);
+        for (int k = 0; k < 2; ++k)
+            if (c->lengths[k])
+                for (int y = r.y0; y < r.y1; ++y)
+                    std::copy(c->frames[k]->row(y) + r.x0, c->frames[k]->row(y) + r.x1,
+                              c->lengths[k].row(y) + r.x0);
+    };
+    steps.push_back(std::move(post));
+    if (st.next)
+        steps.push_back({"history",
+                         {},
+                         [c](int tile) { commitHistoryTile(*c, tile); },
+                         [c] { finishHistory(*c); }});
+    // Once the last step has run, the scratch goes back to the caller's pool.
+    steps.back().finish = [c, finish = std::move(steps.back().finish)] {
+        if (finish) finish();
+        if (c->in.pool) c->in.pool->give(c->sc);
+    };
+    return steps;
+}
+
 }  // namespace
 
-void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseCall& in,
-             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads,
-             std::vector<DenoisePassTime>* times) {
+DenoiseRun::DenoiseRun(Isa isa, const DenoiseSettings& settings, const DenoiseCall& in,
+                       DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads) {
     settings.validate();
     const int w = in.camera.width, h = in.camera.height;
     if (w <= 0 || h <= 0) throw std::invalid_argument("denoise: empty camera");
     checkViews(in, w, h);
-    const bool diffuse = in.hasDiffuse(), specular = in.hasSpecular();
-    const TileGrid grid(w, h);
     const bool readHistory = history && !reset && history->usableAt(w, h);
     const DenoiseHistory* previous = readHistory ? history : nullptr;
     DenoiseHistory* next = in.replaceHistory ? history : nullptr;
-    if (next && !readHistory) next->valid = false;
     if (!in.temporal && (previous || next))
         throw std::logic_error("denoise: a history is read or kept without the temporal pass");
-    const bool previousHas[2] = {previous && previous->hasSignal(false),
-                                 previous && previous->hasSignal(true)};
-    ensureSizes(w, h, scratch, next, diffuse, specular, grid, in.pool);
-    Context c{settings, in,
-              scratch,  previous,
-              next,     {previousHas[0], previousHas[1]},
-              isa,      threads,
-              grid,     makeFrame(in, settings, scratch, previous, grid)};
+    if (next && !readHistory) next->valid = false;
+    state_.reset(
+        new State{settings,
+                  in,
+                  scratch,
+                  previous,
+                  next,
+                  {previous && previous->hasSignal(false), previous && previous->hasSignal(true)},
+                  isa,
+                  threads,
+                  TileGrid(w, h),
+                  {in.hasDiffuse(), in.hasSpecular()}});
+    steps_ = makeSteps(*state_);
+}
+
+DenoiseRun::~DenoiseRun() = default;
+
+const TileGrid& DenoiseRun::grid() const { return state_->grid; }
+
+const std::vector<DenoiseStep>& DenoiseRun::steps() const { return steps_; }
+
+const DenoiseStep* DenoiseRun::step(std::string_view name) const {
+    for (const DenoiseStep& s : steps_)
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+void denoise(Isa isa, const DenoiseSettings& settings, const DenoiseCall& in,
+             DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads,
+             std::vector<DenoisePassTime>* times) {
+    const DenoiseRun run(isa, settings, in, history, reset, scratch, threads);
     PassTimes pt(times);
-    pt.run("front end", [&] { frontEnd(c); });
-    if (in.signalsRead) in.signalsRead();
-    ensurePassScratch(w, h, scratch, diffuse, specular, in.temporal, in.pool);
-    PlanePool local;  // (without the caller's: each pass's result freed once read)
-    denoiseSignals(c, in.pool ? *in.pool : local, pt);
-    if (next) pt.run("history", [&] { finishHistory(c); });
-    if (in.pool) in.pool->give(scratch);
+    // Each step its own loop over the tiles (the renderer's scheduler fuses those the frame
+    // graph chains).
+    for (const DenoiseStep& s : run.steps())
+        pt.run(std::string(s.name).c_str(), [&] {
+            if (s.setUp) s.setUp();
+            parallelForTiles(run.grid().count(), threads, s.tile);
+            if (s.finish) s.finish();
+        });
 }
 
 }  // namespace ssrt

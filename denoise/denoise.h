@@ -18,17 +18,20 @@
 //   history fix   a wider reconstruction for pixels younger than historyFixFrames, and the
 //                 fast history's clamp of the slow one (anti-lag)
 //   blur          8 taps, radius shrinking as the history grows
-//   post-blur     twice the radius, stricter weights; writes the history the next frame reads
-//                 (its signals, and tile by tile after them its guides and speeds: the
-//                 history's commit, timed with the post-blur; the "history" time is only
-//                 what is left of the commit, the fast histories swapped in and the camera)
+//   post-blur     twice the radius, stricter weights; writes the outputs and the history's
+//                 signals the next frame reads
+//   history       the history's commit: its guides and speeds, tile by tile (a scheduler may
+//                 run it in the post-blur's loop: DenoiseStep), then the fast histories swapped
+//                 in and the camera
 // (REBLUR's temporal stabilisation is not built: the accumulation's own window already keeps
 // a still camera's flicker far under the issue's bar; see the closing note of issue 17.)
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/camera.h"
@@ -38,6 +41,7 @@
 #include "core/isa.h"
 #include "core/plane_pool.h"
 #include "core/plane_table.h"
+#include "core/tiles.h"
 #include "denoise/denoise_settings.h"
 #include "denoise/reblur_kernel.h"
 
@@ -150,6 +154,45 @@ struct DenoiseScratch : PlaneTable<DenoiseScratch> {
 struct DenoisePassTime {
     std::string name;
     double ms = 0.0;
+};
+
+// One pass of a frame's denoising, as a scheduler runs it: its set-up (the planes it writes
+// taken from the pool, its arguments made), its kernel on one tile (which writes only that
+// tile of the pass's own results) and its finish (the planes it read last given back). A
+// pass's set-up runs after the set-ups of the passes before it and before its first tile; its
+// finish after its last tile. Passes that read what the pass before wrote only at their own
+// pixel may share that pass's loop over the tiles, set-ups first, finishes last (the frame
+// graph's chains, renderer/frame_graph.h): each tile through one pass, then the next.
+struct DenoiseStep {
+    std::string_view name;  // "front end", "pre-blur", "temporal", "history fix", "blur",
+                            // "post-blur", "history" (the history's commit)
+    std::function<void()> setUp;
+    std::function<void(int tile)> tile;
+    std::function<void()> finish;
+};
+
+// One frame's denoising as its passes (the ones this call runs, in order); denoise() below runs
+// them one loop each. The call, settings, history and scratch are read through references and
+// must outlive it. The constructor checks the call as denoise() does (and throws as it does);
+// nothing is taken from the pool before the first set-up.
+class DenoiseRun {
+public:
+    DenoiseRun(Isa isa, const DenoiseSettings& settings, const DenoiseCall& call,
+               DenoiseHistory* history, bool reset, DenoiseScratch& scratch, int threads);
+    ~DenoiseRun();
+    DenoiseRun(const DenoiseRun&) = delete;
+    DenoiseRun& operator=(const DenoiseRun&) = delete;
+
+    const TileGrid& grid() const;
+    const std::vector<DenoiseStep>& steps() const;
+    // The step called `name`; null if this call does not run it.
+    const DenoiseStep* step(std::string_view name) const;
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+    std::vector<DenoiseStep> steps_;
 };
 
 // Denoises one frame into the call's outputs. `history` (null: none, every pixel starts afresh)

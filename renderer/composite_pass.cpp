@@ -50,7 +50,7 @@ void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeAr
     for (std::size_t i = 0; i < busy.size(); i += 2) upMs += busy[i], compMs += busy[i + 1];
     const double k = upMs + compMs > 0.0 ? wall / (upMs + compMs) : 0.0;
     frame.stats.passes.push_back({"denoise upsample", upMs * k});
-    frame.stats.passes.push_back({"composite", compMs * k});
+    frame.stats.passes.push_back({"composite", compMs * k, true});
 }
 
 }  // namespace

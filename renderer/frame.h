@@ -125,6 +125,9 @@ struct FrameHistory : PlaneTable<FrameHistory> {
 struct PassTime {
     std::string name;
     double ms = 0.0;
+    // It ran in one loop over the tiles with the pass before it (the frame scheduler's chains,
+    // renderer/frame_scheduler.h): each tile through that pass, then through this one.
+    bool fused = false;
 };
 
 // What one screen-space pass did, over all its samples.

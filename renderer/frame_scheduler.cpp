@@ -26,23 +26,29 @@ void FrameScheduler::whole(std::string_view pass, std::function<void()> run) {
 }
 
 void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
-                           std::function<void()> setUp) {
+                           std::function<void()> setUp, std::function<void()> finish,
+                           const TileGrid* grid) {
     checkNew(passes_, pass);
-    passes_.push_back({pass, {}, std::move(setUp), std::move(tile)});
+    passes_.push_back({pass, {}, std::move(setUp), std::move(finish), std::move(tile), grid});
 }
 
-// The chain's set-ups in order, then one loop over the tiles, each tile through every pass.
-// Each pass's time is its busy time over the tiles, scaled so that the passes add up to the
-// loop's wall time (the threads' time shared out as they spent it).
+// The chain's set-ups in order, then one loop over the tiles, each tile through every pass,
+// then the finishes in order. Each pass's time is its busy time over the tiles, scaled so that
+// the passes add up to the loop's wall time (the threads' time shared out as they spent it).
 void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats& stats) {
     using Clock = std::chrono::steady_clock;
+    const TileGrid& grid = chain[0]->grid ? *chain[0]->grid : grid_;
+    for (const Pass* p : chain)
+        if ((p->grid ? p->grid : &grid_) != &grid)
+            throw std::logic_error("frame scheduler: '" + std::string(p->name) +
+                                   "' is on other tiles than its chain's first pass");
     std::vector<double> setUpMs(chain.size(), 0.0);
     for (std::size_t i = 0; i < chain.size(); ++i)
         if (chain[i]->setUp) addTime(setUpMs[i], chain[i]->setUp);
     const Clock::time_point t1 = Clock::now();
     const std::size_t n = chain.size();
-    std::vector<double> busy(std::size_t(grid_.count()) * n, 0.0);
-    parallelForTiles(grid_.count(), threads_, [&](int tile) {
+    std::vector<double> busy(std::size_t(grid.count()) * n, 0.0);
+    parallelForTiles(grid.count(), threads_, [&](int tile) {
         Clock::time_point a = Clock::now();
         for (std::size_t i = 0; i < n; ++i) {
             chain[i]->tile(tile);
@@ -55,11 +61,13 @@ void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats&
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
     std::vector<double> ms(n, 0.0);
     double sum = 0.0;
-    for (std::size_t t = 0; t < std::size_t(grid_.count()); ++t)
+    for (std::size_t t = 0; t < std::size_t(grid.count()); ++t)
         for (std::size_t i = 0; i < n; ++i) ms[i] += busy[t * n + i], sum += busy[t * n + i];
     const double k = sum > 0.0 ? wall / sum : 0.0;
     for (std::size_t i = 0; i < n; ++i)
-        stats.passes.push_back({std::string(chain[i]->name), setUpMs[i] + ms[i] * k});
+        if (chain[i]->finish) addTime(setUpMs[i], chain[i]->finish);
+    for (std::size_t i = 0; i < n; ++i)
+        stats.passes.push_back({std::string(chain[i]->name), setUpMs[i] + ms[i] * k, i > 0});
 }
 
 void FrameScheduler::run(FrameStats& stats) {

@@ -7,8 +7,11 @@
 // order the threads take the tiles in (core/tiles.h). A chain's set-ups all run before its
 // first tile: a set-up may not read what an earlier pass of its chain writes.
 //
-// (The first form of the scheduler the design page describes: no halo yet, so a pass that
-// reads around its pixel starts a chain of its own.)
+// The denoiser's passes run here too (renderer/denoise_pass.cpp), each pass's planes taken in
+// its set-up and given back in its finish, so its front end and temporal pass, and its post-blur
+// and the history's commit, share a loop where the graph chains them.
+//
+// (No halo yet: a pass that reads around its pixel starts a chain of its own.)
 #pragma once
 
 #include <atomic>
@@ -32,10 +35,15 @@ public:
     // A pass that runs over the whole frame by itself (and times itself). A name given twice
     // is a std::logic_error.
     void whole(std::string_view pass, std::function<void()> run);
-    // A pass that runs tile by tile: `setUp` (optional) before the chain's first tile, then
-    // `tile` for each tile. Its time is its share of the chain's loop.
+    // A pass that runs tile by tile: `setUp` (optional) before the chain's first tile, after
+    // the set-ups of the chain's passes before it; then `tile` for each tile; then `finish`
+    // (optional) after the chain's last tile, after the finishes of the passes before it. Its
+    // tiles are the frame's, or `grid`'s (the half frame's: a chain's passes share one grid,
+    // else std::logic_error). Its time is its share of the chain's loop, with its set-up and
+    // finish.
     void tiled(std::string_view pass, std::function<void(int tile)> tile,
-               std::function<void()> setUp = {});
+               std::function<void()> setUp = {}, std::function<void()> finish = {},
+               const TileGrid* grid = nullptr);
 
     // Runs the passes given, those the graph runs, in the graph's order (std::logic_error for
     // a pass the graph does not know); adds the tiled passes' times to `stats`.
@@ -43,8 +51,9 @@ public:
 
     struct Pass {
         std::string_view name;
-        std::function<void()> whole, setUp;
+        std::function<void()> whole, setUp, finish;
         std::function<void(int)> tile;
+        const TileGrid* grid = nullptr;  // null: the frame's
     };
 
 private:

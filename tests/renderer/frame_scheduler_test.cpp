@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/quality.h"
+#include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
 using namespace ssrt;
@@ -75,4 +76,66 @@ TEST_CASE("frame scheduler: a pass the graph does not know is a programming erro
     FrameScheduler twice(g, TileGrid(g.width, g.height), 1);
     twice.whole(pass::kShadow, [] {});
     CHECK_THROWS_AS(twice.tiled(pass::kShadow, [](int) {}), std::logic_error);
+}
+
+TEST_CASE("frame scheduler: a chain's finishes run after its last tile, on the chain's own tiles") {
+    const CompiledGraph g = mediumGraph();
+    const TileGrid frameGrid(g.width, g.height);
+    const TileGrid small(40, 20);  // 1 x 1 tile
+    std::vector<std::string> order;
+    FrameScheduler s(g, frameGrid, 1);
+    s.tiled(
+        pass::kResolve, [&](int t) { order.push_back("resolve " + std::to_string(t)); },
+        [&] { order.push_back("resolve set-up"); }, [&] { order.push_back("resolve finish"); },
+        &small);
+    s.tiled(
+        pass::kShading, [&](int t) { order.push_back("shade " + std::to_string(t)); }, {},
+        [&] { order.push_back("shade finish"); }, &small);
+    FrameStats stats;
+    s.run(stats);
+    const std::vector<std::string> expected = {"resolve set-up", "resolve 0", "shade 0",
+                                               "resolve finish", "shade finish"};
+    CHECK(order == expected);
+    // The second pass of the loop is marked as fused with the first.
+    REQUIRE(stats.passes.size() == 2);
+    CHECK_FALSE(stats.passes[0].fused);
+    CHECK(stats.passes[1].fused);
+    // Passes of one chain on different tiles cannot share a loop.
+    FrameScheduler mixed(g, frameGrid, 1);
+    mixed.tiled(
+        pass::kResolve, [](int) {}, {}, {}, &small);
+    mixed.tiled(pass::kShading, [](int) {});
+    CHECK_THROWS_AS(mixed.run(stats), std::logic_error);
+}
+
+TEST_CASE("frame scheduler: the denoiser's passes share the loops the frame graph chains") {
+    const Scene scene = makeBuiltinScene("cornell");
+    for (const TraceLayout layout : {TraceLayout::Full, TraceLayout::Half}) {
+        CAPTURE(int(layout));
+        RenderSettings s;
+        applyQuality(Quality::Medium, s);
+        s.width = 96;
+        s.height = 64;
+        s.shadowMapSize = 128;
+        s.trace.ssgiLayout = layout;
+        const Renderer renderer(s);
+        FrameHistory history;
+        Frame frame;
+        renderer.render(scene, FrameInput::still(scene, 0), history, frame);
+        renderer.render(scene, FrameInput::still(scene, 1), history, frame);
+        const auto fused = [&](std::string_view name) {
+            for (const PassTime& p : frame.stats.passes)
+                if (p.name == name) return p.fused;
+            FAIL("no pass " << name);
+            return false;
+        };
+        // The front end hands the temporal pass its output at the pixel, and the history's
+        // commit follows the post-blur (the half frame's passes are timed under the same names).
+        CHECK_FALSE(fused("denoise front end"));
+        CHECK(fused("denoise temporal"));
+        CHECK(fused("denoise history"));
+        // The spatial passes read their neighbours: each has a loop of its own.
+        CHECK_FALSE(fused("denoise history fix"));
+        CHECK_FALSE(fused("denoise blur"));
+    }
 }
