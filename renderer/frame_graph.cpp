@@ -134,11 +134,22 @@ void markChains(std::vector<GraphPass>& passes) {
 }
 
 // Transient memory as the planes' range hands it out (core/plane_memory.h): over the passes in
-// order, each transient's planes are placed just before its first pass (best fit among the
-// free blocks, the lowest of equals, else at the top of what has been used) and freed just
-// after its last, a freed block merged with its free neighbours. Returns the highest top:
-// what the transients need at once, planes of any size and format packed by bytes.
-std::size_t placeTransients(std::vector<GraphResource>& resources, std::size_t passCount) {
+// order, each transient's planes are placed just before the chain of its first pass (best fit
+// among the free blocks, the lowest of equals, else at the top of what has been used) and
+// freed just after the chain of its last, a freed block merged with its free neighbours: the
+// scheduler takes a chain's planes in its set-ups, before the chain's first tile, and gives
+// them back in its finishes, after the last (renderer/frame_scheduler.h). Returns the highest
+// top: what the transients need at once, planes of any size and format packed by bytes.
+std::size_t placeTransients(std::vector<GraphResource>& resources,
+                            const std::vector<GraphPass>& passes) {
+    const std::size_t passCount = passes.size();
+    // Each pass's chain's first and last pass.
+    std::vector<int> chainFirst(passCount), chainLast(passCount);
+    for (std::size_t p = 0; p < passCount; ++p)
+        chainFirst[p] = p > 0 && passes[p].chain == passes[p - 1].chain ? chainFirst[p - 1] : int(p);
+    for (std::size_t p = passCount; p-- > 0;)
+        chainLast[p] =
+            p + 1 < passCount && passes[p].chain == passes[p + 1].chain ? chainLast[p + 1] : int(p);
     std::map<std::size_t, std::size_t> free;  // offset -> bytes, in address order
     std::size_t top = 0, highest = 0;
     const auto place = [&](std::size_t bytes) {
@@ -177,13 +188,15 @@ std::size_t placeTransients(std::vector<GraphResource>& resources, std::size_t p
     };
     for (std::size_t p = 0; p < passCount; ++p) {
         for (GraphResource& r : resources) {
-            if (r.lifetime != Lifetime::Transient || r.first != int(p)) continue;
+            if (r.lifetime != Lifetime::Transient || chainFirst[std::size_t(r.first)] != int(p))
+                continue;
             const int planes = planesOf(resourceDecl(r.id));
             for (int i = 0; i < planes; ++i)
                 r.offsets.push_back(place(r.bytes / std::size_t(planes)));
         }
         for (GraphResource& r : resources) {
-            if (r.lifetime != Lifetime::Transient || r.last != int(p)) continue;
+            if (r.lifetime != Lifetime::Transient || chainLast[std::size_t(r.last)] != int(p))
+                continue;
             const std::size_t planeBytes = r.bytes / r.offsets.size();
             for (std::size_t at : r.offsets) release(at, planeBytes);
         }
@@ -260,7 +273,7 @@ CompiledGraph compileFrameGraph(const GraphKey& key) {
         for (const Access& a : p.writes) p.bytesWritten += g.find(a.res)->bytes;
         for (const Access& a : p.unread) p.bytesWritten += g.find(a.res)->bytes;
     }
-    g.transientBytes = placeTransients(g.resources, g.passes.size());
+    g.transientBytes = placeTransients(g.resources, g.passes);
     for (const GraphResource& r : g.resources) {
         if (r.lifetime == Lifetime::Output) g.outputBytes += r.bytes;
         if (r.lifetime == Lifetime::History) g.historyBytes += r.bytes;
