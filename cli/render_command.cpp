@@ -345,6 +345,9 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
 
 namespace {
 
+// The pass table's mark of a pass run in one loop over the tiles with the pass above it.
+constexpr const char* kFusedMark = "in the loop above";
+
 // Milliseconds of the pass named `name` (0 if it did not run).
 double passMs(const FrameStats& stats, const std::string& name) {
     for (const PassTime& p : stats.passes)
@@ -474,9 +477,11 @@ Json memoryJson(const std::vector<MemoryUse>& memory) {
 // The --stats figures of one frame as JSON, unrounded (docs/cli.md, "--json").
 Json statsJson(const FrameStats& stats, double wallMs, double writeMs) {
     Json passes = Json::object();
+    Json fused = Json::array();
     double sum = 0.0;
     for (const PassTime& p : stats.passes) {
         passes[p.name] = p.ms;
+        if (p.fused) fused.push_back(p.name);
         sum += p.ms;
     }
     Json raster = {{"visibility", Json::object()}, {"shadow", Json::object()}};
@@ -487,6 +492,7 @@ Json statsJson(const FrameStats& stats, double wallMs, double writeMs) {
     return {{"isa", isaName(stats.isa)},
             {"threads", stats.threads},
             {"pass_times", std::move(passes)},
+            {"fused_passes", std::move(fused)},
             {"sum_of_passes_ms", sum},
             {"render_call_ms", wallMs},
             {"image_write_ms", writeMs},
@@ -515,7 +521,10 @@ void printStats(std::ostream& out, const FrameStats& stats, double pixels, doubl
     double sum = 0.0;
     out << std::fixed << std::setprecision(3);
     for (const PassTime& p : stats.passes) {
-        row(p.name) << std::setw(kValueWidth) << p.ms << "\n";
+        row(p.name) << std::setw(kValueWidth) << p.ms;
+        // (one loop over the tiles with the pass above: renderer/frame_scheduler.h)
+        if (p.fused) out << "  " << kFusedMark;
+        out << "\n";
         sum += p.ms;
     }
     row("sum of passes") << std::setw(kValueWidth) << sum << "\n";

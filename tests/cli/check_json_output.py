@@ -112,6 +112,9 @@ for f, block in zip(doc.get("frames", []), blocks):
     passes = table(lines, "pass ")
     check([p for p in passes if p not in ("sum of passes", "render call", "image write")] ==
           list(f["pass_times"]), "render: the same passes in the same order")
+    check([p for p, cells in passes.items() if cells[1:] == ["in the loop above"]] ==
+          f["fused_passes"], "render: the same passes marked as run in the loop above")
+    check(f["fused_passes"], "render: a frame runs some passes in one loop")
     raster = table(lines, "raster counter")
     for label, (vis, shadow) in raster.items():
         same(vis, f["raster"]["visibility"][key(label)], f"render: visibility {label}")
