@@ -146,7 +146,8 @@ std::size_t placeTransients(std::vector<GraphResource>& resources,
     // Each pass's chain's first and last pass.
     std::vector<int> chainFirst(passCount), chainLast(passCount);
     for (std::size_t p = 0; p < passCount; ++p)
-        chainFirst[p] = p > 0 && passes[p].chain == passes[p - 1].chain ? chainFirst[p - 1] : int(p);
+        chainFirst[p] =
+            p > 0 && passes[p].chain == passes[p - 1].chain ? chainFirst[p - 1] : int(p);
     for (std::size_t p = passCount; p-- > 0;)
         chainLast[p] =
             p + 1 < passCount && passes[p].chain == passes[p + 1].chain ? chainLast[p + 1] : int(p);
