@@ -1,9 +1,14 @@
+#include <algorithm>
 #include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
 #include "core/plane_view.h"
+#include "renderer/frame_scheduler.h"
 #include "renderer/resources.h"
 #include "renderer/trace_stages.h"
 #include "shading/composite.h"
@@ -15,49 +20,8 @@ namespace {
 
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone
 // mapped; replaces the direct pass's colour and display.
-// The composite tile by tile, each tile's SSGI light first brought from the denoised half
-// frame into a tile's planes (diffuseUpsampledInComposite): the two stages' times are the
-// loop's, shared by the threads' time in each.
-void upsampleAndComposite(const TraceContext& c, Frame& frame, const CompositeArgs& ca) {
-    using Clock = std::chrono::steady_clock;
-    const std::span<const PlaneF, 3> half =
-        std::as_const(frame.scratch.half.denoised).rgb(Res::HalfDenoised);
-    const ReconstructSource from{{&half[0], &half[1], &half[2]}};
-    const HalfUpsampler up(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
-                           from);
-    const Compositor comp(c.isa, ca, true);
-    const TileGrid& grid = comp.grid();
-    std::vector<double> busy(std::size_t(2 * grid.count()), 0.0);
-    const Clock::time_point t0 = Clock::now();
-    parallelForTiles(grid.count(), c.threads(), [&](int tile) {
-        thread_local PlaneF light[3];
-        for (PlaneF& p : light)
-            if (p.empty()) p = PlaneF(kTileSize, kTileSize);
-        const TileRect r = grid.rect(tile);
-        const Clock::time_point a = Clock::now();
-        up.tile(tile, ReconstructPlanes{{&light[0], &light[1], &light[2]}}, r.x0, r.y0);
-        const Clock::time_point b = Clock::now();
-        const ViewF ssgi[3] = {viewOf(light[0], channelName(Res::DenoisedDiffuse, 0)),
-                               viewOf(light[1], channelName(Res::DenoisedDiffuse, 1)),
-                               viewOf(light[2], channelName(Res::DenoisedDiffuse, 2))};
-        comp.tile(tile, ssgi, r.x0, r.y0);
-        busy[std::size_t(2 * tile)] = std::chrono::duration<double, std::milli>(b - a).count();
-        busy[std::size_t(2 * tile + 1)] =
-            std::chrono::duration<double, std::milli>(Clock::now() - b).count();
-    });
-    const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    double upMs = 0.0, compMs = 0.0;
-    for (std::size_t i = 0; i < busy.size(); i += 2) upMs += busy[i], compMs += busy[i + 1];
-    const double k = upMs + compMs > 0.0 ? wall / (upMs + compMs) : 0.0;
-    frame.stats.passes.push_back({"denoise upsample", upMs * k});
-    frame.stats.passes.push_back({"composite", compMs * k, true});
-}
-
-}  // namespace
-
-void compositePass(const TraceContext& c, Frame& frame) {
+CompositeArgs compositeArgs(const TraceContext& c, Frame& frame, bool inComposite) {
     const TraceSettings& ts = c.ts();
-    const bool inComposite = diffuseUpsampledInComposite(c.settings);
     const DirectParts& parts = frame.direct;
     CompositeArgs ca;
     for (int ch = 0; ch < 3; ++ch) {
@@ -85,11 +49,76 @@ void compositePass(const TraceContext& c, Frame& frame) {
     if (ts.ssr && !ts.denoise.enabled)
         ca.ssrOpacity = viewOf(frame.plane(Res::SsrOpacity), channelName(Res::SsrOpacity));
     ca.exposure = c.settings.exposure;
-    // The composite reads the direct pass's colour through the parts only, so it may write
-    // over the image's planes.
-    if (inComposite) return upsampleAndComposite(c, frame, ca);
-    const ScopedPass timer(frame.stats, "composite");
-    composite(c.isa, ca, c.threads());
+    return ca;
+}
+
+// The composite's kernel, made as its pass starts, and where the half frame's denoised diffuse
+// is brought to the frame inside it, the upsample's kernel and each tile's time in both.
+struct CompositeStep {
+    std::optional<Compositor> comp;
+    std::optional<HalfUpsampler> up;
+    std::vector<double> upMs, compMs;  // per tile
+};
+
+// One tile: the upsample's tile of SSGI light into the thread's tile planes first, where it
+// runs inside the composite.
+void compositeTile(CompositeStep& s, int tile) {
+    if (!s.up) return s.comp->tile(tile);
+    using Clock = std::chrono::steady_clock;
+    thread_local PlaneF light[3];
+    for (PlaneF& p : light)
+        if (p.empty()) p = PlaneF(kTileSize, kTileSize);
+    const TileRect r = s.comp->grid().rect(tile);
+    const Clock::time_point a = Clock::now();
+    s.up->tile(tile, ReconstructPlanes{{&light[0], &light[1], &light[2]}}, r.x0, r.y0);
+    const Clock::time_point b = Clock::now();
+    const ViewF ssgi[3] = {viewOf(light[0], channelName(Res::DenoisedDiffuse, 0)),
+                           viewOf(light[1], channelName(Res::DenoisedDiffuse, 1)),
+                           viewOf(light[2], channelName(Res::DenoisedDiffuse, 2))};
+    s.comp->tile(tile, ssgi, r.x0, r.y0);
+    s.upMs[std::size_t(tile)] = std::chrono::duration<double, std::milli>(b - a).count();
+    s.compMs[std::size_t(tile)] =
+        std::chrono::duration<double, std::milli>(Clock::now() - b).count();
+}
+
+}  // namespace
+
+// The composite as a tiled pass (it reads the direct pass's colour through the parts only, so
+// it may write over the image's planes), in one loop with the passes the graph chains before it.
+// Where the half frame's denoised diffuse is brought to the frame tile by tile inside it
+// (diffuseUpsampledInComposite), the returned function, called once the scheduler has run into
+// `stats`, gives that upsample's share of the composite's time a line of its own.
+std::function<void(FrameStats&)> scheduleComposite(const TraceContext& c, Frame& frame,
+                                                   FrameScheduler& passes) {
+    const auto s = std::make_shared<CompositeStep>();
+    const bool inComposite = diffuseUpsampledInComposite(c.settings);
+    passes.tiled(
+        pass::kComposite, [s](int tile) { compositeTile(*s, tile); },
+        [&c, &frame, s, inComposite] {
+            s->comp.emplace(c.isa, compositeArgs(c, frame, inComposite), inComposite);
+            if (!inComposite) return;
+            const std::span<const PlaneF, 3> half =
+                std::as_const(frame.scratch.half.denoised).rgb(Res::HalfDenoised);
+            s->up.emplace(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
+                          ReconstructSource{{&half[0], &half[1], &half[2]}});
+            s->upMs.assign(std::size_t(s->comp->grid().count()), 0.0);
+            s->compMs = s->upMs;
+        });
+    return [s](FrameStats& stats) {
+        if (!s->up) return;
+        const auto line =
+            std::find_if(stats.passes.begin(), stats.passes.end(),
+                         [](const PassTime& p) { return p.name == pass::kComposite; });
+        if (line == stats.passes.end()) return;
+        double up = 0.0, all = 0.0;
+        for (std::size_t i = 0; i < s->upMs.size(); ++i)
+            up += s->upMs[i], all += s->upMs[i] + s->compMs[i];
+        const double upMs = all > 0.0 ? line->ms * up / all : 0.0;
+        line->ms -= upMs;
+        const bool fused = line->fused;
+        line->fused = true;  // (in the upsample's loop)
+        stats.passes.insert(line, {"denoise upsample", upMs, fused});
+    };
 }
 
 }  // namespace ssrt::trace_stages

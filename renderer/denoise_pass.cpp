@@ -1,12 +1,11 @@
-#include <algorithm>
-#include <chrono>
-#include <deque>
+#include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <vector>
+#include <string_view>
 
 #include "renderer/frame_scheduler.h"
 #include "renderer/trace_stages.h"
@@ -107,86 +106,76 @@ DenoiseCall fullCall(const TraceContext& c, Frame& frame) {
     return in;
 }
 
-// A run's steps as the frame graph's passes ("denoise " + the step + `suffix`), each on the
-// run's tiles; `before` (optional) runs before the first step's set-up. Every step must be a
-// pass the graph runs, and the graph may run no pass of this denoiser that is not a step:
-// else std::logic_error (the two disagree on the passes, and an output would go unwritten).
-void schedule(FrameScheduler& passes, const CompiledGraph& graph, const DenoiseRun& run,
-              std::string_view suffix, std::deque<std::string>& names,
-              std::function<void()> before = {}) {
-    const std::size_t first = names.size();
-    for (const DenoiseStep& s : run.steps()) {
-        names.push_back("denoise " + std::string(s.name) + std::string(suffix));
-        if (!graph.runs(names.back()))
-            throw std::logic_error("the frame graph does not run '" + names.back() +
-                                   "', which the denoiser does");
-        std::function<void()> setUp = s.setUp;
-        if (before && names.size() == first + 1)
-            setUp = [before, setUp] {
-                before();
-                if (setUp) setUp();
-            };
-        passes.tiled(names.back(), s.tile, std::move(setUp), s.finish, &run.grid());
-    }
-    for (const GraphPass& g : graph.passes) {
-        const std::string_view name = g.decl->name;
-        const bool ours = name.rfind("denoise ", 0) == 0 && name != pass::kDenoiseUpsample &&
-                          (name.size() >= 7 && name.substr(name.size() - 7) == " (half)") ==
-                              (suffix == " (half)");
-        if (ours &&
-            std::find(names.begin() + std::ptrdiff_t(first), names.end(), name) == names.end())
-            throw std::logic_error("the frame graph runs '" + std::string(name) +
-                                   "', which the denoiser does not");
-    }
-}
+// One of the frame's two denoiser runs (the half frame's diffuse, or the frame's signals),
+// made as its first pass starts: its inputs exist only once SSR and SSGI have run.
+struct Denoiser {
+    DenoiseSettings settings;
+    std::optional<DenoiseCall> call;
+    std::optional<DenoiseRun> run;
+    TileGrid grid;        // its tiles, once made
+    std::size_t ran = 0;  // the steps the scheduler has set up
+};
 
 }  // namespace
 
-// REBLUR over SSGI's and SSR's signals (denoise/denoise.h) into the frame's denoised outputs
-// (Res::DenoisedDiffuse, Res::DenoisedSpecular), which the composite then reads; the traced
-// planes stay as they were (the undenoised layers). The denoiser's passes run on the frame
-// scheduler, so those the frame graph chains share a loop over the tiles.
-void denoisePass(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts();
-    const bool halfDiffuse = ts.ssgi && ts.ssgiLayout == TraceLayout::Half;
-    FrameScheduler passes(c.graph, TileGrid(c.camera.width, c.camera.height), c.threads(),
-                          c.cancel);
-    std::deque<std::string> names;  // (the passes' names, which the scheduler keeps views of)
-    // The half frame's diffuse first (the graph's order): its planes go back before the
-    // full-resolution denoiser takes its scratch.
-    const DenoiseSettings halfSettings = halfResolutionDiffuse(ts.denoise);
-    std::optional<DenoiseCall> halfIn;
-    std::optional<DenoiseRun> half;
-    if (halfDiffuse) {
-        halfIn.emplace(halfDiffuseCall(c, frame));
-        DenoiseHistory* history = c.sequence ? &c.sequence->denoiseHalf : nullptr;
-        half.emplace(c.isa, halfSettings, *halfIn, history, c.resetHistory,
-                     frame.scratch.half.denoise, c.threads());
-        schedule(passes, c.graph, *half, " (half)", names);
+// Each pass of the denoiser the frame graph runs ("denoise " + the step, and " (half)" on the
+// half frame) as a tiled pass of `passes`, on the run's tiles, so the scheduler runs in one loop
+// the passes the graph chains. The first makes the run. Every pass the graph runs must be a
+// step of the run, and every step must run: else std::logic_error (the two disagree on the
+// passes, and an output would go unwritten; checked by the returned function, after the run).
+std::function<void()> scheduleDenoiser(const TraceContext& c, Frame& frame,
+                                       FrameScheduler& passes) {
+    const auto runs = std::make_shared<std::array<Denoiser, 2>>();  // half, full
+    (*runs)[0].settings = halfResolutionDiffuse(c.ts().denoise);
+    (*runs)[1].settings = c.ts().denoise;
+    const auto make = [&c, &frame, runs](bool half) {
+        Denoiser& d = (*runs)[half ? 0 : 1];
+        d.call.emplace(half ? halfDiffuseCall(c, frame) : fullCall(c, frame));
+        DenoiseHistory* history = !c.sequence ? nullptr
+                                  : half      ? &c.sequence->denoiseHalf
+                                              : &c.sequence->denoise;
+        DenoiseScratch& scratch = half ? frame.scratch.half.denoise : frame.scratch.denoise;
+        d.run.emplace(c.isa, d.settings, *d.call, history, c.resetHistory, scratch, c.threads());
+        d.grid = d.run->grid();
+    };
+    for (const GraphPass& g : c.graph.passes) {
+        const std::string_view name = g.decl->name;
+        constexpr std::string_view kPrefix = "denoise ", kHalf = " (half)";
+        if (name.rfind(kPrefix, 0) != 0 || name == pass::kDenoiseUpsample) continue;
+        const bool half = name.size() > kHalf.size() && name.ends_with(kHalf);
+        const std::string_view stepName =
+            name.substr(kPrefix.size(), name.size() - kPrefix.size() - (half ? kHalf.size() : 0));
+        Denoiser* d = &(*runs)[half ? 0 : 1];
+        const auto step = std::make_shared<const DenoiseStep*>(nullptr);
+        passes.tiled(
+            name, [step](int tile) { (*step)->tile(tile); },
+            [make, d, half, step, stepName, name] {
+                if (!d->run) make(half);
+                *step = d->run->step(stepName);
+                if (!*step)
+                    throw std::logic_error("the frame graph runs '" + std::string(name) +
+                                           "', which the denoiser does not");
+                ++d->ran;
+                if ((*step)->setUp) (*step)->setUp();
+            },
+            [step] {
+                if ((*step)->finish) (*step)->finish();
+            },
+            &d->grid);
     }
-    FrameStats stats;
-    if (halfDiffuse && !diffuseUpsampledInComposite(c.settings))
-        passes.whole(pass::kDenoiseUpsample, [&] { upsampleHalfDiffuse(c, frame, stats); });
-    const DenoiseCall in = fullCall(c, frame);
-    std::optional<DenoiseRun> full;
-    if (in.hasDiffuse() || in.hasSpecular()) {
-        DenoiseHistory* history = c.sequence ? &c.sequence->denoise : nullptr;
-        full.emplace(c.isa, ts.denoise, in, history, c.resetHistory, frame.scratch.denoise,
-                     c.threads());
-        std::function<void()> before;
-        if (halfDiffuse) before = [&c] { c.memory.giveThrough(pass::kDenoiseUpsample); };
-        schedule(passes, c.graph, *full, "", names, std::move(before));
-    }
-    passes.run(stats);
-    // One line per pass, the half frame's and the frame's summed.
-    for (PassTime& t : stats.passes) {
-        const std::size_t at = t.name.find(" (half)");
-        if (at != std::string::npos) t.name.erase(at);
-        auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
-                                 [&](const PassTime& p) { return p.name == t.name; });
-        if (same != frame.stats.passes.end()) same->ms += t.ms;
-        else frame.stats.passes.push_back(t);
-    }
+    return [runs] {
+        for (const Denoiser& d : *runs)
+            if (d.run && d.ran != d.run->steps().size())
+                throw std::logic_error("the denoiser runs a pass the frame graph does not");
+    };
+}
+
+// The half frame's denoised diffuse brought to the frame's planes, where a later pass reads them
+// there (not only the composite, which brings it tile by tile).
+void scheduleUpsample(const TraceContext& c, Frame& frame, FrameScheduler& passes,
+                      FrameStats& stats) {
+    passes.whole(pass::kDenoiseUpsample,
+                 [&c, &frame, &stats] { upsampleHalfDiffuse(c, frame, stats); });
 }
 
 }  // namespace ssrt::trace_stages

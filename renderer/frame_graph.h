@@ -51,6 +51,7 @@ inline constexpr std::string_view kHiZ = "hi-z";
 inline constexpr std::string_view kSsr = "ssr";
 inline constexpr std::string_view kSsrReconstruct = "ssr reconstruct";
 inline constexpr std::string_view kSsgi = "ssgi";
+inline constexpr std::string_view kSsgiHalfFrame = "ssgi half frame";
 inline constexpr std::string_view kSsgiHalf = "ssgi (half)";
 inline constexpr std::string_view kSsgiReconstruct = "ssgi reconstruct";
 inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";

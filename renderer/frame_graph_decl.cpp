@@ -366,7 +366,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsrHitDistance, P::Around}},
                  {{Res::Ssr}, {Res::SsrOpacity}, {Res::SsrHit}, {Res::SsrHitDistance}}});
     // The half frame: one chosen pixel of each 2x2 block, its own pyramid.
-    p.push_back({"ssgi half frame",
+    p.push_back({pass::kSsgiHalfFrame,
                  halfSsgi,
                  {{Res::ViewZ, P::Around},
                   {Res::Normal, P::Around},

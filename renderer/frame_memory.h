@@ -11,8 +11,8 @@
 // FrameGraph realises its virtual resources before their first pass and destroys them after their
 // last, so.)
 //
-// The renderer runs its passes in steps (a chain of the scheduler, the SSR pass, the
-// denoiser ...): each step() covers the declared passes after the last step's, through the
+// The renderer runs its passes in steps (each chain and whole pass of the frame scheduler,
+// renderer/frame_scheduler.h; the history's commit): each step() covers the declared passes after the last step's, through the
 // one it names, in declaration order, so a step holds whatever pass of it the settings keep.
 #pragma once
 

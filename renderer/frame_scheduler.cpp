@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "renderer/frame_memory.h"
 #include "renderer/pass_timer.h"
 #include "renderer/render_cancel.h"
 
@@ -20,16 +21,17 @@ void checkNew(const std::vector<FrameScheduler::Pass>& passes, std::string_view 
 
 }  // namespace
 
-void FrameScheduler::whole(std::string_view pass, std::function<void()> run) {
+void FrameScheduler::whole(std::string_view pass, std::function<void()> run,
+                           std::string_view through) {
     checkNew(passes_, pass);
-    passes_.push_back({pass, std::move(run), {}, {}});
+    passes_.push_back({pass, through.empty() ? pass : through, std::move(run), {}, {}, {}});
 }
 
 void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
                            std::function<void()> setUp, std::function<void()> finish,
                            const TileGrid* grid) {
     checkNew(passes_, pass);
-    passes_.push_back({pass, {}, std::move(setUp), std::move(finish), std::move(tile), grid});
+    passes_.push_back({pass, pass, {}, std::move(setUp), std::move(finish), std::move(tile), grid});
 }
 
 // The chain's set-ups in order, then one loop over the tiles, each tile through every pass,
@@ -37,14 +39,16 @@ void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
 // the passes add up to the loop's wall time (the threads' time shared out as they spent it).
 void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats& stats) {
     using Clock = std::chrono::steady_clock;
-    const TileGrid& grid = chain[0]->grid ? *chain[0]->grid : grid_;
-    for (const Pass* p : chain)
-        if ((p->grid ? p->grid : &grid_) != &grid)
-            throw std::logic_error("frame scheduler: '" + std::string(p->name) +
-                                   "' is on other tiles than its chain's first pass");
     std::vector<double> setUpMs(chain.size(), 0.0);
     for (std::size_t i = 0; i < chain.size(); ++i)
         if (chain[i]->setUp) addTime(setUpMs[i], chain[i]->setUp);
+    // (After the set-ups, which may make the tiles a pass runs on.)
+    const TileGrid& grid = chain[0]->grid ? *chain[0]->grid : grid_;
+    for (const Pass* p : chain)
+        if (const TileGrid& g = p->grid ? *p->grid : grid_;
+            g.width != grid.width || g.height != grid.height)
+            throw std::logic_error("frame scheduler: '" + std::string(p->name) +
+                                   "' is on other tiles than its chain's first pass");
     const Clock::time_point t1 = Clock::now();
     const std::size_t n = chain.size();
     std::vector<double> busy(std::size_t(grid.count()) * n, 0.0);
@@ -70,6 +74,11 @@ void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats&
         stats.passes.push_back({std::string(chain[i]->name), setUpMs[i] + ms[i] * k, i > 0});
 }
 
+void FrameScheduler::step(std::string_view last, const std::function<void()>& fn) {
+    if (memory_) memory_->step(last, fn);
+    else fn();
+}
+
 void FrameScheduler::run(FrameStats& stats) {
     for (const Pass& p : passes_)
         if (std::none_of(graph_.passes.begin(), graph_.passes.end(),
@@ -83,7 +92,7 @@ void FrameScheduler::run(FrameStats& stats) {
     const auto flush = [&] {
         if (chain.empty()) return;
         stopIfCancelled(cancel_);
-        runChain(chain, stats);
+        step(chain.back()->name, [&] { runChain(chain, stats); });
         chain.clear();
     };
     for (const GraphPass& g : graph_.passes) {
@@ -96,7 +105,7 @@ void FrameScheduler::run(FrameStats& stats) {
         if (p->whole) {
             flush();
             stopIfCancelled(cancel_);
-            p->whole();
+            step(p->through, p->whole);
             continue;
         }
         if (g.chain != chainId) flush();

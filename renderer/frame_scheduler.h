@@ -7,9 +7,13 @@
 // order the threads take the tiles in (core/tiles.h). A chain's set-ups all run before its
 // first tile: a set-up may not read what an earlier pass of its chain writes.
 //
-// The denoiser's passes run here too (renderer/denoise_pass.cpp), each pass's planes taken in
-// its set-up and given back in its finish, so its front end and temporal pass, and its post-blur
-// and the history's commit, share a loop where the graph chains them.
+// Given the frame's memory, each chain and each whole pass is one of its steps: a chain's
+// planes are taken before its set-ups and the transients it read last go back after its
+// finishes (the graph places transient memory so). The screen-space passes run on one
+// scheduler (renderer/trace_pass.cpp): SSR and SSGI whole, the denoiser's passes and the
+// composite tiled, each denoiser pass's own scratch taken in its set-up and given back in its
+// finish; so the denoiser's front end and temporal pass, and its post-blur, the history's commit
+// and the composite, share a loop where the graph chains them.
 //
 // (No halo yet: a pass that reads around its pixel starts a chain of its own.)
 #pragma once
@@ -25,22 +29,29 @@
 
 namespace ssrt {
 
+class FrameMemory;
+
 class FrameScheduler {
 public:
     // `cancel` (optional) is read before each whole pass and each chain (render_cancel.h).
+    // `memory` (optional): each whole pass and each chain is one of its steps, so the planes a
+    // step's passes write first are taken just before it and the transients they read last go
+    // back just after it (renderer/frame_memory.h).
     FrameScheduler(const CompiledGraph& graph, const TileGrid& grid, int threads,
-                   const std::atomic<bool>* cancel = nullptr)
-        : graph_(graph), grid_(grid), threads_(threads), cancel_(cancel) {}
+                   const std::atomic<bool>* cancel = nullptr, FrameMemory* memory = nullptr)
+        : graph_(graph), grid_(grid), threads_(threads), cancel_(cancel), memory_(memory) {}
 
-    // A pass that runs over the whole frame by itself (and times itself). A name given twice
-    // is a std::logic_error.
-    void whole(std::string_view pass, std::function<void()> run);
+    // A pass that runs over the whole frame by itself (and times itself); it also runs the
+    // declared passes after it through `through` (a declared pass; empty: none), which are not
+    // given here (the SSR pass makes its checkerboard's other phase). A name given twice is a
+    // std::logic_error.
+    void whole(std::string_view pass, std::function<void()> run, std::string_view through = {});
     // A pass that runs tile by tile: `setUp` (optional) before the chain's first tile, after
     // the set-ups of the chain's passes before it; then `tile` for each tile; then `finish`
     // (optional) after the chain's last tile, after the finishes of the passes before it. Its
-    // tiles are the frame's, or `grid`'s (the half frame's: a chain's passes share one grid,
-    // else std::logic_error). Its time is its share of the chain's loop, with its set-up and
-    // finish.
+    // tiles are the frame's, or `grid`'s (the half frame's, read once the chain's set-ups have
+    // run: a chain's passes share one grid, else std::logic_error). Its time is its share of the
+    // chain's loop, with its set-up and finish.
     void tiled(std::string_view pass, std::function<void(int tile)> tile,
                std::function<void()> setUp = {}, std::function<void()> finish = {},
                const TileGrid* grid = nullptr);
@@ -51,6 +62,7 @@ public:
 
     struct Pass {
         std::string_view name;
+        std::string_view through;  // a whole pass's last declared pass (empty: itself)
         std::function<void()> whole, setUp, finish;
         std::function<void(int)> tile;
         const TileGrid* grid = nullptr;  // null: the frame's
@@ -58,11 +70,14 @@ public:
 
 private:
     void runChain(const std::vector<const Pass*>& chain, FrameStats& stats);
+    // Runs `fn` as the declared passes through `last` (a memory step, with memory).
+    void step(std::string_view last, const std::function<void()>& fn);
 
     const CompiledGraph& graph_;
     TileGrid grid_;
     int threads_;
     const std::atomic<bool>* cancel_;
+    FrameMemory* memory_;
     std::vector<Pass> passes_;
 };
 

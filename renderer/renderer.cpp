@@ -364,9 +364,10 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
 
     // The passes up to the direct light: the rasters over the whole frame, then the resolve,
     // textures, ids and shading tile by tile, one loop, as the graph chains them.
-    FrameScheduler passes(graph, c.grid, c.threads, input.cancel);
+    FrameScheduler passes(graph, c.grid, c.threads, input.cancel, &memory);
     passes.whole(pass::kShadow, [&] { shadowPass(c, scene, frame); });
-    passes.whole(pass::kVisibility, [&] { visibilityPass(c, scene, frame); });
+    passes.whole(
+        pass::kVisibility, [&] { visibilityPass(c, scene, frame); }, pass::kBackFaces);
     const bool textured = graph.runs(pass::kTextures);
     ResolveTables tables;
     ResolveArgs ra{};
@@ -390,7 +391,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     passes.tiled(
         pass::kShading, [&](int tile) { shade(lighting.args, tile); },
         [&] { setDirectArgs(c, scene, sky, input.frameIndex, previous, frame, lighting); });
-    memory.step(pass::kShading, [&] { passes.run(frame.stats); });
+    passes.run(frame.stats);
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {

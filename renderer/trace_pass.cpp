@@ -1,6 +1,9 @@
 #include "renderer/trace_pass.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "renderer/pass_timer.h"
 #include "renderer/trace_stages.h"
@@ -36,32 +39,38 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
            !t.ssgiFeedback;
 }
 
+// The screen-space passes on one frame scheduler, each whole pass and each chain one step of
+// the frame's memory: SSR's and SSGI's passes over the whole frame, then the denoiser's passes
+// and the composite, in one loop over the tiles where the graph chains them. Their times are
+// collected apart and added after (the half frame's denoiser passes under the frame's names).
 void runTracePasses(TraceContext c, Frame& frame) {
     c.camera = frame.camera;
     c.backZ = backZ(frame.scratch.backZ);
-    const CompiledGraph& g = c.graph;
-    FrameMemory& m = c.memory;
-    // Each step after the cancel flag is read (renderer/render_cancel.h).
-    const auto step = [&](std::string_view last, auto&& run) {
-        stopIfCancelled(c.cancel);
-        m.step(last, run);
-    };
-    step(pass::kHiZ, [&] {
-        if (g.runs(pass::kHiZ)) hiZPass(c, frame);
-    });
-    step(pass::kSsrReconstruct, [&] {
-        if (g.runs(pass::kSsr)) ssrPass(c, frame);
-    });
-    step(pass::kSsgiReconstruct, [&] {
-        if (g.runs(pass::kSsgi) || g.runs(pass::kSsgiHalf)) ssgiPass(c, frame);
-    });
-    step(pass::kDenoiseHistory, [&] {
-        if (g.runs(pass::kDenoiseFrontEnd) || g.runs(pass::kDenoiseFrontEndHalf))
-            denoisePass(c, frame);
-    });
-    step(pass::kComposite, [&] {
-        if (g.runs(pass::kComposite)) compositePass(c, frame);
-    });
+    FrameScheduler passes(c.graph, TileGrid(c.camera.width, c.camera.height), c.threads(), c.cancel,
+                          &c.memory);
+    FrameStats stats;
+    passes.whole(pass::kHiZ, [&] { hiZPass(c, frame); });
+    passes.whole(
+        pass::kSsr, [&] { ssrPass(c, frame); }, pass::kSsrReconstruct);
+    // (On the half frame SSGI's first pass makes the half frame.)
+    passes.whole(
+        c.graph.runs(pass::kSsgi) ? pass::kSsgi : pass::kSsgiHalfFrame, [&] { ssgiPass(c, frame); },
+        pass::kSsgiReconstruct);
+    const std::function<void()> checkDenoiser = scheduleDenoiser(c, frame, passes);
+    scheduleUpsample(c, frame, passes, stats);
+    const std::function<void(FrameStats&)> compositeTimes = scheduleComposite(c, frame, passes);
+    passes.run(stats);
+    checkDenoiser();
+    compositeTimes(stats);
+    // One line per pass, the half frame's denoiser's and the frame's summed.
+    for (PassTime& t : stats.passes) {
+        const std::size_t at = t.name.find(" (half)");
+        if (at != std::string::npos) t.name.erase(at);
+        auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
+                                 [&](const PassTime& p) { return p.name == t.name; });
+        if (same != frame.stats.passes.end()) same->ms += t.ms;
+        else frame.stats.passes.push_back(t);
+    }
 }
 
 bool readsHistory(const TraceSettings& s) {

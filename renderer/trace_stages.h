@@ -3,10 +3,12 @@
 // their stages read it, their stage times, the march of one sample, the tile chain.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
 #include "core/plane_view.h"
+#include "renderer/frame_scheduler.h"
 #include "renderer/pass_timer.h"
 #include "renderer/trace_pass.h"
 #include "trace/hit_stats.h"
@@ -117,10 +119,18 @@ RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const Ra
     return r.rays;
 }
 
-// The passes, in the order runTracePasses calls them.
+// The passes, in the order runTracePasses gives them to the frame scheduler: SSR's and SSGI's
+// run over the whole frame; the denoiser's passes and the composite are tiled passes, which
+// the scheduler runs in one loop where the frame graph chains them (denoise_pass.cpp,
+// composite_pass.cpp). Each schedule function returns what to do once the scheduler has run
+// into the stats given (the denoiser's check that the graph ran each of its passes; the
+// composite's upsample's own line).
 void ssrPass(const TraceContext& c, Frame& frame);
 void ssgiPass(const TraceContext& c, Frame& frame);
-void denoisePass(const TraceContext& c, Frame& frame);
-void compositePass(const TraceContext& c, Frame& frame);
+std::function<void()> scheduleDenoiser(const TraceContext& c, Frame& frame, FrameScheduler& passes);
+void scheduleUpsample(const TraceContext& c, Frame& frame, FrameScheduler& passes,
+                      FrameStats& stats);
+std::function<void(FrameStats&)> scheduleComposite(const TraceContext& c, Frame& frame,
+                                                   FrameScheduler& passes);
 
 }  // namespace ssrt::trace_stages
