@@ -12,8 +12,9 @@
 // last, so.)
 //
 // The renderer runs its passes in steps (each chain and whole pass of the frame scheduler,
-// renderer/frame_scheduler.h; the history's commit): each step() covers the declared passes after the last step's, through the
-// one it names, in declaration order, so a step holds whatever pass of it the settings keep.
+// renderer/frame_scheduler.h; the history's commit): each step() covers the declared passes after
+// the last step's, through the one it names, in declaration order, so a step holds whatever pass of
+// it the settings keep.
 #pragma once
 
 #include <string_view>
