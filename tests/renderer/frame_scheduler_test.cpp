@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/frame_memory.h"
 #include "renderer/quality.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
@@ -134,8 +135,44 @@ TEST_CASE("frame scheduler: the denoiser's passes share the loops the frame grap
         CHECK_FALSE(fused("denoise front end"));
         CHECK(fused("denoise temporal"));
         CHECK(fused("denoise history"));
+        // The composite follows them in the same loop (with the half frame's upsample inside it).
+        CHECK(fused("composite"));
         // The spatial passes read their neighbours: each has a loop of its own.
         CHECK_FALSE(fused("denoise history fix"));
         CHECK_FALSE(fused("denoise blur"));
     }
+}
+
+TEST_CASE("frame scheduler: with the frame's memory, a chain's planes live from its set-ups to "
+          "its finishes") {
+    RenderSettings settings;
+    settings.width = 200;
+    settings.height = 130;
+    settings.idPlanes = settings.gbufferPlanes = false;  // (a PNG's: the G-buffer transient)
+    const CompiledGraph g =
+        compileFrameGraph({settings, SceneFacts::of(makeBuiltinScene("cornell")), false, false});
+    const GraphResource* materialId = g.find(Res::MaterialId);
+    REQUIRE(materialId);
+    REQUIRE(g.passes[std::size_t(materialId->last)].decl->name == pass::kShading);
+    Frame frame;
+    FrameMemory memory(g, frame, false);
+    FrameScheduler s(g, TileGrid(g.width, g.height), 1, nullptr, &memory);
+    bool takenAtSetUp = false, heldAtFinish = false;
+    s.whole(pass::kShadow, [] {});
+    s.whole(pass::kVisibility, [] {}, pass::kBackFaces);
+    s.tiled(
+        pass::kResolve, [](int) {},
+        [&] {
+            takenAtSetUp = frame.gbuffer.materialId.width() == g.width &&
+                           frame.gbuffer.materialId.height() == g.height;
+        });
+    s.tiled(
+        pass::kShading, [](int) {}, {},
+        [&] { heldAtFinish = !frame.gbuffer.materialId.empty(); });
+    FrameStats stats;
+    s.run(stats);
+    CHECK(takenAtSetUp);
+    CHECK(heldAtFinish);
+    // Its last reader's chain has run: back to the pool.
+    CHECK(frame.gbuffer.materialId.empty());
 }
