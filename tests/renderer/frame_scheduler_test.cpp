@@ -143,8 +143,9 @@ TEST_CASE("frame scheduler: the denoiser's passes share the loops the frame grap
     }
 }
 
-TEST_CASE("frame scheduler: with the frame's memory, a chain's planes live from its set-ups to "
-          "its finishes") {
+TEST_CASE(
+    "frame scheduler: with the frame's memory, a chain's planes live from its set-ups to "
+    "its finishes") {
     RenderSettings settings;
     settings.width = 200;
     settings.height = 130;
@@ -159,7 +160,8 @@ TEST_CASE("frame scheduler: with the frame's memory, a chain's planes live from 
     FrameScheduler s(g, TileGrid(g.width, g.height), 1, nullptr, &memory);
     bool takenAtSetUp = false, heldAtFinish = false;
     s.whole(pass::kShadow, [] {});
-    s.whole(pass::kVisibility, [] {}, pass::kBackFaces);
+    s.whole(
+        pass::kVisibility, [] {}, pass::kBackFaces);
     s.tiled(
         pass::kResolve, [](int) {},
         [&] {
@@ -167,8 +169,7 @@ TEST_CASE("frame scheduler: with the frame's memory, a chain's planes live from 
                            frame.gbuffer.materialId.height() == g.height;
         });
     s.tiled(
-        pass::kShading, [](int) {}, {},
-        [&] { heldAtFinish = !frame.gbuffer.materialId.empty(); });
+        pass::kShading, [](int) {}, {}, [&] { heldAtFinish = !frame.gbuffer.materialId.empty(); });
     FrameStats stats;
     s.run(stats);
     CHECK(takenAtSetUp);
