@@ -62,7 +62,7 @@ void printTable(const CompiledGraph& g, const SceneRequest& r, bool sequence, st
     out << "frame graph: " << r.name << ", " << g.width << "x" << g.height << ", "
         << (sequence ? "a frame of a sequence (history read and kept)"
                      : "a single image (no history)")
-        << "\n\npasses, in order (a chain: passes that could run tile by tile together)\n";
+        << "\n\npasses, in order (a chain: passes that run in one loop over the tiles)\n";
     out << "  " << padded("pass", 28) << padded("chain", 7) << padded("reads MiB", 11)
         << "writes MiB\n";
     for (const GraphPass& p : g.passes)

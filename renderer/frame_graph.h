@@ -69,6 +69,10 @@ struct PassDecl {
     GraphCondition enabled;     // null: always
     std::vector<Access> reads;  // a resource a pass reads and writes is in both lists
     std::vector<Access> writes;
+    // It runs tile by tile (a kernel on one tile at a time, writing only that tile), so it may
+    // share a loop over the tiles with other passes (a chain); else it runs over the whole
+    // frame by itself. The frame scheduler runs each pass as declared here.
+    bool tiled = false;
 };
 
 // The passes in the order they run.
@@ -94,7 +98,7 @@ struct GraphPass {
     // overwrites it unread).
     std::vector<Access> unread;
     std::size_t bytesRead = 0, bytesWritten = 0;  // per frame, each resource once
-    int chain = 0;  // passes of one chain could run tile by tile together
+    int chain = 0;  // passes of one chain run in one loop over the tiles
 };
 
 struct CompiledGraph {

@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "renderer/frame_graph.h"
 #include "renderer/trace_pass.h"
@@ -183,7 +184,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     // its result per signal.
     const auto spatial = [&](const char* pass, std::vector<Access> reads, const Res(&out)[2],
                              const GraphCondition(&when)[2]) {
-        PassDecl d{name(pass), s.on, around(s.guides), {}};
+        PassDecl d{name(pass), s.on, around(s.guides), {}, true};
         append(d.reads, reads);
         append(d.reads, state);
         for (int i = 0; i < 2; ++i)
@@ -191,7 +192,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
         return d;
     };
     // Front end: the signals sanitised, hit distances normalised, where each signal exists.
-    PassDecl front{name("denoise front end"), s.on, s.guides, {}};
+    PassDecl front{name("denoise front end"), s.on, s.guides, {}, true};
     append(front.reads, s.signals);
     for (int i = 0; i < 2; ++i)
         if (s.noisy[i] != Res::Count) front.writes.push_back({s.noisy[i], P::Pixel, s.signal[i]});
@@ -205,7 +206,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
     passes.push_back(pre);
     // Temporal: the history through the motion (anywhere), this frame's speeds and fast luma;
     // this frame's signal pre-blurred, or as the front end left it.
-    PassDecl temporal{name("denoise temporal"), s.temporal, s.guides, {}};
+    PassDecl temporal{name("denoise temporal"), s.temporal, s.guides, {}, true};
     for (int i = 0; i < 2; ++i) {
         if (s.noisy[i] == Res::Count) continue;
         temporal.reads.push_back({s.preBlurOut[i], P::Pixel, s.preBlurred[i]});
@@ -247,7 +248,7 @@ void addDenoiser(std::vector<PassDecl>& passes, const DenoiseSite& s) {
             post.writes.push_back({s.history[i], P::Pixel, s.historyKept[i]});
     passes.push_back(post);
     // The history's guides, speeds and fast luma for the next frame.
-    PassDecl commit{name(pass::kDenoiseHistory), s.historyKept[0], s.guides, {}};
+    PassDecl commit{name(pass::kDenoiseHistory), s.historyKept[0], s.guides, {}, true};
     append(commit.reads, state);
     commit.writes.push_back({s.history[0], P::Pixel, s.historyKept[0]});
     for (int i = 0; i < 2; ++i)
@@ -281,6 +282,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Uv0, P::Pixel, textured},
                   {Res::Uv1, P::Pixel, uvSet1},
                   {Res::Tangent, P::Pixel, normalMapped}}});
+    p.back().tiled = true;
     p.push_back({pass::kTextures,
                  textured,
                  {{Res::Uv0},
@@ -297,8 +299,10 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Normal, P::Pixel, normalMapped},
                   {Res::Emissive, P::Pixel, emissiveTextured},
                   {Res::Occlusion, P::Pixel, occlusionTextured}}});
+    p.back().tiled = true;
     p.push_back(
         {pass::kIds, idPlanes, {{Res::VisibilityIds}}, {{Res::InstanceId}, {Res::TriangleId}}});
+    p.back().tiled = true;
     // Direct light, sky and tone map; with a trace pass, the parts the composite rebuilds
     // the colour from.
     PassDecl shading{pass::kShading,
@@ -322,6 +326,7 @@ std::vector<PassDecl> declarePasses() {
                       {Res::HitLight, P::Pixel, hitLightFull},
                       {Res::HalfHitLight, P::Around, hitLightHalf}}};
     gbufferReads(shading.reads);
+    shading.tiled = true;
     p.push_back(shading);
     p.push_back({pass::kHiZ, hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
     // SSR: rays from the G-buffer, the march through the depth (anywhere), the resolve.
@@ -458,7 +463,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Normal}},
                  {{Res::DenoisedDiffuse}, {Res::DiffuseFrames, P::Pixel, debug}}});
     // The denoiser at full resolution: SSR's signal (over the environment) and SSGI's. (After
-    // the half frame's, whose planes are then gone: the two never hold their scratch at once.)
+    // the half frame's, so the two hold their scratch at once only while the half frame's last
+    // passes and the frame's first share a loop over both grids: frame_graph.h's chains.)
     DenoiseSite full{
         "",
         denoiseFull,
@@ -516,7 +522,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Ssr, P::Pixel, compositeSsrRaw},
                   {Res::SsrOpacity, P::Pixel, compositeSsrRaw},
                   {Res::DenoisedSpecular, P::Pixel, denoiseSpecular}},
-                 {{Res::Color}, {Res::Display}}});
+                 {{Res::Color}, {Res::Display}},
+                 true});
     // What the next frame reads.
     p.push_back({pass::kHistoryCommit,
                  commit,

@@ -80,13 +80,17 @@ void FrameScheduler::step(std::string_view last, const std::function<void()>& fn
 }
 
 void FrameScheduler::run(FrameStats& stats) {
-    for (const Pass& p : passes_)
-        if (std::none_of(graph_.passes.begin(), graph_.passes.end(),
-                         [&](const GraphPass& g) { return g.decl->name == p.name; }) &&
-            std::none_of(passDecls().begin(), passDecls().end(),
-                         [&](const PassDecl& d) { return d.name == p.name; }))
+    for (const Pass& p : passes_) {
+        const auto d = std::find_if(passDecls().begin(), passDecls().end(),
+                                    [&](const PassDecl& x) { return x.name == p.name; });
+        if (d == passDecls().end())
             throw std::logic_error("frame scheduler: no pass '" + std::string(p.name) +
                                    "' in the frame graph");
+        if (d->tiled != bool(p.tile))
+            throw std::logic_error("frame scheduler: '" + std::string(p.name) + "' is declared " +
+                                   (d->tiled ? "tiled" : "whole") + ", given " +
+                                   (p.tile ? "tiled" : "whole"));
+    }
     std::vector<const Pass*> chain;
     int chainId = -1;
     const auto flush = [&] {

@@ -15,7 +15,9 @@
 // finish; so the denoiser's front end and temporal pass, and its post-blur, the history's commit
 // and the composite, share a loop where the graph chains them.
 //
-// (No halo yet: a pass that reads around its pixel starts a chain of its own.)
+// (No halo: a pass that reads around its pixel what its chain made starts a chain of its own.
+// The denoiser's blur and post-blur, the one pair of spatial passes in a row, read 30 and 60
+// pixels around: a halo that wide would blur about eight times a tile's pixels per tile.)
 #pragma once
 
 #include <atomic>
@@ -50,8 +52,10 @@ public:
     // the set-ups of the chain's passes before it; then `tile` for each tile; then `finish`
     // (optional) after the chain's last tile, after the finishes of the passes before it. Its
     // tiles are the frame's, or `grid`'s (the half frame's, read once the chain's set-ups have
-    // run: a chain's passes share one grid, else std::logic_error). Its time is its share of the
-    // chain's loop, with its set-up and finish.
+    // run: a chain's passes share one grid, else std::logic_error). Its time is its share of
+    // the chain's loop, with its set-up and finish.
+    // A pass given whole that is declared tiled, or tiled that is declared whole
+    // (PassDecl::tiled), is a std::logic_error when run() starts.
     void tiled(std::string_view pass, std::function<void(int tile)> tile,
                std::function<void()> setUp = {}, std::function<void()> finish = {},
                const TileGrid* grid = nullptr);

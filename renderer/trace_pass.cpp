@@ -62,13 +62,14 @@ void runTracePasses(TraceContext c, Frame& frame) {
     passes.run(stats);
     checkDenoiser();
     compositeTimes(stats);
-    // One line per pass, the half frame's denoiser's and the frame's summed.
+    // One line per pass, the half frame's denoiser's and the frame's summed (in a loop with
+    // the pass before it where either was).
     for (PassTime& t : stats.passes) {
         const std::size_t at = t.name.find(" (half)");
         if (at != std::string::npos) t.name.erase(at);
         auto same = std::find_if(frame.stats.passes.begin(), frame.stats.passes.end(),
                                  [&](const PassTime& p) { return p.name == t.name; });
-        if (same != frame.stats.passes.end()) same->ms += t.ms;
+        if (same != frame.stats.passes.end()) same->ms += t.ms, same->fused |= t.fused;
         else frame.stats.passes.push_back(t);
     }
 }

@@ -61,11 +61,20 @@ TEST_CASE("frame scheduler: a whole pass between two tiled ones ends the loop") 
     std::vector<std::string> order;
     FrameScheduler s(g, grid, 1);
     s.tiled(pass::kResolve, [&](int t) { order.push_back("resolve " + std::to_string(t)); });
-    s.whole(pass::kShading, [&] { order.push_back("shading"); });
+    s.whole(pass::kHiZ, [&] { order.push_back("hi-z"); });
+    s.tiled(pass::kShading, [&](int t) { order.push_back("shade " + std::to_string(t)); });
     FrameStats stats;
     s.run(stats);
-    REQUIRE(order.size() == std::size_t(grid.count()) + 1);
-    CHECK(order.back() == "shading");
+    REQUIRE(order.size() == std::size_t(2 * grid.count()) + 1);
+    // (The graph chains the resolve and the shading; the hi-z runs after both.)
+    CHECK(order.back() == "hi-z");
+    // A pass given otherwise than declared (the shading is tiled, the shadow whole).
+    FrameScheduler wrong(g, grid, 1);
+    wrong.whole(pass::kShading, [] {});
+    CHECK_THROWS_AS(wrong.run(stats), std::logic_error);
+    FrameScheduler wrong2(g, grid, 1);
+    wrong2.tiled(pass::kShadow, [](int) {});
+    CHECK_THROWS_AS(wrong2.run(stats), std::logic_error);
 }
 
 TEST_CASE("frame scheduler: a pass the graph does not know is a programming error") {
