@@ -62,7 +62,7 @@ struct CompositeStep {
 
 // One tile: the upsample's tile of SSGI light into the thread's tile planes first, where it
 // runs inside the composite.
-void compositeTile(CompositeStep& s, int tile) {
+void upsampleAndCompositeTile(CompositeStep& s, int tile) {
     if (!s.up) return s.comp->tile(tile);
     using Clock = std::chrono::steady_clock;
     thread_local PlaneF light[3];
@@ -93,7 +93,7 @@ std::function<void(FrameStats&)> scheduleComposite(const TraceContext& c, Frame&
     const auto s = std::make_shared<CompositeStep>();
     const bool inComposite = diffuseUpsampledInComposite(c.settings);
     passes.tiled(
-        pass::kComposite, [s](int tile) { compositeTile(*s, tile); },
+        pass::kComposite, [s](int tile) { upsampleAndCompositeTile(*s, tile); },
         [&c, &frame, s, inComposite] {
             s->comp.emplace(c.isa, compositeArgs(c, frame, inComposite), inComposite);
             if (!inComposite) return;
