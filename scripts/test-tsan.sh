@@ -13,8 +13,9 @@
 # links against it. The build (about a minute) is kept outside the
 # checkout (SSRT_TSAN_TBB_CACHE, default ~/.cache/ssrt-tsan-tbb), keyed by the recipe below, so a
 # second run reuses it. Embree and OpenImageIO stay Debian's (uninstrumented: TSan checks none
-# of their memory accesses); Embree's libtbb.so.12 is then this one, already loaded. One
-# suppression, for calls made from inside Embree (tests/tsan.supp says why); none for ssrt.
+# of their memory accesses); Embree's libtbb.so.12 is then this one, already loaded.
+# Suppressions only for what Embree's uninstrumented waits hide (tests/tsan.supp says each
+# one's why); none for ssrt.
 #
 # Python is not instrumented, and clang 14's TSan run-time cannot be preloaded into it (it
 # crashes in libstdc++'s start-up), so the module's tests run under a two-line launcher built
