@@ -9,6 +9,7 @@
 
 #include "core/plane_view.h"
 #include "renderer/frame_scheduler.h"
+#include "renderer/pass_reads.h"
 #include "renderer/resources.h"
 #include "renderer/trace_stages.h"
 #include "shading/composite.h"
@@ -19,35 +20,27 @@ namespace ssrt::trace_stages {
 namespace {
 
 // Direct + diffuse (SSGI or the sky's irradiance) + specular (SSR over the environment), tone
-// mapped; replaces the direct pass's colour and display.
-CompositeArgs compositeArgs(const TraceContext& c, Frame& frame, bool inComposite) {
-    const TraceSettings& ts = c.ts();
-    const DirectParts& parts = frame.direct;
+// mapped; replaces the direct pass's colour and display. What it reads, as the graph declares
+// it: the diffuse denoised or raw (none here where the half frame's is brought in tile by
+// tile), the specular denoised or SSR's over the environment.
+CompositeArgs compositeArgs(const TraceContext& c, Frame& frame, const PassReads& r) {
+    const Res diffuse = r.has(Res::DenoisedDiffuse) ? Res::DenoisedDiffuse : Res::Ssgi;
     CompositeArgs ca;
     for (int ch = 0; ch < 3; ++ch) {
-        ca.direct[ch] = viewOf(parts.direct[ch], channelName(Res::Direct, ch));
-        if (c.direct.anyEmissive)
-            ca.emission[ch] = viewOf(parts.emission[ch], channelName(Res::Emission, ch));
-        if (!ts.ssgi)
-            ca.envDiffuse[ch] = viewOf(parts.envDiffuse[ch], channelName(Res::EnvDiffuse, ch));
-        ca.envSpecular[ch] = viewOf(parts.envSpecular[ch], channelName(Res::EnvSpecular, ch));
-        ca.specWeight[ch] = viewOf(parts.specWeight[ch], channelName(Res::SpecWeight, ch));
-        if (ts.ssgi && !inComposite)
-            ca.ssgi[ch] = frame.view(ts.denoise.enabled ? Res::DenoisedDiffuse : Res::Ssgi, ch);
-        if (ts.ssr) {  // the denoiser's output, or SSR's own
-            if (ts.denoise.enabled) ca.specular[ch] = frame.view(Res::DenoisedSpecular, ch);
-            else ca.ssrColor[ch] = frame.view(Res::Ssr, ch);
-        }
+        ca.direct[ch] = r.value(Res::Direct, ch);
+        ca.emission[ch] = r.value(Res::Emission, ch);
+        ca.envDiffuse[ch] = r.value(Res::EnvDiffuse, ch);
+        ca.envSpecular[ch] = r.value(Res::EnvSpecular, ch);
+        ca.specWeight[ch] = r.value(Res::SpecWeight, ch);
+        ca.ssgi[ch] = r.view(diffuse, ch);
+        ca.specular[ch] = r.view(Res::DenoisedSpecular, ch);
+        ca.ssrColor[ch] = r.view(Res::Ssr, ch);
         ca.color[ch] = outputOf(frame.rgb(Res::Color)[ch], channelName(Res::Color, ch));
         ca.display[ch] = outputOf(frame.rgb(Res::Display)[ch], channelName(Res::Display, ch));
     }
-    if (ts.ssgi) {
-        ca.g = frame.gbuffer.view();
-        if (!frame.gbuffer.occlusion.empty())
-            ca.occlusion = viewOf(frame.gbuffer.occlusion, channelName(Res::Occlusion));
-    }
-    if (ts.ssr && !ts.denoise.enabled)
-        ca.ssrOpacity = viewOf(frame.plane(Res::SsrOpacity), channelName(Res::SsrOpacity));
+    ca.g = r.gbuffer();
+    ca.occlusion = r.view(Res::Occlusion);
+    ca.ssrOpacity = r.view(Res::SsrOpacity);
     ca.exposure = c.settings.exposure;
     return ca;
 }
@@ -95,11 +88,13 @@ std::function<void(FrameStats&)> scheduleComposite(const TraceContext& c, Frame&
     passes.tiled(
         pass::kComposite, [s](int tile) { upsampleAndCompositeTile(*s, tile); },
         [&c, &frame, s, inComposite] {
-            s->comp.emplace(c.isa, compositeArgs(c, frame, inComposite), inComposite);
+            const PassReads r(c.graph, frame, pass::kComposite);
+            s->comp.emplace(c.isa, compositeArgs(c, frame, r), inComposite);
             if (!inComposite) return;
             const std::span<const PlaneF, 3> half =
                 std::as_const(frame.scratch.half.denoised).rgb(Res::HalfDenoised);
-            s->up.emplace(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf,
+            s->up.emplace(c.isa, ReconstructGuides{c.camera, r.gbuffer()}, PixelOffset{0, 0},
+                          frame.scratch.half.rays.pdf,
                           ReconstructSource{{&half[0], &half[1], &half[2]}});
             s->upMs.assign(std::size_t(s->comp->grid().count()), 0.0);
             s->compMs = s->upMs;

@@ -70,35 +70,36 @@ void upsampleHalfDiffuse(const TraceContext& c, Frame& frame, FrameStats& stats)
         {&from[0], &from[1], &from[2]}, nullptr, c.debugPlane(half.plane(Res::HalfDiffuseFrames))};
     const ReconstructPlanes target{
         {&to[0], &to[1], &to[2]}, nullptr, c.debugPlane(frame.plane(Res::DiffuseFrames))};
-    upsampleHalf(c.isa, c.guides(frame), PixelOffset{0, 0}, frame.scratch.half.rays.pdf, source,
-                 target, c.threads());
+    upsampleHalf(c.isa, c.guides(frame, pass::kDenoiseUpsample), PixelOffset{0, 0},
+                 frame.scratch.half.rays.pdf, source, target, c.threads());
 }
 
-// The full-resolution call: SSGI's diffuse where it traced at full resolution, SSR's signal.
+// The full-resolution call: SSGI's diffuse where it traced at full resolution, SSR's signal,
+// as the front end declares reading them; each signal denoised into the frame's planes.
 DenoiseCall fullCall(const TraceContext& c, Frame& frame) {
-    const TraceSettings& ts = c.ts();
     const int w = c.camera.width, h = c.camera.height;
+    const PassReads r(c.graph, frame, pass::kDenoiseFrontEnd);
     DenoiseCall in = denoiseCall(c, frame, c.camera, false);
-    in.g = frame.gbuffer.view();
-    if (ts.ssgi && ts.ssgiLayout != TraceLayout::Half) {
+    in.g = r.gbuffer();
+    if (r.has(Res::Ssgi)) {
         for (int ch = 0; ch < 3; ++ch) {
-            in.diffuse[ch] = frame.view(Res::Ssgi, ch);
+            in.diffuse[ch] = r.view(Res::Ssgi, ch);
             in.denoisedDiffuse[ch] = frame.outputs.output(Res::DenoisedDiffuse, ch, w, h);
         }
-        in.diffuseHitDistance = frame.view(Res::SsgiHitDistance);
+        in.diffuseHitDistance = r.view(Res::SsgiHitDistance);
         in.diffuseFrames = historyLengths(c, frame.outputs, Res::DiffuseFrames, w, h);
     }
-    if (ts.ssr) {
+    if (r.has(Res::Ssr)) {
         for (int ch = 0; ch < 3; ++ch) {
-            in.ssr[ch] = frame.view(Res::Ssr, ch);
-            in.envSpecular[ch] = viewIn(frame.direct, frame.direct.envSpecular[ch]);
+            in.ssr[ch] = r.view(Res::Ssr, ch);
+            in.envSpecular[ch] = r.value(Res::EnvSpecular, ch);
             in.denoisedSpecular[ch] = frame.outputs.output(Res::DenoisedSpecular, ch, w, h);
         }
         in.specularFrames = historyLengths(c, frame.outputs, Res::SpecularFrames, w, h);
-        in.ssrOpacity = frame.view(Res::SsrOpacity);
-        in.specularHitDistance = frame.view(Res::SsrHitDistance);
+        in.ssrOpacity = r.view(Res::SsrOpacity);
+        in.specularHitDistance = r.view(Res::SsrHitDistance);
         // Where SSR has faded out the blend is the environment alone: nothing to denoise.
-        in.specularMaxRoughness = ts.resolve.roughnessFadeEnd;
+        in.specularMaxRoughness = c.ts().resolve.roughnessFadeEnd;
     }
     // The traced signals no later pass reads go back to the pool before the denoiser's later
     // passes take their results from it.

@@ -60,10 +60,4 @@ bool anyEmissive(const Scene& scene) {
 
 void setDirectGBuffer(const GBuffer& g, DirectArgs& a) { a.g = g.view(); }
 
-void setDirectMaterialPlanes(const GBuffer& m, DirectArgs& a) {
-    for (int c = 0; c < 3; ++c)
-        a.emissivePlane[c] = m.emission[c].empty() ? nullptr : m.emission[c].row(0);
-    a.occlusion = m.occlusion.empty() ? nullptr : m.occlusion.row(0);
-}
-
 }  // namespace ssrt

@@ -43,9 +43,4 @@ bool anyEmissive(const Scene& scene);
 // Points args.g at the G-buffer.
 void setDirectGBuffer(const GBuffer& gbuffer, DirectArgs& args);
 
-// Points args.emissivePlane and args.occlusion at the material planes the frame has (its
-// emission with emissive textures, its occlusion with occlusion textures), null where they
-// are empty; same stride as the G-buffer.
-void setDirectMaterialPlanes(const GBuffer& planes, DirectArgs& args);
-
 }  // namespace ssrt

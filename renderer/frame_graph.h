@@ -54,6 +54,7 @@ inline constexpr std::string_view kSsgi = "ssgi";
 inline constexpr std::string_view kSsgiHalfFrame = "ssgi half frame";
 inline constexpr std::string_view kSsgiHalf = "ssgi (half)";
 inline constexpr std::string_view kSsgiReconstruct = "ssgi reconstruct";
+inline constexpr std::string_view kSsgiUpsample = "ssgi upsample";
 inline constexpr std::string_view kDenoiseFrontEnd = "denoise front end";
 inline constexpr std::string_view kDenoiseFrontEndHalf = "denoise front end (half)";
 inline constexpr std::string_view kDenoiseTemporal = "denoise temporal";

@@ -46,7 +46,7 @@ bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
 bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
 bool mipResolve(const GraphKey& k) { return ssr(k) && tr(k).resolve.mode == SsrResolveMode::Mip; }
 bool reprojected(const GraphKey& k) {
-    return k.history && tr(k).resolve.radiance == HitRadiance::Reprojected;
+    return k.history && k.lastColor && tr(k).resolve.radiance == HitRadiance::Reprojected;
 }
 bool current(const GraphKey& k) { return !reprojected(k); }
 bool ssrChecker(const GraphKey& k) {
@@ -55,7 +55,9 @@ bool ssrChecker(const GraphKey& k) {
 bool ssgiChecker(const GraphKey& k) {
     return fullSsgi(k) && tr(k).ssgiLayout == TraceLayout::Checkerboard;
 }
-bool feedback(const GraphKey& k) { return k.history && ssgi(k) && tr(k).ssgiFeedback; }
+bool feedback(const GraphKey& k) {
+    return k.history && k.lastDiffuse && ssgi(k) && tr(k).ssgiFeedback;
+}
 bool halfGuides(const GraphKey& k) { return halfSsgi(k) && denoise(k); }
 bool halfHiZ(const GraphKey& k) { return halfSsgi(k) && hiZMarcher(k); }
 bool halfBack(const GraphKey& k) { return halfSsgi(k) && backFaces(k); }
@@ -393,7 +395,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HalfHiZ, P::Anywhere, halfHiZ}},
                  {{Res::HalfSsgi}, {Res::HalfRayPdf}, {Res::HalfSsgiSteps, P::Pixel, debug}}});
     p.push_back(
-        {"ssgi upsample",
+        {pass::kSsgiUpsample,
          halfSsgi,
          {{Res::HalfSsgi, P::Around},
           {Res::HalfSsgiSteps, P::Around, debugHalfSsgi},

@@ -21,6 +21,7 @@
 #include "renderer/frame_memory.h"
 #include "renderer/frame_scheduler.h"
 #include "renderer/memory_use.h"
+#include "renderer/pass_reads.h"
 #include "renderer/pass_timer.h"
 #include "renderer/resolve_tables.h"
 #include "renderer/sky_lighting.h"
@@ -208,8 +209,11 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
                    const FrameHistory* previous, Frame& frame, DirectLighting& lighting) {
     setDirectLighting(scene, c.settings, frame.scratch.shadow, std::move(sky), lighting);
     DirectArgs& da = lighting.args;
-    setDirectGBuffer(frame.gbuffer, da);
-    setDirectMaterialPlanes(frame.gbuffer, da);
+    const PassReads r(c.graph, frame, pass::kShading, previous);
+    // The G-buffer, and its emission and occlusion where materials have them per pixel.
+    da.g = r.gbuffer();
+    for (int ch = 0; ch < 3; ++ch) da.emissivePlane[ch] = da.g.emission[ch];
+    da.occlusion = da.g.occlusion;
     da.width = c.grid.width;
     da.height = c.grid.height;
     da.tilesX = c.grid.tilesX;
@@ -238,12 +242,7 @@ void setDirectArgs(const FrameContext& c, const Scene& scene,
         }
         // Multi-bounce diffuse (ssgiFeedback): the last frame's incoming diffuse light, where
         // the history has it at this size, reflected into the hit light (none: one bounce).
-        if (c.settings.trace.ssgiFeedback && da.hitLight[0] && previous &&
-            previous->diffuse[0].width() == frame.width &&
-            previous->diffuse[0].height() == frame.height) {
-            requireGBuffer("ssgi feedback", da.g, kGMotion, frame.width, frame.height);
-            for (int ch = 0; ch < 3; ++ch) da.prevDiffuse[ch] = previous->diffuse[ch].row(0);
-        }
+        for (int ch = 0; ch < 3; ++ch) da.prevDiffuse[ch] = r.view(Res::HistoryDiffuse, ch).data;
         if (hitLightAtHalf(c.settings)) {
             // Straight into the half frame that SSGI traces (its chosen pixels this frame).
             HalfFrame& hf = frame.scratch.half.frame;
@@ -353,8 +352,14 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     scene.validate();
     const bool readsLast =
         history && !input.resetHistory && history->readableAt(settings_.width, settings_.height);
-    const CompiledGraph graph = compileFrameGraph(
-        {settings_, SceneFacts::of(scene), readsLast, history && input.replaceHistory});
+    // The last frame's, where usable at this size (none after a cut).
+    const FrameHistory* previous =
+        readsLast && history->usableAt(settings_.width, settings_.height) ? history : nullptr;
+    GraphKey key{settings_, SceneFacts::of(scene), readsLast, history && input.replaceHistory};
+    key.lastColor = previous != nullptr;
+    key.lastDiffuse = previous && previous->diffuse[0].width() == settings_.width &&
+                      previous->diffuse[0].height() == settings_.height;
+    const CompiledGraph graph = compileFrameGraph(key);
     const FrameContext c(settings_, graph, scene, input);
     frame.stats = FrameStats{};
     frame.stats.isa = c.isa;
@@ -381,10 +386,6 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
         });
     passes.tiled(pass::kTextures, [&](int tile) { applyTexturesTile(scene, frame, c.grid, tile); });
     passes.tiled(pass::kIds, [&](int tile) { idTile(c.grid, tables.triangles, frame, tile); });
-    // The last frame's, where usable at this size (none after a cut).
-    const FrameHistory* previous =
-        history && !input.resetHistory && history->usableAt(frame.width, frame.height) ? history
-                                                                                       : nullptr;
     DirectLighting lighting;
     const std::shared_ptr<const SkyLighting> sky = environmentPass(c, scene, frame);
     const auto shade = SSRT_DISPATCH(c.isa, shadeTile);
@@ -400,7 +401,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
                        frame);
         stopIfCancelled(input.cancel);
         memory.step(pass::kHistoryCommit, [&] {
-            if (graph.runs(pass::kHistoryCommit)) commitHistory(settings_.trace, frame, *history);
+            if (graph.runs(pass::kHistoryCommit)) commitHistory(graph, frame, *history);
         });
     }
     frame.stats.memory = memoryUse(frame, history);

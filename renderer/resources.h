@@ -64,6 +64,10 @@ struct GraphKey {
     // This frame's history is kept for the next (FrameInput::replaceHistory with a history
     // given). Both false: a single image.
     bool keepHistory = true;
+    // Where `history` holds, which of the last frame's own parts it has at this size: its
+    // colour (FrameHistory::usableAt), its diffuse light (with SSGI's feedback). A history
+    // carried from a frame of other settings may hold the denoiser's alone.
+    bool lastColor = true, lastDiffuse = true;
 };
 
 using GraphCondition = bool (*)(const GraphKey&);

@@ -53,8 +53,8 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
 // half-resolution frame with its own depth pyramid; rays, march, resolve and hit statistics
 // run on it, and the upsample brings them to the frame's planes. The observer sees the half
 // frame's batches with the half frame (TraceObserver).
-void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, DiffuseCut cut,
-              TraceStats& st, StageTimes& times) {
+void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const SsgiArgs& full,
+              DiffuseCut cut, TraceStats& st, StageTimes& times) {
     const TraceSettings& ts = c.ts();
     const Isa isa = c.isa;
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
@@ -62,10 +62,9 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
     addTime(times.rays, [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         HalfFrameSource src{full.g, ts.denoise.enabled};
-        // (Or the direct pass wrote the half frame's hit light itself: hitLightAtHalf.)
-        if (!hitLightAtHalf(c.settings))
-            for (int ch = 0; ch < 3; ++ch)
-                src.hitLight[ch] = viewIn(frame.direct, frame.direct.hitLight[ch]);
+        // (Absent where the direct pass wrote the half frame's hit light itself:
+        // hitLightAtHalf.)
+        for (int ch = 0; ch < 3; ++ch) src.hitLight[ch] = r.value(Res::HitLight, ch).f16;
         if (c.backZ) src.backZ = viewOf(*c.backZ, "backZ");
         buildHalfFrame(c.camera, src, c.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
@@ -108,7 +107,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
                                    &frame.plane(Res::SsgiHit),
                                    &frame.plane(Res::SsgiHitDistance),
                                    c.debugPlane(frame.plane(Res::SsgiSteps))};
-        upsampleHalf(isa, c.guides(frame), hf.offset, ht.rays.pdf, from, to, c.threads());
+        upsampleHalf(isa, c.guides(frame, pass::kSsgiUpsample), hf.offset, ht.rays.pdf, from, to,
+                     c.threads());
     });
 }
 
@@ -117,26 +117,25 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const SsgiArgs& full, Diffuse
 void ssgiPass(const TraceContext& c, Frame& frame) {
     const TraceSettings& ts = c.ts();
     const Isa isa = c.isa;
-    const DirectParts& parts = frame.direct;
     Frame::Scratch& sc = frame.scratch;
     const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
+    const bool half = ts.ssgiLayout == TraceLayout::Half;
+    // (At half resolution, what the half frame is made of.)
+    const PassReads r(c.graph, frame, half ? pass::kSsgiHalfFrame : pass::kSsgi);
     SsgiArgs in;
     in.camera = c.camera;
-    in.g = frame.gbuffer.view();
-    for (int ch = 0; ch < 3; ++ch) {
-        if (c.direct.anyEmissive) in.emission[ch] = viewIn(parts, parts.emission[ch]);
-        // The direct pass's hit light (then the G-buffer planes above are not read).
-        in.hitLight[ch] = viewIn(parts, parts.hitLight[ch]);
-    }
-    in.shadow = frame.view(Res::Shadow);
+    in.g = r.gbuffer();
+    // The direct pass's hit light: the light at a hit, so the resolve reads no shadow or
+    // emission and no material of the hit pixel.
+    for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = r.value(Res::HitLight, ch);
     in.lighting = &c.direct;
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;
     StageTimes times;
     const DiffuseCut cut = ts.traceHidden ? DiffuseCut::None : DiffuseCut::NoDiffuseColour;
-    if (ts.ssgiLayout == TraceLayout::Half) {
-        ssgiHalf(c, frame, in, cut, st, times);
+    if (half) {
+        ssgiHalf(c, frame, r, in, cut, st, times);
         times.report(frame.stats, "ssgi");
         return;
     }
@@ -157,7 +156,8 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                                        nullptr,
                                        &frame.plane(Res::SsgiHit),
                                        &frame.plane(Res::SsgiHitDistance)};
-            fillCheckerboard(isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(isa, c.guides(frame, pass::kSsgiReconstruct), sc.rays.pdf, rp,
+                             c.threads());
         });
     }
     sc.pool.give(sc.rays);

@@ -12,15 +12,16 @@ namespace {
 // history has one) through the motion vectors; the colour pyramid for the mip mode.
 SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings& rs,
                          double& pyramidMs) {
-    const bool reproject = rs.radiance == HitRadiance::Reprojected && c.history;
+    const PassReads r(c.graph, frame, pass::kSsr, c.history);
+    const bool reproject = r.has(Res::HistoryColor);
     if (!reproject) rs.radiance = HitRadiance::Current;
     SsrResolveArgs in;
     in.camera = c.camera;
-    in.g = frame.gbuffer.view();
+    in.g = r.gbuffer();
     const PlaneF* source[3];
     for (int ch = 0; ch < 3; ++ch) {
-        in.color[ch] = frame.view(Res::Color, ch);
-        if (reproject) in.prevColor[ch] = viewIn(*c.history, c.history->color[ch]);
+        in.color[ch] = r.view(Res::Color, ch);
+        in.prevColor[ch] = r.view(Res::HistoryColor, ch);
         source[ch] = reproject ? &c.history->color[ch] : &frame.rgb(Res::Color)[ch];
     }
     in.radianceScale = 1.0f / c.settings.exposure;
@@ -129,7 +130,8 @@ void ssrPass(const TraceContext& c, Frame& frame) {
                                        &frame.plane(Res::SsrOpacity),
                                        &frame.plane(Res::SsrHit),
                                        &frame.plane(Res::SsrHitDistance)};
-            fillCheckerboard(c.isa, c.guides(frame), sc.rays.pdf, rp, c.threads());
+            fillCheckerboard(c.isa, c.guides(frame, pass::kSsrReconstruct), sc.rays.pdf, rp,
+                             c.threads());
         });
     }
     sc.pool.give(sc.rays);

@@ -18,6 +18,7 @@ namespace {
 // its own pyramid).
 void hiZPass(TraceContext& c, Frame& frame) {
     const ScopedPass timer(frame.stats, "hi-z");
+    const PassReads depth(c.graph, frame, pass::kHiZ);  // (checks the depth it reads)
     buildHiZ(frame.gbuffer.viewZ, frame.scratch.hiz, c.threads());
     c.hiz = &frame.scratch.hiz;
 }
@@ -80,23 +81,16 @@ bool readsHistory(const TraceSettings& s) {
 
 namespace {
 
-// The incoming diffuse radiance the next frame's SSGI hits reflect (ssgiFeedback): the
-// planes the composite multiplied by the diffuse colour, the denoiser's where it ran (a
-// bounce of one-ray noise fed back would come back as noise), else SSGI's.
-std::span<const PlaneF, 3> committedDiffuse(const Frame& frame) {
-    const std::span<const PlaneF, 3> d = frame.rgb(Res::DenoisedDiffuse);
-    return d[0].empty() ? frame.rgb(Res::Ssgi) : d;
-}
-
 // A non-finite value (a NaN from a bad input, an overflow) is committed as 0, no light: the
 // next frames read the history through the reprojection (SSR's reprojected radiance, SSGI
 // feedback), and a NaN kept there would spread to every pixel that reflects it, frame after
 // frame, long after the input that made it is gone.
-void commitPlanes(std::span<const PlaneF, 3> src, PlaneF* dst, int w, int h) {
+void commitPlanes(const PassReads& r, Res id, PlaneF* dst, int w, int h) {
     for (int ch = 0; ch < 3; ++ch) {
         dst[ch].ensureSize(w, h);  // kept across frames: no allocation once sized
+        const ViewF src = r.view(id, ch);
         for (int y = 0; y < h; ++y) {
-            const float* in = src[ch].row(y);
+            const float* in = src.row(y);
             float* out = dst[ch].row(y);
             for (int x = 0; x < w; ++x) out[x] = std::isfinite(in[x]) ? in[x] : 0.0f;
         }
@@ -105,12 +99,16 @@ void commitPlanes(std::span<const PlaneF, 3> src, PlaneF* dst, int w, int h) {
 
 }  // namespace
 
-void commitHistory(const TraceSettings& s, const Frame& frame, FrameHistory& history) {
+void commitHistory(const CompiledGraph& graph, const Frame& frame, FrameHistory& history) {
     const int w = frame.width, h = frame.height;
-    // The colour always (FrameHistory::usableAt goes by its size), the diffuse light for
-    // feedback only.
-    commitPlanes(frame.rgb(Res::Color), history.color, w, h);
-    if (s.ssgi && s.ssgiFeedback) commitPlanes(committedDiffuse(frame), history.diffuse, w, h);
+    const PassReads r(graph, frame, pass::kHistoryCommit);
+    // The colour always (FrameHistory::usableAt goes by its size); for SSGI's feedback, the
+    // incoming diffuse radiance its next hits reflect: the planes the composite multiplied by
+    // the diffuse colour, the denoiser's where it ran (a bounce of one-ray noise fed back would
+    // come back as noise), else SSGI's.
+    commitPlanes(r, Res::Color, history.color, w, h);
+    if (r.has(Res::DenoisedDiffuse)) commitPlanes(r, Res::DenoisedDiffuse, history.diffuse, w, h);
+    else if (r.has(Res::Ssgi)) commitPlanes(r, Res::Ssgi, history.diffuse, w, h);
     history.valid = true;
 }
 

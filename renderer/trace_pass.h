@@ -6,6 +6,7 @@
 #include "renderer/frame.h"
 #include "renderer/frame_graph.h"
 #include "renderer/frame_memory.h"
+#include "renderer/pass_reads.h"
 #include "renderer/renderer.h"
 #include "renderer/settings.h"
 #include "shading/direct_kernel.h"
@@ -43,8 +44,11 @@ struct TraceContext {
     int threads() const { return settings.threads; }
     // A plane only made to be looked at (RenderSettings::debugPlanes): null when not asked for.
     PlaneF* debugPlane(PlaneF& p) const { return settings.debugPlanes ? &p : nullptr; }
-    // What the reconstruction of a layout's untraced pixels is guided by.
-    ReconstructGuides guides(const Frame& f) const { return {camera, f.gbuffer.view()}; }
+    // What the reconstruction of a layout's untraced pixels (or the half frame's upsample) in
+    // `pass` is guided by: the G-buffer's planes the pass declares reading.
+    ReconstructGuides guides(const Frame& f, std::string_view pass) const {
+        return {camera, PassReads(graph, f, pass).gbuffer()};
+    }
 };
 
 // Fills SSR's, SSGI's and the denoiser's outputs (Res::Ssr ... Res::SpecularFrames) and replaces
@@ -75,6 +79,6 @@ bool tracedSignalsPooled(const RenderSettings& settings);
 bool readsHistory(const TraceSettings& settings);
 // The frame's final colour into `history` and, with SSGI feedback, its incoming diffuse
 // radiance, for the next frame.
-void commitHistory(const TraceSettings& settings, const Frame& frame, FrameHistory& history);
+void commitHistory(const CompiledGraph& graph, const Frame& frame, FrameHistory& history);
 
 }  // namespace ssrt

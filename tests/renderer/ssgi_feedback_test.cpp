@@ -181,7 +181,8 @@ TEST_CASE("ssgi feedback: a NaN in a frame is not committed -- the next frames s
         diffuse[c].at(40, 30) = nan;
         diffuse[c].at(41, 30) = -inf;
     }
-    commitHistory(rs.trace, f, history);
+    // (The graph of a frame that keeps its history, as the renderer compiles it.)
+    commitHistory(compileFrameGraph({rs, SceneFacts::of(scene), true, true}), f, history);
     for (int c = 0; c < 3; ++c) {
         CHECK(history.color[c].at(40, 30) == 0.0f);
         CHECK(history.color[c].at(41, 30) == 0.0f);
