@@ -323,9 +323,14 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
 void writeTextFile(const std::string& path, const std::string& text) { writeTextWhole(path, text); }
 
 void checkCsvPath(const std::string& option, const std::string& path) {
+    checkTextPath(option, path, ".csv");
+}
+
+void checkTextPath(const std::string& option, const std::string& path,
+                   const std::string& extension) {
     const fs::path p(path);
-    if (p.extension() != ".csv")
-        throw std::invalid_argument(option + ": '" + path + "' must end in .csv");
+    if (p.extension() != extension)
+        throw std::invalid_argument(option + ": '" + path + "' must end in " + extension);
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))

@@ -95,6 +95,9 @@ void writeFrame(const std::string& path, const Frame& frame, const FrameWriteOpt
 // A CSV file to write later: the name must end in .csv (std::invalid_argument naming
 // `option`), its folder must exist and it must not be a folder (std::runtime_error).
 void checkCsvPath(const std::string& option, const std::string& path);
+// The same for another kind of text file, named by its extension (".json").
+void checkTextPath(const std::string& option, const std::string& path,
+                   const std::string& extension);
 // Writes `text` whole or not at all: a temporary beside the target, renamed over it.
 void writeTextFile(const std::string& path, const std::string& text);
 

@@ -16,6 +16,7 @@
 #include "cli/interrupt.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
+#include "cli/profile_file.h"
 #include "cli/progress_line.h"
 #include "cli/sequence.h"
 #include "cli/shard.h"
@@ -99,6 +100,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     cmd->add_flag("--stats", o.stats,
                   "Print per-pass times, rasterizer counters and the screen-space march's "
                   "counters and speed (Mrays per second, ns per step; per frame)");
+    cmd->add_option_function<std::string>(
+           "--profile", [&o](const std::string& v) { o.profile = v; },
+           "Write where the time goes as a Chrome trace-event file (.json; Perfetto and "
+           "chrome://tracing open it): every pass, tile chain and stage of every frame as "
+           "slices on the thread that ran it, the march's counters per frame as counter tracks")
+        ->type_name("FILE");
     cmd->add_flag("--json", o.json,
                   "Print the --stats figures (every frame's) and the --compare report as one "
                   "JSON document on stdout instead of their tables (docs/cli.md gives its keys); "
@@ -218,6 +225,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
             "--json: prints the --stats or --compare report, and neither "
             "was given");
     checkWritable(sequenceFileName(output, int(block.begin), frames));
+    if (o.profile) checkTextPath("--profile", *o.profile, ".json");
     const FrameWriteOptions writeOptions = writeOptionsFrom(o, settings, output, err);
     planesForFile(output, writeOptions.layers, request.settings);
     if (o.layers && writeOptions.layers == LayerGroups().set(int(LayerGroup::Truth)))
@@ -258,6 +266,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     const Renderer renderer(settings);
     Frame frame;
     FrameHistory history;
+    // --profile: the slices of every frame, written once the last is (cli/profile_file.h).
+    std::optional<ProfileFile> profile;
+    if (o.profile) profile.emplace();
+    const ProfileTarget profiling(profile ? &*profile : nullptr);
     Json document = Json::object();  // --json: printed whole once every frame is written
     if (o.json && o.stats) document["frames"] = Json::array();
     // For the frame lines' time left (the message only).
@@ -275,6 +287,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         input.replaceHistory = step + 1 < endStep;
         input.cancel = interruptFlag();  // a large frame stops between its passes
         const auto start = std::chrono::steady_clock::now();
+        const std::string frameName = "frame " + std::to_string(input.frameIndex);
+        std::optional<ProfileScope> frameSlice(std::in_place, frameName);
         try {
             renderer.render(scene, input, history, frame);
         } catch (const RenderCancelled&) {
@@ -286,6 +300,7 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         }
         const std::chrono::duration<double, std::milli> wall =
             std::chrono::steady_clock::now() - start;
+        if (profile) profile->counters(frame.stats, std::chrono::steady_clock::now());
         if (sequence.isWarmup(step)) {
             if (!o.quiet) err << "warm-up " << (step + 1) << "/" << plan.warmup << "\n";
             continue;
@@ -298,7 +313,11 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         }
         const std::string file = sequenceFileName(output, i, frames);
         const auto written = std::chrono::steady_clock::now();
-        writeFrame(file, frame, writeOptions);
+        {
+            const ProfileScope slice("image write");
+            writeFrame(file, frame, writeOptions);
+        }
+        frameSlice.reset();
         if (framesWritten++ == 0) firstWritten = file;
         lastWritten = file;
         const std::chrono::duration<double, std::milli> write =
@@ -334,6 +353,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                            write.count());
             }
         }
+    }
+    if (profile) {
+        writeTextFile(*o.profile, profile->text());
+        if (!o.quiet) err << "wrote " << *o.profile << "\n";
     }
     int status = kExitOk;
     if (diff)

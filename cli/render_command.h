@@ -38,6 +38,7 @@ struct RenderOptions {
     // --layers and --exr-compression as typed (unset: every layer, the default compression).
     std::optional<std::string> layers, exrCompression;
     bool stats = false;
+    std::optional<std::string> profile;  // --profile FILE: a trace-event file (cli/profile_file.h)
     bool json = false;  // --json: the command's report (render: --stats, --compare) as JSON
     bool quiet = false;
     bool strict = false;               // --strict: a glTF file's warnings are errors

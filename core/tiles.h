@@ -51,7 +51,8 @@ struct TileGrid {
     TileRect rect(int tile) const;
 };
 
-// Runs fn(tile) for every tile index on `threads` worker threads (0 = all cores).
+// Runs fn(tile) for every tile index on `threads` worker threads (0 = all cores). With a
+// profile sink on the calling thread, each index is a slice on its thread (core/profile.h).
 void parallelForTiles(int tileCount, int threads, const std::function<void(int)>& fn);
 
 // Same loop over any index range, for passes cut by something other than tiles.

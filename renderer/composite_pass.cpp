@@ -4,10 +4,12 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "core/plane_view.h"
+#include "core/profile.h"
 #include "renderer/frame_scheduler.h"
 #include "renderer/pass_reads.h"
 #include "renderer/resources.h"
@@ -51,6 +53,7 @@ struct CompositeStep {
     std::optional<Compositor> comp;
     std::optional<HalfUpsampler> up;
     std::vector<double> upMs, compMs;  // per tile
+    ProfileSink* profile = nullptr;    // the upsample's slices (core/profile.h)
 };
 
 // One tile: the upsample's tile of SSGI light into the thread's tile planes first, where it
@@ -65,6 +68,7 @@ void upsampleAndCompositeTile(CompositeStep& s, int tile) {
     const Clock::time_point a = Clock::now();
     s.up->tile(tile, ReconstructPlanes{{&light[0], &light[1], &light[2]}}, r.x0, r.y0);
     const Clock::time_point b = Clock::now();
+    if (s.profile) s.profile->slice("denoise upsample", std::this_thread::get_id(), a, b);
     const ViewF ssgi[3] = {viewOf(light[0], channelName(Res::DenoisedDiffuse, 0)),
                            viewOf(light[1], channelName(Res::DenoisedDiffuse, 1)),
                            viewOf(light[2], channelName(Res::DenoisedDiffuse, 2))};
@@ -97,6 +101,7 @@ std::function<void(FrameStats&)> scheduleComposite(const TraceContext& c, Frame&
                           frame.scratch.half.rays.pdf,
                           ReconstructSource{{&half[0], &half[1], &half[2]}});
             s->upMs.assign(std::size_t(s->comp->grid().count()), 0.0);
+            s->profile = profileSink();
             s->compMs = s->upMs;
         });
     return [s](FrameStats& stats) {

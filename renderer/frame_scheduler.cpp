@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "renderer/frame_memory.h"
 #include "renderer/pass_timer.h"
@@ -39,9 +40,19 @@ void FrameScheduler::tiled(std::string_view pass, std::function<void(int)> tile,
 // the passes add up to the loop's wall time (the threads' time shared out as they spent it).
 void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats& stats) {
     using Clock = std::chrono::steady_clock;
+    // The profile's slices (core/profile.h): the chain's on this thread, its passes' set-ups
+    // and finishes in it, and each tile's passes on the thread that runs the tile.
+    std::string name(chain[0]->name);
+    for (std::size_t i = 1; i < chain.size(); ++i) name += " + " + std::string(chain[i]->name);
+    std::vector<std::string> setUps, finishes;
+    for (const Pass* p : chain)
+        setUps.push_back(std::string(p->name) + " set-up"),
+            finishes.push_back(std::string(p->name) + " finish");
+    const ProfileScope scope(name);
+    ProfileSink* const sink = profileSink();
     std::vector<double> setUpMs(chain.size(), 0.0);
     for (std::size_t i = 0; i < chain.size(); ++i)
-        if (chain[i]->setUp) addTime(setUpMs[i], chain[i]->setUp);
+        if (chain[i]->setUp) addTime(setUpMs[i], setUps[i], chain[i]->setUp);
     // (After the set-ups, which may make the tiles a pass runs on.)
     const TileGrid& grid = chain[0]->grid ? *chain[0]->grid : grid_;
     for (const Pass* p : chain)
@@ -57,6 +68,7 @@ void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats&
         for (std::size_t i = 0; i < n; ++i) {
             chain[i]->tile(tile);
             const Clock::time_point b = Clock::now();
+            if (sink) sink->slice(chain[i]->name, std::this_thread::get_id(), a, b);
             busy[std::size_t(tile) * n + i] =
                 std::chrono::duration<double, std::milli>(b - a).count();
             a = b;
@@ -69,7 +81,7 @@ void FrameScheduler::runChain(const std::vector<const Pass*>& chain, FrameStats&
         for (std::size_t i = 0; i < n; ++i) ms[i] += busy[t * n + i], sum += busy[t * n + i];
     const double k = sum > 0.0 ? wall / sum : 0.0;
     for (std::size_t i = 0; i < n; ++i)
-        if (chain[i]->finish) addTime(setUpMs[i], chain[i]->finish);
+        if (chain[i]->finish) addTime(setUpMs[i], finishes[i], chain[i]->finish);
     for (std::size_t i = 0; i < n; ++i)
         stats.passes.push_back({std::string(chain[i]->name), setUpMs[i] + ms[i] * k, i > 0});
 }
@@ -109,6 +121,7 @@ void FrameScheduler::run(FrameStats& stats) {
         if (p->whole) {
             flush();
             stopIfCancelled(cancel_);
+            const ProfileScope scope(p->name);
             step(p->through, p->whole);
             continue;
         }

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <chrono>
+#include <string_view>
 
+#include "core/profile.h"
 #include "renderer/frame.h"
 
 namespace ssrt {
@@ -13,10 +15,10 @@ inline double msSince(PassClock::time_point t0) {
     return std::chrono::duration<double, std::milli>(PassClock::now() - t0).count();
 }
 
-// Times the scope it lives in as one pass.
+// Times the scope it lives in as one pass (and a slice of the profile: core/profile.h).
 class ScopedPass {
 public:
-    ScopedPass(FrameStats& stats, const char* name) : stats_(stats), name_(name) {}
+    ScopedPass(FrameStats& stats, const char* name) : stats_(stats), name_(name), slice_(name) {}
     ~ScopedPass() { stats_.passes.push_back({name_, msSince(t0_)}); }
     ScopedPass(const ScopedPass&) = delete;
     ScopedPass& operator=(const ScopedPass&) = delete;
@@ -24,6 +26,7 @@ public:
 private:
     FrameStats& stats_;
     const char* name_;
+    ProfileScope slice_;
     PassClock::time_point t0_ = PassClock::now();
 };
 
@@ -33,6 +36,12 @@ void addTime(double& ms, Fn&& fn) {
     const auto t0 = PassClock::now();
     fn();
     ms += msSince(t0);
+}
+// The same, as a slice of the profile called `name`.
+template <class Fn>
+void addTime(double& ms, std::string_view name, Fn&& fn) {
+    const ProfileScope slice(name);
+    addTime(ms, fn);
 }
 
 }  // namespace ssrt

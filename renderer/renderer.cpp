@@ -118,7 +118,10 @@ void visibilityPass(const FrameContext& c, const Scene& scene, Frame& frame) {
     RasterOptions ro = c.raster();
     ro.clearDepth = 1.0f / c.camera.farZ;
     rv.farKey = ro.clearDepth;  // clipped at the far plane before binning as by the depth test
-    const TransformedVertices tv = transformVertices(scene, rv, c.threads);
+    const TransformedVertices tv = [&] {
+        const ProfileScope slice("geometry");
+        return transformVertices(scene, rv, c.threads);
+    }();
     RasterTimes rt;
     rasterize(scene, tv, rv, ro, frame.scratch.visibility, frame.stats.visibility, &rt);
     frame.stats.passes.push_back({"geometry", msSince(t0) - rt.rasterMs});
@@ -349,6 +352,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     const Claim historyUse(history ? &history->inUse : nullptr, "FrameHistory",
                            "a history carries one sequence, one frame at a time");
     const Claim frameUse(&frame.inUse, "Frame", "give each thread a Frame of its own");
+    const ProfileScope slice("render call");
     scene.validate();
     const bool readsLast =
         history && !input.resetHistory && history->readableAt(settings_.width, settings_.height);

@@ -59,7 +59,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
     const Isa isa = c.isa;
     Frame::Scratch::HalfTrace& ht = frame.scratch.half;
     HalfFrame& hf = ht.frame;
-    addTime(times.rays, [&] {
+    addTime(times.rays, "ssgi half frame build", [&] {
         // (Motion for the denoiser, which runs on the half frame: denoisePass.)
         HalfFrameSource src{full.g, ts.denoise.enabled};
         // (Absent where the direct pass wrote the half frame's hit light itself:
@@ -95,7 +95,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
     const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
     if (color[0].empty()) return;
     times.reconstruct = 0.0;
-    addTime(times.reconstruct, [&] {
+    addTime(times.reconstruct, "ssgi reconstruct", [&] {
         const ReconstructSource from{
             {&ht.resolved.color[0], &ht.resolved.color[1], &ht.resolved.color[2]},
             nullptr,
@@ -115,6 +115,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
 }  // namespace
 
 void ssgiPass(const TraceContext& c, Frame& frame) {
+    const ProfileScope slice("ssgi");  // (its stages' slices are named after it)
     const TraceSettings& ts = c.ts();
     const Isa isa = c.isa;
     Frame::Scratch& sc = frame.scratch;
@@ -151,7 +152,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
     if (checker.on) {
         times.reconstruct = 0.0;
-        addTime(times.reconstruct, [&] {
+        addTime(times.reconstruct, "ssgi reconstruct", [&] {
             const ReconstructPlanes rp{{&color[0], &color[1], &color[2]},
                                        nullptr,
                                        &frame.plane(Res::SsgiHit),

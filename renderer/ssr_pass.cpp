@@ -26,7 +26,7 @@ SsrResolveArgs ssrInputs(const TraceContext& c, Frame& frame, SsrResolveSettings
     }
     in.radianceScale = 1.0f / c.settings.exposure;
     if (rs.mode == SsrResolveMode::Mip) {
-        addTime(pyramidMs,
+        addTime(pyramidMs, "ssr colour pyramid",
                 [&] { buildColorPyramid(source, frame.scratch.colorPyramid, c.threads()); });
         in.pyramid = &frame.scratch.colorPyramid;
     }
@@ -94,6 +94,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
 }  // namespace
 
 void ssrPass(const TraceContext& c, Frame& frame) {
+    const ProfileScope slice("ssr");  // (its stages' slices are named after it)
     const TraceSettings& ts = c.ts();
     Frame::Scratch& sc = frame.scratch;
     StageTimes times;
@@ -124,7 +125,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     // The checkerboard's other phase, from this frame's traced pixels (marked in the rays).
     if (q.checker.on) {
         times.reconstruct = 0.0;
-        addTime(times.reconstruct, [&] {
+        addTime(times.reconstruct, "ssr reconstruct", [&] {
             const std::span<PlaneF, 3> color = frame.rgb(Res::Ssr);
             const ReconstructPlanes rp{{&color[0], &color[1], &color[2]},
                                        &frame.plane(Res::SsrOpacity),

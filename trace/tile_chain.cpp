@@ -2,9 +2,12 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "core/image.h"
+#include "core/profile.h"
 
 namespace ssrt {
 
@@ -42,6 +45,14 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
     if (marchGrid.width != grid.width || marchGrid.height != grid.height)
         throw std::invalid_argument("runTileChain: the stages' frames differ");
     std::vector<TileResult> tiles(std::size_t(grid.count()));
+    // The profile's slices of each tile's stages, named after the pass's scope as `--stats`
+    // names its lines ("ssr rays", "ssr march", "ssr resolve": core/profile.h).
+    ProfileSink* const sink = profileSink();
+    const std::string pass(profileScopeName());
+    const std::string stage[3] = {pass + " rays", pass + " march", pass + " resolve"};
+    const auto record = [&](int i, Clock::time_point a, Clock::time_point b) {
+        if (sink) sink->slice(stage[i], std::this_thread::get_id(), a, b);
+    };
     const auto runChain = [&](int tile) {
         thread_local TileBatches b;
         const TileRect r = grid.rect(tile);
@@ -55,6 +66,7 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
         chain.consume(tile, b.rays, b.march);
         const Clock::time_point e = Clock::now();
         out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[2] = msBetween(h, e);
+        record(0, a, m), record(1, m, h), record(2, h, e);
     };
     const Clock::time_point t0 = Clock::now();
     if (!chain.finish) {
@@ -71,7 +83,9 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
                 const int tile = (k - 2) * tx + (i - chains);
                 const Clock::time_point a = Clock::now();
                 chain.finish(tile);
-                tiles[std::size_t(tile)].ms[3] = msBetween(a, Clock::now());
+                const Clock::time_point b = Clock::now();
+                tiles[std::size_t(tile)].ms[3] = msBetween(a, b);
+                record(2, a, b);
             });
         }
     }
