@@ -239,6 +239,10 @@ if [ "$tests" = all ]; then
         pass "command 2, ./scripts/test.sh, passed in $t2 s ($(split_time "$run/logs/tests.log" "$t2" tests); $summary)"
     else
         tail -n 30 "$run/logs/tests.log" | sed 's/^/  | /' >&2
+        # The failed tests' own lines (ctest prints their output above its summary, which a
+        # CI log that keeps only this script's output would otherwise lose).
+        grep -E 'FAIL|\*\*\*Failed|ERROR|error:' "$run/logs/tests.log" | head -n 40 |
+            sed 's/^/  ! /' >&2 || true
         fail "command 2, ./scripts/test.sh, failed after $((SECONDS - t0)) s (log above: $run/logs/tests.log)"
     fi
 fi

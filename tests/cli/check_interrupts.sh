@@ -106,19 +106,36 @@ render_stops TERM 143
 # A second signal ends at once, by that signal (no line), and removes the temporary being
 # written: sent while one is (a 640x360 EXR of every layer, ZIP-compressed, takes longer to
 # write than to render). Two signals of one kind sent at once may arrive as one, so the second
-# is another: SIGTERM.
-mkdir -p "$dir/twice"
-start render-twice "$ssrt" render --scene cornell --width 640 --height 360 --frames 200 \
-    --exr-compression zip -o "$dir/twice/f.exr"
-for _ in $(seq 2000); do
-    [ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] && break
-    sleep 0.01
+# is another: SIGTERM. The two are two kill calls: on a loaded machine the test's shell may lose
+# the CPU between them for a scheduler's slice, and a first signal that came as a write was
+# ending lets the run stop cleanly before the second arrives (exit 130 and the line). That is
+# the test's timing, not ssrt's, so that case is tried again, up to 5 times.
+render_twice() {  # sets `stopped_cleanly` to 1 when the run ended before the second signal
+    rm -rf "$dir/twice"
+    mkdir -p "$dir/twice"
+    start render-twice "$ssrt" render --scene cornell --width 640 --height 360 --frames 200 \
+        --exr-compression zip -o "$dir/twice/f.exr"
+    for _ in $(seq 2000); do
+        [ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] && break
+        sleep 0.01
+    done
+    [ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] || fail "render-twice: no write seen under way"
+    stop INT TERM
+    no_temporaries "$dir/twice"
+    stopped_cleanly=0
+    if grep -q "interrupted after" "$dir/render-twice.err"; then
+        [ "$code" = 130 ] || fail "render-twice: a clean stop with exit $code, not 130"
+        stopped_cleanly=1
+        return
+    fi
+    [ "$code" = 130 ] || [ "$code" = 143 ] || fail "render-twice: exit $code, not 130 or 143"
+}
+for try in 1 2 3 4 5; do
+    render_twice
+    [ "$stopped_cleanly" = 0 ] && break
+    say "render-twice: try $try stopped cleanly before the second signal arrived; again"
 done
-[ -n "$(find "$dir/twice" -name '.*.tmp-*')" ] || fail "render-twice: no write seen under way"
-stop INT TERM
-[ "$code" = 130 ] || [ "$code" = 143 ] || fail "render-twice: exit $code, not 130 or 143"
-! grep -q "interrupted after" "$dir/render-twice.err" || fail "render-twice: it stopped cleanly"
-no_temporaries "$dir/twice"
+[ "$stopped_cleanly" = 0 ] || fail "render-twice: stopped cleanly in 5 tries: the second signal never ended a run"
 say "render-twice: exit $code $ms ms after the signals"
 
 # --- reference: cancelled mid-frame (between tiles), nothing written or cached --------------
