@@ -80,7 +80,7 @@ int reportErrors(std::ostream& err, const std::function<int()>& command) {
     }
 }
 
-CommandLine::CommandLine()
+CommandLine::CommandLine(std::string_view only)
     : app_(std::make_unique<CLI::App>(
           "ssrt: a deterministic CPU renderer (tiled SIMD rasterizer, G-buffer, shadow map, "
           "direct light, screen-space reflections and diffuse, checked against Embree)",
@@ -90,17 +90,38 @@ CommandLine::CommandLine()
                "\nRun 'ssrt COMMAND --help' for a command's options.");
     app.set_version_flag("--version", versionLine(), "Print the version, commit and compiler");
     app.require_subcommand(1);
-    commands_[int(Command::Render)] = addRenderCommand(app, render);
-    commands_[int(Command::Compare)] = addCompareCommand(app, compare);
-    commands_[int(Command::Sweep)] = addSweepCommand(app, sweep);
-    commands_[int(Command::Diff)] = addDiffCommand(app, diff);
-    commands_[int(Command::Check)] = addCheckCommand(app, check);
-    commands_[int(Command::Reference)] = addReferenceCommand(app, reference);
-    commands_[int(Command::Merge)] = addMergeCommand(app, merge);
-    commands_[int(Command::Graph)] = addGraphCommand(app, graph);
-    commands_[int(Command::Scenes)] = addScenesCommand(app, scenes);
-    commands_[int(Command::Completion)] = addCompletionCommand(app, completionShell);
-    commands_[int(Command::Man)] = addManCommand(app);
+    // The completion script and the man page walk every command, so they never come alone.
+    int alone = -1;
+    for (int c = 0; c < kCommandCount; ++c)
+        if (only == kCommandNames[c] && Command(c) != Command::Completion &&
+            Command(c) != Command::Man)
+            alone = c;
+    for (int c = 0; c < kCommandCount; ++c) {
+        if (alone >= 0 && c != alone) continue;
+        commands_[c] = addCommand(Command(c));
+        if (commands_[c]->get_name() != kCommandNames[c])
+            throw std::logic_error("cli: command " + std::to_string(c) + " is named '" +
+                                   commands_[c]->get_name() + "', not '" +
+                                   std::string(kCommandNames[c]) + "'");
+    }
+}
+
+CLI::App* CommandLine::addCommand(Command c) {
+    CLI::App& app = *app_;
+    switch (c) {
+        case Command::Render: return addRenderCommand(app, render);
+        case Command::Compare: return addCompareCommand(app, compare);
+        case Command::Sweep: return addSweepCommand(app, sweep);
+        case Command::Diff: return addDiffCommand(app, diff);
+        case Command::Check: return addCheckCommand(app, check);
+        case Command::Reference: return addReferenceCommand(app, reference);
+        case Command::Merge: return addMergeCommand(app, merge);
+        case Command::Graph: return addGraphCommand(app, graph);
+        case Command::Scenes: return addScenesCommand(app, scenes);
+        case Command::Completion: return addCompletionCommand(app, completionShell);
+        case Command::Man: return addManCommand(app);
+    }
+    throw std::logic_error("cli: no such command");
 }
 
 CommandLine::~CommandLine() = default;
@@ -137,9 +158,8 @@ std::optional<int> CommandLine::parse(int argc, const char* const* argv, std::os
         const std::string first = argv[1];
         const CLI::App* command = nullptr;
         for (const CLI::App* c : commands_)
-            if (c->parsed()) command = c;
-        std::vector<std::string> names;
-        for (const CLI::App* c : commands_) names.push_back(c->get_name());
+            if (c && c->parsed()) command = c;
+        const std::vector<std::string> names(std::begin(kCommandNames), std::end(kCommandNames));
         if (!command && first.rfind('-', 0) != 0) {
             err << "ssrt: error: unknown command '" << first << "'" << didYouMean(first, names)
                 << " (expected " << kCommandList << "; see 'ssrt --help')\n";
@@ -160,12 +180,12 @@ std::optional<int> CommandLine::parse(int argc, const char* const* argv, std::os
     }
     // require_subcommand(1) holds: exactly one command was parsed.
     for (int c = 0; c < kCommandCount; ++c)
-        if (commands_[c]->parsed()) command_ = Command(c);
+        if (commands_[c] && commands_[c]->parsed()) command_ = Command(c);
     return std::nullopt;
 }
 
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-    CommandLine line;
+    CommandLine line(argc > 1 ? argv[1] : "");
     return runCli(line, argc, argv, out, err);
 }
 

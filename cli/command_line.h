@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "cli/check_command.h"
 #include "cli/compare_command.h"
@@ -39,10 +40,18 @@ enum class Command {
     Man
 };
 inline constexpr int kCommandCount = int(Command::Man) + 1;
+// Their names on the command line, by Command.
+inline constexpr std::string_view kCommandNames[kCommandCount] = {
+    "render", "compare", "sweep",  "diff",       "check", "reference",
+    "merge",  "graph",   "scenes", "completion", "man"};
 
 class CommandLine {
 public:
-    CommandLine();
+    // Every command's options; or, where `only` names a command (the first argument: runCli
+    // passes it), that command's alone, which is all its parse needs: a one-frame render no
+    // longer builds the hundreds of options of the commands it is not. The completion script
+    // and the man page walk every command, so for them, as for any other text, all are built.
+    explicit CommandLine(std::string_view only = {});
     ~CommandLine();
 
     // Parses argv (argv[0] is the program). Returns the exit status when parsing alone ends
@@ -70,6 +79,8 @@ public:
     const CLI::App& app() const { return *app_; }
 
 private:
+    CLI::App* addCommand(Command c);
+
     std::unique_ptr<CLI::App> app_;
     CLI::App* commands_[kCommandCount] = {};  // by Command
     Command command_ = Command::Scenes;

@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <CLI/CLI.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -62,4 +63,36 @@ TEST_CASE("command line: a switch a preset turns on can be turned off beside it"
     CHECK(settingsFrom(line.render).trace.march.backFaces);
     line.reset();
     CHECK(parse(line, {"render", "--back-faces", "--no-back-faces"}) == kExitUsage);
+}
+
+// runCli builds the command named by the first argument alone; the completion script and the
+// man page, which walk every command, and anything else get them all.
+TEST_CASE("command line: a command named first is built alone, the same options as in the whole") {
+    const auto commands = [](const CommandLine& line) {
+        std::vector<std::string> names;
+        for (const CLI::App* c : line.app().get_subcommands({})) names.push_back(c->get_name());
+        return names;
+    };
+    CHECK(commands(CommandLine("render")) == std::vector<std::string>{"render"});
+    CHECK(commands(CommandLine("diff")) == std::vector<std::string>{"diff"});
+    for (const char* all : {"", "man", "completion", "--help", "rendr"})
+        CHECK(commands(CommandLine(all)).size() == std::size_t(kCommandCount));
+    // The one command's options are the whole app's, by name and help.
+    const auto options = [](const CLI::App& app, const std::string& name) {
+        std::vector<std::string> text;
+        for (const CLI::Option* o : app.get_subcommand(name)->get_options())
+            text.push_back(o->get_name() + " " + o->get_description());
+        return text;
+    };
+    for (int c = 0; c < kCommandCount; ++c) {
+        const std::string name(kCommandNames[c]);
+        CAPTURE(name);
+        const CommandLine whole;
+        const CommandLine alone(name);
+        CHECK(options(alone.app(), name) == options(whole.app(), name));
+    }
+    CommandLine line("render");
+    REQUIRE(!parse(line, {"render", "--width", "100"}));
+    CHECK(line.command() == Command::Render);
+    CHECK(line.render.settings.at("width") == "100");
 }
