@@ -180,14 +180,16 @@ void writeOut(const TileRasterArgs& args, const TileRect& r, const TileBuffers& 
             const int b = (ly / kBlockSize) * kBlocksPerSide + bx;
             float* d = depthRow + bx * kBlockSize;
             uint32_t* id = idRow + bx * kBlockSize;
+            // (A depth-only pass, the shadow map's, neither keeps nor copies ids.)
             if (!(buf.touched >> b & 1)) {
                 std::fill_n(d, kBlockSize, args.clearDepth);
-                std::fill_n(id, kBlockSize, kNoPrimitiveId);
+                if (args.ids) std::fill_n(id, kBlockSize, kNoPrimitiveId);
             } else {
                 std::memcpy(d, buf.depth + b * kBlockPixels + rowInBlock,
                             sizeof(float) * kBlockSize);
-                std::memcpy(id, buf.ids + b * kBlockPixels + rowInBlock,
-                            sizeof(float) * kBlockSize);
+                if (args.ids)
+                    std::memcpy(id, buf.ids + b * kBlockPixels + rowInBlock,
+                                sizeof(float) * kBlockSize);
             }
         }
         streamRow(args.depth + std::size_t(y) * args.depthStride + r.x0, depthRow, span);
@@ -218,7 +220,8 @@ SSRT_INLINE void rasterTriangles(const TileRasterArgs& args, const TileRect& r, 
                 if (!(buf.touched >> b & 1)) {
                     buf.touched |= uint64_t(1) << b;
                     std::fill_n(buf.depth + b * kBlockPixels, kBlockPixels, args.clearDepth);
-                    std::fill_n(buf.ids + b * kBlockPixels, kBlockPixels, int32_t(-1));
+                    if (args.ids)
+                        std::fill_n(buf.ids + b * kBlockPixels, kBlockPixels, int32_t(-1));
                 }
                 const int x = r.x0 + bx * kBlockSize, y = r.y0 + by * kBlockSize;
                 int32_t* ids = args.ids ? buf.ids + b * kBlockPixels : nullptr;
