@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -110,6 +111,23 @@ std::string GlContext::renderer() const { return glString(GL_RENDERER); }
 std::string GlContext::version() const { return glString(GL_VERSION); }
 bool GlContext::isLlvmpipe() const { return renderer().find("llvmpipe") != std::string::npos; }
 
+int GlContext::subpixelBits() const {
+    GLint bits = 0;
+    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    return bits;
+}
+
+std::vector<uint32_t> firstTriangles(const GlSceneDesc& desc) {
+    std::vector<uint32_t> first;
+    uint32_t next = 0;
+    for (const GlDraw& d : desc.draws) {
+        first.push_back(next);
+        next += uint32_t(desc.meshes.at(d.mesh).indices.size() / 3);
+    }
+    first.push_back(next);
+    return first;
+}
+
 // ---------------------------------------------------------------------------------------
 
 namespace {
@@ -166,6 +184,19 @@ void main() {
     // Pixels moved since the previous frame (previous minus current screen position).
     oMotion = (vPrevClip.xy / vPrevClip.w - vClip.xy / vClip.w) * 0.5 * uViewport;
     oLinearDepth = vViewDepth;
+}
+)";
+
+// The id pass: the G-buffer's vertex shader as it is (the same positions, so the same pixels
+// and depths as the timed pass), and only the linear depth and the triangle id written.
+const char* kIdFs = R"(#version 330 core
+in float vViewDepth;
+uniform uint uFirstTriangle;
+layout(location = 0) out float oLinearDepth;
+layout(location = 1) out uint oTriangle;
+void main() {
+    oLinearDepth = vViewDepth;
+    oTriangle = uFirstTriangle + uint(gl_PrimitiveID);
 }
 )";
 
@@ -272,14 +303,39 @@ void setMat4(GLuint program, const char* name, const glm::mat4& m) {
     glUniformMatrix4fv(loc(program, name), 1, GL_FALSE, &m[0][0]);
 }
 
-// Share of `values` that differ from `cleared`, and the value at the centre.
-Coverage measureCoverage(const std::vector<float>& values, int w, int h, float cleared) {
-    std::size_t touched =
-        std::count_if(values.begin(), values.end(), [&](float v) { return v != cleared; });
-    Coverage c;
-    c.fraction = double(touched) / double(values.size());
-    c.centre = values[std::size_t(h / 2) * std::size_t(w) + std::size_t(w / 2)];
-    return c;
+// The bound framebuffer's `source` (a colour attachment, or GL_NONE for depth) as w x h
+// values, rows top-down: GL's row 0 is the bottom one, ssrt's the top one.
+template <class T>
+std::vector<T> readPixels(GLenum source, int w, int h, GLenum format, GLenum type) {
+    glReadBuffer(source);
+    std::vector<T> bottomUp(std::size_t(w) * std::size_t(h));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, w, h, format, type, bottomUp.data());
+    checkGlError("read-back");
+    std::vector<T> topDown(bottomUp.size());
+    for (int y = 0; y < h; ++y)
+        std::copy_n(bottomUp.begin() + std::ptrdiff_t(h - 1 - y) * w, w,
+                    topDown.begin() + std::ptrdiff_t(y) * w);
+    return topDown;
+}
+
+GLuint makeFramebuffer(const char* which, int colourTargets, const GLuint* colour, GLuint depth) {
+    static const GLenum kAttachments[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                           GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    for (int i = 0; i < colourTargets; ++i)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, kAttachments[i], GL_TEXTURE_2D, colour[i], 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+    if (colourTargets > 0) {
+        glDrawBuffers(colourTargets, kAttachments);
+    } else {
+        glDrawBuffer(GL_NONE);
+        glReadBuffer(GL_NONE);
+    }
+    checkFramebuffer(which);
+    return fbo;
 }
 
 }  // namespace
@@ -288,13 +344,20 @@ struct GlWorkloads::Impl {
     GlSceneDesc desc;
     int width = 0, height = 0, shadowSize = 0;
     std::vector<MeshBuffers> meshes;
-    GLuint shadowProgram = 0, gbufferProgram = 0;
+    std::vector<uint32_t> firstTriangle;  // per draw, then the total (firstTriangles)
+    GLuint shadowProgram = 0, gbufferProgram = 0, idProgram = 0;
     GLuint shadowFbo = 0, shadowDepth = 0;
     GLuint gbufferFbo = 0, gbufferDepth = 0;
     GLuint targets[4] = {};
+    GLuint idFbo = 0, idDepth = 0;
+    GLuint idTargets[2] = {};  // linear depth R32F, triangle id R32UI
 
     void makeShadowTarget();
     void makeGBufferTargets();
+    void makeIdTargets();
+    // Camera and per-draw uniforms of `program` (the G-buffer's vertex shader), then every
+    // draw; `ids`: also each draw's first triangle id.
+    void drawCameraView(GLuint program, bool ids);
     void drawMesh(const GlDraw& d, bool cull) {
         const MeshBuffers& b = meshes.at(d.mesh);
         if (cull) setCulling(d.doubleSided);
@@ -306,12 +369,7 @@ struct GlWorkloads::Impl {
 void GlWorkloads::Impl::makeShadowTarget() {
     shadowDepth =
         makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, shadowSize, shadowSize);
-    glGenFramebuffers(1, &shadowFbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowDepth, 0);
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
-    checkFramebuffer("shadow-map");
+    shadowFbo = makeFramebuffer("shadow-map", 0, nullptr, shadowDepth);
 }
 
 void GlWorkloads::Impl::makeGBufferTargets() {
@@ -320,15 +378,36 @@ void GlWorkloads::Impl::makeGBufferTargets() {
     targets[2] = makeTexture(GL_RG16F, GL_RG, GL_HALF_FLOAT, width, height);       // motion
     targets[3] = makeTexture(GL_R32F, GL_RED, GL_FLOAT, width, height);            // lin. depth
     gbufferDepth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
-    glGenFramebuffers(1, &gbufferFbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo);
-    const GLenum attachments[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3};
-    for (int i = 0; i < 4; ++i)
-        glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[i], GL_TEXTURE_2D, targets[i], 0);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, gbufferDepth, 0);
-    glDrawBuffers(4, attachments);
-    checkFramebuffer("G-buffer");
+    gbufferFbo = makeFramebuffer("G-buffer", 4, targets, gbufferDepth);
+}
+
+void GlWorkloads::Impl::makeIdTargets() {
+    idTargets[0] = makeTexture(GL_R32F, GL_RED, GL_FLOAT, width, height);
+    idTargets[1] = makeTexture(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, width, height);
+    idDepth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
+    idFbo = makeFramebuffer("id", 2, idTargets, idDepth);
+}
+
+void GlWorkloads::Impl::drawCameraView(GLuint p, bool ids) {
+    glViewport(0, 0, width, height);
+    glUseProgram(p);
+    setMat4(p, "uView", desc.view);
+    setMat4(p, "uProj", desc.projection);
+    setMat4(p, "uPrevView", desc.previousView);
+    setMat4(p, "uPrevProj", desc.previousProjection);
+    glUniform2f(loc(p, "uViewport"), float(width), float(height));
+    for (std::size_t i = 0; i < desc.draws.size(); ++i) {
+        const GlDraw& d = desc.draws[i];
+        setMat4(p, "uModel", d.model);
+        setMat4(p, "uPrevModel", d.previousModel);
+        glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+        glUniformMatrix3fv(loc(p, "uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
+        glUniform3f(loc(p, "uAlbedo"), d.albedo.x, d.albedo.y, d.albedo.z);
+        glUniform1f(loc(p, "uMetallic"), d.metallic);
+        glUniform1f(loc(p, "uRoughness"), d.roughness);
+        if (ids) glUniform1ui(loc(p, "uFirstTriangle"), firstTriangle[i]);
+        drawMesh(d, /*cull=*/true);
+    }
 }
 
 GlWorkloads::GlWorkloads(const GlSceneDesc& desc, int width, int height, int shadowSize)
@@ -338,11 +417,14 @@ GlWorkloads::GlWorkloads(const GlSceneDesc& desc, int width, int height, int sha
     s.width = width;
     s.height = height;
     s.shadowSize = shadowSize;
+    s.firstTriangle = firstTriangles(desc);
     for (const GlMesh& m : desc.meshes) s.meshes.push_back(uploadMesh(m));
     s.shadowProgram = linkProgram(kShadowVs, kShadowFs);
     s.gbufferProgram = linkProgram(kGBufferVs, kGBufferFs);
+    s.idProgram = linkProgram(kGBufferVs, kIdFs);
     s.makeShadowTarget();
     s.makeGBufferTargets();
+    s.makeIdTargets();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -359,11 +441,15 @@ GlWorkloads::~GlWorkloads() {
     }
     glDeleteFramebuffers(1, &s.shadowFbo);
     glDeleteFramebuffers(1, &s.gbufferFbo);
+    glDeleteFramebuffers(1, &s.idFbo);
     glDeleteTextures(4, s.targets);
+    glDeleteTextures(2, s.idTargets);
     glDeleteTextures(1, &s.shadowDepth);
     glDeleteTextures(1, &s.gbufferDepth);
+    glDeleteTextures(1, &s.idDepth);
     glDeleteProgram(s.shadowProgram);
     glDeleteProgram(s.gbufferProgram);
+    glDeleteProgram(s.idProgram);
 }
 
 void GlWorkloads::drawShadow() {
@@ -385,50 +471,50 @@ void GlWorkloads::drawShadow() {
 
 void GlWorkloads::drawGBuffer() {
     Impl& s = *impl_;
-    GLuint p = s.gbufferProgram;
     glBindFramebuffer(GL_FRAMEBUFFER, s.gbufferFbo);
-    glViewport(0, 0, s.width, s.height);
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
-    glUseProgram(p);
-    setMat4(p, "uView", s.desc.view);
-    setMat4(p, "uProj", s.desc.projection);
-    setMat4(p, "uPrevView", s.desc.previousView);
-    setMat4(p, "uPrevProj", s.desc.previousProjection);
-    glUniform2f(loc(p, "uViewport"), float(s.width), float(s.height));
-    for (const GlDraw& d : s.desc.draws) {
-        setMat4(p, "uModel", d.model);
-        setMat4(p, "uPrevModel", d.previousModel);
-        glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
-        glUniformMatrix3fv(loc(p, "uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
-        glUniform3f(loc(p, "uAlbedo"), d.albedo.x, d.albedo.y, d.albedo.z);
-        glUniform1f(loc(p, "uMetallic"), d.metallic);
-        glUniform1f(loc(p, "uRoughness"), d.roughness);
-        s.drawMesh(d, /*cull=*/true);
-    }
+    s.drawCameraView(s.gbufferProgram, /*ids=*/false);
 }
 
-Coverage GlWorkloads::shadowCoverage() {
+void GlWorkloads::drawIds() {
+    Impl& s = *impl_;
+    glBindFramebuffer(GL_FRAMEBUFFER, s.idFbo);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    const GLuint none[4] = {kNoTriangle, kNoTriangle, kNoTriangle, kNoTriangle};
+    glClearBufferuiv(GL_COLOR, 1, none);
+    const float one = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &one);
+    s.drawCameraView(s.idProgram, /*ids=*/true);
+    checkGlError("id pass");
+}
+
+std::vector<float> GlWorkloads::readShadowDepth() {
     Impl& s = *impl_;
     glBindFramebuffer(GL_FRAMEBUFFER, s.shadowFbo);
-    std::vector<float> depth(std::size_t(s.shadowSize) * std::size_t(s.shadowSize));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s.shadowSize, s.shadowSize, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    checkGlError("shadow-map read-back");
-    return measureCoverage(depth, s.shadowSize, s.shadowSize, 1.0f);
+    return readPixels<float>(GL_NONE, s.shadowSize, s.shadowSize, GL_DEPTH_COMPONENT, GL_FLOAT);
 }
 
-Coverage GlWorkloads::gbufferCoverage() {
+std::vector<float> GlWorkloads::readLinearDepth() {
     Impl& s = *impl_;
     glBindFramebuffer(GL_FRAMEBUFFER, s.gbufferFbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT3);
-    std::vector<float> depth(std::size_t(s.width) * std::size_t(s.height));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s.width, s.height, GL_RED, GL_FLOAT, depth.data());
-    checkGlError("G-buffer read-back");
-    return measureCoverage(depth, s.width, s.height, 0.0f);
+    return readPixels<float>(GL_COLOR_ATTACHMENT3, s.width, s.height, GL_RED, GL_FLOAT);
+}
+
+std::vector<float> GlWorkloads::readIdPassDepth() {
+    Impl& s = *impl_;
+    glBindFramebuffer(GL_FRAMEBUFFER, s.idFbo);
+    return readPixels<float>(GL_COLOR_ATTACHMENT0, s.width, s.height, GL_RED, GL_FLOAT);
+}
+
+std::vector<uint32_t> GlWorkloads::readIdPassTriangles() {
+    Impl& s = *impl_;
+    glBindFramebuffer(GL_FRAMEBUFFER, s.idFbo);
+    return readPixels<uint32_t>(GL_COLOR_ATTACHMENT1, s.width, s.height, GL_RED_INTEGER,
+                                GL_UNSIGNED_INT);
 }
 
 double glFinishAndNowMs() {

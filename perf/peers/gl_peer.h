@@ -37,11 +37,13 @@ struct GlSceneDesc {
     glm::mat4 lightViewProjection{1.0f};                     // orthographic, fitted to bounds
 };
 
-// Share of a target's pixels that the render touched (differ from the clear value).
-struct Coverage {
-    double fraction = 0.0;
-    float centre = 0.0f;  // the centre pixel's value (depth or linear depth)
-};
+// The first triangle id of each draw, then the number of triangles in all: the triangles of
+// every draw, numbered in draw order and within a draw in index order (the numbering ssrt's
+// visibility buffer uses, one draw being one instance).
+std::vector<uint32_t> firstTriangles(const GlSceneDesc& desc);
+
+// The id target's value where no triangle was drawn (ssrt's kNoPrimitive).
+inline constexpr uint32_t kNoTriangle = 0xffffffffu;
 
 // Owns the EGL display and context; throws std::runtime_error with a clear message when
 // EGL or GL cannot start. Sets LP_NUM_THREADS (unless already set) before EGL starts.
@@ -55,6 +57,7 @@ public:
     std::string renderer() const;  // GL_RENDERER
     std::string version() const;   // GL_VERSION
     bool isLlvmpipe() const;
+    int subpixelBits() const;  // GL_SUBPIXEL_BITS: the rasterizer's vertex snapping grid
 
 private:
     void* display_ = nullptr;
@@ -73,8 +76,16 @@ public:
     void drawShadow();
     void drawGBuffer();
 
-    Coverage shadowCoverage();   // depth < 1 (cleared to 1)
-    Coverage gbufferCoverage();  // linear depth > 0 (cleared to 0)
+    // Untimed: the G-buffer's geometry again into an id target (R32UI, firstTriangles() +
+    // gl_PrimitiveID, kNoTriangle where empty) and a linear depth target, so that the timed
+    // pass writes exactly the four targets it always did.
+    void drawIds();
+
+    // Read-backs, rows top-down (as ssrt stores them; GL reads bottom-up), outside any clock.
+    std::vector<float> readShadowDepth();         // window depth in [0, 1], 1 where empty
+    std::vector<float> readLinearDepth();         // the timed G-buffer's, 0 where empty
+    std::vector<float> readIdPassDepth();         // the id pass's linear depth, 0 where empty
+    std::vector<uint32_t> readIdPassTriangles();  // the id pass's triangle ids
 
 private:
     struct Impl;

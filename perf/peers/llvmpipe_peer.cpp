@@ -1,5 +1,6 @@
 // ssrt against Mesa llvmpipe on the same scene and camera, in one run: a depth-only shadow
-// map and a four-target G-buffer, median milliseconds over N repetitions, as ratios.
+// map and a four-target G-buffer, median milliseconds over N repetitions, as ratios; then,
+// outside the clocks, both renders compared pixel by pixel (perf/peers/pixel_compare.h).
 //
 //   ssrt_peer_llvmpipe [--reps N] [--scene knot3k|knot121k|cornell|all]
 #include <algorithm>
@@ -14,6 +15,9 @@
 #include <vector>
 
 #include "perf/peers/gl_peer.h"
+#include "perf/peers/pixel_compare.h"
+#include "raster/raster.h"
+#include "raster/setup.h"
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
 
@@ -128,13 +132,10 @@ std::size_t drawnTriangles(const ssrt::Scene& scene) {
     return n;
 }
 
-// Medians over the repetitions, and what each side drew (to show the workloads match).
+// Medians over the repetitions.
 struct Timings {
     double shadowMs = 0.0, gbufferMs = 0.0;
-    double coverage = 0.0;        // share of G-buffer pixels with geometry
-    float centre = 0.0f;          // linear depth (distance along the view axis), centre pixel
-    double shadowCoverage = 0.0;  // share of shadow-map texels with geometry (GL only)
-    double parts[3] = {};         // ssrt only: geometry, visibility, resolve medians
+    double parts[3] = {};  // ssrt only: geometry, visibility, resolve medians
 };
 
 constexpr const char* kGBufferPasses[3] = {"geometry", "visibility", "resolve"};
@@ -173,28 +174,80 @@ void recordGl(peer::GlWorkloads& gl, Samples& samples) {
     samples.gbuffer.push_back(peer::timeOnce([&] { gl.drawGBuffer(); }));
 }
 
-// The read-back proves GL drew something, so an empty render is never timed unnoticed.
-// Whole-target counts rather than one centre pixel: a camera may look past geometry.
-void checkGl(peer::GlWorkloads& gl, Timings& t) {
-    peer::Coverage shadow = gl.shadowCoverage(), gbuffer = gl.gbufferCoverage();
-    if (shadow.fraction == 0.0)
-        throw std::runtime_error("llvmpipe shadow map is empty (every depth still 1)");
-    if (gbuffer.fraction == 0.0)
-        throw std::runtime_error("llvmpipe G-buffer is empty (every linear depth still 0)");
-    t.coverage = gbuffer.fraction;
-    t.centre = gbuffer.centre;
-    t.shadowCoverage = shadow.fraction;
+static_assert(peer::kNoTriangle == ssrt::kNoPrimitive, "both sides mark empty pixels alike");
+
+// GL's G-buffer ids and linear depths, from the untimed id pass. Its linear depth must equal
+// the timed pass's bit for bit (same vertex shader, same pixels), or the ids would describe a
+// render other than the one timed; the count of pixels that differ is returned in `mismatch`.
+peer::IdDepthImage glGBuffer(peer::GlWorkloads& gl, std::size_t& mismatch) {
+    gl.drawIds();
+    peer::IdDepthImage image{kWidth, kHeight, gl.readIdPassTriangles(), gl.readIdPassDepth()};
+    const std::vector<float> timed = gl.readLinearDepth();
+    mismatch = 0;
+    for (std::size_t i = 0; i < timed.size(); ++i) mismatch += timed[i] != image.depth[i];
+    return image;
 }
 
-void checkSsrt(const ssrt::Frame& frame, Timings& t) {
-    const ssrt::PlaneF& z = frame.gbuffer.viewZ;
-    std::size_t touched = 0;
-    for (int y = 0; y < z.height(); ++y)
-        for (int x = 0; x < z.width(); ++x) touched += z.at(x, y) != 0.0f;
-    t.coverage = double(touched) / (double(z.width()) * double(z.height()));
-    // Read-back rows run bottom-up in GL and top-down here; the centre is the same pixel.
-    t.centre = std::abs(z.at(z.width() / 2, (z.height() - 1) / 2));
-    if (touched == 0) throw std::runtime_error("ssrt G-buffer is empty (viewZ all 0)");
+// ssrt's visibility buffer holds the depth key 1/w (w: the distance along the view axis).
+peer::IdDepthImage ssrtGBuffer(const ssrt::Frame& frame) {
+    const ssrt::VisibilityBuffer& vb = frame.scratch.visibility;
+    if (vb.ids.width() != kWidth || vb.depth.width() != kWidth)
+        throw std::runtime_error("ssrt's frame no longer holds its visibility buffer");
+    peer::IdDepthImage image{kWidth, kHeight, {}, {}};
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const uint32_t id = vb.ids.at(x, y);
+            image.ids.push_back(id);
+            image.depth.push_back(id == ssrt::kNoPrimitive ? 0.0f : 1.0f / vb.depth.at(x, y));
+        }
+    }
+    return image;
+}
+
+// ssrt's shadow map holds the depth key 1 - z01; GL's depth buffer z01 itself.
+peer::DepthImage ssrtShadow(const ssrt::Frame& frame) {
+    const ssrt::PlaneF& key = frame.scratch.shadow.depth;
+    if (key.width() != kShadowSize || key.height() != kShadowSize)
+        throw std::runtime_error("ssrt's frame no longer holds its shadow map");
+    peer::DepthImage image{kShadowSize, kShadowSize, {}};
+    for (int y = 0; y < kShadowSize; ++y)
+        for (int x = 0; x < kShadowSize; ++x) image.depth.push_back(1.0f - key.at(x, y));
+    return image;
+}
+
+// Both sides' renders, pixel by pixel, read after the timing.
+struct Comparison {
+    peer::GBufferComparison gbuffer;
+    peer::ShadowComparison shadow;
+    std::size_t idPassMismatch = 0;
+    uint32_t centre[2] = {};  // the centre pixel's triangle id: llvmpipe, ssrt
+    std::size_t centreInstance = 0;
+    uint32_t centreTriangle = 0;  // llvmpipe's id as (instance, triangle of its mesh)
+};
+
+Comparison compareBoth(peer::GlWorkloads& gl, const ssrt::Frame& frame,
+                       const peer::GlSceneDesc& desc) {
+    Comparison c;
+    const peer::IdDepthImage glImage = glGBuffer(gl, c.idPassMismatch),
+                             ssImage = ssrtGBuffer(frame);
+    const peer::TriangleNeighbours triangles(desc);
+    c.gbuffer = peer::compareGBuffers(glImage, ssImage, triangles);
+    const std::size_t centre = std::size_t(kHeight / 2) * kWidth + kWidth / 2;
+    c.centre[0] = glImage.ids[centre];
+    c.centre[1] = ssImage.ids[centre];
+    if (triangles.contains(c.centre[0])) {
+        c.centreInstance = triangles.drawOf(c.centre[0]);
+        c.centreTriangle = triangles.localOf(c.centre[0]);
+    }
+    c.shadow = peer::compareShadowMaps({kShadowSize, kShadowSize, gl.readShadowDepth()},
+                                       ssrtShadow(frame));
+    // Whole-target counts prove each side drew something: an empty render is never timed
+    // unnoticed (a camera may look past geometry at the centre).
+    if (c.gbuffer.glCovered() == 0 || c.shadow.glCovered() == 0)
+        throw std::runtime_error("llvmpipe's G-buffer or shadow map is empty");
+    if (c.gbuffer.ssrtCovered() == 0 || c.shadow.ssrtCovered() == 0)
+        throw std::runtime_error("ssrt's G-buffer or shadow map is empty");
+    return c;
 }
 
 ssrt::RenderSettings ssrtSettings() {
@@ -203,17 +256,21 @@ ssrt::RenderSettings ssrtSettings() {
     settings.height = kHeight;
     settings.threads = kThreads;
     settings.shadowMapSize = kShadowSize;
-    // The GL G-buffer has no id targets; ssrt's optional instanceId/triangleId planes are
-    // left out so both sides write the same attributes.
+    // ssrt's optional instanceId/triangleId float planes are left out, as the timed GL
+    // G-buffer writes no ids either; the comparison reads the visibility buffer's ids, which
+    // the frame keeps with tracePlanes (the default, said here because the comparison needs it).
     settings.idPlanes = false;
+    settings.tracePlanes = true;
     return settings;
 }
 
 // Interleaved, one GL repetition then one ssrt frame, so that a burst of load on the machine
 // falls on both sides alike. ssrt renders whole frames; its own per-pass clocks pick out
 // the two workloads.
-void timeBoth(const ssrt::Scene& scene, int reps, Timings& gl, Timings& ss) {
-    peer::GlWorkloads glWork(toGlScene(scene), kWidth, kHeight, kShadowSize);
+// Then compares the last repetition's renders pixel by pixel, outside the clocks.
+Comparison timeBoth(const ssrt::Scene& scene, int reps, Timings& gl, Timings& ss) {
+    const peer::GlSceneDesc desc = toGlScene(scene);
+    peer::GlWorkloads glWork(desc, kWidth, kHeight, kShadowSize);
     ssrt::Renderer renderer(ssrtSettings());
     Samples glSamples, ssrtSamples, unused;
     for (int i = 0; i < 2; ++i) recordGl(glWork, unused);  // warm-up: JIT, first touches
@@ -227,34 +284,46 @@ void timeBoth(const ssrt::Scene& scene, int reps, Timings& gl, Timings& ss) {
     }
     gl = glSamples.medians();
     ss = ssrtSamples.medians();
-    checkGl(glWork, gl);
-    checkSsrt(frame, ss);
+    return compareBoth(glWork, frame, desc);
 }
 
 void printRow(const char* pass, double glMs, double ssrtMs) {
     std::printf("  %-22s %12.2f %10.2f %8.2f\n", pass, glMs, ssrtMs, glMs / ssrtMs);
 }
 
-void runScene(const NamedScene& s, int reps) {
+void printCoverage(const Comparison& c) {
+    const peer::GBufferComparison& g = c.gbuffer;
+    const peer::ShadowComparison& m = c.shadow;
+    auto pct = [](std::size_t n, std::size_t of) { return 100.0 * double(n) / double(of); };
+    std::printf(
+        "  covered: G-buffer llvmpipe %.2f%%, ssrt %.2f%%; shadow map llvmpipe %.2f%%, ssrt "
+        "%.2f%%\n",
+        pct(g.glCovered(), g.pixels), pct(g.ssrtCovered(), g.pixels), pct(m.glCovered(), m.texels),
+        pct(m.ssrtCovered(), m.texels));
+    std::printf("  centre pixel's triangle id: llvmpipe %u (instance %zu, triangle %u), ssrt %u\n",
+                c.centre[0], c.centreInstance, c.centreTriangle, c.centre[1]);
+    if (c.idPassMismatch)
+        std::printf(
+            "  WARNING: the id pass's linear depth differs from the timed G-buffer's in %zu "
+            "pixels: the ids describe another render\n",
+            c.idPassMismatch);
+}
+
+void runScene(const NamedScene& s, int reps, const peer::SubPixel& grid) {
     std::printf("\nscene %s: %zu triangles in the scene, %zu drawn (%zu instances)\n",
                 s.name.c_str(), s.scene.triangleCount(), drawnTriangles(s.scene),
                 s.scene.instances.size());
     std::fflush(stdout);
     Timings gl, ss;
-    timeBoth(s.scene, reps, gl, ss);
+    const Comparison c = timeBoth(s.scene, reps, gl, ss);
     std::printf("  %-22s %12s %10s %8s\n", "pass (median ms)", "llvmpipe", "ssrt", "ratio");
     printRow("shadow map 2048^2", gl.shadowMs, ss.shadowMs);
     printRow("G-buffer 1920x1080", gl.gbufferMs, ss.gbufferMs);
     std::printf("  ssrt G-buffer medians: geometry %.2f, visibility %.2f, resolve %.2f ms\n",
                 ss.parts[0], ss.parts[1], ss.parts[2]);
-    std::printf(
-        "  covered pixels: G-buffer llvmpipe %.1f%%, ssrt %.1f%%; "
-        "shadow map llvmpipe %.1f%%\n",
-        100.0 * gl.coverage, 100.0 * ss.coverage, 100.0 * gl.shadowCoverage);
-    std::printf("  centre pixel depth: llvmpipe %.4f, ssrt %.4f\n", gl.centre, ss.centre);
-    // Same scene and camera should cover the same pixels; if not, the workloads differ.
-    if (std::abs(gl.coverage - ss.coverage) > 0.02)
-        std::printf("  WARNING: coverage differs by more than 2%%: the two renders disagree\n");
+    printCoverage(c);
+    peer::printGBufferComparison(c.gbuffer, grid);
+    peer::printShadowComparison(c.shadow);
     std::fflush(stdout);
 }
 
@@ -283,7 +352,8 @@ int main(int argc, char** argv) {
             "%d reps after warm-up, ratio = llvmpipe / ssrt (>1: ssrt faster)\n",
             context.renderer().c_str(), context.version().c_str(), std::getenv("LP_NUM_THREADS"),
             kThreads, opt.reps);
-        for (const NamedScene& s : scenes) runScene(s, opt.reps);
+        const peer::SubPixel grid{ssrt::kSubPixelBits, context.subpixelBits()};
+        for (const NamedScene& s : scenes) runScene(s, opt.reps, grid);
         std::printf("\nload average (1 min) at the end: %s on %u hardware threads\n",
                     loadAverage().c_str(), std::thread::hardware_concurrency());
         return 0;
