@@ -5,8 +5,10 @@
 
 #include "cli/cli.h"
 #include "cli/interrupt.h"
+#include "cli/process_clock.h"
 
 int main(int argc, char** argv) {
+    ssrt::cli::markProcessStart();  // (render --stats: what the process paid before its frames)
     // The process's own handlers: tests that call runCli in-process keep theirs.
     ssrt::cli::installInterruptHandlers();
     try {

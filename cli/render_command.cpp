@@ -16,6 +16,7 @@
 #include "cli/interrupt.h"
 #include "cli/json_output.h"
 #include "cli/options.h"
+#include "cli/process_clock.h"
 #include "cli/profile_file.h"
 #include "cli/progress_line.h"
 #include "cli/sequence.h"
@@ -62,6 +63,17 @@ constexpr int kLabelWidth = 20;
 constexpr int kValueWidth = 14;
 
 Json statsJson(const FrameStats& stats, double wallMs, double writeMs);  // (below printStats)
+
+// What the process paid before and in its first render call, beyond the passes: the table
+// `--stats` prints with the first frame written (what a one-frame render costs as a process).
+struct ProcessCosts {
+    std::optional<double> cpuBeforeMainMs;  // none where runCli runs inside another program
+    std::optional<double> commandLineMs;    // main's start to the command's
+    double sceneSetupMs = 0.0;              // the command's start to its first render call
+    long firstCallPageFaults = 0;           // pages the first render call touched first
+};
+void printProcessCosts(std::ostream& out, const ProcessCosts& costs);
+Json processCostsJson(const ProcessCosts& costs);
 
 }  // namespace
 
@@ -193,6 +205,14 @@ std::string framesWrittenText(int written, int total, const std::string& first,
 }  // namespace
 
 int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
+    const auto entered = std::chrono::steady_clock::now();
+    ProcessCosts process;
+    if (const std::optional<ProcessStart> start = processStart()) {
+        process.cpuBeforeMainMs = start->cpuMsBeforeMain;
+        process.commandLineMs =
+            std::chrono::duration<double, std::milli>(entered - start->wall).count();
+    }
+    bool firstCall = true, processPrinted = false;
     const InterruptScope interruptible;  // stops between frames (cli/interrupt.h)
     SceneRequest request = loadSceneRequest(o);
     const RenderSettings& settings = request.settings;
@@ -287,6 +307,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         input.replaceHistory = step + 1 < endStep;
         input.cancel = interruptFlag();  // a large frame stops between its passes
         const auto start = std::chrono::steady_clock::now();
+        const long faultsBefore = minorPageFaults();
+        if (firstCall)
+            process.sceneSetupMs =
+                std::chrono::duration<double, std::milli>(start - entered).count();
         const std::string frameName = "frame " + std::to_string(input.frameIndex);
         std::optional<ProfileScope> frameSlice(std::in_place, frameName);
         try {
@@ -300,6 +324,8 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
         }
         const std::chrono::duration<double, std::milli> wall =
             std::chrono::steady_clock::now() - start;
+        if (firstCall) process.firstCallPageFaults = minorPageFaults() - faultsBefore;
+        firstCall = false;
         if (profile) profile->counters(frame.stats, std::chrono::steady_clock::now());
         if (sequence.isWarmup(step)) {
             if (!o.quiet) err << "warm-up " << (step + 1) << "/" << plan.warmup << "\n";
@@ -346,12 +372,15 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
                 Json entry = {{"frame", i}, {"file", file}};
                 entry.update(statsJson(stats, wall.count(), write.count()));
                 document["frames"].push_back(std::move(entry));
+                if (!processPrinted) document["process"] = processCostsJson(process);
             } else {
                 if (frames > 1)
                     out << (i > 0 ? "\n" : "") << "frame " << i << " (" << file << ")\n";
                 printStats(out, stats, double(frame.width) * double(frame.height), wall.count(),
                            write.count());
+                if (!processPrinted) printProcessCosts(out, process);
             }
+            processPrinted = true;
         }
     }
     if (profile) {
@@ -525,6 +554,42 @@ Json statsJson(const FrameStats& stats, double wallMs, double writeMs) {
               {"ssgi", traceJson(stats.ssgi, passMs(stats, "ssgi march"))}}},
             {"memory", memoryJson(stats.memory)},
             {"memory_declared", memoryJson(stats.declared)}};
+}
+
+}  // namespace
+
+namespace {
+
+// The process table's rows: label and milliseconds, none where the process start is unknown.
+std::vector<std::pair<std::string, std::optional<double>>> processRows(const ProcessCosts& c) {
+    return {{"CPU before main", c.cpuBeforeMainMs},
+            {"command line", c.commandLineMs},
+            {"scene set-up", c.sceneSetupMs}};
+}
+
+void printProcessCosts(std::ostream& out, const ProcessCosts& costs) {
+    std::ios saved(nullptr);
+    saved.copyfmt(out);
+    out << "\n"
+        << std::left << std::setw(kLabelWidth + 2) << "process" << std::right
+        << std::setw(kValueWidth) << "ms"
+        << "\n"
+        << std::fixed << std::setprecision(3);
+    for (const auto& [label, ms] : processRows(costs))
+        if (ms)
+            out << "  " << std::left << std::setw(kLabelWidth) << label << std::right
+                << std::setw(kValueWidth) << *ms << "\n";
+    out << "\nthe first render call touched " << costs.firstCallPageFaults
+        << " pages for the first time (minor page faults)\n";
+    out.copyfmt(saved);
+}
+
+Json processCostsJson(const ProcessCosts& costs) {
+    Json j = Json::object();
+    for (const auto& [label, ms] : processRows(costs))
+        j[jsonKey(label) + "_ms"] = ms ? Json(*ms) : Json(nullptr);
+    j["first_render_call_page_faults"] = costs.firstCallPageFaults;
+    return j;
 }
 
 }  // namespace

@@ -154,6 +154,20 @@ for f, block in zip(doc.get("frames", []), blocks):
             same(per_pixel, b / pixels, f"render: {name} {label} B/pixel")
             same(mb, b / 1e6, f"render: {name} {label} MB")
 
+# The process table, once, with the first frame's block; the JSON's "process" (two processes:
+# the same rows and keys, each figure its own process's, so present and positive).
+proc = doc.get("process", {})
+rows = table(blocks[0].splitlines(), "process ")
+check(list(rows) == ["CPU before main", "command line", "scene set-up"],
+      f"render: the process table's rows {list(rows)}")
+check([k[:-3] for k in list(proc)[:3]] == [key(r) for r in rows], "render: the process keys")
+for label, cells in rows.items():
+    check(float(cells[0]) > 0 and proc[key(label) + "_ms"] > 0, f"render: process {label}")
+faults = re.search(r"\nthe first render call touched (\d+) pages for the first time", blocks[0])
+check(faults and int(faults.group(1)) > 0 and proc["first_render_call_page_faults"] > 0,
+      "render: the first render call's page faults")
+check("\nprocess " not in blocks[1], "render: the process table once")
+
 run("render", *size, "-q", "--json", "-o", "x.png", status=2)  # neither --stats nor --compare
 
 # ---- ssrt diff and render --compare --------------------------------------------------------
