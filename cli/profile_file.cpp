@@ -73,8 +73,10 @@ std::string ProfileFile::text() const {
     for (const Event* e : order) {
         Json j = {{"name", e->name}, {"ph", "X"},   {"pid", 1},
                   {"tid", e->tid},   {"ts", e->ts}, {"dur", e->dur}};
-        // "frame I": the frame's index as an argument too
-        if (e->name.rfind("frame ", 0) == 0) j["args"] = {{"frame", std::stoi(e->name.substr(6))}};
+        // "frame I": the frame's index as an argument too (a 32-bit index: warm-up frames
+        // count back from 2^32 - 1, cli/sequence.h)
+        if (e->name.rfind("frame ", 0) == 0)
+            j["args"] = {{"frame", std::stoull(e->name.substr(6))}};
         events.push_back(std::move(j));
     }
     for (const Counter& c : counters_) {

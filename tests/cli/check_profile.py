@@ -81,6 +81,11 @@ with tempfile.TemporaryDirectory() as tmp:
     # A sequence: history, the temporal pass, SSGI at full resolution with its checkerboard.
     stats, trace = render(tmp, "--quality", "high", frames=3)
     check_run(stats, trace, 3, "three frames, --quality high")
+    # Warm-up frames: their slices too, their indices counting back from 2^32 - 1.
+    stats, trace = render(tmp, "--warmup-frames", "2", frames=1)
+    framed = [e["args"]["frame"] for e in trace["traceEvents"]
+              if e["ph"] == "X" and e["name"].startswith("frame ")]
+    check(sorted(framed) == [0, 2**32 - 2, 2**32 - 1], f"warm-up frames: frame slices {framed}")
     # Only clocks are read: the image is the same bytes without the profile.
     with open(os.path.join(tmp, "x_0002.png"), "rb") as f:
         profiled = f.read()
