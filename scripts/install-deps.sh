@@ -50,7 +50,7 @@ test_packages=(
 # of scripts/test-fresh.sh, and headless Chromium, which loads `ssrt check`'s HTML report
 # (tests/io/check_report_browser.sh; about 100 MB with its libraries, so a newcomer's test
 # command does not fetch it and that test says it is skipped). Neither README command needs them.
-ci_packages=(ccache debootstrap wget chromium)
+ci_packages=(ccache debootstrap wget chromium valgrind)
 
 # The aarch64 cross build of scripts/test-arm.sh (cmake/aarch64-linux-gnu.cmake): Debian's cross
 # compiler, qemu's user-mode emulator, and the arm64 copies of the libraries the test binary
