@@ -5,8 +5,13 @@
 
 namespace ssrt {
 
+bool shadowBoundsPay(int width, int height, int shadowMapSize) {
+    return 4.0 * double(width) * double(height) >= double(shadowMapSize) * double(shadowMapSize);
+}
+
 void setDirectLighting(const Scene& scene, const RenderSettings& s, const ShadowMap& shadow,
-                       std::shared_ptr<const SkyLighting> skyLighting, DirectLighting& out) {
+                       std::shared_ptr<const SkyLighting> skyLighting, DirectLighting& out,
+                       ShadowBoundsUse bounds) {
     DirectArgs& da = out.args;
     // Sun.
     const glm::vec3 toLight = -glm::normalize(scene.light.direction);
@@ -43,10 +48,15 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.biasConst = s.shadowBias * shadow.texelSize / shadow.depthRange;
     da.biasSlope = s.shadowSlopeBias * shadow.texelSize / shadow.depthRange;
     da.pcfRadius = s.pcfRadius;
-    buildShadowBounds(da.shadowMap, da.shadowStride, da.shadowSize, da.pcfRadius, resolveIsa(s.isa),
-                      s.threads, out.shadowBounds);
-    da.shadowBounds = &out.shadowBounds.block.data()->lo;
-    da.shadowBlocks = out.shadowBounds.blocks;
+    const bool makeBounds =
+        bounds == ShadowBoundsUse::Always || (bounds == ShadowBoundsUse::IfTheyPay &&
+                                              shadowBoundsPay(s.width, s.height, s.shadowMapSize));
+    if (makeBounds)
+        buildShadowBounds(da.shadowMap, da.shadowStride, da.shadowSize, da.pcfRadius,
+                          resolveIsa(s.isa), s.threads, out.shadowBounds);
+    else out.shadowBounds = ShadowBounds();
+    da.shadowBounds = makeBounds ? &out.shadowBounds.block.data()->lo : nullptr;
+    da.shadowBlocks = makeBounds ? out.shadowBounds.blocks : 0;
     da.exposure = s.exposure;
     // The GGX energy tables of the specular (multiple scattering, DFG).
     da.energy = &energyTables();
