@@ -3,9 +3,10 @@
 #include <cstdlib>
 #include <string>
 
-// Valgrind's client requests, where its headers are installed (they are macros that do nothing
-// outside valgrind); without them the scopes never mark.
-#if __has_include(<valgrind/callgrind.h>)
+// Valgrind's client requests, where CMake found its headers (core/sources.cmake says why it,
+// not __has_include, decides); they are macros that do nothing outside valgrind. Without them
+// the scopes never mark.
+#if defined(SSRT_CALLGRIND) && SSRT_CALLGRIND
 #include <valgrind/callgrind.h>
 #define SSRT_HAS_CALLGRIND 1
 #else
