@@ -26,21 +26,70 @@ struct Target {
     Lane invTolerance;
 };
 
+// Lane l of the result: run[pick[l]], from one run of kW floats (pick < kW) or of 2 kW
+// (pickFromTwo: pick < 2 kW): loads and a register permute where the ISA has one (AVX-512, AVX2),
+// for lanes that read a few neighbouring pixels each; the same values as a gather.
+#if defined(SSRT_ISA_avx512) || defined(SSRT_ISA_avx2)
+constexpr bool kPermutes = true;
+#else
+constexpr bool kPermutes = false;
+#endif
+
+SSRT_INLINE Lane pickFromOne(const float* run, [[maybe_unused]] ILane pick) {
+#if defined(SSRT_ISA_avx512)
+    return Lane(_mm512_permutexvar_ps(pick, _mm512_loadu_ps(run)));
+#elif defined(SSRT_ISA_avx2)
+    return Lane(_mm256_permutevar8x32_ps(_mm256_loadu_ps(run), pick));
+#else
+    return ln::gather(run, pick);
+#endif
+}
+
+SSRT_INLINE Lane pickFromTwo(const float* run, [[maybe_unused]] ILane pick) {
+#if defined(SSRT_ISA_avx512)
+    return Lane(_mm512_permutex2var_ps(_mm512_loadu_ps(run), pick, _mm512_loadu_ps(run + 16)));
+#elif defined(SSRT_ISA_avx2)
+    const __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(run), pick);
+    const __m256 hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(run + 8), pick);
+    const __m256i upper = _mm256_cmpgt_epi32(pick, _mm256_set1_epi32(7));
+    return Lane(_mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper)));
+#else
+    return ln::gather(run, pick);
+#endif
+}
+
 // A lane group's candidate: where its values and its guide are read, its w_space, whether
 // it is a traced sample.
 struct Candidate {
     ILane src, guide;
     Lane px, py, space;
     Mask ok;
-    // Checkerboard, away from the frame's left and right edges: the candidate's pixels sit side
-    // by side at `off` (values and guide alike), read with one load instead of a gather.
-    bool contiguous = false;
-    std::size_t off = 0;
+    // How its pixels are read: a gather at src and guide (anywhere); or, away from the frame's
+    // edges, side by side at `off` (checkerboard: values and guide alike, one load); or from
+    // runs at `off` (the half frame's values) and `guideOff` (the frame's guides), each lane's
+    // element picked by `pick` and `guidePick` (the half lattice: pairs of lanes share a half
+    // pixel, and its guide pixels are every other one of a row).
+    enum class Read { Gather, Contiguous, Runs } read = Read::Gather;
+    std::size_t off = 0, guideOff = 0;
+    ILane pick, guidePick;
 };
 
-// A plane's value at a candidate's values (src) or guide.
-SSRT_INLINE Lane readAt(const float* plane, const Candidate& c, ILane idx) {
-    return c.contiguous ? ln::load<Lane>(plane + c.off) : ln::gather(plane, idx);
+// A plane's value at a candidate's values (src).
+SSRT_INLINE Lane readSrc(const float* plane, const Candidate& c) {
+    switch (c.read) {
+        case Candidate::Read::Contiguous: return ln::load<Lane>(plane + c.off);
+        case Candidate::Read::Runs: return pickFromOne(plane + c.off, c.pick);
+        default: return ln::gather(plane, c.src);
+    }
+}
+
+// A plane's value at a candidate's guide pixel.
+SSRT_INLINE Lane readGuide(const float* plane, const Candidate& c) {
+    switch (c.read) {
+        case Candidate::Read::Contiguous: return ln::load<Lane>(plane + c.off);
+        case Candidate::Read::Runs: return pickFromTwo(plane + c.guideOff, c.guidePick);
+        default: return ln::gather(plane, c.guide);
+    }
 }
 
 struct Sums {
@@ -50,29 +99,22 @@ struct Sums {
 // The values of a candidate (absent planes: opacity 1, the others 0).
 SSRT_INLINE void readValues(const ReconstructArgs& a, const Candidate& c, Lane (&v)[kValues]) {
     const Lane zero(0.0f);
-    for (int k = 0; k < 3; ++k) v[k] = a.in[kRecR] ? readAt(a.in[kRecR + k], c, c.src) : zero;
-    v[3] = a.in[kRecOpacity] ? readAt(a.in[kRecOpacity], c, c.src) : Lane(1.0f);
-    v[4] = a.in[kRecHit] ? readAt(a.in[kRecHit], c, c.src) : zero;
-    v[5] = a.in[kRecDistance] ? readAt(a.in[kRecDistance], c, c.src) : zero;
-}
-
-// The own pixel's values in the half frame (a gather).
-SSRT_INLINE void readOwn(const ReconstructArgs& a, ILane i, Lane (&v)[kValues]) {
-    Candidate c{};
-    c.src = i;
-    readValues(a, c, v);
+    for (int k = 0; k < 3; ++k) v[k] = a.in[kRecR] ? readSrc(a.in[kRecR + k], c) : zero;
+    v[3] = a.in[kRecOpacity] ? readSrc(a.in[kRecOpacity], c) : Lane(1.0f);
+    v[4] = a.in[kRecHit] ? readSrc(a.in[kRecHit], c) : zero;
+    v[5] = a.in[kRecDistance] ? readSrc(a.in[kRecDistance], c) : zero;
 }
 
 // w_plane w_normal (trace/reconstruct.h) and the relative plane distance.
 SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const Candidate& c,
                                 Lane& dist) {
     const Lane zero(0.0f), one(1.0f);
-    const Lane z = readAt(a.g.viewZ, c, c.guide);
+    const Lane z = readGuide(a.g.viewZ, c);
     // The view ray through the sample's pixel centre times its depth (trace/trace_types.h)
     const V3 s{(c.px * Lane(a.scaleX) - Lane(a.tanHalfX)) * z,
                (Lane(a.tanHalfY) - c.py * Lane(a.scaleY)) * z, zero - z};
-    const V3 n{readAt(a.g.normal[0], c, c.guide), readAt(a.g.normal[1], c, c.guide),
-               readAt(a.g.normal[2], c, c.guide)};
+    const V3 n{readGuide(a.g.normal[0], c), readGuide(a.g.normal[1], c),
+               readGuide(a.g.normal[2], c)};
     dist = ln::abs(ln::dot(t.nView, s - t.p)) * t.invTolerance;
     const Lane wPlane = ln::max(one - dist, zero);  // (NaN -> 0: max keeps the second)
     Lane cosN = ln::max(ln::dot(t.n, n), zero);
@@ -170,7 +212,7 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
             // Every lane's neighbour is in the frame, side by side in memory. (Lanes whose
             // neighbour is not traced read a pixel that may be filled meanwhile, by this
             // thread or, in the other tile colour, never at once: their values are dropped.)
-            c.contiguous = true;
+            c.read = Candidate::Read::Contiguous;
             c.off = std::size_t(yy) * a.stride + std::size_t(x + int(dx[i]));
             c.ok = (ln::load<Lane>(a.pdf + c.off) > zero) & cut;
             continue;
@@ -218,10 +260,17 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
         const int ey = y - a.offsetY;
         const int hy0 = ey >= 0 ? ey / 2 : -1;
         const float ty = float(ey - 2 * hy0) * 0.5f;
+        // Lane l's half pixel is hb + pick[l] (+ i): pairs of lanes share one, and its guide
+        // pixel is every other one of the frame's row, so away from the edges each candidate's
+        // reads are runs of a row (Candidate::Read::Runs) in place of gathers.
+        const int ex0 = x - a.offsetX, hb = ex0 >> 1, parity = ex0 & 1;
+        const int lastPick = (parity + kW - 1) >> 1;
+        alignas(64) int32_t pick[kW], guidePick[kW];
+        for (int l = 0; l < kW; ++l) pick[l] = (parity + l) >> 1, guidePick[l] = 2 * pick[l];
         Candidate cand[4];
         Mask own = zero > zero;
         Lane ownX = zero, ownY = zero;
-        int count = 0;
+        int count = 0, ownFrom = -1;  // (the candidate holding the own lanes; -2: several)
         for (int j = 0; j < 2; ++j) {
             const int hy = hy0 + j;
             const float wy = j ? ty : 1.0f - ty;
@@ -233,28 +282,42 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
                 const Mask in = (hx >= zero) & (hx < Lane(float(a.srcWidth))) & (space > zero);
                 const Lane sx =
                     ln::min(Lane(2.0f) * hx + Lane(float(a.offsetX)), Lane(float(a.width - 1)));
-                const ILane src =
+                Candidate& c = cand[count++];
+                c.src =
                     screen::pixelIndex(hx, Lane(float(hy)), a.srcWidth, a.srcHeight, a.srcStride);
-                const ILane guide =
-                    screen::pixelIndex(sx, Lane(float(sy)), a.width, a.height, a.stride);
+                c.guide = screen::pixelIndex(sx, Lane(float(sy)), a.width, a.height, a.stride);
+                // Runs where no lane's pixel is clamped into the frame (then every lane reads
+                // what the gather would) and both runs lie inside their rows.
+                const int hs = hb + i, gs = 2 * hs + a.offsetX;
+                if (kPermutes && hs >= 0 && hs + lastPick < a.srcWidth &&
+                    std::size_t(hs + kW) <= a.srcStride && gs + 2 * lastPick < a.width &&
+                    std::size_t(gs + 2 * kW) <= a.stride) {
+                    c.read = Candidate::Read::Runs;
+                    c.off = std::size_t(hy) * a.srcStride + std::size_t(hs);
+                    c.guideOff = std::size_t(sy) * a.stride + std::size_t(gs);
+                    c.pick = ln::loadInt<Lane>(pick);
+                    c.guidePick = ln::loadInt<Lane>(guidePick);
+                }
                 const Mask isOwn = in & (sx == xi) & (Lane(sy == y ? 1.0f : 0.0f) > zero);
+                if (ln::any(isOwn)) ownFrom = ownFrom == -1 ? count - 1 : -2;
                 own = own | isOwn;
                 ownX = ln::select(isOwn, hx, ownX);
                 ownY = ln::select(isOwn, Lane(float(hy)), ownY);
-                const Mask traced = in & !isOwn & (ln::gather(a.pdf, src) > zero) & surface;
-                Candidate& c = cand[count++];
-                c = {src, guide, sx + halfL, Lane(float(sy) + 0.5f), space, traced};
+                c.px = sx + halfL, c.py = Lane(float(sy) + 0.5f), c.space = space;
+                c.ok = in & !isOwn & (readSrc(a.pdf, c) > zero) & surface;
             }
         }
         const Target t = target(a, o, xi + halfL, Lane(float(y) + 0.5f), z);
         blend(a, t, cand, count, v);
         if (ln::any(own)) {
-            const ILane ownIdx =
-                screen::pixelIndex(ownX, ownY, a.srcWidth, a.srcHeight, a.srcStride);
+            // The own lanes' half pixels are their candidate's (src): read as it reads them.
+            Candidate mineAt{};
+            if (ownFrom >= 0) mineAt = cand[ownFrom];
+            else mineAt.src = screen::pixelIndex(ownX, ownY, a.srcWidth, a.srcHeight, a.srcStride);
             Lane mine[kValues];
-            readOwn(a, ownIdx, mine);
+            readValues(a, mineAt, mine);
             for (int k = 0; k < kValues; ++k) v[k] = ln::select(own, mine[k], v[k]);
-            if (a.in[kRecSteps]) steps = ln::select(own, ln::gather(a.in[kRecSteps], ownIdx), zero);
+            if (a.in[kRecSteps]) steps = ln::select(own, readSrc(a.in[kRecSteps], mineAt), zero);
         }
         for (int k = 0; k < kValues; ++k) v[k] = ln::select(surface, v[k], zero);
         filled += uint64_t(__builtin_popcountll(ln::maskBits(surface & !own)));
