@@ -7,6 +7,9 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 #include <fcntl.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <unistd.h>
 
 #include <algorithm>
@@ -228,6 +231,30 @@ uint8_t quantise(float v) {
     return uint8_t(whole + (x - float(whole) >= 0.5f ? 1 : 0));
 }
 
+// quantise() over a row, 16 values at a time with SSE2 (every x86-64 has it; the compiler does
+// not vectorise quantise's branches itself): the same steps in lanes, so the same bytes. maxps
+// gives its second operand for NaN (0, as quantise's v > 0 test does) and for +-0; minps its
+// first where it is below 1; the conversion truncates as int(x) does.
+void quantiseRow(const float* src, uint8_t* dst, std::size_t n) {
+    std::size_t x = 0;
+#if defined(__SSE2__)
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    const __m128 scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+    const auto four = [&](const float* p) {
+        const __m128 v = _mm_mul_ps(_mm_min_ps(_mm_max_ps(_mm_loadu_ps(p), zero), one), scale);
+        const __m128i whole = _mm_cvttps_epi32(v);
+        const __m128 up = _mm_cmpge_ps(_mm_sub_ps(v, _mm_cvtepi32_ps(whole)), half);
+        return _mm_sub_epi32(whole, _mm_castps_si128(up));  // (true is -1)
+    };
+    for (; x + 16 <= n; x += 16) {
+        const __m128i lo = _mm_packs_epi32(four(src + x), four(src + x + 4));
+        const __m128i hi = _mm_packs_epi32(four(src + x + 8), four(src + x + 12));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + x), _mm_packus_epi16(lo, hi));
+    }
+#endif
+    for (; x < n; ++x) dst[x] = quantise(src[x]);
+}
+
 // ---------------------------------------------------------------------------------------
 // Writers (into an already reserved temporary)
 
@@ -243,10 +270,16 @@ void writePng(const std::string& path, const fs::path& tmp, const ImageLayers& i
     for (int c = 0; c < 3; ++c) planes[c] = findPlane(image, kDisplayPlanes[c]);
     const std::size_t w = std::size_t(image.width);
     const auto row = [&](int y, uint8_t* rgb) {
-        for (int c = 0; c < 3; ++c) {
-            const float* src = planes[c]->row(y);
-            for (std::size_t x = 0; x < w; ++x) rgb[x * 3 + c] = quantise(src[x]);
-        }
+        // Each plane's row quantised on its own (quantiseRow, in lanes), then interleaved:
+        // quantising straight into every third byte, one value at a time, took 63
+        // instructions a pixel, a third of the write's.
+        thread_local std::vector<uint8_t> q;
+        q.resize(3 * w);
+        for (int c = 0; c < 3; ++c)
+            quantiseRow(planes[c]->row(y), q.data() + std::size_t(c) * w, w);
+        const uint8_t *r = q.data(), *g = r + w, *b = g + w;
+        for (std::size_t x = 0; x < w; ++x)
+            rgb[3 * x] = r[x], rgb[3 * x + 1] = g[x], rgb[3 * x + 2] = b[x];
     };
     io_detail::writePngRgb8(path, tmp.string(), image.width, image.height, row,
                             kPngCompressionLevel, image.attributes, options.threads);
