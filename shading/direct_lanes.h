@@ -182,12 +182,26 @@ SSRT_INLINE L shadowTaps(const DirectArgs& a, const ShadowPlane<L>& q, L tol, L 
         col[dx + r] = ln::toIntTrunc(ln::clamp(q.u + L(float(dx)), zero, last));
         planeCol[dx + r] = q.gu * (q.du0 + L(float(dx)));
     }
+    // Columns k and k + 1 side by side in every lane (neither clamped at the map's edge): a
+    // row's two taps there are one pair gather (half the elements), the same values.
+    const int n = 2 * r + 1;
+    bool paired[kShadowMaxTaps] = {};
+    for (int k = 0; k + 1 < n; k += 2) paired[k] = ln::all(col[k + 1] == col[k] + IL(1));
     for (int dy = -r; dy <= r; ++dy) {
         const IL row =
             ln::toIntTrunc(ln::clamp(q.v + L(float(dy)), zero, last)) * IL(int32_t(a.shadowStride));
         const L planeRow = q.gv * (q.dv0 + L(float(dy)));
+        L depths[kShadowMaxTaps];
+        for (int k = 0; k < n; ++k) {
+            if (paired[k]) {
+                ln::gatherPair(a.shadowMap, row + col[k], depths[k], depths[k + 1]);
+                ++k;  // (its neighbour read with it)
+            } else {
+                depths[k] = ln::gather(a.shadowMap, row + col[k]);
+            }
+        }
         for (int dx = -r; dx <= r; ++dx) {
-            const L depth = ln::gather(a.shadowMap, row + col[dx + r]);
+            const L depth = depths[dx + r];
             const L gap = depth - (q.key + (planeCol[dx + r] + planeRow));
             const auto isOccluder = gap > tol;
             const auto isAbsent = gap < L(0.0f) - tol;

@@ -27,8 +27,10 @@ SSRT_INLINE L lookup2d(const float* table, L mu, L roughness) {
     const L fx = x - x0, fy = y - y0;
     using I = ln::IntOf<L>;
     const I i00 = ln::toIntTrunc(y0 * L(float(N)) + x0);
-    const L a = ln::gather(table, i00), b = ln::gather(table, i00 + I(1));
-    const L c = ln::gather(table, i00 + I(N)), d = ln::gather(table, i00 + I(N + 1));
+    // (Each row's two taps side by side: one pair gather, half the elements.)
+    L a, b, c, d;
+    ln::gatherPair(table, i00, a, b);
+    ln::gatherPair(table, i00 + I(N), c, d);
     const L top = a + (b - a) * fx, bottom = c + (d - c) * fx;
     return top + (bottom - top) * fy;
 }
@@ -42,7 +44,8 @@ SSRT_INLINE L lookup1d(const float* table, L roughness) {
     const L fy = y - y0;
     using I = ln::IntOf<L>;
     const I i0 = ln::toIntTrunc(y0);
-    const L a = ln::gather(table, i0), b = ln::gather(table, i0 + I(1));
+    L a, b;
+    ln::gatherPair(table, i0, a, b);
     return a + (b - a) * fy;
 }
 
