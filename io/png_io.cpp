@@ -233,7 +233,7 @@ void putText(std::vector<uint8_t>& out, const std::string& path, const std::stri
     putChunk(out, "tEXt", data.data(), data.size());
 }
 
-// One band of rows, filtered (type 0: none) and deflated.
+// One band of rows, filtered and deflated.
 struct Band {
     std::vector<uint8_t> bytes;
     uLong adler = 1;
@@ -241,21 +241,37 @@ struct Band {
     bool failed = false;
 };
 
-// (`raw` and `packed`: the thread's buffers, reused band after band; the band keeps only
-// its compressed bytes.)
+// A thread's buffers, reused band after band (a band keeps only its compressed bytes): the
+// filtered rows, the deflated band, and the rows above and at y unfiltered.
+struct BandBuffers {
+    std::vector<uint8_t> raw, packed, above, row;
+};
+
+// Each row with PNG's Up filter (type 2: the byte above subtracted; the first row's "above" is
+// zeros) and the band deflated with zlib's run-length strategy: on rendered images the pair is
+// both smaller and faster to compress than no filter with the default strategy (1080p cornell
+// at level 1, one thread: 0.78 MB in 60 ms against 1.18 MB in 69 ms; perf/README.md).
 void compressBand(const PngRows& rows, int width, int y0, int y1, bool last, int level,
-                  std::vector<uint8_t>& raw, std::vector<uint8_t>& packed, Band& band) {
-    const std::size_t line = std::size_t(width) * 3 + 1;
+                  BandBuffers& b, Band& band) {
+    const std::size_t bytes = std::size_t(width) * 3, line = bytes + 1;
+    std::vector<uint8_t>& raw = b.raw;
+    std::vector<uint8_t>& packed = b.packed;
     raw.resize(line * std::size_t(y1 - y0));
+    b.above.assign(bytes, 0);
+    b.row.resize(bytes);
+    if (y0 > 0) rows(y0 - 1, b.above.data());
     for (int y = y0; y < y1; ++y) {
         uint8_t* r = raw.data() + line * std::size_t(y - y0);
-        r[0] = 0;
-        rows(y, r + 1);
+        r[0] = 2;
+        rows(y, b.row.data());
+        const uint8_t *cur = b.row.data(), *up = b.above.data();
+        for (std::size_t i = 0; i < bytes; ++i) r[1 + i] = uint8_t(cur[i] - up[i]);
+        std::swap(b.row, b.above);
     }
     band.rawSize = raw.size();
     band.adler = adler32(1, raw.data(), uInt(raw.size()));
     z_stream z{};
-    if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_RLE) != Z_OK) {
         band.failed = true;
         return;
     }
@@ -293,10 +309,10 @@ void writePngRgb8(const std::string& path, const std::string& file, int width, i
     std::vector<Band> done(static_cast<std::size_t>(bands));
     std::atomic<int> next{0};
     const auto work = [&] {
-        std::vector<uint8_t> raw, packed;
+        BandBuffers buffers;
         for (int b = next++; b < bands; b = next++) try {
                 compressBand(rows, width, b * kBandRows, std::min(height, (b + 1) * kBandRows),
-                             b + 1 == bands, compressionLevel, raw, packed, done[std::size_t(b)]);
+                             b + 1 == bands, compressionLevel, buffers, done[std::size_t(b)]);
             } catch (...) {  // (out of memory: said below, on the calling thread)
                 done[std::size_t(b)].failed = true;
             }
