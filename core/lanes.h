@@ -355,6 +355,52 @@ SSRT_INLINE xsimd::batch<float, A> gather(const float* base, xsimd::batch<int32_
     return gather(base, index);
 }
 
+// Per-lane table[index] from a short table: pickFromOne's of kWidth floats (index < kWidth),
+// pickFromTwo's of twice that (index < 2 kWidth). Read as whole vectors and picked by a
+// register permute where the ISA has one (AVX-512: vpermps, vpermt2ps; AVX2: vpermps, and two
+// of them and a blend), else gathered: the same values either way. For lanes that read a few
+// neighbouring elements each (a level table, pixels that pairs of lanes share).
+template <class L>
+inline constexpr bool kPicksInRegisters = false;
+#if defined(__AVX2__)
+template <class A>
+inline constexpr bool kPicksInRegisters<xsimd::batch<float, A>> =
+    std::is_base_of_v<xsimd::avx2, A> || std::is_base_of_v<xsimd::avx512f, A>;
+#endif
+
+SSRT_INLINE float pickFromOne(const float* table, int32_t index) { return table[index]; }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> pickFromOne(const float* table, xsimd::batch<int32_t, A> index) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>)
+        return _mm512_permutexvar_ps(index, _mm512_loadu_ps(table));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>)
+        return _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), index);
+#endif
+    return gather(table, index);
+}
+
+SSRT_INLINE float pickFromTwo(const float* table, int32_t index) { return table[index]; }
+template <class A>
+SSRT_INLINE xsimd::batch<float, A> pickFromTwo(const float* table, xsimd::batch<int32_t, A> index) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>)
+        return _mm512_permutex2var_ps(_mm512_loadu_ps(table), index, _mm512_loadu_ps(table + 16));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
+        const __m256i i = index;
+        const __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), i);
+        const __m256 hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table + 8), i);
+        const __m256i upper = _mm256_cmpgt_epi32(i, _mm256_set1_epi32(7));
+        return _mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper));
+    }
+#endif
+    return gather(table, index);
+}
+
 // Per-lane base[index] and base[index + 1] (two horizontally neighbouring taps): where the
 // hardware gathers, one 64-bit element a lane reads both (two 8-lane gathers on AVX-512, two
 // 4-lane ones on AVX2, then one shuffle apart), half the elements of two 32-bit gathers; the

@@ -20,20 +20,13 @@ namespace ssrt::SSRT_ISA_NS {
 namespace {
 
 // Entry L (per lane, 0..15) of a 16-float level table: a register permute where the ISA has
-// one (AVX-512: one vpermps; AVX2: two and a blend), else a gather. Same values either way.
+// one (ln::pickFromOne with AVX-512's 16 lanes, pickFromTwo with AVX2's 8), else a gather.
+// Same values either way.
 SSRT_INLINE Lane levelTable(const float* table, ILane L) {
-#if defined(SSRT_ISA_avx512)
     static_assert(kMaxHiZLevels == 16);
-    return Lane(_mm512_permutexvar_ps(L, _mm512_loadu_ps(table)));
-#elif defined(SSRT_ISA_avx2)
-    static_assert(kMaxHiZLevels == 16);
-    const __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), L);
-    const __m256 hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table + 8), L);
-    const __m256i upper = _mm256_cmpgt_epi32(L, _mm256_set1_epi32(7));
-    return Lane(_mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper)));
-#else
-    return ln::gather(table, L);
-#endif
+    if constexpr (kW == 16) return ln::pickFromOne(table, L);
+    else if constexpr (kW == 8) return ln::pickFromTwo(table, L);
+    else return ln::gather(table, L);
 }
 
 // A cell's side in pixels at level L, 2^L, and its reciprocal, 2^-L: exact, from the

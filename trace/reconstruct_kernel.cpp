@@ -26,38 +26,6 @@ struct Target {
     Lane invTolerance;
 };
 
-// Lane l of the result: run[pick[l]], from one run of kW floats (pick < kW) or of 2 kW
-// (pickFromTwo: pick < 2 kW): loads and a register permute where the ISA has one (AVX-512, AVX2),
-// for lanes that read a few neighbouring pixels each; the same values as a gather.
-#if defined(SSRT_ISA_avx512) || defined(SSRT_ISA_avx2)
-constexpr bool kPermutes = true;
-#else
-constexpr bool kPermutes = false;
-#endif
-
-SSRT_INLINE Lane pickFromOne(const float* run, [[maybe_unused]] ILane pick) {
-#if defined(SSRT_ISA_avx512)
-    return Lane(_mm512_permutexvar_ps(pick, _mm512_loadu_ps(run)));
-#elif defined(SSRT_ISA_avx2)
-    return Lane(_mm256_permutevar8x32_ps(_mm256_loadu_ps(run), pick));
-#else
-    return ln::gather(run, pick);
-#endif
-}
-
-SSRT_INLINE Lane pickFromTwo(const float* run, [[maybe_unused]] ILane pick) {
-#if defined(SSRT_ISA_avx512)
-    return Lane(_mm512_permutex2var_ps(_mm512_loadu_ps(run), pick, _mm512_loadu_ps(run + 16)));
-#elif defined(SSRT_ISA_avx2)
-    const __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(run), pick);
-    const __m256 hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(run + 8), pick);
-    const __m256i upper = _mm256_cmpgt_epi32(pick, _mm256_set1_epi32(7));
-    return Lane(_mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper)));
-#else
-    return ln::gather(run, pick);
-#endif
-}
-
 // A lane group's candidate: where its values and its guide are read, its w_space, whether
 // it is a traced sample.
 struct Candidate {
@@ -78,7 +46,7 @@ struct Candidate {
 SSRT_INLINE Lane readSrc(const float* plane, const Candidate& c) {
     switch (c.read) {
         case Candidate::Read::Contiguous: return ln::load<Lane>(plane + c.off);
-        case Candidate::Read::Runs: return pickFromOne(plane + c.off, c.pick);
+        case Candidate::Read::Runs: return ln::pickFromOne(plane + c.off, c.pick);
         default: return ln::gather(plane, c.src);
     }
 }
@@ -87,7 +55,7 @@ SSRT_INLINE Lane readSrc(const float* plane, const Candidate& c) {
 SSRT_INLINE Lane readGuide(const float* plane, const Candidate& c) {
     switch (c.read) {
         case Candidate::Read::Contiguous: return ln::load<Lane>(plane + c.off);
-        case Candidate::Read::Runs: return pickFromTwo(plane + c.guideOff, c.guidePick);
+        case Candidate::Read::Runs: return ln::pickFromTwo(plane + c.guideOff, c.guidePick);
         default: return ln::gather(plane, c.guide);
     }
 }
@@ -289,7 +257,7 @@ void halfChunk(const ReconstructArgs& a, int x, int y, uint64_t& filled) {
                 // Runs where no lane's pixel is clamped into the frame (then every lane reads
                 // what the gather would) and both runs lie inside their rows.
                 const int hs = hb + i, gs = 2 * hs + a.offsetX;
-                if (kPermutes && hs >= 0 && hs + lastPick < a.srcWidth &&
+                if (ln::kPicksInRegisters<Lane> && hs >= 0 && hs + lastPick < a.srcWidth &&
                     std::size_t(hs + kW) <= a.srcStride && gs + 2 * lastPick < a.width &&
                     std::size_t(gs + 2 * kW) <= a.stride) {
                     c.read = Candidate::Read::Runs;
