@@ -17,7 +17,8 @@ namespace ssrt {
 // chooses them), the format chosen by the extension (case-insensitive):
 //   .png  8-bit RGB from display.{R,G,B} (already tone mapped and sRGB encoded), each value
 //         quantised as round(clamp(v, 0, 1) * 255); NaN becomes 0. Other layers are ignored.
-//         Written by libpng at zlib level 1, byte for byte as OpenImageIO 2.4 wrote it.
+//         Deflated by zlib at level 1 (Up filter, run-length strategy) in fixed bands of
+//         rows compressed side by side: the same bytes on any thread count (io/png_io.h).
 //   .exr  32-bit float, one channel per layer, in the order given, channel name = layer name
 //         ("color.R", "viewZ", ...), so viewers show "color", "normal", ... as layers; with a
 //         colour layer (color.R, .G, .B, else a reference's ref.color.R, .G, .B) and no R, G

@@ -29,13 +29,15 @@ DecodedImage decodePng(const uint8_t* bytes, std::size_t size, AlphaMode alpha);
 // A PNG's tEXt chunks: keyword and text (keywords of 1 to 79 Latin-1 characters).
 using PngTexts = std::vector<std::pair<std::string, std::string>>;
 
-// Fills row y's 8-bit RGB (width * 3 bytes); called for every row, from several threads.
+// Fills row y's 8-bit RGB (width * 3 bytes); called for every row (and again for the row
+// above each band of rows), from several threads.
 using PngRows = std::function<void(int y, uint8_t* rgb)>;
 
 // Writes 8-bit RGB to `file` with the chunks OpenImageIO 2.4 gave ssrt's previews (an oFFs
-// chunk at 0, 0, the text "Software" = "ssrt", then `texts`, if any, before the pixels; no
-// filter), its pixels deflated at `compressionLevel` in fixed bands of rows on `threads`
-// threads (0: every core; the bytes do not depend on it). `path` names the file in errors.
+// chunk at 0, 0, the text "Software" = "ssrt", then `texts`, if any, before the pixels), its
+// rows with PNG's Up filter deflated at `compressionLevel` (zlib's run-length strategy) in
+// fixed bands of rows on `threads` threads (0: every core; the bytes do not depend on it).
+// `path` names the file in errors.
 void writePngRgb8(const std::string& path, const std::string& file, int width, int height,
                   const PngRows& rows, int compressionLevel, const PngTexts& texts = {},
                   int threads = 0);
