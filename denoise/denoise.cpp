@@ -212,6 +212,10 @@ ReblurPassArgs spatial(const State& c, bool specular, ReblurSpatial pass, const 
                    ? (specular ? s.specularPrepassRadius : s.diffusePrepassRadius)
                    : blur;
     if (pass == ReblurSpatial::Blur) a.maxFrames = float(s.blurMaxFrames);
+    if (pass == ReblurSpatial::PostBlur && frames && s.postBlurMaxFrames <= kMaxDenoiseFrames) {
+        a.maxFrames = float(s.postBlurMaxFrames);
+        a.steadyFast = c.sc.fast[specular ? 1 : 0].row(0);
+    }
     a.fractionScale = pass == ReblurSpatial::PreBlur ? 2.0f
                       : pass == ReblurSpatial::Blur  ? 1.0f
                                                      : 0.5f;

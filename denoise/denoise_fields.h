@@ -50,6 +50,11 @@ inline constexpr std::array kDenoiseFields = {
         "Pixels with this many frames of history or more skip the blur, keeping the post-blur "
         "(64: every pixel is blurred twice)")
         .ints(0, kMaxDenoiseFrames + 1),
+    field<&DenoiseSettings::postBlurMaxFrames>(
+        "postBlurMaxFrames", kDenoiseUse,
+        "Pixels with this many frames of history or more whose signal is steady (luma near "
+        "its fast history's) skip the post-blur as well (64: every pixel is post-blurred)")
+        .ints(0, kMaxDenoiseFrames + 1),
     field<&DenoiseSettings::lobeAngleFraction>(
         "lobeAngleFraction", kDenoiseUse,
         "Share of the specular lobe's angle a neighbour's normal may differ by")

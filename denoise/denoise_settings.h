@@ -27,6 +27,11 @@ struct DenoiseSettings {
     // done the first pass's work (flicker rises: 0.0025 against 0.0017 on cornell). 64: every
     // pixel is blurred twice, as NRD.
     int blurMaxFrames = 4;
+    // Pixels with at least this many frames of history whose signal did not change (the
+    // pixel's luma within kStableLuma of its fast history's) skip the post-blur too: the
+    // accumulation alone stands for both spatial passes there (ssrt's; issue 48). 64: every
+    // pixel gets the post-blur, as NRD.
+    int postBlurMaxFrames = 64;
     // Edge-stopping: the normal lobe fraction, the roughness fraction, the plane distance as
     // a fraction of the frustum's height at the pixel's depth, the floor of the hit-distance
     // weight (lobeAngleFraction, roughnessFraction, planeDistanceSensitivity,

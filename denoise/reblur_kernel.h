@@ -98,6 +98,7 @@ struct ReblurPassArgs {
     uint32_t stream = 0;            // the per-pixel rotation's stream
     float radius = 30.0f;           // pre-blur's radius, or the blur's largest
     float maxFrames = 1.0e9f;       // pixels with this many frames of history or more are copied
+    SignalIn steadyFast;            // post-blur: only where the luma is near this fast history
     float fractionScale = 1.0f;     // 2 pre-blur (looser), 1 blur, 0.5 post-blur (stricter)
 
     // Temporal: the previous frame's signal (all null: no history) and what it writes.

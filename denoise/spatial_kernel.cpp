@@ -59,6 +59,15 @@ void storeSpatial(const ReblurPassArgs& a, std::size_t o, const Lane s[4]) {
     storeAt(a.copy, o, s);
 }
 
+// A pixel whose luma lies within this share of its fast history's (the last few frames'
+// mean) has a signal that did not change: no lag for the post-blur to hide.
+constexpr float kSteadyLuma = 0.25f;
+
+Mask steady(Lane fast, const Lane c[4]) {
+    const Lane luma = rb::luma(c[0], c[1], c[2]);
+    return ln::abs(luma - fast) <= Lane(kSteadyLuma) * ln::max(luma, fast) + Lane(rb::kEps);
+}
+
 // The terms of pixels (x .. x + kW, y); false (and the chunk copied) where none is filtered.
 bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
     const ReblurFrame& v = a.frame;
@@ -68,8 +77,11 @@ bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
     // The pre-blur's speed is NRD's fixed 1/11 (it runs before the history); a frame without
     // history has none.
     const Lane frames = q.frames = a.frames ? loadAt(a.frames, q.o) : Lane(a.noFrames);
-    // A pixel with a long history leaves the blur as it came (the post-blur filters it).
-    q.valid = validAt(v, q.o, spec) & (frames < Lane(a.maxFrames));
+    // A pixel with a long history leaves the blur as it came (the post-blur filters it), and
+    // the post-blur too where its signal is steady.
+    Mask old = frames >= Lane(a.maxFrames);
+    if (a.steadyFast) old = old & steady(loadAt(a.steadyFast, q.o), q.c);
+    q.valid = validAt(v, q.o, spec) & !old;
     if (!ln::any(q.valid)) {
         storeSpatial(a, q.o, q.c);
         return false;
