@@ -28,8 +28,9 @@ struct DenoiseSettings {
     // pixel is blurred twice, as NRD.
     int blurMaxFrames = 4;
     // Pixels with at least this many frames of history whose signal did not change (the
-    // pixel's luma within kStableLuma of its fast history's) skip the post-blur too: the
-    // accumulation alone stands for both spatial passes there (ssrt's; issue 48). 64: every
+    // pixel's luma near its fast history's: kSteadyLuma, denoise/spatial_kernel.cpp) skip the
+    // post-blur too: the accumulation alone stands for both spatial passes there (ssrt's;
+    // flicker rises 7-39 % on the built-in scenes at 8, so only the low preset). 64: every
     // pixel gets the post-blur, as NRD.
     int postBlurMaxFrames = 64;
     // Edge-stopping: the normal lobe fraction, the roughness fraction, the plane distance as
