@@ -426,6 +426,8 @@ std::vector<TraceRow> traceRows() {
         {"below surface", [](T t, double) { return Json(t.rays.belowSurface); }},
         {"hidden, no ray", [](T t, double) { return Json(t.rays.hidden); }},
         {"layout cut, no ray", [](T t, double) { return Json(t.rays.cut); }},
+        // (of those, the pixels a long history spared: TraceSettings::ssrSparseFrames)
+        {"  long history", [](T t, double) { return Json(t.rays.sparse); }},
     };
     for (int e = 0; e < kMarchEndCount; ++e) {
         if (MarchEnd(e) == MarchEnd::NoRay) continue;

@@ -52,6 +52,11 @@ bool current(const GraphKey& k) { return !reprojected(k); }
 bool ssrChecker(const GraphKey& k) {
     return ssr(k) && tr(k).ssrLayout == TraceLayout::Checkerboard;
 }
+// (thinned by the denoiser's last specular history lengths, where it reads them)
+bool ssrSparse(const GraphKey& k) {
+    return ssrChecker(k) && k.history && denoise(k) &&
+           tr(k).ssrSparseFrames < TraceSettings::kSparseOff;
+}
 bool ssgiChecker(const GraphKey& k) {
     return fullSsgi(k) && tr(k).ssgiLayout == TraceLayout::Checkerboard;
 }
@@ -351,7 +356,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::ColorPyramid, P::Anywhere, mipResolve},
                   {Res::MarchHit, P::Around, reuseResolve},
                   {Res::SsrHitRadiance, P::Around},
-                  {Res::SsrHitTarget, P::Around, reuseResolve}},
+                  {Res::SsrHitTarget, P::Around, reuseResolve},
+                  {Res::DenoiseHistorySpecularFrames, P::Anywhere, ssrSparse}},
                  {{Res::Ssr},
                   {Res::SsrOpacity},
                   {Res::SsrHit},

@@ -46,6 +46,12 @@ struct TraceSettings {
     // The defaults are the default quality preset's (renderer/quality.h: medium).
     TraceLayout ssrLayout = TraceLayout::Checkerboard;
     TraceLayout ssgiLayout = TraceLayout::Half;
+    // SSR's checkerboard thinned where the denoiser needs fewer new rays: a pixel with at least
+    // this many frames of specular history (the last frame's, found through the motion
+    // vectors) gets a ray every fourth frame instead of every second, its 2x2 block keeping one
+    // traced pixel a frame (trace/trace_layout.h, sparseBlockPick). kSparseOff: never.
+    static constexpr int kSparseOff = 64;
+    int ssrSparseFrames = kSparseOff;
     DenoiseSettings denoise;  // REBLUR over both signals (denoise/denoise.h)
 
     static constexpr int kMaxSpp = 64;

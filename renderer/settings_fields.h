@@ -79,6 +79,12 @@ inline constexpr std::array kTraceOwnFields = {
         "opposite to SSGI's); the others are reconstructed from their traced neighbours")
         .choices(2, [](int i) { return traceLayoutName(TraceLayout(i)); })
         .withTypeName("LAYOUT"),
+    field<&TraceSettings::ssrSparseFrames>(
+        "ssrSparseFrames", kCliShot,
+        "SSR checkerboard thinned: a pixel with this many frames of denoised specular history "
+        "or more gets a ray every fourth frame instead of every second, its 2x2 block keeping "
+        "one traced pixel a frame (64: never)")
+        .ints(1, TraceSettings::kSparseOff),
     field<&TraceSettings::ssgiLayout>(
         "ssgiLayout", kCliShot,
         "Which pixels get SSGI rays: full, checkerboard (half, alternating per frame, opposite "

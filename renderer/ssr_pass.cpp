@@ -54,6 +54,22 @@ struct SsrSample {
     }
 };
 
+// SSR's checkerboard, thinned where the denoiser's last specular history is long
+// (TraceSettings::ssrSparseFrames): only where the denoiser reads that history this frame (not
+// after a cut or a change of size, nor from a frame without SSR).
+RayGenCheckerboard ssrCheckerboard(const TraceContext& c) {
+    const TraceSettings& ts = c.ts();
+    RayGenCheckerboard cb{ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase};
+    if (!cb.on || ts.ssrSparseFrames >= TraceSettings::kSparseOff || !ts.denoise.enabled ||
+        !c.sequence || c.resetHistory)
+        return cb;
+    const DenoiseHistory& h = c.sequence->denoise;
+    if (!h.usableAt(c.camera.width, c.camera.height) || !h.hasSignal(true)) return cb;
+    cb.historyFrames = viewOf(h.specularFrames, "history.denoise.specularFrames");
+    cb.sparseMin = float(ts.ssrSparseFrames);
+    return cb;
+}
+
 // Stage by stage over the frame, for the observer, which reads the frame's batches.
 void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
@@ -109,9 +125,7 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     st.spp = ts.ssrSpp;
     const float maxRoughness =
         ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
-    const SsrSample q{
-        c,  rs,           in,
-        hp, maxRoughness, {ts.ssrLayout == TraceLayout::Checkerboard, kSsrCheckerboardPhase}};
+    const SsrSample q{c, rs, in, hp, maxRoughness, ssrCheckerboard(c)};
     // The batches and the resolve's scratch (which the resolver sizes: the frame's, or a tile
     // chain's ring) go back to the pool once the checkerboard fill has read the rays' pdf (the
     // denoiser takes their memory next). The signal's planes are the frame memory's

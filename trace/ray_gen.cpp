@@ -35,6 +35,7 @@ void RayGenStats::add(const RayGenStats& o) {
     background += o.background;
     hidden += o.hidden;
     cut += o.cut;
+    sparse += o.sparse;
 }
 
 RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sample, uint32_t dim,
@@ -45,10 +46,15 @@ RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sa
         throw std::invalid_argument("ray generation: maxRoughness is NaN");
     if (camera.width <= 0 || camera.height <= 0)
         throw std::invalid_argument("ray generation: the camera has no pixels");
+    const bool sparse = checkerboard.on && checkerboard.historyFrames.data;
     const GBufferPlanes need = kGViewZ | kGNormal |
                                (lobe != RayGenLobe::Diffuse ? kGRoughness : 0) |
-                               (onlyDiffuse ? kGAlbedo | kGMetallic : 0);
+                               (onlyDiffuse ? kGAlbedo | kGMetallic : 0) | (sparse ? kGMotion : 0);
     requireGBuffer("ray generation", g, need, camera.width, camera.height);
+    const std::size_t historyStride =
+        sparse ? requireViews("ray generation", camera.width, camera.height,
+                              {checkerboard.historyFrames})
+               : 0;
     RayGenArgs& a = args_;
     a.lobe = lobe;
     a.g = g;
@@ -67,6 +73,9 @@ RayGenerator::RayGenerator(Isa isa, RayGenLobe lobe, uint32_t frame, uint32_t sa
     a.checkerboard = checkerboard.on;
     a.checkerPhase = checkerboard.phase & 1u;
     a.cutPdf = kPdfLayoutCut;
+    a.historyFrames = sparse ? checkerboard.historyFrames.data : nullptr;
+    a.historyStride = historyStride;
+    a.sparseMin = checkerboard.sparseMin;
     a.noDiffuseColour = onlyDiffuse;
     kernel_ = SSRT_DISPATCH(isa, generateRaysTile);
 }
@@ -121,7 +130,7 @@ RayGenStats RayGenerator::tile(int tile, RayBatch& rays) const {
     a.stream = rays.ox.width() == a.width && rays.ox.height() == a.height;
     RayGenCounts n{};
     kernel_(a, tile, n);
-    return {n.pixels, n.rays, n.belowSurface, n.background, n.hidden, n.cut};
+    return {n.pixels, n.rays, n.belowSurface, n.background, n.hidden, n.cut, n.sparse};
 }
 
 RayGenStats RayGenerator::frame(RayBatch& rays, int threads) const {

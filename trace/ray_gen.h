@@ -45,6 +45,7 @@
 #include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
 #include "trace/ray_gen_kernel.h"
 #include "trace/trace_types.h"
@@ -79,6 +80,9 @@ struct RayGenStats {
     // surface pixels the trace layout leaves without a ray (trace/trace_layout.h: the
     // checkerboard's other phase, a half-resolution frame's unchosen pixels); not hidden
     uint64_t cut = 0;
+    // of `cut`, the traced phase's pixels the thinned checkerboard left without a ray
+    // (RayGenCheckerboard::historyFrames)
+    uint64_t sparse = 0;
     void add(const RayGenStats&);
 };
 
@@ -86,9 +90,18 @@ struct RayGenStats {
 // & 1) == phase get rays; a surface pixel of the other phase that would have had one (not
 // hidden) is left with pdf kPdfLayoutCut, direction 0, and counted as `cut`. The random
 // numbers, and so the rays, of the traced pixels are those of the full layout.
+//
+// Thinned where the history is long (trace/trace_layout.h, sparseBlockPick): with
+// `historyFrames` (the last frame's history lengths, of the camera's size) a traced-phase pixel
+// whose length at its previous position (the G-buffer's motion, then required) is at least
+// `sparseMin`, and which is not its 2x2 block's pick, is cut as well (counted in `cut` and in
+// `sparse`). The block's pick keeps its ray whatever its history, so every cut pixel has a
+// traced pixel among its eight neighbours (trace/reconstruct.h).
 struct RayGenCheckerboard {
     bool on = false;
     uint32_t phase = 0;
+    ViewF historyFrames{};  // absent (no data): not thinned
+    float sparseMin = 0.0f;
 };
 
 // Specular (SSR) rays: one per pixel for sample index `sample` of frame `frame`; origin = the

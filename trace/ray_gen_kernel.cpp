@@ -5,10 +5,12 @@
 
 #include "core/lane_vec.h"
 #include "core/rng_lanes.h"
+#include "core/screen_lanes.h"
 #include "core/tiles.h"
 #include "shading/brdf.h"
 #include "shading/sampling.h"
 #include "trace/ray_gen_kernel.h"
+#include "trace/trace_layout.h"
 
 namespace ssrt::SSRT_ISA_NS {
 
@@ -101,6 +103,20 @@ SSRT_INLINE void drawLobe(const RayGenArgs& a, std::size_t go, V3 n, V3 v, Lane 
          (pdf <= Lane(std::numeric_limits<float>::max()));
 }
 
+// Whether the last frame's history at the lanes' previous positions (through the motion
+// vectors, the pixel containing the point) has at least sparseMin frames; off the frame (or a
+// NaN motion), none.
+SSRT_INLINE Mask longHistory(const RayGenArgs& a, Lane xi, int y, std::size_t go) {
+    const Lane zero(0.0f);
+    const Lane px = xi + Lane(0.5f) + ln::load<Lane>(a.g.motion[0] + go);
+    const Lane py = Lane(float(y) + 0.5f) + ln::load<Lane>(a.g.motion[1] + go);
+    const Mask inside =
+        (px >= zero) & (px < Lane(float(a.width))) & (py >= zero) & (py < Lane(float(a.height)));
+    const auto at = screen::nearestIndex(ln::select(inside, px, zero), ln::select(inside, py, zero),
+                                         a.width, a.height, a.historyStride);
+    return inside & (ln::gather(a.historyFrames, at) >= Lane(a.sparseMin));
+}
+
 // One lane group of row y starting at pixel x, into out[plane] + o (a row buffer of the
 // tile); `valid` has a bit per lane inside the frame.
 template <RayGenLobe K>
@@ -160,6 +176,16 @@ SSRT_INLINE void rayChunk(const RayGenArgs& a, int x, int y, uint64_t valid, flo
         cut = wanted & !(parity == Lane(float(want)));
         wanted = wanted & !cut;
         c.cut += popcount(cut, valid);
+        if (a.historyFrames && ln::any(wanted)) {
+            // Of the block's two traced pixels, the one in column sparseBlockPick's parity
+            // keeps its ray; the other only where its history is short.
+            const Mask picked = parity == Lane(float(sparseBlockPick(a.frame)));
+            const Mask sparse = wanted & !picked & longHistory(a, xi, y, go);
+            wanted = wanted & !sparse;
+            cut = cut | sparse;
+            c.sparse += popcount(sparse, valid);
+            c.cut += popcount(sparse, valid);
+        }
     }
     V3 dir{zero, zero, zero};
     Lane pdf = zero;

@@ -51,11 +51,17 @@ struct RayGenArgs {
     bool checkerboard;
     uint32_t checkerPhase;
     float cutPdf;  // kPdfLayoutCut (trace/trace_types.h)
+    // The checkerboard thinned (RayGenCheckerboard::sparseFrames): where the last frame's
+    // history length at the pixel's previous position (g.motion) is at least sparseMin, a
+    // traced pixel that is not its block's pick (sparseBlockPick) gets no ray either. Null: off.
+    const float* historyFrames;
+    std::size_t historyStride;
+    float sparseMin;
 };
 
 // Counters of one tile (RayGenStats, as plain numbers).
 struct RayGenCounts {
-    uint64_t pixels, rays, belowSurface, background, hidden, cut;
+    uint64_t pixels, rays, belowSurface, background, hidden, cut, sparse;
 };
 
 SSRT_DECLARE_KERNEL(void, generateRaysTile,

@@ -62,18 +62,19 @@ ReconstructArgs guideArgs(const ReconstructGuides& g) {
     return a;
 }
 
-// The checkerboard's tiles in parallel. The fill writes in place and reads each cut pixel's edge
-// neighbours, up to one pixel into the next tile: it runs in two colours of tiles ((tx + ty)
-// & 1), so that no tile is written while an edge neighbour reads it. (What it reads there is
-// traced pixels, never written; the colours keep the loads of the lanes it drops race-free.)
+// The checkerboard's tiles in parallel. The fill writes in place and reads each cut pixel's
+// eight neighbours, up to one pixel into the next tiles, corners included: it runs in four
+// colours of tiles ((tx & 1) + 2 (ty & 1)), so that no tile is written while a neighbouring
+// one reads it. (What it reads there is traced pixels, never written; the colours keep the
+// loads of the lanes it drops race-free.)
 uint64_t runCheckerboard(Isa isa, const ReconstructArgs& a, int threads) {
     const TileGrid grid(a.width, a.height);
     std::vector<uint64_t> filled(std::size_t(grid.count()), 0);
     const auto kernel = SSRT_DISPATCH(isa, reconstructTile);
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int colour = 0; colour < 4; ++colour) {
         std::vector<int> tiles;
         for (int t = 0; t < grid.count(); ++t)
-            if (((t % grid.tilesX + t / grid.tilesX) & 1) == colour) tiles.push_back(t);
+            if (((t % grid.tilesX) & 1) + 2 * ((t / grid.tilesX) & 1) == colour) tiles.push_back(t);
         parallelForTiles(int(tiles.size()), threads, [&](int i) {
             const int tile = tiles[std::size_t(i)];
             kernel(a, tile, filled[std::size_t(tile)]);

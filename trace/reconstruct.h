@@ -17,9 +17,10 @@
 // largest w_space, then the smallest plane distance) stands in; with none, the pixel keeps
 // zeros.
 //
-// - fillCheckerboard: in place, the pixels marked kPdfLayoutCut from their four edge
-//   neighbours (w_space 1), which the checkerboard traced this frame. Traced pixels are only
-//   read and cut ones only written, so the order of tiles cannot change a bit.
+// - fillCheckerboard: in place, the pixels marked kPdfLayoutCut from their eight neighbours
+//   (w_space 1) that were traced this frame: a checkerboard's edge ones, or, where it was
+//   thinned (trace/trace_layout.h, sparseBlockPick), its block's pick on the diagonal. Traced
+//   pixels are only read and cut ones only written, so the order of tiles cannot change a bit.
 // - upsampleHalf: from the half-resolution frame's planes; a full-resolution pixel that is
 //   its block's chosen pixel takes its half pixel's values as they are, the others the four
 //   nearest half pixels at their chosen pixels' positions (w_space bilinear in those

@@ -92,7 +92,7 @@ SSRT_INLINE Lane geometryWeight(const ReconstructArgs& a, const Target& t, const
     return ln::select(c.ok & (z > zero), wPlane * cosN, zero);
 }
 
-// The blend of up to four candidates, with the nearest traced one where no weight is left.
+// The blend of the candidates, with the nearest traced one where no weight is left.
 SSRT_INLINE void blend(const ReconstructArgs& a, const Target& t, const Candidate* cand, int count,
                        Lane (&out)[kValues]) {
     const Lane zero(0.0f), one(1.0f);
@@ -158,8 +158,11 @@ SSRT_INLINE Target target(const ReconstructArgs& a, std::size_t o, Lane px, Lane
     return t;
 }
 
-// Checkerboard: the marked lanes of one group from their edge neighbours, written lane by
-// lane (the traced pixels beside them, which other tiles read, are never stored to).
+// Checkerboard: the marked lanes of one group from their eight neighbours, written lane by
+// lane (the traced pixels beside them, which other tiles read, are never stored to). A plain
+// checkerboard traces only edge neighbours (a cut pixel's diagonal ones share its phase); the
+// thinned one's cut pixels of the traced phase have only diagonal ones (trace/trace_layout.h,
+// sparseBlockPick). No pixel has both, so every neighbour weighs the same (w_space 1).
 void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& filled) {
     const std::size_t o = std::size_t(y) * a.stride + std::size_t(x);
     const Lane zero(0.0f);
@@ -169,9 +172,11 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
     const Lane px = xi + Lane(0.5f), py(float(y) + 0.5f);
     const Lane z = ln::load<Lane>(a.g.viewZ + o);
     const Target t = target(a, o, px, py, z);
-    Candidate cand[4];
-    const float dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
-    for (int i = 0; i < 4; ++i) {
+    constexpr int kNeighbours = 8;
+    Candidate cand[kNeighbours];
+    const float dx[kNeighbours] = {-1, 1, 0, 0, -1, 1, -1, 1};
+    const float dy[kNeighbours] = {0, 0, -1, 1, -1, -1, 1, 1};
+    for (int i = 0; i < kNeighbours; ++i) {
         const Lane nx = xi + Lane(dx[i]), ny(float(y) + dy[i]);
         const int yy = y + int(dy[i]);
         Candidate& c = cand[i];
@@ -195,7 +200,7 @@ void checkerChunk(const ReconstructArgs& a, int x, int y, int x1, uint64_t& fill
                                a.width, a.height, a.stride);
     }
     Lane v[kValues];
-    blend(a, t, cand, 4, v);
+    blend(a, t, cand, kNeighbours, v);
     alignas(64) float buf[kValues][kW];
     alignas(64) float mask[kW];
     for (int k = 0; k < kValues; ++k) ln::store(buf[k], v[k]);

@@ -44,6 +44,14 @@ constexpr bool checkerboardTraced(int x, int y, uint32_t frame, uint32_t phase) 
     return ((uint32_t(x) ^ uint32_t(y) ^ frame) & 1u) == (phase & 1u);
 }
 
+// The thinned checkerboard (TraceSettings::ssrSparseFrames): of a 2x2 block's two pixels
+// that the checkerboard traces in frame `frame` (a diagonal pair), the one whose column
+// parity is sparseBlockPick(frame) keeps its ray always; the other only where the pixel's
+// history is short. Over four frames the pick visits the block's four pixels, so a pixel with
+// a long history gets a ray every fourth frame instead of every second, and a cut pixel always
+// has a traced pixel among its eight neighbours (its own block's pick).
+constexpr uint32_t sparseBlockPick(uint32_t frame) { return (frame >> 1) & 1u; }
+
 // The chosen pixel of each 2x2 block in frame `frame` (Half): the 2x2 Bayer order
 // (0,0), (1,1), (1,0), (0,1) by frame & 3, so that two consecutive frames take diagonal
 // opposites and four cover the block.

@@ -331,3 +331,42 @@ TEST_CASE("renderer: SSGI's half frame without full-resolution planes gives the 
         CHECK(total(a) < total(b));
     }
 }
+
+TEST_CASE(
+    "renderer: SSR's checkerboard thins where the denoiser's history is long, not after a cut") {
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings rs = smallTraced();
+    rs.trace.ssrLayout = TraceLayout::Checkerboard;
+    rs.trace.ssrSparseFrames = 3;
+    RenderSettings full = rs;
+    full.trace.ssrSparseFrames = TraceSettings::kSparseOff;
+    FrameInput input = FrameInput::still(scene);
+    input.previousCamera = input.camera;
+    FrameHistory h, hFull;
+    Frame f, g;
+    for (uint32_t i = 0; i < 6; ++i) {
+        input.frameIndex = i;
+        Renderer(rs).render(scene, input, h, f);
+        Renderer(full).render(scene, input, hFull, g);
+        CAPTURE(i);
+        CHECK(g.stats.ssr.rays.sparse == 0);
+        // Frame i reads a history of i frames: the fourth is the first thinned.
+        if (i < 3) {
+            CHECK(f.stats.ssr.rays.sparse == 0);
+            CHECK(test::sameBits(f.rgb(Res::Color)[0], g.rgb(Res::Color)[0]));
+        } else {
+            CHECK(f.stats.ssr.rays.sparse > 0);
+            CHECK(f.stats.ssr.rays.rays < g.stats.ssr.rays.rays);
+            CHECK(f.stats.ssr.rays.cut == g.stats.ssr.rays.cut + f.stats.ssr.rays.sparse);
+        }
+    }
+    bool finite = true;
+    for (const PlaneF& p : f.rgb(Res::Ssr))
+        for (int y = 0; y < p.height(); ++y)
+            for (int x = 0; x < p.width(); ++x) finite &= std::isfinite(p.at(x, y));
+    CHECK(finite);
+    // A cut reads no history: the full checkerboard.
+    input.resetHistory = true;
+    Renderer(rs).render(scene, input, h, f);
+    CHECK(f.stats.ssr.rays.sparse == 0);
+}

@@ -175,7 +175,8 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
          "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, gbufferPlanes, tracePlanes, "
          "debugPlanes, ssr, ssgi, "
          "ssrMethod, "
-         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssgiLayout, maxSteps, "},
+         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssrSparseFrames, "
+         "ssgiLayout, maxSteps, "},
         // Wrong types
         {R"([1, 2])", "expected a JSON object at the top level"},
         {R"({"camera": "front"})", "camera: expected an object"},

@@ -213,3 +213,47 @@ TEST_CASE("reconstruct: the same bits for every ISA and thread count") {
             CHECK(samePlanes(got, ref));
         }
 }
+
+TEST_CASE("reconstruct: a thinned checkerboard's cut pixels are filled from their diagonals") {
+    // The left half thinned (trace/trace_layout.h, sparseBlockPick): of a block's two traced
+    // pixels only the pick carries a value; the unpicked one has no traced edge neighbour.
+    // Several tiles each way, so that tiles meet at corners.
+    const int w = 150, h = 140;
+    const Scene2 s(w, h, w, 4.0f, 4.0f);
+    for (uint32_t frame = 0; frame < 4; ++frame) {
+        CAPTURE(frame);
+        PlaneF pdf;
+        Signal sig(w, h);
+        makeCheckerboard(s, w, frame, pdf, sig);
+        uint64_t cut = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w / 2; ++x)
+                if (pdf.at(x, y) > 0.0f && uint32_t(x & 1) != sparseBlockPick(frame)) {
+                    pdf.at(x, y) = kPdfLayoutCut;
+                    for (PlaneF* p : {&sig.color[0], &sig.color[1], &sig.color[2], &sig.opacity,
+                                      &sig.hit, &sig.dist})
+                        p->at(x, y) = std::nanf("");
+                }
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) cut += pdf.at(x, y) == kPdfLayoutCut;
+        const Signal base = sig.clone();
+        const uint64_t filled = fillCheckerboard(Isa::Scalar, s.guides(), pdf, sig.planes(true), 1);
+        bool constant = true;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                for (int c = 0; c < 3; ++c)
+                    constant &= near(sig.color[c].at(x, y), valueOf(true, c));
+                constant &= near(sig.opacity.at(x, y), 0.8f) && near(sig.dist.at(x, y), 2.0f);
+            }
+        CHECK(filled == cut);
+        CHECK(constant);
+        for (Isa isa : supportedIsas())
+            for (int threads : testThreadCounts({1, 3})) {
+                CAPTURE(std::string(isaName(isa)));
+                CAPTURE(threads);
+                Signal got = base.clone();
+                fillCheckerboard(isa, s.guides(), pdf, got.planes(true), threads);
+                CHECK(samePlanes(got, sig));
+            }
+    }
+}

@@ -5,8 +5,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include "renderer/screen_quad.h"
 #include "scenes/builtin_scenes.h"
 #include "thread_counts.h"
+#include "trace/ray_gen.h"
 
 using namespace ssrt;
 
@@ -381,4 +384,119 @@ TEST_CASE("trace layouts: every plane finite on the failure scenes, odd sizes in
                     CHECK(inRange);
                 }
     }
+}
+
+namespace {
+
+// A wall facing the camera (view = world) at depth 2, roughness 0.2 (mirror rays: none
+// rejected below the surface), with motion `mx` pixels
+// (previous minus current position) everywhere, and the last frame's history lengths
+// `frames(x, y)`: the thinned checkerboard's inputs.
+struct ThinnedWall {
+    static constexpr int w = 70, h = 36;  // not a multiple of the lane width or the tile
+    TraceCamera camera;
+    PlaneF viewZ{w, h, 2.0f}, normal[3]{{w, h, 0.0f}, {w, h, 0.0f}, {w, h, 1.0f}},
+        roughness{w, h, 0.2f}, motion[2]{{w, h, 0.0f}, {w, h, 0.0f}}, history{w, h, 0.0f};
+
+    ThinnedWall() {
+        camera.width = w;
+        camera.height = h;
+        camera.tanHalfY = 0.5f;
+        camera.tanHalfX = 0.5f * float(w) / float(h);
+        const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        std::copy_n(identity, 9, camera.viewToWorld);
+        // Long (10 frames) on the left half, short (2) on the right.
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) history.at(x, y) = x < w / 2 ? 10.0f : 2.0f;
+    }
+    GBufferView g() const {
+        return gbufferView("test", w, h,
+                           {{kGViewZ, &viewZ},
+                            {kGNormalX, &normal[0]},
+                            {kGNormalY, &normal[1]},
+                            {kGNormalZ, &normal[2]},
+                            {kGRoughness, &roughness},
+                            {kGMotionX, &motion[0]},
+                            {kGMotionY, &motion[1]}});
+    }
+    RayGenStats rays(uint32_t frame, RayBatch& out, Isa isa = Isa::Scalar, int threads = 1) const {
+        RayGenCheckerboard cb{true, kSsrCheckerboardPhase, viewOf(history, "history"), 8.0f};
+        return generateSpecularRays(isa, SsrMethod::Mirror, frame, 0, camera, g(), out, threads,
+                                    std::numeric_limits<float>::infinity(), cb);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("thinned checkerboard: a long history traces one pixel of a block a frame, in turn") {
+    ThinnedWall s;
+    std::vector<int> raysAt(std::size_t(s.w * s.h), 0);
+    for (uint32_t frame = 0; frame < 4; ++frame) {
+        CAPTURE(frame);
+        RayBatch rays;
+        const RayGenStats st = s.rays(frame, rays);
+        uint64_t sparse = 0, cut = 0, traced = 0;
+        bool asLaidOut = true;
+        for (int y = 0; y < s.h; ++y)
+            for (int x = 0; x < s.w; ++x) {
+                const float pdf = rays.pdf.at(x, y);
+                const bool phase = checkerboardTraced(x, y, frame, kSsrCheckerboardPhase);
+                const bool thinned =
+                    phase && x < s.w / 2 && uint32_t(x & 1) != sparseBlockPick(frame);
+                const bool ray = phase && !thinned;
+                asLaidOut &= ray ? pdf > 0.0f : pdf == kPdfLayoutCut;
+                sparse += thinned;
+                cut += !ray;
+                traced += ray;
+                raysAt[std::size_t(y * s.w + x)] += pdf > 0.0f;
+            }
+        CHECK(asLaidOut);
+        CHECK(st.sparse == sparse);
+        CHECK(st.cut == cut);
+        CHECK(st.rays == traced);
+        CHECK(sparse > 0);
+    }
+    // Over four frames: a ray for each pixel of the long half once, of the short half twice.
+    bool turns = true;
+    for (int y = 0; y < s.h; ++y)
+        for (int x = 0; x < s.w; ++x)
+            turns &= raysAt[std::size_t(y * s.w + x)] == (x < s.w / 2 ? 1 : 2);
+    CHECK(turns);
+}
+
+TEST_CASE("thinned checkerboard: the history is read where the motion says the pixel was") {
+    ThinnedWall s;
+    RayBatch rays;
+    // Every pixel came from half a frame to its right: the left half finds the short history,
+    // the right half none (off the frame).
+    s.motion[0].fill(float(s.w / 2));
+    CHECK(s.rays(0, rays).sparse == 0);
+    // From the left: the right half finds the long history, the left half none.
+    s.motion[0].fill(-float(s.w / 2));
+    const RayGenStats st = s.rays(0, rays);
+    CHECK(st.sparse > 0);
+    bool rightOnly = true;
+    for (int y = 0; y < s.h; ++y)
+        for (int x = 0; x < s.w / 2; ++x)
+            rightOnly &= rays.pdf.at(x, y) != kPdfLayoutCut || !checkerboardTraced(x, y, 0, 0);
+    CHECK(rightOnly);
+    // A NaN motion finds no history.
+    s.motion[0].fill(std::nanf(""));
+    CHECK(s.rays(0, rays).sparse == 0);
+}
+
+TEST_CASE("thinned checkerboard: every ISA and thread count gives the same rays") {
+    ThinnedWall s;
+    s.motion[1].fill(0.6f);
+    RayBatch ref;
+    s.rays(5, ref);
+    for (Isa isa : supportedIsas())
+        for (int threads : testThreadCounts({1, 3})) {
+            CAPTURE(std::string(isaName(isa)));
+            CAPTURE(threads);
+            RayBatch got;
+            s.rays(5, got, isa, threads);
+            CHECK(hashPlane(got.pdf) == hashPlane(ref.pdf));
+            CHECK(hashPlane(got.dx) == hashPlane(ref.dx));
+        }
 }
