@@ -80,7 +80,7 @@ bool spatialPixel(const ReblurPassArgs& a, int x, int y, SpatialPixel& q) {
     // A pixel with a long history leaves the blur as it came (the post-blur filters it), and
     // the post-blur too where its signal is steady.
     Mask old = frames >= Lane(a.maxFrames);
-    if (a.steadyFast) old = old & steady(loadAt(a.steadyFast, q.o), q.c);
+    if (a.steadyFast && ln::any(old)) old = old & steady(loadAt(a.steadyFast, q.o), q.c);
     q.valid = validAt(v, q.o, spec) & !old;
     if (!ln::any(q.valid)) {
         storeSpatial(a, q.o, q.c);
