@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "renderer/renderer.h"
-#include "truth/embree_scene.h"
 #include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
 namespace ssrt::cli {
 

@@ -1,12 +1,12 @@
-# The installed package: find_package(ssrt REQUIRED COMPONENTS core io gltf shot truth).
+# The installed package: find_package(ssrt REQUIRED COMPONENTS core io gltf shot world truth).
 #
 # Each component is one imported target with its own export file, so that a tool pays only
 # for the libraries it asks for: core (ssrt::ssrt, also ssrt::core: GLM, xsimd, oneTBB),
 # io (ssrt::io: libpng, libjpeg, OpenEXR; OpenImageIO only in the module it loads on need),
 # gltf (ssrt::gltf: tinygltf, Draco, meshoptimizer; needs io for textures), shot
-# (ssrt::shot: nlohmann-json) and truth (ssrt::truth: Embree 3). The libraries are static, so
-# each one's private libraries are named in its export file and found again by
-# cmake/ssrtConfig.cmake.in, component by component.
+# (ssrt::shot: nlohmann-json), world (ssrt::world: Embree 3) and truth (ssrt::truth: needs
+# world). The libraries are static, so each one's private libraries are named in its export
+# file and found again by cmake/ssrtConfig.cmake.in, component by component.
 include(CMakePackageConfigHelpers)
 set(SSRT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/ssrt)
 
@@ -46,6 +46,7 @@ endfunction()
 ssrt_install_component(ssrt_io io io)
 ssrt_install_component(ssrt_gltf gltf)  # its headers are scenes/'s, installed with the core
 ssrt_install_component(ssrt_shot shot)
+ssrt_install_component(ssrt_world world world)
 ssrt_install_component(ssrt_truth truth truth)
 
 configure_package_config_file(cmake/ssrtConfig.cmake.in

@@ -5,7 +5,7 @@
 //   ./build/perf/ssrt_bench --benchmark_filter=VsEmbree
 //
 // Set-up, once per scene (not timed): the G-buffer of a frame rendered with the trace passes
-// off, its Hi-Z pyramid, and the truth's Embree scene (truth/embree_scene.h: one BVH
+// off, its Hi-Z pyramid, and the truth's Embree scene (world/embree_scene.h: one BVH
 // per mesh and one over the instances, RTC_BUILD_QUALITY_HIGH; its build time, second of two
 // builds, is the counter build_ms). Once per ray kind: the RayBatch from trace/ray_gen.h, the same
 // rays in world space (origin = camera position + viewToWorld * view origin, direction =
@@ -19,9 +19,10 @@
 // marchers end on back faces: that difference shows in the agreement counters).
 //
 // Benchmarks (names start with VsEmbree so one filter takes them all):
-// - VsEmbree_embree/<scene>_<rays>_<single|packet16>/<threads>: Embree alone,
+// - VsEmbree_embree/<scene>_<rays>_<single|packet16|exact>/<threads>: Embree alone,
 //   EmbreeScene::intersect per ray (rtcIntersect1) or intersect16 per 4x4 pixel block
-//   (rtcIntersect16), over 64x64 tiles (parallelForTiles).
+//   (rtcIntersect16), or those packets as the renderer's world rays (EmbreeWorldRays: each
+//   hit made exact by ssrt's ray-triangle test), over 64x64 tiles (parallelForTiles).
 //   Counters: Mrays/s, build_ms, triangles, e_hit (share of traced rays that hit), vs_single
 //   (share of rays whose answer differs from rtcIntersect1's: a sanity check, expect 0),
 //   native16 (1 when Embree runs 16-wide packets natively, i.e. its AVX-512 kernels).
@@ -56,7 +57,8 @@
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/trace_types.h"
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
+#include "world/embree_world_rays.h"
 
 using namespace ssrt;
 
@@ -82,7 +84,7 @@ std::unique_ptr<EmbreeScene> buildEmbree(const Scene& s) {
 }
 
 // The rays of a RayBatch in world space, per pixel (index y * width + x).
-struct WorldRays {
+struct WorldBatch {
     int width = 0, height = 0;
     std::vector<float> o[3], d[3];
     std::vector<uint8_t> valid;  // pdf > 0
@@ -90,9 +92,9 @@ struct WorldRays {
     float tnear = 0.0f, tfar = 0.0f;
 };
 
-WorldRays toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 camPos, float tnear,
-                  float tfar) {
-    WorldRays wr;
+WorldBatch toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 camPos,
+                   float tnear, float tfar) {
+    WorldBatch wr;
     wr.width = rays.width();
     wr.height = rays.height();
     wr.tnear = tnear;
@@ -114,10 +116,22 @@ WorldRays toWorld(const RayBatch& rays, const glm::mat3& viewToWorld, glm::vec3 
     return wr;
 }
 
-enum class EmbreeMode { Single, Packet16 };
+// Single: rtcIntersect1 per ray; Packet16: rtcIntersect16 per 4x4 block; Exact: the same
+// packets through EmbreeWorldRays (world/embree_world_rays.h), each hit's distance and
+// barycentrics recomputed by ssrt's exact test, as the renderer's world rays are.
+enum class EmbreeMode { Single, Packet16, Exact };
+
+const char* modeName(EmbreeMode mode) {
+    switch (mode) {
+        case EmbreeMode::Single: return "_single";
+        case EmbreeMode::Packet16: return "_packet16";
+        case EmbreeMode::Exact: return "_exact";
+    }
+    return "";
+}
 
 // Traces every valid ray; t[i] = hit distance, or kNoHit (no ray, or no hit in range).
-void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, int threads,
+void traceEmbree(const EmbreeScene& es, const WorldBatch& wr, EmbreeMode mode, int threads,
                  float* t) {
     const TileGrid grid(wr.width, wr.height);
     auto origin = [&](std::size_t i) { return glm::vec3(wr.o[0][i], wr.o[1][i], wr.o[2][i]); };
@@ -139,6 +153,9 @@ void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, in
         glm::vec3 o[16], d[16];
         EmbreeHit hits[16];
         std::size_t lane[16];
+        const EmbreeWorldRays exact(es);
+        ssrt::WorldRay rays[16];
+        ssrt::WorldHit exactHits[16];
         for (int by = r.y0; by < r.y1; by += 4)
             for (int bx = r.x0; bx < r.x1; bx += 4) {
                 int n = 0;
@@ -150,6 +167,13 @@ void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, in
                         o[n] = origin(i), d[n] = direction(i), lane[n++] = i;
                     }
                 if (n == 0) continue;
+                if (mode == EmbreeMode::Exact) {
+                    for (int k = 0; k < n; ++k) rays[k] = {o[k], d[k], wr.tnear, wr.tfar};
+                    exact.intersect(std::span(rays, n), std::span(exactHits, n));
+                    for (int k = 0; k < n; ++k)
+                        if (exactHits[k].hit) t[lane[k]] = exactHits[k].t;
+                    continue;
+                }
                 es.intersect16(n, o, d, wr.tnear, wr.tfar, hits);
                 for (int k = 0; k < n; ++k)
                     if (hits[k].hit) t[lane[k]] = hits[k].t;
@@ -161,7 +185,7 @@ void traceEmbree(const EmbreeScene& es, const WorldRays& wr, EmbreeMode mode, in
 
 struct RayKind {
     RayBatch rays;
-    WorldRays world;
+    WorldBatch world;
     std::vector<float> embreeT;  // Embree's answer (single rays, every core)
     uint64_t embreeHits = 0;
 };
@@ -364,9 +388,9 @@ const bool kRegistered = [] {
     const SsrMethod kinds[] = {SsrMethod::Mirror, SsrMethod::VndfBounded};
     for (const char* s : scenes)
         for (SsrMethod k : kinds)
-            for (EmbreeMode mode : {EmbreeMode::Single, EmbreeMode::Packet16}) {
-                const std::string name = std::string("VsEmbree_embree/") + s + "_" + kindName(k) +
-                                         (mode == EmbreeMode::Single ? "_single" : "_packet16");
+            for (EmbreeMode mode : {EmbreeMode::Single, EmbreeMode::Packet16, EmbreeMode::Exact}) {
+                const std::string name =
+                    std::string("VsEmbree_embree/") + s + "_" + kindName(k) + modeName(mode);
                 benchmark::RegisterBenchmark(name.c_str(), embreeBench, std::string(s), k, mode)
                     ->Arg(1)
                     ->Arg(2)

@@ -13,9 +13,9 @@
 #include "renderer/layer_groups.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/shot.h"
-#include "truth/embree_scene.h"
 #include "truth/evaluation.h"
 #include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
 namespace ssrt::python {
 

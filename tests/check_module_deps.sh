@@ -18,6 +18,7 @@ declare -A allowed=(
     [denoise]="core shading"
     [renderer]="core scenes raster shading trace denoise"
     [io]="core"
+    [world]="core scenes shading trace"
     [truth]="*"
     [cli]="*"
     [python]="*"
@@ -34,7 +35,7 @@ scenes/gltf_textures.h io
 status=0
 checked=0
 used=""
-for module in core scenes raster shading trace denoise renderer io; do
+for module in core scenes raster shading trace denoise renderer io world; do
     [ -d "$root/$module" ] || continue
     while IFS= read -r hit; do
         file=${hit%%:*}

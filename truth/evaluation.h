@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "renderer/renderer.h"
-#include "truth/embree_scene.h"
 #include "truth/image_error.h"
 #include "truth/ray_check.h"
 #include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
 namespace ssrt {
 

@@ -47,7 +47,7 @@
 #include "core/image.h"
 #include "trace/trace_layout.h"
 #include "trace/trace_types.h"
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
 
 namespace ssrt {
 

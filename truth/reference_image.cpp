@@ -16,14 +16,14 @@
 #include "shading/brdf.h"
 #include "shading/sampling.h"
 #include "truth/parts.h"
-#include "truth/reference_shading.h"
+#include "world/hit_light.h"
 
 namespace ssrt {
 
 namespace {
 
-using reference::PointSurface;
-using reference::ShadingContext;
+using worldhit::PointSurface;
+using worldhit::ShadingContext;
 namespace ln = ssrt::lanes;
 
 // The resolve's cap on one ray's weight (trace/ssr_resolve_kernel.cpp): sums stay finite.
@@ -153,7 +153,7 @@ void surfaceOffsets(Setup& s) {
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x) {
                 if (!(a.g.viewZ[std::size_t(y) * a.g.stride + x] > 0.0f)) continue;
-                const PointSurface ps = reference::pixelSurface(a, x, y);
+                const PointSurface ps = worldhit::pixelSurface(a, x, y);
                 const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
                 glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
                 const EmbreeHit h = embree.intersect(cam, -toCam, nearDistance(s, toCam), INFINITY);
@@ -182,9 +182,9 @@ void renderDirect(const Setup& s, PlaneF out[3]) {
                         out[c].at(x, y) = decodeF16(frameDirect[c].at(x, y));
                     continue;
                 }
-                const PointSurface ps = reference::pixelSurface(a, x, y);
+                const PointSurface ps = worldhit::pixelSurface(a, x, y);
                 const glm::vec3 origin = pointOf(ps) + s.offset[std::size_t(y) * a.width + x];
-                const float vis = reference::sunVisibility(s.ctx, ps, origin);
+                const float vis = worldhit::sunVisibility(s.ctx, ps, origin);
                 const shade::Parts<float> parts = shade::shadeSurface(a, ps, vis);
                 out[0].at(x, y) = parts.sun.x;
                 out[1].at(x, y) = parts.sun.y;
@@ -234,7 +234,7 @@ void traceTile(const Setup& s, const RayBatch& rays, int tile, ShadeHit&& shadeH
                                hits.data());
             for (int i = 0; i < n; ++i) {
                 out[i].radiance = hits[i].hit ? shadeHit(out[i], org[i], hits[i])
-                                              : reference::missRadiance(s.ctx, dir[i]);
+                                              : worldhit::missRadiance(s.ctx, dir[i]);
                 use(out[i]);
             }
         }
@@ -281,10 +281,10 @@ void renderSsr(const Setup& s, int spp, ProgressSteps& progress, PlaneF out[3]) 
                              s.lighting.args.g, rays, s.threads);
         forBandTiles(s, [&](int tile) {
             const auto shade = [&](const TracedRay& t, glm::vec3 o, const EmbreeHit& h) {
-                return reference::hitRadiance(s.ctx, o, t.dir, h, true);
+                return worldhit::hitRadiance(s.ctx, o, t.dir, h, true);
             };
             traceTile(s, rays, tile, shade, [&](const TracedRay& t) {
-                const PointSurface ps = reference::pixelSurface(a, t.x, t.y);
+                const PointSurface ps = worldhit::pixelSurface(a, t.x, t.y);
                 sums.add(t.x, t.y, ssrWeight(ps, t.dir, t.pdf), t.radiance);
             });
         });
@@ -318,7 +318,7 @@ glm::vec3 aroundNormal(glm::vec3 n, const ln::V3<float>& l) {
 // hitRadiance's SSGI light itself: the one-bounce reference to the bit.
 glm::vec3 diffusePath(const Setup& s, const TracedRay& ray, glm::vec3 origin, const EmbreeHit& hit,
                       uint32_t sample, int bounces) {
-    if (bounces == 1) return reference::hitRadiance(s.ctx, origin, ray.dir, hit, false);
+    if (bounces == 1) return worldhit::hitRadiance(s.ctx, origin, ray.dir, hit, false);
     // Converged: up to kMaxBounces hits, ending where the throughput is negligible. A fixed
     // count ends only where it is 0, so its N bounces are exactly N.
     const bool converged = bounces == ReferenceSettings::kConverged;
@@ -326,7 +326,7 @@ glm::vec3 diffusePath(const Setup& s, const TracedRay& ray, glm::vec3 origin, co
     if (converged) bounces = ReferenceSettings::kMaxBounces;
     const EmbreeScene& embree = *s.ctx.embree;
     const uint32_t pixel = uint32_t(ray.y) * uint32_t(s.frame.width) + uint32_t(ray.x);
-    reference::DiffuseVertex v = reference::diffuseVertex(s.ctx, origin, ray.dir, hit);
+    worldhit::DiffuseVertex v = worldhit::diffuseVertex(s.ctx, origin, ray.dir, hit);
     glm::vec3 radiance = v.radiance, throughput = v.reflectance;
     for (int k = 1; k < bounces; ++k) {
         if (!(std::max({throughput.x, throughput.y, throughput.z}) > negligible)) break;
@@ -341,10 +341,10 @@ glm::vec3 diffusePath(const Setup& s, const TracedRay& ray, glm::vec3 origin, co
         // the path escape; the plane it leaves lies behind it.
         const EmbreeHit h = embree.intersect(v.origin, dir, 0.0f, s.maxDistance);
         if (!h.hit) {
-            radiance += throughput * reference::missRadiance(s.ctx, dir);
+            radiance += throughput * worldhit::missRadiance(s.ctx, dir);
             break;
         }
-        v = reference::diffuseVertex(s.ctx, v.origin, dir, h);
+        v = worldhit::diffuseVertex(s.ctx, v.origin, dir, h);
         radiance += throughput * v.radiance;
         throughput *= v.reflectance;
     }

@@ -48,7 +48,8 @@
 
 #include "core/image.h"
 #include "renderer/renderer.h"
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
+#include "world/hit_light.h"
 
 namespace ssrt {
 
@@ -57,7 +58,7 @@ namespace ssrt {
 inline constexpr uint32_t kReferenceBounceDim = 32;
 
 struct ReferenceSettings {
-    enum class Visibility { Embree, ShadowMap };
+    using Visibility = SunVisibility;  // world/hit_light.h
     Visibility visibility = Visibility::Embree;
     int spp = 64;               // rays per pixel for each of SSR and SSGI
     float maxDistance = 30.0f;  // scene units: the march's (marchLengths().maxDistance);

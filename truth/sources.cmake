@@ -1,13 +1,9 @@
-# truth/: the Embree truth (BVH, ray checks, reference image, image error). A
-# library of its own so that the core library never links Embree (DESIGN.md).
-find_package(embree 3 REQUIRED)
+# truth/: the Embree truth (ray checks, reference image, image error), on world/'s scene.
 add_library(ssrt_truth STATIC
-    ${CMAKE_CURRENT_LIST_DIR}/embree_scene.cpp
     ${CMAKE_CURRENT_LIST_DIR}/evaluation.cpp
     ${CMAKE_CURRENT_LIST_DIR}/image_error.cpp
     ${CMAKE_CURRENT_LIST_DIR}/parts.cpp
     ${CMAKE_CURRENT_LIST_DIR}/ray_check.cpp
     ${CMAKE_CURRENT_LIST_DIR}/reference_image.cpp
-    ${CMAKE_CURRENT_LIST_DIR}/reference_key.cpp
-    ${CMAKE_CURRENT_LIST_DIR}/reference_shading.cpp)
-target_link_libraries(ssrt_truth PUBLIC ssrt PRIVATE embree)
+    ${CMAKE_CURRENT_LIST_DIR}/reference_key.cpp)
+target_link_libraries(ssrt_truth PUBLIC ssrt ssrt_world)

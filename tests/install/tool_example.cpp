@@ -1,15 +1,15 @@
 // A tool built on every component of the installed package (docs/embedding.md, "Embedding the
 // library"): loads a glTF file (ssrt::gltf), renders a short sequence with a history (core),
 // writes the last frame as an EXR and reads a layer back (ssrt::io), and measures it against
-// the Embree reference (ssrt::truth).
+// the Embree reference (ssrt::truth, on ssrt::world).
 // Usage: tool_example SCENE.gltf OUT.exr
 #include <ssrt/io/image_io.h>
 #include <ssrt/renderer/layer_groups.h>
 #include <ssrt/renderer/renderer.h>
 #include <ssrt/scenes/gltf_loader.h>
-#include <ssrt/truth/embree_scene.h>
 #include <ssrt/truth/image_error.h>
 #include <ssrt/truth/reference_image.h>
+#include <ssrt/world/embree_scene.h>
 
 #include <cmath>
 #include <cstdio>

@@ -20,9 +20,9 @@
 #include "gltf_test_files.h"
 #include "renderer/renderer.h"
 #include "temp_dir.h"
-#include "truth/embree_scene.h"
 #include "truth/image_error.h"
 #include "truth/ray_check.h"
+#include "world/embree_scene.h"
 
 using namespace ssrt;
 using ssrt::test::TempDir;

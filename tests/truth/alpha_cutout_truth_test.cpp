@@ -13,7 +13,7 @@
 #include "renderer/renderer.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/scene_helpers.h"
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
 
 using namespace ssrt;
 using namespace ssrt::helpers;

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "renderer/renderer.h"
-#include "truth/embree_scene.h"
 #include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
 using namespace ssrt;
 

@@ -5,8 +5,8 @@
 
 #include "renderer/renderer.h"
 #include "scenes/builtin_scenes.h"
-#include "truth/embree_scene.h"
 #include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
 namespace ssrt::test {
 

@@ -9,7 +9,7 @@
 
 #include "renderer/direct_lighting.h"
 #include "tests/truth/reference_test_rig.h"
-#include "truth/reference_shading.h"
+#include "world/hit_light.h"
 
 using namespace ssrt;
 using test::ReferenceRig;
@@ -35,14 +35,14 @@ PlaneF embreeVisibility(const ReferenceRig& rig) {
     a.tanHalfY = rig.frame.camera.tanHalfY;
     std::copy_n(rig.frame.camera.viewToWorld, 9, a.viewToWorld);
     std::copy_n(rig.frame.camera.position, 3, a.camPos);
-    const reference::ShadingContext ctx{&a, &rig.embree, ReferenceSettings::Visibility::Embree};
+    const worldhit::ShadingContext ctx{&a, &rig.embree, ReferenceSettings::Visibility::Embree};
     const glm::vec3 cam(a.camPos[0], a.camPos[1], a.camPos[2]);
     PlaneF vis(a.width, a.height);
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             vis.at(x, y) = -1.0f;
             if (!(rig.frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
-            const reference::PointSurface ps = reference::pixelSurface(a, x, y);
+            const worldhit::PointSurface ps = worldhit::pixelSurface(a, x, y);
             const glm::vec3 toCam(ps.view.x, ps.view.y, ps.view.z);
             glm::vec3 n(ps.n.x, ps.n.y, ps.n.z);
             const EmbreeHit h = rig.embree.intersect(cam, -toCam, 0.0f, INFINITY);
@@ -51,7 +51,7 @@ PlaneF embreeVisibility(const ReferenceRig& rig) {
                 if (glm::dot(n, toCam) < 0.0f) n = -n;
             }
             const glm::vec3 origin = glm::vec3(ps.p.x, ps.p.y, ps.p.z) + n * rig.embree.epsilon();
-            vis.at(x, y) = reference::sunVisibility(ctx, ps, origin);
+            vis.at(x, y) = worldhit::sunVisibility(ctx, ps, origin);
         }
     return vis;
 }

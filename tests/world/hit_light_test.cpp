@@ -1,6 +1,6 @@
 // The reference's shading against the direct pass: the same model at the G-buffer's points
 // and at Embree's hits, and what changes with Embree's visibility.
-#include "truth/reference_shading.h"
+#include "world/hit_light.h"
 
 #include <doctest/doctest.h>
 
@@ -64,19 +64,19 @@ TEST_CASE("reference: a hit seen from the camera shades like the direct pass's p
     const ReferenceRig rig("cornell", 96, 54, 0, false);
     DirectLighting lighting;
     frameLighting(rig, lighting);
-    const reference::ShadingContext ctx{&lighting.args, &rig.embree,
-                                        ReferenceSettings::Visibility::ShadowMap};
+    const worldhit::ShadingContext ctx{&lighting.args, &rig.embree,
+                                       ReferenceSettings::Visibility::ShadowMap};
     const glm::vec3 cam(rig.frame.camera.position[0], rig.frame.camera.position[1],
                         rig.frame.camera.position[2]);
     std::vector<float> errors;
     for (int y = 0; y < rig.frame.height; ++y)
         for (int x = 0; x < rig.frame.width; ++x) {
             if (!(rig.frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
-            const reference::PointSurface ps = reference::pixelSurface(lighting.args, x, y);
+            const worldhit::PointSurface ps = worldhit::pixelSurface(lighting.args, x, y);
             const glm::vec3 dir = -glm::vec3(ps.view.x, ps.view.y, ps.view.z);
             const EmbreeHit hit = rig.embree.intersect(cam, dir, 0.0f, 1e30f);
             REQUIRE(hit.hit);
-            const glm::vec3 l = reference::hitRadiance(ctx, cam, dir, hit, true);
+            const glm::vec3 l = worldhit::hitRadiance(ctx, cam, dir, hit, true);
             float e = 0.0f;
             for (int c = 0; c < 3; ++c)
                 e = std::max(e, relDiff(l[c], rig.frame.rgb(Res::Color)[c].at(x, y)));
@@ -145,7 +145,7 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
     a.tanHalfY = frame.camera.tanHalfY;
     std::copy_n(frame.camera.viewToWorld, 9, a.viewToWorld);
     std::copy_n(frame.camera.position, 3, a.camPos);
-    const reference::ShadingContext ctx{&a, &embree, ReferenceSettings::Visibility::ShadowMap};
+    const worldhit::ShadingContext ctx{&a, &embree, ReferenceSettings::Visibility::ShadowMap};
     const glm::vec3 cam(frame.camera.position[0], frame.camera.position[1],
                         frame.camera.position[2]);
     const DirectParts& p = frame.direct;
@@ -161,12 +161,12 @@ TEST_CASE("reference: normal, occlusion and emissive maps shade its hits as the 
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x) {
             if (!(frame.gbuffer.viewZ.at(x, y) > 0.0f)) continue;
-            const reference::PointSurface ps = reference::pixelSurface(a, x, y);
+            const worldhit::PointSurface ps = worldhit::pixelSurface(a, x, y);
             const glm::vec3 dir = -glm::vec3(ps.view.x, ps.view.y, ps.view.z);
             const EmbreeHit hit = embree.intersect(cam, dir, 0.0f, 1e30f);
             REQUIRE(hit.hit);
-            const glm::vec3 lf = reference::hitRadiance(ctx, cam, dir, hit, true);
-            const glm::vec3 lb = reference::hitRadiance(ctx, cam, dir, hit, false);
+            const glm::vec3 lf = worldhit::hitRadiance(ctx, cam, dir, hit, true);
+            const glm::vec3 lb = worldhit::hitRadiance(ctx, cam, dir, hit, false);
             float ef = 0.0f, eb = 0.0f;
             for (int c = 0; c < 3; ++c) {
                 const float sum = withoutTrace.rgb(Res::Color)[c].at(x, y) / exposure;

@@ -1,17 +1,24 @@
-// The reference image's shading (truth/reference_image.h), one point at a time:
-// the direct pass's model (shading/direct_lanes.h, L = float: the very template the kernel
-// runs) at any world point and view direction, with the sun's visibility from an Embree shadow
-// ray or the frame's shadow map. Internal to truth/ (and its tests).
+// The light of a world-space hit, one point at a time: the direct pass's model
+// (shading/direct_lanes.h, L = float: the very template the kernel runs) at any world point
+// and view direction, with the sun's visibility from an Embree shadow ray or the frame's
+// shadow map. The truth's reference image (truth/reference_image.h) lights its paths with it;
+// it lives here, below the truth, so that the renderer's world-space rays can light theirs
+// with the same code.
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include "shading/direct_kernel.h"
 #include "shading/direct_lanes.h"
-#include "truth/embree_scene.h"
-#include "truth/reference_image.h"
+#include "world/embree_scene.h"
 
-namespace ssrt::reference {
+namespace ssrt {
+
+// Where the sun's visibility at a point comes from: an Embree shadow ray, or the frame's own
+// shadow map (which isolates the tracing's errors from the shadow map's).
+enum class SunVisibility { Embree, ShadowMap };
+
+namespace worldhit {
 
 using PointSurface = shade::Surface<float>;
 
@@ -20,7 +27,7 @@ using PointSurface = shade::Surface<float>;
 struct ShadingContext {
     const DirectArgs* lighting = nullptr;
     const EmbreeScene* embree = nullptr;
-    ReferenceSettings::Visibility visibility = ReferenceSettings::Visibility::Embree;
+    SunVisibility visibility = SunVisibility::Embree;
 };
 
 // The surface a G-buffer pixel shows, as the direct kernel reconstructs it (the same float
@@ -64,4 +71,5 @@ DiffuseVertex diffuseVertex(const ShadingContext& c, glm::vec3 origin, glm::vec3
 // The sky along a unit world direction (a ray that missed).
 glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir);
 
-}  // namespace ssrt::reference
+}  // namespace worldhit
+}  // namespace ssrt

@@ -1,8 +1,8 @@
-#include "truth/reference_shading.h"
+#include "world/hit_light.h"
 
 #include <limits>
 
-namespace ssrt::reference {
+namespace ssrt::worldhit {
 
 namespace ln = ssrt::lanes;
 
@@ -47,8 +47,7 @@ float embreeSunVisibility(const ShadingContext& c, glm::vec3 origin) {
 }
 
 float sunVisibility(const ShadingContext& c, const PointSurface& s, glm::vec3 offsetOrigin) {
-    if (c.visibility == ReferenceSettings::Visibility::ShadowMap)
-        return shade::shadowMapVisibility(*c.lighting, s);
+    if (c.visibility == SunVisibility::ShadowMap) return shade::shadowMapVisibility(*c.lighting, s);
     if (!(ln::dot(s.n, shade::splat3<float>(c.lighting->toLight)) > 0.0f)) return 0.0f;
     return embreeSunVisibility(c, offsetOrigin);
 }
@@ -138,4 +137,4 @@ glm::vec3 missRadiance(const ShadingContext& c, glm::vec3 dir) {
     return toGlm(shade::skyRadiance(*c.lighting, toV3(dir)));
 }
 
-}  // namespace ssrt::reference
+}  // namespace ssrt::worldhit

@@ -1,12 +1,13 @@
-// The world-space truth: the scene's instances in an Embree 3 BVH, built once per scene, and
-// what a hit on it means (the surface point, its normals and material). Everything under
-// truth/ links Embree; the core library never does (DESIGN.md: Embree at the edges).
+// The scene in world space: its instances in an Embree 3 BVH, built once per scene, and what a
+// hit on it means (the surface point, its normals and material). world/ (ssrt_world) is the
+// one library that links Embree; the core library never does (DESIGN.md: Embree at the edges).
 //
 // Embree answers are a measurement, not part of the determinism contract: Embree picks its
 // own ISA kernels at run time and builds its BVH on its own threads. A hit distance can differ
 // in its last bits between machines; a first hit can differ only where two triangles tie.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -67,9 +68,10 @@ void requireSameOrigin(const EmbreeScene& embree, const TraceCamera& camera, con
 class EmbreeScene {
 public:
     // Builds the BVHs (RTC_BUILD_QUALITY_HIGH): one per mesh, one over the instances. Keeps a
-    // reference to `scene`, which must outlive this. Throws std::runtime_error when Embree
-    // cannot start or the build fails.
-    explicit EmbreeScene(const Scene& scene);
+    // reference to `scene`, which must outlive this. `deviceConfig`: Embree's device string
+    // (rtcNewDevice; "isa=sse2" picks its kernels, as the tests do), null for its defaults.
+    // Throws std::runtime_error when Embree cannot start or the build fails.
+    explicit EmbreeScene(const Scene& scene, const char* deviceConfig = nullptr);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -88,8 +90,15 @@ public:
     // intersect(), faster on coherent rays.
     void intersect16(int n, const glm::vec3* origin, const glm::vec3* direction, float tnear,
                      float tfar, EmbreeHit* hits) const;
+    // The same with an interval per ray (tnear[k], tfar[k]).
+    void intersect16(int n, const glm::vec3* origin, const glm::vec3* direction, const float* tnear,
+                     const float* tfar, EmbreeHit* hits) const;
     // Whether anything lies on the ray with t in [tnear, tfar] (shadow rays). Thread-safe.
     bool occluded(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) const;
+
+    // The corners of an instance's triangle in world space, measured from origin(): the mesh's
+    // positions times the instance's transform (transformFrom), as surface() takes them.
+    std::array<glm::vec3, 3> corners(uint32_t instance, uint32_t triangle) const;
 
     // The surface at a hit (hit.hit must be true), its material with textures applied.
     SurfacePoint surface(glm::vec3 origin, glm::vec3 direction, const EmbreeHit& hit) const;

@@ -1,8 +1,8 @@
-// The Embree BVH of a scene (truth/embree_scene.h) against analytic answers: a plane
+// The Embree BVH of a scene (world/embree_scene.h) against analytic answers: a plane
 // and a box face at the exact distance, a tessellated sphere within its sagitta, one mesh
 // instanced twice, packets against single rays, shadow rays, the surface at a hit and the
 // build statistics.
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-#include "truth/embree_scene.h"
+#include "world/embree_scene.h"
 
 #include <embree3/rtcore.h>
 
@@ -106,7 +106,7 @@ bool countBytes(void* ptr, ssize_t bytes, bool /*post*/) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+EmbreeScene::EmbreeScene(const Scene& scene, const char* deviceConfig) : scene_(scene) {
     scene.validate();
     const Bounds bounds = scene.bounds();
     origin_ = bounds.centre();
@@ -115,7 +115,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     stats_.diagonal = bounds.diagonal();
     for (const Instance& inst : scene.instances)
         transforms_.push_back(transformFrom(inst.transform, origin_));
-    device_ = rtcNewDevice(nullptr);
+    device_ = rtcNewDevice(deviceConfig);
     if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
     rtcSetDeviceMemoryMonitorFunction(device_, countBytes, &bytes_);
     const auto t0 = std::chrono::steady_clock::now();
@@ -204,6 +204,14 @@ EmbreeHit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tnear, float tf
 void EmbreeScene::intersect16(int n, const glm::vec3* o, const glm::vec3* d, float tnear,
                               float tfar, EmbreeHit* hits) const {
     if (n < 1 || n > 16) throw std::invalid_argument("intersect16: n must be in [1, 16]");
+    float nears[16], fars[16];
+    for (int k = 0; k < n; ++k) nears[k] = tnear, fars[k] = tfar;
+    intersect16(n, o, d, nears, fars, hits);
+}
+
+void EmbreeScene::intersect16(int n, const glm::vec3* o, const glm::vec3* d, const float* tnear,
+                              const float* tfar, EmbreeHit* hits) const {
+    if (n < 1 || n > 16) throw std::invalid_argument("intersect16: n must be in [1, 16]");
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     alignas(64) RTCRayHit16 rh;
@@ -213,8 +221,8 @@ void EmbreeScene::intersect16(int n, const glm::vec3* o, const glm::vec3* d, flo
         valid[k] = k < n ? -1 : 0;
         rh.ray.org_x[k] = o[i].x, rh.ray.org_y[k] = o[i].y, rh.ray.org_z[k] = o[i].z;
         rh.ray.dir_x[k] = d[i].x, rh.ray.dir_y[k] = d[i].y, rh.ray.dir_z[k] = d[i].z;
-        rh.ray.tnear[k] = tnear;
-        rh.ray.tfar[k] = tfar;
+        rh.ray.tnear[k] = tnear[i];
+        rh.ray.tfar[k] = tfar[i];
         rh.ray.time[k] = 0.0f;
         rh.ray.mask[k] = ~0u;
         rh.ray.id[k] = unsigned(k);
@@ -256,6 +264,15 @@ bool EmbreeScene::nativePackets16() const {
     return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
 }
 
+std::array<glm::vec3, 3> EmbreeScene::corners(uint32_t instance, uint32_t triangle) const {
+    const Mesh& mesh = scene_.meshes[scene_.instances[instance].mesh];
+    const uint32_t* idx = &mesh.indices[3 * std::size_t(triangle)];
+    std::array<glm::vec3, 3> p;
+    for (int c = 0; c < 3; ++c)
+        p[c] = glm::vec3(transforms_[instance] * glm::vec4(mesh.positions[idx[c]], 1.0f));
+    return p;
+}
+
 SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) const {
     const Instance& inst = scene_.instances[h.instance];
     const Mesh& mesh = scene_.meshes[inst.mesh];
@@ -268,9 +285,7 @@ SurfacePoint EmbreeScene::surface(glm::vec3 o, glm::vec3 d, const EmbreeHit& h) 
     s.material = inst.material;
     // The triangle in world space, for its geometric normal (Embree's Ng is in object space
     // under instancing).
-    glm::vec3 p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = glm::vec3(transforms_[h.instance] * glm::vec4(mesh.positions[idx[c]], 1.0f));
+    const std::array<glm::vec3, 3> p = corners(h.instance, h.triangle);
     const glm::vec3 ng = glm::cross(p[1] - p[0], p[2] - p[0]);
     const float ngl = glm::length(ng);
     s.geometricNormal = ngl > 0.0f ? ng / ngl : glm::vec3(0.0f, 1.0f, 0.0f);

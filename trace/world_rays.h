@@ -1,0 +1,48 @@
+// World-space rays for the screen-space passes: what a pass asks of a ray tracer over the
+// scene when the screen cannot prove a ray's answer (mixed tracing) or is not asked (world
+// tracing). The core library only declares it, so it builds and renders without Embree;
+// world/ implements it with Embree (world/embree_world_rays.h).
+//
+// The contract that keeps frames deterministic: the tracer only chooses which triangle a ray
+// meets first; where on it (t, u, v) is ssrt's own exact test (core/ray_triangle.h) on the
+// triangle's corners, the same bits whatever kernels the tracer ran. Two triangles met at the
+// very same distance (coincident or touching surfaces) remain the tracer's choice.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <span>
+
+namespace ssrt {
+
+// Positions measured from the scene's origin (Scene::origin(), as every pass measures them);
+// a unit direction; the interval of t searched.
+struct WorldRay {
+    glm::vec3 origin{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    float tnear = 0.0f;
+    float tfar = INFINITY;
+};
+
+// The first hit of a world ray: its instance (Scene::instances) and that instance's mesh's
+// triangle, the distance and barycentrics, p = (1 - u - v) p0 + u p1 + v p2.
+struct WorldHit {
+    bool hit = false;
+    bool frontFace = false;  // the ray meets the triangle's counter-clockwise side
+    float t = 0.0f;
+    uint32_t instance = 0, triangle = 0;
+    float u = 0.0f, v = 0.0f;
+};
+
+class WorldRays {
+public:
+    virtual ~WorldRays() = default;
+    // The first hit of each ray (hits.size() == rays.size()). Both faces of every triangle count;
+    // a point an alpha cut-out removes (scenes/material_alpha.h) does not. Thread-safe.
+    virtual void intersect(std::span<const WorldRay> rays, std::span<WorldHit> hits) const = 0;
+    // Whether anything lies on the ray within its interval (shadow rays). Thread-safe.
+    virtual bool occluded(const WorldRay& ray) const = 0;
+};
+
+}  // namespace ssrt
