@@ -52,7 +52,8 @@ TriangleHit intersectTriangle(glm::vec3 origin, glm::vec3 direction, glm::vec3 p
 
     r.planeMet = true;
     const float tScaled = (e.e0 * (sz * a[kz]) + e.e1 * (sz * b[kz])) + e.e2 * (sz * c[kz]);
-    // One division (the paper's rcpDet): the world rays' hits spend a quarter of their time here.
+    // One division for the three (the paper's rcpDet): divisions are most of a scalar test's
+    // latency.
     const float invDet = 1.0f / det;
     r.t = tScaled * invDet;
     r.u = e.e1 * invDet;
