@@ -197,6 +197,7 @@ ResolveTables buildResolveTables(const Scene& scene, glm::vec3 origin, const glm
                 r.d = glm::dot(un, p0);
             }
         });
+    t.viewPositions = std::move(viewPos);
     return t;
 }
 

@@ -18,6 +18,9 @@ struct ResolveTables {
     std::vector<ResolveTriangle> triangles;
     std::vector<ResolveInstance> instances;
     std::vector<float> nx, ny, nz;
+    // View-space positions per vertex (the corners ResolveTriangle::v names): the proof of a
+    // screen hit meets the triangle itself (trace/hit_proof.h)
+    std::vector<glm::vec3> viewPositions;
     std::vector<float> u, v;    // texture coordinates per vertex, only for textured scenes
     std::vector<float> u1, v1;  // the second set, only when a material reads it
     // World tangents (x, y, z, w) per vertex, only when a material has a normal map (zero
