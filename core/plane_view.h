@@ -32,6 +32,7 @@ using ViewF = PlaneView<const float>;
 using OutF = PlaneView<float>;
 using ViewU16 = PlaneView<const uint16_t>;
 using OutU16 = PlaneView<uint16_t>;
+using ViewU32 = PlaneView<const uint32_t>;
 
 // The view of `p` (an empty plane gives an absent view that keeps its name).
 template <class T>

@@ -19,15 +19,21 @@ bool pixelAt(float x, float y, int w, int h, int& px, int& py) {
 
 }  // namespace
 
+ProofInputs proofInputs(const TraceCamera& camera, ViewU32 ids, ViewF viewZ,
+                        ProofTriangles triangles, ProofSettings settings) {
+    requireViews("hit proof", camera.width, camera.height, {ids, viewZ});
+    return {camera, ids, viewZ, triangles, settings};
+}
+
 ProvenRay proveRay(const ProofInputs& in, glm::vec3 origin, glm::vec3 direction, float fromX,
                    float fromY, bool marchHit, float hitX, float hitY) {
     ProvenRay r{RayProof::Uncertain, 0.0f};
     if (!marchHit) return r;
-    const TraceCamera& cam = *in.camera;
+    const TraceCamera& cam = in.camera;
     const int w = cam.width, h = cam.height;
     int px = 0, py = 0;
     if (!pixelAt(hitX, hitY, w, h, px, py)) return r;
-    const uint32_t id = in.ids->at(px, py);
+    const uint32_t id = in.ids.at(px, py);
     if (id == kNoPrimitive || id >= in.triangles.triangles.size()) return r;
     const ResolveTriangle& tri = in.triangles.triangles[id];
     if (tri.instance < in.triangles.cutOut.size() && in.triangles.cutOut[tri.instance]) return r;
@@ -53,7 +59,7 @@ ProvenRay proveRay(const ProofInputs& in, glm::vec3 origin, glm::vec3 direction,
     const float qy = (1.0f - q.y / depth / cam.tanHalfY) * (0.5f * float(h));
     int sx = 0, sy = 0;
     if (!pixelAt(qx, qy, w, h, sx, sy)) return r;
-    const float seen = in.viewZ->at(sx, sy);
+    const float seen = in.viewZ.at(sx, sy);
     if (!(std::fabs(depth - seen) <= in.settings.thickness * seen)) return r;
     const float dx = qx - fromX, dy = qy - fromY;
     if (!(dx * dx + dy * dy >= in.settings.minPixels * in.settings.minPixels)) return r;

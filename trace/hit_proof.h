@@ -32,6 +32,7 @@
 
 #include "core/camera.h"
 #include "core/image.h"
+#include "core/plane_view.h"
 #include "raster/resolve_kernel.h"
 
 namespace ssrt {
@@ -57,14 +58,20 @@ struct ProofSettings {
 };
 
 // What the proof reads of the frame: its camera (pixel centres, projection), its visibility
-// ids and viewZ, and the triangles they name.
+// ids (raster/raster.h) and viewZ as views, and the triangles they name. Made by
+// proofInputs, which checks the views.
 struct ProofInputs {
-    const TraceCamera* camera = nullptr;
-    const PlaneU32* ids = nullptr;  // the frame's visibility ids (raster/raster.h)
-    const PlaneF* viewZ = nullptr;
+    TraceCamera camera;
+    ViewU32 ids;
+    ViewF viewZ;
     ProofTriangles triangles;
     ProofSettings settings;
 };
+
+// The inputs, their views checked (requireViews: present, of the camera's size); else
+// std::invalid_argument naming the view.
+ProofInputs proofInputs(const TraceCamera& camera, ViewU32 ids, ViewF viewZ,
+                        ProofTriangles triangles, ProofSettings settings = {});
 
 struct ProvenRay {
     RayProof proof = RayProof::NoRay;

@@ -11,8 +11,8 @@ namespace ssrt {
 // Embree's hit made exact: t, u and v from intersectTriangle on the hit triangle's corners
 // (EmbreeScene::corners). Where the two tests part at an edge (Embree's in the instance's own
 // space says inside, ssrt's in world space a hair outside), the point is the plane's, its
-// barycentrics moved onto the nearest edge, and t kept inside the ray's interval. A ray in the
-// triangle's plane (met edge on) takes the first corner.
+// barycentrics clamped to 0 and scaled to sum to at most 1, and t kept inside the ray's interval. A
+// ray in the triangle's plane (met edge on) takes the first corner.
 WorldHit exactWorldHit(const EmbreeScene& embree, const WorldRay& ray, const EmbreeHit& hit);
 
 class EmbreeWorldRays final : public WorldRays {

@@ -70,12 +70,8 @@ struct HandFrame {
                 (1.0f - p.y / z / camera.tanHalfY) * 0.5f * kSize};
     }
     ProofInputs inputs() const {
-        ProofInputs in;
-        in.camera = &camera;
-        in.ids = &ids;
-        in.viewZ = &viewZ;
-        in.triangles = {triangles, positions, cutOut};
-        return in;
+        return proofInputs(camera, viewOf(ids, "visibility.ids"), viewOf(viewZ, "viewZ"),
+                           {triangles, positions, cutOut});
     }
     // A ray from `from` to `to`, the march having hit where `marchAt` projects (the true hit
     // unless a test says otherwise).
@@ -154,4 +150,15 @@ TEST_CASE("hit proof: refused next to its own pixel, through a cut-out, and with
         f.viewZ.at(int(s.x), int(s.y)) = 5.2f;  // 4 % off: another surface's depth
         CHECK(f.prove(from, to, to).proof == RayProof::Uncertain);
     }
+}
+
+TEST_CASE("hit proof: its views are checked where its inputs are made") {
+    const HandFrame f;
+    PlaneF small(kSize / 2, kSize);
+    CHECK_THROWS_WITH_AS(proofInputs(f.camera, viewOf(f.ids, "visibility.ids"),
+                                     viewOf(small, "viewZ"), {f.triangles, f.positions, f.cutOut}),
+                         doctest::Contains("viewZ"), std::invalid_argument);
+    CHECK_THROWS_AS(proofInputs(f.camera, viewOf(PlaneU32(), "visibility.ids"),
+                                viewOf(f.viewZ, "viewZ"), {f.triangles, f.positions, f.cutOut}),
+                    std::invalid_argument);
 }
