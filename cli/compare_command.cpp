@@ -15,6 +15,7 @@
 #include "cli/sequence.h"
 #include "cli/sequence_evaluation.h"
 #include "io/image_io.h"
+#include "world/embree_world_rays.h"
 
 namespace ssrt::cli {
 
@@ -390,7 +391,10 @@ int runCompare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     const EmbreeScene embree(scene);
     const TruthContext truth{embree,       scene,   refSettings, referenceSourceFrom(o.truth, err),
                              evalSettings, progress};
-    const FrameSequence sequence(request, plan);
+    FrameSequence sequence(request, plan);
+    // A signal traced in mixed or world mode traces its world rays on the truth's scene.
+    const EmbreeWorldRays worldRays(embree);
+    sequence.useWorld(&worldRays);
     Frame frame;
     // (Everything is written once the comparison is done: a stopped one writes nothing.)
     SequenceEvaluation result;

@@ -19,6 +19,7 @@
 #include "cli/process_clock.h"
 #include "cli/profile_file.h"
 #include "cli/progress_line.h"
+#include "cli/scene_world.h"
 #include "cli/sequence.h"
 #include "cli/shard.h"
 #include "io/image_io.h"
@@ -255,7 +256,10 @@ int runRender(const RenderOptions& o, std::ostream& out, std::ostream& err) {
     // Loaded before anything is written.
     loadScene(request, err);
     const Scene& scene = request.scene;
-    const FrameSequence sequence(request, plan);
+    FrameSequence sequence(request, plan);
+    // World rays for a signal traced in mixed or world mode: Embree's scene, built once.
+    const SceneWorld world(scene, request.settings.trace);
+    sequence.useWorld(world.rays());
     // A shard renders from the last step at or before its block where the history restarts
     // (step 0, or a camera cut): the frames between are rendered for their history only.
     const int firstStep = plan.warmup + int(block.begin), endStep = plan.warmup + int(block.end);

@@ -62,6 +62,7 @@ bool FrameSequence::cutAt(int step) const {
 
 FrameInput FrameSequence::input(int step) const {
     FrameInput in;
+    in.world = world_;
     // Unsigned arithmetic wraps: warm-up frames before frame index 0 count down from 2^32 - 1.
     in.frameIndex = firstFrame_ - uint32_t(plan_.warmup) + uint32_t(step);
     in.camera = cameraAt(step);

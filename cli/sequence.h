@@ -56,6 +56,8 @@ public:
     bool isWarmup(int step) const { return step < plan_.warmup; }
     int frameOf(int step) const { return step - plan_.warmup; }  // negative while warming up
     FrameInput input(int step) const;
+    // The world rays every input names (FrameInput::world); null: none.
+    void useWorld(const WorldRays* world) { world_ = world; }
     // The step looks from the previous step's camera and is not at a cut (step 0: false): the
     // two images differ only by noise, so their difference is flicker.
     bool stillSincePrevious(int step) const;
@@ -68,6 +70,7 @@ private:
     const CameraPath& path_;
     uint32_t firstFrame_ = 0;
     SequencePlan plan_;
+    const WorldRays* world_ = nullptr;
 };
 
 }  // namespace ssrt::cli

@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 #include "core/tiles.h"
@@ -347,6 +348,22 @@ Frame Renderer::renderWithoutHistory(const Scene& scene, const FrameInput& input
     return frame;
 }
 
+namespace {
+
+// A signal traced in mixed or world mode needs the scene's world rays.
+void requireWorldRays(const TraceSettings& ts, const WorldRays* world) {
+    if (world) return;
+    for (const auto& [on, mode, flag] :
+         {std::tuple{ts.ssr, ts.ssrTrace, "--ssr-trace"}, {ts.ssgi, ts.ssgiTrace, "--ssgi-trace"}})
+        if (on && mode != TraceMode::Screen)
+            throw std::invalid_argument(std::string(flag) + " " + std::string(traceModeName(mode)) +
+                                        " needs world rays (FrameInput::world), and none were "
+                                        "given: build them from the scene (world/"
+                                        "embree_world_rays.h), or trace on screen");
+}
+
+}  // namespace
+
 void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHistory* history,
                            Frame& frame, const TraceObserver* observer) const {
     const Claim historyUse(history ? &history->inUse : nullptr, "FrameHistory",
@@ -354,6 +371,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     const Claim frameUse(&frame.inUse, "Frame", "give each thread a Frame of its own");
     const ProfileScope slice("render call");
     scene.validate();
+    requireWorldRays(settings_.trace, input.world);
     const bool readsLast =
         history && !input.resetHistory && history->readableAt(settings_.width, settings_.height);
     // The last frame's, where usable at this size (none after a cut).
@@ -400,9 +418,10 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {
-        runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
-                        history, input.resetHistory, input.replaceHistory, observer, input.cancel},
-                       frame);
+        runTracePasses(
+            {settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous, history,
+             input.resetHistory, input.replaceHistory, observer, input.cancel, input.world},
+            frame);
         stopIfCancelled(input.cancel);
         memory.step(pass::kHistoryCommit, [&] {
             if (graph.runs(pass::kHistoryCommit)) commitHistory(graph, frame, *history);

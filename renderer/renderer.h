@@ -38,6 +38,9 @@ struct FrameInput {
     // Optional: a flag read between the frame's passes; raised, the render stops at the next
     // and throws RenderCancelled (renderer/render_cancel.h). Not part of the image.
     const std::atomic<bool>* cancel = nullptr;
+    // The scene's world rays (trace/world_rays.h; world/embree_world_rays.h makes them from
+    // the same scene): needed by a signal traced in mixed or world mode, else unread.
+    const WorldRays* world = nullptr;
 
     // The scene's own cameras.
     static FrameInput still(const Scene& scene, uint32_t frameIndex = 0) {

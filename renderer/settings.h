@@ -11,6 +11,7 @@
 #include "trace/ssr_resolve.h"
 #include "trace/trace_layout.h"
 #include "trace/trace_types.h"
+#include "trace/world_rays.h"
 
 namespace ssrt {
 
@@ -45,6 +46,10 @@ struct TraceSettings {
     // traced ones (trace/reconstruct.h) before anything reads the planes.
     // The defaults are the default quality preset's (renderer/quality.h: medium).
     TraceLayout ssrLayout = TraceLayout::Checkerboard;
+    // How each signal's rays are answered (trace/world_rays.h): mixed and world need world
+    // rays (FrameInput::world).
+    TraceMode ssrTrace = TraceMode::Screen;
+    TraceMode ssgiTrace = TraceMode::Screen;
     TraceLayout ssgiLayout = TraceLayout::Half;
     // SSR's checkerboard thinned where the denoiser needs fewer new rays: a pixel with at least
     // this many frames of specular history (the last frame's, found through the motion

@@ -79,6 +79,17 @@ inline constexpr std::array kTraceOwnFields = {
         "opposite to SSGI's); the others are reconstructed from their traced neighbours")
         .choices(2, [](int i) { return traceLayoutName(TraceLayout(i)); })
         .withTypeName("LAYOUT"),
+    field<&TraceSettings::ssrTrace>(
+        "ssrTrace", kCliShot,
+        "How SSR's rays are answered: screen (the march), mixed (the march where it proves its "
+        "hit, world rays through Embree for the rest) or world (every ray through Embree)")
+        .choices(kTraceModeCount, [](int i) { return traceModeName(TraceMode(i)); })
+        .withTypeName("MODE"),
+    field<&TraceSettings::ssgiTrace>(
+        "ssgiTrace", kCliShot,
+        "How SSGI's rays are answered: screen, mixed or world (as --ssr-trace)")
+        .choices(kTraceModeCount, [](int i) { return traceModeName(TraceMode(i)); })
+        .withTypeName("MODE"),
     field<&TraceSettings::ssrSparseFrames>(
         "ssrSparseFrames", kCliShot,
         "SSR checkerboard thinned: a pixel with this many frames of denoised specular history "

@@ -2,6 +2,7 @@
 #include <utility>
 
 #include "renderer/trace_stages.h"
+#include "renderer/world_stage.h"
 #include "trace/reconstruct.h"
 
 namespace ssrt::trace_stages {
@@ -76,10 +77,25 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts().ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
+        std::vector<WorldLit> lit;
         marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
-                    sc.march, st, times);
+                    sc.march, st, times, [&](MarchResult& m) {
+                        answerInWorld(c, c.ts().ssrTrace, sc.rays, m,
+                                      TileRect{0, 0, c.camera.width, c.camera.height}, true, lit);
+                    });
         addTime(times.resolve, [&] {
-            resolveSsr(c.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts().ssrSpp, c.threads());
+            if (c.ts().ssrTrace == TraceMode::Screen) {
+                resolveSsr(c.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts().ssrSpp,
+                           c.threads());
+            } else {
+                // Pass 1, the world-lit hits over it, pass 2.
+                const SsrResolver resolve(c.isa, q.rs, q.in, sc.ssr, s, c.ts().ssrSpp, sc.rays,
+                                          sc.march);
+                parallelForTiles(resolve.grid().count(), c.threads(),
+                                 [&](int t) { resolve.hitTile(t, sc.rays, sc.march); });
+                for (const WorldLit& w : lit) resolve.setHit(w.x, w.y, w.radiance, 1.0f, w.point);
+                resolve.resolveFrame(c.threads());
+            }
             accumulateHitStats(c.isa, c.camera, sc.rays, sc.march, q.hp, s, c.ts().ssrSpp,
                                c.threads());
         });
@@ -99,11 +115,24 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts().ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);
         const HitStatsAccumulator hitStats(isa, c.camera, q.hp, s, c.ts().ssrSpp);
+        // The world-lit hits of the tile the answer stage just ran on (the same thread runs a
+        // tile's stages one after another).
+        thread_local std::vector<WorldLit> lit;
         const auto hitTile = [&](int t, const RayBatch& b, const MarchResult& m) {
             resolve.hitTile(t, b, m);
+            for (const WorldLit& w : lit) resolve.setHit(w.x, w.y, w.radiance, 1.0f, w.point);
+            lit.clear();
         };
-        st.rays.add(traceTiles(c, rays, march, hitTile, hitStats, st, times,
-                               [&](int t) { resolve.resolveTile(t); }));
+        const TileGrid grid(c.camera.width, c.camera.height);
+        const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
+            lit.clear();
+            answerInWorld(c, c.ts().ssrTrace, b, m, grid.rect(t), true, lit);
+        };
+        st.rays.add(traceTiles(
+            c, rays, march, hitTile, hitStats, st, times, [&](int t) { resolve.resolveTile(t); },
+            c.ts().ssrTrace == TraceMode::Screen
+                ? std::function<void(int, const RayBatch&, MarchResult&)>()
+                : answer));
     }
 }
 

@@ -35,10 +35,12 @@ struct TraceContext {
     bool replaceHistory;              // false: the denoiser reads its history, leaves it as it was
     const TraceObserver* observer;    // optional: sees each sample's rays and march result
     const std::atomic<bool>* cancel;  // optional: read before each pass (render_cancel.h)
+    const WorldRays* world;           // the scene's world rays (FrameInput::world), or null
     // Set by runTracePasses from the frame:
     TraceCamera camera{};           // the frame's, as the kernels take it
     const PlaneF* backZ = nullptr;  // the march's back-face layer (trace/march.h); null: none
     const HiZPyramid* hiz = nullptr;
+    const PlaneF* viewZ = nullptr;  // the frame's depth (where a world hit is shown)
 
     const TraceSettings& ts() const { return settings.trace; }
     int threads() const { return settings.threads; }

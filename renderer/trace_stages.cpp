@@ -4,12 +4,14 @@ namespace ssrt::trace_stages {
 
 // One sample's march of the frame's batch `rays` into `result`, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
-                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times) {
+                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
+                 const std::function<void(MarchResult&)>& answer) {
     addTime(times.march, [&] {
         stats.march.add(marchRays(c.isa, c.ts().marcher, c.ts().march,
                                   {c.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
                                   on.hiz, rays, result, c.threads()));
     });
+    if (answer) answer(result);
     if (c.observer && *c.observer) (*c.observer)(pass, sample, rays, result, on.half);
 }
 

@@ -73,9 +73,11 @@ struct MarchFrame {
     const HalfFrame* half;
 };
 
-// One sample's march of the frame's batch `rays` into `result`, shown to the observer.
+// One sample's march of the frame's batch `rays` into `result`, then what `answer` (when
+// given: world rays) answers in its place, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
-                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times);
+                 const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
+                 const std::function<void(MarchResult&)>& answer = {});
 
 // The half frame's traced signal's planes from the pool (tracedSignalsPooled; the denoiser
 // gives them back once its front end has read them), its march steps aside: only looked at,
@@ -103,14 +105,14 @@ void takeBatches(const TraceContext& c, Frame& frame);
 template <class Resolve>
 RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const RayMarcher& march,
                        const Resolve& resolveTile, const HitStatsAccumulator& hitStats,
-                       TraceStats& st, StageTimes& times,
-                       std::function<void(int tile)> finish = {}) {
+                       TraceStats& st, StageTimes& times, std::function<void(int tile)> finish = {},
+                       std::function<void(int, const RayBatch&, MarchResult&)> answer = {}) {
     const TileChainStats r = runTileChain({rays, march,
                                            [&](int t, const RayBatch& b, const MarchResult& m) {
                                                resolveTile(t, b, m);
                                                hitStats.tile(t, b, m);
                                            },
-                                           std::move(finish)},
+                                           std::move(finish), std::move(answer)},
                                           c.threads());
     st.march.add(r.march);
     times.rays += r.raysMs;

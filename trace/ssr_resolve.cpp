@@ -162,6 +162,14 @@ void SsrResolver::hitTile(int tile, const RayBatch& rays, const MarchResult& mar
     hitKernel_(a, tile);
 }
 
+void SsrResolver::setHit(int x, int y, glm::vec3 radiance, float fade, glm::vec3 target) const {
+    const std::size_t so = std::size_t(y % args_.scratchRows) * args_.stride + std::size_t(x);
+    for (int c = 0; c < 3; ++c) args_.hitRadiance[c][so] = radiance[c];
+    args_.hitFade[so] = fade;
+    if (args_.reuse)
+        for (int c = 0; c < 3; ++c) args_.hitTarget[c][so] = target[c];
+}
+
 void SsrResolver::resolveTile(int tile) const { resolveKernel_(args_, tile); }
 
 void SsrResolver::resolveFrame(int threads) const {

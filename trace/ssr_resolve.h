@@ -32,6 +32,7 @@
 // Everything is finite whatever the input (pdf 0 rays, roughness 0 and 1, frame edges).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string_view>
 
 #include "core/gbuffer_view.h"
@@ -114,6 +115,9 @@ public:
     const TileGrid& grid() const { return grid_; }
     // Pass 1 on tile `tile`: the batches are the frame's or the tile's (one corner).
     void hitTile(int tile, const RayBatch& rays, const MarchResult& march) const;
+    // After pass 1 on a pixel's tile: its hit answered elsewhere (a world ray lit at the hit),
+    // its radiance (before the exposure), fade and view-space hit point in place of pass 1's.
+    void setHit(int x, int y, glm::vec3 radiance, float fade, glm::vec3 target) const;
     // Pass 2 on one tile, once pass 1 ran on it and on the tiles around it.
     void resolveTile(int tile) const;
     // Pass 2 on every tile, once pass 1 ran on all of them (scratch of the frame's height).

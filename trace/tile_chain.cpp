@@ -63,6 +63,7 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
         const Clock::time_point m = Clock::now();
         out.march = chain.march.tile(tile, b.rays, b.march);
         const Clock::time_point h = Clock::now();
+        if (chain.answer) chain.answer(tile, b.rays, b.march);
         chain.consume(tile, b.rays, b.march);
         const Clock::time_point e = Clock::now();
         out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[2] = msBetween(h, e);

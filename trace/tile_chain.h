@@ -35,6 +35,9 @@ struct TileChain {
     // chains, so what `consume` writes for it needs no more than kChainRingTileRows tile rows
     // of memory, not a frame's.
     std::function<void(int tile)> finish = {};
+    // Optional, between the march and `consume`: what the march could not answer, answered
+    // another way (world rays: trace/world_rays.h), written into the tile's march result.
+    std::function<void(int tile, const RayBatch& rays, MarchResult& march)> answer = {};
 };
 
 struct TileChainStats {

@@ -13,8 +13,25 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <string_view>
+
+#include "shading/direct_kernel.h"
 
 namespace ssrt {
+
+// How a signal's rays are answered: screen (the march alone), mixed (the march where it proves
+// its hit, trace/hit_proof.h; world rays for the rest), world (every ray in world space, the
+// screen's light reused where a hit lands on a visible pixel).
+enum class TraceMode { Screen, Mixed, World };
+inline constexpr int kTraceModeCount = 3;
+inline std::string_view traceModeName(TraceMode m) {
+    switch (m) {
+        case TraceMode::Screen: return "screen";
+        case TraceMode::Mixed: return "mixed";
+        case TraceMode::World: return "world";
+    }
+    return "?";
+}
 
 // Positions measured from the scene's origin (Scene::origin(), as every pass measures them);
 // a unit direction; the interval of t searched.
@@ -43,6 +60,12 @@ public:
     virtual void intersect(std::span<const WorldRay> rays, std::span<WorldHit> hits) const = 0;
     // Whether anything lies on the ray within its interval (shadow rays). Thread-safe.
     virtual bool occluded(const WorldRay& ray) const = 0;
+    // The light leaving a hit back along the ray, by the direct pass's model with its
+    // lighting set-up (the sun through the frame's shadow map, the sky, emission): full, the
+    // whole direct colour (a reflection's); otherwise the SSGI bounce's Lambert part of the sun
+    // plus emission. Radiance before the exposure. Thread-safe.
+    virtual glm::vec3 light(const WorldRay& ray, const WorldHit& hit, const DirectArgs& lighting,
+                            bool full) const = 0;
 };
 
 }  // namespace ssrt

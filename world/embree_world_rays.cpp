@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/ray_triangle.h"
+#include "world/hit_light.h"
 
 namespace ssrt {
 
@@ -54,6 +55,19 @@ void EmbreeWorldRays::intersect(std::span<const WorldRay> rays, std::span<WorldH
         embree_.intersect16(n, o, d, tnear, tfar, found);
         for (int k = 0; k < n; ++k) hits[i0 + k] = exactWorldHit(embree_, rays[i0 + k], found[k]);
     }
+}
+
+glm::vec3 EmbreeWorldRays::light(const WorldRay& ray, const WorldHit& hit,
+                                 const DirectArgs& lighting, bool full) const {
+    const worldhit::ShadingContext ctx{&lighting, &embree_, SunVisibility::ShadowMap};
+    EmbreeHit h;
+    h.hit = hit.hit;
+    h.t = hit.t;
+    h.instance = hit.instance;
+    h.triangle = hit.triangle;
+    h.u = hit.u;
+    h.v = hit.v;
+    return worldhit::hitRadiance(ctx, ray.origin, ray.direction, h, full);
 }
 
 bool EmbreeWorldRays::occluded(const WorldRay& ray) const {

@@ -22,6 +22,8 @@ public:
 
     void intersect(std::span<const WorldRay> rays, std::span<WorldHit> hits) const override;
     bool occluded(const WorldRay& ray) const override;
+    glm::vec3 light(const WorldRay& ray, const WorldHit& hit, const DirectArgs& lighting,
+                    bool full) const override;
 
 private:
     const EmbreeScene& embree_;

@@ -1,0 +1,13 @@
+#include "cli/scene_world.h"
+
+namespace ssrt::cli {
+
+SceneWorld::SceneWorld(const Scene& scene, const TraceSettings& trace) {
+    const bool needed = (trace.ssr && trace.ssrTrace != TraceMode::Screen) ||
+                        (trace.ssgi && trace.ssgiTrace != TraceMode::Screen);
+    if (!needed) return;
+    embree_ = std::make_unique<EmbreeScene>(scene);
+    rays_ = std::make_unique<EmbreeWorldRays>(*embree_);
+}
+
+}  // namespace ssrt::cli

@@ -1,0 +1,86 @@
+#include "renderer/world_stage.h"
+
+#include <cmath>
+#include <vector>
+
+#include "core/tiles.h"
+#include "renderer/trace_pass.h"
+#include "trace/march.h"
+
+namespace ssrt {
+
+WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBatch& rays,
+                              MarchResult& march, const TileRect& r, bool fullLight,
+                              std::vector<WorldLit>& lit) {
+    WorldStageStats st;
+    if (mode == TraceMode::Screen) return st;
+    const TraceCamera& cam = c.camera;
+    const float* R = cam.viewToWorld;
+    const glm::vec3 eye{cam.position[0], cam.position[1], cam.position[2]};
+    const auto toWorld = [R](glm::vec3 v) {
+        return glm::vec3{(R[0] * v.x + R[3] * v.y) + R[6] * v.z,
+                         (R[1] * v.x + R[4] * v.y) + R[7] * v.z,
+                         (R[2] * v.x + R[5] * v.y) + R[8] * v.z};
+    };
+    // The world ray leaves the surface a step off it (1e-4 of the scene's diagonal, as the
+    // truth's rays do) and ends where the march would give up.
+    const float tnear = 1e-4f * cam.sceneDiagonal;
+    const float tfar = marchLengths(c.ts().march, cam.sceneDiagonal).maxDistance;
+    // The rect in the batch's own pixels.
+    const int x0 = r.x0 - rays.corner.x0, x1 = r.x1 - rays.corner.x0;
+    const int y0 = r.y0 - rays.corner.y0, y1 = r.y1 - rays.corner.y0;
+    const int w = rays.width();
+    std::vector<WorldRay> batch;
+    std::vector<int> where;
+    batch.reserve(std::size_t(x1 - x0) * std::size_t(y1 - y0));
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            if (!(rays.pdf.at(x, y) > 0.0f)) continue;
+            const glm::vec3 o{rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y)};
+            const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
+            batch.push_back({eye + toWorld(o), toWorld(d), tnear, tfar});
+            where.push_back(y * w + x);
+        }
+    std::vector<WorldHit> hits(batch.size());
+    c.world->intersect(batch, hits);
+    const PlaneF& viewZ = *c.viewZ;
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        const int x = where[i] % w, y = where[i] / w;
+        ++st.sent;
+        march.hit.at(x, y) = 0.0f;
+        march.hitX.at(x, y) = march.hitY.at(x, y) = march.hitZ.at(x, y) = 0.0f;
+        march.cause.at(x, y) = float(MarchEnd::LeftScreen);
+        if (!hits[i].hit) {
+            ++st.missed;
+            continue;
+        }
+        // The hit in view space (the rotation keeps lengths: t is the view-space distance).
+        const glm::vec3 o{rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y)};
+        const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
+        const glm::vec3 q = o + hits[i].t * d;
+        const float depth = 0.0f - q.z;
+        bool shown = false;
+        march.hit.at(x, y) = 1.0f;
+        march.cause.at(x, y) = float(MarchEnd::Hit);
+        if (depth > 0.0f) {
+            // (hitX, hitY are the frame's continuous pixels, as the march writes them.)
+            const float qx = (q.x / depth / cam.tanHalfX + 1.0f) * (0.5f * float(cam.width));
+            const float qy = (1.0f - q.y / depth / cam.tanHalfY) * (0.5f * float(cam.height));
+            march.hitX.at(x, y) = qx;
+            march.hitY.at(x, y) = qy;
+            march.hitZ.at(x, y) = depth;
+            if (qx >= 0.0f && qy >= 0.0f && qx < float(cam.width) && qy < float(cam.height)) {
+                const float seen = viewZ.at(int(qx), int(qy));
+                shown = std::fabs(depth - seen) <= 0.01f * seen;
+                if (shown) march.hitZ.at(x, y) = seen;
+            }
+        }
+        ++(shown ? st.visible : st.hidden);
+        if (!shown)
+            lit.push_back({x + rays.corner.x0, y + rays.corner.y0,
+                           c.world->light(batch[i], hits[i], c.direct, fullLight), q});
+    }
+    return st;
+}
+
+}  // namespace ssrt

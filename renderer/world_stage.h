@@ -1,0 +1,51 @@
+// A signal's world rays (TraceSettings::ssrTrace, ssgiTrace; trace/world_rays.h), one batch at
+// a time, between the march and the resolve: which rays go to world space (every one in world
+// mode), traced, and each answer written into the march's result as the screen would have
+// given it. A world hit on a pixel that shows it (its depth the pixel's within 1 %) becomes a
+// screen hit there, so the resolve reads the screen's light for it, as for a march hit.
+//
+// A world hit no pixel shows (off the frame, or hidden) is lit at the hit (WorldRays::light:
+// the direct pass's model, the frame's shadow map) and handed to the resolve as a WorldLit.
+//
+// WORK IN PROGRESS (branch mixed-tracing): SSR only; mixed mode (the proof, trace/
+// hit_proof.h) is not wired yet.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "core/tiles.h"
+#include "trace/trace_types.h"
+#include "trace/world_rays.h"
+
+namespace ssrt {
+
+struct TraceContext;
+
+// Counts of one batch's world rays, added up over a signal's batches.
+struct WorldStageStats {
+    uint64_t sent = 0;     // rays traced in world space
+    uint64_t visible = 0;  // hits a pixel shows: screen hits now
+    uint64_t hidden = 0;   // hits no pixel shows (off the frame, or behind nearer surfaces)
+    uint64_t missed = 0;   // no hit within the march's maximum distance
+    void add(const WorldStageStats& o) {
+        sent += o.sent, visible += o.visible, hidden += o.hidden, missed += o.missed;
+    }
+};
+
+// A world hit no pixel shows, lit at the hit: the resolve takes its light from here.
+struct WorldLit {
+    int x, y;            // the ray's pixel in the frame
+    glm::vec3 radiance;  // before the exposure
+    glm::vec3 point;     // the hit in view space
+};
+
+// Answers the rays of `rays` (a tile's batch or the frame's, at its corner) inside `r` (frame
+// pixels) in world space by `mode` and writes the answers into `march`. Screen mode does
+// nothing. The batch is the frame's pixels (not the half frame's).
+WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBatch& rays,
+                              MarchResult& march, const TileRect& r, bool fullLight,
+                              std::vector<WorldLit>& lit);
+
+}  // namespace ssrt
