@@ -42,6 +42,8 @@ bool hitLightFull(const GraphKey& k) { return ssgi(k) && !hitLightAtHalf(k.setti
 bool hitLightHalf(const GraphKey& k) { return hitLightAtHalf(k.settings); }
 bool ssgiOcclusion(const GraphKey& k) { return ssgi(k) && occlusionTextured(k); }
 // The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
+// SSR's proof of its march hits (trace/hit_proof.h) reads the triangle ids.
+bool ssrMixed(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace == TraceMode::Mixed; }
 bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
 bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
 bool mipResolve(const GraphKey& k) { return ssr(k) && tr(k).resolve.mode == SsrResolveMode::Mip; }
@@ -357,7 +359,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::MarchHit, P::Around, reuseResolve},
                   {Res::SsrHitRadiance, P::Around},
                   {Res::SsrHitTarget, P::Around, reuseResolve},
-                  {Res::DenoiseHistorySpecularFrames, P::Anywhere, ssrSparse}},
+                  {Res::DenoiseHistorySpecularFrames, P::Anywhere, ssrSparse},
+                  {Res::VisibilityIds, P::Anywhere, ssrMixed}},
                  {{Res::Ssr},
                   {Res::SsrOpacity},
                   {Res::SsrHit},

@@ -418,10 +418,14 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
     frame.camera = c.trace;
     frame.index = input.frameIndex;
     if (settings_.trace.any()) {
-        runTracePasses(
-            {settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous, history,
-             input.resetHistory, input.replaceHistory, observer, input.cancel, input.world},
-            frame);
+        std::vector<uint8_t> cutOut(scene.instances.size());
+        for (std::size_t i = 0; i < cutOut.size(); ++i)
+            cutOut[i] = scene.materials[scene.instances[i].material].alphaMode !=
+                        Material::AlphaMode::Opaque;
+        runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
+                        history, input.resetHistory, input.replaceHistory, observer, input.cancel,
+                        input.world, &tables, &cutOut},
+                       frame);
         stopIfCancelled(input.cancel);
         memory.step(pass::kHistoryCommit, [&] {
             if (graph.runs(pass::kHistoryCommit)) commitHistory(graph, frame, *history);

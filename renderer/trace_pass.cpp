@@ -47,6 +47,7 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
 void runTracePasses(TraceContext c, Frame& frame) {
     c.camera = frame.camera;
     c.viewZ = &frame.gbuffer.viewZ;
+    c.ids = &frame.scratch.visibility.ids;
     c.backZ = backZ(frame.scratch.backZ);
     FrameScheduler passes(c.graph, TileGrid(c.camera.width, c.camera.height), c.threads(), c.cancel,
                           &c.memory);

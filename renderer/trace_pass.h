@@ -8,6 +8,7 @@
 #include "renderer/frame_memory.h"
 #include "renderer/pass_reads.h"
 #include "renderer/renderer.h"
+#include "renderer/resolve_tables.h"
 #include "renderer/settings.h"
 #include "shading/direct_kernel.h"
 #include "trace/reconstruct.h"
@@ -36,11 +37,17 @@ struct TraceContext {
     const TraceObserver* observer;    // optional: sees each sample's rays and march result
     const std::atomic<bool>* cancel;  // optional: read before each pass (render_cancel.h)
     const WorldRays* world;           // the scene's world rays (FrameInput::world), or null
+    // What the proof of a march hit reads (mixed tracing, trace/hit_proof.h): the G-buffer
+    // resolve's triangles and view-space vertices, and per instance whether its material cuts
+    // out (null: no proof).
+    const ResolveTables* tables = nullptr;
+    const std::vector<uint8_t>* cutOut = nullptr;
     // Set by runTracePasses from the frame:
     TraceCamera camera{};           // the frame's, as the kernels take it
     const PlaneF* backZ = nullptr;  // the march's back-face layer (trace/march.h); null: none
     const HiZPyramid* hiz = nullptr;
     const PlaneF* viewZ = nullptr;  // the frame's depth (where a world hit is shown)
+    const PlaneU32* ids = nullptr;  // the frame's visibility ids (the proof's triangles)
 
     const TraceSettings& ts() const { return settings.trace; }
     int threads() const { return settings.threads; }

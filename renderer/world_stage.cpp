@@ -5,6 +5,7 @@
 
 #include "core/tiles.h"
 #include "renderer/trace_pass.h"
+#include "trace/hit_proof.h"
 #include "trace/march.h"
 
 namespace ssrt {
@@ -30,6 +31,14 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
     const int x0 = r.x0 - rays.corner.x0, x1 = r.x1 - rays.corner.x0;
     const int y0 = r.y0 - rays.corner.y0, y1 = r.y1 - rays.corner.y0;
     const int w = rays.width();
+    // Mixed: the march's hits it proves stay screen hits, at the exact point.
+    ProofInputs proof;
+    if (mode == TraceMode::Mixed) {
+        proof.camera = &cam;
+        proof.ids = c.ids;
+        proof.viewZ = c.viewZ;
+        proof.triangles = {c.tables->triangles, c.tables->viewPositions, *c.cutOut};
+    }
     std::vector<WorldRay> batch;
     std::vector<int> where;
     batch.reserve(std::size_t(x1 - x0) * std::size_t(y1 - y0));
@@ -38,6 +47,23 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
             if (!(rays.pdf.at(x, y) > 0.0f)) continue;
             const glm::vec3 o{rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y)};
             const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
+            if (mode == TraceMode::Mixed) {
+                const float fx = float(x + rays.corner.x0) + 0.5f;
+                const float fy = float(y + rays.corner.y0) + 0.5f;
+                const ProvenRay p = proveRay(proof, o, d, fx, fy, march.hit.at(x, y) > 0.5f,
+                                             march.hitX.at(x, y), march.hitY.at(x, y));
+                if (p.proof == RayProof::CertainHit) {
+                    const glm::vec3 q = o + p.t * d;
+                    const float depth = 0.0f - q.z;
+                    march.hitX.at(x, y) =
+                        (q.x / depth / cam.tanHalfX + 1.0f) * (0.5f * float(cam.width));
+                    march.hitY.at(x, y) =
+                        (1.0f - q.y / depth / cam.tanHalfY) * (0.5f * float(cam.height));
+                    march.hitZ.at(x, y) = depth;
+                    ++st.proven;
+                    continue;
+                }
+            }
             batch.push_back({eye + toWorld(o), toWorld(d), tnear, tfar});
             where.push_back(y * w + x);
         }

@@ -25,12 +25,14 @@ struct TraceContext;
 
 // Counts of one batch's world rays, added up over a signal's batches.
 struct WorldStageStats {
+    uint64_t proven = 0;   // march hits proven (mixed): screen hits at their exact point
     uint64_t sent = 0;     // rays traced in world space
     uint64_t visible = 0;  // hits a pixel shows: screen hits now
     uint64_t hidden = 0;   // hits no pixel shows (off the frame, or behind nearer surfaces)
     uint64_t missed = 0;   // no hit within the march's maximum distance
     void add(const WorldStageStats& o) {
-        sent += o.sent, visible += o.visible, hidden += o.hidden, missed += o.missed;
+        proven += o.proven, sent += o.sent, visible += o.visible, hidden += o.hidden,
+            missed += o.missed;
     }
 };
 
