@@ -102,6 +102,7 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
             }
         }
         ++(shown ? st.visible : st.hidden);
+        if (!shown) march.cause.at(x, y) = float(MarchEnd::World);
         if (!shown)
             lit.push_back({x + rays.corner.x0, y + rays.corner.y0,
                            c.world->light(batch[i], hits[i], c.direct, fullLight), q});

@@ -56,6 +56,10 @@ enum class MarchEnd : uint8_t {
     StepCap = 3,     // ran out of steps or iterations
     Thickness = 4,   // crossed the depth buffer but behind the surface by more than the thickness
     BackFace = 5,    // met a surface whose normal faces the ray's direction
+    // Written after the march, not by it: a world ray's hit that no pixel shows, lit at the
+    // hit (renderer/world_stage.h); hitX, hitY, hitZ its projection and depth. Not among the
+    // march's own ends (kMarchEndCount).
+    World = 6,
 };
 inline constexpr int kMarchEndCount = 6;
 
@@ -67,6 +71,7 @@ inline std::string_view marchEndName(MarchEnd e) {
         case MarchEnd::StepCap: return "step_cap";
         case MarchEnd::Thickness: return "thickness";
         case MarchEnd::BackFace: return "back_face";
+        case MarchEnd::World: return "world";
     }
     return "?";
 }

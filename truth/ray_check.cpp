@@ -228,7 +228,11 @@ PixelCheck classify(const BatchGrid& g, const MarchResult& m, const TrueHit& tru
         c.pixelError = std::sqrt(ex * ex + ey * ey);
         c.depthError = std::abs(m.hitZ.at(x, y) - truth.z) / truth.z;
     }
-    if (truth.visible && c.pixelError <= s.pixelTolerance && c.depthError <= s.depthTolerance)
+    // A world ray's hit lit where no pixel shows it (mixed and world tracing) agrees where it is
+    // the true hit, shown or not.
+    const bool world = m.cause.at(x, y) == float(MarchEnd::World);
+    if ((truth.visible || world) && c.pixelError <= s.pixelTolerance &&
+        c.depthError <= s.depthTolerance)
         c.cls = RayClass::Agreed;
     return c;
 }
