@@ -41,9 +41,9 @@ bool traceNoSsgi(const GraphKey& k) { return trace(k) && !ssgi(k); }
 bool hitLightFull(const GraphKey& k) { return ssgi(k) && !hitLightAtHalf(k.settings); }
 bool hitLightHalf(const GraphKey& k) { return hitLightAtHalf(k.settings); }
 bool ssgiOcclusion(const GraphKey& k) { return ssgi(k) && occlusionTextured(k); }
-// The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
-// SSR's proof of its march hits (trace/hit_proof.h) reads the triangle ids.
+// SSR's proof of its march hits (mixed tracing, trace/hit_proof.h) reads the triangle ids.
 bool ssrMixed(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace == TraceMode::Mixed; }
+// The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
 bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
 bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
 bool mipResolve(const GraphKey& k) { return ssr(k) && tr(k).resolve.mode == SsrResolveMode::Mip; }

@@ -28,11 +28,13 @@ PassReads::PassReads(const CompiledGraph& graph, const Frame& frame, std::string
                 std::to_string(graph.height));
         const int channel = int(std::count_if(planes_.begin(), planes_.end(),
                                               [&](const Plane& q) { return q.id == id; }));
-        if constexpr (std::is_same_v<std::decay_t<decltype(plane)>, PlaneU16>)
+        if constexpr (std::is_same_v<std::decay_t<decltype(plane)>, PlaneU32>) ids_ = &plane;
+        else if constexpr (std::is_same_v<std::decay_t<decltype(plane)>, PlaneU16>)
             planes_.push_back({id, channel, nullptr, &plane});
         else planes_.push_back({id, channel, &plane, nullptr});
     };
     frame.forEachPlane(add);
+    add(channelName(Res::VisibilityIds, 0), frame.scratch.visibility.ids);
     if (history) history->forEachPlane(add);
 }
 
@@ -64,6 +66,15 @@ ViewF PassReads::view(Res id, int channel) const {
         throw std::logic_error("pass '" + std::string(pass_) + "' reads '" +
                                std::string(channelName(id, channel)) + "' as f32; it is f16");
     return viewOf(*p->f32, channelName(id, channel));
+}
+
+ViewU32 PassReads::ids(Res id) const {
+    const std::string_view name = channelName(id, 0);  // (the resource table's: it outlives us)
+    if (!has(id)) return {nullptr, 0, 0, 0, name};
+    if (id != Res::VisibilityIds || !ids_)
+        throw std::logic_error("pass '" + std::string(pass_) + "' reads '" + std::string(name) +
+                               "' as ids; it is not the visibility buffer's");
+    return viewOf(*ids_, name);
 }
 
 GBufferView PassReads::gbuffer() const {

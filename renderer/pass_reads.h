@@ -38,6 +38,9 @@ public:
     FloatView value(Res id, int channel = 0) const;
     // The same of an f32 plane (std::logic_error for an f16 one).
     ViewF view(Res id, int channel = 0) const;
+    // The frame's visibility ids (Res::VisibilityIds, raster/raster.h), checked as the planes
+    // above; absent where the pass does not read them.
+    ViewU32 ids(Res id) const;
     // The frame's G-buffer holding the planes the pass declares reading, the rest absent.
     GBufferView gbuffer() const;
 
@@ -53,7 +56,8 @@ private:
     std::string_view pass_;
     const GraphPass* decl_ = nullptr;
     const Frame& frame_;
-    std::vector<Plane> planes_;  // of the declared reads the frame and the history hold
+    std::vector<Plane> planes_;      // of the declared reads the frame and the history hold
+    const PlaneU32* ids_ = nullptr;  // the visibility ids, where declared
 };
 
 }  // namespace ssrt

@@ -48,6 +48,7 @@ struct SsrSample {
     const HitStatsArgs& hp;
     float maxRoughness;
     RayGenCheckerboard checker;
+    WorldStage world;  // the rays the screen does not answer (TraceSettings::ssrTrace)
 
     RayGenerator rays(int s) const {
         return RayGenerator::specular(c.isa, c.ts().ssrMethod, c.frameIndex, uint32_t(s), c.camera,
@@ -80,8 +81,8 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
         std::vector<WorldLit> lit;
         marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
                     sc.march, st, times, [&](MarchResult& m) {
-                        answerInWorld(c, c.ts().ssrTrace, sc.rays, m,
-                                      TileRect{0, 0, c.camera.width, c.camera.height}, true, lit);
+                        answerInWorld(q.world, sc.rays, m,
+                                      TileRect{0, 0, c.camera.width, c.camera.height}, lit);
                     });
         addTime(times.resolve, [&] {
             if (c.ts().ssrTrace == TraceMode::Screen) {
@@ -126,7 +127,7 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
         const TileGrid grid(c.camera.width, c.camera.height);
         const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
             lit.clear();
-            answerInWorld(c, c.ts().ssrTrace, b, m, grid.rect(t), true, lit);
+            answerInWorld(q.world, b, m, grid.rect(t), lit);
         };
         st.rays.add(traceTiles(
             c, rays, march, hitTile, hitStats, st, times, [&](int t) { resolve.resolveTile(t); },
@@ -154,7 +155,13 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     st.spp = ts.ssrSpp;
     const float maxRoughness =
         ts.traceHidden ? std::numeric_limits<float>::infinity() : rs.roughnessFadeEnd;
-    const SsrSample q{c, rs, in, hp, maxRoughness, ssrCheckerboard(c)};
+    const SsrSample q{c,
+                      rs,
+                      in,
+                      hp,
+                      maxRoughness,
+                      ssrCheckerboard(c),
+                      worldStage(c, frame, pass::kSsr, ts.ssrTrace, true)};
     // The batches and the resolve's scratch (which the resolver sizes: the frame's, or a tile
     // chain's ring) go back to the pool once the checkerboard fill has read the rays' pdf (the
     // denoiser takes their memory next). The signal's planes are the frame memory's

@@ -46,8 +46,6 @@ bool diffuseUpsampledInComposite(const RenderSettings& s) {
 // collected apart and added after (the half frame's denoiser passes under the frame's names).
 void runTracePasses(TraceContext c, Frame& frame) {
     c.camera = frame.camera;
-    c.viewZ = &frame.gbuffer.viewZ;
-    c.ids = &frame.scratch.visibility.ids;
     c.backZ = backZ(frame.scratch.backZ);
     FrameScheduler passes(c.graph, TileGrid(c.camera.width, c.camera.height), c.threads(), c.cancel,
                           &c.memory);

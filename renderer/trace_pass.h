@@ -46,8 +46,6 @@ struct TraceContext {
     TraceCamera camera{};           // the frame's, as the kernels take it
     const PlaneF* backZ = nullptr;  // the march's back-face layer (trace/march.h); null: none
     const HiZPyramid* hiz = nullptr;
-    const PlaneF* viewZ = nullptr;  // the frame's depth (where a world hit is shown)
-    const PlaneU32* ids = nullptr;  // the frame's visibility ids (the proof's triangles)
 
     const TraceSettings& ts() const { return settings.trace; }
     int threads() const { return settings.threads; }

@@ -4,18 +4,41 @@
 #include <vector>
 
 #include "core/tiles.h"
+#include "renderer/pass_reads.h"
 #include "renderer/trace_pass.h"
 #include "trace/hit_proof.h"
 #include "trace/march.h"
 
 namespace ssrt {
 
-WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBatch& rays,
-                              MarchResult& march, const TileRect& r, bool fullLight,
-                              std::vector<WorldLit>& lit) {
+WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
+                      TraceMode mode, bool fullLight) {
+    WorldStage w;
+    w.mode = mode;
+    if (mode == TraceMode::Screen) return w;
+    const PassReads reads(c.graph, frame, pass);
+    w.world = c.world;
+    w.direct = &c.direct;
+    w.camera = c.camera;
+    w.viewZ = reads.view(Res::ViewZ);  // (PassReads checked it: made, of the frame's size)
+    w.proves = mode == TraceMode::Mixed;
+    if (w.proves)
+        w.proof = proofInputs(c.camera, reads.ids(Res::VisibilityIds), w.viewZ,
+                              {c.tables->triangles, c.tables->viewPositions, *c.cutOut});
+    // The world ray leaves the surface a step off it (1e-4 of the scene's diagonal, as the
+    // truth's rays do) and ends where the march would give up.
+    w.tnear = 1e-4f * c.camera.sceneDiagonal;
+    w.tfar = marchLengths(c.ts().march, c.camera.sceneDiagonal).maxDistance;
+    w.fullLight = fullLight;
+    return w;
+}
+
+WorldStageStats answerInWorld(const WorldStage& stage, const RayBatch& rays, MarchResult& march,
+                              const TileRect& r, std::vector<WorldLit>& lit) {
     WorldStageStats st;
+    const TraceMode mode = stage.mode;
     if (mode == TraceMode::Screen) return st;
-    const TraceCamera& cam = c.camera;
+    const TraceCamera& cam = stage.camera;
     const float* R = cam.viewToWorld;
     const glm::vec3 eye{cam.position[0], cam.position[1], cam.position[2]};
     const auto toWorld = [R](glm::vec3 v) {
@@ -23,22 +46,10 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
                          (R[1] * v.x + R[4] * v.y) + R[7] * v.z,
                          (R[2] * v.x + R[5] * v.y) + R[8] * v.z};
     };
-    // The world ray leaves the surface a step off it (1e-4 of the scene's diagonal, as the
-    // truth's rays do) and ends where the march would give up.
-    const float tnear = 1e-4f * cam.sceneDiagonal;
-    const float tfar = marchLengths(c.ts().march, cam.sceneDiagonal).maxDistance;
     // The rect in the batch's own pixels.
     const int x0 = r.x0 - rays.corner.x0, x1 = r.x1 - rays.corner.x0;
     const int y0 = r.y0 - rays.corner.y0, y1 = r.y1 - rays.corner.y0;
     const int w = rays.width();
-    // Mixed: the march's hits it proves stay screen hits, at the exact point.
-    ProofInputs proof;
-    if (mode == TraceMode::Mixed) {
-        proof.camera = &cam;
-        proof.ids = c.ids;
-        proof.viewZ = c.viewZ;
-        proof.triangles = {c.tables->triangles, c.tables->viewPositions, *c.cutOut};
-    }
     std::vector<WorldRay> batch;
     std::vector<int> where;
     batch.reserve(std::size_t(x1 - x0) * std::size_t(y1 - y0));
@@ -47,10 +58,11 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
             if (!(rays.pdf.at(x, y) > 0.0f)) continue;
             const glm::vec3 o{rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y)};
             const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
-            if (mode == TraceMode::Mixed) {
+            // Mixed: the march's hits the proof holds stay screen hits, at the exact point.
+            if (stage.proves) {
                 const float fx = float(x + rays.corner.x0) + 0.5f;
                 const float fy = float(y + rays.corner.y0) + 0.5f;
-                const ProvenRay p = proveRay(proof, o, d, fx, fy, march.hit.at(x, y) > 0.5f,
+                const ProvenRay p = proveRay(stage.proof, o, d, fx, fy, march.hit.at(x, y) > 0.5f,
                                              march.hitX.at(x, y), march.hitY.at(x, y));
                 if (p.proof == RayProof::CertainHit) {
                     const glm::vec3 q = o + p.t * d;
@@ -64,12 +76,11 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
                     continue;
                 }
             }
-            batch.push_back({eye + toWorld(o), toWorld(d), tnear, tfar});
+            batch.push_back({eye + toWorld(o), toWorld(d), stage.tnear, stage.tfar});
             where.push_back(y * w + x);
         }
     std::vector<WorldHit> hits(batch.size());
-    c.world->intersect(batch, hits);
-    const PlaneF& viewZ = *c.viewZ;
+    stage.world->intersect(batch, hits);
     for (std::size_t i = 0; i < hits.size(); ++i) {
         const int x = where[i] % w, y = where[i] / w;
         ++st.sent;
@@ -96,7 +107,7 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
             march.hitY.at(x, y) = qy;
             march.hitZ.at(x, y) = depth;
             if (qx >= 0.0f && qy >= 0.0f && qx < float(cam.width) && qy < float(cam.height)) {
-                const float seen = viewZ.at(int(qx), int(qy));
+                const float seen = stage.viewZ.at(int(qx), int(qy));
                 shown = std::fabs(depth - seen) <= 0.01f * seen;
                 if (shown) march.hitZ.at(x, y) = seen;
             }
@@ -105,7 +116,8 @@ WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBa
         if (!shown) march.cause.at(x, y) = float(MarchEnd::World);
         if (!shown)
             lit.push_back({x + rays.corner.x0, y + rays.corner.y0,
-                           c.world->light(batch[i], hits[i], c.direct, fullLight), q});
+                           stage.world->light(batch[i], hits[i], *stage.direct, stage.fullLight),
+                           q});
     }
     return st;
 }

@@ -7,21 +7,45 @@
 // A world hit no pixel shows (off the frame, or hidden) is lit at the hit (WorldRays::light:
 // the direct pass's model, the frame's shadow map) and handed to the resolve as a WorldLit.
 //
-// WORK IN PROGRESS (branch mixed-tracing): SSR only; mixed mode (the proof, trace/
-// hit_proof.h) is not wired yet.
+// In mixed mode a march hit the proof holds (trace/hit_proof.h) stays a screen hit, at its
+// exact point, and only the rest are traced. SSR only so far; SSGI traces on screen.
 #pragma once
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <string_view>
 #include <vector>
 
+#include "core/camera.h"
+#include "core/plane_view.h"
 #include "core/tiles.h"
+#include "trace/hit_proof.h"
 #include "trace/trace_types.h"
 #include "trace/world_rays.h"
 
 namespace ssrt {
 
 struct TraceContext;
+struct Frame;
+struct DirectArgs;
+
+// What a signal's world stage reads, made once per pass (worldStage) with its views checked
+// where the pass's reads are (PassReads).
+struct WorldStage {
+    TraceMode mode = TraceMode::Screen;
+    const WorldRays* world = nullptr;
+    const DirectArgs* direct = nullptr;  // the direct pass's arguments: a hidden hit's light
+    TraceCamera camera{};
+    ViewF viewZ;          // the frame's depth: where a world hit is shown
+    bool proves = false;  // mixed: `proof` holds the proof's inputs
+    ProofInputs proof;
+    float tnear = 0.0f, tfar = 0.0f;  // the world ray's interval (view-space distance)
+    bool fullLight = true;            // WorldRays::light's `full`: the signal's light model
+};
+
+// The stage of pass `pass` tracing in `mode` (Screen: a stage that does nothing).
+WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
+                      TraceMode mode, bool fullLight);
 
 // Counts of one batch's world rays, added up over a signal's batches.
 struct WorldStageStats {
@@ -44,10 +68,9 @@ struct WorldLit {
 };
 
 // Answers the rays of `rays` (a tile's batch or the frame's, at its corner) inside `r` (frame
-// pixels) in world space by `mode` and writes the answers into `march`. Screen mode does
-// nothing. The batch is the frame's pixels (not the half frame's).
-WorldStageStats answerInWorld(const TraceContext& c, TraceMode mode, const RayBatch& rays,
-                              MarchResult& march, const TileRect& r, bool fullLight,
-                              std::vector<WorldLit>& lit);
+// pixels) in world space by the stage's mode and writes the answers into `march`. Screen mode
+// does nothing. The batch is the frame's pixels (not the half frame's).
+WorldStageStats answerInWorld(const WorldStage& w, const RayBatch& rays, MarchResult& march,
+                              const TileRect& r, std::vector<WorldLit>& lit);
 
 }  // namespace ssrt

@@ -135,3 +135,22 @@ TEST_CASE("pass reads: a history holding the denoiser's part alone is not reproj
     CHECK_FALSE(ssrReads(true, Res::Color));
     CHECK(ssrReads(true, Res::HistoryColor));
 }
+
+TEST_CASE("pass reads: SSR's mixed tracing reads the visibility ids, checked as the planes are") {
+    Rendered r;
+    RenderSettings mixed = r.settings;
+    mixed.trace.ssrTrace = TraceMode::Mixed;
+    const CompiledGraph g = compileFrameGraph({mixed, SceneFacts::of(r.scene), false, false});
+    // On screen SSR has no ids to read; mixed, it has them, the frame's own.
+    CHECK_FALSE(PassReads(r.graph, r.frame, pass::kSsr).ids(Res::VisibilityIds));
+    r.frame.scratch.visibility.ids = PlaneU32();
+    CHECK(refusal(r.frame, g, pass::kSsr) ==
+          "pass 'ssr' reads 'visibility.ids', which is missing");
+    r.frame.scratch.visibility.ids = PlaneU32(96, 32);
+    CHECK(refusal(r.frame, g, pass::kSsr) ==
+          "pass 'ssr' reads 'visibility.ids', which is 96x32, not 96x64");
+    r.frame.scratch.visibility.ids = PlaneU32(96, 64);
+    const ViewU32 ids = PassReads(g, r.frame, pass::kSsr).ids(Res::VisibilityIds);
+    CHECK(ids.data == r.frame.scratch.visibility.ids.row(0));
+    CHECK(ids.name == "visibility.ids");
+}
