@@ -144,8 +144,7 @@ TEST_CASE("pass reads: SSR's mixed tracing reads the visibility ids, checked as 
     // On screen SSR has no ids to read; mixed, it has them, the frame's own.
     CHECK_FALSE(PassReads(r.graph, r.frame, pass::kSsr).ids(Res::VisibilityIds));
     r.frame.scratch.visibility.ids = PlaneU32();
-    CHECK(refusal(r.frame, g, pass::kSsr) ==
-          "pass 'ssr' reads 'visibility.ids', which is missing");
+    CHECK(refusal(r.frame, g, pass::kSsr) == "pass 'ssr' reads 'visibility.ids', which is missing");
     r.frame.scratch.visibility.ids = PlaneU32(96, 32);
     CHECK(refusal(r.frame, g, pass::kSsr) ==
           "pass 'ssr' reads 'visibility.ids', which is 96x32, not 96x64");
