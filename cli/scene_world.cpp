@@ -3,9 +3,7 @@
 namespace ssrt::cli {
 
 SceneWorld::SceneWorld(const Scene& scene, const TraceSettings& trace) {
-    const bool needed = (trace.ssr && trace.ssrTrace != TraceMode::Screen) ||
-                        (trace.ssgi && trace.ssgiTrace != TraceMode::Screen);
-    if (!needed) return;
+    if (!trace.worldRays()) return;
     embree_ = std::make_unique<EmbreeScene>(scene);
     rays_ = std::make_unique<EmbreeWorldRays>(*embree_);
 }

@@ -9,7 +9,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <type_traits>
 
 #include "core/tiles.h"
@@ -352,14 +351,11 @@ namespace {
 
 // A signal traced in mixed or world mode needs the scene's world rays.
 void requireWorldRays(const TraceSettings& ts, const WorldRays* world) {
-    if (world) return;
-    for (const auto& [on, mode, flag] :
-         {std::tuple{ts.ssr, ts.ssrTrace, "--ssr-trace"}, {ts.ssgi, ts.ssgiTrace, "--ssgi-trace"}})
-        if (on && mode != TraceMode::Screen)
-            throw std::invalid_argument(std::string(flag) + " " + std::string(traceModeName(mode)) +
-                                        " needs world rays (FrameInput::world), and none were "
-                                        "given: build them from the scene (world/"
-                                        "embree_world_rays.h), or trace on screen");
+    if (world || !ts.worldRays()) return;
+    throw std::invalid_argument("--ssr-trace " + std::string(traceModeName(ts.ssrTrace)) +
+                                " needs world rays (FrameInput::world), and none were given: "
+                                "build them from the scene (world/embree_world_rays.h), or "
+                                "trace on screen");
 }
 
 }  // namespace
