@@ -51,6 +51,25 @@ std::vector<CheckRow> checkRows() {
         rows.push_back({std::string(rayClassName(rc)) + " %",
                         [rc](const RayCheckTable& t) { return Json(100.0 * t.share(rc)); }, 2});
     }
+    // How the rays were answered (mixed and world tracing): on screen (the march, or in mixed
+    // the hits the proof holds) or in world space, and how often each disagrees with Embree.
+    const auto percent = [](uint64_t n, uint64_t of) {
+        return of ? 100.0 * double(n) / double(of) : 0.0;
+    };
+    rows.push_back({"world rays %",
+                    [=](const RayCheckTable& t) { return Json(percent(t.worldRays(), t.rays)); },
+                    2});
+    rows.push_back(
+        {"screen false hit %",
+         [](const RayCheckTable& t) { return Json(100.0 * t.screenShare(RayClass::FalseHit)); },
+         3});
+    rows.push_back({"world not agreed %",
+                    [=](const RayCheckTable& t) {
+                        const uint64_t agreed =
+                            t.world[int(RayClass::Agreed)] + t.world[int(RayClass::TrueMiss)];
+                        return Json(percent(t.worldRays() - agreed, t.worldRays()));
+                    },
+                    3});
     const auto err = [&](const char* label, bool pixels, double q) {
         rows.push_back({label,
                         [=](const RayCheckTable& t) {

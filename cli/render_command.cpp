@@ -440,6 +440,16 @@ std::vector<TraceRow> traceRows() {
                                       : "miss: " + std::string(marchEndName(MarchEnd(e)));
         rows.push_back({label, [e](T t, double) { return Json(t.march.ends[e]); }});
     }
+    // After the march (--ssr-trace mixed or world: renderer/world_stage.h): the hits the
+    // proof holds, and the rays traced in world space, by what they met.
+    std::vector<TraceRow> world = {
+        {"proven hits", [](T t, double) { return Json(t.world.proven); }},
+        {"world rays", [](T t, double) { return Json(t.world.sent); }},
+        {"  hit, shown", [](T t, double) { return Json(t.world.shown); }},
+        {"  hit, hidden", [](T t, double) { return Json(t.world.hidden); }},
+        {"  missed", [](T t, double) { return Json(t.world.missed); }},
+    };
+    rows.insert(rows.end(), world.begin(), world.end());
     const auto share = [](uint64_t part, uint64_t whole) {
         return whole ? 100.0 * double(part) / double(whole) : 0.0;
     };

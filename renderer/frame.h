@@ -27,11 +27,13 @@
 #include "renderer/plane_store.h"
 #include "renderer/resources.h"
 #include "trace/color_pyramid.h"
+#include "trace/hit_proof.h"
 #include "trace/march.h"
 #include "trace/ray_gen.h"
 #include "trace/ssr_resolve.h"
 #include "trace/trace_layout.h"
 #include "trace/trace_types.h"
+#include "trace/world_rays.h"
 
 namespace ssrt {
 
@@ -136,6 +138,7 @@ struct TraceStats {
     int spp = 0;
     RayGenStats rays;
     MarchStats march;
+    WorldRayStats world;  // mixed and world tracing (renderer/world_stage.h)
 };
 
 // What one resource group of a frame holds in memory, row padding included (`--stats`'s
@@ -195,6 +198,7 @@ struct Frame {
         // The tangent frame (x, y, z, w) for normal maps (raster/resolve_kernel.h)
         PlaneF tangent[kResolveTangentOutputs];
         HiZPyramid hiz;
+        ThinFeatures thin;  // mixed tracing's (trace/hit_proof.h)
         RayBatch rays;      // pooled
         MarchResult march;  // pooled
         ColorPyramid colorPyramid;
@@ -293,6 +297,8 @@ void Frame::Scratch::forEachBuffer(Fn&& fn) const {
     for (int i = 0; i < kResolveTangentOutputs; ++i)
         fn("tangent", channelName(Res::Tangent, i), tangent[i]);
     fn("hi-z", "hiz.minZ", hiz);
+    for (std::size_t l = 0; l < thin.levels.size(); ++l)
+        fn("thin features", "thinFeatures." + std::to_string(l), thin.levels[l]);
     in("rays", rays);
     in("march", march);
     fn("colour pyramid", "colorPyramid.R", colorPyramid);

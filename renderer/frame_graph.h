@@ -48,6 +48,7 @@ inline constexpr std::string_view kShading = "shading";
 inline constexpr std::string_view kTextures = "textures";
 inline constexpr std::string_view kIds = "ids";
 inline constexpr std::string_view kHiZ = "hi-z";
+inline constexpr std::string_view kSsrThinFeatures = "ssr thin features";
 inline constexpr std::string_view kSsr = "ssr";
 inline constexpr std::string_view kSsrReconstruct = "ssr reconstruct";
 inline constexpr std::string_view kSsgi = "ssgi";

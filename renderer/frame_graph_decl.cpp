@@ -338,6 +338,9 @@ std::vector<PassDecl> declarePasses() {
     shading.tiled = true;
     p.push_back(shading);
     p.push_back({pass::kHiZ, hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
+    // Mixed SSR's proof looks for thin features beside a ray's path (trace/hit_proof.h).
+    p.push_back(
+        {pass::kSsrThinFeatures, ssrMixed, {{Res::ViewZ, P::Around}}, {{Res::ThinFeatures}}});
     // SSR: rays from the G-buffer, the march through the depth (anywhere), the resolve.
     p.push_back(
         {"ssr colour pyramid",
@@ -360,7 +363,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsrHitRadiance, P::Around},
                   {Res::SsrHitTarget, P::Around, reuseResolve},
                   {Res::DenoiseHistorySpecularFrames, P::Anywhere, ssrSparse},
-                  {Res::VisibilityIds, P::Anywhere, ssrMixed}},
+                  {Res::VisibilityIds, P::Anywhere, ssrMixed},
+                  {Res::ThinFeatures, P::Anywhere, ssrMixed}},
                  {{Res::Ssr},
                   {Res::SsrOpacity},
                   {Res::SsrHit},

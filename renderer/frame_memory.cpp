@@ -30,6 +30,9 @@ bool inScratch(Frame& f, Res id, bool release) {
         case Res::BackIds: return free(s.backVisibility.ids);
         case Res::BackZ: return free(s.backZ);
         case Res::HiZ: return freeHiZ(s.hiz, release);
+        case Res::ThinFeatures:
+            for (PlaneF& p : s.thin.levels) free(p);
+            return true;
         case Res::HalfGBuffer:
             GBufferPlanesF::forEach(
                 s.half.frame, [&](GBufferPlane, PlaneF& p) { free(p); }, HalfFrame::kPlanes);

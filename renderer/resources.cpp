@@ -97,6 +97,8 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HitLight, "hitLight", "R,G,B", F::F16, R::Full, L::Transient},
     {Res::HiZ, "hiz.minZ", "", F::F32, R::Pyramid, L::Transient},
     {Res::HiZPacked, "hiz.packed", "", F::F32, R::Pyramid, L::Transient},
+    // (Full: its 8- and 64-pixel levels add 1/64 and 1/4096.)
+    {Res::ThinFeatures, "thinFeatures", "", F::F32, R::Full, L::Transient},
     {Res::ColorPyramid, "colorPyramid", "R,G,B", F::F32, R::Pyramid, L::Transient},
     {Res::RayPdf, "ray.pdf", "", F::F32, R::Full, L::Transient},
     {Res::MarchHit, "march.hit", "", F::F32, R::TileRing, L::Transient},

@@ -126,6 +126,7 @@ enum class Res : uint8_t {
     // Tracing
     HiZ,
     HiZPacked,
+    ThinFeatures,  // mixed tracing's thin-feature check (trace/hit_proof.h)
     ColorPyramid,
     RayPdf,
     MarchHit,

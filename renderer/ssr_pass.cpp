@@ -79,11 +79,18 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
     for (int s = 0; s < c.ts().ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
         std::vector<WorldLit> lit;
+        const auto answer = [&](MarchResult& m) {
+            times.worldRan = true;
+            addTime(times.world, [&] {
+                const TileRect all{0, 0, c.camera.width, c.camera.height};
+                st.world.add(answerInWorld(q.world, sc.rays, m, all, lit));
+            });
+        };
         marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
-                    sc.march, st, times, [&](MarchResult& m) {
-                        answerInWorld(q.world, sc.rays, m,
-                                      TileRect{0, 0, c.camera.width, c.camera.height}, lit);
-                    });
+                    sc.march, st, times,
+                    c.ts().ssrTrace == TraceMode::Screen
+                        ? std::function<void(MarchResult&)>()
+                        : std::function<void(MarchResult&)>(answer));
         addTime(times.resolve, [&] {
             if (c.ts().ssrTrace == TraceMode::Screen) {
                 resolveSsr(c.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts().ssrSpp,
@@ -125,15 +132,17 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
             lit.clear();
         };
         const TileGrid grid(c.camera.width, c.camera.height);
+        std::vector<WorldRayStats> answered(std::size_t(grid.count()));
         const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
             lit.clear();
-            answerInWorld(q.world, b, m, grid.rect(t), lit);
+            answered[std::size_t(t)] = answerInWorld(q.world, b, m, grid.rect(t), lit);
         };
         st.rays.add(traceTiles(
             c, rays, march, hitTile, hitStats, st, times, [&](int t) { resolve.resolveTile(t); },
             c.ts().ssrTrace == TraceMode::Screen
                 ? std::function<void(int, const RayBatch&, MarchResult&)>()
                 : answer));
+        for (const WorldRayStats& a : answered) st.world.add(a);
     }
 }
 

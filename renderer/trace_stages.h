@@ -54,11 +54,14 @@ inline OutF stageOutput(Frame& frame, Res id, const TraceCamera& camera, bool ma
 struct StageTimes {
     double rays = 0.0, march = 0.0, resolve = 0.0;
     double reconstruct = -1.0;  // reported when a layout other than full ran (>= 0)
+    double world = 0.0;         // world rays (mixed, world tracing), reported when they ran
+    bool worldRan = false;
     void report(FrameStats& stats, const char* pass) const {
         const std::string p(pass);
         stats.passes.push_back({p + " rays", rays});
         stats.passes.push_back({p + " march", march});
         stats.passes.push_back({p + " resolve", resolve});
+        if (worldRan) stats.passes.push_back({p + " world", world});
         if (reconstruct >= 0.0) stats.passes.push_back({p + " reconstruct", reconstruct});
     }
 };
@@ -100,13 +103,15 @@ void takeBatches(const TraceContext& c, Frame& frame);
 
 // One sample's tile chain (trace/tile_chain.h): on each tile's batches the resolve's
 // per-pixel pass, then the hit statistics; and the resolve's pass over a tile's neighbours
-// (`finish`, when given) a tile row at a time behind it. Adds the march's counters and the
-// stages' times; returns the rays' counters.
+// (`finish`, when given) a tile row at a time behind it; `answer`, when given, between the
+// march and the resolve (world rays: renderer/world_stage.h). Adds the march's counters and
+// the stages' times; returns the rays' counters.
 template <class Resolve>
 RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const RayMarcher& march,
                        const Resolve& resolveTile, const HitStatsAccumulator& hitStats,
                        TraceStats& st, StageTimes& times, std::function<void(int tile)> finish = {},
                        std::function<void(int, const RayBatch&, MarchResult&)> answer = {}) {
+    const bool answers = bool(answer);
     const TileChainStats r = runTileChain({rays, march,
                                            [&](int t, const RayBatch& b, const MarchResult& m) {
                                                resolveTile(t, b, m);
@@ -118,6 +123,7 @@ RayGenStats traceTiles(const TraceContext& c, const RayGenerator& rays, const Ra
     times.rays += r.raysMs;
     times.march += r.marchMs;
     times.resolve += r.consumeMs + r.finishMs;
+    if (answers) times.world += r.answerMs, times.worldRan = true;
     return r.rays;
 }
 

@@ -11,6 +11,14 @@
 
 namespace ssrt {
 
+namespace {
+
+// A world hit is shown by the pixel it projects onto when that pixel's depth is the hit's
+// within 1 % (the proof's thickness: trace/hit_proof.h).
+constexpr float kShownThickness = ProofSettings{}.thickness;
+
+}  // namespace
+
 WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
                       TraceMode mode, bool fullLight) {
     WorldStage w;
@@ -24,7 +32,8 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     w.proves = mode == TraceMode::Mixed;
     if (w.proves)
         w.proof = proofInputs(c.camera, reads.ids(Res::VisibilityIds), w.viewZ,
-                              {c.tables->triangles, c.tables->viewPositions, *c.cutOut});
+                              {c.tables->triangles, c.tables->viewPositions, *c.cutOut}, {},
+                              &frame.scratch.thin);
     // The world ray leaves the surface a step off it (1e-4 of the scene's diagonal, as the
     // truth's rays do) and ends where the march would give up.
     w.tnear = 1e-4f * c.camera.sceneDiagonal;
@@ -33,9 +42,9 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     return w;
 }
 
-WorldStageStats answerInWorld(const WorldStage& stage, const RayBatch& rays, MarchResult& march,
-                              const TileRect& r, std::vector<WorldLit>& lit) {
-    WorldStageStats st;
+WorldRayStats answerInWorld(const WorldStage& stage, const RayBatch& rays, MarchResult& march,
+                            const TileRect& r, std::vector<WorldLit>& lit) {
+    WorldRayStats st;
     const TraceMode mode = stage.mode;
     if (mode == TraceMode::Screen) return st;
     const TraceCamera& cam = stage.camera;
@@ -65,13 +74,10 @@ WorldStageStats answerInWorld(const WorldStage& stage, const RayBatch& rays, Mar
                 const ProvenRay p = proveRay(stage.proof, o, d, fx, fy, march.hit.at(x, y) > 0.5f,
                                              march.hitX.at(x, y), march.hitY.at(x, y));
                 if (p.proof == RayProof::CertainHit) {
-                    const glm::vec3 q = o + p.t * d;
-                    const float depth = 0.0f - q.z;
-                    march.hitX.at(x, y) =
-                        (q.x / depth / cam.tanHalfX + 1.0f) * (0.5f * float(cam.width));
-                    march.hitY.at(x, y) =
-                        (1.0f - q.y / depth / cam.tanHalfY) * (0.5f * float(cam.height));
-                    march.hitZ.at(x, y) = depth;
+                    march.hitX.at(x, y) = p.at.x;
+                    march.hitY.at(x, y) = p.at.y;
+                    march.hitZ.at(x, y) = p.at.depth;
+                    march.cause.at(x, y) = float(MarchEnd::Proven);
                     ++st.proven;
                     continue;
                 }
@@ -86,7 +92,7 @@ WorldStageStats answerInWorld(const WorldStage& stage, const RayBatch& rays, Mar
         ++st.sent;
         march.hit.at(x, y) = 0.0f;
         march.hitX.at(x, y) = march.hitY.at(x, y) = march.hitZ.at(x, y) = 0.0f;
-        march.cause.at(x, y) = float(MarchEnd::LeftScreen);
+        march.cause.at(x, y) = float(MarchEnd::WorldMiss);
         if (!hits[i].hit) {
             ++st.missed;
             continue;
@@ -95,29 +101,26 @@ WorldStageStats answerInWorld(const WorldStage& stage, const RayBatch& rays, Mar
         const glm::vec3 o{rays.ox.at(x, y), rays.oy.at(x, y), rays.oz.at(x, y)};
         const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
         const glm::vec3 q = o + hits[i].t * d;
-        const float depth = 0.0f - q.z;
-        bool shown = false;
+        // (hitX, hitY are the frame's continuous pixels, as the march writes them; behind the
+        // camera hitZ is negative, and the three still give the point: the hit distance the
+        // denoiser reads.)
+        const ScreenPoint at = screenPoint(cam, stage.viewZ, q, kShownThickness);
         march.hit.at(x, y) = 1.0f;
-        march.cause.at(x, y) = float(MarchEnd::Hit);
-        if (depth > 0.0f) {
-            // (hitX, hitY are the frame's continuous pixels, as the march writes them.)
-            const float qx = (q.x / depth / cam.tanHalfX + 1.0f) * (0.5f * float(cam.width));
-            const float qy = (1.0f - q.y / depth / cam.tanHalfY) * (0.5f * float(cam.height));
-            march.hitX.at(x, y) = qx;
-            march.hitY.at(x, y) = qy;
-            march.hitZ.at(x, y) = depth;
-            if (qx >= 0.0f && qy >= 0.0f && qx < float(cam.width) && qy < float(cam.height)) {
-                const float seen = stage.viewZ.at(int(qx), int(qy));
-                shown = std::fabs(depth - seen) <= 0.01f * seen;
-                if (shown) march.hitZ.at(x, y) = seen;
-            }
-        }
-        ++(shown ? st.visible : st.hidden);
-        if (!shown) march.cause.at(x, y) = float(MarchEnd::World);
-        if (!shown)
+        march.hitX.at(x, y) = at.x;
+        march.hitY.at(x, y) = at.y;
+        march.hitZ.at(x, y) = at.depth;
+        if (at.shown) {
+            // The pixel's own depth: the resolve reads the screen's light there.
+            march.hitZ.at(x, y) = stage.viewZ.at(int(at.x), int(at.y));
+            march.cause.at(x, y) = float(MarchEnd::WorldShown);
+            ++st.shown;
+        } else {
+            march.cause.at(x, y) = float(MarchEnd::World);
+            ++st.hidden;
             lit.push_back({x + rays.corner.x0, y + rays.corner.y0,
                            stage.world->light(batch[i], hits[i], *stage.direct, stage.fullLight),
                            q});
+        }
     }
     return st;
 }

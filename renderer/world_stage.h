@@ -1,4 +1,4 @@
-// A signal's world rays (TraceSettings::ssrTrace, ssgiTrace; trace/world_rays.h), one batch at
+// A signal's world rays (TraceSettings::ssrTrace; trace/world_rays.h), one batch at
 // a time, between the march and the resolve: which rays go to world space (every one in world
 // mode), traced, and each answer written into the march's result as the screen would have
 // given it. A world hit on a pixel that shows it (its depth the pixel's within 1 %) becomes a
@@ -47,19 +47,6 @@ struct WorldStage {
 WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
                       TraceMode mode, bool fullLight);
 
-// Counts of one batch's world rays, added up over a signal's batches.
-struct WorldStageStats {
-    uint64_t proven = 0;   // march hits proven (mixed): screen hits at their exact point
-    uint64_t sent = 0;     // rays traced in world space
-    uint64_t visible = 0;  // hits a pixel shows: screen hits now
-    uint64_t hidden = 0;   // hits no pixel shows (off the frame, or behind nearer surfaces)
-    uint64_t missed = 0;   // no hit within the march's maximum distance
-    void add(const WorldStageStats& o) {
-        proven += o.proven, sent += o.sent, visible += o.visible, hidden += o.hidden,
-            missed += o.missed;
-    }
-};
-
 // A world hit no pixel shows, lit at the hit: the resolve takes its light from here.
 struct WorldLit {
     int x, y;            // the ray's pixel in the frame
@@ -69,8 +56,10 @@ struct WorldLit {
 
 // Answers the rays of `rays` (a tile's batch or the frame's, at its corner) inside `r` (frame
 // pixels) in world space by the stage's mode and writes the answers into `march`. Screen mode
-// does nothing. The batch is the frame's pixels (not the half frame's).
-WorldStageStats answerInWorld(const WorldStage& w, const RayBatch& rays, MarchResult& march,
-                              const TileRect& r, std::vector<WorldLit>& lit);
+// does nothing. The batch is the frame's pixels (not the half frame's). Each answered ray's
+// MarchResult::cause says how it was answered (MarchEnd::Proven, WorldShown, World,
+// WorldMiss); the counts are returned.
+WorldRayStats answerInWorld(const WorldStage& w, const RayBatch& rays, MarchResult& march,
+                            const TileRect& r, std::vector<WorldLit>& lit);
 
 }  // namespace ssrt

@@ -34,7 +34,7 @@ struct TileBatches {
 struct TileResult {
     RayGenStats rays;
     MarchStats march;
-    double ms[4] = {};  // rays, march, consume, finish
+    double ms[5] = {};  // rays, march, consume, finish, answer
 };
 
 }  // namespace
@@ -49,7 +49,8 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
     // names its lines ("ssr rays", "ssr march", "ssr resolve": core/profile.h).
     ProfileSink* const sink = profileSink();
     const std::string pass(profileScopeName());
-    const std::string stage[3] = {pass + " rays", pass + " march", pass + " resolve"};
+    const std::string stage[4] = {pass + " rays", pass + " march", pass + " resolve",
+                                  pass + " world"};
     const auto record = [&](int i, Clock::time_point a, Clock::time_point b) {
         if (sink) sink->slice(stage[i], std::this_thread::get_id(), a, b);
     };
@@ -64,10 +65,13 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
         out.march = chain.march.tile(tile, b.rays, b.march);
         const Clock::time_point h = Clock::now();
         if (chain.answer) chain.answer(tile, b.rays, b.march);
+        const Clock::time_point w = Clock::now();
         chain.consume(tile, b.rays, b.march);
         const Clock::time_point e = Clock::now();
-        out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[2] = msBetween(h, e);
-        record(0, a, m), record(1, m, h), record(2, h, e);
+        out.ms[0] = msBetween(a, m), out.ms[1] = msBetween(m, h), out.ms[4] = msBetween(h, w);
+        out.ms[2] = msBetween(w, e);
+        record(0, a, m), record(1, m, h), record(2, w, e);
+        if (chain.answer) record(3, h, w);
     };
     const Clock::time_point t0 = Clock::now();
     if (!chain.finish) {
@@ -92,16 +96,17 @@ TileChainStats runTileChain(const TileChain& chain, int threads) {
     }
     const double wall = msBetween(t0, Clock::now());
     TileChainStats s;
-    double busy[4] = {};
+    double busy[5] = {};
     for (const TileResult& t : tiles) {
         s.rays.add(t.rays);
         s.march.add(t.march);
-        for (int i = 0; i < 4; ++i) busy[i] += t.ms[i];
+        for (int i = 0; i < 5; ++i) busy[i] += t.ms[i];
     }
     // The loop's wall time, shared out by the threads' time in each stage.
-    const double sum = busy[0] + busy[1] + busy[2] + busy[3], k = sum > 0.0 ? wall / sum : 0.0;
+    const double sum = busy[0] + busy[1] + busy[2] + busy[3] + busy[4];
+    const double k = sum > 0.0 ? wall / sum : 0.0;
     s.raysMs = busy[0] * k, s.marchMs = busy[1] * k, s.consumeMs = busy[2] * k;
-    s.finishMs = busy[3] * k;
+    s.finishMs = busy[3] * k, s.answerMs = busy[4] * k;
     return s;
 }
 

@@ -44,8 +44,8 @@ struct TileChainStats {
     RayGenStats rays;
     MarchStats march;
     // The tile loop's wall time split between the stages by the threads' time in each (ms;
-    // the four sum to the loop's).
-    double raysMs = 0.0, marchMs = 0.0, consumeMs = 0.0, finishMs = 0.0;
+    // the five sum to the loop's).
+    double raysMs = 0.0, marchMs = 0.0, consumeMs = 0.0, finishMs = 0.0, answerMs = 0.0;
 };
 
 // Runs the chain on every tile on `threads` threads (0 = every core); counters in tile order.

@@ -56,12 +56,19 @@ enum class MarchEnd : uint8_t {
     StepCap = 3,     // ran out of steps or iterations
     Thickness = 4,   // crossed the depth buffer but behind the surface by more than the thickness
     BackFace = 5,    // met a surface whose normal faces the ray's direction
-    // Written after the march, not by it: a world ray's hit that no pixel shows, lit at the
-    // hit (renderer/world_stage.h); hitX, hitY, hitZ its projection and depth. Not among the
-    // march's own ends (kMarchEndCount).
-    World = 6,
+    // Written after the march, not by it (mixed and world tracing, renderer/world_stage.h),
+    // and not among the march's own ends (kMarchEndCount): how the ray was answered.
+    World = 6,       // a world ray's hit no pixel shows, lit at the hit; hitX, hitY, hitZ its
+                     // projection and depth
+    WorldShown = 7,  // a world ray's hit a pixel shows: a screen hit there
+    WorldMiss = 8,   // a world ray that met nothing within the march's maximum distance
+    Proven = 9,      // a march hit the proof holds (trace/hit_proof.h), at its exact point
 };
 inline constexpr int kMarchEndCount = 6;
+inline constexpr int kAnswerEndCount = 10;  // the march's ends and the answers after it
+inline bool answeredInWorld(MarchEnd e) {
+    return e == MarchEnd::World || e == MarchEnd::WorldShown || e == MarchEnd::WorldMiss;
+}
 
 inline std::string_view marchEndName(MarchEnd e) {
     switch (e) {
@@ -72,6 +79,9 @@ inline std::string_view marchEndName(MarchEnd e) {
         case MarchEnd::Thickness: return "thickness";
         case MarchEnd::BackFace: return "back_face";
         case MarchEnd::World: return "world";
+        case MarchEnd::WorldShown: return "world_shown";
+        case MarchEnd::WorldMiss: return "world_miss";
+        case MarchEnd::Proven: return "proven";
     }
     return "?";
 }

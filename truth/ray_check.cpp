@@ -29,11 +29,21 @@ std::string_view rayClassName(RayClass c) {
 
 void RayCheckTable::add(const RayCheckTable& o) {
     rays += o.rays;
-    for (int i = 0; i < kRayClassCount; ++i) count[i] += o.count[i];
+    for (int i = 0; i < kRayClassCount; ++i) count[i] += o.count[i], world[i] += o.world[i];
     pixelError.insert(pixelError.end(), o.pixelError.begin(), o.pixelError.end());
     depthError.insert(depthError.end(), o.depthError.begin(), o.depthError.end());
     embreeSeconds += o.embreeSeconds;
     embreeHits += o.embreeHits;
+}
+
+uint64_t RayCheckTable::worldRays() const {
+    uint64_t n = 0;
+    for (uint64_t c : world) n += c;
+    return n;
+}
+
+double RayCheckTable::screenShare(RayClass c) const {
+    return rays ? double(count[int(c)] - world[int(c)]) / double(rays) : 0.0;
 }
 
 void RayCheckTable::finish() {
@@ -170,6 +180,8 @@ uint64_t traceAll(const EmbreeScene& embree, const TraceCamera& batch, const Ray
 // Where the true hit sits in the frame, and whether the camera sees it there.
 struct TrueHit {
     bool exists = false;
+    float t = 0.0f;
+    glm::vec3 point{0.0f};       // view space
     float z = 0.0f;              // view Z (positive in front of the camera)
     float px = 0.0f, py = 0.0f;  // continuous pixel position (when z > 0)
     bool projects = false;       // in front of the camera: px, py mean something
@@ -183,6 +195,8 @@ TrueHit locateTrueHit(const TraceCamera& cam, const PlaneF& viewZ, const RayBatc
     h.exists = true;
     // The rotation keeps lengths: the view-space hit is o + t d.
     const glm::vec3 p = viewOrigin(rays, x, y) + t * viewDirection(rays, x, y);
+    h.t = t;
+    h.point = p;
     h.z = -p.z;
     if (!(h.z > 0.0f)) return h;
     h.projects = true;
@@ -228,11 +242,20 @@ PixelCheck classify(const BatchGrid& g, const MarchResult& m, const TrueHit& tru
         c.pixelError = std::sqrt(ex * ex + ey * ey);
         c.depthError = std::abs(m.hitZ.at(x, y) - truth.z) / truth.z;
     }
-    // A world ray's hit lit where no pixel shows it (mixed and world tracing) agrees where it is
-    // the true hit, shown or not.
-    const bool world = m.cause.at(x, y) == float(MarchEnd::World);
-    if ((truth.visible || world) && c.pixelError <= s.pixelTolerance &&
-        c.depthError <= s.depthTolerance)
+    // A world ray's hit that no pixel shows (mixed and world tracing) agrees where it is the
+    // true hit, in front of the camera or behind it: its view-space point (hitZ negative behind
+    // the camera) within the depth tolerance of the true distance. (A world ray is the
+    // frame's.) One a pixel shows is a screen hit there, checked as the march's are.
+    if (m.cause.at(x, y) == float(MarchEnd::World)) {
+        const float z = m.hitZ.at(x, y);
+        const glm::vec3 p{
+            (2.0f * m.hitX.at(x, y) / float(g.frame.width) - 1.0f) * g.frame.tanHalfX * z,
+            (1.0f - 2.0f * m.hitY.at(x, y) / float(g.frame.height)) * g.frame.tanHalfY * z,
+            0.0f - z};
+        if (glm::length(p - truth.point) <= s.depthTolerance * truth.t) c.cls = RayClass::Agreed;
+        return c;
+    }
+    if (truth.visible && c.pixelError <= s.pixelTolerance && c.depthError <= s.depthTolerance)
         c.cls = RayClass::Agreed;
     return c;
 }
@@ -257,6 +280,7 @@ void classifyTile(const BatchGrid& g, const PlaneF& viewZ, const RayBatch& rays,
                 c = classify(g, m, truth, s, x, y);
                 ++table.rays;
                 ++table.count[int(c.cls)];
+                if (answeredInWorld(MarchEnd(int(m.cause.at(x, y))))) ++table.world[int(c.cls)];
                 if (c.bothHit) {
                     table.pixelError.push_back(c.pixelError);
                     table.depthError.push_back(c.depthError);

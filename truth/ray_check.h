@@ -66,6 +66,9 @@ struct RayCheckSettings {
 struct RayCheckTable {
     uint64_t rays = 0;                             // rays checked (pdf > 0)
     std::array<uint64_t, kRayClassCount> count{};  // per RayClass (NoRay stays 0)
+    // Of those, the rays answered in world space after the march (mixed and world tracing:
+    // MarchEnd::World, WorldShown, WorldMiss), per RayClass; the rest were the screen's.
+    std::array<uint64_t, kRayClassCount> world{};
     std::vector<float> pixelError;  // one per ray where both hit (sorted by finish())
     std::vector<float> depthError;  // relative, same rays
     double embreeSeconds = 0.0;     // wall clock of Embree's traversal alone
@@ -74,6 +77,10 @@ struct RayCheckTable {
     void add(const RayCheckTable& other);  // combine (in a fixed order)
     void finish();                         // sorts the error lists
     double share(RayClass c) const;        // count / rays (0 without rays)
+    uint64_t worldRays() const;            // the rays answered in world space
+    // The screen's answers (not world rays) in class c, over all rays (0 without rays): a
+    // FalseHit's share is the screen's false accepts.
+    double screenShare(RayClass c) const;
     // Quantile q in [0, 1] of a sorted error list (0 when empty).
     static float quantile(const std::vector<float>& sorted, double q);
 };

@@ -20,15 +20,25 @@ constexpr int kSize = 64;
 struct HandFrame {
     TraceCamera camera;
     std::vector<glm::vec3> positions = {
-        {-20, -20, -5},   {20, -20, -5},    {20, 20, -5},     {-20, 20, -5},  // the wall, facing +z
-        {0.5f, 0.5f, -2}, {1.5f, 0.5f, -2}, {0.5f, 1.5f, -2},                 // the card, facing +z
+        {-20, -20, -5},
+        {20, -20, -5},
+        {20, 20, -5},
+        {-20, 20, -5},  // the wall, facing +z
+        {0.5f, 0.5f, -2},
+        {1.5f, 0.5f, -2},
+        {0.5f, 1.5f, -2},  // the card, facing +z
+        // a pole 0.2 wide at depth 4 (1.6 pixels), drawn only when asked for
+        {-2.1f, -2, -4},
+        {-1.9f, -2, -4},
+        {-1.9f, 2, -4},
+        {-2.1f, 2, -4},
     };
     std::vector<ResolveTriangle> triangles;
-    std::vector<uint8_t> cutOut = {0, 0};  // by instance: the wall 0, the card 1
+    std::vector<uint8_t> cutOut = {0, 0, 0};  // by instance: the wall 0, the card 1, the pole 2
     PlaneU32 ids;
     PlaneF viewZ;
 
-    HandFrame() {
+    explicit HandFrame(bool pole = false) {
         camera.width = camera.height = kSize;
         camera.tanHalfX = camera.tanHalfY = 1.0f;
         const auto tri = [&](uint32_t instance, uint32_t a, uint32_t b, uint32_t c) {
@@ -40,6 +50,7 @@ struct HandFrame {
         tri(0, 0, 1, 2);
         tri(0, 0, 2, 3);
         tri(1, 4, 5, 6);
+        if (pole) tri(2, 7, 8, 9), tri(2, 7, 9, 10);
         // Rasterize by rays from the camera through the pixel centres: the nearest triangle.
         ids.ensureSize(kSize, kSize);
         viewZ.ensureSize(kSize, kSize);
@@ -69,9 +80,10 @@ struct HandFrame {
         return {(p.x / z / camera.tanHalfX + 1.0f) * 0.5f * kSize,
                 (1.0f - p.y / z / camera.tanHalfY) * 0.5f * kSize};
     }
+    const ThinFeatures* thin = nullptr;  // the thin-feature check's pixels, when given
     ProofInputs inputs() const {
         return proofInputs(camera, viewOf(ids, "visibility.ids"), viewOf(viewZ, "viewZ"),
-                           {triangles, positions, cutOut});
+                           {triangles, positions, cutOut}, {}, thin);
     }
     // A ray from `from` to `to`, the march having hit where `marchAt` projects (the true hit
     // unless a test says otherwise).
@@ -161,4 +173,31 @@ TEST_CASE("hit proof: its views are checked where its inputs are made") {
     CHECK_THROWS_AS(proofInputs(f.camera, viewOf(PlaneU32(), "visibility.ids"),
                                 viewOf(f.viewZ, "viewZ"), {f.triangles, f.positions, f.cutOut}),
                     std::invalid_argument);
+}
+
+TEST_CASE("hit proof: refused where the ray crosses a thin surface the screen shows on its way") {
+    // The march stepped over the pole (it is thinner than its steps) and hit the wall behind:
+    // the pole is drawn in a column of pixels beside the ray's path, and the ray meets it.
+    const glm::vec3 from{-1.0f, -0.5f, -3.0f}, to{-3.0f, 0.5f, -5.0f};
+    HandFrame f(true);
+    const glm::vec3 crossing = from + 0.5f * (to - from);  // (-2, 0, -4): on the pole
+    REQUIRE(f.ids.at(int(f.project(crossing).x) - 1, int(f.project(crossing).y)) >= 4u);
+    REQUIRE(f.ids.at(int(f.project(to).x), int(f.project(to).y)) <= 1u);  // the hit is shown
+    CHECK(f.prove(from, to, to).proof == RayProof::Uncertain);
+    // Looking only at the thin features, through their cells (8 and 64 pixels), finds it too:
+    // the pole's pixels are in front of the wall beside them, the wall's inside are not.
+    ThinFeatures thin;
+    findThinFeatures(viewOf(f.viewZ, "viewZ"), thin, 1);
+    const int poleX = int(f.project(crossing).x) - 1, poleY = int(f.project(crossing).y);
+    CHECK(thin.levels[0].at(poleX, poleY) == f.viewZ.at(poleX, poleY));
+    CHECK(thin.levels[0].at(poleX - 3, poleY) == INFINITY);
+    CHECK(thin.levels[1].at(poleX / 8, poleY / 8) == f.viewZ.at(poleX, poleY));
+    f.thin = &thin;
+    CHECK(f.prove(from, to, to).proof == RayProof::Uncertain);
+    // A ray that passes in front of the pole (nearer the camera than it) is proven.
+    const glm::vec3 nearFrom{-1.0f, -0.5f, -2.0f}, nearTo = glm::vec3(-2.6f, 0.3f, -3.2f) * 1.5625f;
+    REQUIRE(f.ids.at(int(f.project(nearTo).x), int(f.project(nearTo).y)) <= 1u);
+    CHECK(f.prove(nearFrom, nearTo, nearTo).proof == RayProof::CertainHit);
+    // Without the pole the crossing ray is proven.
+    CHECK(HandFrame().prove(from, to, to).proof == RayProof::CertainHit);
 }

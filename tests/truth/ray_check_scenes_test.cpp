@@ -14,6 +14,7 @@
 #include "scene_transforms.h"
 #include "scenes/builtin_scenes.h"
 #include "trace/march.h"
+#include "trace_copies.h"
 #include "truth/ray_check.h"
 
 using namespace ssrt;
@@ -48,22 +49,6 @@ struct Sample {
     RayBatch rays;
     MarchResult march;
 };
-
-RayBatch copyOf(const RayBatch& r) {
-    RayBatch c;
-    for (auto m : {&RayBatch::ox, &RayBatch::oy, &RayBatch::oz, &RayBatch::dx, &RayBatch::dy,
-                   &RayBatch::dz, &RayBatch::pdf})
-        c.*m = (r.*m).clone();
-    return c;
-}
-
-MarchResult copyOf(const MarchResult& r) {
-    MarchResult c;
-    for (auto m : {&MarchResult::hit, &MarchResult::hitX, &MarchResult::hitY, &MarchResult::hitZ,
-                   &MarchResult::steps, &MarchResult::cause})
-        c.*m = (r.*m).clone();
-    return c;
-}
 
 glm::mat3 rotationOf(const TraceCamera& c) {
     glm::mat3 m;
@@ -117,7 +102,7 @@ SceneCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, Marcher
     std::vector<Sample> samples;
     const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
                                    const MarchResult& march, const HalfFrame*) {
-        samples.push_back({pass, copyOf(rays), copyOf(march)});
+        samples.push_back({pass, test::copyOf(rays), test::copyOf(march)});
     };
     Frame frame;
     Renderer(rs).renderWithoutHistory(scene, FrameInput::still(scene), frame, &keep);
