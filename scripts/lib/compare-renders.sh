@@ -11,7 +11,8 @@
 # shot file), textured glTFs (a data-URI PNG, the same quad as a .glb, the quad with normal,
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
-# half-resolution pick are not frame 0's ("layout:SCENE"). Returns 1 when any file differs.
+# half-resolution pick are not frame 0's ("layout:SCENE"), and SSR traced in mixed and in
+# world mode through Embree ("mixed:SCENE", "world:SCENE"). Returns 1 when any file differs.
 # (compare_renders' own: waits until fewer than $1 renders run, oldest first, keeping their
 # process ids in its `pids` and noting a failed one in its `status`. `wait PID`, not `wait -n`,
 # which can miss a job that ended while a command substitution ran.)
@@ -35,7 +36,7 @@ compare_renders() {
              scene:tests/scenes/data/draco_box.gltf
              scene:tests/fuzz/seeds/gltf/meshopt_sphere.glb)
     [ ${#inputs[@]} -ge 10 ] || { echo "$label: too few inputs: ${inputs[*]}" >&2; return 1; }
-    inputs+=(layout:cornell layout:corridor)
+    inputs+=(layout:cornell layout:corridor mixed:cornell mixed:fence world:spheres)
 
     rm -rf "$out"
     mkdir -p "$out/$name_a" "$out/$name_b"
@@ -51,6 +52,9 @@ compare_renders() {
             if [ "$kind" = layout ]; then
                 kind=scene name="${what}_layouts"
                 extra=(--ssr-layout checkerboard --ssgi-layout half --frame 3)
+            elif [ "$kind" = mixed ] || [ "$kind" = world ]; then
+                extra=(--ssr-trace "$kind")
+                kind=scene name="${what}_ssr_$kind"
             fi
             if [ "$quality" != default ]; then
                 name="${name}_$quality"
