@@ -35,11 +35,11 @@ inline std::string_view traceModeName(TraceMode m) {
 
 // What a signal's world stage did with its rays (renderer/world_stage.h), summed over a frame.
 struct WorldRayStats {
-    uint64_t proven = 0;   // march hits the proof holds (mixed): screen hits at their exact point
-    uint64_t sent = 0;     // rays traced in world space
-    uint64_t shown = 0;    // of those, hits a pixel shows: screen hits there
-    uint64_t hidden = 0;   // hits no pixel shows (off the frame, or behind nearer surfaces)
-    uint64_t missed = 0;   // nothing within the march's maximum distance
+    uint64_t proven = 0;  // march hits the proof holds (mixed): screen hits at their exact point
+    uint64_t sent = 0;    // rays traced in world space
+    uint64_t shown = 0;   // of those, hits a pixel shows: screen hits there
+    uint64_t hidden = 0;  // hits no pixel shows (off the frame, or behind nearer surfaces)
+    uint64_t missed = 0;  // nothing within the march's maximum distance
     void add(const WorldRayStats& o) {
         proven += o.proven, sent += o.sent, shown += o.shown, hidden += o.hidden,
             missed += o.missed;
