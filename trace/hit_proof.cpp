@@ -65,8 +65,8 @@ public:
 
     bool clear() {
         if (!(tmax_ > tmin_) || !(o_.z < 0.0f)) return true;
-        if (!in_.thin) return fine(in_.viewZ, 0, steps_);
-        return coarse(*in_.thin, ThinFeatures::kLevels - 1, 0, steps_);
+        if (!in_.thin[0]) return fine(in_.viewZ, 0, steps_);
+        return coarse(ThinFeatures::kLevels - 1, 0, steps_);
     }
 
 private:
@@ -84,13 +84,13 @@ private:
 
     // Steps [first, last] at the thin features' level `level`: each stretch of a cell's side
     // looked at closer (the level below, or pixels) only where the ray may be behind.
-    bool coarse(const ThinFeatures& thin, int level, int first, int last) {
-        if (level == 0) return fine(viewOf(thin.levels[0], "thin features"), first, last);
+    bool coarse(int level, int first, int last) {
+        if (level == 0) return fine(in_.thin[0], first, last);
         const int shift = ThinFeatures::kCellLog2 * level, stride = 1 << shift;
         for (int i = first; i <= last; i += stride) {
             const int end = std::min(i + stride, last);
-            if (behindAround(thin.levels[std::size_t(level)], shift, i, end) &&
-                !coarse(thin, level - 1, i, end))
+            if (behindAround(in_.thin[std::size_t(level)], shift, i, end) &&
+                !coarse(level - 1, i, end))
                 return false;
         }
         return true;
@@ -98,7 +98,7 @@ private:
 
     // Whether the ray's farthest point on steps [i, last] may be at or behind the nearest
     // depth of the cells (2^shift pixels a side) around them (a pixel's margin each way).
-    bool behindAround(const PlaneF& cells, int shift, int i, int last) const {
+    bool behindAround(ViewF cells, int shift, int i, int last) const {
         const float fa = fraction(i), fb = fraction(last);
         const float xa = fromX_ + fa * dx_, xb = fromX_ + fb * dx_;
         const float ya = fromY_ + fa * dy_, yb = fromY_ + fb * dy_;
@@ -206,10 +206,15 @@ ProofInputs proofInputs(const TraceCamera& camera, ViewU32 ids, ViewF viewZ,
                         ProofTriangles triangles, ProofSettings settings,
                         const ThinFeatures* thin) {
     requireViews("hit proof", camera.width, camera.height, {ids, viewZ});
-    if (thin)
-        requireViews("hit proof", camera.width, camera.height,
-                     {viewOf(thin->levels[0], "thin features")});
-    return {camera, ids, viewZ, triangles, settings, thin};
+    ProofInputs in{camera, ids, viewZ, triangles, settings};
+    if (!thin) return in;
+    // (Level 0 is the frame's size; the coarser levels are its cells, as findThinFeatures
+    // sizes them.)
+    requireViews("hit proof", camera.width, camera.height,
+                 {viewOf(thin->levels[0], "thinFeatures")});
+    for (std::size_t l = 0; l < in.thin.size(); ++l)
+        in.thin[l] = viewOf(thin->levels[l], "thinFeatures");
+    return in;
 }
 
 ProvenRay proveRay(const ProofInputs& in, glm::vec3 origin, glm::vec3 direction, float fromX,

@@ -83,9 +83,10 @@ struct ProofInputs {
     ViewF viewZ;
     ProofTriangles triangles;
     ProofSettings settings;
-    // Optional: the frame's thin features, with which the thin-feature check looks only at
-    // them and skips the stretches of a path far from any (without: at every pixel).
-    const ThinFeatures* thin = nullptr;
+    // Optional: views of the frame's thin features (ThinFeatures::levels), with which the
+    // thin-feature check looks only at them and skips the stretches of a path far from any
+    // (absent: at every pixel).
+    std::array<ViewF, ThinFeatures::kLevels> thin{};
 };
 
 // The inputs, their views checked (requireViews: present, of the camera's size); else
