@@ -31,7 +31,8 @@ inline constexpr std::array kResolveFields = {
         "hitBilinear", kCliShot, "Read the colour at a hit bilinearly (off: the nearest pixel)"),
     field<&SsrResolveSettings::edgeFadeLength>(
         "edgeFadeLength", kCliShot,
-        "Fraction of the frame (per axis) over which SSR hits fade out toward its edges")
+        "Fraction of the frame (per axis) over which SSR hits fade out toward its edges (screen "
+        "tracing: mixed and world tracing keep every hit, which is certain)")
         .floats(0.0, true, 0.5),
     field<&SsrResolveSettings::roughnessFadeStart>(
         "roughnessFadeStart", kCliShot, "Perceptual roughness where SSR starts to fade out")

@@ -154,6 +154,8 @@ void ssrPass(const TraceContext& c, Frame& frame) {
     Frame::Scratch& sc = frame.scratch;
     StageTimes times;
     SsrResolveSettings rs = ts.resolve;
+    // Mixed and world tracing's hits are certain, near the border too (trace/ssr_resolve.h).
+    if (ts.ssrTrace != TraceMode::Screen) rs.edgeFadeLength = 0.0f;
     const SsrResolveArgs in = ssrInputs(c, frame, rs, times.resolve);
     // Per-pixel hit fraction, mean steps and mean hit distance (trace/hit_stats.h).
     const HitStatsArgs hp{stageOutput(frame, Res::SsrHit, c.camera),

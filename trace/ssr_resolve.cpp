@@ -99,7 +99,7 @@ SsrResolver::SsrResolver(Isa isa, const SsrResolveSettings& settings, const SsrR
         requireViews(kResolvePass, w, h, {src[0], src[1], src[2]});
         for (int c = 0; c < 3; ++c) a.source[c] = src[c].data;
     }
-    a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 1.0e30f;
+    a.edgeFadeScale = settings.edgeFadeLength > 0.0f ? 1.0f / settings.edgeFadeLength : 0.0f;
     a.roughnessFadeEnd = settings.roughnessFadeEnd;
     const float span = settings.roughnessFadeEnd - settings.roughnessFadeStart;
     a.roughnessFadeScale = span > 0.0f ? 1.0f / span : 1.0e30f;

@@ -7,7 +7,11 @@
 // position (hit + motion at the hit pixel; a reprojected position off the frame is a miss).
 // Its fade f_hit is the edge-of-screen fade (0 on the frame border, 1 from edgeFadeLength of
 // the frame inward, linear between: min(u, 1 - u, v, 1 - v) / edgeFadeLength, u = hitX / W,
-// v = hitY / H, clamped to [0, 1]); misses and pixels without a ray have f = 0.
+// v = hitY / H, clamped to [0, 1]); misses and pixels without a ray have f = 0. With
+// edgeFadeLength 0 a hit keeps f = 1 wherever it is: the renderer's choice for mixed and world
+// tracing, whose hits are certain (a hit near the border is a true hit, and what lies past the
+// border went to world space), so fading them would show the environment where the truth
+// shows the hit.
 //
 // Mip mode (approximate, HDRP): the pixel's own hit, its radiance read from a colour
 // pyramid (trace/color_pyramid.h) at mip = roughness * maxMip, trilinear;
@@ -57,7 +61,8 @@ struct SsrResolveSettings {
     SsrResolveMode mode = SsrResolveMode::Reuse;
     HitRadiance radiance = HitRadiance::Current;
     bool bilinear = true;             // colour at the hit: bilinear (true) or nearest pixel
-    float edgeFadeLength = 0.1f;      // fraction of the frame (per axis) over which hits fade
+    float edgeFadeLength = 0.1f;      // fraction of the frame (per axis) over which hits fade;
+                                      // 0: none
     float roughnessFadeStart = 0.5f;  // perceptual roughness where SSR starts to fade out
     float roughnessFadeEnd = 0.7f;    // ... and where it is gone (<= start: a step at end)
 };

@@ -75,7 +75,7 @@ void hitChunk(const SsrResolveArgs& a, int x, int y) {
         // Edge-of-screen fade on the hit's position in the current frame.
         const Lane u = hx * Lane(1.0f / float(a.width)), v = hy * Lane(1.0f / float(a.height));
         const Lane edge = ln::min(ln::min(u, one - u), ln::min(v, one - v));
-        fade = ln::saturate(edge * Lane(a.edgeFadeScale));
+        fade = a.edgeFadeScale > 0.0f ? ln::saturate(edge * Lane(a.edgeFadeScale)) : one;
         // Where to read: the hit, or where it was a frame ago.
         Lane px = hx, py = hy;
         if (a.reproject) {

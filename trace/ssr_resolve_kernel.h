@@ -63,7 +63,7 @@ struct SsrResolveArgs {
     const float* level[kMaxLevels][3] = {};
     std::size_t levelStride[kMaxLevels] = {};
     int levelWidth[kMaxLevels] = {}, levelHeight[kMaxLevels] = {};
-    float edgeFadeScale = 0.0f;                                // 1 / edgeFadeLength
+    float edgeFadeScale = 0.0f;                                // 1 / edgeFadeLength; 0: none
     float roughnessFadeEnd = 0.0f, roughnessFadeScale = 0.0f;  // fade = saturate((end - r) * scale)
     // Scratch written by ssrHitTile, read by ssrResolveTile. hitTarget (reuse only): the hit
     // point in view space, or the ray's direction for a miss. The scratch planes (these and

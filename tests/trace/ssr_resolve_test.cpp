@@ -222,6 +222,21 @@ TEST_CASE("ssr resolve: edge-of-screen fade is 0 on the border, 1 inside, linear
     for (int x = 0; x < kW; ++x) CHECK(border.opacity.at(x, 10) == 0.0f);
 }
 
+TEST_CASE(
+    "ssr resolve: with edgeFadeLength 0 (mixed and world tracing) a hit is whole up to "
+    "and on the border") {
+    WallFixture f;
+    SsrResolveSettings s = settings(SsrResolveMode::Mip);
+    s.edgeFadeLength = 0.0f;
+    f.hitAt([](int x, int, float& hx, float& hy) {
+        const float at[4] = {0.0f, 0.5f, 0.025f * kW, float(kW) - 0.5f};
+        hx = at[x % 4];
+        hy = x % 8 < 4 ? 0.5f * kH : 0.0f;
+    });
+    const SsrOutput out = f.resolve(s);
+    for (int x = 0; x < kW; ++x) CHECK(out.opacity.at(x, 10) == 1.0f);
+}
+
 TEST_CASE("ssr resolve: roughness fade is 1 below the start and 0 above the end") {
     WallFixture f;
     SsrResolveSettings s = settings(SsrResolveMode::Mip);
