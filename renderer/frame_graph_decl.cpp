@@ -43,6 +43,9 @@ bool hitLightHalf(const GraphKey& k) { return hitLightAtHalf(k.settings); }
 bool ssgiOcclusion(const GraphKey& k) { return ssgi(k) && occlusionTextured(k); }
 // SSR's proof of its march hits (mixed tracing, trace/hit_proof.h) reads the triangle ids.
 bool ssrMixed(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace == TraceMode::Mixed; }
+// SSR's world rays (mixed and world tracing) light a hidden hit with the frame's shadow map
+// (world/hit_light.h).
+bool ssrWorld(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace != TraceMode::Screen; }
 // The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
 bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
 bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
@@ -364,7 +367,8 @@ std::vector<PassDecl> declarePasses() {
                   {Res::SsrHitTarget, P::Around, reuseResolve},
                   {Res::DenoiseHistorySpecularFrames, P::Anywhere, ssrSparse},
                   {Res::VisibilityIds, P::Anywhere, ssrMixed},
-                  {Res::ThinFeatures, P::Anywhere, ssrMixed}},
+                  {Res::ThinFeatures, P::Anywhere, ssrMixed},
+                  {Res::ShadowMap, P::Anywhere, ssrWorld}},
                  {{Res::Ssr},
                   {Res::SsrOpacity},
                   {Res::SsrHit},

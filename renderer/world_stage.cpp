@@ -1,6 +1,8 @@
 #include "renderer/world_stage.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/tiles.h"
@@ -26,6 +28,13 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     if (mode == TraceMode::Screen) return w;
     const PassReads reads(c.graph, frame, pass);
     w.world = c.world;
+    // A hidden hit is lit with the frame's shadow map, which the direct pass's arguments point
+    // into: the graph must keep it for this pass (a declared read), or its memory may already
+    // belong to another resource.
+    const PlaneF& shadow = frame.scratch.shadow.depth;
+    if (!reads.has(Res::ShadowMap) || shadow.empty() || c.direct.shadowMap != shadow.row(0))
+        throw std::logic_error(std::string(pass) +
+                               ": world rays need the shadow map, which the frame no longer holds");
     w.direct = &c.direct;
     w.camera = c.camera;
     w.viewZ = reads.view(Res::ViewZ);  // (PassReads checked it: made, of the frame's size)
