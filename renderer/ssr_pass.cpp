@@ -117,8 +117,9 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
     Frame::Scratch& sc = frame.scratch;
     for (int s = 0; s < c.ts().ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
-        const RayMarcher march(isa, c.ts().marcher, c.ts().march, {c.frameIndex, uint32_t(s)},
-                               c.camera, q.in.g, c.backZ, c.hiz, c.threads());
+        RayMarcher march(isa, c.ts().marcher, c.ts().march, {c.frameIndex, uint32_t(s)}, c.camera,
+                         q.in.g, c.backZ, c.hiz, c.threads());
+        if (skipsMarch(c, TracePass::Ssr)) march.skipMarch();
         // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts().ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);

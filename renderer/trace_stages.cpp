@@ -9,7 +9,7 @@ void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, in
     addTime(times.march, [&] {
         stats.march.add(marchRays(c.isa, c.ts().marcher, c.ts().march,
                                   {c.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
-                                  on.hiz, rays, result, c.threads()));
+                                  on.hiz, rays, result, c.threads(), skipsMarch(c, pass)));
     });
     if (answer) answer(result);
     if (c.observer && *c.observer) (*c.observer)(pass, sample, rays, result, on.half);

@@ -76,8 +76,14 @@ struct MarchFrame {
     const HalfFrame* half;
 };
 
-// One sample's march of the frame's batch `rays` into `result`, then what `answer` (when
-// given: world rays) answers in its place, shown to the observer.
+// Whether `pass` leaves its rays unmarched (RayMarcher::skipMarch): SSR traced in world
+// space answers every ray there.
+inline bool skipsMarch(const TraceContext& c, TracePass pass) {
+    return pass == TracePass::Ssr && c.ts().ssrTrace == TraceMode::World;
+}
+
+// One sample's march of the frame's batch `rays` into `result` (none where skipsMarch), then
+// what `answer` (when given: world rays) answers in its place, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
                  const std::function<void(MarchResult&)>& answer = {});

@@ -231,6 +231,22 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
     const BatchCorner in = rays.corner, out = result.corner;
     const bool jitter = ddaJitter_ > 0.0f;
     const std::size_t histogramSize = std::size_t(maxSteps_) + 1;
+    MarchStats st;
+    st.stepHistogram.assign(histogramSize, 0);
+    // Every pixel "no ray" (what the march then overwrites for the rays it marches).
+    const auto noRays = [&] {
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const int yy = y - out.y0, x0 = rect.x0 - out.x0, x1 = rect.x1 - out.x0;
+            for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
+                std::fill(p->row(yy) + x0, p->row(yy) + x1, 0.0f);
+            std::fill(result.cause.row(yy) + x0, result.cause.row(yy) + x1,
+                      float(int(MarchEnd::NoRay)));
+        }
+    };
+    if (skip_) {
+        noRays();
+        return st;
+    }
     thread_local TileScratch scratch;
     const std::size_t cap = std::size_t(kTileSize * kTileSize + kMarchPad);
     if (scratch.capacity != cap) {
@@ -294,16 +310,7 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
     const int padded = (n + kMarchPad - 1) / kMarchPad * kMarchPad;
     for (int i = n; i < padded; ++i)
         for (int k = 0; k <= TileScratch::kJitter; ++k) A[k][i] = n ? A[k][0] : 0.0f;
-    // Everything defaults to "no ray".
-    for (int y = rect.y0; y < rect.y1; ++y) {
-        const int yy = y - out.y0, x0 = rect.x0 - out.x0, x1 = rect.x1 - out.x0;
-        for (PlaneF* p : {&result.hit, &result.hitX, &result.hitY, &result.hitZ, &result.steps})
-            std::fill(p->row(yy) + x0, p->row(yy) + x1, 0.0f);
-        std::fill(result.cause.row(yy) + x0, result.cause.row(yy) + x1,
-                  float(int(MarchEnd::NoRay)));
-    }
-    MarchStats st;
-    st.stepHistogram.assign(histogramSize, 0);
+    noRays();
     if (n == 0) return st;
     MarchKernelArgs args = proto_;
     args.count = n;
@@ -355,14 +362,15 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
 
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
-                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result,
-                     int threads) {
+                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads,
+                     bool skip) {
     settings.validate();
     const int w = rays.width(), h = rays.height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
     if (camera.width != w || camera.height != h)
         throw std::invalid_argument("marchRays: camera size does not match the ray batch");
-    const RayMarcher march(isa, marcher, settings, seed, camera, g, backZ, hiz, threads);
+    RayMarcher march(isa, marcher, settings, seed, camera, g, backZ, hiz, threads);
+    if (skip) march.skipMarch();
     result.ensureSize(w, h);
     result.corner = {};
     const TileGrid& grid = march.grid();

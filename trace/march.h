@@ -109,10 +109,11 @@ struct MarchStats {
 // MarchSettings::backFaces), or null: the thickness everywhere. Writes every pixel of
 // `result` (ensureSize'd here). `hiz` must be built from g.viewZ when marcher == HiZ (may be
 // null otherwise). Throws std::invalid_argument on bad settings or mismatched sizes.
-// `seed` is the batch's frame and sample, for the DDA jitter.
+// `seed` is the batch's frame and sample, for the DDA jitter. `skip`: RayMarcher::skipMarch.
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
-                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads);
+                     const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads,
+                     bool skip = false);
 
 // One march, checked and set up once (the camera's, the settings' and the pyramid's
 // arguments), then run tile by tile: over the frame by marchRays, or one tile at a time by the
@@ -131,6 +132,11 @@ public:
     // frame's batch (planes of the camera's size, corner (0, 0)) or a tile's (planes of at
     // least the tile's size, corner at the tile's corner).
     MarchStats tile(int tile, const RayBatch& rays, MarchResult& result) const;
+    // Leaves every ray unmarched: tile() writes each pixel as without a ray (hit 0,
+    // MarchEnd::NoRay) and counts none. For world tracing (TraceMode::World), which answers
+    // every ray after the march (renderer/world_stage.h): the march would be thrown away, and
+    // tracing in Embree costs about what the march does.
+    void skipMarch() { skip_ = true; }
 
 private:
     MarchKernelArgs proto_{};
@@ -139,6 +145,7 @@ private:
     RaySeed seed_;
     float ddaJitter_ = 0.0f;  // 0: no jitter
     int maxSteps_ = 0;
+    bool skip_ = false;
     decltype(&isa_scalar::marchHiZKernel) kernel_ = nullptr;
     decltype(&isa_scalar::marchSortKeys) sortKeys_ = nullptr;
 };

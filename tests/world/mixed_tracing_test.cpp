@@ -99,3 +99,25 @@ TEST_CASE("mixed tracing: a mode that needs world rays without them is a clear e
                          doctest::Contains("--ssr-trace mixed needs world rays"),
                          std::invalid_argument);
 }
+
+TEST_CASE("mixed tracing: world mode marches no SSR ray and traces every one in world space") {
+    const Scene scene = makeBuiltinScene("spheres");
+    const EmbreeScene embree(scene);
+    const EmbreeWorldRays world(embree);
+    const Frame mixed = renderTraced(scene, world, TraceMode::Mixed, Isa::Scalar, 2);
+    const Frame all = renderTraced(scene, world, TraceMode::World, Isa::Scalar, 2);
+    const TraceStats& m = mixed.stats.ssr;
+    const TraceStats& w = all.stats.ssr;
+    REQUIRE(w.rays.rays > 0);
+    CHECK(w.march.rays == 0);
+    CHECK(w.march.steps == 0);
+    CHECK(w.world.proven == 0);
+    CHECK(w.world.sent == w.rays.rays);
+    CHECK(w.world.shown + w.world.hidden + w.world.missed == w.world.sent);
+    // Mixed marches them all and sends the rest on.
+    CHECK(m.march.rays == m.rays.rays);
+    CHECK(m.world.proven > 0);
+    CHECK(m.world.proven + m.world.sent == m.rays.rays);
+    // SSGI still marches in both.
+    CHECK(all.stats.ssgi.march.rays > 0);
+}
