@@ -16,6 +16,7 @@
 #include "cli/shard.h"
 #include "io/image_io.h"
 #include "renderer/quality.h"
+#include "world/embree_world_rays.h"
 
 namespace ssrt::cli {
 
@@ -23,9 +24,10 @@ namespace {
 
 // The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
 const char* const kPasses[] = {
-    "shadow",      "geometry",  "visibility", "resolve",      "textures",  "ids",
-    "environment", "shading",   "back faces", "hi-z",         "ssr rays",  "ssr march",
-    "ssr resolve", "ssgi rays", "ssgi march", "ssgi resolve", "composite", kEmbreeTracePass};
+    "shadow",    "geometry",    "visibility",   "resolve",           "textures",
+    "ids",       "environment", "shading",      "back faces",        "hi-z",
+    "ssr rays",  "ssr march",   "ssr resolve",  "ssr thin features", "ssr world",
+    "ssgi rays", "ssgi march",  "ssgi resolve", "composite",         kEmbreeTracePass};
 
 std::string columnName(std::string s) {
     for (char& c : s)
@@ -45,6 +47,7 @@ struct Point {
     bool backFaces = false;  // MarchSettings::backFaces
     bool feedback = false;   // TraceSettings::ssgiFeedback
     SsrResolveMode resolve = SsrResolveMode::Reuse;
+    TraceMode ssrTrace = TraceMode::Screen;  // TraceSettings::ssrTrace
 
     static Point off() {
         Point p;
@@ -111,6 +114,7 @@ std::vector<Point> grid(const SweepOptions& o) {
         return s == "on";
     });
     const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
+    const auto traces = parseField<TraceMode>("--ssr-trace", "ssrTrace", o.ssrTraces);
     std::vector<Point> points;
     bool off = false;
     for (const auto& m : marchers) {
@@ -127,8 +131,20 @@ std::vector<Point> grid(const SweepOptions& o) {
                             for (bool bf : backFaces)
                                 for (bool fb : feedback)
                                     for (SsrResolveMode re : resolves)
-                                        points.push_back(
-                                            {true, {}, 0, *m, st, sp, gp, me, th, bf, fb, re});
+                                        for (TraceMode tr : traces)
+                                            points.push_back({true,
+                                                              {},
+                                                              0,
+                                                              *m,
+                                                              st,
+                                                              sp,
+                                                              gp,
+                                                              me,
+                                                              th,
+                                                              bf,
+                                                              fb,
+                                                              re,
+                                                              tr});
     }
     for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
              const std::optional<Quality> q = parseQuality(s);
@@ -159,6 +175,7 @@ Point describedBy(Point p, const RenderSettings& s) {
     p.backFaces = t.march.backFaces;
     p.feedback = t.ssgiFeedback;
     p.resolve = t.resolve.mode;
+    p.ssrTrace = t.ssrTrace;
     return p;
 }
 
@@ -182,6 +199,7 @@ RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
         t.march.backFaces = p.backFaces;
         t.ssgiFeedback = p.feedback;
         t.resolve.mode = p.resolve;
+        t.ssrTrace = p.ssrTrace;
     }
     s.validate();
     return s;
@@ -229,6 +247,7 @@ std::string csvRow(int setting, const std::string& scene, const RenderSettings& 
     optional(p.traced, p.backFaces ? 1 : 0);
     optional(p.traced, p.feedback ? 1 : 0);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
+    r << ',' << (p.traced ? traceModeName(p.ssrTrace) : std::string_view());
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
     cell(reference.spp);
     cell(bouncesName(reference.bounces));
@@ -243,6 +262,10 @@ std::string csvRow(int setting, const std::string& scene, const RenderSettings& 
         optional(on, RayCheckTable::quantile(t.pixelError, 0.5));
         optional(on, RayCheckTable::quantile(t.pixelError, 0.95));
         optional(on, RayCheckTable::quantile(t.depthError, 0.5));
+        // How the rays were answered (mixed and world tracing): world rays, and the screen's
+        // own false hits (its false accepts), as shares of all rays.
+        optional(on, t.rays ? double(t.worldRays()) / double(t.rays) : 0.0);
+        optional(on, t.screenShare(RayClass::FalseHit));
     };
     checks(ev.ssr, ev.ssrCheck);
     checks(ev.ssgi, ev.ssgiCheck);
@@ -308,6 +331,7 @@ std::string describe(const Point& p) {
       << ", ssr x" << p.ssrSpp << ", ssgi x" << p.ssgiSpp << ", thickness " << p.thickness
       << (p.backFaces ? ", back faces, " : ", ") << (p.feedback ? "ssgi feedback, " : "")
       << (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse");
+    if (p.ssrTrace != TraceMode::Screen) s << ", ssr " << traceModeName(p.ssrTrace);
     return s.str();
 }
 
@@ -325,16 +349,30 @@ SweepOptions::SweepOptions() {
     backFaces = d.march.backFaces ? "on" : "off";
     feedback = d.ssgiFeedback ? "on" : "off";
     resolves = std::string(resolveModeName(d.resolve.mode));
+    ssrTraces = std::string(traceModeName(d.ssrTrace));
 }
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"setting",      "scene",         "width",
-                                      "height",       "threads",       "marcher",
-                                      "quality",      "ssr_method",    "ssr_spp",
-                                      "ssgi_spp",     "max_steps",     "thickness",
-                                      "back_faces",   "ssgi_feedback", "resolve",
-                                      "trace_hidden", "reference_spp", "reference_bounces",
+        std::vector<std::string> c = {"setting",
+                                      "scene",
+                                      "width",
+                                      "height",
+                                      "threads",
+                                      "marcher",
+                                      "quality",
+                                      "ssr_method",
+                                      "ssr_spp",
+                                      "ssgi_spp",
+                                      "max_steps",
+                                      "thickness",
+                                      "back_faces",
+                                      "ssgi_feedback",
+                                      "resolve",
+                                      "ssr_trace",
+                                      "trace_hidden",
+                                      "reference_spp",
+                                      "reference_bounces",
                                       "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
@@ -342,7 +380,8 @@ const std::vector<std::string>& sweepColumns() {
             c.push_back(p + "_rays");
             for (int k = 1; k < kRayClassCount; ++k)
                 c.push_back(p + "_" + std::string(rayClassName(RayClass(k))));
-            c.insert(c.end(), {p + "_err_px_p50", p + "_err_px_p95", p + "_err_depth_p50"});
+            c.insert(c.end(), {p + "_err_px_p50", p + "_err_px_p95", p + "_err_depth_p50",
+                               p + "_world_rays", p + "_screen_false_hit"});
         }
         c.insert(c.end(),
                  {"relmse", "rmse", "relmse_direct", "relmse_specular", "relmse_diffuse",
@@ -380,6 +419,10 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
          "Multi-bounce diffuse from the frame before (as --ssgi-feedback): on, off (column "
          "ssgi_feedback; it needs a sequence: --warmup-frames or --frames)");
     list("--ssr-resolve", o.resolves, "SSR resolve modes: reuse, mip");
+    list("--ssr-trace", o.ssrTraces,
+         "SSR's tracing modes (as --ssr-trace): screen, mixed, world (column ssr_trace; mixed "
+         "and world trace their world rays on the truth's Embree scene; columns "
+         "ssr_world_rays, ssr_screen_false_hit)");
     list("--presets", o.presets,
          "Quality presets as points of their own beside the grid (column quality): " +
              std::string(qualityList()) + "; none by default");
@@ -430,7 +473,7 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
     if (perFrameOutput) checkCsvPath("--per-frame", *perFrameOutput);
     loadScene(request, err);
     const Scene& scene = request.scene;
-    const FrameSequence sequence(request, plan);
+    FrameSequence sequence(request, plan);
     std::ostream* progress = o.truth.quiet ? nullptr : &err;
     if (progress)
         *progress << "sweeping " << request.name << " " << request.settings.width << "x"
@@ -445,6 +488,9 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                   << "\n";
 
     const EmbreeScene embree(scene);
+    // A setting that traces SSR in mixed or world mode traces its world rays on this scene.
+    const EmbreeWorldRays worldRays(embree);
+    sequence.useWorld(&worldRays);
     const ReferenceSource source = referenceSourceFrom(o.truth, err);
     std::ostringstream csv, perFrame;
     const auto& columns = sweepColumns();

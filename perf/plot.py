@@ -26,11 +26,16 @@ MARKERS = {"off": "x", "linear": "s", "dda": "^", "hiz": "o", "embree": "*", "pr
 
 def group(row):
     """The legend entry: a quality preset's rows are 'preset', others their marcher (and
-    'back faces' where the depth intervals came from them: issue 29)."""
+    'back faces' where the depth intervals came from them, and SSR's tracing mode where it
+    is not the screen's)."""
     if row.get("quality"):
         return "preset"
-    marcher = row.get("marcher", "")
-    return marcher + " + back faces" if row.get("back_faces") == "1" else marcher
+    name = row.get("marcher", "")
+    if row.get("back_faces") == "1":
+        name += " + back faces"
+    if row.get("ssr_trace") not in (None, "", "screen"):
+        name += ", ssr " + row["ssr_trace"]
+    return name
 
 
 def read_rows(path, x, y):
@@ -78,6 +83,8 @@ def label(row):
             parts.append(row[column] + suffix)
     if row.get("back_faces") == "1":
         parts.append("back faces")
+    if row.get("ssr_trace") not in (None, "", "screen"):
+        parts.append("ssr " + row["ssr_trace"])
     return ", ".join(parts)
 
 
@@ -132,6 +139,10 @@ def self_test():
         assert [label(r) for r in rows][3:] == ["embree 4 spp", "low"]
         assert [label(rows[i]) for i in pareto_front([(r["_x"], r["_y"]) for r in rows])] == [
             "off", "low", "embree 4 spp"]
+        mixed = dict(rows[1], ssr_trace="mixed", back_faces="1")
+        assert group(mixed) == "hiz + back faces, ssr mixed", group(mixed)
+        assert label(mixed) == "hiz, 64 st, 1 spp, back faces, ssr mixed", label(mixed)
+        assert group(dict(rows[1], ssr_trace="screen")) == "hiz"
         png = os.path.join(d, "chart.png")
         plot(rows, "frame_ms", "relmse", png, "self test")
         assert os.path.getsize(png) > 1000

@@ -1,6 +1,7 @@
-"""What perf/back_faces.py and perf/feedback.py share: the scenes they chart (every built-in
-scene and a real glTF, assimp's 2CylinderEngine at its own scale), one `ssrt sweep` per
-scene into one CSV, and a chart of one panel per scene written whole or not at all."""
+"""What perf/back_faces.py, perf/feedback.py and perf/trace_modes.py share: the scenes they
+chart (every built-in scene and a real glTF, assimp's 2CylinderEngine at its own scale), one
+`ssrt sweep` per scene into one CSV, and a chart of one panel per scene written whole or not
+at all."""
 import csv
 import os
 import subprocess

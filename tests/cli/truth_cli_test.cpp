@@ -282,6 +282,43 @@ TEST_CASE("sweep: --ssgi-feedback off,on is an axis of the grid (column ssgi_fee
     CHECK(rows[0][col("relmse_direct")] == rows[1][col("relmse_direct")]);
 }
 
+TEST_CASE("sweep: --ssr-trace screen,mixed,world is an axis of the grid (column ssr_trace)") {
+    TempDir dir;
+    const std::string csv = dir.file("s.csv");
+    const test::CliResult r = runSsrt(tiny({"sweep", "--scene", "fence", "--marchers", "hiz",
+                                            "--ssr-trace", "screen,mixed,world", "-o", csv, "-q"},
+                                           dir));
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    std::ifstream in(csv);
+    std::string line;
+    REQUIRE(std::getline(in, line));
+    const auto& columns = cli::sweepColumns();
+    const auto col = [&](const char* name) {
+        return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+    };
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+    REQUIRE(rows.size() == 3);
+    const auto at = [&](int row, const char* name) { return std::stod(rows[row][col(name)]); };
+    CHECK(rows[0][col("ssr_trace")] == "screen");
+    CHECK(rows[1][col("ssr_trace")] == "mixed");
+    CHECK(rows[2][col("ssr_trace")] == "world");
+    // The screen sends no ray to world space, world mode every one; mixed some, and its
+    // screen-answered rays are rarely wrong where the screen's alone are often wrong.
+    CHECK(at(0, "ssr_world_rays") == 0.0);
+    CHECK(at(1, "ssr_world_rays") > 0.0);
+    CHECK(at(1, "ssr_world_rays") < 1.0);
+    CHECK(at(2, "ssr_world_rays") == 1.0);
+    CHECK(at(0, "ssr_screen_false_hit") == at(0, "ssr_false_hit"));
+    CHECK(at(0, "ssr_false_hit") > 0.0);
+    CHECK(at(1, "ssr_false_hit") < 0.5 * at(0, "ssr_false_hit"));
+    CHECK(at(2, "ssr_screen_false_hit") == 0.0);
+    // The world stage's time is its own column; the screen runs none.
+    CHECK(rows[0][col("ms_ssr_world")].empty());
+    CHECK(at(1, "ms_ssr_world") > 0.0);
+}
+
 TEST_CASE("compare and sweep: bad input is one error line and nothing is written") {
     TempDir dir;
     const std::string csv = dir.file("s.csv");
@@ -295,6 +332,7 @@ TEST_CASE("compare and sweep: bad input is one error line and nothing is written
                                                {"compare", "--reference-bounces", "257"},
                                                {"compare", "--reference-bounces", "many"},
                                                {"sweep", "--ssgi-feedback", "yes", "-o", csv},
+                                               {"sweep", "--ssr-trace", "hybrid", "-o", csv},
                                                {"compare", "--no-ssr", "--no-ssgi"},
                                                {"compare", "--visibility", "raytraced"},
                                                {"compare", "--depth-tolerance", "1.5"},
