@@ -12,7 +12,8 @@
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
 # half-resolution pick are not frame 0's ("layout:SCENE"), and SSR traced in mixed and in
-# world mode through Embree ("mixed:SCENE", "world:SCENE"). Returns 1 when any file differs.
+# world mode through Embree ("mixed:SCENE", "world:SCENE"; "pooled:SCENE" mixed with only the
+# colour kept, so the frame gives its planes back early). Returns 1 when any file differs.
 # (compare_renders' own: waits until fewer than $1 renders run, oldest first, keeping their
 # process ids in its `pids` and noting a failed one in its `status`. `wait PID`, not `wait -n`,
 # which can miss a job that ended while a command substitution ran.)
@@ -36,7 +37,8 @@ compare_renders() {
              scene:tests/scenes/data/draco_box.gltf
              scene:tests/fuzz/seeds/gltf/meshopt_sphere.glb)
     [ ${#inputs[@]} -ge 10 ] || { echo "$label: too few inputs: ${inputs[*]}" >&2; return 1; }
-    inputs+=(layout:cornell layout:corridor mixed:cornell mixed:fence world:spheres)
+    inputs+=(layout:cornell layout:corridor mixed:cornell mixed:fence world:spheres
+             pooled:spheres)
 
     rm -rf "$out"
     mkdir -p "$out/$name_a" "$out/$name_b"
@@ -55,6 +57,9 @@ compare_renders() {
             elif [ "$kind" = mixed ] || [ "$kind" = world ]; then
                 extra=(--ssr-trace "$kind")
                 kind=scene name="${what}_ssr_$kind"
+            elif [ "$kind" = pooled ]; then
+                extra=(--ssr-trace mixed --layers color)
+                kind=scene name="${what}_ssr_mixed_colour"
             fi
             if [ "$quality" != default ]; then
                 name="${name}_$quality"
