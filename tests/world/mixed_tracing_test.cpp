@@ -121,3 +121,37 @@ TEST_CASE("mixed tracing: world mode marches no SSR ray and traces every one in 
     // SSGI still marches in both.
     CHECK(all.stats.ssgi.march.rays > 0);
 }
+
+TEST_CASE("mixed tracing: a certain hit near the frame's edge is not faded") {
+    // The screen fades its hits toward the border (it cannot see past it); mixed and world
+    // keep each whole (trace/ssr_resolve.h: edgeFadeLength 0). Cornell's mirror sphere and
+    // floor reflect what lies near the frame's bottom.
+    const Scene scene = makeBuiltinScene("cornell");
+    const EmbreeScene embree(scene);
+    const EmbreeWorldRays world(embree);
+    const auto faded = [&](TraceMode mode) {
+        RenderSettings s;
+        s.width = 160;
+        s.height = 90;
+        s.trace.ssrTrace = mode;
+        s.trace.ssrLayout = TraceLayout::Full;       // every pixel its own ray, nothing filled in
+        s.trace.resolve.mode = SsrResolveMode::Mip;  // opacity = the hit's fade x roughness's
+        s.trace.denoise.enabled = false;
+        FrameInput in = FrameInput::still(scene);
+        in.world = &world;
+        const Frame f = Renderer(s).renderWithoutHistory(scene, in);
+        int hits = 0, fadedHits = 0;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                if (f.plane(Res::SsrHit).at(x, y) != 1.0f) continue;
+                if (!(f.gbuffer.roughness.at(x, y) < s.trace.resolve.roughnessFadeStart)) continue;
+                ++hits;
+                fadedHits += f.plane(Res::SsrOpacity).at(x, y) < 1.0f;
+            }
+        CHECK(hits > 1000);
+        return fadedHits;
+    };
+    CHECK(faded(TraceMode::Screen) > 100);
+    CHECK(faded(TraceMode::Mixed) == 0);
+    CHECK(faded(TraceMode::World) == 0);
+}
