@@ -7,10 +7,12 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "cli/options.h"
+#include "cli/scene_world.h"
 #include "renderer/renderer.h"
 
 namespace ssrt::python {
@@ -21,8 +23,26 @@ namespace py = pybind11;
 // and first frame. Shared, immutable: frames and sequences keep it alive while they read it.
 using SceneData = std::shared_ptr<const cli::SceneRequest>;
 
+// Embree's scene of a loaded scene (FrameInput::world), built by the first render that traces
+// a signal in mixed or world mode and kept with the scene for the others.
+struct SceneWorldRays {
+    std::once_flag built;
+    std::unique_ptr<cli::SceneWorld> world;
+};
+
 struct PyScene {
     SceneData data;
+    std::shared_ptr<SceneWorldRays> world = std::make_shared<SceneWorldRays>();
+
+    // The world rays a render with `trace` needs (built once, thread-safe), or null where it
+    // traces every signal on screen.
+    const WorldRays* worldRays(const TraceSettings& trace) const {
+        if (!trace.worldRays()) return nullptr;
+        std::call_once(world->built, [&] {
+            world->world = std::make_unique<cli::SceneWorld>(data->scene, trace);
+        });
+        return world->world->rays();
+    }
 };
 
 // A rendered frame, shared with every numpy view of its planes (their base object).

@@ -12,13 +12,17 @@ namespace {
 
 // One frame into a new Frame (views of earlier frames stay as they were), the GIL released. A
 // history another thread's render is using is refused by the renderer (RuntimeError).
+// A renderer tracing in mixed or world mode gets the scene's world rays unless the input names
+// its own.
 PyFrame renderOne(const Renderer& renderer, const PyScene& scene, const FrameInput& input,
                   PyHistory* history) {
     auto frame = std::make_shared<Frame>();
     withFiles({}, [&] {
         py::gil_scoped_release unlocked;
-        if (history) renderer.render(scene.data->scene, input, history->history, *frame);
-        else renderer.renderWithoutHistory(scene.data->scene, input, *frame);
+        FrameInput in = input;
+        if (!in.world) in.world = scene.worldRays(renderer.settings().trace);
+        if (history) renderer.render(scene.data->scene, in, history->history, *frame);
+        else renderer.renderWithoutHistory(scene.data->scene, in, *frame);
     });
     return {frame, renderer.settings(), scene.data};
 }

@@ -29,6 +29,23 @@ def test_every_plane_matches_the_cli(scene, small, tmp_path):
     assert frame_hashes(frame) == expected
 
 
+@pytest.mark.parametrize("mode", ["mixed", "world"])
+def test_ssr_traced_in_world_space_matches_the_cli(mode, small, tmp_path):
+    """The renderer builds the scene's world rays itself, as `ssrt render` does."""
+    exr = tmp_path / "cli.exr"
+    run_cli("render", "--scene", "cornell", "--ssr-trace", mode, "--width", small["width"],
+            "--height", small["height"], "-o", exr)
+    scene = ssrt.Scene("cornell")
+    renderer = ssrt.Renderer(ssrt.RenderSettings(**small, ssr_trace=mode))
+    frame = renderer.render(scene)
+    expected = file_hashes(exr)
+    assert frame_hashes(frame) == expected
+    # A second render reuses the scene's world rays, to the same bits.
+    assert frame_hashes(renderer.render(scene)) == expected
+    screen = ssrt.Renderer(ssrt.RenderSettings(**small)).render(scene)
+    assert plane_hash(screen["color.R"]) != plane_hash(frame["color.R"])
+
+
 def test_a_shot_sequence_matches_the_cli(small, tmp_path):
     shot_file = SOURCE / "examples" / "shots" / "spheres_orbit.json"
     out = tmp_path / "orbit.exr"
