@@ -38,6 +38,25 @@ std::vector<std::string> tiny(std::vector<std::string> args, const TempDir& dir)
 
 std::vector<std::string> splitCsv(const std::string& line) { return test::csvCells(line); }
 
+// A sweep's CSV file: its header, its rows, and where a column of sweepColumns() lies.
+struct SweepCsv {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+    static std::size_t col(const char* name) {
+        const auto& columns = cli::sweepColumns();
+        return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+    }
+};
+
+SweepCsv readSweep(const std::string& path) {
+    std::ifstream in(path);
+    SweepCsv csv;
+    std::string line;
+    if (std::getline(in, line)) csv.header = splitCsv(line);
+    while (std::getline(in, line)) csv.rows.push_back(splitCsv(line));
+    return csv;
+}
+
 // The ray-check table's row `label` of compare's output: its ssr and ssgi cells.
 std::vector<std::string> checkRow(const std::string& out, const std::string& label) {
     for (const std::string& line : test::textLines(out)) {
@@ -265,15 +284,10 @@ TEST_CASE("sweep: --ssgi-feedback off,on is an axis of the grid (column ssgi_fee
                      dir));
     INFO(r.err);
     REQUIRE(r.code == 0);
-    std::ifstream in(csv);
-    std::string line;
-    REQUIRE(std::getline(in, line));
-    const auto& columns = cli::sweepColumns();
-    const auto col = [&](const char* name) {
-        return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
-    };
-    std::vector<std::vector<std::string>> rows;
-    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+    const SweepCsv s = readSweep(csv);
+    const auto& rows = s.rows;
+    const auto col = SweepCsv::col;
+    REQUIRE(s.header == cli::sweepColumns());
     REQUIRE(rows.size() == 2);
     CHECK(rows[0][col("ssgi_feedback")] == "0");
     CHECK(rows[1][col("ssgi_feedback")] == "1");
@@ -290,15 +304,10 @@ TEST_CASE("sweep: --ssr-trace screen,mixed,world is an axis of the grid (column 
                                            dir));
     INFO(r.err);
     REQUIRE(r.code == 0);
-    std::ifstream in(csv);
-    std::string line;
-    REQUIRE(std::getline(in, line));
-    const auto& columns = cli::sweepColumns();
-    const auto col = [&](const char* name) {
-        return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
-    };
-    std::vector<std::vector<std::string>> rows;
-    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+    const SweepCsv s = readSweep(csv);
+    const auto& rows = s.rows;
+    const auto col = SweepCsv::col;
+    REQUIRE(s.header == cli::sweepColumns());
     REQUIRE(rows.size() == 3);
     const auto at = [&](int row, const char* name) { return std::stod(rows[row][col(name)]); };
     CHECK(rows[0][col("ssr_trace")] == "screen");

@@ -15,6 +15,14 @@ using test::frameHash;
 
 namespace {
 
+// A built-in scene and its world rays.
+struct WorldScene {
+    Scene scene;
+    EmbreeScene embree{scene};
+    EmbreeWorldRays world{embree};
+    explicit WorldScene(const std::string& name) : scene(makeBuiltinScene(name)) {}
+};
+
 // `keepPlanes` false: only the colour is kept, so the frame's memory gives a plane back once
 // its last declared reader has run (the PNG render's way).
 Frame renderTraced(const Scene& scene, const WorldRays& world, TraceMode mode, Isa isa, int threads,
@@ -36,9 +44,9 @@ Frame renderTraced(const Scene& scene, const WorldRays& world, TraceMode mode, I
 TEST_CASE("mixed tracing: mixed and world SSR render the same bits on every ISA and thread count") {
     for (const std::string name : {"cornell", "spheres", "fence"}) {
         CAPTURE(name);
-        const Scene scene = makeBuiltinScene(name);
-        const EmbreeScene embree(scene);
-        const EmbreeWorldRays world(embree);
+        const WorldScene ws(name);
+        const Scene& scene = ws.scene;
+        const WorldRays& world = ws.world;
         for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
             const std::string modeName(traceModeName(mode));
             CAPTURE(modeName);
@@ -69,9 +77,9 @@ TEST_CASE("mixed tracing: the colour is the same bits when the frame gives plane
     // once went to other resources while SSR still read it (a race, and a read after free).
     for (const std::string name : {"cornell", "spheres"}) {
         CAPTURE(name);
-        const Scene scene = makeBuiltinScene(name);
-        const EmbreeScene embree(scene);
-        const EmbreeWorldRays world(embree);
+        const WorldScene ws(name);
+        const Scene& scene = ws.scene;
+        const WorldRays& world = ws.world;
         for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
             const std::string modeName(traceModeName(mode));
             CAPTURE(modeName);
@@ -101,9 +109,9 @@ TEST_CASE("mixed tracing: a mode that needs world rays without them is a clear e
 }
 
 TEST_CASE("mixed tracing: world mode marches no SSR ray and traces every one in world space") {
-    const Scene scene = makeBuiltinScene("spheres");
-    const EmbreeScene embree(scene);
-    const EmbreeWorldRays world(embree);
+    const WorldScene ws("spheres");
+    const Scene& scene = ws.scene;
+    const WorldRays& world = ws.world;
     const Frame mixed = renderTraced(scene, world, TraceMode::Mixed, Isa::Scalar, 2);
     const Frame all = renderTraced(scene, world, TraceMode::World, Isa::Scalar, 2);
     const TraceStats& m = mixed.stats.ssr;
@@ -126,9 +134,9 @@ TEST_CASE("mixed tracing: a certain hit near the frame's edge is not faded") {
     // The screen fades its hits toward the border (it cannot see past it); mixed and world
     // keep each whole (trace/ssr_resolve.h: edgeFadeLength 0). Cornell's mirror sphere and
     // floor reflect what lies near the frame's bottom.
-    const Scene scene = makeBuiltinScene("cornell");
-    const EmbreeScene embree(scene);
-    const EmbreeWorldRays world(embree);
+    const WorldScene ws("cornell");
+    const Scene& scene = ws.scene;
+    const WorldRays& world = ws.world;
     const auto faded = [&](TraceMode mode) {
         RenderSettings s;
         s.width = 160;
