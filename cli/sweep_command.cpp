@@ -132,19 +132,19 @@ std::vector<Point> grid(const SweepOptions& o) {
                                 for (bool fb : feedback)
                                     for (SsrResolveMode re : resolves)
                                         for (TraceMode tr : traces)
-                                            points.push_back({true,
-                                                              {},
-                                                              0,
-                                                              *m,
-                                                              st,
-                                                              sp,
-                                                              gp,
-                                                              me,
-                                                              th,
-                                                              bf,
-                                                              fb,
-                                                              re,
-                                                              tr});
+                                            points.push_back({.traced = true,
+                                                              .preset = std::nullopt,
+                                                              .embreeSpp = 0,
+                                                              .marcher = *m,
+                                                              .maxSteps = st,
+                                                              .ssrSpp = sp,
+                                                              .ssgiSpp = gp,
+                                                              .ssrMethod = me,
+                                                              .thickness = th,
+                                                              .backFaces = bf,
+                                                              .feedback = fb,
+                                                              .resolve = re,
+                                                              .ssrTrace = tr});
     }
     for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
              const std::optional<Quality> q = parseQuality(s);
