@@ -60,6 +60,8 @@ void setDirectLighting(const Scene& scene, const RenderSettings& s, const Shadow
     da.exposure = s.exposure;
     // The GGX energy tables of the specular (multiple scattering, DFG).
     da.energy = &energyTables();
+    out.light = da;
+    out.light.shadowMap = nullptr;
 }
 
 bool anyEmissive(const Scene& scene) {

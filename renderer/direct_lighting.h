@@ -30,7 +30,13 @@ enum class ShadowBoundsUse { IfTheyPay, Always, Never };
 bool shadowBoundsPay(int width, int height, int shadowMapSize);
 
 struct DirectLighting {
-    DirectArgs args{};                       // lighting and shadow fields set; the rest left zero
+    DirectArgs args{};  // lighting and shadow fields set; the rest left zero
+    // args as setDirectLighting leaves them, kept while its caller adds the direct pass's own
+    // planes to args: the lighting alone (sun, sky, emission table, the shadow map's
+    // transform and bounds), for what lights points the frame does not show (SSGI's misses, a
+    // world hit: world/hit_light.h). No plane of the frame: its shadow map pointer is null, so
+    // a pass that reads the map sets it from its own declared read (renderer/world_stage.cpp).
+    DirectArgs light{};
     std::vector<float> emissive;             // args.emissive: 3 per material
     std::shared_ptr<const SkyLighting> sky;  // args.envLevel's pixels (Sky::Kind::Image)
     ShadowBounds shadowBounds;               // args.shadowBounds

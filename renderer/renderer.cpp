@@ -418,7 +418,7 @@ void Renderer::renderFrame(const Scene& scene, const FrameInput& input, FrameHis
         for (std::size_t i = 0; i < cutOut.size(); ++i)
             cutOut[i] = scene.materials[scene.instances[i].material].alphaMode !=
                         Material::AlphaMode::Opaque;
-        runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.args, previous,
+        runTracePasses({settings_, graph, memory, c.isa, input.frameIndex, lighting.light, previous,
                         history, input.resetHistory, input.replaceHistory, observer, input.cancel,
                         input.world, &tables, &cutOut},
                        frame);

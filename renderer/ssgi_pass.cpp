@@ -129,7 +129,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
     // The direct pass's hit light: the light at a hit, so the resolve reads no shadow or
     // emission and no material of the hit pixel.
     for (int ch = 0; ch < 3; ++ch) in.hitLight[ch] = r.value(Res::HitLight, ch);
-    in.lighting = &c.direct;
+    in.lighting = &c.lighting;
     TraceStats& st = frame.stats.ssgi;
     st.ran = true;
     st.spp = ts.ssgiSpp;

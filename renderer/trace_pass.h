@@ -25,9 +25,9 @@ struct TraceContext {
     FrameMemory& memory;         // takes and gives back the frame's planes around each pass
     Isa isa;
     uint32_t frameIndex;
-    // The direct pass's argument block (sky, light, shadow map), as it ran; its parts went
-    // to frame.direct.
-    const DirectArgs& direct;
+    // The direct pass's lighting alone (DirectLighting::light: sun, sky, emission table; no
+    // plane of the frame).
+    const DirectArgs& lighting;
     const FrameHistory* history;  // the last frame's colour, usable at this size; null: none
     // The sequence's history for the denoiser, which reads and replaces its own part
     // (DenoiseHistory); null: no history (each pixel starts afresh, nothing is kept).

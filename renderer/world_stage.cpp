@@ -1,8 +1,6 @@
 #include "renderer/world_stage.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "core/tiles.h"
@@ -28,14 +26,15 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     if (mode == TraceMode::Screen) return w;
     const PassReads reads(c.graph, frame, pass);
     w.world = c.world;
-    // A hidden hit is lit with the frame's shadow map, which the direct pass's arguments point
-    // into: the graph must keep it for this pass (a declared read), or its memory may already
-    // belong to another resource.
-    const PlaneF& shadow = frame.scratch.shadow.depth;
-    if (!reads.has(Res::ShadowMap) || shadow.empty() || c.direct.shadowMap != shadow.row(0))
-        throw std::logic_error(std::string(pass) +
-                               ": world rays need the shadow map, which the frame no longer holds");
-    w.direct = &c.direct;
+    // A hidden hit is lit with the frame's shadow map: the pass's declared read, checked made
+    // and of its size (the graph frees it after its last declared reader).
+    w.light = c.lighting;
+    static const PlaneF kUndeclared;
+    const ViewF shadow =
+        viewOf(reads.has(Res::ShadowMap) ? frame.scratch.shadow.depth : kUndeclared, "shadowMap");
+    requireViews(pass, w.light.shadowSize, w.light.shadowSize, {shadow});
+    w.light.shadowMap = shadow.data;
+    w.light.shadowStride = shadow.stride;
     w.camera = c.camera;
     w.viewZ = reads.view(Res::ViewZ);  // (PassReads checked it: made, of the frame's size)
     w.proves = mode == TraceMode::Mixed;
@@ -127,8 +126,7 @@ WorldRayStats answerInWorld(const WorldStage& stage, const RayBatch& rays, March
             march.cause.at(x, y) = float(MarchEnd::World);
             ++st.hidden;
             lit.push_back({x + rays.corner.x0, y + rays.corner.y0,
-                           stage.world->light(batch[i], hits[i], *stage.direct, stage.fullLight),
-                           q});
+                           stage.world->light(batch[i], hits[i], stage.light, stage.fullLight), q});
         }
     }
     return st;

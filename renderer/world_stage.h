@@ -34,7 +34,9 @@ struct DirectArgs;
 struct WorldStage {
     TraceMode mode = TraceMode::Screen;
     const WorldRays* world = nullptr;
-    const DirectArgs* direct = nullptr;  // the direct pass's arguments: a hidden hit's light
+    // A hidden hit's light: the direct pass's lighting, with the frame's shadow map from the
+    // pass's declared read.
+    DirectArgs light{};
     TraceCamera camera{};
     ViewF viewZ;          // the frame's depth: where a world hit is shown
     bool proves = false;  // mixed: `proof` holds the proof's inputs
