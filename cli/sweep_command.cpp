@@ -24,10 +24,10 @@ namespace {
 
 // The passes a frame can have, in frame order (renderer.cpp and trace_pass.cpp name them).
 const char* const kPasses[] = {
-    "shadow",    "geometry",    "visibility",   "resolve",           "textures",
-    "ids",       "environment", "shading",      "back faces",        "hi-z",
-    "ssr rays",  "ssr march",   "ssr resolve",  "ssr thin features", "ssr world",
-    "ssgi rays", "ssgi march",  "ssgi resolve", "composite",         kEmbreeTracePass};
+    "shadow",      "geometry",    "visibility",    "resolve",   "textures",      "ids",
+    "environment", "shading",     "back faces",    "hi-z",      "thin features", "ssr rays",
+    "ssr march",   "ssr resolve", "ssr world",     "ssgi rays", "ssgi march",    "ssgi resolve",
+    "ssgi world",  "composite",   kEmbreeTracePass};
 
 std::string columnName(std::string s) {
     for (char& c : s)

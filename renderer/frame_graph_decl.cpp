@@ -46,6 +46,12 @@ bool ssrMixed(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace == TraceMode:
 // SSR's world rays (mixed and world tracing) light a hidden hit with the frame's shadow map
 // (world/hit_light.h).
 bool ssrWorld(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace != TraceMode::Screen; }
+// The same of SSGI's (on the half frame, its proof reads the chosen pixels' ids).
+bool ssgiMixed(const GraphKey& k) { return ssgi(k) && tr(k).ssgiTrace == TraceMode::Mixed; }
+bool halfMixed(const GraphKey& k) { return halfSsgi(k) && ssgiMixed(k); }
+bool ssgiWorld(const GraphKey& k) { return ssgi(k) && tr(k).ssgiTrace != TraceMode::Screen; }
+// (The half frame's proof looks at every pixel beside a path: its thin features are not found.)
+bool proves(const GraphKey& k) { return ssrMixed(k) || (fullSsgi(k) && ssgiMixed(k)); }
 // The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
 bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
 bool reuseResolve(const GraphKey& k) { return tr(k).resolve.mode == SsrResolveMode::Reuse; }
@@ -341,9 +347,8 @@ std::vector<PassDecl> declarePasses() {
     shading.tiled = true;
     p.push_back(shading);
     p.push_back({pass::kHiZ, hiZ, {{Res::ViewZ, P::Anywhere}}, {{Res::HiZ}, {Res::HiZPacked}}});
-    // Mixed SSR's proof looks for thin features beside a ray's path (trace/hit_proof.h).
-    p.push_back(
-        {pass::kSsrThinFeatures, ssrMixed, {{Res::ViewZ, P::Around}}, {{Res::ThinFeatures}}});
+    // Mixed tracing's proof looks for thin features beside a ray's path (trace/hit_proof.h).
+    p.push_back({pass::kThinFeatures, proves, {{Res::ViewZ, P::Around}}, {{Res::ThinFeatures}}});
     // SSR: rays from the G-buffer, the march through the depth (anywhere), the resolve.
     p.push_back(
         {"ssr colour pyramid",
@@ -398,10 +403,12 @@ std::vector<PassDecl> declarePasses() {
                   {Res::Metallic, P::Around},
                   {Res::HitLight, P::Around, hitLightFull},
                   {Res::Motion, P::Around, halfGuides},
-                  {Res::BackZ, P::Around, backFaces}},
+                  {Res::BackZ, P::Around, backFaces},
+                  {Res::VisibilityIds, P::Around, ssgiMixed}},
                  {{Res::HalfGBuffer},
                   {Res::HalfHitLight, P::Pixel, hitLightFull},
                   {Res::HalfBackZ, P::Pixel, halfBack},
+                  {Res::HalfIds, P::Pixel, halfMixed},
                   {Res::HalfGuides, P::Pixel, halfGuides},
                   {Res::HalfHiZ, P::Pixel, halfHiZ}}});
     p.push_back({pass::kSsgiHalf,
@@ -409,7 +416,10 @@ std::vector<PassDecl> declarePasses() {
                  {{Res::HalfGBuffer, P::Anywhere},
                   {Res::HalfHitLight, P::Anywhere},
                   {Res::HalfBackZ, P::Anywhere, halfBack},
-                  {Res::HalfHiZ, P::Anywhere, halfHiZ}},
+                  {Res::HalfHiZ, P::Anywhere, halfHiZ},
+                  {Res::HalfIds, P::Anywhere, halfMixed},
+                  {Res::ViewZ, P::Anywhere, ssgiWorld},
+                  {Res::ShadowMap, P::Anywhere, ssgiWorld}},
                  {{Res::HalfSsgi}, {Res::HalfRayPdf}, {Res::HalfSsgiSteps, P::Pixel, debug}}});
     p.push_back(
         {pass::kSsgiUpsample,
@@ -429,7 +439,10 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HiZ, P::Anywhere, hiZMarcher},
                   {Res::HiZPacked, P::Anywhere, hiZMarcher},
                   {Res::BackZ, P::Anywhere, backFaces},
-                  {Res::HitLight, P::Anywhere}},
+                  {Res::HitLight, P::Anywhere},
+                  {Res::VisibilityIds, P::Anywhere, ssgiMixed},
+                  {Res::ThinFeatures, P::Anywhere, ssgiMixed},
+                  {Res::ShadowMap, P::Anywhere, ssgiWorld}},
                  {{Res::Ssgi},
                   {Res::SsgiHit},
                   {Res::SsgiHitDistance},

@@ -41,6 +41,7 @@ bool inScratch(Frame& f, Res id, bool release) {
             for (auto& p : s.half.frame.hitLight) free(p);
             return true;
         case Res::HalfBackZ: return free(s.half.frame.backZ);
+        case Res::HalfIds: return free(s.half.frame.ids);
         case Res::HalfGuides:
             GBufferPlanesF::forEach(
                 s.half.frame.guide, [&](GBufferPlane, PlaneF& p) { free(p); },

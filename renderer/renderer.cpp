@@ -352,7 +352,10 @@ namespace {
 // A signal traced in mixed or world mode needs the scene's world rays.
 void requireWorldRays(const TraceSettings& ts, const WorldRays* world) {
     if (world || !ts.worldRays()) return;
-    throw std::invalid_argument("--ssr-trace " + std::string(traceModeName(ts.ssrTrace)) +
+    const bool ssr = ts.ssr && ts.ssrTrace != TraceMode::Screen;
+    const std::string flag = ssr ? "--ssr-trace " + std::string(traceModeName(ts.ssrTrace))
+                                 : "--ssgi-trace " + std::string(traceModeName(ts.ssgiTrace));
+    throw std::invalid_argument(flag +
                                 " needs world rays (FrameInput::world), and none were given: "
                                 "build them from the scene (world/embree_world_rays.h), or "
                                 "trace on screen");

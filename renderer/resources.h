@@ -136,6 +136,7 @@ enum class Res : uint8_t {
     HalfGBuffer,
     HalfHitLight,
     HalfBackZ,
+    HalfIds,
     HalfGuides,
     HalfHiZ,
     HalfRayPdf,

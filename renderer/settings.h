@@ -46,9 +46,10 @@ struct TraceSettings {
     // traced ones (trace/reconstruct.h) before anything reads the planes.
     // The defaults are the default quality preset's (renderer/quality.h: medium).
     TraceLayout ssrLayout = TraceLayout::Checkerboard;
-    // How SSR's rays are answered (trace/world_rays.h): mixed and world need world rays
-    // (FrameInput::world). (SSGI's rays are answered on screen.)
+    // How each signal's rays are answered (trace/world_rays.h): mixed and world need world
+    // rays (FrameInput::world).
     TraceMode ssrTrace = TraceMode::Screen;
+    TraceMode ssgiTrace = TraceMode::Screen;
     TraceLayout ssgiLayout = TraceLayout::Half;
     // SSR's checkerboard thinned where the denoiser needs fewer new rays: a pixel with at least
     // this many frames of specular history (the last frame's, found through the motion
@@ -61,7 +62,9 @@ struct TraceSettings {
     static constexpr int kMaxSpp = 64;
     bool any() const { return ssr || ssgi; }
     // Whether a signal is answered in world space (mixed or world): the frame needs world rays.
-    bool worldRays() const { return ssr && ssrTrace != TraceMode::Screen; }
+    bool worldRays() const {
+        return (ssr && ssrTrace != TraceMode::Screen) || (ssgi && ssgiTrace != TraceMode::Screen);
+    }
     void validate() const;  // throws std::invalid_argument naming the field
 };
 

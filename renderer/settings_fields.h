@@ -86,6 +86,12 @@ inline constexpr std::array kTraceOwnFields = {
         "hit, world rays through Embree for the rest) or world (every ray through Embree)")
         .choices(kTraceModeCount, [](int i) { return traceModeName(TraceMode(i)); })
         .withTypeName("MODE"),
+    field<&TraceSettings::ssgiTrace>(
+        "ssgiTrace", kCliShot,
+        "How SSGI's rays are answered: screen (the march), mixed (the march where it proves its "
+        "hit, world rays through Embree for the rest) or world (every ray through Embree)")
+        .choices(kTraceModeCount, [](int i) { return traceModeName(TraceMode(i)); })
+        .withTypeName("MODE"),
     field<&TraceSettings::ssrSparseFrames>(
         "ssrSparseFrames", kCliShot,
         "SSR checkerboard thinned: a pixel with this many frames of denoised specular history "

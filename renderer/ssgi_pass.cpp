@@ -1,4 +1,7 @@
+#include <vector>
+
 #include "renderer/trace_stages.h"
+#include "renderer/world_stage.h"
 #include "trace/reconstruct.h"
 #include "trace/ssgi.h"
 
@@ -16,7 +19,8 @@ struct SsgiSample {
     const HitStatsArgs& hp;
     DiffuseCut cut;
     RayGenCheckerboard checker;
-    PlaneF* out;  // the resolve's colour planes
+    PlaneF* out;       // the resolve's colour planes
+    WorldStage world;  // the rays the screen does not answer (TraceSettings::ssgiTrace)
 };
 
 RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
@@ -28,25 +32,52 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
     const RayGenerator gen =
         RayGenerator::diffuse(isa, c.frameIndex, uint32_t(s), camera, q.on.g, q.cut, q.checker);
     const RaySeed seed{c.frameIndex, uint32_t(s)};
+    const bool answers = q.world.mode != TraceMode::Screen;
     if (!tiled(c)) {
         RayGenStats rs;
         addTime(times.rays, [&] { rs = gen.frame(rays, c.threads()); });
-        marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times);
+        std::vector<WorldLit> lit;
+        const auto answer = [&](MarchResult& m) {
+            times.worldRan = true;
+            addTime(times.world, [&] {
+                const TileRect all{0, 0, camera.width, camera.height};
+                st.world.add(answerInWorld(q.world, rays, m, all, lit));
+            });
+        };
+        marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times,
+                    answers ? std::function<void(MarchResult&)>(answer)
+                            : std::function<void(MarchResult&)>());
         addTime(times.resolve, [&] {
-            resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads());
+            resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads(), lit);
             accumulateHitStats(isa, camera, rays, result, q.hp, s, spp, c.threads());
         });
         return rs;
     }
-    const RayMarcher march(isa, c.ts().marcher, c.ts().march, seed, camera, q.on.g, q.on.backZ,
-                           q.on.hiz, c.threads());
+    RayMarcher march(isa, c.ts().marcher, c.ts().march, seed, camera, q.on.g, q.on.backZ, q.on.hiz,
+                     c.threads());
+    if (skipsMarch(c, TracePass::Ssgi)) march.skipMarch();
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
     const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
+    // The world-lit hits of the tile the answer stage just ran on (the same thread runs a
+    // tile's stages one after another).
+    thread_local std::vector<WorldLit> lit;
     const auto resolveTile = [&](int t, const RayBatch& b, const MarchResult& m) {
-        resolve.tile(t, b, m);
+        resolve.tile(t, b, m, lit);
+        lit.clear();
     };
-    return traceTiles(c, gen, march, resolveTile, hitStats, st, times);
+    const TileGrid grid(camera.width, camera.height);
+    std::vector<WorldRayStats> answered(std::size_t(grid.count()));
+    const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
+        lit.clear();
+        answered[std::size_t(t)] = answerInWorld(q.world, b, m, grid.rect(t), lit);
+    };
+    const RayGenStats rs =
+        traceTiles(c, gen, march, resolveTile, hitStats, st, times, {},
+                   answers ? std::function<void(int, const RayBatch&, MarchResult&)>(answer)
+                           : std::function<void(int, const RayBatch&, MarchResult&)>());
+    for (const WorldRayStats& a : answered) st.world.add(a);
+    return rs;
 }
 
 // SSGI at half resolution (TraceLayout::Half): the chosen pixel of each 2x2 block makes a
@@ -66,6 +97,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
         // hitLightAtHalf.)
         for (int ch = 0; ch < 3; ++ch) src.hitLight[ch] = r.value(Res::HitLight, ch).f16;
         if (c.backZ) src.backZ = viewOf(*c.backZ, "backZ");
+        // (Mixed tracing's proof, on the half frame's pixels: world_stage.h.)
+        if (ts.ssgiTrace == TraceMode::Mixed) src.ids = r.ids(Res::VisibilityIds);
         buildHalfFrame(c.camera, src, c.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
     });
@@ -80,8 +113,14 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
                           stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
                           stageOutput(ht.resolved, &ht.resolved.hitDistance, hf.camera)};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
-    const SsgiSample q{
-        c, {hf.camera, hg, backZ(hf.backZ), hiz, &hf}, in, hp, cut, {}, ht.resolved.color};
+    const SsgiSample q{c,
+                       {hf.camera, hg, backZ(hf.backZ), hiz, &hf},
+                       in,
+                       hp,
+                       cut,
+                       {},
+                       ht.resolved.color,
+                       worldStage(c, frame, pass::kSsgiHalf, ts.ssgiTrace, false, &hf)};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
         // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
@@ -146,8 +185,14 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                           stageOutput(frame, Res::SsgiSteps, c.camera, c.settings.debugPlanes),
                           stageOutput(frame, Res::SsgiHitDistance, c.camera)};
     takeBatches(c, frame);
-    const SsgiSample q{c,           {c.camera, in.g, c.backZ, c.hiz, nullptr}, in, hp, cut, checker,
-                       color.data()};
+    const SsgiSample q{c,
+                       {c.camera, in.g, c.backZ, c.hiz, nullptr},
+                       in,
+                       hp,
+                       cut,
+                       checker,
+                       color.data(),
+                       worldStage(c, frame, pass::kSsgi, ts.ssgiTrace, false)};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
     if (checker.on) {

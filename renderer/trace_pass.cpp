@@ -25,8 +25,8 @@ void hiZPass(TraceContext& c, Frame& frame) {
 
 // The pixels mixed SSR's proof looks at beside a ray's path (trace/hit_proof.h).
 void thinFeaturesPass(const TraceContext& c, Frame& frame) {
-    const ScopedPass timer(frame.stats, pass::kSsrThinFeatures.data());
-    const PassReads depth(c.graph, frame, pass::kSsrThinFeatures);
+    const ScopedPass timer(frame.stats, pass::kThinFeatures.data());
+    const PassReads depth(c.graph, frame, pass::kThinFeatures);
     findThinFeatures(depth.view(Res::ViewZ), frame.scratch.thin, c.threads());
 }
 
@@ -58,7 +58,7 @@ void runTracePasses(TraceContext c, Frame& frame) {
                           &c.memory);
     FrameStats stats;
     passes.whole(pass::kHiZ, [&] { hiZPass(c, frame); });
-    passes.whole(pass::kSsrThinFeatures, [&] { thinFeaturesPass(c, frame); });
+    passes.whole(pass::kThinFeatures, [&] { thinFeaturesPass(c, frame); });
     passes.whole(
         pass::kSsr, [&] { ssrPass(c, frame); }, pass::kSsrReconstruct);
     // (On the half frame SSGI's first pass makes the half frame.)

@@ -76,10 +76,15 @@ struct MarchFrame {
     const HalfFrame* half;
 };
 
-// Whether `pass` leaves its rays unmarched (RayMarcher::skipMarch): SSR traced in world
+// How `pass`'s rays are answered (TraceSettings::ssrTrace, ssgiTrace).
+inline TraceMode traceMode(const TraceContext& c, TracePass pass) {
+    return pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+}
+
+// Whether `pass` leaves its rays unmarched (RayMarcher::skipMarch): a signal traced in world
 // space answers every ray there.
 inline bool skipsMarch(const TraceContext& c, TracePass pass) {
-    return pass == TracePass::Ssr && c.ts().ssrTrace == TraceMode::World;
+    return traceMode(c, pass) == TraceMode::World;
 }
 
 // One sample's march of the frame's batch `rays` into `result` (none where skipsMarch), then

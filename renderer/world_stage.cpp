@@ -1,6 +1,7 @@
 #include "renderer/world_stage.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "core/tiles.h"
@@ -8,6 +9,7 @@
 #include "renderer/trace_pass.h"
 #include "trace/hit_proof.h"
 #include "trace/march.h"
+#include "trace/trace_layout.h"
 
 namespace ssrt {
 
@@ -17,10 +19,16 @@ namespace {
 // within 1 % (the proof's thickness: trace/hit_proof.h).
 constexpr float kShownThickness = ProofSettings{}.thickness;
 
+// Whether the frame's pixel under view-space point `q` shows it too (on the half frame; on the
+// frame the caller's test is this one).
+bool shownOnFrame(const WorldStage& w, glm::vec3 q) {
+    return !w.onHalf || screenPoint(w.frameCamera, w.frameViewZ, q, kShownThickness).shown;
+}
+
 }  // namespace
 
 WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
-                      TraceMode mode, bool fullLight) {
+                      TraceMode mode, bool fullLight, const HalfFrame* half) {
     WorldStage w;
     w.mode = mode;
     if (mode == TraceMode::Screen) return w;
@@ -35,12 +43,20 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     requireViews(pass, w.light.shadowSize, w.light.shadowSize, {shadow});
     w.light.shadowMap = shadow.data;
     w.light.shadowStride = shadow.stride;
-    w.camera = c.camera;
-    w.viewZ = reads.view(Res::ViewZ);  // (PassReads checked it: made, of the frame's size)
+    w.camera = half ? half->camera : c.camera;
+    // (PassReads checked the frame's: made, of the frame's size; buildHalfFrame made the half's.)
+    w.viewZ = half ? viewOf(half->viewZ, "half.gbuffer.viewZ") : reads.view(Res::ViewZ);
+    w.onHalf = half != nullptr;
+    if (half) {
+        w.frameCamera = c.camera;
+        w.frameViewZ = reads.view(Res::ViewZ);
+    }
     w.proves = mode == TraceMode::Mixed;
-    if (w.proves)
-        w.proof = proofInputs(c.camera, reads.ids(Res::VisibilityIds), w.viewZ,
-                              {c.tables->triangles, c.tables->viewPositions, *c.cutOut}, {},
+    const ProofTriangles triangles{c.tables->triangles, c.tables->viewPositions, *c.cutOut};
+    if (w.proves && half)  // (the chosen pixels' ids; every pixel beside a path looked at)
+        w.proof = proofInputs(half->camera, viewOf(half->ids, "half.ids"), w.viewZ, triangles);
+    else if (w.proves)
+        w.proof = proofInputs(c.camera, reads.ids(Res::VisibilityIds), w.viewZ, triangles, {},
                               &frame.scratch.thin);
     // The world ray leaves the surface a step off it (1e-4 of the scene's diagonal, as the
     // truth's rays do) and ends where the march would give up.
@@ -77,11 +93,12 @@ WorldRayStats answerInWorld(const WorldStage& stage, const RayBatch& rays, March
             const glm::vec3 d{rays.dx.at(x, y), rays.dy.at(x, y), rays.dz.at(x, y)};
             // Mixed: the march's hits the proof holds stay screen hits, at the exact point.
             if (stage.proves) {
-                const float fx = float(x + rays.corner.x0) + 0.5f;
-                const float fy = float(y + rays.corner.y0) + 0.5f;
+                // (The origin's pixel position: the chosen pixel's on the half frame.)
+                const float fx = float(x + rays.corner.x0) + cam.pointX;
+                const float fy = float(y + rays.corner.y0) + cam.pointY;
                 const ProvenRay p = proveRay(stage.proof, o, d, fx, fy, march.hit.at(x, y) > 0.5f,
                                              march.hitX.at(x, y), march.hitY.at(x, y));
-                if (p.proof == RayProof::CertainHit) {
+                if (p.proof == RayProof::CertainHit && shownOnFrame(stage, o + p.t * d)) {
                     march.hitX.at(x, y) = p.at.x;
                     march.hitY.at(x, y) = p.at.y;
                     march.hitZ.at(x, y) = p.at.depth;
@@ -117,7 +134,8 @@ WorldRayStats answerInWorld(const WorldStage& stage, const RayBatch& rays, March
         march.hitX.at(x, y) = at.x;
         march.hitY.at(x, y) = at.y;
         march.hitZ.at(x, y) = at.depth;
-        if (at.shown) {
+        const bool shown = at.shown && shownOnFrame(stage, q);
+        if (shown) {
             // The pixel's own depth: the resolve reads the screen's light there.
             march.hitZ.at(x, y) = stage.viewZ.at(int(at.x), int(at.y));
             march.cause.at(x, y) = float(MarchEnd::WorldShown);

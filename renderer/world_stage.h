@@ -8,7 +8,8 @@
 // the direct pass's model, the frame's shadow map) and handed to the resolve as a WorldLit.
 //
 // In mixed mode a march hit the proof holds (trace/hit_proof.h) stays a screen hit, at its
-// exact point, and only the rest are traced. SSR only so far; SSGI traces on screen.
+// exact point, and only the rest are traced. SSR's stage lights a hidden hit with the whole
+// direct light, SSGI's with the bounce's Lambert part (WorldRays::light).
 #pragma once
 
 #include <cstdint>
@@ -28,6 +29,7 @@ namespace ssrt {
 struct TraceContext;
 struct Frame;
 struct DirectArgs;
+struct HalfFrame;
 
 // What a signal's world stage reads, made once per pass (worldStage) with its views checked
 // where the pass's reads are (PassReads).
@@ -38,27 +40,30 @@ struct WorldStage {
     // pass's declared read.
     DirectArgs light{};
     TraceCamera camera{};
-    ViewF viewZ;          // the frame's depth: where a world hit is shown
+    ViewF viewZ;  // the depth of the camera's frame (the frame's, or the half's): where a world
+                  // hit is shown
+    // On the half frame: the frame's camera and depth, which must show the hit too. (The half
+    // pixel's chosen surface may show a hit that the frame's pixel under it does not: a hit
+    // beside a depth edge within the block; that one is hidden, lit at the hit.)
+    bool onHalf = false;
+    TraceCamera frameCamera{};
+    ViewF frameViewZ;
     bool proves = false;  // mixed: `proof` holds the proof's inputs
     ProofInputs proof;
     float tnear = 0.0f, tfar = 0.0f;  // the world ray's interval (view-space distance)
     bool fullLight = true;            // WorldRays::light's `full`: the signal's light model
 };
 
-// The stage of pass `pass` tracing in `mode` (Screen: a stage that does nothing).
+// The stage of pass `pass` tracing in `mode` (Screen: a stage that does nothing), on the
+// frame, or on the half frame `half` (SSGI's TraceLayout::Half: its camera and depth say where
+// a hit is shown; world mode only, as it holds no triangle ids to prove a march hit with).
 WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_view pass,
-                      TraceMode mode, bool fullLight);
+                      TraceMode mode, bool fullLight, const HalfFrame* half = nullptr);
 
-// A world hit no pixel shows, lit at the hit: the resolve takes its light from here.
-struct WorldLit {
-    int x, y;            // the ray's pixel in the frame
-    glm::vec3 radiance;  // before the exposure
-    glm::vec3 point;     // the hit in view space
-};
-
-// Answers the rays of `rays` (a tile's batch or the frame's, at its corner) inside `r` (frame
-// pixels) in world space by the stage's mode and writes the answers into `march`. Screen mode
-// does nothing. The batch is the frame's pixels (not the half frame's). Each answered ray's
+// Answers the rays of `rays` (a tile's batch or the frame's, at its corner) inside `r` (the
+// stage's camera's pixels: the frame's or the half frame's) in world space by the stage's mode
+// and writes the answers into `march`; the hidden hits' light goes to `lit`, in row order.
+// Screen mode does nothing. Each answered ray's
 // MarchResult::cause says how it was answered (MarchEnd::Proven, WorldShown, World,
 // WorldMiss); the counts are returned.
 WorldRayStats answerInWorld(const WorldStage& w, const RayBatch& rays, MarchResult& march,

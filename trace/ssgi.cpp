@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 #include "core/plane_view.h"
 #include "core/tiles.h"
@@ -53,7 +54,8 @@ SsgiResolver::SsgiResolver(Isa isa, const SsgiArgs& in, PlaneF out[3], int sampl
     kernel_ = SSRT_DISPATCH(isa, ssgiTile);
 }
 
-void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march) const {
+void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march,
+                        std::span<const WorldLit> lit) const {
     const TileRect r = grid_.rect(tile);
     const BatchCorner c = rays.corner;
     if (!sameCornerHolds(rays, march, r))
@@ -72,17 +74,28 @@ void SsgiResolver::tile(int tile, const RayBatch& rays, const MarchResult& march
     a.hitY = hitY.data;
     a.rayX0 = c.x0;
     a.rayY0 = c.y0;
-    kernel_(a, tile);
+    a.lit = lit.data();
+    a.litCount = int(lit.size());
+    if (kernel_(a, tile) != a.litCount)
+        throw std::logic_error("resolveSsgi: a lit world hit outside its tile, or out of order");
 }
 
 void resolveSsgi(Isa isa, const SsgiArgs& in, const RayBatch& rays, const MarchResult& march,
-                 PlaneF out[3], int sample, int sampleCount, int threads) {
+                 PlaneF out[3], int sample, int sampleCount, int threads,
+                 std::span<const WorldLit> lit) {
     const SsgiResolver resolver(isa, in, out, sample, sampleCount);
     // The frame's batches, of the frame's size.
     requireViews(kResolve, in.camera.width, in.camera.height,
                  {viewOf(rays.pdf, "ray.pdf"), viewOf(march.hit, "march.hit")});
-    parallelForTiles(resolver.grid().count(), threads,
-                     [&](int t) { resolver.tile(t, rays, march); });
+    // Each tile's lit hits (the frame's row order keeps each tile's in its row order).
+    const TileGrid& grid = resolver.grid();
+    std::vector<std::vector<WorldLit>> byTile(lit.empty() ? 0 : std::size_t(grid.count()));
+    for (const WorldLit& l : lit)
+        byTile[std::size_t(grid.tilesX * (l.y / kTileSize) + l.x / kTileSize)].push_back(l);
+    parallelForTiles(grid.count(), threads, [&](int t) {
+        resolver.tile(t, rays, march,
+                      byTile.empty() ? std::span<const WorldLit>() : byTile[std::size_t(t)]);
+    });
 }
 
 }  // namespace ssrt

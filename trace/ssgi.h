@@ -33,6 +33,8 @@
 // that showed another surface a frame ago lends that surface's light for a frame.
 #pragma once
 
+#include <span>
+
 #include "core/gbuffer_view.h"
 #include "core/image.h"
 #include "core/isa.h"
@@ -48,8 +50,11 @@ namespace ssrt {
 // later samples accumulate, and after sample == sampleCount - 1 `out` is the average.
 // Throws std::invalid_argument when a plane is missing or of another size, or sample is not
 // in [0, sampleCount).
+// `lit` (mixed and world tracing): the frame's world hits no pixel shows, in row order, lit
+// at the hit; their light replaces what the resolve reads at the hit pixel.
 void resolveSsgi(Isa isa, const SsgiArgs& args, const RayBatch& rays, const MarchResult& march,
-                 PlaneF out[3], int sample, int sampleCount, int threads);
+                 PlaneF out[3], int sample, int sampleCount, int threads,
+                 std::span<const WorldLit> lit = {});
 
 // The same, checked and set up once, then run tile by tile: over the frame by resolveSsgi, or
 // one tile at a time in a trace pass's tile chain (trace/tile_chain.h), whose batches do not
@@ -60,8 +65,10 @@ public:
     SsgiResolver(Isa isa, const SsgiArgs& args, PlaneF out[3], int sample, int sampleCount,
                  PlaneF* pdfCopy = nullptr);
     const TileGrid& grid() const { return grid_; }
-    // Tile `tile` of the batches: the frame's (corner (0, 0)) or a tile's; one corner.
-    void tile(int tile, const RayBatch& rays, const MarchResult& march) const;
+    // Tile `tile` of the batches: the frame's (corner (0, 0)) or a tile's; one corner. `lit`:
+    // the tile's world hits no pixel shows, in row order (std::logic_error otherwise).
+    void tile(int tile, const RayBatch& rays, const MarchResult& march,
+              std::span<const WorldLit> lit = {}) const;
 
 private:
     SsgiArgs args_{};

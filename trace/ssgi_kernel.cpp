@@ -41,7 +41,20 @@ SSRT_INLINE V3 lambertAt(const SsgiArgs& a, ILane i) {
     return a.emission[0] ? lit + gather3(a.emission, i) : lit;
 }
 
-void ssgiChunk(const SsgiArgs& a, int x, int y) {
+// The chunk's world hits no pixel shows (SsgiArgs::lit, from `next` on): their own light.
+SSRT_INLINE V3 withWorldLit(const SsgiArgs& a, int x, int y, V3 radiance, int& next) {
+    if (next >= a.litCount || a.lit[next].y != y || a.lit[next].x >= x + kW) return radiance;
+    alignas(64) float c[3][kW];
+    ln::store(c[0], radiance.x), ln::store(c[1], radiance.y), ln::store(c[2], radiance.z);
+    for (; next < a.litCount && a.lit[next].y == y && a.lit[next].x < x + kW; ++next) {
+        const WorldLit& l = a.lit[next];
+        if (l.x < x) break;  // (out of order: the resolver counts what was not taken)
+        for (int ch = 0; ch < 3; ++ch) c[ch][l.x - x] = l.radiance[ch];
+    }
+    return {ln::load<Lane>(c[0]), ln::load<Lane>(c[1]), ln::load<Lane>(c[2])};
+}
+
+void ssgiChunk(const SsgiArgs& a, int x, int y, int& next) {
     const std::size_t o = std::size_t(y) * a.stride + x;
     const std::size_t r = std::size_t(y - a.rayY0) * a.rayStride + std::size_t(x - a.rayX0);
     const Lane zero(0.0f);
@@ -66,6 +79,7 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
             const V3 dw = ln::normalize(screen::viewToWorld(a.light.viewToWorld, d));
             radiance = ln::select(miss, shade::skyRadiance(a.light, dw), radiance);
         }
+        radiance = withWorldLit(a, x, y, radiance, next);
     }
     // Accumulate: the sum over samples, divided by the count after the last.
     V3 acc = radiance;
@@ -83,10 +97,12 @@ void ssgiChunk(const SsgiArgs& a, int x, int y) {
 
 }  // namespace
 
-void ssgiTile(const SsgiArgs& args, int tile) {
+int ssgiTile(const SsgiArgs& args, int tile) {
     const auto [x0, y0, x1, y1] = tileRect(tile, args.tilesX, args.width, args.height);
+    int next = 0;
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; x += kW) ssgiChunk(args, x, y);
+        for (int x = x0; x < x1; x += kW) ssgiChunk(args, x, y, next);
+    return next;
 }
 
 }  // namespace ssrt::SSRT_ISA_NS

@@ -10,6 +10,7 @@
 #include "core/gbuffer_view.h"
 #include "core/plane_view.h"
 #include "shading/direct_kernel.h"
+#include "trace/world_rays.h"
 
 namespace ssrt {
 
@@ -48,8 +49,13 @@ struct SsgiArgs {
     const float* hitY = nullptr;
     std::size_t rayStride = 0;
     int rayX0 = 0, rayY0 = 0;
+    // Optional, per tile: the tile's world hits no pixel shows (mixed and world tracing), in
+    // row order, each inside the tile: their light replaces what the hit pixel would lend.
+    const WorldLit* lit = nullptr;
+    int litCount = 0;
 };
 
-SSRT_DECLARE_KERNEL(void, ssgiTile, (const SsgiArgs& args, int tile))
+// Returns how many of args.lit it took (all of them, where they are the tile's in row order).
+SSRT_DECLARE_KERNEL(int, ssgiTile, (const SsgiArgs& args, int tile))
 
 }  // namespace ssrt

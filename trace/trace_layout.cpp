@@ -86,6 +86,12 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
     } else {
         out.backZ = PlaneF();
     }
+    if (src.ids) {
+        requireViews(kLayoutPass, w, h, {src.ids});
+        out.ids.ensureSize(hw, hh);
+    } else {
+        out.ids = PlaneU32();
+    }
     for (int c = 0; c < 3; ++c) {
         chosen.push_back({&out.normal[c], g.normal[c]});
         chosen.push_back({&out.albedo[c], g.albedo[c]});
@@ -113,6 +119,11 @@ void buildHalfFrame(const TraceCamera& full, const HalfFrameSource& src, uint32_
         for (const Copy& p : chosen) {
             const float* in = p.from + std::size_t(sy) * g.stride;
             float* to = p.to->row(hy);
+            for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
+        }
+        if (src.ids) {
+            const uint32_t* in = src.ids.row(sy);
+            uint32_t* to = out.ids.row(hy);
             for (int hx = 0; hx < hw; ++hx) to[hx] = in[halfSource(hx, hy, o, w, h).x];
         }
         if (hitLight)

@@ -101,6 +101,8 @@ struct HalfFrame : PlaneTable<HalfFrame>, GBufferPlanesF {
     PlaneU16 hitLight[3];  // f16, as the direct pass's (renderer/frame.h, DirectParts)
     PlaneF backZ;  // the chosen pixels' back-face depth (HalfFrameSource::backZ given; empty
                    // otherwise)
+    PlaneU32 ids;  // the chosen pixels' visibility ids (HalfFrameSource::ids given; empty
+                   // otherwise): mixed tracing's proof of a march hit (trace/hit_proof.h)
     // The guides of a signal denoised on the half frame (HalfFrameSource::guides; empty
     // otherwise): the block's first pixel (offset (0, 0)) every frame, not the rotating chosen
     // one, so that the denoiser's history sees the same surface frame after frame; motion in
@@ -112,6 +114,7 @@ struct HalfFrame : PlaneTable<HalfFrame>, GBufferPlanesF {
         // (Named as the renderer's resource table names their channels, renderer/resources.cpp.)
         forEachGBufferChannel("half.gbuffer.", g, kPlanes, fn);
         fn("half.backZ", g.backZ);
+        fn("half.ids", g.ids);
         forEachGBufferChannel("half.guide.", g.guide, kGuidePlanes, fn);
         fn("half.hitLight.R", g.hitLight[0]), fn("half.hitLight.G", g.hitLight[1]);
         fn("half.hitLight.B", g.hitLight[2]);
@@ -130,6 +133,9 @@ struct HalfFrameSource {
     ViewU16 hitLight[3] = {};  // f16
     // Optional: the back-face depth layer (raster/back_depth.h), which the march reads.
     ViewF backZ{};
+    // Optional: the visibility buffer's ids (raster/visibility.h), which mixed tracing's proof
+    // reads.
+    ViewU32 ids{};
 };
 
 // Fills `out` (planes reused when the size matches) for frame `frame`. Throws

@@ -65,6 +65,14 @@ struct WorldHit {
     float u = 0.0f, v = 0.0f;
 };
 
+// A world hit no pixel shows, lit at the hit (WorldRays::light): the signal's resolve takes
+// its light from here instead of a pixel's (SsrResolver::setHit, SsgiArgs::lit).
+struct WorldLit {
+    int x, y;            // the ray's pixel in its batch's frame (the half frame's for SSGI's)
+    glm::vec3 radiance;  // before the exposure
+    glm::vec3 point;     // the hit in view space
+};
+
 class WorldRays {
 public:
     virtual ~WorldRays() = default;

@@ -244,14 +244,15 @@ PixelCheck classify(const BatchGrid& g, const MarchResult& m, const TrueHit& tru
     }
     // A world ray's hit that no pixel shows (mixed and world tracing) agrees where it is the
     // true hit, in front of the camera or behind it: its view-space point (hitZ negative behind
-    // the camera) within the depth tolerance of the true distance. (A world ray is the
-    // frame's.) One a pixel shows is a screen hit there, checked as the march's are.
+    // the camera) within the depth tolerance of the true distance (hitX, hitY in the pixels of
+    // the camera it was marched on). One a pixel shows is a screen hit there, checked as the
+    // march's are.
     if (m.cause.at(x, y) == float(MarchEnd::World)) {
         const float z = m.hitZ.at(x, y);
-        const glm::vec3 p{
-            (2.0f * m.hitX.at(x, y) / float(g.frame.width) - 1.0f) * g.frame.tanHalfX * z,
-            (1.0f - 2.0f * m.hitY.at(x, y) / float(g.frame.height)) * g.frame.tanHalfY * z,
-            0.0f - z};
+        const TraceCamera& b = g.batch;
+        const glm::vec3 p{(2.0f * m.hitX.at(x, y) / float(b.width) - 1.0f) * b.tanHalfX * z,
+                          (1.0f - 2.0f * m.hitY.at(x, y) / float(b.height)) * b.tanHalfY * z,
+                          0.0f - z};
         if (glm::length(p - truth.point) <= s.depthTolerance * truth.t) c.cls = RayClass::Agreed;
         return c;
     }

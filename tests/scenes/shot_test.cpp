@@ -175,7 +175,7 @@ TEST_CASE("shot: each bad input is one line naming the file and the field") {
          "shadowBias, shadowSlopeBias, pcfRadius, exposure, idPlanes, gbufferPlanes, tracePlanes, "
          "debugPlanes, ssr, ssgi, "
          "ssrMethod, "
-         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssrTrace, "
+         "marcher, ssrSpp, ssgiSpp, traceHidden, ssgiFeedback, ssrLayout, ssrTrace, ssgiTrace, "
          "ssrSparseFrames, "
          "ssgiLayout, maxSteps, "},
         // Wrong types

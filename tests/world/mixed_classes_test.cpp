@@ -101,3 +101,82 @@ TEST_CASE(
         CHECK(w.proven > 0);
     }
 }
+
+namespace {
+
+// The same of SSGI, traced in `mode` on `layout` (the half frame's rays checked there: its
+// camera and chosen pixels, copied as the observer sees them).
+MixedCheck renderAndCheckSsgi(const Scene& scene, const EmbreeScene& embree, TraceMode mode,
+                              TraceLayout layout) {
+    RenderSettings rs;
+    rs.width = 320;
+    rs.height = 180;
+    rs.shadowMapSize = 512;
+    rs.trace.ssr = false;
+    rs.trace.ssgiLayout = layout;
+    rs.trace.ssgiTrace = mode;
+    const EmbreeWorldRays world(embree);
+    FrameInput in = FrameInput::still(scene);
+    in.world = &world;
+    std::vector<std::pair<RayBatch, MarchResult>> samples;
+    HalfFrame half;
+    bool onHalf = false;
+    const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
+                                   const MarchResult& march, const HalfFrame* h) {
+        if (pass != TracePass::Ssgi) return;
+        samples.emplace_back(test::copyOf(rays), test::copyOf(march));
+        if (h) half.camera = h->camera, half.offset = h->offset, onHalf = true;
+    };
+    Frame frame;
+    Renderer(rs).renderWithoutHistory(scene, in, frame, &keep);
+    RayCheckSettings cs;
+    cs.maxDistance = marchLengths(rs.trace.march, scene.diagonal()).maxDistance;
+    MixedCheck out;
+    for (const auto& [rays, march] : samples)
+        out.ssr.add(checkRays(embree, frame.camera, frame.gbuffer.viewZ, rays, march, cs, nullptr,
+                              0, onHalf ? &half : nullptr));
+    out.stats = frame.stats.ssgi;
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("mixed tracing: SSGI in mixed and world mode, full and half, answers as Embree does") {
+    for (const std::string name : {"cornell", "fence", "offscreen", "occluded", "corridor"}) {
+        CAPTURE(name);
+        const Scene scene = makeBuiltinScene(name);
+        const EmbreeScene embree(scene);
+        for (TraceLayout layout : {TraceLayout::Half, TraceLayout::Full}) {
+            const std::string layoutName(traceLayoutName(layout));
+            CAPTURE(layoutName);
+            const MixedCheck screen = renderAndCheckSsgi(scene, embree, TraceMode::Screen, layout);
+            const MixedCheck mixed = renderAndCheckSsgi(scene, embree, TraceMode::Mixed, layout);
+            const MixedCheck world = renderAndCheckSsgi(scene, embree, TraceMode::World, layout);
+            const RayCheckTable& t = mixed.ssr;
+            const WorldRayStats& w = mixed.stats.world;
+            MESSAGE(name << " " << layoutName << ": " << t.rays << " rays; proven " << w.proven
+                         << ", world " << w.sent << "; screen false hits "
+                         << count(screen.ssr, RayClass::FalseHit) << " -> "
+                         << count(t, RayClass::FalseHit) << ", missed on screen "
+                         << count(screen.ssr, RayClass::MissedOnScreen) << " -> "
+                         << count(t, RayClass::MissedOnScreen));
+            REQUIRE(t.rays > 0);
+            REQUIRE(t.rays == screen.ssr.rays);
+            // Mixed: every ray proven or sent; nothing left the screen could not answer.
+            CHECK(w.proven + w.sent == t.rays);
+            CHECK(w.proven > 0);
+            CHECK(t.worldRays() == w.sent);
+            CHECK(count(screen.ssr, RayClass::MissedOnScreen) > 0);
+            CHECK(count(t, RayClass::MissedOnScreen) == 0);
+            CHECK(count(t, RayClass::OffScreenTruth) == 0);
+            CHECK(t.world[int(RayClass::Agreed)] + t.world[int(RayClass::TrueMiss)] ==
+                  t.worldRays());
+            CHECK(t.screenShare(RayClass::FalseHit) <= 0.004);
+            // World: every ray traced there (none marched), each Embree's answer.
+            const RayCheckTable& a = world.ssr;
+            CHECK(world.stats.march.rays == 0);
+            CHECK(a.worldRays() == a.rays);
+            CHECK(a.world[int(RayClass::Agreed)] + a.world[int(RayClass::TrueMiss)] == a.rays);
+        }
+    }
+}

@@ -1,5 +1,5 @@
-// SSR traced in mixed and world mode (renderer/world_stage.h): the same bits on every ISA and
-// thread count, and the screen's answers where the screen is asked.
+// SSR and SSGI traced in mixed and world mode (renderer/world_stage.h): the same bits on every
+// ISA and thread count, and the screen's answers where the screen is asked.
 #include <doctest/doctest.h>
 
 #include <string>
@@ -23,16 +23,17 @@ struct WorldScene {
     explicit WorldScene(const std::string& name) : scene(makeBuiltinScene(name)) {}
 };
 
-// `keepPlanes` false: only the colour is kept, so the frame's memory gives a plane back once
-// its last declared reader has run (the PNG render's way).
+// `signal`'s rays traced in `mode` (the other's on screen). `keepPlanes` false: only the colour
+// is kept, so the frame's memory gives a plane back once its last declared reader has run (the
+// PNG render's way).
 Frame renderTraced(const Scene& scene, const WorldRays& world, TraceMode mode, Isa isa, int threads,
-                   bool keepPlanes = true) {
+                   bool keepPlanes = true, TracePass signal = TracePass::Ssr) {
     RenderSettings s;
     s.width = 160;
     s.height = 90;
     s.threads = threads;
     s.isa = isa;
-    s.trace.ssrTrace = mode;
+    (signal == TracePass::Ssr ? s.trace.ssrTrace : s.trace.ssgiTrace) = mode;
     s.gbufferPlanes = s.tracePlanes = s.idPlanes = keepPlanes;
     FrameInput in = FrameInput::still(scene);
     in.world = &world;
@@ -41,27 +42,35 @@ Frame renderTraced(const Scene& scene, const WorldRays& world, TraceMode mode, I
 
 }  // namespace
 
-TEST_CASE("mixed tracing: mixed and world SSR render the same bits on every ISA and thread count") {
+TEST_CASE(
+    "mixed tracing: mixed and world SSR and SSGI render the same bits on every ISA and thread "
+    "count") {
     for (const std::string name : {"cornell", "spheres", "fence"}) {
         CAPTURE(name);
         const WorldScene ws(name);
         const Scene& scene = ws.scene;
         const WorldRays& world = ws.world;
-        for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
-            const std::string modeName(traceModeName(mode));
-            CAPTURE(modeName);
-            const uint64_t ref = frameHash(renderTraced(scene, world, mode, Isa::Scalar, 1));
-            const uint64_t screen =
-                frameHash(renderTraced(scene, world, TraceMode::Screen, Isa::Scalar, 1));
-            CHECK(ref != screen);  // the world's answers changed the image
-            for (Isa isa : supportedIsas())
-                for (int threads : testThreadCounts({1, 2, 8})) {
-                    const std::string isaStr(isaName(isa));
-                    CAPTURE(isaStr);
-                    CAPTURE(threads);
-                    CHECK(frameHash(renderTraced(scene, world, mode, isa, threads)) == ref);
-                }
-        }
+        const uint64_t screen =
+            frameHash(renderTraced(scene, world, TraceMode::Screen, Isa::Scalar, 1));
+        for (TracePass signal : {TracePass::Ssr, TracePass::Ssgi})
+            for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
+                const std::string modeName(traceModeName(mode));
+                CAPTURE(modeName);
+                const bool ssr = signal == TracePass::Ssr;
+                CAPTURE(ssr);
+                const auto render = [&](Isa isa, int threads) {
+                    return frameHash(renderTraced(scene, world, mode, isa, threads, true, signal));
+                };
+                const uint64_t ref = render(Isa::Scalar, 1);
+                CHECK(ref != screen);  // the world's answers changed the image
+                for (Isa isa : supportedIsas())
+                    for (int threads : testThreadCounts({1, 2, 8})) {
+                        const std::string isaStr(isaName(isa));
+                        CAPTURE(isaStr);
+                        CAPTURE(threads);
+                        CHECK(render(isa, threads) == ref);
+                    }
+            }
     }
 }
 
@@ -80,20 +89,24 @@ TEST_CASE("mixed tracing: the colour is the same bits when the frame gives plane
         const WorldScene ws(name);
         const Scene& scene = ws.scene;
         const WorldRays& world = ws.world;
-        for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
-            const std::string modeName(traceModeName(mode));
-            CAPTURE(modeName);
-            const Frame kept = renderTraced(scene, world, mode, Isa::Scalar, 1);
-            for (int threads : testThreadCounts({1, 2, 8})) {
-                CAPTURE(threads);
-                const Frame early = renderTraced(scene, world, mode, Isa::Scalar, threads, false);
-                for (const char* layer : {"color.R", "color.G", "color.B"}) {
-                    CAPTURE(layer);
-                    REQUIRE(layerHash(kept, layer) != 0);
-                    CHECK(layerHash(early, layer) == layerHash(kept, layer));
+        for (TracePass signal : {TracePass::Ssr, TracePass::Ssgi})
+            for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
+                const std::string modeName(traceModeName(mode));
+                CAPTURE(modeName);
+                const bool ssr = signal == TracePass::Ssr;
+                CAPTURE(ssr);
+                const Frame kept = renderTraced(scene, world, mode, Isa::Scalar, 1, true, signal);
+                for (int threads : testThreadCounts({1, 2, 8})) {
+                    CAPTURE(threads);
+                    const Frame early =
+                        renderTraced(scene, world, mode, Isa::Scalar, threads, false, signal);
+                    for (const char* layer : {"color.R", "color.G", "color.B"}) {
+                        CAPTURE(layer);
+                        REQUIRE(layerHash(kept, layer) != 0);
+                        CHECK(layerHash(early, layer) == layerHash(kept, layer));
+                    }
                 }
             }
-        }
     }
 }
 
@@ -105,6 +118,11 @@ TEST_CASE("mixed tracing: a mode that needs world rays without them is a clear e
     s.trace.ssrTrace = TraceMode::Mixed;
     CHECK_THROWS_WITH_AS(Renderer(s).renderWithoutHistory(scene),
                          doctest::Contains("--ssr-trace mixed needs world rays"),
+                         std::invalid_argument);
+    s.trace.ssrTrace = TraceMode::Screen;
+    s.trace.ssgiTrace = TraceMode::World;
+    CHECK_THROWS_WITH_AS(Renderer(s).renderWithoutHistory(scene),
+                         doctest::Contains("--ssgi-trace world needs world rays"),
                          std::invalid_argument);
 }
 
@@ -126,8 +144,15 @@ TEST_CASE("mixed tracing: world mode marches no SSR ray and traces every one in 
     CHECK(m.march.rays == m.rays.rays);
     CHECK(m.world.proven > 0);
     CHECK(m.world.proven + m.world.sent == m.rays.rays);
-    // SSGI still marches in both.
+    // SSGI still marches in both (on screen), and not where it is traced in world space.
     CHECK(all.stats.ssgi.march.rays > 0);
+    const Frame ssgiAll =
+        renderTraced(scene, world, TraceMode::World, Isa::Scalar, 2, true, TracePass::Ssgi);
+    const TraceStats& g = ssgiAll.stats.ssgi;
+    REQUIRE(g.rays.rays > 0);
+    CHECK(g.march.rays == 0);
+    CHECK(g.world.sent == g.rays.rays);
+    CHECK(ssgiAll.stats.ssr.march.rays > 0);
 }
 
 TEST_CASE("mixed tracing: a certain hit near the frame's edge is not faded") {
