@@ -11,8 +11,8 @@
 # shot file), textured glTFs (a data-URI PNG, the same quad as a .glb, the quad with normal,
 # occlusion and emissive maps), compressed meshes (the Draco box, the meshopt sphere), and the
 # trace layouts (trace/trace_layout.h) on two scenes, in a frame where both phases and the
-# half-resolution pick are not frame 0's ("layout:SCENE"), and SSR traced in mixed and in
-# world mode through Embree ("mixed:SCENE", "world:SCENE"; "pooled:SCENE" mixed with only the
+# half-resolution pick are not frame 0's ("layout:SCENE"), and SSR and SSGI traced in mixed and
+# in world mode through Embree ("mixed:SCENE", "world:SCENE"; "pooled:SCENE" mixed with only the
 # colour kept, so the frame gives its planes back early). Returns 1 when any file differs.
 # (compare_renders' own: waits until fewer than $1 renders run, oldest first, keeping their
 # process ids in its `pids` and noting a failed one in its `status`. `wait PID`, not `wait -n`,
@@ -55,11 +55,11 @@ compare_renders() {
                 kind=scene name="${what}_layouts"
                 extra=(--ssr-layout checkerboard --ssgi-layout half --frame 3)
             elif [ "$kind" = mixed ] || [ "$kind" = world ]; then
-                extra=(--ssr-trace "$kind")
-                kind=scene name="${what}_ssr_$kind"
+                extra=(--ssr-trace "$kind" --ssgi-trace "$kind")
+                kind=scene name="${what}_$kind"
             elif [ "$kind" = pooled ]; then
-                extra=(--ssr-trace mixed --layers color)
-                kind=scene name="${what}_ssr_mixed_colour"
+                extra=(--ssr-trace mixed --ssgi-trace mixed --layers color)
+                kind=scene name="${what}_mixed_colour"
             fi
             if [ "$quality" != default ]; then
                 name="${name}_$quality"
