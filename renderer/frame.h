@@ -210,6 +210,7 @@ struct Frame {
         struct HalfTrace {
             HalfFrame frame;
             HiZPyramid hiz;
+            ThinFeatures thin;  // mixed tracing's on the half frame (trace/hit_proof.h)
             RayBatch rays;
             MarchResult march;
             struct Resolved : PlaneTable<Resolved> {

@@ -50,7 +50,7 @@ bool ssrWorld(const GraphKey& k) { return ssr(k) && tr(k).ssrTrace != TraceMode:
 bool ssgiMixed(const GraphKey& k) { return ssgi(k) && tr(k).ssgiTrace == TraceMode::Mixed; }
 bool halfMixed(const GraphKey& k) { return halfSsgi(k) && ssgiMixed(k); }
 bool ssgiWorld(const GraphKey& k) { return ssgi(k) && tr(k).ssgiTrace != TraceMode::Screen; }
-// (The half frame's proof looks at every pixel beside a path: its thin features are not found.)
+// (The half frame's proof reads the half frame's own: HalfThinFeatures.)
 bool proves(const GraphKey& k) { return ssrMixed(k) || (fullSsgi(k) && ssgiMixed(k)); }
 // The Hi-Z pyramid of the frame: for SSR, and for SSGI unless it marches on the half frame's.
 bool hiZ(const GraphKey& k) { return hiZMarcher(k) && (ssr(k) || fullSsgi(k)); }
@@ -409,6 +409,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HalfHitLight, P::Pixel, hitLightFull},
                   {Res::HalfBackZ, P::Pixel, halfBack},
                   {Res::HalfIds, P::Pixel, halfMixed},
+                  {Res::HalfThinFeatures, P::Pixel, halfMixed},
                   {Res::HalfGuides, P::Pixel, halfGuides},
                   {Res::HalfHiZ, P::Pixel, halfHiZ}}});
     p.push_back({pass::kSsgiHalf,
@@ -418,6 +419,7 @@ std::vector<PassDecl> declarePasses() {
                   {Res::HalfBackZ, P::Anywhere, halfBack},
                   {Res::HalfHiZ, P::Anywhere, halfHiZ},
                   {Res::HalfIds, P::Anywhere, halfMixed},
+                  {Res::HalfThinFeatures, P::Anywhere, halfMixed},
                   {Res::ViewZ, P::Anywhere, ssgiWorld},
                   {Res::ShadowMap, P::Anywhere, ssgiWorld}},
                  {{Res::HalfSsgi}, {Res::HalfRayPdf}, {Res::HalfSsgiSteps, P::Pixel, debug}}});

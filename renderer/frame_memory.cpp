@@ -42,6 +42,9 @@ bool inScratch(Frame& f, Res id, bool release) {
             return true;
         case Res::HalfBackZ: return free(s.half.frame.backZ);
         case Res::HalfIds: return free(s.half.frame.ids);
+        case Res::HalfThinFeatures:
+            for (PlaneF& p : s.half.thin.levels) free(p);
+            return true;
         case Res::HalfGuides:
             GBufferPlanesF::forEach(
                 s.half.frame.guide, [&](GBufferPlane, PlaneF& p) { free(p); },

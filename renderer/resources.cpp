@@ -109,6 +109,7 @@ const std::array<ResourceDecl, kResourceCount> kResources = {{
     {Res::HalfHitLight, "half.hitLight", "R,G,B", F::F16, R::Half, L::Transient},
     {Res::HalfBackZ, "half.backZ", "", F::F32, R::Half, L::Transient},
     {Res::HalfIds, "half.ids", "", F::U32, R::Half, L::Transient},
+    {Res::HalfThinFeatures, "half.thinFeatures", "", F::F32, R::Half, L::Transient},
     {Res::HalfGuides, "half.guide", "", F::F32, R::Half, L::Transient, G::Color, nullptr,
      HalfFrame::kGuidePlanes},
     {Res::HalfHiZ, "half.hiz", "minZ,packed", F::F32, R::HalfPyramid, L::Transient},

@@ -137,6 +137,7 @@ enum class Res : uint8_t {
     HalfHitLight,
     HalfBackZ,
     HalfIds,
+    HalfThinFeatures,
     HalfGuides,
     HalfHiZ,
     HalfRayPdf,

@@ -101,6 +101,8 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
         if (ts.ssgiTrace == TraceMode::Mixed) src.ids = r.ids(Res::VisibilityIds);
         buildHalfFrame(c.camera, src, c.frameIndex, hf, c.threads());
         if (ts.marcher == Marcher::HiZ) buildHiZ(hf.viewZ, ht.hiz, c.threads());
+        if (ts.ssgiTrace == TraceMode::Mixed)
+            findThinFeatures(viewIn(hf, hf.viewZ), ht.thin, c.threads());
     });
     const GBufferView hg = hf.view();
     SsgiArgs in = full;

@@ -53,8 +53,9 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
     }
     w.proves = mode == TraceMode::Mixed;
     const ProofTriangles triangles{c.tables->triangles, c.tables->viewPositions, *c.cutOut};
-    if (w.proves && half)  // (the chosen pixels' ids; every pixel beside a path looked at)
-        w.proof = proofInputs(half->camera, viewOf(half->ids, "half.ids"), w.viewZ, triangles);
+    if (w.proves && half)  // (the chosen pixels' ids, the half frame's thin features)
+        w.proof = proofInputs(half->camera, viewOf(half->ids, "half.ids"), w.viewZ, triangles, {},
+                              &frame.scratch.half.thin);
     else if (w.proves)
         w.proof = proofInputs(c.camera, reads.ids(Res::VisibilityIds), w.viewZ, triangles, {},
                               &frame.scratch.thin);
