@@ -47,7 +47,8 @@ struct Point {
     bool backFaces = false;  // MarchSettings::backFaces
     bool feedback = false;   // TraceSettings::ssgiFeedback
     SsrResolveMode resolve = SsrResolveMode::Reuse;
-    TraceMode ssrTrace = TraceMode::Screen;  // TraceSettings::ssrTrace
+    TraceMode ssrTrace = TraceMode::Screen;   // TraceSettings::ssrTrace
+    TraceMode ssgiTrace = TraceMode::Screen;  // TraceSettings::ssgiTrace
 
     static Point off() {
         Point p;
@@ -115,6 +116,7 @@ std::vector<Point> grid(const SweepOptions& o) {
     });
     const auto resolves = parseField<SsrResolveMode>("--ssr-resolve", "ssrResolve", o.resolves);
     const auto traces = parseField<TraceMode>("--ssr-trace", "ssrTrace", o.ssrTraces);
+    const auto ssgiTraces = parseField<TraceMode>("--ssgi-trace", "ssgiTrace", o.ssgiTraces);
     std::vector<Point> points;
     bool off = false;
     for (const auto& m : marchers) {
@@ -132,19 +134,21 @@ std::vector<Point> grid(const SweepOptions& o) {
                                 for (bool fb : feedback)
                                     for (SsrResolveMode re : resolves)
                                         for (TraceMode tr : traces)
-                                            points.push_back({.traced = true,
-                                                              .preset = std::nullopt,
-                                                              .embreeSpp = 0,
-                                                              .marcher = *m,
-                                                              .maxSteps = st,
-                                                              .ssrSpp = sp,
-                                                              .ssgiSpp = gp,
-                                                              .ssrMethod = me,
-                                                              .thickness = th,
-                                                              .backFaces = bf,
-                                                              .feedback = fb,
-                                                              .resolve = re,
-                                                              .ssrTrace = tr});
+                                            for (TraceMode gt : ssgiTraces)
+                                                points.push_back({.traced = true,
+                                                                  .preset = std::nullopt,
+                                                                  .embreeSpp = 0,
+                                                                  .marcher = *m,
+                                                                  .maxSteps = st,
+                                                                  .ssrSpp = sp,
+                                                                  .ssgiSpp = gp,
+                                                                  .ssrMethod = me,
+                                                                  .thickness = th,
+                                                                  .backFaces = bf,
+                                                                  .feedback = fb,
+                                                                  .resolve = re,
+                                                                  .ssrTrace = tr,
+                                                                  .ssgiTrace = gt});
     }
     for (const Quality q : parseOptional<Quality>("--presets", o.presets, [](const std::string& s) {
              const std::optional<Quality> q = parseQuality(s);
@@ -176,6 +180,7 @@ Point describedBy(Point p, const RenderSettings& s) {
     p.feedback = t.ssgiFeedback;
     p.resolve = t.resolve.mode;
     p.ssrTrace = t.ssrTrace;
+    p.ssgiTrace = t.ssgiTrace;
     return p;
 }
 
@@ -200,6 +205,7 @@ RenderSettings settingsFor(const RenderSettings& base, const Point& p) {
         t.ssgiFeedback = p.feedback;
         t.resolve.mode = p.resolve;
         t.ssrTrace = p.ssrTrace;
+        t.ssgiTrace = p.ssgiTrace;
     }
     s.validate();
     return s;
@@ -248,6 +254,7 @@ std::string csvRow(int setting, const std::string& scene, const RenderSettings& 
     optional(p.traced, p.feedback ? 1 : 0);
     r << ',' << (p.traced ? (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse") : "");
     r << ',' << (p.traced ? traceModeName(p.ssrTrace) : std::string_view());
+    r << ',' << (p.traced ? traceModeName(p.ssgiTrace) : std::string_view());
     optional(p.traced, s.trace.traceHidden ? 1 : 0);
     cell(reference.spp);
     cell(bouncesName(reference.bounces));
@@ -332,6 +339,7 @@ std::string describe(const Point& p) {
       << (p.backFaces ? ", back faces, " : ", ") << (p.feedback ? "ssgi feedback, " : "")
       << (p.resolve == SsrResolveMode::Mip ? "mip" : "reuse");
     if (p.ssrTrace != TraceMode::Screen) s << ", ssr " << traceModeName(p.ssrTrace);
+    if (p.ssgiTrace != TraceMode::Screen) s << ", ssgi " << traceModeName(p.ssgiTrace);
     return s.str();
 }
 
@@ -350,30 +358,17 @@ SweepOptions::SweepOptions() {
     feedback = d.ssgiFeedback ? "on" : "off";
     resolves = std::string(resolveModeName(d.resolve.mode));
     ssrTraces = std::string(traceModeName(d.ssrTrace));
+    ssgiTraces = std::string(traceModeName(d.ssgiTrace));
 }
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c = {"setting",
-                                      "scene",
-                                      "width",
-                                      "height",
-                                      "threads",
-                                      "marcher",
-                                      "quality",
-                                      "ssr_method",
-                                      "ssr_spp",
-                                      "ssgi_spp",
-                                      "max_steps",
-                                      "thickness",
-                                      "back_faces",
-                                      "ssgi_feedback",
-                                      "resolve",
-                                      "ssr_trace",
-                                      "trace_hidden",
-                                      "reference_spp",
-                                      "reference_bounces",
-                                      "frame_ms"};
+        std::vector<std::string> c = {
+            "setting",   "scene",      "width",        "height",        "threads",
+            "marcher",   "quality",    "ssr_method",   "ssr_spp",       "ssgi_spp",
+            "max_steps", "thickness",  "back_faces",   "ssgi_feedback", "resolve",
+            "ssr_trace", "ssgi_trace", "trace_hidden", "reference_spp", "reference_bounces",
+            "frame_ms"};
         for (const char* pass : kPasses) c.push_back("ms_" + columnName(pass));
         for (const char* pass : {"ssr", "ssgi"}) {
             const std::string p = pass;
@@ -423,6 +418,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
          "SSR's tracing modes (as --ssr-trace): screen, mixed, world (column ssr_trace; mixed "
          "and world trace their world rays on the truth's Embree scene; columns "
          "ssr_world_rays, ssr_screen_false_hit)");
+    list("--ssgi-trace", o.ssgiTraces,
+         "SSGI's tracing modes (as --ssgi-trace): screen, mixed, world (column ssgi_trace; "
+         "columns ssgi_world_rays, ssgi_screen_false_hit)");
     list("--presets", o.presets,
          "Quality presets as points of their own beside the grid (column quality): " +
              std::string(qualityList()) + "; none by default");
@@ -488,7 +486,8 @@ int runSweep(const SweepOptions& o, std::ostream& out, std::ostream& err) {
                   << "\n";
 
     const EmbreeScene embree(scene);
-    // A setting that traces SSR in mixed or world mode traces its world rays on this scene.
+    // A setting that traces SSR or SSGI in mixed or world mode traces its world rays on this
+    // scene.
     const EmbreeWorldRays worldRays(embree);
     sequence.useWorld(&worldRays);
     const ReferenceSource source = referenceSourceFrom(o.truth, err);

@@ -25,9 +25,9 @@ struct SweepOptions {
     TruthOptions truth;
     std::string marchers = "off,linear,dda,hiz";
     std::string maxSteps, ssrMethods, ssrSpp, ssgiSpp, thickness, backFaces, feedback, resolves,
-        ssrTraces;          // defaults: TraceSettings{}
-    std::string presets;    // quality presets as points: "low,medium,..." (none by default)
-    std::string embreeSpp;  // the Embree method's rays per pixel: "1,4,16" (none by default)
+        ssrTraces, ssgiTraces;  // defaults: TraceSettings{}
+    std::string presets;        // quality presets as points: "low,medium,..." (none by default)
+    std::string embreeSpp;      // the Embree method's rays per pixel: "1,4,16" (none by default)
     std::string output = "sweep.csv";
     bool traceHidden = false;          // every setting: TraceSettings::traceHidden
     std::optional<std::string> shard;  // --shard K/N (cli/shard.h)

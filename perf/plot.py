@@ -26,15 +26,16 @@ MARKERS = {"off": "x", "linear": "s", "dda": "^", "hiz": "o", "embree": "*", "pr
 
 def group(row):
     """The legend entry: a quality preset's rows are 'preset', others their marcher (and
-    'back faces' where the depth intervals came from them, and SSR's tracing mode where it
+    'back faces' where the depth intervals came from them, and each signal's tracing mode where it
     is not the screen's)."""
     if row.get("quality"):
         return "preset"
     name = row.get("marcher", "")
     if row.get("back_faces") == "1":
         name += " + back faces"
-    if row.get("ssr_trace") not in (None, "", "screen"):
-        name += ", ssr " + row["ssr_trace"]
+    for signal in ("ssr", "ssgi"):
+        if row.get(signal + "_trace") not in (None, "", "screen"):
+            name += f", {signal} " + row[signal + "_trace"]
     return name
 
 
@@ -83,8 +84,9 @@ def label(row):
             parts.append(row[column] + suffix)
     if row.get("back_faces") == "1":
         parts.append("back faces")
-    if row.get("ssr_trace") not in (None, "", "screen"):
-        parts.append("ssr " + row["ssr_trace"])
+    for signal in ("ssr", "ssgi"):
+        if row.get(signal + "_trace") not in (None, "", "screen"):
+            parts.append(f"{signal} " + row[signal + "_trace"])
     return ", ".join(parts)
 
 
@@ -143,6 +145,8 @@ def self_test():
         assert group(mixed) == "hiz + back faces, ssr mixed", group(mixed)
         assert label(mixed) == "hiz, 64 st, 1 spp, back faces, ssr mixed", label(mixed)
         assert group(dict(rows[1], ssr_trace="screen")) == "hiz"
+        both = dict(rows[1], ssr_trace="world", ssgi_trace="world")
+        assert group(both) == "hiz, ssr world, ssgi world", group(both)
         png = os.path.join(d, "chart.png")
         plot(rows, "frame_ms", "relmse", png, "self test")
         assert os.path.getsize(png) > 1000

@@ -52,7 +52,8 @@ def save(fig, axes, used, title, png):
 
 
 def run(name, doc, args, chart):
-    """The scripts' main: `NAME SSRT OUT.csv OUT.png`, a sweep with ARGS per scene."""
+    """The scripts' main: `NAME SSRT OUT.csv OUT.png`, a sweep with ARGS per scene (a list of
+    argument tuples: one sweep with each, their rows together)."""
     if len(sys.argv) != 4:
         sys.exit(doc)
     ssrt, out_csv, out_png = sys.argv[1:]
@@ -60,7 +61,8 @@ def run(name, doc, args, chart):
     with tempfile.TemporaryDirectory() as d:
         for i, scene in enumerate(SCENES):
             print(f"{name}: {scene} ({i + 1}/{len(SCENES)})", file=sys.stderr)
-            rows += sweep(ssrt, scene, args, os.path.join(d, f"{i}.csv"))
+            for j, a in enumerate(args if isinstance(args, list) else [args]):
+                rows += sweep(ssrt, scene, a, os.path.join(d, f"{i}_{j}.csv"))
     with open(out_csv + ".tmp", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()

@@ -30,13 +30,13 @@ def test_every_plane_matches_the_cli(scene, small, tmp_path):
 
 
 @pytest.mark.parametrize("mode", ["mixed", "world"])
-def test_ssr_traced_in_world_space_matches_the_cli(mode, small, tmp_path):
+def test_ssr_and_ssgi_traced_in_world_space_match_the_cli(mode, small, tmp_path):
     """The renderer builds the scene's world rays itself, as `ssrt render` does."""
     exr = tmp_path / "cli.exr"
-    run_cli("render", "--scene", "cornell", "--ssr-trace", mode, "--width", small["width"],
-            "--height", small["height"], "-o", exr)
+    run_cli("render", "--scene", "cornell", "--ssr-trace", mode, "--ssgi-trace", mode,
+            "--width", small["width"], "--height", small["height"], "-o", exr)
     scene = ssrt.Scene("cornell")
-    renderer = ssrt.Renderer(ssrt.RenderSettings(**small, ssr_trace=mode))
+    renderer = ssrt.Renderer(ssrt.RenderSettings(**small, ssr_trace=mode, ssgi_trace=mode))
     frame = renderer.render(scene)
     expected = file_hashes(exr)
     assert frame_hashes(frame) == expected

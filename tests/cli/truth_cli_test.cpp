@@ -326,6 +326,33 @@ TEST_CASE("sweep: --ssr-trace screen,mixed,world is an axis of the grid (column 
     // The world stage's time is its own column; the screen runs none.
     CHECK(rows[0][col("ms_ssr_world")].empty());
     CHECK(at(1, "ms_ssr_world") > 0.0);
+    for (int i = 0; i < 3; ++i) CHECK(rows[i][col("ssgi_trace")] == "screen");
+}
+
+TEST_CASE("sweep: --ssgi-trace is an axis of the grid (column ssgi_trace), SSR's beside it") {
+    TempDir dir;
+    const std::string csv = dir.file("s.csv");
+    const test::CliResult r =
+        runSsrt(tiny({"sweep", "--scene", "fence", "--marchers", "hiz", "--ssr-trace", "screen",
+                      "--ssgi-trace", "screen,world", "-o", csv, "-q"},
+                     dir));
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const SweepCsv s = readSweep(csv);
+    const auto& rows = s.rows;
+    const auto col = SweepCsv::col;
+    REQUIRE(rows.size() == 2);
+    const auto at = [&](int row, const char* name) { return std::stod(rows[row][col(name)]); };
+    CHECK(rows[0][col("ssgi_trace")] == "screen");
+    CHECK(rows[1][col("ssgi_trace")] == "world");
+    CHECK(rows[1][col("ssr_trace")] == "screen");
+    CHECK(at(0, "ssgi_world_rays") == 0.0);
+    CHECK(at(1, "ssgi_world_rays") == 1.0);
+    CHECK(at(1, "ssr_world_rays") == 0.0);
+    CHECK(at(0, "ssgi_false_hit") > 0.0);
+    CHECK(at(1, "ssgi_false_hit") == 0.0);
+    CHECK(rows[0][col("ms_ssgi_world")].empty());
+    CHECK(at(1, "ms_ssgi_world") > 0.0);
 }
 
 TEST_CASE("compare and sweep: bad input is one error line and nothing is written") {
