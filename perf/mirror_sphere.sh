@@ -1,6 +1,6 @@
 #!/bin/bash
-# Cornell's mirror sphere at 1280x720, SSR traced on screen, mixed and in world space, beside
-# the Embree reference: a crop of each (rows 430-670, columns 700-960, sRGB), side by side.
+# Cornell's mirror sphere at 1280x720, SSR and SSGI traced on screen, mixed and in world space,
+# beside the Embree reference: a crop of each (rows 430-670, columns 700-960, sRGB), side by side.
 # The sphere's lower third reflects the floor behind it, which no pixel shows: the screen
 # shows the environment there, mixed and world the lit floor. Uses oiiotool (OpenImageIO).
 #
@@ -13,8 +13,8 @@ trap 'rm -rf "$dir"' EXIT
 crop=(--cut 260x240+700+430 --colorconvert linear sRGB --resize 390x360)
 panels=()
 for mode in screen mixed world; do
-    "$ssrt" render --scene cornell --width 1280 --height 720 --ssr-trace "$mode" --quiet \
-        --layers color -o "$dir/$mode.exr"
+    "$ssrt" render --scene cornell --width 1280 --height 720 --ssr-trace "$mode" \
+        --ssgi-trace "$mode" --quiet --layers color -o "$dir/$mode.exr"
     oiiotool "$dir/$mode.exr" --ch color.R,color.G,color.B "${crop[@]}" -o "$dir/$mode.png"
     panels+=("$dir/$mode.png")
 done
