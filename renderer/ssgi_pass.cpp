@@ -21,6 +21,23 @@ struct SsgiSample {
     RayGenCheckerboard checker;
     PlaneF* out;       // the resolve's colour planes
     WorldStage world;  // the rays the screen does not answer (TraceSettings::ssgiTrace)
+    // Mixed tracing's tile classifier on the camera's grid (mixedSkips), and what each tile's
+    // world stage counted, summed over the samples (keepMixedTiles).
+    TileGrid grid;
+    std::vector<uint8_t> skips;
+    std::vector<WorldRayStats>* perTile;
+};
+
+// Mixed tracing's tile classifier's inputs for SSGI on `camera`'s grid.
+struct SsgiTiles {
+    TileGrid grid;
+    std::vector<uint8_t> skips;
+    std::vector<WorldRayStats> perTile;
+    SsgiTiles(const TraceContext& c, const TraceCamera& camera)
+        : grid(camera.width, camera.height), skips(mixedSkips(c, TracePass::Ssgi, grid)) {}
+    void keep(const TraceContext& c) const {
+        keepMixedTiles(c, TracePass::Ssgi, grid, perTile, skips);
+    }
 };
 
 RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
@@ -40,13 +57,15 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         const auto answer = [&](MarchResult& m) {
             times.worldRan = true;
             addTime(times.world, [&] {
-                const TileRect all{0, 0, camera.width, camera.height};
-                st.world.add(answerInWorld(q.world, rays, m, all, lit));
+                std::vector<WorldRayStats> tiles;
+                st.world.add(answerInWorldByTile(q.world, q.grid, rays, m, tiles, lit));
+                addTiles(*q.perTile, tiles);
             });
         };
         marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times,
                     answers ? std::function<void(MarchResult&)>(answer)
-                            : std::function<void(MarchResult&)>());
+                            : std::function<void(MarchResult&)>(),
+                    &q.skips);
         addTime(times.resolve, [&] {
             resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads(), lit);
             accumulateHitStats(isa, camera, rays, result, q.hp, s, spp, c.threads());
@@ -56,6 +75,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
     RayMarcher march(isa, c.ts().marcher, c.ts().march, seed, camera, q.on.g, q.on.backZ, q.on.hiz,
                      c.threads());
     if (skipsMarch(c, TracePass::Ssgi)) march.skipMarch();
+    if (!q.skips.empty()) march.skipTiles(&q.skips);
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
     const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
@@ -66,17 +86,17 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         resolve.tile(t, b, m, lit);
         lit.clear();
     };
-    const TileGrid grid(camera.width, camera.height);
-    std::vector<WorldRayStats> answered(std::size_t(grid.count()));
+    std::vector<WorldRayStats> answered(std::size_t(q.grid.count()));
     const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
         lit.clear();
-        answered[std::size_t(t)] = answerInWorld(q.world, b, m, grid.rect(t), lit);
+        answered[std::size_t(t)] = answerInWorld(q.world, b, m, q.grid.rect(t), lit);
     };
     const RayGenStats rs =
         traceTiles(c, gen, march, resolveTile, hitStats, st, times, {},
                    answers ? std::function<void(int, const RayBatch&, MarchResult&)>(answer)
                            : std::function<void(int, const RayBatch&, MarchResult&)>());
     for (const WorldRayStats& a : answered) st.world.add(a);
+    addTiles(*q.perTile, answered);
     return rs;
 }
 
@@ -115,6 +135,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
                           stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
                           stageOutput(ht.resolved, &ht.resolved.hitDistance, hf.camera)};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
+    SsgiTiles tiles(c, hf.camera);
     const SsgiSample q{c,
                        {hf.camera, hg, backZ(hf.backZ), hiz, &hf},
                        in,
@@ -122,7 +143,10 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
                        cut,
                        {},
                        ht.resolved.color,
-                       worldStage(c, frame, pass::kSsgiHalf, ts.ssgiTrace, false, &hf)};
+                       worldStage(c, frame, pass::kSsgiHalf, ts.ssgiTrace, false, &hf),
+                       tiles.grid,
+                       tiles.skips,
+                       &tiles.perTile};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
         // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
@@ -131,6 +155,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
         rs.cut += hf.cutPixels;
         st.rays.add(rs);
     }
+    tiles.keep(c);
     // The full-resolution planes: what the composite reads without the denoiser, and only to
     // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
     const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
@@ -187,6 +212,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                           stageOutput(frame, Res::SsgiSteps, c.camera, c.settings.debugPlanes),
                           stageOutput(frame, Res::SsgiHitDistance, c.camera)};
     takeBatches(c, frame);
+    SsgiTiles tiles(c, c.camera);
     const SsgiSample q{c,
                        {c.camera, in.g, c.backZ, c.hiz, nullptr},
                        in,
@@ -194,9 +220,13 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                        cut,
                        checker,
                        color.data(),
-                       worldStage(c, frame, pass::kSsgi, ts.ssgiTrace, false)};
+                       worldStage(c, frame, pass::kSsgi, ts.ssgiTrace, false),
+                       tiles.grid,
+                       tiles.skips,
+                       &tiles.perTile};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
+    tiles.keep(c);
     if (checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, "ssgi reconstruct", [&] {

@@ -5,11 +5,13 @@ namespace ssrt::trace_stages {
 // One sample's march of the frame's batch `rays` into `result`, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
-                 const std::function<void(MarchResult&)>& answer) {
+                 const std::function<void(MarchResult&)>& answer,
+                 const std::vector<uint8_t>* skipTiles) {
     addTime(times.march, [&] {
         stats.march.add(marchRays(c.isa, c.ts().marcher, c.ts().march,
                                   {c.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
-                                  on.hiz, rays, result, c.threads(), skipsMarch(c, pass)));
+                                  on.hiz, rays, result, c.threads(), skipsMarch(c, pass),
+                                  skipTiles && !skipTiles->empty() ? skipTiles : nullptr));
     });
     if (answer) answer(result);
     if (c.observer && *c.observer) (*c.observer)(pass, sample, rays, result, on.half);

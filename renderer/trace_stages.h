@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/plane_view.h"
 #include "renderer/frame_scheduler.h"
@@ -87,11 +88,19 @@ inline bool skipsMarch(const TraceContext& c, TracePass pass) {
     return traceMode(c, pass) == TraceMode::World;
 }
 
-// One sample's march of the frame's batch `rays` into `result` (none where skipsMarch), then
-// what `answer` (when given: world rays) answers in its place, shown to the observer.
+// One sample's march of the frame's batch `rays` into `result` (none where skipsMarch, nor in
+// the tiles `skipTiles` marks: mixedSkips), then what `answer` (when given: world rays)
+// answers in its place, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
-                 const std::function<void(MarchResult&)>& answer = {});
+                 const std::function<void(MarchResult&)>& answer = {},
+                 const std::vector<uint8_t>* skipTiles = nullptr);
+
+// Adds `from`'s per-tile counts to `into`'s (sized to match).
+inline void addTiles(std::vector<WorldRayStats>& into, const std::vector<WorldRayStats>& from) {
+    into.resize(from.size());
+    for (std::size_t t = 0; t < from.size(); ++t) into[t].add(from[t]);
+}
 
 // The half frame's traced signal's planes from the pool (tracedSignalsPooled; the denoiser
 // gives them back once its front end has read them), its march steps aside: only looked at,

@@ -151,4 +151,64 @@ WorldRayStats answerInWorld(const WorldStage& stage, const RayBatch& rays, March
     return st;
 }
 
+WorldRayStats answerInWorldByTile(const WorldStage& w, const TileGrid& grid, const RayBatch& rays,
+                                  MarchResult& march, std::vector<WorldRayStats>& perTile,
+                                  std::vector<WorldLit>& lit) {
+    WorldRayStats st;
+    perTile.resize(std::size_t(grid.count()));
+    for (int t = 0; t < grid.count(); ++t) {
+        perTile[std::size_t(t)] = answerInWorld(w, rays, march, grid.rect(t), lit);
+        st.add(perTile[std::size_t(t)]);
+    }
+    return st;
+}
+
+namespace {
+
+MixedTiles* mixedTiles(const TraceContext& c, TracePass pass) {
+    if (!c.sequence) return nullptr;
+    return pass == TracePass::Ssr ? &c.sequence->mixedSsr : &c.sequence->mixedSsgi;
+}
+
+bool sameGrid(const MixedTiles& m, const TileGrid& grid) {
+    return m.tilesX == grid.tilesX && m.tilesY == grid.tilesY &&
+           m.proven.size() == std::size_t(grid.count());
+}
+
+}  // namespace
+
+std::vector<uint8_t> mixedSkips(const TraceContext& c, TracePass pass, const TileGrid& grid) {
+    const TraceMode mode = pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+    const MixedTiles* last = mixedTiles(c, pass);
+    if (mode != TraceMode::Mixed || !last || c.resetHistory || !sameGrid(*last, grid)) return {};
+    std::vector<uint8_t> skips(std::size_t(grid.count()), 0);
+    for (int t = 0; t < grid.count(); ++t) {
+        const float p = last->proven[std::size_t(t)];
+        const bool probe = (c.frameIndex + uint32_t(t)) % kMixedProbeFrames == 0;
+        skips[std::size_t(t)] = p >= 0.0f && p < kMixedMinProven && !probe;
+    }
+    return skips;
+}
+
+void keepMixedTiles(const TraceContext& c, TracePass pass, const TileGrid& grid,
+                    const std::vector<WorldRayStats>& perTile, const std::vector<uint8_t>& skips) {
+    MixedTiles* keep = mixedTiles(c, pass);
+    const TraceMode mode = pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+    if (!keep) return;
+    if (mode != TraceMode::Mixed) {
+        *keep = MixedTiles();
+        return;
+    }
+    if (c.resetHistory || !sameGrid(*keep, grid)) {
+        keep->tilesX = grid.tilesX, keep->tilesY = grid.tilesY;
+        keep->proven.assign(std::size_t(grid.count()), -1.0f);
+    }
+    for (int t = 0; t < grid.count(); ++t) {
+        if (!skips.empty() && skips[std::size_t(t)]) continue;
+        const WorldRayStats& s = perTile[std::size_t(t)];
+        const uint64_t rays = s.proven + s.sent;
+        keep->proven[std::size_t(t)] = rays ? float(double(s.proven) / double(rays)) : -1.0f;
+    }
+}
+
 }  // namespace ssrt

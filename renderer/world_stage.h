@@ -20,6 +20,7 @@
 #include "core/camera.h"
 #include "core/plane_view.h"
 #include "core/tiles.h"
+#include "renderer/renderer.h"
 #include "trace/hit_proof.h"
 #include "trace/trace_types.h"
 #include "trace/world_rays.h"
@@ -68,5 +69,26 @@ WorldStage worldStage(const TraceContext& c, const Frame& frame, std::string_vie
 // WorldMiss); the counts are returned.
 WorldRayStats answerInWorld(const WorldStage& w, const RayBatch& rays, MarchResult& march,
                             const TileRect& r, std::vector<WorldLit>& lit);
+
+// The same over the frame's batch, tile by tile of `grid` (each tile's counts in `perTile`,
+// its lit hits in row order after the tile before's).
+WorldRayStats answerInWorldByTile(const WorldStage& w, const TileGrid& grid, const RayBatch& rays,
+                                  MarchResult& march, std::vector<WorldRayStats>& perTile,
+                                  std::vector<WorldLit>& lit);
+
+// Mixed tracing's tile classifier (FidelityFX's hybrid reflections classify tiles by their
+// last frame's hits; here by the proof): a tile of `pass`'s `grid` where the proof held for
+// fewer than kMixedMinProven of its rays the last time it was marched skips its march and
+// proof this frame, and sends every ray to world space, where a ray costs less than its march
+// and proof together. Each tile marches again one frame in kMixedProbeFrames, so a tile whose
+// view changed is measured again. Returns one entry per tile (1: skip), or none (march all):
+// outside mixed mode, without a sequence's history, after a cut or a change of grid.
+inline constexpr float kMixedMinProven = 0.9f;
+inline constexpr uint32_t kMixedProbeFrames = 8;
+std::vector<uint8_t> mixedSkips(const TraceContext& c, TracePass pass, const TileGrid& grid);
+// What this frame's marched tiles proved (`perTile`, summed over the samples), kept in the
+// sequence's history for the next frame's mixedSkips; a skipped tile keeps its last share.
+void keepMixedTiles(const TraceContext& c, TracePass pass, const TileGrid& grid,
+                    const std::vector<WorldRayStats>& perTile, const std::vector<uint8_t>& skips);
 
 }  // namespace ssrt

@@ -243,7 +243,7 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
                       float(int(MarchEnd::NoRay)));
         }
     };
-    if (skip_) {
+    if (skip_ || (skipTiles_ && (*skipTiles_)[std::size_t(tile)])) {
         noRays();
         return st;
     }
@@ -363,7 +363,7 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
                      const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads,
-                     bool skip) {
+                     bool skip, const std::vector<uint8_t>* skipTiles) {
     settings.validate();
     const int w = rays.width(), h = rays.height();
     if (w <= 0 || h <= 0) throw std::invalid_argument("marchRays: the ray batch is empty");
@@ -371,6 +371,11 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
         throw std::invalid_argument("marchRays: camera size does not match the ray batch");
     RayMarcher march(isa, marcher, settings, seed, camera, g, backZ, hiz, threads);
     if (skip) march.skipMarch();
+    if (skipTiles) {
+        if (skipTiles->size() != std::size_t(march.grid().count()))
+            throw std::invalid_argument("marchRays: skipTiles is not one per tile");
+        march.skipTiles(skipTiles);
+    }
     result.ensureSize(w, h);
     result.corner = {};
     const TileGrid& grid = march.grid();

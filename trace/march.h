@@ -109,11 +109,12 @@ struct MarchStats {
 // MarchSettings::backFaces), or null: the thickness everywhere. Writes every pixel of
 // `result` (ensureSize'd here). `hiz` must be built from g.viewZ when marcher == HiZ (may be
 // null otherwise). Throws std::invalid_argument on bad settings or mismatched sizes.
-// `seed` is the batch's frame and sample, for the DDA jitter. `skip`: RayMarcher::skipMarch.
+// `seed` is the batch's frame and sample, for the DDA jitter. `skip`: RayMarcher::skipMarch;
+// `skipTiles`: RayMarcher::skipTiles.
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
                      const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads,
-                     bool skip = false);
+                     bool skip = false, const std::vector<uint8_t>* skipTiles = nullptr);
 
 // One march, checked and set up once (the camera's, the settings' and the pyramid's
 // arguments), then run tile by tile: over the frame by marchRays, or one tile at a time by the
@@ -137,6 +138,9 @@ public:
     // every ray after the march (renderer/world_stage.h): the march would be thrown away, and
     // tracing in Embree costs about what the march does.
     void skipMarch() { skip_ = true; }
+    // The same for the tiles whose entry of `tiles` (one per tile of grid(), outliving the
+    // marcher) is not 0: mixed tracing's tile classifier (renderer/world_stage.h).
+    void skipTiles(const std::vector<uint8_t>* tiles) { skipTiles_ = tiles; }
 
 private:
     MarchKernelArgs proto_{};
@@ -146,6 +150,7 @@ private:
     float ddaJitter_ = 0.0f;  // 0: no jitter
     int maxSteps_ = 0;
     bool skip_ = false;
+    const std::vector<uint8_t>* skipTiles_ = nullptr;
     decltype(&isa_scalar::marchHiZKernel) kernel_ = nullptr;
     decltype(&isa_scalar::marchSortKeys) sortKeys_ = nullptr;
 };

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "shading/direct_kernel.h"
 
@@ -71,6 +72,14 @@ struct WorldLit {
     int x, y;            // the ray's pixel in its batch's frame (the half frame's for SSGI's)
     glm::vec3 radiance;  // before the exposure
     glm::vec3 point;     // the hit in view space
+};
+
+// Mixed tracing's tile classifier's memory (renderer/world_stage.h, mixedSkips): per tile of
+// a signal's grid, the share of its rays the proof held the last time the tile was marched
+// (-1: it had no ray).
+struct MixedTiles {
+    int tilesX = 0, tilesY = 0;
+    std::vector<float> proven;
 };
 
 class WorldRays {

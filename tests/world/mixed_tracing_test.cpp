@@ -3,9 +3,11 @@
 #include <doctest/doctest.h>
 
 #include <string>
+#include <vector>
 
 #include "frame_hash.h"
 #include "renderer/renderer.h"
+#include "renderer/world_stage.h"
 #include "scenes/builtin_scenes.h"
 #include "thread_counts.h"
 #include "world/embree_world_rays.h"
@@ -187,4 +189,64 @@ TEST_CASE("mixed tracing: a certain hit near the frame's edge is not faded") {
     CHECK(faded(TraceMode::Screen) > 100);
     CHECK(faded(TraceMode::Mixed) == 0);
     CHECK(faded(TraceMode::World) == 0);
+}
+
+TEST_CASE(
+    "mixed tracing: the tile classifier sends the tiles that proved little straight to world "
+    "space, the same bits on every ISA and thread count") {
+    // A still sequence: frame 0 marches every tile; from frame 1 a tile whose proof held for
+    // few of its rays skips its march (renderer/world_stage.h: mixedSkips), except on its probe
+    // frame; every ray is still answered, by the proof or by Embree.
+    const WorldScene ws("spheres");
+    const Scene& scene = ws.scene;
+    const auto sequence = [&](Isa isa, int threads, std::vector<Frame>& frames, uint32_t count) {
+        RenderSettings s;
+        s.width = 160;
+        s.height = 90;
+        s.threads = threads;
+        s.isa = isa;
+        s.trace.ssrTrace = s.trace.ssgiTrace = TraceMode::Mixed;
+        const Renderer renderer(s);
+        FrameHistory history;
+        frames.clear();
+        for (uint32_t i = 0; i < count; ++i) {
+            FrameInput in = FrameInput::still(scene, i);
+            in.world = &ws.world;
+            frames.push_back(renderer.render(scene, in, history));
+        }
+    };
+    // (Nine frames: each tile probes once in kMixedProbeFrames.)
+    std::vector<Frame> ref;
+    sequence(Isa::Scalar, 1, ref, 1 + kMixedProbeFrames);
+    for (const TraceStats* st : {&ref[0].stats.ssr, &ref[0].stats.ssgi}) {
+        CHECK(st->march.rays == st->rays.rays);  // (no history yet: every tile marched)
+        CHECK(st->world.proven + st->world.sent == st->rays.rays);
+    }
+    uint64_t marched[2] = {0, 0}, traced[2] = {0, 0};
+    for (std::size_t f = 1; f < ref.size(); ++f) {
+        CAPTURE(f);
+        for (int p = 0; p < 2; ++p) {
+            const TraceStats& st = p ? ref[f].stats.ssgi : ref[f].stats.ssr;
+            REQUIRE(st.rays.rays > 0);
+            CHECK(st.march.rays < st.rays.rays);
+            CHECK(st.world.proven + st.world.sent == st.rays.rays);
+            marched[p] += st.march.rays;
+            traced[p] += st.rays.rays;
+        }
+    }
+    // Most tiles prove little here; each marched again on its probe frame.
+    for (int p = 0; p < 2; ++p) {
+        CAPTURE(p);
+        CHECK(marched[p] < traced[p] / 4);
+        CHECK(marched[p] > 0);
+    }
+    for (Isa isa : supportedIsas())
+        for (int threads : testThreadCounts({1, 2, 8})) {
+            const std::string isaStr(isaName(isa));
+            CAPTURE(isaStr);
+            CAPTURE(threads);
+            std::vector<Frame> frames;
+            sequence(isa, threads, frames, 3);
+            for (int f = 0; f < 3; ++f) CHECK(frameHash(frames[f]) == frameHash(ref[f]));
+        }
 }
