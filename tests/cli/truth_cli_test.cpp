@@ -57,6 +57,20 @@ SweepCsv readSweep(const std::string& path) {
     return csv;
 }
 
+// `ssrt sweep ARGS` at the tiny size, which must succeed: its CSV, with sweepColumns()'s header.
+SweepCsv sweepOf(std::vector<std::string> args) {
+    TempDir dir;
+    const std::string csv = dir.file("s.csv");
+    args.insert(args.begin(), "sweep");
+    for (const char* a : {"-o", csv.c_str(), "-q"}) args.push_back(a);
+    const test::CliResult r = runSsrt(tiny(args, dir));
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    SweepCsv s = readSweep(csv);
+    REQUIRE(s.header == cli::sweepColumns());
+    return s;
+}
+
 // The ray-check table's row `label` of compare's output: its ssr and ssgi cells.
 std::vector<std::string> checkRow(const std::string& out, const std::string& label) {
     for (const std::string& line : test::textLines(out)) {
@@ -276,18 +290,10 @@ TEST_CASE("sweep: one CSV row per setting, the columns it names, 'off' once") {
 }
 
 TEST_CASE("sweep: --ssgi-feedback off,on is an axis of the grid (column ssgi_feedback)") {
-    TempDir dir;
-    const std::string csv = dir.file("s.csv");
-    const test::CliResult r =
-        runSsrt(tiny({"sweep", "--scene", "cornell", "--marchers", "hiz", "--ssgi-feedback",
-                      "off,on", "--warmup-frames", "3", "-o", csv, "-q"},
-                     dir));
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const SweepCsv s = readSweep(csv);
+    const SweepCsv s = sweepOf({"--scene", "cornell", "--marchers", "hiz", "--ssgi-feedback",
+                                "off,on", "--warmup-frames", "3"});
     const auto& rows = s.rows;
     const auto col = SweepCsv::col;
-    REQUIRE(s.header == cli::sweepColumns());
     REQUIRE(rows.size() == 2);
     CHECK(rows[0][col("ssgi_feedback")] == "0");
     CHECK(rows[1][col("ssgi_feedback")] == "1");
@@ -297,17 +303,10 @@ TEST_CASE("sweep: --ssgi-feedback off,on is an axis of the grid (column ssgi_fee
 }
 
 TEST_CASE("sweep: --ssr-trace screen,mixed,world is an axis of the grid (column ssr_trace)") {
-    TempDir dir;
-    const std::string csv = dir.file("s.csv");
-    const test::CliResult r = runSsrt(tiny({"sweep", "--scene", "fence", "--marchers", "hiz",
-                                            "--ssr-trace", "screen,mixed,world", "-o", csv, "-q"},
-                                           dir));
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const SweepCsv s = readSweep(csv);
+    const SweepCsv s =
+        sweepOf({"--scene", "fence", "--marchers", "hiz", "--ssr-trace", "screen,mixed,world"});
     const auto& rows = s.rows;
     const auto col = SweepCsv::col;
-    REQUIRE(s.header == cli::sweepColumns());
     REQUIRE(rows.size() == 3);
     const auto at = [&](int row, const char* name) { return std::stod(rows[row][col(name)]); };
     CHECK(rows[0][col("ssr_trace")] == "screen");
@@ -330,15 +329,8 @@ TEST_CASE("sweep: --ssr-trace screen,mixed,world is an axis of the grid (column 
 }
 
 TEST_CASE("sweep: --ssgi-trace is an axis of the grid (column ssgi_trace), SSR's beside it") {
-    TempDir dir;
-    const std::string csv = dir.file("s.csv");
-    const test::CliResult r =
-        runSsrt(tiny({"sweep", "--scene", "fence", "--marchers", "hiz", "--ssr-trace", "screen",
-                      "--ssgi-trace", "screen,world", "-o", csv, "-q"},
-                     dir));
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const SweepCsv s = readSweep(csv);
+    const SweepCsv s = sweepOf({"--scene", "fence", "--marchers", "hiz", "--ssr-trace", "screen",
+                                "--ssgi-trace", "screen,world"});
     const auto& rows = s.rows;
     const auto col = SweepCsv::col;
     REQUIRE(rows.size() == 2);

@@ -19,26 +19,34 @@ using namespace ssrt;
 namespace {
 
 struct MixedCheck {
-    RayCheckTable ssr;
+    RayCheckTable rays;  // the signal's
     TraceStats stats;
 };
 
-// The scene at 320x180, every pixel an SSR ray (full layout), SSR traced in `mode`, and its
-// SSR rays as answered (after the world stage) checked against Embree.
-MixedCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, TraceMode mode) {
+// The scene at 320x180, `signal` traced in `mode` on `layout` (SSR off for SSGI's), and its
+// rays as answered (after the world stage) checked against Embree: the half frame's where
+// SSGI traces there (its camera and chosen pixels, copied as the observer sees them).
+MixedCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, TracePass signal,
+                          TraceMode mode, TraceLayout layout) {
     RenderSettings rs;
     rs.width = 320;
     rs.height = 180;
     rs.shadowMapSize = 512;
-    rs.trace.ssrLayout = TraceLayout::Full;
-    rs.trace.ssrTrace = mode;
+    const bool ssr = signal == TracePass::Ssr;
+    if (!ssr) rs.trace.ssr = false;
+    (ssr ? rs.trace.ssrLayout : rs.trace.ssgiLayout) = layout;
+    (ssr ? rs.trace.ssrTrace : rs.trace.ssgiTrace) = mode;
     const EmbreeWorldRays world(embree);
     FrameInput in = FrameInput::still(scene);
     in.world = &world;
     std::vector<std::pair<RayBatch, MarchResult>> samples;
+    HalfFrame half;
+    bool onHalf = false;
     const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
-                                   const MarchResult& march, const HalfFrame*) {
-        if (pass == TracePass::Ssr) samples.emplace_back(test::copyOf(rays), test::copyOf(march));
+                                   const MarchResult& march, const HalfFrame* h) {
+        if (pass != signal) return;
+        samples.emplace_back(test::copyOf(rays), test::copyOf(march));
+        if (h) half.camera = h->camera, half.offset = h->offset, onHalf = true;
     };
     Frame frame;
     Renderer(rs).renderWithoutHistory(scene, in, frame, &keep);
@@ -46,10 +54,15 @@ MixedCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, TraceMo
     cs.maxDistance = marchLengths(rs.trace.march, scene.diagonal()).maxDistance;
     MixedCheck out;
     for (const auto& [rays, march] : samples)
-        out.ssr.add(
-            checkRays(embree, frame.camera, frame.gbuffer.viewZ, rays, march, cs, nullptr, 0));
-    out.stats = frame.stats.ssr;
+        out.rays.add(checkRays(embree, frame.camera, frame.gbuffer.viewZ, rays, march, cs, nullptr,
+                               0, onHalf ? &half : nullptr));
+    out.stats = ssr ? frame.stats.ssr : frame.stats.ssgi;
     return out;
+}
+
+// SSR on every pixel (the full layout).
+MixedCheck renderAndCheck(const Scene& scene, const EmbreeScene& embree, TraceMode mode) {
+    return renderAndCheck(scene, embree, TracePass::Ssr, mode, TraceLayout::Full);
 }
 
 uint64_t count(const RayCheckTable& t, RayClass c) { return t.count[int(c)]; }
@@ -65,17 +78,17 @@ TEST_CASE(
         const EmbreeScene embree(scene);
         const MixedCheck screen = renderAndCheck(scene, embree, TraceMode::Screen);
         const MixedCheck mixed = renderAndCheck(scene, embree, TraceMode::Mixed);
-        const RayCheckTable& t = mixed.ssr;
+        const RayCheckTable& t = mixed.rays;
         const WorldRayStats& w = mixed.stats.world;
         const uint64_t provenFalse =
             count(t, RayClass::FalseHit) - t.world[int(RayClass::FalseHit)];
         MESSAGE(name << ": " << t.rays << " rays; proven " << w.proven << ", world " << w.sent
                      << " (shown " << w.shown << ", hidden " << w.hidden << ", missed " << w.missed
-                     << "); screen false hits " << count(screen.ssr, RayClass::FalseHit) << " -> "
+                     << "); screen false hits " << count(screen.rays, RayClass::FalseHit) << " -> "
                      << provenFalse << ", missed on screen "
-                     << count(screen.ssr, RayClass::MissedOnScreen) << " -> "
+                     << count(screen.rays, RayClass::MissedOnScreen) << " -> "
                      << count(t, RayClass::MissedOnScreen) << ", off-screen truths "
-                     << count(screen.ssr, RayClass::OffScreenTruth) << " -> "
+                     << count(screen.rays, RayClass::OffScreenTruth) << " -> "
                      << count(t, RayClass::OffScreenTruth) << "; world rays not agreed "
                      << t.world[int(RayClass::FalseHit)]);
         // Every ray was either proven or sent, and the check saw the same split.
@@ -85,8 +98,8 @@ TEST_CASE(
         CHECK(t.worldRays() == w.sent);
         // The screen's failures are gone: what it missed, and what it could not see, the
         // world rays found.
-        CHECK(count(screen.ssr, RayClass::MissedOnScreen) +
-                  count(screen.ssr, RayClass::OffScreenTruth) >
+        CHECK(count(screen.rays, RayClass::MissedOnScreen) +
+                  count(screen.rays, RayClass::OffScreenTruth) >
               0);
         CHECK(count(t, RayClass::MissedOnScreen) == 0);
         CHECK(count(t, RayClass::OffScreenTruth) == 0);
@@ -96,50 +109,11 @@ TEST_CASE(
         // screen's. (The most on fence, 0.32 % at this size: rays that cross a pole the raster
         // drew near no pixel centre by their path, or its hidden side; 0.023 % at 640x360.)
         CHECK(t.screenShare(RayClass::FalseHit) <= 0.004);
-        CHECK(provenFalse * 5 <= count(screen.ssr, RayClass::FalseHit));
+        CHECK(provenFalse * 5 <= count(screen.rays, RayClass::FalseHit));
         // Something was proven: the march still answers on screen.
         CHECK(w.proven > 0);
     }
 }
-
-namespace {
-
-// The same of SSGI, traced in `mode` on `layout` (the half frame's rays checked there: its
-// camera and chosen pixels, copied as the observer sees them).
-MixedCheck renderAndCheckSsgi(const Scene& scene, const EmbreeScene& embree, TraceMode mode,
-                              TraceLayout layout) {
-    RenderSettings rs;
-    rs.width = 320;
-    rs.height = 180;
-    rs.shadowMapSize = 512;
-    rs.trace.ssr = false;
-    rs.trace.ssgiLayout = layout;
-    rs.trace.ssgiTrace = mode;
-    const EmbreeWorldRays world(embree);
-    FrameInput in = FrameInput::still(scene);
-    in.world = &world;
-    std::vector<std::pair<RayBatch, MarchResult>> samples;
-    HalfFrame half;
-    bool onHalf = false;
-    const TraceObserver keep = [&](TracePass pass, int, const RayBatch& rays,
-                                   const MarchResult& march, const HalfFrame* h) {
-        if (pass != TracePass::Ssgi) return;
-        samples.emplace_back(test::copyOf(rays), test::copyOf(march));
-        if (h) half.camera = h->camera, half.offset = h->offset, onHalf = true;
-    };
-    Frame frame;
-    Renderer(rs).renderWithoutHistory(scene, in, frame, &keep);
-    RayCheckSettings cs;
-    cs.maxDistance = marchLengths(rs.trace.march, scene.diagonal()).maxDistance;
-    MixedCheck out;
-    for (const auto& [rays, march] : samples)
-        out.ssr.add(checkRays(embree, frame.camera, frame.gbuffer.viewZ, rays, march, cs, nullptr,
-                              0, onHalf ? &half : nullptr));
-    out.stats = frame.stats.ssgi;
-    return out;
-}
-
-}  // namespace
 
 TEST_CASE("mixed tracing: SSGI in mixed and world mode, full and half, answers as Embree does") {
     for (const std::string name : {"cornell", "fence", "offscreen", "occluded", "corridor"}) {
@@ -149,31 +123,34 @@ TEST_CASE("mixed tracing: SSGI in mixed and world mode, full and half, answers a
         for (TraceLayout layout : {TraceLayout::Half, TraceLayout::Full}) {
             const std::string layoutName(traceLayoutName(layout));
             CAPTURE(layoutName);
-            const MixedCheck screen = renderAndCheckSsgi(scene, embree, TraceMode::Screen, layout);
-            const MixedCheck mixed = renderAndCheckSsgi(scene, embree, TraceMode::Mixed, layout);
-            const MixedCheck world = renderAndCheckSsgi(scene, embree, TraceMode::World, layout);
-            const RayCheckTable& t = mixed.ssr;
+            const MixedCheck screen =
+                renderAndCheck(scene, embree, TracePass::Ssgi, TraceMode::Screen, layout);
+            const MixedCheck mixed =
+                renderAndCheck(scene, embree, TracePass::Ssgi, TraceMode::Mixed, layout);
+            const MixedCheck world =
+                renderAndCheck(scene, embree, TracePass::Ssgi, TraceMode::World, layout);
+            const RayCheckTable& t = mixed.rays;
             const WorldRayStats& w = mixed.stats.world;
             MESSAGE(name << " " << layoutName << ": " << t.rays << " rays; proven " << w.proven
                          << ", world " << w.sent << "; screen false hits "
-                         << count(screen.ssr, RayClass::FalseHit) << " -> "
+                         << count(screen.rays, RayClass::FalseHit) << " -> "
                          << count(t, RayClass::FalseHit) << ", missed on screen "
-                         << count(screen.ssr, RayClass::MissedOnScreen) << " -> "
+                         << count(screen.rays, RayClass::MissedOnScreen) << " -> "
                          << count(t, RayClass::MissedOnScreen));
             REQUIRE(t.rays > 0);
-            REQUIRE(t.rays == screen.ssr.rays);
+            REQUIRE(t.rays == screen.rays.rays);
             // Mixed: every ray proven or sent; nothing left the screen could not answer.
             CHECK(w.proven + w.sent == t.rays);
             CHECK(w.proven > 0);
             CHECK(t.worldRays() == w.sent);
-            CHECK(count(screen.ssr, RayClass::MissedOnScreen) > 0);
+            CHECK(count(screen.rays, RayClass::MissedOnScreen) > 0);
             CHECK(count(t, RayClass::MissedOnScreen) == 0);
             CHECK(count(t, RayClass::OffScreenTruth) == 0);
             CHECK(t.world[int(RayClass::Agreed)] + t.world[int(RayClass::TrueMiss)] ==
                   t.worldRays());
             CHECK(t.screenShare(RayClass::FalseHit) <= 0.004);
             // World: every ray traced there (none marched), each Embree's answer.
-            const RayCheckTable& a = world.ssr;
+            const RayCheckTable& a = world.rays;
             CHECK(world.stats.march.rays == 0);
             CHECK(a.worldRays() == a.rays);
             CHECK(a.world[int(RayClass::Agreed)] + a.world[int(RayClass::TrueMiss)] == a.rays);
