@@ -42,6 +42,20 @@ Frame renderTraced(const Scene& scene, const WorldRays& world, TraceMode mode, I
     return Renderer(s).renderWithoutHistory(scene, in);
 }
 
+// Runs fn(signal, mode) for each signal traced in mixed and in world mode (the other on
+// screen), captured.
+template <class Fn>
+void forEachWorldMode(const Fn& fn) {
+    for (TracePass signal : {TracePass::Ssr, TracePass::Ssgi})
+        for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
+            const std::string modeName(traceModeName(mode));
+            CAPTURE(modeName);
+            const bool ssr = signal == TracePass::Ssr;
+            CAPTURE(ssr);
+            fn(signal, mode);
+        }
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -54,25 +68,20 @@ TEST_CASE(
         const WorldRays& world = ws.world;
         const uint64_t screen =
             frameHash(renderTraced(scene, world, TraceMode::Screen, Isa::Scalar, 1));
-        for (TracePass signal : {TracePass::Ssr, TracePass::Ssgi})
-            for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
-                const std::string modeName(traceModeName(mode));
-                CAPTURE(modeName);
-                const bool ssr = signal == TracePass::Ssr;
-                CAPTURE(ssr);
-                const auto render = [&](Isa isa, int threads) {
-                    return frameHash(renderTraced(scene, world, mode, isa, threads, true, signal));
-                };
-                const uint64_t ref = render(Isa::Scalar, 1);
-                CHECK(ref != screen);  // the world's answers changed the image
-                for (Isa isa : supportedIsas())
-                    for (int threads : testThreadCounts({1, 2, 8})) {
-                        const std::string isaStr(isaName(isa));
-                        CAPTURE(isaStr);
-                        CAPTURE(threads);
-                        CHECK(render(isa, threads) == ref);
-                    }
-            }
+        forEachWorldMode([&](TracePass signal, TraceMode mode) {
+            const auto render = [&](Isa isa, int threads) {
+                return frameHash(renderTraced(scene, world, mode, isa, threads, true, signal));
+            };
+            const uint64_t ref = render(Isa::Scalar, 1);
+            CHECK(ref != screen);  // the world's answers changed the image
+            for (Isa isa : supportedIsas())
+                for (int threads : testThreadCounts({1, 2, 8})) {
+                    const std::string isaStr(isaName(isa));
+                    CAPTURE(isaStr);
+                    CAPTURE(threads);
+                    CHECK(render(isa, threads) == ref);
+                }
+        });
     }
 }
 
@@ -91,24 +100,19 @@ TEST_CASE("mixed tracing: the colour is the same bits when the frame gives plane
         const WorldScene ws(name);
         const Scene& scene = ws.scene;
         const WorldRays& world = ws.world;
-        for (TracePass signal : {TracePass::Ssr, TracePass::Ssgi})
-            for (TraceMode mode : {TraceMode::Mixed, TraceMode::World}) {
-                const std::string modeName(traceModeName(mode));
-                CAPTURE(modeName);
-                const bool ssr = signal == TracePass::Ssr;
-                CAPTURE(ssr);
-                const Frame kept = renderTraced(scene, world, mode, Isa::Scalar, 1, true, signal);
-                for (int threads : testThreadCounts({1, 2, 8})) {
-                    CAPTURE(threads);
-                    const Frame early =
-                        renderTraced(scene, world, mode, Isa::Scalar, threads, false, signal);
-                    for (const char* layer : {"color.R", "color.G", "color.B"}) {
-                        CAPTURE(layer);
-                        REQUIRE(layerHash(kept, layer) != 0);
-                        CHECK(layerHash(early, layer) == layerHash(kept, layer));
-                    }
+        forEachWorldMode([&](TracePass signal, TraceMode mode) {
+            const Frame kept = renderTraced(scene, world, mode, Isa::Scalar, 1, true, signal);
+            for (int threads : testThreadCounts({1, 2, 8})) {
+                CAPTURE(threads);
+                const Frame early =
+                    renderTraced(scene, world, mode, Isa::Scalar, threads, false, signal);
+                for (const char* layer : {"color.R", "color.G", "color.B"}) {
+                    CAPTURE(layer);
+                    REQUIRE(layerHash(kept, layer) != 0);
+                    CHECK(layerHash(early, layer) == layerHash(kept, layer));
                 }
             }
+        });
     }
 }
 
