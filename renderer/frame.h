@@ -103,7 +103,7 @@ struct FrameHistory : PlaneTable<FrameHistory> {
     // The diffuse signal's, at half resolution, where SSGI traces at half (TraceLayout::Half):
     // it is denoised on the half frame and brought to full resolution after.
     DenoiseHistory denoiseHalf;
-    // Mixed tracing's tile classifier, per signal (renderer/world_stage.h: mixedSkips).
+    // Mixed tracing's tile classifier, per signal (renderer/world_stage.h: MixedTileClassifier).
     MixedTiles mixedSsr, mixedSsgi;
     // Held by the render call reading and committing it: a second call at once is refused.
     InUse inUse;

@@ -19,25 +19,9 @@ struct SsgiSample {
     const HitStatsArgs& hp;
     DiffuseCut cut;
     RayGenCheckerboard checker;
-    PlaneF* out;       // the resolve's colour planes
-    WorldStage world;  // the rays the screen does not answer (TraceSettings::ssgiTrace)
-    // Mixed tracing's tile classifier on the camera's grid (mixedSkips), and what each tile's
-    // world stage counted, summed over the samples (keepMixedTiles).
-    TileGrid grid;
-    std::vector<uint8_t> skips;
-    std::vector<WorldRayStats>* perTile;
-};
-
-// Mixed tracing's tile classifier's inputs for SSGI on `camera`'s grid.
-struct SsgiTiles {
-    TileGrid grid;
-    std::vector<uint8_t> skips;
-    std::vector<WorldRayStats> perTile;
-    SsgiTiles(const TraceContext& c, const TraceCamera& camera)
-        : grid(camera.width, camera.height), skips(mixedSkips(c, TracePass::Ssgi, grid)) {}
-    void keep(const TraceContext& c) const {
-        keepMixedTiles(c, TracePass::Ssgi, grid, perTile, skips);
-    }
+    PlaneF* out;                 // the resolve's colour planes
+    WorldStage world;            // the rays the screen does not answer (TraceSettings::ssgiTrace)
+    MixedTileClassifier* tiles;  // on the camera's grid; counts each sample's world stage
 };
 
 RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& result,
@@ -57,15 +41,15 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         const auto answer = [&](MarchResult& m) {
             times.worldRan = true;
             addTime(times.world, [&] {
-                std::vector<WorldRayStats> tiles;
-                st.world.add(answerInWorldByTile(q.world, q.grid, rays, m, tiles, lit));
-                addTiles(*q.perTile, tiles);
+                std::vector<WorldRayStats> perTile;
+                st.world.add(answerInWorldByTile(q.world, q.tiles->grid(), rays, m, perTile, lit));
+                q.tiles->add(perTile);
             });
         };
         marchSample(c, q.on, TracePass::Ssgi, s, rays, result, st, times,
                     answers ? std::function<void(MarchResult&)>(answer)
                             : std::function<void(MarchResult&)>(),
-                    &q.skips);
+                    &q.tiles->skips());
         addTime(times.resolve, [&] {
             resolveSsgi(isa, q.in, rays, result, q.out, s, spp, c.threads(), lit);
             accumulateHitStats(isa, camera, rays, result, q.hp, s, spp, c.threads());
@@ -75,7 +59,7 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
     RayMarcher march(isa, c.ts().marcher, c.ts().march, seed, camera, q.on.g, q.on.backZ, q.on.hiz,
                      c.threads());
     if (skipsMarch(c, TracePass::Ssgi)) march.skipMarch();
-    if (!q.skips.empty()) march.skipTiles(&q.skips);
+    march.skipTiles(q.tiles->skips());
     const SsgiResolver resolve(isa, q.in, q.out, s, spp, &rays.pdf);
     rays.corner = {};
     const HitStatsAccumulator hitStats(isa, camera, q.hp, s, spp);
@@ -86,17 +70,18 @@ RayGenStats ssgiSample(const SsgiSample& q, int s, RayBatch& rays, MarchResult& 
         resolve.tile(t, b, m, lit);
         lit.clear();
     };
-    std::vector<WorldRayStats> answered(std::size_t(q.grid.count()));
+    const TileGrid& grid = q.tiles->grid();
+    std::vector<WorldRayStats> answered(std::size_t(grid.count()));
     const auto answer = [&](int t, const RayBatch& b, MarchResult& m) {
         lit.clear();
-        answered[std::size_t(t)] = answerInWorld(q.world, b, m, q.grid.rect(t), lit);
+        answered[std::size_t(t)] = answerInWorld(q.world, b, m, grid.rect(t), lit);
     };
     const RayGenStats rs =
         traceTiles(c, gen, march, resolveTile, hitStats, st, times, {},
                    answers ? std::function<void(int, const RayBatch&, MarchResult&)>(answer)
                            : std::function<void(int, const RayBatch&, MarchResult&)>());
     for (const WorldRayStats& a : answered) st.world.add(a);
-    addTiles(*q.perTile, answered);
+    q.tiles->add(answered);
     return rs;
 }
 
@@ -135,7 +120,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
                           stageOutput(ht.resolved, c.debugPlane(ht.resolved.steps), hf.camera),
                           stageOutput(ht.resolved, &ht.resolved.hitDistance, hf.camera)};
     const HiZPyramid* hiz = ts.marcher == Marcher::HiZ ? &ht.hiz : nullptr;
-    SsgiTiles tiles(c, hf.camera);
+    MixedTileClassifier tiles(c, TracePass::Ssgi, hf.camera);
     const SsgiSample q{c,
                        {hf.camera, hg, backZ(hf.backZ), hiz, &hf},
                        in,
@@ -144,9 +129,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
                        {},
                        ht.resolved.color,
                        worldStage(c, frame, pass::kSsgiHalf, ts.ssgiTrace, false, &hf),
-                       tiles.grid,
-                       tiles.skips,
-                       &tiles.perTile};
+                       &tiles};
     for (int s = 0; s < ts.ssgiSpp; ++s) {
         RayGenStats rs = ssgiSample(q, s, ht.rays, ht.march, st, times);
         // The frame's surface pixels: the chosen ones traced here, the others cut (hidden
@@ -155,7 +138,7 @@ void ssgiHalf(const TraceContext& c, Frame& frame, const PassReads& r, const Ssg
         rs.cut += hf.cutPixels;
         st.rays.add(rs);
     }
-    tiles.keep(c);
+    tiles.keep();
     // The full-resolution planes: what the composite reads without the denoiser, and only to
     // be looked at with it (which denoises the half frame's: denoiseHalfDiffuse).
     const std::span<PlaneF, 3> color = frame.rgb(Res::Ssgi);
@@ -212,7 +195,7 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                           stageOutput(frame, Res::SsgiSteps, c.camera, c.settings.debugPlanes),
                           stageOutput(frame, Res::SsgiHitDistance, c.camera)};
     takeBatches(c, frame);
-    SsgiTiles tiles(c, c.camera);
+    MixedTileClassifier tiles(c, TracePass::Ssgi, c.camera);
     const SsgiSample q{c,
                        {c.camera, in.g, c.backZ, c.hiz, nullptr},
                        in,
@@ -221,12 +204,10 @@ void ssgiPass(const TraceContext& c, Frame& frame) {
                        checker,
                        color.data(),
                        worldStage(c, frame, pass::kSsgi, ts.ssgiTrace, false),
-                       tiles.grid,
-                       tiles.skips,
-                       &tiles.perTile};
+                       &tiles};
     for (int s = 0; s < ts.ssgiSpp; ++s)
         st.rays.add(ssgiSample(q, s, sc.rays, sc.march, st, times));
-    tiles.keep(c);
+    tiles.keep();
     if (checker.on) {
         times.reconstruct = 0.0;
         addTime(times.reconstruct, "ssgi reconstruct", [&] {

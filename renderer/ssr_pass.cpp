@@ -76,18 +76,16 @@ RayGenCheckerboard ssrCheckerboard(const TraceContext& c) {
 void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes& times) {
     const TraceContext& c = q.c;
     Frame::Scratch& sc = frame.scratch;
-    const TileGrid grid(c.camera.width, c.camera.height);
-    const std::vector<uint8_t> skips = mixedSkips(c, TracePass::Ssr, grid);
-    std::vector<WorldRayStats> perTile;
+    MixedTileClassifier tiles(c, TracePass::Ssr, c.camera);
     for (int s = 0; s < c.ts().ssrSpp; ++s) {
         addTime(times.rays, [&] { st.rays.add(q.rays(s).frame(sc.rays, c.threads())); });
         std::vector<WorldLit> lit;
         const auto answer = [&](MarchResult& m) {
             times.worldRan = true;
             addTime(times.world, [&] {
-                std::vector<WorldRayStats> tiles;
-                st.world.add(answerInWorldByTile(q.world, grid, sc.rays, m, tiles, lit));
-                addTiles(perTile, tiles);
+                std::vector<WorldRayStats> perTile;
+                st.world.add(answerInWorldByTile(q.world, tiles.grid(), sc.rays, m, perTile, lit));
+                tiles.add(perTile);
             });
         };
         marchSample(c, {c.camera, q.in.g, c.backZ, c.hiz, nullptr}, TracePass::Ssr, s, sc.rays,
@@ -95,7 +93,7 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
                     c.ts().ssrTrace == TraceMode::Screen
                         ? std::function<void(MarchResult&)>()
                         : std::function<void(MarchResult&)>(answer),
-                    &skips);
+                    &tiles.skips());
         addTime(times.resolve, [&] {
             if (c.ts().ssrTrace == TraceMode::Screen) {
                 resolveSsr(c.isa, q.rs, q.in, sc.rays, sc.march, sc.ssr, s, c.ts().ssrSpp,
@@ -113,7 +111,7 @@ void ssrFrameSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTime
                                c.threads());
         });
     }
-    keepMixedTiles(c, TracePass::Ssr, grid, perTile, skips);
+    tiles.keep();
 }
 
 // Tile by tile: the resolve's first pass and the hit statistics take each tile's batches.
@@ -121,15 +119,14 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
     const TraceContext& c = q.c;
     const Isa isa = c.isa;
     Frame::Scratch& sc = frame.scratch;
-    const TileGrid grid(c.camera.width, c.camera.height);
-    const std::vector<uint8_t> skips = mixedSkips(c, TracePass::Ssr, grid);
-    std::vector<WorldRayStats> perTile(std::size_t(grid.count()));
+    MixedTileClassifier tiles(c, TracePass::Ssr, c.camera);
+    const TileGrid& grid = tiles.grid();
     for (int s = 0; s < c.ts().ssrSpp; ++s) {
         const RayGenerator rays = q.rays(s);
         RayMarcher march(isa, c.ts().marcher, c.ts().march, {c.frameIndex, uint32_t(s)}, c.camera,
                          q.in.g, c.backZ, c.hiz, c.threads());
         if (skipsMarch(c, TracePass::Ssr)) march.skipMarch();
-        if (!skips.empty()) march.skipTiles(&skips);
+        march.skipTiles(tiles.skips());
         // (The resolve's scratch a ring of tile rows: its second pass runs in the chain.)
         const SsrResolver resolve(isa, q.rs, q.in, sc.ssr, s, c.ts().ssrSpp, sc.rays, sc.march,
                                   kChainRingTileRows * kTileSize);
@@ -153,9 +150,9 @@ void ssrTileSamples(const SsrSample& q, Frame& frame, TraceStats& st, StageTimes
                 ? std::function<void(int, const RayBatch&, MarchResult&)>()
                 : answer));
         for (const WorldRayStats& a : answered) st.world.add(a);
-        addTiles(perTile, answered);
+        tiles.add(answered);
     }
-    keepMixedTiles(c, TracePass::Ssr, grid, perTile, skips);
+    tiles.keep();
 }
 
 }  // namespace

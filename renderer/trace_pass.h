@@ -58,6 +58,11 @@ struct TraceContext {
     }
 };
 
+// How `pass`'s rays are answered (TraceSettings::ssrTrace, ssgiTrace).
+inline TraceMode traceMode(const TraceContext& c, TracePass pass) {
+    return pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+}
+
 // Fills SSR's, SSGI's and the denoiser's outputs (Res::Ssr ... Res::SpecularFrames) and replaces
 // the image's colour and display (Res::Color, Res::Display) with the composite; appends pass
 // times and stats to frame.stats.

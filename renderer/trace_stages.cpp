@@ -8,10 +8,9 @@ void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, in
                  const std::function<void(MarchResult&)>& answer,
                  const std::vector<uint8_t>* skipTiles) {
     addTime(times.march, [&] {
-        stats.march.add(marchRays(c.isa, c.ts().marcher, c.ts().march,
-                                  {c.frameIndex, uint32_t(sample)}, on.camera, on.g, on.backZ,
-                                  on.hiz, rays, result, c.threads(), skipsMarch(c, pass),
-                                  skipTiles && !skipTiles->empty() ? skipTiles : nullptr));
+        stats.march.add(marchRays(
+            c.isa, c.ts().marcher, c.ts().march, {c.frameIndex, uint32_t(sample)}, on.camera, on.g,
+            on.backZ, on.hiz, rays, result, c.threads(), skipsMarch(c, pass), skipTiles));
     });
     if (answer) answer(result);
     if (c.observer && *c.observer) (*c.observer)(pass, sample, rays, result, on.half);

@@ -77,11 +77,6 @@ struct MarchFrame {
     const HalfFrame* half;
 };
 
-// How `pass`'s rays are answered (TraceSettings::ssrTrace, ssgiTrace).
-inline TraceMode traceMode(const TraceContext& c, TracePass pass) {
-    return pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
-}
-
 // Whether `pass` leaves its rays unmarched (RayMarcher::skipMarch): a signal traced in world
 // space answers every ray there.
 inline bool skipsMarch(const TraceContext& c, TracePass pass) {
@@ -89,18 +84,12 @@ inline bool skipsMarch(const TraceContext& c, TracePass pass) {
 }
 
 // One sample's march of the frame's batch `rays` into `result` (none where skipsMarch, nor in
-// the tiles `skipTiles` marks: mixedSkips), then what `answer` (when given: world rays)
+// the tiles `skipTiles` marks: MixedTileClassifier), then what `answer` (when given: world rays)
 // answers in its place, shown to the observer.
 void marchSample(const TraceContext& c, const MarchFrame& on, TracePass pass, int sample,
                  const RayBatch& rays, MarchResult& result, TraceStats& stats, StageTimes& times,
                  const std::function<void(MarchResult&)>& answer = {},
                  const std::vector<uint8_t>* skipTiles = nullptr);
-
-// Adds `from`'s per-tile counts to `into`'s (sized to match).
-inline void addTiles(std::vector<WorldRayStats>& into, const std::vector<WorldRayStats>& from) {
-    into.resize(from.size());
-    for (std::size_t t = 0; t < from.size(); ++t) into[t].add(from[t]);
-}
 
 // The half frame's traced signal's planes from the pool (tracedSignalsPooled; the denoiser
 // gives them back once its front end has read them), its march steps aside: only looked at,

@@ -171,43 +171,46 @@ MixedTiles* mixedTiles(const TraceContext& c, TracePass pass) {
 }
 
 bool sameGrid(const MixedTiles& m, const TileGrid& grid) {
-    return m.tilesX == grid.tilesX && m.tilesY == grid.tilesY &&
-           m.proven.size() == std::size_t(grid.count());
+    return m.tilesX == grid.tilesX && m.tilesY == grid.tilesY;
 }
 
 }  // namespace
 
-std::vector<uint8_t> mixedSkips(const TraceContext& c, TracePass pass, const TileGrid& grid) {
-    const TraceMode mode = pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+MixedTileClassifier::MixedTileClassifier(const TraceContext& c, TracePass pass,
+                                         const TraceCamera& camera)
+    : c_(c), pass_(pass), grid_(camera.width, camera.height) {
     const MixedTiles* last = mixedTiles(c, pass);
-    if (mode != TraceMode::Mixed || !last || c.resetHistory || !sameGrid(*last, grid)) return {};
-    std::vector<uint8_t> skips(std::size_t(grid.count()), 0);
-    for (int t = 0; t < grid.count(); ++t) {
+    if (traceMode(c, pass) != TraceMode::Mixed || !last || c.resetHistory ||
+        !sameGrid(*last, grid_))
+        return;
+    skips_.assign(std::size_t(grid_.count()), 0);
+    for (int t = 0; t < grid_.count(); ++t) {
         const float p = last->proven[std::size_t(t)];
         const bool probe = (c.frameIndex + uint32_t(t)) % kMixedProbeFrames == 0;
-        skips[std::size_t(t)] = p >= 0.0f && p < kMixedMinProven && !probe;
+        skips_[std::size_t(t)] = p >= 0.0f && p < kMixedMinProven && !probe;
     }
-    return skips;
 }
 
-void keepMixedTiles(const TraceContext& c, TracePass pass, const TileGrid& grid,
-                    const std::vector<WorldRayStats>& perTile, const std::vector<uint8_t>& skips) {
-    MixedTiles* keep = mixedTiles(c, pass);
-    const TraceMode mode = pass == TracePass::Ssr ? c.ts().ssrTrace : c.ts().ssgiTrace;
+void MixedTileClassifier::add(const std::vector<WorldRayStats>& perTile) {
+    perTile_.resize(perTile.size());
+    for (std::size_t t = 0; t < perTile.size(); ++t) perTile_[t].add(perTile[t]);
+}
+
+void MixedTileClassifier::keep() const {
+    MixedTiles* keep = mixedTiles(c_, pass_);
     if (!keep) return;
-    if (mode != TraceMode::Mixed) {
+    if (traceMode(c_, pass_) != TraceMode::Mixed) {
         *keep = MixedTiles();
         return;
     }
-    if (c.resetHistory || !sameGrid(*keep, grid)) {
-        keep->tilesX = grid.tilesX, keep->tilesY = grid.tilesY;
-        keep->proven.assign(std::size_t(grid.count()), -1.0f);
+    if (c_.resetHistory || !sameGrid(*keep, grid_)) {
+        keep->tilesX = grid_.tilesX, keep->tilesY = grid_.tilesY;
+        keep->proven.assign(std::size_t(grid_.count()), -1.0f);
     }
-    for (int t = 0; t < grid.count(); ++t) {
-        if (!skips.empty() && skips[std::size_t(t)]) continue;
-        const WorldRayStats& s = perTile[std::size_t(t)];
-        const uint64_t rays = s.proven + s.sent;
-        keep->proven[std::size_t(t)] = rays ? float(double(s.proven) / double(rays)) : -1.0f;
+    for (std::size_t t = 0; t < perTile_.size(); ++t) {
+        if (!skips_.empty() && skips_[t]) continue;
+        const uint64_t rays = perTile_[t].proven + perTile_[t].sent;
+        keep->proven[t] = rays ? float(double(perTile_[t].proven) / double(rays)) : -1.0f;
     }
 }
 

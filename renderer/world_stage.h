@@ -77,18 +77,34 @@ WorldRayStats answerInWorldByTile(const WorldStage& w, const TileGrid& grid, con
                                   std::vector<WorldLit>& lit);
 
 // Mixed tracing's tile classifier (FidelityFX's hybrid reflections classify tiles by their
-// last frame's hits; here by the proof): a tile of `pass`'s `grid` where the proof held for
+// last frame's hits; here by the proof): a tile of a pass's grid where the proof held for
 // fewer than kMixedMinProven of its rays the last time it was marched skips its march and
 // proof this frame, and sends every ray to world space, where a ray costs less than its march
 // and proof together. Each tile marches again one frame in kMixedProbeFrames, so a tile whose
-// view changed is measured again. Returns one entry per tile (1: skip), or none (march all):
-// outside mixed mode, without a sequence's history, after a cut or a change of grid.
+// view changed is measured again. What it keeps lives in the sequence's history
+// (FrameHistory::mixedSsr, mixedSsgi).
 inline constexpr float kMixedMinProven = 0.9f;
 inline constexpr uint32_t kMixedProbeFrames = 8;
-std::vector<uint8_t> mixedSkips(const TraceContext& c, TracePass pass, const TileGrid& grid);
-// What this frame's marched tiles proved (`perTile`, summed over the samples), kept in the
-// sequence's history for the next frame's mixedSkips; a skipped tile keeps its last share.
-void keepMixedTiles(const TraceContext& c, TracePass pass, const TileGrid& grid,
-                    const std::vector<WorldRayStats>& perTile, const std::vector<uint8_t>& skips);
+class MixedTileClassifier {
+public:
+    // `pass`'s tiles on `camera`'s grid (the frame's, or the half frame's).
+    MixedTileClassifier(const TraceContext& c, TracePass pass, const TraceCamera& camera);
+    const TileGrid& grid() const { return grid_; }
+    // One entry per tile (1: skip; RayMarcher::skipTiles), or none (march all): outside mixed
+    // mode, without a sequence's history, after a cut or a change of grid.
+    const std::vector<uint8_t>& skips() const { return skips_; }
+    // A sample's world-stage counts, one per tile, added to the frame's.
+    void add(const std::vector<WorldRayStats>& perTile);
+    // What the marched tiles proved, kept in the sequence's history for the next frame (a
+    // skipped tile keeps its last share); outside mixed mode, nothing is kept.
+    void keep() const;
+
+private:
+    const TraceContext& c_;
+    TracePass pass_;
+    TileGrid grid_;
+    std::vector<uint8_t> skips_;
+    std::vector<WorldRayStats> perTile_;
+};
 
 }  // namespace ssrt

@@ -360,6 +360,13 @@ MarchStats RayMarcher::tile(int tile, const RayBatch& rays, MarchResult& result)
     return st;
 }
 
+void RayMarcher::skipTiles(const std::vector<uint8_t>& tiles) {
+    if (tiles.empty()) return;
+    if (tiles.size() != std::size_t(grid_.count()))
+        throw std::invalid_argument("RayMarcher: skipTiles is not one per tile");
+    skipTiles_ = &tiles;
+}
+
 MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, RaySeed seed,
                      const TraceCamera& camera, const GBufferView& g, const PlaneF* backZ,
                      const HiZPyramid* hiz, const RayBatch& rays, MarchResult& result, int threads,
@@ -371,11 +378,7 @@ MarchStats marchRays(Isa isa, Marcher marcher, const MarchSettings& settings, Ra
         throw std::invalid_argument("marchRays: camera size does not match the ray batch");
     RayMarcher march(isa, marcher, settings, seed, camera, g, backZ, hiz, threads);
     if (skip) march.skipMarch();
-    if (skipTiles) {
-        if (skipTiles->size() != std::size_t(march.grid().count()))
-            throw std::invalid_argument("marchRays: skipTiles is not one per tile");
-        march.skipTiles(skipTiles);
-    }
+    if (skipTiles) march.skipTiles(*skipTiles);
     result.ensureSize(w, h);
     result.corner = {};
     const TileGrid& grid = march.grid();

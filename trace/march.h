@@ -139,8 +139,9 @@ public:
     // tracing in Embree costs about what the march does.
     void skipMarch() { skip_ = true; }
     // The same for the tiles whose entry of `tiles` (one per tile of grid(), outliving the
-    // marcher) is not 0: mixed tracing's tile classifier (renderer/world_stage.h).
-    void skipTiles(const std::vector<uint8_t>* tiles) { skipTiles_ = tiles; }
+    // marcher; empty: none) is not 0: mixed tracing's tile classifier (renderer/world_stage.h).
+    // Throws std::invalid_argument for a list of another length.
+    void skipTiles(const std::vector<uint8_t>& tiles);
 
 private:
     MarchKernelArgs proto_{};
@@ -150,7 +151,7 @@ private:
     float ddaJitter_ = 0.0f;  // 0: no jitter
     int maxSteps_ = 0;
     bool skip_ = false;
-    const std::vector<uint8_t>* skipTiles_ = nullptr;
+    const std::vector<uint8_t>* skipTiles_ = nullptr;  // null: none
     decltype(&isa_scalar::marchHiZKernel) kernel_ = nullptr;
     decltype(&isa_scalar::marchSortKeys) sortKeys_ = nullptr;
 };

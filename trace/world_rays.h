@@ -74,8 +74,8 @@ struct WorldLit {
     glm::vec3 point;     // the hit in view space
 };
 
-// Mixed tracing's tile classifier's memory (renderer/world_stage.h, mixedSkips): per tile of
-// a signal's grid, the share of its rays the proof held the last time the tile was marched
+// Mixed tracing's tile classifier's memory (renderer/world_stage.h, MixedTileClassifier): per tile
+// of a signal's grid, the share of its rays the proof held the last time the tile was marched
 // (-1: it had no ray).
 struct MixedTiles {
     int tilesX = 0, tilesY = 0;

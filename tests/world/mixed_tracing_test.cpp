@@ -199,8 +199,8 @@ TEST_CASE(
     "mixed tracing: the tile classifier sends the tiles that proved little straight to world "
     "space, the same bits on every ISA and thread count") {
     // A still sequence: frame 0 marches every tile; from frame 1 a tile whose proof held for
-    // few of its rays skips its march (renderer/world_stage.h: mixedSkips), except on its probe
-    // frame; every ray is still answered, by the proof or by Embree.
+    // few of its rays skips its march (renderer/world_stage.h: MixedTileClassifier), except on its
+    // probe frame; every ray is still answered, by the proof or by Embree.
     const WorldScene ws("spheres");
     const Scene& scene = ws.scene;
     const auto sequence = [&](Isa isa, int threads, std::vector<Frame>& frames, uint32_t count) {
